@@ -1,0 +1,4 @@
+#pragma once
+namespace gbl {
+int runCli(int argc, char** argv);
+}

@@ -1,0 +1,42 @@
+#pragma once
+// File helpers that keep the promise "written whole or not at all, nothing overwritten
+// without asking": writes go to a temporary name in the same directory and are renamed.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gbl {
+
+std::vector<unsigned char> readBinaryFile(const std::filesystem::path& path);
+std::string readTextFile(const std::filesystem::path& path);
+
+// Writes `bytes` to `path` atomically (temporary file + rename). Throws UserError on failure.
+void writeFileAtomic(const std::filesystem::path& path, const void* bytes, size_t size);
+void writeFileAtomic(const std::filesystem::path& path, const std::string& text);
+
+// Calls `write(tmpPath)` and renames tmpPath to path when it returns; removes tmpPath if it throws.
+// For libraries (OpenEXR, stb) that want a file name to write to.
+template <class WriteFn>
+void writeViaTemporary(const std::filesystem::path& path, WriteFn&& write);
+std::filesystem::path temporaryPathFor(const std::filesystem::path& path);
+void commitTemporary(const std::filesystem::path& tmp, const std::filesystem::path& path);
+void discardTemporary(const std::filesystem::path& tmp) noexcept;
+
+// Prepares an output directory: creates it, or accepts it when empty; a non-empty directory
+// is accepted only with `force` (its files are then replaced one by one, atomically).
+// `flagName` is the CLI flag named in the error ("--out").
+void prepareOutputDirectory(const std::filesystem::path& dir, bool force, const std::string& flagName);
+
+template <class WriteFn>
+void writeViaTemporary(const std::filesystem::path& path, WriteFn&& write) {
+    const auto tmp = temporaryPathFor(path);
+    try {
+        write(tmp);
+    } catch (...) {
+        discardTemporary(tmp);
+        throw;
+    }
+    commitTemporary(tmp, path);
+}
+
+}  // namespace gbl

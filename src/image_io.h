@@ -1,0 +1,25 @@
+#pragma once
+// Reading and writing the image files gbufferlab uses. Every writer is atomic
+// (temporary name + rename); every reader throws UserError naming the file on bad input.
+#include <string>
+
+#include "image.h"
+
+namespace gbl {
+
+// Radiance .hdr (RGBE, flat or RLE) -> RGB float image.
+Image readHdr(const std::string& path);
+// OpenEXR (any compression OpenEXR 3 reads, DWAB included) -> RGB float image (R,G,B; A dropped).
+Image readExr(const std::string& path);
+// Picks readHdr or readExr by extension (.hdr / .exr); other extensions are a UserError.
+Image readEnvironmentFile(const std::string& path);
+
+// Writes a float image (1..4 channels) as EXR, 32-bit float, ZIP compression.
+// channelNames optional: defaults R,G,B,A / Y for 1 channel.
+void writeExr(const std::string& path, const Image& image, const std::vector<std::string>& channelNames = {});
+// Writes an 8-bit PNG (1..4 channels).
+void writePng(const std::string& path, const Image8& image);
+// Reads a PNG / JPEG (8-bit) file.
+Image8 readImage8(const std::string& path);
+
+}  // namespace gbl

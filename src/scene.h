@@ -1,0 +1,115 @@
+#pragma once
+// A scene flattened for rendering: one vertex and one index array for all meshes, one draw per
+// glTF primitive with its world matrix, materials with factors and texture indices, textures
+// decoded to RGBA8, a camera and punctual lights. Loaded from glTF 2.0 or built in code.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace gbl {
+
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec4 tangent;  // xyz tangent, w = bitangent sign (glTF convention: B = cross(N, T) * w)
+    glm::vec2 uv;
+};
+
+struct Texture {
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;  // RGBA8, rows top to bottom (glTF uv (0,0) = first row)
+    bool srgb = false;          // true for base colour and emissive (glTF: sRGB-encoded)
+};
+
+constexpr int kNoTexture = -1;
+
+// glTF metallic-roughness material, with KHR_materials_specular when present.
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    float metallicFactor = 1.0f;
+    float roughnessFactor = 1.0f;
+    glm::vec3 emissiveFactor{0.0f};
+    float normalScale = 1.0f;
+    float occlusionStrength = 1.0f;
+    // KHR_materials_specular: F0 of dielectrics = min(0.04 * specularColor, 1) * specular (glTF spec).
+    float specularFactor = 1.0f;
+    glm::vec3 specularColorFactor{1.0f};
+    int baseColorTexture = kNoTexture;
+    int metallicRoughnessTexture = kNoTexture;  // G = roughness, B = metallic
+    int normalTexture = kNoTexture;
+    int occlusionTexture = kNoTexture;          // R = occlusion
+    int emissiveTexture = kNoTexture;
+    int specularTexture = kNoTexture;           // A = specular
+    int specularColorTexture = kNoTexture;      // RGB = specular colour (sRGB)
+    bool doubleSided = false;
+};
+
+struct Draw {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    int32_t vertexOffset = 0;
+    int material = 0;
+    glm::mat4 model{1.0f};
+};
+
+struct Camera {
+    glm::vec3 position{0.0f, 0.0f, 3.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float yFovRadians = 0.7f;
+    float zNear = 0.01f;
+    float zFar = 100.0f;  // finite; the renderer may use reversed or infinite Z
+    bool fromFile = false;
+};
+
+enum class LightType : int { Directional = 0, Point = 1, Spot = 2 };
+
+struct Light {
+    LightType type = LightType::Directional;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;       // directional: lux; point/spot: candela (glTF units)
+    glm::vec3 position{0.0f};     // world space (point, spot)
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // world space, direction the light travels
+    float range = 0.0f;           // 0 = infinite
+};
+
+struct Bounds {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+};
+
+struct Scene {
+    std::string source;  // file path, or "built-in default scene"
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    std::vector<Draw> draws;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Light> lights;
+    Camera camera;
+    Bounds bounds;  // world-space bounds of all draws
+};
+
+// Loads a .gltf (external or embedded buffers) or .glb file. Throws UserError naming the file
+// and the problem for anything malformed or unsupported (e.g. Draco). Generates tangents when a
+// primitive has a normal map but no TANGENT. Non-indexed primitives get sequential indices.
+// Adds a default sun when the file has no KHR_lights_punctual lights, and a camera that frames
+// the bounds when it has none.
+Scene loadGltfScene(const std::string& path);
+
+// The built-in scene: a sphere grid over roughness x metallic, coloured-specular spheres
+// (gold, copper, a coloured dielectric) and a normal-mapped ground plane with fine detail.
+Scene makeDefaultScene();
+
+// A camera looking at the bounds from the front (+Z), framing them for the given aspect.
+Camera frameBounds(const Bounds& bounds, float aspect);
+
+// A light used when the scene has none: a warm sun from the upper left front.
+Light defaultSun();
+
+}  // namespace gbl

@@ -1,0 +1,18 @@
+#pragma once
+// HDR -> display. The tone map is stated so images are comparable across runs:
+// exposure scale, then the ACES filmic fit by Krzysztof Narkowicz (2016), then the exact sRGB
+// transfer function, then 8-bit quantisation with floor(x * 255 + 0.5).
+#include "image.h"
+
+namespace gbl {
+
+float acesFilmNarkowicz(float x);
+float linearToSrgb(float linear);   // exact piecewise sRGB OETF, x in [0,1]
+float srgbToLinear(float encoded);  // exact inverse
+
+// RGB(A) float -> RGB 8-bit, with the tone map above. Alpha is dropped.
+Image8 toneMapToSrgb8(const Image& hdr, float exposure = 1.0f);
+// The same tone map kept in float (display-referred, sRGB-encoded, in [0,1]).
+Image toneMapToSrgbFloat(const Image& hdr, float exposure = 1.0f);
+
+}  // namespace gbl
