@@ -1,5 +1,6 @@
 #include "file_io.h"
 
+#include <ctime>
 #include <fstream>
 #include <system_error>
 #include <unistd.h>
@@ -56,16 +57,29 @@ void writeFileAtomic(const fs::path& path, const void* bytes, size_t size) {
 
 void writeFileAtomic(const fs::path& path, const std::string& text) { writeFileAtomic(path, text.data(), text.size()); }
 
-void prepareOutputDirectory(const fs::path& dir, bool force, const std::string& flagName) {
+void checkOutputDirectory(const fs::path& dir, bool force, const std::string& flagName) {
     std::error_code ec;
-    if (fs::exists(dir, ec)) {
-        if (!fs::is_directory(dir, ec))
-            throwUserError(flagName + " " + dir.string() + ": exists and is not a directory; choose another path");
-        if (!fs::is_empty(dir, ec) && !force)
-            throwUserError(flagName + " " + dir.string() +
-                           ": directory exists and is not empty; choose a new directory or pass --force to overwrite");
-        return;
-    }
+    if (!fs::exists(dir, ec)) return;
+    if (!fs::is_directory(dir, ec))
+        throwUserError(flagName + " " + dir.string() + ": exists and is not a directory; choose another path");
+    if (!fs::is_empty(dir, ec) && !force)
+        throwUserError(flagName + " " + dir.string() +
+                       ": directory exists and is not empty; choose a new directory or pass --force to overwrite");
+}
+
+fs::path defaultOutputDirectory(const std::string& prefix) {
+    const std::time_t now = std::time(nullptr);
+    char stamp[32];
+    std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", std::localtime(&now));
+    fs::path dir = fs::path("out") / (prefix + "-" + stamp);
+    for (int i = 2; fs::exists(dir); ++i) dir = fs::path("out") / (prefix + "-" + stamp + "-" + std::to_string(i));
+    return dir;
+}
+
+void prepareOutputDirectory(const fs::path& dir, bool force, const std::string& flagName) {
+    checkOutputDirectory(dir, force, flagName);
+    std::error_code ec;
+    if (fs::exists(dir, ec)) return;
     fs::create_directories(dir, ec);
     if (ec) throwUserError(flagName + " " + dir.string() + ": cannot create directory (" + ec.message() + ")");
 }

@@ -26,6 +26,10 @@ void discardTemporary(const std::filesystem::path& tmp) noexcept;
 // is accepted only with `force` (its files are then replaced one by one, atomically).
 // `flagName` is the CLI flag named in the error ("--out").
 void prepareOutputDirectory(const std::filesystem::path& dir, bool force, const std::string& flagName);
+// The same checks without creating anything: run before the work, so bad flags fail fast.
+void checkOutputDirectory(const std::filesystem::path& dir, bool force, const std::string& flagName);
+// out/<prefix>-YYYYmmdd-HHMMSS (with -2, -3... when taken): a fresh directory, never one in use.
+std::filesystem::path defaultOutputDirectory(const std::string& prefix);
 
 template <class WriteFn>
 void writeViaTemporary(const std::filesystem::path& path, WriteFn&& write) {

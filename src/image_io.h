@@ -2,6 +2,7 @@
 // Reading and writing the image files gbufferlab uses. Every writer is atomic
 // (temporary name + rename); every reader throws UserError naming the file on bad input.
 #include <string>
+#include <vector>
 
 #include "image.h"
 
@@ -11,6 +12,9 @@ namespace gbl {
 Image readHdr(const std::string& path);
 // OpenEXR (any compression OpenEXR 3 reads, DWAB included) -> RGB float image (R,G,B; A dropped).
 Image readExr(const std::string& path);
+// Reads the named channels (any pixel type, converted to float) in the order given; a missing
+// channel is a UserError listing the channels the file has. For data EXRs (G-buffer dumps).
+Image readExrChannels(const std::string& path, const std::vector<std::string>& channelNames);
 // Picks readHdr or readExr by extension (.hdr / .exr); other extensions are a UserError.
 Image readEnvironmentFile(const std::string& path);
 

@@ -76,6 +76,8 @@ struct Light {
     glm::vec3 position{0.0f};     // world space (point, spot)
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // world space, direction the light travels
     float range = 0.0f;           // 0 = infinite
+    float innerConeAngle = 0.0f;           // spot only, radians from the axis (glTF default)
+    float outerConeAngle = 0.7853982f;     // spot only, radians from the axis (glTF default pi/4)
 };
 
 struct Bounds {
@@ -111,5 +113,9 @@ Camera frameBounds(const Bounds& bounds, float aspect);
 
 // A light used when the scene has none: a warm sun from the upper left front.
 Light defaultSun();
+
+// World-space bounds of every draw's vertices (exact: each vertex goes through its draw's model
+// matrix). Empty scene: zero bounds.
+Bounds worldBounds(const Scene& scene);
 
 }  // namespace gbl

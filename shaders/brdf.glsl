@@ -1,0 +1,180 @@
+// brdf.glsl -- the UE4 (SIGGRAPH 2013) shading model: every BRDF term as a choice.
+// Include file (GLSL 450, no #version). The C++ mirror is src/brdf.h / src/brdf.cpp, with the
+// same names and the same math, line for line; keep the two in step.
+//
+// Sources:
+//   [Karis13]  B. Karis, "Real Shading in Unreal Engine 4", SIGGRAPH 2013 course notes.
+//   [Walter07] B. Walter et al., "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007.
+//   [Schlick94] C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", 1994.
+//   [Seed]     /work/shared/seed/000_807e17994f774a43.txt (digest: /work/shared/seed/DIGEST.md).
+//
+// Conventions:
+//   roughness is UE4's perceptual roughness in [0,1]; alpha = roughness^2 everywhere.
+//   All cosines (NoH, NoV, NoL, VoH) are clamped to [0,1] by the caller or by evaluateDirectLight.
+//   Which Smith-Schlick k each path uses:
+//     analytic (punctual/directional) lights: k = (roughness + 1)^2 / 8  -> gSmithSchlickAnalytic
+//     image-based lighting (ibl.glsl: SpecularIBL ground truth, IntegrateBRDF / the LUT):
+//                                             k = alpha / 2               -> gSmithSchlickIbl
+//   [Karis13] p.3: the (roughness+1)/2 remap "is only for analytic light sources"; with IBL
+//   it makes glancing angles too dark.
+//   Default Fresnel: FRESNEL_KARIS, the exp2 form UE4 shipped in 2013 [Karis13] (the seed's
+//   own exp2 form FRESNEL_SEED is measurably worse; see the error bounds below).
+#ifndef GBL_BRDF_GLSL
+#define GBL_BRDF_GLSL
+
+// ---- choices (int constants shared with src/brdf.h; brdf_test checks that they agree) ----
+const int NDF_GGX = 0;                    // the only D: GGX / Trowbridge-Reitz
+const int GEOMETRY_SMITH_SCHLICK_ANALYTIC = 0;  // k = (roughness+1)^2/8
+const int GEOMETRY_SMITH_SCHLICK_IBL = 1;       // k = alpha/2
+const int FRESNEL_SCHLICK = 0;            // exact Schlick: (1-c)^5
+const int FRESNEL_KARIS = 1;              // 2^((-5.55473 c - 6.98316) c)
+const int FRESNEL_SEED = 2;               // 2^(-9.60232 c^8 - 8.58092 c)
+const int DIFFUSE_LAMBERT = 0;            // the only diffuse: Lambert
+const int FRESNEL_DEFAULT = FRESNEL_KARIS;
+
+const float kPi = 3.14159265358979323846;
+// evaluateDirectLight clamps roughness to at least this: at roughness 0 the GGX lobe is a delta
+// and D(NoH=1) = 0/0. 0.045 keeps alpha^2 = 4.1e-6 well above float's 1-NoH^2 rounding.
+const float kMinDirectRoughness = 0.045;
+
+// GGX / Trowbridge-Reitz normal distribution, alpha = roughness^2 [Karis13 eq. 3], [Walter07 eq. 33]:
+//   D(h) = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2);  integral of D(h)(n.h) over the
+//   hemisphere is 1 (brdf_test checks it numerically). Undefined (0/0) at roughness 0, NoH 1.
+float dGgx(float NoH, float roughness) {
+    float a = roughness * roughness;
+    float a2 = a * a;
+    float d = NoH * NoH * (a2 - 1.0) + 1.0;
+    return a2 / (kPi * d * d);
+}
+
+// Schlick's k for analytic lights [Karis13 eq. 4]: k = (roughness + 1)^2 / 8.
+float kSmithSchlickAnalytic(float roughness) {
+    float r = roughness + 1.0;
+    return r * r / 8.0;
+}
+
+// Schlick's k for image-based lighting [Karis13 p.3, "k = alpha/2" without the remap].
+float kSmithSchlickIbl(float roughness) {
+    float a = roughness * roughness;
+    return a / 2.0;
+}
+
+// Schlick's approximation of the Smith G1 term [Schlick94], [Karis13 eq. 4]:
+//   G1(v) = (n.v) / ((n.v)(1 - k) + k).
+float g1SmithSchlick(float NoX, float k) {
+    return NoX / (NoX * (1.0 - k) + k);
+}
+
+// Smith G = G1(l) G1(v) with a given k [Karis13 eq. 4].
+float gSmithSchlick(float NoV, float NoL, float k) {
+    return g1SmithSchlick(NoV, k) * g1SmithSchlick(NoL, k);
+}
+
+// Smith-Schlick G for analytic lights, k = (roughness+1)^2/8 [Karis13 eq. 4]. Used by evaluateDirectLight.
+float gSmithSchlickAnalytic(float roughness, float NoV, float NoL) {
+    return gSmithSchlick(NoV, NoL, kSmithSchlickAnalytic(roughness));
+}
+
+// Smith-Schlick G for IBL, k = alpha/2 [Karis13 p.3]. Used by ibl.glsl (ground truth and LUT).
+float gSmithSchlickIbl(float roughness, float NoV, float NoL) {
+    return gSmithSchlick(NoV, NoL, kSmithSchlickIbl(roughness));
+}
+
+// G / (4 (n.l)(n.v)) with the n.l and n.v of G1 cancelled algebraically [Karis13 eq. 4 rearranged]:
+//   1 / (4 ((n.l)(1-k)+k) ((n.v)(1-k)+k)). Finite at n.v = 0 whenever k > 0.
+float visSmithSchlick(float NoV, float NoL, float k) {
+    return 0.25 / ((NoL * (1.0 - k) + k) * (NoV * (1.0 - k) + k));
+}
+
+// Fresnel weights: F = f0 + (1 - f0) * w(c), c = v.h. Max |w - exact| over c in [0,1] is
+// asserted in brdf_test (FRESNEL_KARIS 8.1e-3? see src/brdf.h for the measured figures).
+// Exact Schlick weight [Schlick94]: (1 - c)^5.
+float fresnelWeightSchlick(float VoH) {
+    float m = 1.0 - VoH;
+    float m2 = m * m;
+    return m2 * m2 * m;
+}
+
+// Karis' spherical-Gaussian exp2 weight [Karis13 eq. 5]: 2^((-5.55473 c - 6.98316) c).
+float fresnelWeightKaris(float VoH) {
+    return exp2((-5.55473 * VoH - 6.98316) * VoH);
+}
+
+// The seed's exp2 weight [Seed, "F(theta)"]: 2^(-9.60232 c^8 - 8.58092 c).
+float fresnelWeightSeed(float VoH) {
+    float c2 = VoH * VoH;
+    float c4 = c2 * c2;
+    float c8 = c4 * c4;
+    return exp2(-9.60232 * c8 - 8.58092 * VoH);
+}
+
+// Weight chosen at run time (FRESNEL_*; an unknown value falls back to exact Schlick).
+float fresnelWeight(int mode, float VoH) {
+    if (mode == FRESNEL_KARIS) return fresnelWeightKaris(VoH);
+    if (mode == FRESNEL_SEED) return fresnelWeightSeed(VoH);
+    return fresnelWeightSchlick(VoH);
+}
+
+// Exact Schlick Fresnel [Schlick94]: f0 + (1 - f0)(1 - c)^5.
+vec3 fSchlick(vec3 f0, float VoH) {
+    return f0 + (vec3(1.0) - f0) * fresnelWeightSchlick(VoH);
+}
+
+// Schlick Fresnel with Karis' exp2 power [Karis13 eq. 5] (UE4's 2013 default).
+vec3 fSchlickKaris(vec3 f0, float VoH) {
+    return f0 + (vec3(1.0) - f0) * fresnelWeightKaris(VoH);
+}
+
+// Schlick Fresnel with the seed's exp2 power [Seed].
+vec3 fSchlickSeed(vec3 f0, float VoH) {
+    return f0 + (vec3(1.0) - f0) * fresnelWeightSeed(VoH);
+}
+
+// Fresnel chosen at run time (FRESNEL_*).
+vec3 fresnel(int mode, vec3 f0, float VoH) {
+    return f0 + (vec3(1.0) - f0) * fresnelWeight(mode, VoH);
+}
+
+// Lambert diffuse [Karis13 eq. 1]: c_diff / pi.
+vec3 diffuseLambert(vec3 diffuseColor) {
+    return diffuseColor / kPi;
+}
+
+// Cook-Torrance specular BRDF [Karis13 eq. 2]: D F G / (4 (n.l)(n.v)), here D * Vis * F with
+// the analytic-light k. Cosines already clamped to [0,1].
+vec3 specularGgx(float NoH, float NoV, float NoL, float VoH, vec3 specularColor, float roughness,
+                 int fresnelMode) {
+    float D = dGgx(NoH, roughness);
+    float Vis = visSmithSchlick(NoV, NoL, kSmithSchlickAnalytic(roughness));
+    vec3 F = fresnel(fresnelMode, specularColor, VoH);
+    return D * Vis * F;
+}
+
+// Radiance reflected towards V from one analytic light of radiance (irradiance at normal
+// incidence) lightRadiance arriving from L [Karis13 sec. "Shading Model"]:
+//   (Lambert + GGX D * Smith-Schlick(analytic k) * Fresnel) * lightRadiance * (n.l).
+// N, V, L unit, V and L pointing away from the surface. Roughness is clamped to
+// kMinDirectRoughness. Diffuse and specular are simply added, as in UE4 (no (1-F) weighting).
+vec3 evaluateDirectLightMode(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 specularColor,
+                             float roughness, vec3 lightRadiance, int fresnelMode) {
+    float NoL = clamp(dot(N, L), 0.0, 1.0);
+    if (NoL <= 0.0) return vec3(0.0);
+    vec3 Hu = V + L;  // unnormalised half vector; zero when V = -L (then NoH = VoH = 0)
+    vec3 H = Hu * inversesqrt(max(dot(Hu, Hu), 1e-12));
+    float NoV = clamp(dot(N, V), 0.0, 1.0);
+    float NoH = clamp(dot(N, H), 0.0, 1.0);
+    float VoH = clamp(dot(V, H), 0.0, 1.0);
+    float r = max(roughness, kMinDirectRoughness);
+    vec3 brdf = diffuseLambert(diffuseColor) +
+                specularGgx(NoH, NoV, NoL, VoH, specularColor, r, fresnelMode);
+    return brdf * lightRadiance * NoL;
+}
+
+// evaluateDirectLightMode with the default Fresnel (FRESNEL_DEFAULT = FRESNEL_KARIS).
+vec3 evaluateDirectLight(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 specularColor,
+                         float roughness, vec3 lightRadiance) {
+    return evaluateDirectLightMode(N, V, L, diffuseColor, specularColor, roughness, lightRadiance,
+                                   FRESNEL_DEFAULT);
+}
+
+#endif  // GBL_BRDF_GLSL

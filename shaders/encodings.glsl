@@ -1,0 +1,528 @@
+// gbufferlab encoding primitives, GLSL 450 include file (no #version).
+// Mirrored line for line in src/encodings.{h,cpp} (namespace gbl::enc) with the same names.
+//
+// Contract (why GPU and CPU agree to the bit):
+// - Encoders map floats to integer codes and quantise with floor(x * s + 0.5), s = 2^bits - 1,
+//   never round() / packUnorm*. They use only + - * / sqrt abs min max floor clamp and integer
+//   ops, whose results IEEE 754 fixes exactly (llvmpipe: divps/sqrtps; C++: -ffp-contract=off).
+//   Float intermediates of encoders are `precise` so that no driver reassociates or fuses them.
+// - Decoders map codes to floats; they are compared with a tolerance.
+// - Inputs are finite; NaN is not expected (clamp of NaN is undefined in GLSL).
+// Error bounds below were measured by tests/encodings_test.cpp (exhaustive where <= 16 bits per
+// code, otherwise millions of random inputs); see `gbufferlab encodings` for mean / p99 / max.
+
+#ifndef GBL_ENCODINGS_GLSL
+#define GBL_ENCODINGS_GLSL
+
+// ---------------------------------------------------------------------------------------------
+// 1. Fixed point. Source: Vulkan spec, "Fixed-Point Data Conversions" (but ties round up).
+// ---------------------------------------------------------------------------------------------
+
+// quantizeUnorm: x in [0,1] (clamped) -> code in [0, 2^bits-1]; bits 1..24.
+// Error: |dequantizeUnorm(code) - x| <= 0.5 / (2^bits - 1) (+1 ulp of x at 24 bits).
+uint quantizeUnorm(float x, uint bits) {
+    precise float s = float((1u << bits) - 1u);
+    precise float q = floor(clamp(x, 0.0, 1.0) * s + 0.5);
+    return min(uint(q), (1u << bits) - 1u);
+}
+
+// dequantizeUnorm: code in [0, 2^bits-1] -> [0,1]; exact inverse at every code.
+float dequantizeUnorm(uint code, uint bits) {
+    float s = float((1u << bits) - 1u);
+    return float(code) / s;
+}
+
+// quantizeSnorm: x in [-1,1] (clamped) -> two's complement code in the low `bits` bits,
+// symmetric: -1 -> -(2^(bits-1)-1), +1 -> 2^(bits-1)-1; bits 2..24.
+// Error: |dequantizeSnorm(code) - x| <= 0.5 / (2^(bits-1) - 1).
+uint quantizeSnorm(float x, uint bits) {
+    precise float s = float((1u << (bits - 1u)) - 1u);
+    precise float q = floor(clamp(x, -1.0, 1.0) * s + 0.5);
+    return uint(int(q)) & ((1u << bits) - 1u);
+}
+
+// dequantizeSnorm: low `bits` bits, two's complement -> [-1,1]; -2^(bits-1) decodes to -1.
+float dequantizeSnorm(uint code, uint bits) {
+    float s = float((1u << (bits - 1u)) - 1u);
+    int c = int(code << (32u - bits)) >> (32u - bits);
+    return max(float(c) / s, -1.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. Small floats, integer bit operations on the IEEE 754 binary32 pattern, round to nearest
+//    even. Source: IEEE 754-2008; Vulkan spec, "Unsigned 11-Bit / 10-Bit Floating-Point
+//    Numbers" (B10G11R11_UFLOAT). Overflow clamps to the largest finite value (our choice;
+//    no Inf is produced from finite input), Inf and NaN input also give the largest finite.
+// ---------------------------------------------------------------------------------------------
+
+// encodeSmallFloatMagnitude: a = bits of a float >= 0 (sign clear) -> 5-bit exponent (bias 15) |
+// mantissaBits mantissa, subnormals included; mantissaBits 1..10.
+uint encodeSmallFloatMagnitude(uint a, uint mantissaBits) {
+    uint shift = 23u - mantissaBits;
+    uint maxFinite = (30u << mantissaBits) | ((1u << mantissaBits) - 1u);
+    uint overflow = 0x47000000u | (((2u << mantissaBits) - 1u) << (shift - 1u));
+    if (a >= overflow) return maxFinite;
+    if (a >= 0x38800000u) {
+        uint odd = (a >> shift) & 1u;
+        return (a - 0x38000000u + ((1u << (shift - 1u)) - 1u) + odd) >> shift;
+    }
+    uint e = a >> 23u;
+    uint sub = 136u - mantissaBits - e;
+    if (sub > 24u) return 0u;
+    uint m = (a & 0x7fffffu) | 0x800000u;
+    uint q = m >> sub;
+    uint rem = m & ((1u << sub) - 1u);
+    uint halfway = 1u << (sub - 1u);
+    if (rem > halfway || (rem == halfway && (q & 1u) == 1u)) q += 1u;
+    return q;
+}
+
+// decodeSmallFloatMagnitude: inverse of the above (exponent 31 gives Inf / NaN); exact.
+float decodeSmallFloatMagnitude(uint code, uint mantissaBits) {
+    uint e = code >> mantissaBits;
+    uint mant = code & ((1u << mantissaBits) - 1u);
+    if (e == 0u) return float(mant) * uintBitsToFloat((113u - mantissaBits) << 23u);
+    if (e == 31u) return uintBitsToFloat(0x7f800000u | (mant << (23u - mantissaBits)));
+    return uintBitsToFloat(((e + 112u) << 23u) | (mant << (23u - mantissaBits)));
+}
+
+// encodeFloat16: IEEE binary16 (16 bits), |x| <= 65504 exact-rounded, beyond clamps to +-65504.
+// Error: relative <= 2^-11 for |x| >= 2^-14, absolute <= 2^-25 below. Bit-identical to a
+// correctly rounded (RNE) conversion for all finite |x| < 65520.
+uint encodeFloat16(float x) {
+    uint a = floatBitsToUint(x);
+    uint sign = (a >> 16u) & 0x8000u;
+    return sign | encodeSmallFloatMagnitude(a & 0x7fffffffu, 10u);
+}
+
+// decodeFloat16: exact.
+float decodeFloat16(uint code) {
+    float m = decodeSmallFloatMagnitude(code & 0x7fffu, 10u);
+    return (code & 0x8000u) != 0u ? -m : m;
+}
+
+// encodeFloat11: unsigned 11 bits (5e6m), [0, 65024]; negative (and -0) -> 0; above clamps.
+// Error: relative <= 2^-7 for x >= 2^-14, absolute <= 2^-21 below.
+uint encodeFloat11(float x) {
+    uint a = floatBitsToUint(x);
+    if (a >= 0x80000000u) return 0u;
+    return encodeSmallFloatMagnitude(a, 6u);
+}
+
+// decodeFloat11: exact.
+float decodeFloat11(uint code) { return decodeSmallFloatMagnitude(code & 0x7ffu, 6u); }
+
+// encodeFloat10: unsigned 10 bits (5e5m), [0, 64512]; negative (and -0) -> 0; above clamps.
+// Error: relative <= 2^-6 for x >= 2^-14, absolute <= 2^-20 below.
+uint encodeFloat10(float x) {
+    uint a = floatBitsToUint(x);
+    if (a >= 0x80000000u) return 0u;
+    return encodeSmallFloatMagnitude(a, 5u);
+}
+
+// decodeFloat10: exact.
+float decodeFloat10(uint code) { return decodeSmallFloatMagnitude(code & 0x3ffu, 5u); }
+
+// encodeFloat32 / decodeFloat32: the binary32 bits, lossless.
+uint encodeFloat32(float x) { return floatBitsToUint(x); }
+float decodeFloat32(uint code) { return uintBitsToFloat(code); }
+
+// ---------------------------------------------------------------------------------------------
+// 3. sRGB 8-bit, exact and table based. Source: IEC 61966-2-1 (sRGB) transfer function.
+// kSrgbDecode[i] = float(linear(i/255)); kSrgbEncodeThresholds[i] = the smallest float >= the
+// linear value whose sRGB encoding is (i+0.5)/255 (both computed in double). Generated by
+// tests/encodings_test.cpp (DISABLED_PrintSrgbTables); the C++ arrays hold identical literals.
+// ---------------------------------------------------------------------------------------------
+
+const float kSrgbDecode[256] = float[256](
+    0.0, 0.000303527, 0.000607054, 0.000910581, 0.001214108, 0.001517635, 0.001821162, 0.0021246888,
+    0.002428216, 0.0027317428, 0.00303527, 0.0033465358, 0.0036765074, 0.004024717, 0.004391442, 0.0047769533,
+    0.0051815165, 0.0056053917, 0.006048833, 0.0065120906, 0.00699541, 0.007499032, 0.008023193, 0.008568126,
+    0.009134059, 0.009721218, 0.010329823, 0.010960094, 0.011612245, 0.012286488, 0.0129830325, 0.013702083,
+    0.014443844, 0.015208514, 0.015996294, 0.016807375, 0.017641954, 0.01850022, 0.019382361, 0.020288562,
+    0.02121901, 0.022173885, 0.023153367, 0.024157632, 0.02518686, 0.026241222, 0.027320892, 0.02842604,
+    0.029556835, 0.030713445, 0.031896032, 0.033104766, 0.034339808, 0.035601314, 0.03688945, 0.038204372,
+    0.039546236, 0.0409152, 0.04231141, 0.04373503, 0.045186203, 0.046665087, 0.048171826, 0.049706567,
+    0.051269457, 0.052860647, 0.054480277, 0.05612849, 0.05780543, 0.059511237, 0.061246052, 0.063010015,
+    0.064803265, 0.06662594, 0.06847817, 0.070360094, 0.07227185, 0.07421357, 0.07618538, 0.07818742,
+    0.08021982, 0.08228271, 0.08437621, 0.08650046, 0.08865558, 0.09084171, 0.093058966, 0.09530747,
+    0.09758735, 0.099898726, 0.10224173, 0.104616486, 0.107023105, 0.10946171, 0.11193243, 0.114435375,
+    0.116970666, 0.11953843, 0.122138776, 0.12477182, 0.12743768, 0.13013647, 0.13286832, 0.13563333,
+    0.13843161, 0.14126329, 0.14412847, 0.14702727, 0.14995979, 0.15292615, 0.15592647, 0.15896083,
+    0.16202937, 0.1651322, 0.1682694, 0.17144111, 0.1746474, 0.17788842, 0.18116425, 0.18447499,
+    0.18782078, 0.19120169, 0.19461784, 0.19806932, 0.20155625, 0.20507874, 0.20863687, 0.21223076,
+    0.2158605, 0.2195262, 0.22322796, 0.22696587, 0.23074006, 0.23455058, 0.23839757, 0.24228112,
+    0.24620132, 0.25015828, 0.2541521, 0.25818285, 0.26225066, 0.2663556, 0.2704978, 0.2746773,
+    0.27889428, 0.28314874, 0.28744084, 0.29177064, 0.29613826, 0.30054379, 0.3049873, 0.30946892,
+    0.31398872, 0.31854677, 0.3231432, 0.3277781, 0.33245152, 0.33716363, 0.34191442, 0.34670407,
+    0.3515326, 0.35640013, 0.3613068, 0.3662526, 0.3712377, 0.37626213, 0.38132602, 0.38642943,
+    0.39157248, 0.39675522, 0.40197778, 0.4072402, 0.4125426, 0.41788507, 0.42326766, 0.4286905,
+    0.43415365, 0.43965718, 0.4452012, 0.4507858, 0.45641103, 0.462077, 0.4677838, 0.47353148,
+    0.47932017, 0.48514995, 0.49102086, 0.49693298, 0.5028865, 0.50888133, 0.5149177, 0.52099556,
+    0.5271151, 0.5332764, 0.5394795, 0.54572445, 0.55201143, 0.5583404, 0.5647115, 0.57112485,
+    0.57758045, 0.58407843, 0.59061885, 0.59720176, 0.60382736, 0.61049557, 0.6172066, 0.6239604,
+    0.63075715, 0.63759685, 0.6444797, 0.65140563, 0.65837485, 0.6653873, 0.67244315, 0.6795425,
+    0.6866853, 0.69387174, 0.7011019, 0.70837575, 0.7156935, 0.7230551, 0.73046076, 0.7379104,
+    0.7454042, 0.7529422, 0.7605245, 0.76815116, 0.7758222, 0.7835378, 0.7912979, 0.7991027,
+    0.80695224, 0.8148466, 0.82278574, 0.8307699, 0.838799, 0.8468732, 0.8549926, 0.8631572,
+    0.8713671, 0.8796224, 0.8879231, 0.8962694, 0.9046612, 0.91309863, 0.92158186, 0.9301109,
+    0.9386857, 0.9473065, 0.9559733, 0.9646863, 0.9734453, 0.9822506, 0.9911021, 1.0);
+
+const float kSrgbEncodeThresholds[255] = float[255](
+    0.0001517635, 0.0004552905, 0.0007588175, 0.0010623445, 0.0013658715, 0.0016693985, 0.0019729256, 0.0022764525,
+    0.0025799794, 0.0028835065, 0.003188301, 0.0035092595, 0.003848315, 0.0042057484, 0.004581833, 0.0049768374,
+    0.0053910245, 0.005824651, 0.0062779696, 0.0067512277, 0.0072446684, 0.007758531, 0.0082930485, 0.008848454,
+    0.009424971, 0.0100228265, 0.010642237, 0.011283422, 0.0119465925, 0.01263196, 0.013339732, 0.014070112,
+    0.014823304, 0.015599503, 0.01639891, 0.017221717, 0.018068116, 0.018938296, 0.019832443, 0.020750746,
+    0.021693384, 0.022660539, 0.023652392, 0.024669116, 0.025710888, 0.026777884, 0.027870271, 0.028988222,
+    0.030131903, 0.031301484, 0.032497123, 0.03371899, 0.034967244, 0.036242045, 0.037543554, 0.03887193,
+    0.04022732, 0.04160989, 0.043019786, 0.044457164, 0.045922175, 0.047414966, 0.04893569, 0.050484486,
+    0.05206151, 0.0536669, 0.055300802, 0.05696336, 0.058654718, 0.060375012, 0.062124386, 0.063902974,
+    0.06571092, 0.06754836, 0.06941541, 0.07131224, 0.07323896, 0.07519571, 0.07718262, 0.07919982,
+    0.08124745, 0.083325624, 0.08543449, 0.08757416, 0.08974477, 0.091946445, 0.0941793, 0.09644348,
+    0.098739095, 0.10106628, 0.10342514, 0.105815805, 0.10823841, 0.11069305, 0.11317987, 0.11569897,
+    0.11825049, 0.12083452, 0.1234512, 0.12610064, 0.12878296, 0.13149826, 0.13424668, 0.1370283,
+    0.13984329, 0.14269169, 0.14557366, 0.14848931, 0.15143874, 0.15442206, 0.1574394, 0.16049084,
+    0.1635765, 0.1666965, 0.16985095, 0.17303993, 0.17626357, 0.17952198, 0.18281525, 0.1861435,
+    0.18950684, 0.19290535, 0.19633916, 0.19980836, 0.20331305, 0.20685335, 0.21042934, 0.21404114,
+    0.21768886, 0.22137257, 0.2250924, 0.22884843, 0.23264077, 0.23646952, 0.24033478, 0.24423665,
+    0.24817522, 0.2521506, 0.25616285, 0.26021212, 0.2642985, 0.26842204, 0.2725829, 0.2767811,
+    0.28101683, 0.2852901, 0.28960103, 0.29394975, 0.2983363, 0.3027608, 0.30722338, 0.31172407,
+    0.31626296, 0.3208402, 0.32545584, 0.33011, 0.33480275, 0.3395342, 0.34430438, 0.34911346,
+    0.3539615, 0.35884857, 0.3637748, 0.36874023, 0.373745, 0.37878916, 0.38387278, 0.388996,
+    0.3941589, 0.39936155, 0.40460402, 0.40988642, 0.41520885, 0.42057136, 0.42597407, 0.43141705,
+    0.43690038, 0.44242412, 0.44798842, 0.45359334, 0.45923892, 0.46492532, 0.47065255, 0.47642073,
+    0.48222995, 0.48808026, 0.49397177, 0.49990457, 0.50587875, 0.51189435, 0.5179514, 0.5240502,
+    0.5301906, 0.5363727, 0.54259676, 0.5488627, 0.55517066, 0.5615207, 0.56791294, 0.5743474,
+    0.58082414, 0.58734334, 0.59390503, 0.6005093, 0.60715616, 0.61384577, 0.62057817, 0.6273534,
+    0.63417166, 0.64103293, 0.6479373, 0.6548849, 0.66187567, 0.66890985, 0.6759874, 0.68310845,
+    0.6902731, 0.6974814, 0.7047334, 0.71202916, 0.7193689, 0.72675246, 0.7341801, 0.74165183,
+    0.74916774, 0.7567279, 0.7643323, 0.7719812, 0.7796745, 0.78741235, 0.7951948, 0.8030219,
+    0.81089383, 0.8188106, 0.8267722, 0.83477885, 0.84283054, 0.8509273, 0.8590693, 0.8672565,
+    0.8754891, 0.8837671, 0.89209056, 0.9004596, 0.9088742, 0.91733456, 0.9258407, 0.9343926,
+    0.9429904, 0.9516342, 0.96032405, 0.96906, 0.97784215, 0.98667055, 0.99554527);
+
+// encodeSrgb8: linear x (any float, clamps) -> 8-bit sRGB code = number of thresholds <= x.
+// Exact: equals floor(255 * srgb(x) + 0.5) evaluated in exact arithmetic, for every float x.
+// Cost: 8 steps of binary search, no pow.
+uint encodeSrgb8(float x) {
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kSrgbEncodeThresholds[mid] <= x) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+// decodeSrgb8: exact sRGB -> linear, correctly rounded to float.
+float decodeSrgb8(uint code) { return kSrgbDecode[code & 255u]; }
+
+// ---------------------------------------------------------------------------------------------
+// 4. Unit normals. All take and return unit vectors (decoders normalise).
+// ---------------------------------------------------------------------------------------------
+
+// encodeNormalXyz: 3 x unorm(n*0.5+0.5), bits 2..16 per component.
+// Error (max angle): 8 bits 0.41 deg, 10 bits 0.10 deg, 16 bits 0.0016 deg.
+uvec3 encodeNormalXyz(vec3 n, uint bits) {
+    precise vec3 h = n * 0.5 + 0.5;
+    return uvec3(quantizeUnorm(h.x, bits), quantizeUnorm(h.y, bits), quantizeUnorm(h.z, bits));
+}
+
+vec3 decodeNormalXyz(uvec3 code, uint bits) {
+    vec3 v = vec3(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits), dequantizeUnorm(code.z, bits));
+    return normalize(v * 2.0 - 1.0);
+}
+
+// encodeNormalBestFit: CryEngine 3 best-fit normals, 3 x 8 bits. Source: Kaplanyan,
+// "CryENGINE 3: Reaching the Speed of Light", SIGGRAPH 2010 Advances course. The original looks
+// the best length up in a 1024x1024 texture; here the same search runs in code: a decoded
+// vector is d = 2*code - 255 (odd integers in [-255,255]); for each odd value k = 255, 253, ..1
+// of the largest component we round the others to the nearest odd integer along the ray
+// (t = k * n / max|n|) and keep the d whose direction is closest to n, measured as
+// |d/|d| - n|^2 (not cos, which float cannot resolve below ~0.02 deg); first wins ties.
+// Cost: 128 candidates x (3 floor, 4 div, 1 sqrt, ~20 mul/add).
+// Error: max 0.040 deg, mean 0.0083 deg (plain 8-bit xyz: 0.41 / 0.17 deg).
+uvec3 encodeNormalBestFit(vec3 n) {
+    precise float m = max(abs(n.x), max(abs(n.y), abs(n.z)));
+    if (!(m > 0.0)) return uvec3(128u, 128u, 255u);
+    precise vec3 q = vec3(n.x / m, n.y / m, n.z / m);
+    vec3 best = vec3(1.0, 1.0, 255.0);
+    float bestErr = 8.0;
+    for (int i = 0; i < 128; ++i) {
+        precise float k = float(255 - 2 * i);
+        precise float dx = 2.0 * floor(q.x * k * 0.5) + 1.0;
+        precise float dy = 2.0 * floor(q.y * k * 0.5) + 1.0;
+        precise float dz = 2.0 * floor(q.z * k * 0.5) + 1.0;
+        precise float len = sqrt(dx * dx + dy * dy + dz * dz);
+        precise float ex = dx / len - n.x;
+        precise float ey = dy / len - n.y;
+        precise float ez = dz / len - n.z;
+        precise float err = ex * ex + ey * ey + ez * ez;
+        if (err < bestErr) {
+            bestErr = err;
+            best = vec3(dx, dy, dz);
+        }
+    }
+    return uvec3(uint(best.x + 255.0) >> 1u, uint(best.y + 255.0) >> 1u, uint(best.z + 255.0) >> 1u);
+}
+
+vec3 decodeNormalBestFit(uvec3 code) {
+    return normalize(vec3(code) / 255.0 * 2.0 - 1.0);
+}
+
+// encodeNormalXyZSign: unorm x, y (bits 2..16 each) + z-sign bit (code.z: 1 when n.z < 0).
+// Source: Sousa et al., "The Rendering Technologies of Crysis 3", GDC 2013 (N.xy + Zsign).
+// Error: poor near the equator (z ~ 0): 8 bits max 5.2 deg, mean 0.30 deg.
+uvec3 encodeNormalXyZSign(vec3 n, uint bits) {
+    precise vec2 h = vec2(n.x * 0.5 + 0.5, n.y * 0.5 + 0.5);
+    return uvec3(quantizeUnorm(h.x, bits), quantizeUnorm(h.y, bits), n.z < 0.0 ? 1u : 0u);
+}
+
+vec3 decodeNormalXyZSign(uvec3 code, uint bits) {
+    float x = dequantizeUnorm(code.x, bits) * 2.0 - 1.0;
+    float y = dequantizeUnorm(code.y, bits) * 2.0 - 1.0;
+    float z = sqrt(max(0.0, 1.0 - x * x - y * y));
+    return normalize(vec3(x, y, code.z != 0u ? -z : z));
+}
+
+// encodeNormalSpheremap: Lambert azimuthal equal-area projection, full sphere, 2 x unorm bits.
+// Source: Pranckevicius, "Compact Normal Storage for Small G-Buffers" (2009), method #4.
+// e = n.xy / sqrt(8 n.z + 8) + 0.5 lies in a disc of radius 0.5; n = -z maps to (1, 0.5).
+// Error: 8 bits max ~1.3 deg (worst near -z), mean 0.18 deg.
+uvec2 encodeNormalSpheremap(vec3 n, uint bits) {
+    precise float f = sqrt(max(8.0 * n.z + 8.0, 0.0));
+    precise vec2 e = f > 0.0 ? vec2(n.x / f + 0.5, n.y / f + 0.5) : vec2(1.0, 0.5);
+    return uvec2(quantizeUnorm(e.x, bits), quantizeUnorm(e.y, bits));
+}
+
+vec3 decodeNormalSpheremap(uvec2 code, uint bits) {
+    vec2 fenc = vec2(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits)) * 4.0 - 2.0;
+    float f = dot(fenc, fenc);
+    float g = sqrt(max(1.0 - f / 4.0, 0.0));
+    return normalize(vec3(fenc * g, 1.0 - f / 2.0));
+}
+
+// encodeNormalStereographic: stereographic projection from -z, scaled by 1/1.7777 into [0,1]^2,
+// 2 x unorm bits. Source: Pranckevicius 2009, method #7. NOT a full-sphere mapping: directions
+// with |n.x| or |n.y| > 1.7777 * (1 + n.z) (roughly > 120 deg from +z) clamp to the square's
+// edge; meant for view-space normals. Error (inside the covered region): see encoding stats.
+uvec2 encodeNormalStereographic(vec3 n, uint bits) {
+    precise float d = max(n.z + 1.0, 0.000001);
+    precise vec2 e = vec2(n.x / d / 1.7777 * 0.5 + 0.5, n.y / d / 1.7777 * 0.5 + 0.5);
+    return uvec2(quantizeUnorm(e.x, bits), quantizeUnorm(e.y, bits));
+}
+
+vec3 decodeNormalStereographic(uvec2 code, uint bits) {
+    vec2 e = vec2(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits));
+    vec3 nn = vec3(e * (2.0 * 1.7777) - 1.7777, 1.0);
+    float g = 2.0 / dot(nn, nn);
+    return normalize(vec3(vec2(nn.x, nn.y) * g, g - 1.0));
+}
+
+// Octahedral helpers. Source: Cigolle, Donow, Evangelakos, Mara, McGuire, Meyer, "A Survey of
+// Efficient Representations for Independent Unit Vectors", JCGT 3(2), 2014, listings 1-2.
+vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+
+// octEncode: unit n -> [-1,1]^2 (lower hemisphere folded over the diagonals).
+vec2 octEncode(vec3 n) {
+    precise float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    precise vec2 p = vec2(n.x / l1, n.y / l1);
+    precise vec2 folded = vec2(1.0 - abs(p.y), 1.0 - abs(p.x)) * signNotZero(p);
+    return n.z <= 0.0 ? folded : p;
+}
+
+// octDecode: [-1,1]^2 -> direction (not normalised).
+vec3 octDecode(vec2 e) {
+    precise vec3 v = vec3(e.x, e.y, 1.0 - abs(e.x) - abs(e.y));
+    precise vec2 folded = vec2(1.0 - abs(v.y), 1.0 - abs(v.x)) * signNotZero(vec2(v.x, v.y));
+    return v.z < 0.0 ? vec3(folded, v.z) : v;
+}
+
+// encodeNormalOctahedral: octahedral, 2 x snorm bits (bits 2..16; Cigolle's "oct" 2*bits).
+// Error (max angle): 8 bits 1.2 deg, 10 bits 0.30 deg, 12 bits 0.075 deg, 16 bits 0.0047 deg.
+uvec2 encodeNormalOctahedral(vec3 n, uint bits) {
+    vec2 p = octEncode(n);
+    return uvec2(quantizeSnorm(p.x, bits), quantizeSnorm(p.y, bits));
+}
+
+vec3 decodeNormalOctahedral(uvec2 code, uint bits) {
+    return normalize(octDecode(vec2(dequantizeSnorm(code.x, bits), dequantizeSnorm(code.y, bits))));
+}
+
+// encodeNormalOctahedralPrecise: Cigolle's precise variant ("octP", listing 3): of the four
+// floor/ceil neighbours of the quantised point, keep the code whose decoded direction is closest
+// to n. Cigolle compares cos; we compare |v/|v| - n|^2 (same order, but float resolves it down
+// to tiny angles where cos rounds to 1). First wins ties; the plain rounding is one of the four.
+// Cost: 4 decodes. Error: 8 bits max 0.84 deg, 16 bits 0.0033 deg.
+uvec2 encodeNormalOctahedralPrecise(vec3 n, uint bits) {
+    vec2 p = octEncode(n);
+    precise float s = float((1u << (bits - 1u)) - 1u);
+    int top = int((1u << (bits - 1u)) - 1u);
+    int bx = int(floor(clamp(p.x, -1.0, 1.0) * s));
+    int by = int(floor(clamp(p.y, -1.0, 1.0) * s));
+    ivec2 best = ivec2(bx, by);
+    float bestErr = 8.0;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 c = ivec2(min(bx + (i & 1), top), min(by + (i >> 1), top));
+        precise vec3 v = octDecode(vec2(float(c.x) / s, float(c.y) / s));
+        precise float len = sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+        precise float ex = v.x / len - n.x;
+        precise float ey = v.y / len - n.y;
+        precise float ez = v.z / len - n.z;
+        precise float err = ex * ex + ey * ey + ez * ez;
+        if (err < bestErr) {
+            bestErr = err;
+            best = c;
+        }
+    }
+    uint mask = (1u << bits) - 1u;
+    return uvec2(uint(best.x) & mask, uint(best.y) & mask);
+}
+
+vec3 decodeNormalOctahedralPrecise(uvec2 code, uint bits) { return decodeNormalOctahedral(code, bits); }
+
+// ---------------------------------------------------------------------------------------------
+// 5. Colour transforms (float -> float; quantise the results with quantizeUnorm).
+// ---------------------------------------------------------------------------------------------
+
+// rgbToYCbCr: ITU-R BT.601 full range (JPEG/JFIF), rgb in [0,1]^3 -> (Y, Cb+0.5, Cr+0.5) in
+// [0,1]^3. Cb = (B - Y) / 1.772, Cr = (R - Y) / 1.402. Used by Crysis 3 for albedo and specular
+// (Sousa et al., "The Rendering Technologies of Crysis 3", GDC 2013).
+// Error: the pair is exact up to float rounding (max 2.4e-7); 8 bits per code: max abs 0.0062.
+vec3 rgbToYCbCr(vec3 c) {
+    precise float y = 0.299 * c.r + 0.587 * c.g + 0.114 * c.b;
+    precise float cb = (c.b - y) * 0.5643341 + 0.5;
+    precise float cr = (c.r - y) * 0.7132668 + 0.5;
+    return vec3(y, cb, cr);
+}
+
+vec3 yCbCrToRgb(vec3 c) {
+    float r = c.x + (c.z - 0.5) * 1.402;
+    float b = c.x + (c.y - 0.5) * 1.772;
+    float g = (c.x - 0.299 * r - 0.114 * b) / 0.587;
+    return vec3(r, g, b);
+}
+
+// lumaBt601: the Y of rgbToYCbCr (Crysis 3 stores only the specular colour's luminance).
+float lumaBt601(vec3 c) {
+    precise float y = 0.299 * c.r + 0.587 * c.g + 0.114 * c.b;
+    return y;
+}
+
+// rgbToYCbCrSqrt: YCbCr of sqrt(rgb) (a gamma-2 pre-transform that spends codes on darks);
+// yCbCrSqrtToRgb squares after the inverse matrix. Source: Sousa et al., Crysis 3, GDC 2013;
+// Schulz, "Moving to the Next Generation - The Rendering Technology of Ryse", GDC 2014.
+vec3 rgbToYCbCrSqrt(vec3 c) {
+    precise vec3 s = vec3(sqrt(max(c.r, 0.0)), sqrt(max(c.g, 0.0)), sqrt(max(c.b, 0.0)));
+    return rgbToYCbCr(s);
+}
+
+vec3 yCbCrSqrtToRgb(vec3 c) {
+    vec3 s = max(yCbCrToRgb(c), vec3(0.0));
+    return s * s;
+}
+
+// rgbToYCoCg: YCoCg with Co, Cg offset by 0.5, all in [0,1] for rgb in [0,1]^3.
+// Source: Malvar & Sullivan, JVT-I014 (2003); Mavridis & Papaioannou, "The Compact YCoCg Frame
+// Buffer", JCGT 1(1), 2012. Exact inverse in real arithmetic (float: max 1.2e-7).
+vec3 rgbToYCoCg(vec3 c) {
+    precise float y = 0.25 * c.r + 0.5 * c.g + 0.25 * c.b;
+    precise float co = 0.5 * c.r - 0.5 * c.b + 0.5;
+    precise float cg = -0.25 * c.r + 0.5 * c.g - 0.25 * c.b + 0.5;
+    return vec3(y, co, cg);
+}
+
+vec3 yCoCgToRgb(vec3 c) {
+    float co = c.y - 0.5;
+    float cg = c.z - 0.5;
+    float t = c.x - cg;
+    return vec3(t + co, c.x + cg, t - co);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 6. Chroma checkerboard. Source: Mavridis & Papaioannou, "The Compact YCoCg Frame Buffer",
+// JCGT 1(1), 2012, section 3 and listing 1. Each pixel stores Y and one chroma: the first
+// (Cb / Co) where (x+y) is even, the second (Cr / Cg) where it is odd.
+// ---------------------------------------------------------------------------------------------
+
+const float kChromaEdgeThreshold = 0.11764706;  // 30/255, the paper's THRESH
+
+bool chromaIsSecond(ivec2 pixel) { return ((pixel.x + pixel.y) & 1) != 0; }
+
+// chromaForPixel: the chroma this pixel stores, from (first, second) = (Cb, Cr) or (Co, Cg).
+float chromaForPixel(ivec2 pixel, vec2 chroma) { return chromaIsSecond(pixel) ? chroma.y : chroma.x; }
+
+// reconstructChroma: the paper's edge-directed filter. The 4 direct neighbours (order: +x, -x,
+// +y, -y) hold the other chroma; each gets weight 1 - step(30/255, |Yn - Yc|) (1 when its luma
+// is within the threshold). Their weighted mean is the missing chroma; when all 4 weights are 0
+// the first neighbour (+x) is used alone, as in the paper's listing. Returns (centre's own
+// chroma, reconstructed other chroma). At image borders pass a clamped (replicated) fetch.
+vec2 reconstructChroma(float lumaCentre, float chromaCentre, vec4 lumaNeighbours, vec4 chromaNeighbours) {
+    vec4 w = vec4(1.0) - step(vec4(kChromaEdgeThreshold), abs(lumaNeighbours - vec4(lumaCentre)));
+    float total = w.x + w.y + w.z + w.w;
+    if (total == 0.0) {
+        w.x = 1.0;
+        total = 1.0;
+    }
+    float other = (w.x * chromaNeighbours.x + w.y * chromaNeighbours.y + w.z * chromaNeighbours.z +
+                   w.w * chromaNeighbours.w) / total;
+    return vec2(chromaCentre, other);
+}
+
+// reconstructChroma with the pixel: returns (first, second) = (Cb, Cr) or (Co, Cg).
+vec2 reconstructChroma(ivec2 pixel, float lumaCentre, float chromaCentre, vec4 lumaNeighbours,
+                       vec4 chromaNeighbours) {
+    vec2 c = reconstructChroma(lumaCentre, chromaCentre, lumaNeighbours, chromaNeighbours);
+    return chromaIsSecond(pixel) ? vec2(c.y, c.x) : c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// 7. Roughness maps (scalar transforms, quantise with quantizeUnorm).
+// ---------------------------------------------------------------------------------------------
+
+// glossFromRoughness / roughnessFromGloss: gloss = 1 - roughness (CryEngine glossiness).
+float glossFromRoughness(float r) {
+    precise float g = 1.0 - r;
+    return g;
+}
+float roughnessFromGloss(float g) { return 1.0 - g; }
+
+// smoothnessFromRoughnessCry: s = 1 - sqrt(r); roughnessFromSmoothnessCry: r = (1 - s)^2.
+// Source: Schulz, "Moving to the Next Generation - The Rendering Technology of Ryse", GDC 2014.
+// With 8-bit unorm s: max roughness error 0.0039 (near r = 1), 0.5/255^2 near r = 0.
+float smoothnessFromRoughnessCry(float r) {
+    precise float s = 1.0 - sqrt(max(r, 0.0));
+    return s;
+}
+float roughnessFromSmoothnessCry(float s) { return (1.0 - s) * (1.0 - s); }
+
+// ---------------------------------------------------------------------------------------------
+// 8. UE4 specular colour and depth.
+// ---------------------------------------------------------------------------------------------
+
+// specularColorUE4: F0 = mix(0.08 * specular, baseColor, metallic), written out as
+// a * (1 - t) + b * t. Source: Epic Games, UE4 DeferredShadingCommon.ush, ComputeF0
+// (Karis, "Real Shading in Unreal Engine 4", SIGGRAPH 2013).
+vec3 specularColorUE4(vec3 baseColor, float metallic, float specular) {
+    precise vec3 f0 = vec3(0.08 * specular) * (1.0 - metallic) + baseColor * metallic;
+    return f0;
+}
+
+// quantizeDepth24: depth in [0,1] -> 24-bit unorm (D24), computed in float like
+// quantizeUnorm(d, 24). float32 has 24 significant bits, so d * (2^24-1) + 0.5 can round:
+// the code is within 1 of the exact round(d * (2^24-1)) and |dequantizeDepth24(code) - d|
+// <= 1 / (2^24-1) = 6.0e-8 (measured: <= 0.5 step + 1 float ulp of d).
+uint quantizeDepth24(float d) { return quantizeUnorm(d, 24u); }
+float dequantizeDepth24(uint code) { return dequantizeUnorm(code & 0xffffffu, 24u); }
+
+// positionFromDepth: uv in [0,1]^2 (texel centres, (0,0) = first row), depth in [0,1]
+// (Vulkan clip z), ndc = (uv * 2 - 1, depth); returns the world position for the inverse of the
+// same view-projection matrix used to render (its y convention decides which row is uv.y = 0).
+vec3 positionFromDepth(vec2 uv, float depth, mat4 invViewProj) {
+    vec4 ndc = vec4(uv.x * 2.0 - 1.0, uv.y * 2.0 - 1.0, depth, 1.0);
+    vec4 p = invViewProj * ndc;
+    return vec3(p.x / p.w, p.y / p.w, p.z / p.w);
+}
+
+#endif  // GBL_ENCODINGS_GLSL

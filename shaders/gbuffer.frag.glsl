@@ -1,0 +1,19 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The G-buffer pass: evaluate the glTF material into a Surface, then hand it to the layout's
+// generated writeGBuffer(), the single funnel through which every material writes the G-buffer.
+#include "shared_types.h"
+#include "surface.glsl"
+#include "material.glsl"
+#define GBUFFER_WRITE 1
+#include "gbuffer_wiring.glsl"
+
+layout(location = 0) in vec3 inWorldPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec4 inTangent;
+layout(location = 3) in vec2 inUv;
+
+void main() {
+    Surface s = evaluateMaterial(inWorldPosition, inNormal, inTangent, inUv, gl_FrontFacing);
+    writeGBuffer(s, ivec2(gl_FragCoord.xy));
+}

@@ -1,0 +1,58 @@
+// Structs shared by C++ and GLSL: one definition, so the two sides cannot drift apart.
+// Only vec4 / ivec4 / uvec4 / mat4 members, so std140, std430 and C++ layouts coincide.
+#ifdef __cplusplus
+#pragma once
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace gbl::gpu {
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+using uvec4 = glm::uvec4;
+using mat4 = glm::mat4;
+#endif
+
+#define GBL_LIGHT_DIRECTIONAL 0
+#define GBL_LIGHT_POINT 1
+#define GBL_LIGHT_SPOT 2
+
+#define GBL_NO_TEXTURE (-1)
+
+struct FrameConstants {
+    mat4 view;
+    mat4 proj;
+    mat4 viewProj;
+    mat4 invViewProj;
+    vec4 cameraPosition;  // xyz world, w unused
+    uvec4 extent;         // x width, y height, z light count, w 1 when depth is reversed Z
+    vec4 environment;     // x intensity, y prefiltered mip count, z specular IBL mode, w diffuse IBL on
+    vec4 shading;         // x Fresnel mode, y clear depth, zw unused
+};
+
+struct GpuLight {
+    vec4 positionType;    // xyz world position, w GBL_LIGHT_*
+    vec4 directionRange;  // xyz direction the light travels, w range (0 = infinite)
+    vec4 colorIntensity;  // rgb colour, a intensity (lux or candela)
+};
+
+struct GpuMaterial {
+    vec4 baseColorFactor;
+    vec4 emissiveNormalScale;     // rgb emissive factor, a normal scale
+    vec4 specularColorSpecular;   // rgb KHR_materials_specular colour, a specular factor
+    vec4 metallicRoughnessOcclusion;  // x metallic, y roughness, z occlusion strength, w double sided
+    ivec4 textures0;              // base colour, metallic-roughness, normal, occlusion
+    ivec4 textures1;              // emissive, specular, specular colour, unused
+};
+
+struct DrawConstants {
+    mat4 model;
+    vec4 normalMatrix[3];  // columns of the inverse transpose of model's 3x3 (128 bytes in all: the guaranteed minimum)
+    ivec4 material;     // x material index
+};
+
+#ifdef __cplusplus
+}  // namespace gbl::gpu
+#endif
+
+#ifdef __cplusplus
+static_assert(sizeof(gbl::gpu::DrawConstants) <= 128, "push constants: 128 bytes is the guaranteed minimum");
+#endif

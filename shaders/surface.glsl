@@ -1,0 +1,16 @@
+// Surface: every shading attribute the G-buffer pass produces and the lighting pass consumes.
+// The C++ mirror is src/surface.h (same member names and order).
+#ifndef GBL_SURFACE_GLSL
+#define GBL_SURFACE_GLSL
+struct Surface {
+    vec3 normal;         // world space, unit
+    vec3 baseColor;      // linear
+    float metallic;
+    float roughness;     // perceptual; GGX alpha = roughness^2
+    float specular;      // UE4 scalar specular: dielectric F0 = 0.08 * specular
+    vec3 specularColor;  // F0, linear
+    vec3 diffuseColor;   // Lambert albedo = baseColor * (1 - metallic)
+    float occlusion;
+    vec3 emissive;       // linear radiance
+};
+#endif

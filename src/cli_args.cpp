@@ -1,0 +1,84 @@
+#include "cli_args.h"
+
+#include <charconv>
+
+#include "error.h"
+
+namespace gbl {
+
+std::string ParsedArgs::get(const std::string& flag, const std::string& fallback) const {
+    auto it = values.find(flag);
+    return it == values.end() ? fallback : it->second;
+}
+
+ParsedArgs parseArgs(const std::string& command, const std::vector<std::string>& args,
+                     const std::vector<FlagSpec>& specs) {
+    ParsedArgs parsed;
+    auto findSpec = [&](const std::string& name) -> const FlagSpec* {
+        for (const FlagSpec& s : specs)
+            if (s.name == name) return &s;
+        return nullptr;
+    };
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a.rfind("--", 0) != 0 || a == "--") {
+            parsed.positional.push_back(a);
+            continue;
+        }
+        std::string name = a.substr(2), value;
+        const auto eq = name.find('=');
+        const bool inlineValue = eq != std::string::npos;
+        if (inlineValue) {
+            value = name.substr(eq + 1);
+            name = name.substr(0, eq);
+        }
+        const FlagSpec* spec = findSpec(name);
+        if (!spec) {
+            std::string known;
+            for (const FlagSpec& s : specs) known += (known.empty() ? "--" : ", --") + s.name;
+            throwUserError("gbufferlab " + command + ": unknown flag --" + name + " (known: " + known +
+                           "; see gbufferlab " + command + " --help)");
+        }
+        if (spec->valueName.empty()) {
+            if (inlineValue) throwUserError("gbufferlab " + command + ": --" + name + " takes no value");
+            parsed.values[name] = "1";
+            continue;
+        }
+        if (!inlineValue) {
+            if (i + 1 >= args.size())
+                throwUserError("gbufferlab " + command + ": --" + name + " needs a value (" + spec->valueName + ")");
+            value = args[++i];
+        }
+        parsed.values[name] = value;
+    }
+    return parsed;
+}
+
+std::string formatHelp(const std::string& usage, const std::string& summary, const std::vector<FlagSpec>& specs) {
+    std::string out = "usage: " + usage + "\n\n" + summary + "\n";
+    if (!specs.empty()) out += "\nflags:\n";
+    for (const FlagSpec& s : specs) {
+        std::string left = "  --" + s.name + (s.valueName.empty() ? "" : " " + s.valueName);
+        if (left.size() < 26) left.resize(26, ' ');
+        else left += "  ";
+        out += left + s.help + "\n";
+    }
+    return out;
+}
+
+std::pair<uint32_t, uint32_t> parseSize(const std::string& text, const std::string& flag) {
+    const auto x = text.find('x');
+    auto parse = [&](const std::string& part, uint32_t& v) {
+        const auto r = std::from_chars(part.data(), part.data() + part.size(), v);
+        return r.ec == std::errc() && r.ptr == part.data() + part.size() && !part.empty();
+    };
+    uint32_t w = 0, h = 0;
+    if (x == std::string::npos || !parse(text.substr(0, x), w) || !parse(text.substr(x + 1), h))
+        throwUserError(flag + " " + text + ": expected WIDTHxHEIGHT, e.g. 1920x1080");
+    if (w == 0 || h == 0) throwUserError(flag + " " + text + ": width and height must be at least 1, e.g. 1920x1080");
+    if (w > 16384 || h > 16384)
+        throwUserError(flag + " " + text + ": at most 16384 pixels per side (and the device may allow fewer)");
+    return {w, h};
+}
+
+}  // namespace gbl

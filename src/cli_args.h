@@ -1,0 +1,31 @@
+#pragma once
+// A small argument parser for subcommands: "--flag value", "--flag=value" and boolean
+// "--flag". Unknown flags are a UserError naming the flag and listing the known ones.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gbl {
+
+struct FlagSpec {
+    std::string name;  // without dashes
+    std::string valueName;  // empty for boolean flags
+    std::string help;
+};
+
+struct ParsedArgs {
+    std::map<std::string, std::string> values;
+    std::vector<std::string> positional;
+    bool has(const std::string& flag) const { return values.count(flag) != 0; }
+    std::string get(const std::string& flag, const std::string& fallback = "") const;
+};
+
+ParsedArgs parseArgs(const std::string& command, const std::vector<std::string>& args,
+                     const std::vector<FlagSpec>& specs);
+std::string formatHelp(const std::string& usage, const std::string& summary, const std::vector<FlagSpec>& specs);
+
+// "1920x1080" -> (1920, 1080); anything else is a UserError naming the flag.
+std::pair<uint32_t, uint32_t> parseSize(const std::string& text, const std::string& flag);
+
+}  // namespace gbl

@@ -1,0 +1,11 @@
+#pragma once
+// One function per subcommand; each takes the arguments after its name and returns the exit code.
+#include <string>
+#include <vector>
+
+namespace gbl {
+
+int runRenderCommand(const std::vector<std::string>& args);
+int runDevicesCommand(const std::vector<std::string>& args);
+
+}  // namespace gbl

@@ -1,0 +1,117 @@
+#include "encoding_registry.h"
+
+namespace gbl {
+
+namespace {
+
+std::vector<EncodingInfo> makeRegistry() {
+    using K = AttributeKind;
+    std::vector<EncodingInfo> v;
+    // name, kind, codes, default bits, min bits, max bits, extra bits, neighbours, input, description, source
+    v.push_back({"unorm", K::Scalar, 1, 8, 1, 24, 0, false, "[0,1]",
+                 "unsigned normalised integer: floor(x*(2^b-1)+0.5)",
+                 "Vulkan spec, 'Fixed-Point Data Conversions'"});
+    v.push_back({"snorm", K::Scalar, 1, 8, 2, 24, 0, false, "[-1,1]",
+                 "signed normalised integer, two's complement, symmetric: -1 -> -(2^(b-1)-1)",
+                 "Vulkan spec, 'Fixed-Point Data Conversions'"});
+    v.push_back({"float16", K::Scalar, 1, 16, 16, 16, 0, false, "finite float",
+                 "IEEE 754 binary16, round to nearest even, overflow clamps to max finite (65504)",
+                 "IEEE 754-2008"});
+    v.push_back({"float11", K::Scalar, 1, 11, 11, 11, 0, false, "[0, 65024]",
+                 "unsigned float, 5-bit exponent, 6-bit mantissa, negative -> 0, round to nearest even",
+                 "Vulkan spec, 'Unsigned 11-Bit Floating-Point Numbers' (B10G11R11_UFLOAT)"});
+    v.push_back({"float10", K::Scalar, 1, 10, 10, 10, 0, false, "[0, 64512]",
+                 "unsigned float, 5-bit exponent, 5-bit mantissa, negative -> 0, round to nearest even",
+                 "Vulkan spec, 'Unsigned 10-Bit Floating-Point Numbers' (B10G11R11_UFLOAT)"});
+    v.push_back({"float32", K::Scalar, 1, 32, 32, 32, 0, false, "any float",
+                 "IEEE 754 binary32 bits, lossless", "IEEE 754-2008"});
+    v.push_back({"depth24", K::Scalar, 1, 24, 24, 24, 0, false, "[0,1]",
+                 "24-bit unorm depth (D24S8 / X8_D24), quantised in float",
+                 "Vulkan spec, D24 depth formats"});
+    v.push_back({"gloss", K::Scalar, 1, 8, 1, 16, 0, false, "roughness in [0,1]",
+                 "stores gloss = 1 - roughness as unorm", "CryEngine 2/3 glossiness convention"});
+    v.push_back({"smoothness_cry", K::Scalar, 1, 8, 1, 16, 0, false, "roughness in [0,1]",
+                 "stores smoothness = 1 - sqrt(roughness) as unorm; roughness = (1 - s)^2",
+                 "Schulz, 'Moving to the Next Generation - The Rendering Technology of Ryse', GDC 2014"});
+
+    v.push_back({"srgb8", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
+                 "exact sRGB 8-bit per channel via 255 linear thresholds (no pow)",
+                 "IEC 61966-2-1 sRGB transfer function"});
+    v.push_back({"ycbcr", K::Color, 3, 8, 2, 16, 0, false, "[0,1]^3",
+                 "BT.601 full-range YCbCr, Cb/Cr offset by 0.5, unorm per code",
+                 "ITU-R BT.601 / JPEG JFIF; Sousa et al., 'The Rendering Technologies of Crysis 3', GDC 2013"});
+    v.push_back({"ycbcr_sqrt", K::Color, 3, 8, 2, 16, 0, false, "[0,1]^3",
+                 "sqrt(rgb) then BT.601 YCbCr (gamma-2 pre-transform), squared after decode",
+                 "Sousa et al., 'The Rendering Technologies of Crysis 3', GDC 2013; Schulz, Ryse, GDC 2014"});
+    v.push_back({"ycocg", K::Color, 3, 8, 2, 16, 0, false, "[0,1]^3",
+                 "YCoCg, Co/Cg offset by 0.5, unorm per code",
+                 "Malvar & Sullivan, 'YCoCg-R', JVT-I014 2003; Mavridis & Papaioannou, JCGT 2012"});
+    v.push_back({"luma", K::Color, 1, 8, 2, 16, 0, false, "[0,1]^3",
+                 "BT.601 luma only (Crysis 3 specular Y); decodes to grey",
+                 "Sousa et al., 'The Rendering Technologies of Crysis 3', GDC 2013"});
+    v.push_back({"ycocg_checkerboard", K::Color, 2, 8, 2, 16, 0, true, "[0,1]^3",
+                 "Y + one chroma per pixel (Co on even (x+y), Cg on odd), edge-directed reconstruction",
+                 "Mavridis & Papaioannou, 'The Compact YCoCg Frame Buffer', JCGT 1(1) 2012"});
+    v.push_back({"ycbcr_checkerboard", K::Color, 2, 8, 2, 16, 0, true, "[0,1]^3",
+                 "Y + one chroma per pixel (Cb on even (x+y), Cr on odd), edge-directed reconstruction",
+                 "Sousa et al., Crysis 3, GDC 2013; Mavridis & Papaioannou, JCGT 2012"});
+
+    v.push_back({"normal_xyz", K::Normal, 3, 8, 2, 16, 0, false, "unit vector",
+                 "unorm of n*0.5+0.5 per component, normalised on decode", "common practice"});
+    v.push_back({"normal_bestfit", K::Normal, 3, 8, 8, 8, 0, false, "unit vector",
+                 "best-fit normals: the 8-bit unorm vector whose direction best matches n, scale searched in code",
+                 "Kaplanyan, 'CryENGINE 3: Reaching the Speed of Light', SIGGRAPH 2010"});
+    v.push_back({"normal_xy_zsign", K::Normal, 2, 8, 2, 16, 1, false, "unit vector",
+                 "unorm x, y + 1 z-sign bit; z = sign*sqrt(max(0, 1-x^2-y^2))",
+                 "Sousa et al., 'The Rendering Technologies of Crysis 3', GDC 2013"});
+    v.push_back({"normal_spheremap", K::Normal, 2, 8, 2, 16, 0, false, "unit vector",
+                 "Lambert azimuthal equal-area projection, full sphere",
+                 "Pranckevicius, 'Compact Normal Storage for Small G-Buffers', 2009 (method #4)"});
+    v.push_back({"normal_stereographic", K::Normal, 2, 8, 2, 16, 0, false, "unit vector",
+                 "stereographic projection from -z, scaled to cover the sphere (z = -1 is a singularity)",
+                 "Pranckevicius, 'Compact Normal Storage for Small G-Buffers', 2009 (method #7)"});
+    v.push_back({"normal_octahedral", K::Normal, 2, 8, 2, 16, 0, false, "unit vector",
+                 "octahedral projection, snorm per component",
+                 "Cigolle et al., 'A Survey of Efficient Representations for Independent Unit Vectors', JCGT 3(2) 2014"});
+    v.push_back({"normal_octahedral_precise", K::Normal, 2, 8, 2, 16, 0, false, "unit vector",
+                 "octahedral, best of the 4 floor/ceil neighbours by decoded dot product",
+                 "Cigolle et al., JCGT 3(2) 2014, 'oct*P' precise variant"});
+    return v;
+}
+
+}  // namespace
+
+const std::vector<EncodingInfo>& listEncodings() {
+    static const std::vector<EncodingInfo> registry = makeRegistry();
+    return registry;
+}
+
+const EncodingInfo* findEncoding(std::string_view name) {
+    for (const EncodingInfo& e : listEncodings())
+        if (e.name == name) return &e;
+    return nullptr;
+}
+
+std::string knownEncodingNames() {
+    std::string s;
+    for (const EncodingInfo& e : listEncodings()) {
+        if (!s.empty()) s += ", ";
+        s += e.name;
+    }
+    return s;
+}
+
+int encodingTotalBits(const EncodingInfo& info, int bits) { return info.codeCount * bits + info.extraBits; }
+
+bool encodingBitsValid(const EncodingInfo& info, int bits) { return bits >= info.minBits && bits <= info.maxBits; }
+
+const char* attributeKindName(AttributeKind kind) {
+    switch (kind) {
+        case AttributeKind::Normal: return "normal";
+        case AttributeKind::Color: return "color";
+        case AttributeKind::Scalar: return "scalar";
+    }
+    return "?";
+}
+
+}  // namespace gbl

@@ -1,0 +1,541 @@
+#include "flip.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "color_difference.h"
+#include "error.h"
+#include "metrics.h"
+
+// Equation numbers below are those of the FLIP paper (HPG 2020) unless marked [HDR], which
+// refers to the HDR-FLIP paper (Eurographics 2021 short). Where the paper's text fixes a
+// constant, the constant is written here once, with its name from the paper.
+
+namespace gbl {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// ---- Constants from the paper -------------------------------------------------------------------
+
+// Contrast sensitivity functions, eq. (2) (frequency domain S(f) = a1 exp(-b1 f^2) + a2 exp(-b2 f^2)),
+// one per opponent channel: achromatic (A), red-green (RG), blue-yellow (BY).
+struct CsfParams {
+    double a1, b1, a2, b2;
+};
+constexpr CsfParams kCsfA = {1.0, 0.0047, 0.0, 1.0e-5};
+constexpr CsfParams kCsfRG = {1.0, 0.0053, 0.0, 1.0e-5};
+constexpr CsfParams kCsfBY = {34.1, 0.04, 13.5, 0.025};
+
+// Colour error remapping, eqs. (6)-(8): exponent q_c, error-map breakpoints p_c and p_t.
+constexpr double kQc = 0.7;
+constexpr double kPc = 0.4;
+constexpr double kPt = 0.95;
+
+// Feature detection, Sec. 4.2: the edge/point width w in degrees, the Gaussian's
+// sigma = 0.5 * w * p (pixels), and the feature exponent q_f, eq. (9).
+constexpr double kFeatureWidthDeg = 0.082;
+constexpr double kQf = 0.5;
+
+// ---- Colour transforms (float, per pixel) ----------------------------------------------------
+
+struct ColorConsts {
+    float m[3][3];     // linear sRGB -> XYZ
+    float mi[3][3];    // XYZ -> linear sRGB
+    float wx, wy, wz;  // D65 white (XYZ of RGB (1,1,1)) and its reciprocals
+    float iwx, iwy, iwz;
+};
+
+const ColorConsts& colorConsts() {
+    static const ColorConsts c = [] {
+        ColorConsts k{};
+        const double basis[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        for (int j = 0; j < 3; ++j) {
+            const Xyz col = linearSrgbToXyz(basis[j][0], basis[j][1], basis[j][2]);
+            k.m[0][j] = float(col.X);
+            k.m[1][j] = float(col.Y);
+            k.m[2][j] = float(col.Z);
+            Xyz e{basis[j][0], basis[j][1], basis[j][2]};
+            double r, g, b;
+            xyzToLinearSrgb(e, r, g, b);
+            k.mi[0][j] = float(r);
+            k.mi[1][j] = float(g);
+            k.mi[2][j] = float(b);
+        }
+        const Xyz w = d65White();
+        k.wx = float(w.X), k.wy = float(w.Y), k.wz = float(w.Z);
+        k.iwx = float(1.0 / w.X), k.iwy = float(1.0 / w.Y), k.iwz = float(1.0 / w.Z);
+        return k;
+    }();
+    return c;
+}
+
+inline float labF(float t) {
+    constexpr float d3 = float((6.0 / 29.0) * (6.0 / 29.0) * (6.0 / 29.0));
+    constexpr float s = float(1.0 / (3.0 * (6.0 / 29.0) * (6.0 / 29.0)));
+    constexpr float o = float(4.0 / 29.0);
+    return t > d3 ? std::cbrt(t) : t * s + o;
+}
+
+inline float clamp01(float v) { return v >= 0.0f ? (v <= 1.0f ? v : 1.0f) : 0.0f; }  // NaN -> 0
+
+inline float srgbToLinearF(float v) {
+    v = clamp01(v);
+    return v <= 0.04045f ? v * float(1.0 / 12.92) : std::pow((v + 0.055f) * float(1.0 / 1.055), 2.4f);
+}
+
+// Hunt-adjusted CIELAB (eq. (4): a_h = 0.01 L a, b_h = 0.01 L b) of a linear RGB colour.
+struct HuntLab {
+    float L, a, b;
+};
+
+inline HuntLab linearRgbToHuntLab(float r, float g, float b, const ColorConsts& k) {
+    const float X = k.m[0][0] * r + k.m[0][1] * g + k.m[0][2] * b;
+    const float Y = k.m[1][0] * r + k.m[1][1] * g + k.m[1][2] * b;
+    const float Z = k.m[2][0] * r + k.m[2][1] * g + k.m[2][2] * b;
+    const float fx = labF(X * k.iwx), fy = labF(Y * k.iwy), fz = labF(Z * k.iwz);
+    const float L = 116.0f * fy - 16.0f;
+    const float a = 500.0f * (fx - fy);
+    const float bb = 200.0f * (fy - fz);
+    return {L, 0.01f * L * a, 0.01f * L * bb};
+}
+
+// HyAB distance (eq. (5)): |dL| + sqrt(da^2 + db^2), on Hunt-adjusted values.
+inline float hyab(const HuntLab& p, const HuntLab& q) {
+    const float da = p.a - q.a, db = p.b - q.b;
+    return std::abs(p.L - q.L) + std::sqrt(da * da + db * db);
+}
+
+// c_max = (HyAB(Hunt(green), Hunt(blue)))^q_c, eq. (6): the largest colour difference, between
+// pure green and pure blue. Computed in double from the same colour transforms.
+double maxColorDifference() {
+    auto hunt = [](double r, double g, double b) {
+        const Lab l = linearSrgbToLab(r, g, b);
+        return Lab{l.L, 0.01 * l.L * l.a, 0.01 * l.L * l.b};
+    };
+    const Lab g = hunt(0, 1, 0), b = hunt(0, 0, 1);
+    const double d = std::abs(g.L - b.L) + std::hypot(g.a - b.a, g.b - b.b);
+    return std::pow(d, kQc);
+}
+
+// ---- Kernels ---------------------------------------------------------------------------------
+
+struct Kernels {
+    int csfRadius = 0;
+    std::vector<float> csfA, csfRG, csfBY1, csfBY2;  // 1D, each summing to 1
+    float wBY1 = 1.0f, wBY2 = 0.0f;                  // BY = wBY1 * (BY1 x BY1) + wBY2 * (BY2 x BY2)
+    int featRadius = 0;
+    std::vector<float> gauss, edge, point;           // 1D; see makeKernels
+};
+
+// One term of the spatial-domain CSF, eq. (3): a sqrt(pi/b) exp(-pi^2 x^2 / b), x in degrees.
+// Returns the 1D factor exp(-pi^2 x^2 / b) over [-r, r] (so the 2D term is
+// a sqrt(pi/b) e(x) e(y)) and its sum.
+std::vector<double> csfFactor(double b, int radius, double ppd, double& sum) {
+    std::vector<double> e(size_t(2 * radius + 1));
+    sum = 0.0;
+    for (int i = -radius; i <= radius; ++i) {
+        const double x = i / ppd;
+        e[size_t(i + radius)] = std::exp(-kPi * kPi * x * x / b);
+        sum += e[size_t(i + radius)];
+    }
+    return e;
+}
+
+std::vector<float> normalized(const std::vector<double>& v, double sum) {
+    std::vector<float> out(v.size());
+    for (size_t i = 0; i < v.size(); ++i) out[i] = float(v[i] / sum);
+    return out;
+}
+
+Kernels makeKernels(double ppd) {
+    Kernels k;
+    // CSF filter radius, Sec. 4.1: 3 standard deviations of the widest Gaussian term,
+    // r = ceil(3 sqrt(b_max / (2 pi^2)) p), b_max the largest b over all channels (0.04, BY).
+    const double bMax = std::max({kCsfA.b1, kCsfA.b2, kCsfRG.b1, kCsfRG.b2, kCsfBY.b1, kCsfBY.b2});
+    k.csfRadius = int(std::ceil(3.0 * std::sqrt(bMax / (2.0 * kPi * kPi)) * ppd));
+    const int r = k.csfRadius;
+
+    // The 2D filter is S(x, y) = sum_i a_i sqrt(pi/b_i) exp(-pi^2 (x^2 + y^2) / b_i) over the
+    // (2r+1)^2 window, normalised to sum 1. Each term is separable; A and RG have a2 = 0.
+    double sA, sRG, s1, s2;
+    k.csfA = normalized(csfFactor(kCsfA.b1, r, ppd, sA), sA);
+    k.csfRG = normalized(csfFactor(kCsfRG.b1, r, ppd, sRG), sRG);
+    k.csfBY1 = normalized(csfFactor(kCsfBY.b1, r, ppd, s1), s1);
+    k.csfBY2 = normalized(csfFactor(kCsfBY.b2, r, ppd, s2), s2);
+    const double c1 = kCsfBY.a1 * std::sqrt(kPi / kCsfBY.b1) * s1 * s1;  // 2D sum of term 1
+    const double c2 = kCsfBY.a2 * std::sqrt(kPi / kCsfBY.b2) * s2 * s2;  // 2D sum of term 2
+    k.wBY1 = float(c1 / (c1 + c2));
+    k.wBY2 = float(c2 / (c1 + c2));
+
+    // Feature detectors, Sec. 4.2: sigma = 0.5 w p pixels, radius ceil(3 sigma).
+    // Edge: first partial derivative of the Gaussian, -x g(x, y); point: second partial
+    // derivative, (x^2/sigma^2 - 1) g(x, y). Each 2D filter is normalised so that its positive
+    // weights sum to 1 and its negative weights to -1. Both are separable, d(x) g(y) and
+    // p(x) g(y); the sign split depends on x only, so normalising the x factor by its positive
+    // and negative sums and the y factor by its sum gives the same normalised 2D filter.
+    const double sigma = 0.5 * kFeatureWidthDeg * ppd;
+    k.featRadius = int(std::ceil(3.0 * sigma));
+    const int fr = k.featRadius;
+    std::vector<double> g(size_t(2 * fr + 1)), d(g.size()), p(g.size());
+    double gs = 0, dPos = 0, dNeg = 0, pPos = 0, pNeg = 0;
+    for (int i = -fr; i <= fr; ++i) {
+        const double x = i;
+        const double gi = std::exp(-x * x / (2.0 * sigma * sigma));
+        const size_t j = size_t(i + fr);
+        g[j] = gi;
+        d[j] = -x * gi;
+        p[j] = (x * x / (sigma * sigma) - 1.0) * gi;
+        gs += gi;
+        (d[j] > 0 ? dPos : dNeg) += d[j];
+        (p[j] > 0 ? pPos : pNeg) += p[j];
+    }
+    k.gauss.resize(g.size());
+    k.edge.resize(g.size());
+    k.point.resize(g.size());
+    for (size_t j = 0; j < g.size(); ++j) {
+        k.gauss[j] = float(g[j] / gs);
+        k.edge[j] = float(d[j] > 0 ? d[j] / dPos : (d[j] < 0 ? d[j] / -dNeg : 0.0));
+        k.point[j] = float(p[j] > 0 ? p[j] / pPos : (p[j] < 0 ? p[j] / -pNeg : 0.0));
+    }
+    return k;
+}
+
+// ---- Separable filtering (clamp-to-edge), correlation order ------------------------------------
+
+// out(x, y) = sum_j k[j] in(clamp(x + j - r), y).
+void filterRows(const float* in, float* out, int w, int h, const std::vector<float>& k) {
+    const int r = int(k.size() / 2);
+    std::vector<float> pad(size_t(w + 2 * r));
+    std::vector<float> acc(size_t(w));
+    for (int y = 0; y < h; ++y) {
+        const float* row = in + size_t(y) * w;
+        for (int i = 0; i < w + 2 * r; ++i) pad[size_t(i)] = row[std::clamp(i - r, 0, w - 1)];
+        std::fill(acc.begin(), acc.end(), 0.0f);
+        for (size_t j = 0; j < k.size(); ++j) {
+            const float kj = k[j];
+            const float* src = pad.data() + j;
+            float* a = acc.data();
+            for (int x = 0; x < w; ++x) a[x] += kj * src[x];
+        }
+        std::copy(acc.begin(), acc.end(), out + size_t(y) * w);
+    }
+}
+
+// out(x, y) = sum_j k[j] in(x, clamp(y + j - r)).
+void filterCols(const float* in, float* out, int w, int h, const std::vector<float>& k) {
+    const int r = int(k.size() / 2);
+    for (int y = 0; y < h; ++y) {
+        float* o = out + size_t(y) * w;
+        std::fill(o, o + w, 0.0f);
+        for (size_t j = 0; j < k.size(); ++j) {
+            const float kj = k[j];
+            const float* src = in + size_t(std::clamp(y + int(j) - r, 0, h - 1)) * w;
+            for (int x = 0; x < w; ++x) o[x] += kj * src[x];
+        }
+    }
+}
+
+// ---- The per-image pipeline ------------------------------------------------------------------
+
+using Plane = std::vector<float>;
+
+struct Prepared {
+    Plane L, a, b;       // CSF-filtered, clamped, Hunt-adjusted CIELAB
+    Plane edge, point;   // feature magnitudes |(e_x, e_y)| and |(p_x, p_y)| of the luminance
+};
+
+// rgb: three planes of linear RGB in [0,1].
+Prepared prepare(const Plane rgb[3], int w, int h, const Kernels& k) {
+    const ColorConsts& cc = colorConsts();
+    const size_t n = size_t(w) * size_t(h);
+    // Linear RGB -> XYZ -> YyCxCz (eq. (2)'s opponent space, after Zhang & Wandell's S-CIELAB):
+    // Yy = 116 Y/Yn - 16, Cx = 500 (X/Xn - Y/Yn), Cz = 200 (Y/Yn - Z/Zn). The feature pipeline
+    // uses the achromatic channel normalised to [0,1], (Yy + 16) / 116 = Y / Yn.
+    Plane yy(n), cx(n), cz(n), lum(n);
+    for (size_t i = 0; i < n; ++i) {
+        const float r = rgb[0][i], g = rgb[1][i], b = rgb[2][i];
+        const float X = (cc.m[0][0] * r + cc.m[0][1] * g + cc.m[0][2] * b) * cc.iwx;
+        const float Y = (cc.m[1][0] * r + cc.m[1][1] * g + cc.m[1][2] * b) * cc.iwy;
+        const float Z = (cc.m[2][0] * r + cc.m[2][1] * g + cc.m[2][2] * b) * cc.iwz;
+        yy[i] = 116.0f * Y - 16.0f;
+        cx[i] = 500.0f * (X - Y);
+        cz[i] = 200.0f * (Y - Z);
+        lum[i] = Y;
+    }
+
+    Prepared out;
+    // Spatial (CSF) filtering per channel, Sec. 4.1.
+    Plane tmp(n), fy(n), fx(n), fz(n), t2(n);
+    filterRows(yy.data(), tmp.data(), w, h, k.csfA);
+    filterCols(tmp.data(), fy.data(), w, h, k.csfA);
+    filterRows(cx.data(), tmp.data(), w, h, k.csfRG);
+    filterCols(tmp.data(), fx.data(), w, h, k.csfRG);
+    filterRows(cz.data(), tmp.data(), w, h, k.csfBY1);
+    filterCols(tmp.data(), fz.data(), w, h, k.csfBY1);
+    if (k.wBY2 != 0.0f) {
+        filterRows(cz.data(), tmp.data(), w, h, k.csfBY2);
+        filterCols(tmp.data(), t2.data(), w, h, k.csfBY2);
+        for (size_t i = 0; i < n; ++i) fz[i] = k.wBY1 * fz[i] + k.wBY2 * t2[i];
+    }
+
+    // Back to linear RGB, clamped to [0,1] (the filtered colour may leave the gamut), then to
+    // CIELAB with the Hunt adjustment, eq. (4).
+    out.L.resize(n);
+    out.a.resize(n);
+    out.b.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        const float Yr = (fy[i] + 16.0f) * float(1.0 / 116.0);
+        const float X = (fx[i] * (1.0f / 500.0f) + Yr) * cc.wx;
+        const float Y = Yr * cc.wy;
+        const float Z = (Yr - fz[i] * (1.0f / 200.0f)) * cc.wz;
+        const float r = clamp01(cc.mi[0][0] * X + cc.mi[0][1] * Y + cc.mi[0][2] * Z);
+        const float g = clamp01(cc.mi[1][0] * X + cc.mi[1][1] * Y + cc.mi[1][2] * Z);
+        const float b = clamp01(cc.mi[2][0] * X + cc.mi[2][1] * Y + cc.mi[2][2] * Z);
+        const HuntLab h = linearRgbToHuntLab(r, g, b, cc);
+        out.L[i] = h.L;
+        out.a[i] = h.a;
+        out.b[i] = h.b;
+    }
+
+    // Feature detection on the (unfiltered) normalised luminance, Sec. 4.2.
+    // x-derivative filters: edge(x) gauss(y), point(x) gauss(y); y-derivative: transposed.
+    Plane hd(n), hp(n), hg(n);
+    filterRows(lum.data(), hd.data(), w, h, k.edge);
+    filterRows(lum.data(), hp.data(), w, h, k.point);
+    filterRows(lum.data(), hg.data(), w, h, k.gauss);
+    out.edge.resize(n);
+    out.point.resize(n);
+    filterCols(hd.data(), fx.data(), w, h, k.gauss);  // e_x
+    filterCols(hg.data(), fy.data(), w, h, k.edge);   // e_y
+    for (size_t i = 0; i < n; ++i) out.edge[i] = std::sqrt(fx[i] * fx[i] + fy[i] * fy[i]);
+    filterCols(hp.data(), fx.data(), w, h, k.gauss);  // p_x
+    filterCols(hg.data(), fy.data(), w, h, k.point);  // p_y
+    for (size_t i = 0; i < n; ++i) out.point[i] = std::sqrt(fx[i] * fx[i] + fy[i] * fy[i]);
+    return out;
+}
+
+void checkPair(const Image& ref, const Image& test, const char* what) {
+    if (ref.width != test.width || ref.height != test.height)
+        throwUserError(std::string(what) + ": reference is " + std::to_string(ref.width) + "x" +
+                       std::to_string(ref.height) + " but test is " + std::to_string(test.width) + "x" +
+                       std::to_string(test.height) + "; compare images of the same size");
+    for (const Image* im : {&ref, &test})
+        if (im->channels != 1 && im->channels < 3)
+            throwUserError(std::string(what) + ": an image has " + std::to_string(im->channels) +
+                           " channels; give 1 (grey) or >= 3 (RGB[A])");
+    if (ref.empty())
+        throwUserError(std::string(what) + ": the images are empty; give images of at least 1x1 pixels");
+}
+
+enum class Input { Srgb, Linear01 };
+
+void toLinearPlanes(const Image& im, Input mode, Plane rgb[3]) {
+    const size_t n = im.pixelCount();
+    for (int c = 0; c < 3; ++c) rgb[c].resize(n);
+    const int ch = im.channels;
+    for (size_t i = 0; i < n; ++i) {
+        const float* p = im.pixels.data() + i * size_t(ch);
+        for (int c = 0; c < 3; ++c) {
+            const float v = p[ch == 1 ? 0 : c];
+            rgb[c][i] = mode == Input::Srgb ? srgbToLinearF(v) : clamp01(v);
+        }
+    }
+}
+
+// Combines two prepared images into the FLIP map, eqs. (5)-(10).
+void combine(const Prepared& r, const Prepared& t, float cMax, float* out, size_t n) {
+    const float pcCmax = float(kPc) * cMax;
+    const float lowScale = float(kPt) / pcCmax;
+    const float highScale = float(1.0 - kPt) / (cMax - pcCmax);
+    const float invSqrt2 = float(1.0 / std::numbers::sqrt2);
+    for (size_t i = 0; i < n; ++i) {
+        // Colour: HyAB (eq. (5)) raised to q_c, then the piecewise-linear remap (eq. (8)):
+        // [0, p_c c_max) -> [0, p_t), [p_c c_max, c_max] -> [p_t, 1].
+        const float dE = hyab({r.L[i], r.a[i], r.b[i]}, {t.L[i], t.a[i], t.b[i]});
+        const float dEq = std::pow(dE, float(kQc));
+        float dEc = dEq < pcCmax ? dEq * lowScale : float(kPt) + (dEq - pcCmax) * highScale;
+        dEc = std::min(dEc, 1.0f);  // c_max is the largest HyAB^q_c in gamut; guard rounding
+        // Features, eq. (9): dE_f = ((1/sqrt 2) max(| |e_r| - |e_t| |, | |p_r| - |p_t| |))^q_f.
+        const float de = std::abs(r.edge[i] - t.edge[i]);
+        const float dp = std::abs(r.point[i] - t.point[i]);
+        const float dEf = std::min(1.0f, std::pow(invSqrt2 * std::max(de, dp), float(kQf)));
+        // FLIP, eq. (10): dE_c^(1 - dE_f).
+        out[i] = std::pow(dEc, 1.0f - dEf);
+    }
+}
+
+Image flipFromPlanes(const Plane ref[3], const Plane test[3], int w, int h, double ppd) {
+    const Kernels k = makeKernels(ppd);
+    const Prepared pr = prepare(ref, w, h, k);
+    const Prepared pt = prepare(test, w, h, k);
+    Image out(w, h, 1);
+    combine(pr, pt, float(maxColorDifference()), out.pixels.data(), out.pixelCount());
+    return out;
+}
+
+Image flipLdrImpl(const Image& ref, const Image& test, double ppd, Input mode, const char* what) {
+    checkPair(ref, test, what);
+    if (!(ppd > 0.0) || !std::isfinite(ppd))
+        throwUserError(std::string(what) + ": pixels per degree is " + std::to_string(ppd) +
+                       "; give a positive value (default 67.02)");
+    Plane pr[3], pt[3];
+    toLinearPlanes(ref, mode, pr);
+    toLinearPlanes(test, mode, pt);
+    return flipFromPlanes(pr, pt, ref.width, ref.height, ppd);
+}
+
+// Tone mapper coefficients [HDR]: t(x) = (k0 x^2 + k1 x + k2) / (k3 x^2 + k4 x + k5).
+constexpr double kTm[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0.0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
+
+inline float hdrClamp(float v) { return v >= 0.0f ? v : 0.0f; }  // negatives and NaN -> 0
+
+}  // namespace
+
+double flipPixelsPerDegree(double distanceMeters, double monitorWidthPixels, double monitorWidthMeters) {
+    return distanceMeters * (monitorWidthPixels / monitorWidthMeters) * (kPi / 180.0);
+}
+
+Image flipLdr(const Image& referenceSrgb, const Image& testSrgb, double pixelsPerDegree) {
+    return flipLdrImpl(referenceSrgb, testSrgb, pixelsPerDegree, Input::Srgb, "flipLdr");
+}
+
+Image flipLdrLinear(const Image& referenceLinear, const Image& testLinear, double pixelsPerDegree) {
+    return flipLdrImpl(referenceLinear, testLinear, pixelsPerDegree, Input::Linear01, "flipLdrLinear");
+}
+
+float flipToneMap(float x) {
+    const float x2 = x * x;
+    const float num = float(kTm[0]) * x2 + float(kTm[1]) * x + float(kTm[2]);
+    const float den = float(kTm[3]) * x2 + float(kTm[4]) * x + float(kTm[5]);
+    return clamp01(num / den);
+}
+
+float FlipExposureRange::exposure(int i) const {
+    if (count <= 1) return start;
+    return start + float(i) * (stop - start) / float(count - 1);
+}
+
+FlipExposureRange flipExposureRange(const Image& ref) {
+    if (ref.empty() || (ref.channels != 1 && ref.channels < 3))
+        throwUserError("flipExposureRange: the reference is empty or has " + std::to_string(ref.channels) +
+                       " channels; give a linear RGB(A) or grey image");
+    // x_max [HDR]: the input the tone mapper maps to 0.85, the larger root of
+    // (k0 - 0.85 k3) x^2 + (k1 - 0.85 k4) x + (k2 - 0.85 k5) = 0.
+    const double t = 0.85;
+    const double qa = kTm[0] - t * kTm[3], qb = kTm[1] - t * kTm[4], qc = kTm[2] - t * kTm[5];
+    const double xMax = (-qb + std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa);
+
+    // Luminance of the reference: CIE Y of linear sRGB.
+    const Xyz yr = linearSrgbToXyz(1, 0, 0), yg = linearSrgbToXyz(0, 1, 0), yb = linearSrgbToXyz(0, 0, 1);
+    const size_t n = ref.pixelCount();
+    std::vector<double> lum(n);
+    const int ch = ref.channels;
+    for (size_t i = 0; i < n; ++i) {
+        const float* p = ref.pixels.data() + i * size_t(ch);
+        const double r = hdrClamp(p[0]), g = hdrClamp(p[ch == 1 ? 0 : 1]), b = hdrClamp(p[ch == 1 ? 0 : 2]);
+        lum[i] = std::isfinite(r + g + b) ? yr.Y * r + yg.Y * g + yb.Y * b : 0.0;
+    }
+    const double yMax = *std::max_element(lum.begin(), lum.end());
+    FlipExposureRange range;
+    if (!(yMax > 0.0)) return range;  // all black: a single (repeated) exposure of 0
+    double yMedian = percentileNearestRank(lum, 0.5);
+    if (!(yMedian > 0.0)) {
+        std::vector<double> positive;
+        for (double v : lum)
+            if (v > 0.0) positive.push_back(v);
+        yMedian = percentileNearestRank(positive, 0.5);
+    }
+    // [HDR]: c_start = log2(x_max / Y_max), c_stop = log2(x_max / Y_median),
+    // N = max(2, ceil(c_stop - c_start)).
+    range.start = float(std::log2(xMax / yMax));
+    range.stop = float(std::log2(xMax / yMedian));
+    range.count = std::max(2, int(std::ceil(double(range.stop) - double(range.start))));
+    return range;
+}
+
+HdrFlipResult flipHdr(const Image& ref, const Image& test, double ppd, FlipExposureRange range) {
+    checkPair(ref, test, "flipHdr");
+    if (!(ppd > 0.0) || !std::isfinite(ppd))
+        throwUserError("flipHdr: pixels per degree is " + std::to_string(ppd) + "; give a positive value");
+    if (range.count <= 0) range = flipExposureRange(ref);
+    const int w = ref.width, h = ref.height;
+    const size_t n = ref.pixelCount();
+    const Kernels k = makeKernels(ppd);
+    const float cMax = float(maxColorDifference());
+
+    HdrFlipResult result;
+    result.range = range;
+    result.flip = Image(w, h, 1, 0.0f);
+    result.exposureMap = Image(w, h, 1, 0.0f);
+    std::vector<float> cur(n);
+    Plane pr[3], pt[3];
+    for (int c = 0; c < 3; ++c) {
+        pr[c].resize(n);
+        pt[c].resize(n);
+    }
+    for (int e = 0; e < range.count; ++e) {
+        // Exposure-compensate (x 2^c), tone map each channel, then LDR-FLIP on the result
+        // (display-referred linear RGB in [0,1]; sRGB encode + decode would be the identity).
+        const float scale = std::exp2(range.exposure(e));
+        for (int which = 0; which < 2; ++which) {
+            const Image& im = which == 0 ? ref : test;
+            Plane* dst = which == 0 ? pr : pt;
+            const int ch = im.channels;
+            for (size_t i = 0; i < n; ++i) {
+                const float* p = im.pixels.data() + i * size_t(ch);
+                for (int c = 0; c < 3; ++c) dst[c][i] = flipToneMap(hdrClamp(p[ch == 1 ? 0 : c]) * scale);
+            }
+        }
+        const Prepared a = prepare(pr, w, h, k);
+        const Prepared b = prepare(pt, w, h, k);
+        combine(a, b, cMax, cur.data(), n);
+        // Per-pixel maximum over exposures [HDR]; ties keep the earliest exposure.
+        for (size_t i = 0; i < n; ++i)
+            if (cur[i] > result.flip.pixels[i]) {
+                result.flip.pixels[i] = cur[i];
+                result.exposureMap.pixels[i] = float(e);
+            }
+    }
+    return result;
+}
+
+FlipStats flipStats(const Image& map, const std::vector<uint8_t>* mask) {
+    if (map.channels != 1) throwUserError("flipStats: the map has " + std::to_string(map.channels) +
+                                          " channels; give the 1-channel map flipLdr/flipHdr return");
+    const bool useMask = mask && !mask->empty();
+    if (useMask && mask->size() != map.pixelCount())
+        throwUserError("flipStats: the mask has " + std::to_string(mask->size()) + " entries for " +
+                       std::to_string(map.pixelCount()) + " pixels; give one byte per pixel");
+    std::vector<double> v;
+    v.reserve(map.pixelCount());
+    for (size_t i = 0; i < map.pixelCount(); ++i)
+        if (!useMask || (*mask)[i]) v.push_back(map.pixels[i]);
+    FlipStats s;
+    s.count = v.size();
+    if (v.empty()) return s;
+    std::sort(v.begin(), v.end());
+    double sum = 0.0;
+    for (double x : v) sum += x;
+    s.mean = sum / double(v.size());
+    s.min = v.front();
+    s.max = v.back();
+    s.median = v[nearestRankIndex(0.5, v.size())];
+    if (sum > 0.0) {
+        // Weighted quantiles: walk the sorted values accumulating their own weight.
+        const double targets[3] = {0.25 * sum, 0.5 * sum, 0.75 * sum};
+        double* outs[3] = {&s.weightedQ1, &s.weightedMedian, &s.weightedQ3};
+        double acc = 0.0;
+        int t = 0;
+        for (size_t i = 0; i < v.size() && t < 3; ++i) {
+            acc += v[i];
+            while (t < 3 && acc >= targets[t]) *outs[t++] = v[i];
+        }
+        for (; t < 3; ++t) *outs[t] = v.back();  // rounding in acc: the last value
+    }
+    return s;
+}
+
+}  // namespace gbl

@@ -1,0 +1,102 @@
+#include "gpu_scene.h"
+
+#include <algorithm>
+
+namespace gbl {
+
+std::vector<gpu::GpuMaterial> packMaterials(const Scene& scene) {
+    std::vector<gpu::GpuMaterial> out;
+    for (const Material& m : scene.materials) {
+        gpu::GpuMaterial g{};
+        g.baseColorFactor = m.baseColorFactor;
+        g.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
+        g.specularColorSpecular = glm::vec4(m.specularColorFactor, m.specularFactor);
+        g.metallicRoughnessOcclusion =
+            glm::vec4(m.metallicFactor, m.roughnessFactor, m.occlusionStrength, m.doubleSided ? 1.0f : 0.0f);
+        g.textures0 = glm::ivec4(m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.occlusionTexture);
+        g.textures1 = glm::ivec4(m.emissiveTexture, m.specularTexture, m.specularColorTexture, kNoTexture);
+        out.push_back(g);
+    }
+    if (out.empty()) {
+        gpu::GpuMaterial g{};
+        g.baseColorFactor = glm::vec4(1.0f);
+        g.emissiveNormalScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        g.specularColorSpecular = glm::vec4(1.0f);
+        g.metallicRoughnessOcclusion = glm::vec4(0.0f, 0.5f, 1.0f, 0.0f);
+        g.textures0 = g.textures1 = glm::ivec4(kNoTexture);
+        out.push_back(g);
+    }
+    return out;
+}
+
+std::vector<gpu::GpuLight> packLights(const Scene& scene) {
+    std::vector<gpu::GpuLight> out;
+    for (const Light& l : scene.lights) {
+        gpu::GpuLight g{};
+        g.positionType = glm::vec4(l.position, float(int(l.type)));
+        g.directionRange = glm::vec4(glm::normalize(l.direction), l.range);
+        g.colorIntensity = glm::vec4(l.color, l.intensity);
+        out.push_back(g);
+    }
+    return out;
+}
+
+GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
+    GpuScene g;
+    g.vertices = createBufferWithData(ctx, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
+                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    g.indices = createBufferWithData(ctx, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),
+                                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    const auto materials = packMaterials(scene);
+    g.materials = createBufferWithData(ctx, materials.data(), materials.size() * sizeof(gpu::GpuMaterial),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    auto lights = packLights(scene);
+    g.lightCount = uint32_t(lights.size());
+    if (lights.empty()) lights.push_back(gpu::GpuLight{});
+    g.lights = createBufferWithData(ctx, lights.data(), lights.size() * sizeof(gpu::GpuLight),
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    auto addTexture = [&](int w, int h, const uint8_t* rgba, bool srgb) {
+        ImageDesc d;
+        d.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+        d.width = uint32_t(w);
+        d.height = uint32_t(h);
+        d.mipLevels = mipCountFor(d.width, d.height);
+        d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        GpuImage img = createImage(ctx, d);
+        uploadImage(ctx, img, rgba, VkDeviceSize(w) * h * 4, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, true);
+        g.textures.push_back(img);
+    };
+    for (const Texture& t : scene.textures) addTexture(t.width, t.height, t.rgba.data(), t.srgb);
+    if (g.textures.empty()) {
+        const uint8_t white[4] = {255, 255, 255, 255};
+        addTexture(1, 1, white, false);
+    }
+    // Trilinear, no anisotropy: identical for every layout, and anisotropy is an optional feature.
+    g.textureSampler = createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
+                                     VK_SAMPLER_ADDRESS_MODE_REPEAT);
+
+    for (const Draw& d : scene.draws) {
+        gpu::DrawConstants c{};
+        c.model = d.model;
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
+        for (int col = 0; col < 3; ++col) c.normalMatrix[col] = glm::vec4(normalMatrix[col], 0.0f);
+        c.material = glm::ivec4(std::clamp(d.material, 0, int(materials.size()) - 1), 0, 0, 0);
+        g.draws.push_back(c);
+        g.drawRanges.push_back(d);
+    }
+    return g;
+}
+
+void destroyGpuScene(const VulkanContext& ctx, GpuScene& g) {
+    destroyBuffer(ctx, g.vertices);
+    destroyBuffer(ctx, g.indices);
+    destroyBuffer(ctx, g.materials);
+    destroyBuffer(ctx, g.lights);
+    for (auto& t : g.textures) destroyImage(ctx, t);
+    g.textures.clear();
+    if (g.textureSampler) vkDestroySampler(ctx.device, g.textureSampler, nullptr);
+    g.textureSampler = VK_NULL_HANDLE;
+}
+
+}  // namespace gbl

@@ -1,0 +1,402 @@
+// Tables of the layout language (attributes, formats) and the Layout helpers.
+#include "layout.h"
+
+#include <algorithm>
+#include <cassert>
+
+#include "encoding_registry.h"
+
+namespace gbl {
+
+namespace {
+
+using AC = AttributeClass;
+using VT = ValueType;
+using VD = ValueDomain;
+
+const std::vector<AttributeInfo>& attributeTable() {
+    static const std::vector<AttributeInfo> table = {
+        {Attribute::Normal, "normal", 3, AC::Shading, VT::Float, VD::Signed,
+         "world-space unit normal"},
+        {Attribute::BaseColor, "base_color", 3, AC::Shading, VT::Float, VD::Unit,
+         "linear base colour (metallic workflow)"},
+        {Attribute::Metallic, "metallic", 1, AC::Shading, VT::Float, VD::Unit, "metalness"},
+        {Attribute::Roughness, "roughness", 1, AC::Shading, VT::Float, VD::Unit,
+         "perceptual roughness; GGX alpha = roughness^2"},
+        {Attribute::Specular, "specular", 1, AC::Shading, VT::Float, VD::Unit,
+         "UE4 scalar specular; dielectric F0 = 0.08 * specular (0.5 -> 0.04)"},
+        {Attribute::SpecularColor, "specular_color", 3, AC::Shading, VT::Float, VD::Unit,
+         "F0, reflectance at normal incidence, linear"},
+        {Attribute::DiffuseColor, "diffuse_color", 3, AC::Shading, VT::Float, VD::Unit,
+         "Lambert albedo = base_color * (1 - metallic), linear"},
+        {Attribute::Occlusion, "occlusion", 1, AC::Shading, VT::Float, VD::Unit, "ambient occlusion"},
+        {Attribute::Emissive, "emissive", 3, AC::Shading, VT::Float, VD::NonNegative,
+         "emitted radiance, linear, may exceed 1"},
+        {Attribute::Position, "position", 3, AC::Geometry, VT::Float, VD::Any,
+         "view-space position; a layout that does not store it reconstructs it from depth"},
+        {Attribute::Translucency, "translucency", 1, AC::Extra, VT::Float, VD::Unit,
+         "translucency (transmission) luminance of thin surfaces (Crysis 3 RT0.a, Ryse RT0.a)"},
+        {Attribute::SssProfile, "sss_profile", 1, AC::Extra, VT::Integer, VD::Id,
+         "subsurface-scattering profile index (Ryse RT1.a)"},
+        {Attribute::ShadingModelId, "shading_model_id", 1, AC::Extra, VT::Integer, VD::Id,
+         "shading model id (UE4 GBufferB.a bits 0..3; SHADINGMODELID_DEFAULT_LIT = 1)"},
+        {Attribute::SelectiveOutputMask, "selective_output_mask", 1, AC::Extra, VT::Integer, VD::Id,
+         "UE4 GBufferB.a bits 4..7: flags that skip precomputed shadow / velocity per pixel"},
+        {Attribute::PerObject, "per_object", 1, AC::Extra, VT::Float, VD::Unit,
+         "UE4 GBufferA.a: PerObjectGBufferData (2 bits of per-object flags)"},
+        {Attribute::AmbientId, "ambient_id", 1, AC::Extra, VT::Integer, VD::Id,
+         "ambient-volume (probe) id the pixel belongs to (Crysis 3 stencil)"},
+        {Attribute::Decals, "decals", 1, AC::Extra, VT::Integer, VD::Id,
+         "decal mask: which deferred decals affect the pixel (Crysis 3 stencil)"},
+        {Attribute::Indoor, "indoor", 1, AC::Extra, VT::Integer, VD::Id,
+         "tags indoor surfaces, read back by later passes (Crysis 2 stencil)"},
+        {Attribute::PerProject, "per_project", 1, AC::Extra, VT::Float, VD::Unit,
+         "reserved for each game built on the engine (Crysis 3 RT1.a)"},
+        {Attribute::CustomData, "custom_data", 4, AC::Extra, VT::Float, VD::Unit,
+         "shading-model data: subsurface colour, clear coat, ... (UE4 GBufferD)"},
+        {Attribute::PrecomputedShadow, "precomputed_shadow", 4, AC::Extra, VT::Float, VD::Unit,
+         "precomputed (static-light) shadow factors, 1 = unshadowed (UE4 GBufferE)"},
+        {Attribute::MaterialFeature, "material_feature", 1, AC::Extra, VT::Integer, VD::Id,
+         "material classification id for tiled lighting (HDRP-style)"},
+        {Attribute::CoatMask, "coat_mask", 1, AC::Extra, VT::Float, VD::Unit, "clear-coat mask (HDRP)"},
+        {Attribute::Flags, "flags", 1, AC::Extra, VT::Integer, VD::Id,
+         "per-pixel mesh / material flags (Bevy)"},
+    };
+    return table;
+}
+
+Channel ch(const char* name, int bits, int offset, ChannelType type) { return {name, bits, offset, type}; }
+
+std::string uintFormatForBits(int bits) {
+    switch (bits) {
+        case 8: return "R8_UINT";
+        case 16: return "R16_UINT";
+        case 32: return "R32_UINT";
+        case 64: return "R32G32_UINT";
+        case 128: return "R32G32B32A32_UINT";
+    }
+    assert(false && "no UINT format of this size");
+    return "";
+}
+
+// Channels named in `order` (bit order), each `bits` wide, all of `type`.
+TargetFormatInfo uniform(const char* name, const char* order, int bits, ChannelType type) {
+    TargetFormatInfo f;
+    f.name = name;
+    int offset = 0;
+    for (const char* c = order; *c; ++c) {
+        f.channels.push_back({std::string(1, *c), bits, offset, type});
+        offset += bits;
+    }
+    f.bits = offset;
+    f.uintFormat = uintFormatForBits(f.bits);
+    return f;
+}
+
+TargetFormatInfo custom(const char* name, std::vector<Channel> channels) {
+    TargetFormatInfo f;
+    f.name = name;
+    f.channels = std::move(channels);
+    for (const Channel& c : f.channels) f.bits = std::max(f.bits, c.offset + c.bits);
+    f.uintFormat = uintFormatForBits(f.bits);
+    return f;
+}
+
+// sRGB formats: colour channels use the sRGB transfer function, alpha is linear UNORM.
+TargetFormatInfo srgb(const char* name, const char* order) {
+    TargetFormatInfo f = uniform(name, order, 8, ChannelType::Srgb);
+    for (Channel& c : f.channels)
+        if (c.name == "a") c.type = ChannelType::Unorm;
+    return f;
+}
+
+const std::vector<TargetFormatInfo>& targetFormatTable() {
+    using T = ChannelType;
+    static const std::vector<TargetFormatInfo> table = {
+        uniform("R8_UNORM", "r", 8, T::Unorm),
+        uniform("R8G8_UNORM", "rg", 8, T::Unorm),
+        uniform("R8G8B8A8_UNORM", "rgba", 8, T::Unorm),
+        srgb("R8G8B8A8_SRGB", "rgba"),
+        uniform("B8G8R8A8_UNORM", "bgra", 8, T::Unorm),
+        srgb("B8G8R8A8_SRGB", "bgra"),
+        uniform("A8B8G8R8_UNORM_PACK32", "rgba", 8, T::Unorm),
+        srgb("A8B8G8R8_SRGB_PACK32", "rgba"),
+        uniform("R8_UINT", "r", 8, T::Uint),
+        uniform("R8G8_UINT", "rg", 8, T::Uint),
+        uniform("R8G8B8A8_UINT", "rgba", 8, T::Uint),
+        custom("A2B10G10R10_UNORM_PACK32",
+               {ch("r", 10, 0, T::Unorm), ch("g", 10, 10, T::Unorm), ch("b", 10, 20, T::Unorm),
+                ch("a", 2, 30, T::Unorm)}),
+        custom("A2R10G10B10_UNORM_PACK32",
+               {ch("b", 10, 0, T::Unorm), ch("g", 10, 10, T::Unorm), ch("r", 10, 20, T::Unorm),
+                ch("a", 2, 30, T::Unorm)}),
+        custom("A2B10G10R10_UINT_PACK32",
+               {ch("r", 10, 0, T::Uint), ch("g", 10, 10, T::Uint), ch("b", 10, 20, T::Uint),
+                ch("a", 2, 30, T::Uint)}),
+        custom("B10G11R11_UFLOAT_PACK32",
+               {ch("r", 11, 0, T::Ufloat), ch("g", 11, 11, T::Ufloat), ch("b", 10, 22, T::Ufloat)}),
+        uniform("R16_UNORM", "r", 16, T::Unorm),
+        uniform("R16G16_UNORM", "rg", 16, T::Unorm),
+        uniform("R16G16B16A16_UNORM", "rgba", 16, T::Unorm),
+        uniform("R16_SFLOAT", "r", 16, T::Sfloat),
+        uniform("R16G16_SFLOAT", "rg", 16, T::Sfloat),
+        uniform("R16G16B16A16_SFLOAT", "rgba", 16, T::Sfloat),
+        uniform("R16_UINT", "r", 16, T::Uint),
+        uniform("R16G16_UINT", "rg", 16, T::Uint),
+        uniform("R16G16B16A16_UINT", "rgba", 16, T::Uint),
+        uniform("R32_SFLOAT", "r", 32, T::Sfloat),
+        uniform("R32G32_SFLOAT", "rg", 32, T::Sfloat),
+        uniform("R32G32B32A32_SFLOAT", "rgba", 32, T::Sfloat),
+        uniform("R32_UINT", "r", 32, T::Uint),
+        uniform("R32G32_UINT", "rg", 32, T::Uint),
+        uniform("R32G32B32A32_UINT", "rgba", 32, T::Uint),
+    };
+    return table;
+}
+
+const std::vector<DepthFormatInfo>& depthFormatTable() {
+    static const std::vector<DepthFormatInfo> table = {
+        {"D16_UNORM", 16, 0, false, 2},
+        {"X8_D24_UNORM_PACK32", 24, 0, false, 4},
+        {"D24_UNORM_S8_UINT", 24, 8, false, 4},
+        {"D32_SFLOAT", 32, 0, true, 4},
+        {"D32_SFLOAT_S8_UINT", 32, 8, true, 5},
+    };
+    return table;
+}
+
+template <class Table>
+std::string joinNames(const Table& table) {
+    std::string s;
+    for (const auto& e : table) {
+        if (!s.empty()) s += ", ";
+        s += e.name;
+    }
+    return s;
+}
+
+}  // namespace
+
+// ---- attributes -------------------------------------------------------------------------------
+
+const std::vector<AttributeInfo>& listAttributes() { return attributeTable(); }
+
+const AttributeInfo& attributeInfo(Attribute a) {
+    const auto& t = attributeTable();
+    assert(static_cast<size_t>(a) < t.size() && t[static_cast<size_t>(a)].id == a);
+    return t[static_cast<size_t>(a)];
+}
+
+const char* attributeName(Attribute a) { return attributeInfo(a).name; }
+
+const AttributeInfo* findAttribute(std::string_view name) {
+    for (const AttributeInfo& a : attributeTable())
+        if (name == a.name) return &a;
+    return nullptr;
+}
+
+std::string knownAttributeNames() { return joinNames(attributeTable()); }
+
+bool isShadingAttribute(Attribute a) { return attributeInfo(a).cls == AttributeClass::Shading; }
+
+// ---- formats ----------------------------------------------------------------------------------
+
+const std::vector<TargetFormatInfo>& listTargetFormats() { return targetFormatTable(); }
+
+const TargetFormatInfo* findTargetFormat(std::string_view name) {
+    for (const TargetFormatInfo& f : targetFormatTable())
+        if (f.name == name) return &f;
+    return nullptr;
+}
+
+std::string knownTargetFormatNames() { return joinNames(targetFormatTable()); }
+
+const std::vector<DepthFormatInfo>& listDepthFormats() { return depthFormatTable(); }
+
+const DepthFormatInfo* findDepthFormat(std::string_view name) {
+    for (const DepthFormatInfo& f : depthFormatTable())
+        if (f.name == name) return &f;
+    return nullptr;
+}
+
+std::string knownDepthFormatNames() { return joinNames(depthFormatTable()); }
+
+// ---- names ------------------------------------------------------------------------------------
+
+const char* pipelineName(Pipeline p) {
+    return p == Pipeline::DeferredShading ? "deferred-shading" : "deferred-lighting";
+}
+
+const char* fallbackKindName(FallbackKind k) {
+    switch (k) {
+        case FallbackKind::Constant: return "constant";
+        case FallbackKind::FromMetallic: return "from_metallic";
+        case FallbackKind::Ue4: return "ue4";
+        case FallbackKind::FromBaseColor: return "from_base_color";
+        case FallbackKind::FromDiffuseSpecular: return "from_diffuse_specular";
+        case FallbackKind::FromSpecularColor: return "from_specular_color";
+        case FallbackKind::MaterialPass: return "material_pass";
+        case FallbackKind::Forward: return "forward";
+    }
+    return "?";
+}
+
+const char* lightQuantityName(LightQuantity q) {
+    switch (q) {
+        case LightQuantity::DiffuseRgb: return "diffuse_rgb";
+        case LightQuantity::SpecularRgb: return "specular_rgb";
+        case LightQuantity::SpecularLuminance: return "specular_luminance";
+    }
+    return "?";
+}
+
+// ---- model helpers ----------------------------------------------------------------------------
+
+int CodePlace::bits() const {
+    int n = 0;
+    for (const BitRange& r : pieces) n += r.count;
+    return n;
+}
+
+int Field::totalBits() const {
+    int n = 0;
+    for (const CodePlace& c : codes) n += c.bits();
+    return n;
+}
+
+int Target::bits() const {
+    int n = 0;
+    for (const Channel& c : channels) n = std::max(n, c.offset + c.bits);
+    return n;
+}
+
+int Target::usedBits() const {
+    int n = 0;
+    for (const Field& f : fields) n += f.totalBits();
+    return n;
+}
+
+std::string Source::text() const {
+    std::string s;
+    auto add = [&](const std::string& part) {
+        if (part.empty()) return;
+        if (!s.empty()) s += "; ";
+        s += part;
+    };
+    add(game);
+    add(engine);
+    add(talk);
+    add(code);
+    if (year > 0) add(std::to_string(year));
+    return s;
+}
+
+const Field* Layout::findField(Attribute a) const {
+    for (const Target& t : targets)
+        for (const Field& f : t.fields)
+            if (f.attribute == a) return &f;
+    for (const Field& f : depth.stencil)
+        if (f.attribute == a) return &f;
+    return nullptr;
+}
+
+const Fallback* Layout::findFallback(Attribute a) const {
+    for (const Fallback& f : fallbacks)
+        if (f.attribute == a) return &f;
+    return nullptr;
+}
+
+int bytesPerPixel(const Layout& layout) {
+    int bytes = layout.depth.bytes;
+    for (const Target& t : layout.targets) bytes += t.bytes();
+    return bytes;
+}
+
+int lightBufferBytesPerPixel(const Layout& layout) {
+    int bytes = 0;
+    for (const LightBuffer& b : layout.lightBuffers) bytes += b.bytes;
+    return bytes;
+}
+
+std::vector<AttributeBits> bitsPerAttribute(const Layout& layout) {
+    std::vector<AttributeBits> out;
+    for (const AttributeInfo& info : attributeTable()) {
+        int bits = 0;
+        bool found = false;
+        auto count = [&](const std::vector<Field>& fields) {
+            for (const Field& f : fields)
+                if (f.attribute == info.id) {
+                    bits += f.totalBits();
+                    found = true;
+                }
+        };
+        for (const Target& t : layout.targets) count(t.fields);
+        count(layout.depth.stencil);
+        if (found) out.push_back({info.id, bits});
+    }
+    return out;
+}
+
+namespace {
+
+// Names of an encoding's codes, in order, for whole-value (normal / colour) encodings.
+std::vector<std::string> wholeValueCodeNames(const std::string& encoding) {
+    if (encoding == "normal_xyz" || encoding == "normal_bestfit") return {"x", "y", "z"};
+    if (encoding == "normal_xy_zsign") return {"x", "y", "z_sign"};
+    if (encoding.rfind("normal_", 0) == 0) return {"u", "v"};
+    if (encoding == "srgb8") return {"r", "g", "b"};
+    if (encoding == "ycbcr" || encoding == "ycbcr_sqrt") return {"Y", "Cb", "Cr"};
+    if (encoding == "ycocg") return {"Y", "Co", "Cg"};
+    if (encoding == "ycbcr_checkerboard") return {"Y", "Cb|Cr"};
+    if (encoding == "ycocg_checkerboard") return {"Y", "Co|Cg"};
+    if (encoding == "luma") return {"Y"};
+    return {};
+}
+
+}  // namespace
+
+std::string codeLabel(const Field& field, size_t code) {
+    const EncodingInfo* enc = findEncoding(field.encoding);
+    if (enc && enc->kind != AttributeKind::Scalar) {
+        std::vector<std::string> names = wholeValueCodeNames(field.encoding);
+        if (code < names.size()) return names[code];
+        return "code " + std::to_string(code);
+    }
+    // per-component encodings (and "id"): one code per component
+    const AttributeInfo& info = attributeInfo(field.attribute);
+    if (info.components == 1) return "";
+    static const char* xyz[] = {"x", "y", "z"};
+    static const char* rgb[] = {"r", "g", "b"};
+    const bool vector = field.attribute == Attribute::Normal || field.attribute == Attribute::Position;
+    if (info.components == 3 && code < 3) return vector ? xyz[code] : rgb[code];
+    return std::to_string(code);
+}
+
+std::string bitRangeText(const std::vector<Channel>& channels, const BitRange& range) {
+    std::string name = range.channel >= 0 && static_cast<size_t>(range.channel) < channels.size()
+                           ? channels[static_cast<size_t>(range.channel)].name
+                           : "?";
+    const int last = range.first + range.count - 1;
+    if (range.count == 1) return name + "[" + std::to_string(range.first) + "]";
+    return name + "[" + std::to_string(range.first) + ":" + std::to_string(last) + "]";
+}
+
+// ---- diagnostics ------------------------------------------------------------------------------
+
+std::string LayoutDiagnostic::text() const { return formatPlace(file, place.line, place.column) + ": " + message; }
+
+namespace {
+std::string joinDiagnostics(const std::vector<LayoutDiagnostic>& list) {
+    std::string s;
+    for (const LayoutDiagnostic& d : list) {
+        if (!s.empty()) s += "\n";
+        s += d.text();
+    }
+    return s;
+}
+}  // namespace
+
+LayoutError::LayoutError(std::vector<LayoutDiagnostic> list)
+    : UserError(joinDiagnostics(list)), diagnostics(std::move(list)) {}
+
+}  // namespace gbl

@@ -1,0 +1,78 @@
+#include "renderer_passes.h"
+
+#include "shader_compiler.h"
+#include "vk_pipeline.h"
+
+namespace gbl {
+
+LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
+                                uint32_t width, uint32_t height) {
+    LightingPass pass;
+    pass.width = width;
+    pass.height = height;
+    ImageDesc d;
+    d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    d.width = width;
+    d.height = height;
+    d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    pass.hdr = createImage(ctx, d);
+
+    const std::vector<Binding> set0 = {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+    };
+    std::vector<Binding> set1;
+    for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
+        set1.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    pass.setLayouts[0] = createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT);
+    pass.setLayouts[1] = createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT);
+    pass.pipelineLayout = createPipelineLayout(ctx.device, {pass.setLayouts[0], pass.setLayouts[1]}, 0, 0);
+    pass.pool = createPoolFor(ctx.device, {set0, set1});
+    pass.sets[0] = allocateSet(ctx.device, pass.pool, pass.setLayouts[0]);
+    pass.sets[1] = allocateSet(ctx.device, pass.pool, pass.setLayouts[1]);
+
+    DescriptorWriter writer;
+    writer.buffer(pass.sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.frameConstants->buffer)
+        .buffer(pass.sets[0], 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.lights->buffer)
+        .image(pass.sets[0], 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.gbuffer->depth.view, in.nearestSampler,
+               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+        .image(pass.sets[0], 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.environment->view,
+               in.environmentSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .image(pass.sets[0], 4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pass.hdr.view, VK_NULL_HANDLE,
+               VK_IMAGE_LAYOUT_GENERAL);
+    for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
+        writer.image(pass.sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.gbuffer->targets[i].view,
+                     in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    writer.flush(ctx.device);
+
+    ShaderSource cs = loadShaderFile("lighting.comp.glsl");
+    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    cs.name = "lighting.comp.glsl (layout " + wiring.layoutName + ")";
+    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
+    pass.pipeline = createComputePipeline(ctx.device, pass.pipelineLayout, module);
+    vkDestroyShaderModule(ctx.device, module, nullptr);
+    return pass;
+}
+
+void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass) {
+    transitionImage(cmd, pass.hdr, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipelineLayout, 0, 2, pass.sets, 0, nullptr);
+    vkCmdDispatch(cmd, (pass.width + 7) / 8, (pass.height + 7) / 8, 1);
+    fullBarrier(cmd);
+}
+
+void destroyLightingPass(const VulkanContext& ctx, LightingPass& pass) {
+    destroyImage(ctx, pass.hdr);
+    if (pass.pipeline) vkDestroyPipeline(ctx.device, pass.pipeline, nullptr);
+    if (pass.pipelineLayout) vkDestroyPipelineLayout(ctx.device, pass.pipelineLayout, nullptr);
+    for (auto& l : pass.setLayouts)
+        if (l) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
+    if (pass.pool) vkDestroyDescriptorPool(ctx.device, pass.pool, nullptr);
+    pass = LightingPass{};
+}
+
+}  // namespace gbl

@@ -1,0 +1,151 @@
+#include "renderer.h"
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "error.h"
+#include "renderer_passes.h"
+
+namespace gbl {
+
+void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag) {
+    const uint32_t maxDim = ctx.properties.limits.maxImageDimension2D;
+    if (width == 0 || height == 0)
+        throwUserError(flag + " " + std::to_string(width) + "x" + std::to_string(height) +
+                       ": width and height must be at least 1 (e.g. 1920x1080)");
+    if (width > maxDim || height > maxDim)
+        throwUserError(flag + " " + std::to_string(width) + "x" + std::to_string(height) + ": the device '" +
+                       ctx.info.name + "' allows at most " + std::to_string(maxDim) + " pixels per side");
+    // Read-back keeps a few float copies of the frame: refuse what cannot fit in 8 GiB.
+    const double bytes = double(width) * height * 16.0 * 8.0;
+    if (bytes > 8.0 * 1024 * 1024 * 1024)
+        throwUserError(flag + " " + std::to_string(width) + "x" + std::to_string(height) +
+                       ": too large (needs about " + std::to_string(int(bytes / 1073741824.0)) +
+                       " GiB); use at most 7680x4320");
+}
+
+CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool reversedZ) {
+    CameraMatrices m;
+    m.view = glm::lookAt(camera.position, camera.target, camera.up);
+    m.proj = glm::perspective(camera.yFovRadians, aspect, camera.zNear, camera.zFar);
+    m.proj[1][1] *= -1.0f;  // Vulkan's framebuffer y points down: keep row 0 at the top of the image
+    if (reversedZ) {
+        glm::mat4 flipDepth(1.0f);  // z' = w - z: near -> 1, far -> 0
+        flipDepth[2][2] = -1.0f;
+        flipDepth[3][2] = 1.0f;
+        m.proj = flipDepth * m.proj;
+    }
+    m.viewProj = m.proj * m.view;
+    m.invViewProj = glm::inverse(m.viewProj);
+    return m;
+}
+
+Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment)
+    : ctx_(ctx), scene_(scene) {
+    gpuScene_ = uploadScene(ctx, scene);
+    const Image& env = environment.image;
+    std::vector<float> rgba(size_t(env.width) * env.height * 4, 1.0f);
+    for (size_t i = 0; i < env.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = env.pixels[i * env.channels + c];
+    ImageDesc d;
+    d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    d.width = uint32_t(env.width);
+    d.height = uint32_t(env.height);
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    environmentTexture_ = createImage(ctx, d);
+    uploadImage(ctx, environmentTexture_, rgba.data(), rgba.size() * sizeof(float),
+                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false);
+    environmentSampler_ = createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                                        VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    nearestSampler_ = createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                                    VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+}
+
+Renderer::~Renderer() {
+    vkDeviceWaitIdle(ctx_.device);
+    destroyGpuScene(ctx_, gpuScene_);
+    destroyImage(ctx_, environmentTexture_);
+    vkDestroySampler(ctx_.device, environmentSampler_, nullptr);
+    vkDestroySampler(ctx_.device, nearestSampler_, nullptr);
+}
+
+RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings& settings) {
+    validateResolution(ctx_, settings.width, settings.height, "--size");
+    const uint32_t w = settings.width, h = settings.height;
+    const CameraMatrices cam = computeCameraMatrices(scene_.camera, float(w) / float(h), wiring.reversedZ);
+    gpu::FrameConstants frame{};
+    frame.view = cam.view;
+    frame.proj = cam.proj;
+    frame.viewProj = cam.viewProj;
+    frame.invViewProj = cam.invViewProj;
+    frame.cameraPosition = glm::vec4(scene_.camera.position, 1.0f);
+    frame.extent = glm::uvec4(w, h, gpuScene_.lightCount, wiring.reversedZ ? 1u : 0u);
+    frame.environment = glm::vec4(settings.environmentIntensity, 0.0f, 0.0f, 0.0f);
+    frame.shading = glm::vec4(float(settings.fresnelMode), wiring.reversedZ ? 0.0f : 1.0f, 0.0f, 0.0f);
+    Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+
+    GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h);
+    LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
+                          nearestSampler_};
+    LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h);
+
+    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = 3;
+    VkQueryPool queries;
+    VK_CHECK(vkCreateQueryPool(ctx_.device, &queryInfo, nullptr, &queries));
+
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdResetQueryPool(cmd, queries, 0, 3);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries, 0);
+        recordGBufferPass(cmd, gbuffer, gpuScene_);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 1);
+        recordLightingPass(cmd, lighting);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 2);
+    });
+
+    RenderOutput out;
+    uint64_t stamps[3] = {};
+    VK_CHECK(vkGetQueryPoolResults(ctx_.device, queries, 0, 3, sizeof(stamps), stamps, sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const double period = ctx_.properties.limits.timestampPeriod * 1e-6;
+    out.timings.gbufferMs = double(stamps[1] - stamps[0]) * period;
+    out.timings.lightingMs = double(stamps[2] - stamps[1]) * period;
+    vkDestroyQueryPool(ctx_.device, queries, nullptr);
+
+    auto hdrBytes = downloadImage(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL);
+    out.hdr = Image(int(w), int(h), 4);
+    std::memcpy(out.hdr.pixels.data(), hdrBytes.data(), hdrBytes.size());
+    for (const GpuImage& t : gbuffer.targets) {
+        auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        std::vector<uint32_t> words(bytes.size() / 4);
+        std::memcpy(words.data(), bytes.data(), words.size() * 4);
+        out.targetWords.push_back(std::move(words));
+    }
+    auto depthBytes = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
+                                    VK_IMAGE_ASPECT_DEPTH_BIT);
+    out.depth.resize(size_t(w) * h);
+    if (wiring.depthFormat == VK_FORMAT_D32_SFLOAT || wiring.depthFormat == VK_FORMAT_D32_SFLOAT_S8_UINT) {
+        std::memcpy(out.depth.data(), depthBytes.data(), out.depth.size() * 4);
+    } else if (wiring.depthFormat == VK_FORMAT_D16_UNORM) {
+        for (size_t i = 0; i < out.depth.size(); ++i) {
+            uint16_t v;
+            std::memcpy(&v, depthBytes.data() + i * 2, 2);
+            out.depth[i] = float(v) / 65535.0f;
+        }
+    } else {  // D24: 24 bits in the low bits of a 32-bit word
+        for (size_t i = 0; i < out.depth.size(); ++i) {
+            uint32_t v;
+            std::memcpy(&v, depthBytes.data() + i * 4, 4);
+            out.depth[i] = float(double(v & 0xFFFFFFu) / 16777215.0);
+        }
+    }
+    destroyLightingPass(ctx_, lighting);
+    destroyGBufferPass(ctx_, gbuffer);
+    destroyBuffer(ctx_, frameBuffer);
+    return out;
+}
+
+}  // namespace gbl

@@ -1,0 +1,64 @@
+#pragma once
+// Renders one scene, under one environment, through any G-buffer wiring: the G-buffer raster
+// pass, then the lighting compute pass, timed with timestamp queries, then read back.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "environment_map.h"
+#include "gbuffer_wiring.h"
+#include "gpu_scene.h"
+#include "image.h"
+#include "scene.h"
+
+namespace gbl {
+
+struct RenderSettings {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    int fresnelMode = 1;              // brdf.glsl FRESNEL_* (1 = Karis' exp2 form, UE4's)
+    float environmentIntensity = 1.0f;
+};
+
+struct PassTimings {
+    double gbufferMs = 0.0;
+    double lightingMs = 0.0;
+};
+
+struct RenderOutput {
+    Image hdr;  // RGBA float: linear radiance, alpha 1 where geometry covers the pixel
+    std::vector<std::vector<uint32_t>> targetWords;  // per target, row-major, texel size / 4 words per pixel
+    std::vector<float> depth;                        // row-major depth-buffer values
+    PassTimings timings;
+};
+
+// Checks a requested resolution against the device's limits; throws UserError naming `flag`.
+void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag);
+
+class Renderer {
+public:
+    Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    RenderOutput render(const GBufferWiring& wiring, const RenderSettings& settings);
+
+    const Scene& scene() const { return scene_; }
+
+private:
+    const VulkanContext& ctx_;
+    const Scene& scene_;
+    GpuScene gpuScene_;
+    GpuImage environmentTexture_;
+    VkSampler environmentSampler_ = VK_NULL_HANDLE;
+    VkSampler nearestSampler_ = VK_NULL_HANDLE;
+};
+
+// Camera matrices for the frame, with Vulkan's y-down flip and optional reversed Z.
+struct CameraMatrices {
+    glm::mat4 view, proj, viewProj, invViewProj;
+};
+CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool reversedZ);
+
+}  // namespace gbl

@@ -1,0 +1,51 @@
+#pragma once
+// The two passes of a deferred renderer, as plain structs built for one wiring and one size.
+#include "gbuffer_wiring.h"
+#include "gpu_scene.h"
+#include "shared_types.h"
+#include "vk_resources.h"
+
+namespace gbl {
+
+struct GBufferPass {
+    std::vector<GpuImage> targets;
+    GpuImage depth;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    float clearDepth = 1.0f;
+};
+
+GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
+                              const Buffer& frameConstants, uint32_t width, uint32_t height);
+// Records the pass; leaves targets and depth in SHADER_READ_ONLY_OPTIMAL.
+void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene);
+void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass);
+
+struct LightingPass {
+    GpuImage hdr;  // RGBA32F storage image, left in GENERAL
+    VkDescriptorSetLayout setLayouts[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet sets[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    uint32_t width = 0, height = 0;
+};
+
+struct LightingInputs {
+    const Buffer* frameConstants;
+    const Buffer* lights;
+    const GBufferPass* gbuffer;
+    const GpuImage* environment;
+    VkSampler environmentSampler;
+    VkSampler nearestSampler;
+};
+
+LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
+                                uint32_t width, uint32_t height);
+void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass);
+void destroyLightingPass(const VulkanContext& ctx, LightingPass& pass);
+
+}  // namespace gbl

@@ -1,0 +1,106 @@
+#include "vk_pipeline.h"
+
+#include <map>
+
+namespace gbl {
+
+VkDescriptorSetLayout createSetLayout(VkDevice device, const std::vector<Binding>& bindings, VkShaderStageFlags stages) {
+    std::vector<VkDescriptorSetLayoutBinding> b;
+    for (const Binding& x : bindings) b.push_back({x.binding, x.type, x.count, stages, nullptr});
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = uint32_t(b.size());
+    info.pBindings = b.data();
+    VkDescriptorSetLayout layout;
+    VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, &layout));
+    return layout;
+}
+
+VkPipelineLayout createPipelineLayout(VkDevice device, const std::vector<VkDescriptorSetLayout>& sets,
+                                      uint32_t pushConstantBytes, VkShaderStageFlags pushStages) {
+    VkPushConstantRange range{pushStages, 0, pushConstantBytes};
+    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    info.setLayoutCount = uint32_t(sets.size());
+    info.pSetLayouts = sets.data();
+    info.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
+    info.pPushConstantRanges = &range;
+    VkPipelineLayout layout;
+    VK_CHECK(vkCreatePipelineLayout(device, &info, nullptr, &layout));
+    return layout;
+}
+
+VkDescriptorPool createPoolFor(VkDevice device, const std::vector<std::vector<Binding>>& sets) {
+    std::map<VkDescriptorType, uint32_t> counts;
+    for (const auto& set : sets)
+        for (const Binding& b : set) counts[b.type] += b.count;
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (auto [type, count] : counts) sizes.push_back({type, count});
+    VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    info.maxSets = uint32_t(sets.size());
+    info.poolSizeCount = uint32_t(sizes.size());
+    info.pPoolSizes = sizes.data();
+    VkDescriptorPool pool;
+    VK_CHECK(vkCreateDescriptorPool(device, &info, nullptr, &pool));
+    return pool;
+}
+
+VkDescriptorSet allocateSet(VkDevice device, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
+    VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    info.descriptorPool = pool;
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &layout;
+    VkDescriptorSet set;
+    VK_CHECK(vkAllocateDescriptorSets(device, &info, &set));
+    return set;
+}
+
+DescriptorWriter& DescriptorWriter::buffer(VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkBuffer b) {
+    buffers_.push_back({b, 0, VK_WHOLE_SIZE});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    pending_.push_back({w, false, buffers_.size() - 1});
+    return *this;
+}
+
+DescriptorWriter& DescriptorWriter::image(VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                                          VkImageView view, VkSampler sampler, VkImageLayout layout,
+                                          uint32_t arrayElement) {
+    images_.push_back({sampler, view, layout});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.dstArrayElement = arrayElement;
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    pending_.push_back({w, true, images_.size() - 1});
+    return *this;
+}
+
+void DescriptorWriter::flush(VkDevice device) {
+    std::vector<VkWriteDescriptorSet> writes;
+    for (Pending& p : pending_) {  // pointers taken only now: the vectors no longer grow
+        if (p.isImage) p.write.pImageInfo = &images_[p.index];
+        else p.write.pBufferInfo = &buffers_[p.index];
+        writes.push_back(p.write);
+    }
+    vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+    pending_.clear();
+    images_.clear();
+    buffers_.clear();
+}
+
+VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, VkShaderModule module) {
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.layout = layout;
+    VkPipeline pipeline;
+    VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    return pipeline;
+}
+
+}  // namespace gbl

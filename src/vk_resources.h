@@ -1,0 +1,73 @@
+#pragma once
+// Plain resource structs and free functions (niagara style): no ownership magic beyond a
+// destroy function per type, so lifetimes stay visible at the call site.
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk_context.h"
+
+namespace gbl {
+
+struct Buffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr;  // non-null when host visible
+};
+
+struct GpuImage {
+    VkImage image = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;  // all mips, all layers (cube view when cube)
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkExtent2D extent{};
+    uint32_t mipLevels = 1;
+    uint32_t layers = 1;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+};
+
+Buffer createBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
+void destroyBuffer(const VulkanContext& ctx, Buffer& buffer);
+// Creates a device buffer holding `bytes` (through a staging copy when the memory is not mappable).
+Buffer createBufferWithData(const VulkanContext& ctx, const void* bytes, VkDeviceSize size, VkBufferUsageFlags usage);
+
+struct ImageDesc {
+    VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
+    uint32_t width = 1, height = 1;
+    uint32_t mipLevels = 1;
+    uint32_t layers = 1;
+    bool cube = false;
+    VkImageUsageFlags usage = 0;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    // Only the depth aspect in the view (for sampling a depth-stencil image).
+    VkImageAspectFlags viewAspect = 0;
+};
+GpuImage createImage(const VulkanContext& ctx, const ImageDesc& desc);
+void destroyImage(const VulkanContext& ctx, GpuImage& image);
+// A view of one mip level (all layers), for storage writes to a mip chain.
+VkImageView createMipView(const VulkanContext& ctx, const GpuImage& image, uint32_t mip, bool asArray);
+
+// Image layout transition of all mips and layers (synchronization2, conservative stages).
+void transitionImage(VkCommandBuffer cmd, const GpuImage& image, VkImageLayout from, VkImageLayout to,
+                     VkImageAspectFlags aspect = 0);
+// Full memory barrier between passes: simple and correct; the passes are timed separately.
+void fullBarrier(VkCommandBuffer cmd);
+
+// Uploads tightly packed pixels into mip 0 / layer 0..layers-1 and leaves the image in `finalLayout`.
+// When generateMips is set, blits the chain (the format must support linear blits).
+void uploadImage(const VulkanContext& ctx, GpuImage& image, const void* pixels, VkDeviceSize bytes,
+                 VkImageLayout finalLayout, bool generateMips);
+// Reads back mip `mip` of every layer (tightly packed, layer after layer). Image must be in
+// `currentLayout`; it is returned to it.
+std::vector<uint8_t> downloadImage(const VulkanContext& ctx, const GpuImage& image, VkImageLayout currentLayout,
+                                   uint32_t mip = 0, VkImageAspectFlags aspect = 0);
+
+uint32_t formatTexelSize(VkFormat format);
+uint32_t mipCountFor(uint32_t width, uint32_t height);
+
+VkSampler createSampler(const VulkanContext& ctx, VkFilter filter, VkSamplerMipmapMode mipMode,
+                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV, float maxAnisotropy = 1.0f);
+
+}  // namespace gbl

@@ -1,0 +1,5 @@
+#include <gtest/gtest.h>
+
+#include "scene.h"
+
+TEST(Placeholder, Builds) { SUCCEED(); }
