@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian packages gbufferlab needs, then configures and builds it.
-# Idempotent: when every package is present it installs nothing and says nothing.
-# Usage: scripts/setup.sh [build-dir] [extra cmake args...]
+# Installs the Debian packages gbufferlab needs (only the missing ones: quiet and fast when all
+# are present), then configures and builds it in Release.
+# Usage: scripts/setup.sh [build-dir [extra cmake args...]]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,11 +20,11 @@ for p in "${packages[@]}"; do
 done
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
-  sudo_cmd=""
-  [ "$(id -u)" = 0 ] || sudo_cmd="sudo"
+  sudo_cmd=()
+  [ "$(id -u)" = 0 ] || sudo_cmd=(sudo)
   export DEBIAN_FRONTEND=noninteractive
-  $sudo_cmd apt-get update -qq
-  $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
 build_dir="${1:-build}"
@@ -32,5 +32,4 @@ shift || true
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
   cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
 fi
-cmake --build "$build_dir" -j"$(nproc)" 2>&1 | grep -vE '^\[ *[0-9]+%\]|^-- ' || true
-test "${PIPESTATUS[0]}" = 0
+cmake --build "$build_dir" -j"$(nproc)" >"$build_dir/build.log" 2>&1 || { cat "$build_dir/build.log"; exit 1; }

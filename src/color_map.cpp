@@ -146,7 +146,7 @@ int autoScale(const LegendStyle& s, int mapHeight) {
 
 std::vector<double> tickValues(float lo, float hi, int ticks) {
     const int n = std::max(2, ticks);
-    std::vector<double> v(size_t(n));
+    std::vector<double> v(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) v[size_t(i)] = double(lo) + (double(hi) - double(lo)) * i / (n - 1);
     v.back() = hi;
     return v;

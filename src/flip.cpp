@@ -160,11 +160,15 @@ Kernels makeKernels(double ppd) {
 
     // The 2D filter is S(x, y) = sum_i a_i sqrt(pi/b_i) exp(-pi^2 (x^2 + y^2) / b_i) over the
     // (2r+1)^2 window, normalised to sum 1. Each term is separable; A and RG have a2 = 0.
-    double sA, sRG, s1, s2;
-    k.csfA = normalized(csfFactor(kCsfA.b1, r, ppd, sA), sA);
-    k.csfRG = normalized(csfFactor(kCsfRG.b1, r, ppd, sRG), sRG);
-    k.csfBY1 = normalized(csfFactor(kCsfBY.b1, r, ppd, s1), s1);
-    k.csfBY2 = normalized(csfFactor(kCsfBY.b2, r, ppd, s2), s2);
+    double sA = 0, sRG = 0, s1 = 0, s2 = 0;
+    const std::vector<double> eA = csfFactor(kCsfA.b1, r, ppd, sA);
+    const std::vector<double> eRG = csfFactor(kCsfRG.b1, r, ppd, sRG);
+    const std::vector<double> e1 = csfFactor(kCsfBY.b1, r, ppd, s1);
+    const std::vector<double> e2 = csfFactor(kCsfBY.b2, r, ppd, s2);
+    k.csfA = normalized(eA, sA);
+    k.csfRG = normalized(eRG, sRG);
+    k.csfBY1 = normalized(e1, s1);
+    k.csfBY2 = normalized(e2, s2);
     const double c1 = kCsfBY.a1 * std::sqrt(kPi / kCsfBY.b1) * s1 * s1;  // 2D sum of term 1
     const double c2 = kCsfBY.a2 * std::sqrt(kPi / kCsfBY.b2) * s2 * s2;  // 2D sum of term 2
     k.wBY1 = float(c1 / (c1 + c2));
@@ -208,11 +212,11 @@ Kernels makeKernels(double ppd) {
 // out(x, y) = sum_j k[j] in(clamp(x + j - r), y).
 void filterRows(const float* in, float* out, int w, int h, const std::vector<float>& k) {
     const int r = int(k.size() / 2);
-    std::vector<float> pad(size_t(w + 2 * r));
-    std::vector<float> acc(size_t(w));
+    std::vector<float> pad(static_cast<size_t>(w + 2 * r));
+    std::vector<float> acc(static_cast<size_t>(w));
     for (int y = 0; y < h; ++y) {
         const float* row = in + size_t(y) * w;
-        for (int i = 0; i < w + 2 * r; ++i) pad[size_t(i)] = row[std::clamp(i - r, 0, w - 1)];
+        for (int i = 0; i < w + 2 * r; ++i) pad[size_t(i)] = (i - r < 0 || i - r >= w) ? 0.0f : row[i - r];
         std::fill(acc.begin(), acc.end(), 0.0f);
         for (size_t j = 0; j < k.size(); ++j) {
             const float kj = k[j];
@@ -294,10 +298,10 @@ Prepared prepare(const Plane rgb[3], int w, int h, const Kernels& k) {
         const float r = clamp01(cc.mi[0][0] * X + cc.mi[0][1] * Y + cc.mi[0][2] * Z);
         const float g = clamp01(cc.mi[1][0] * X + cc.mi[1][1] * Y + cc.mi[1][2] * Z);
         const float b = clamp01(cc.mi[2][0] * X + cc.mi[2][1] * Y + cc.mi[2][2] * Z);
-        const HuntLab h = linearRgbToHuntLab(r, g, b, cc);
-        out.L[i] = h.L;
-        out.a[i] = h.a;
-        out.b[i] = h.b;
+        const HuntLab lab = linearRgbToHuntLab(r, g, b, cc);
+        out.L[i] = lab.L;
+        out.a[i] = lab.a;
+        out.b[i] = lab.b;
     }
 
     // Feature detection on the (unfiltered) normalised luminance, Sec. 4.2.

@@ -234,6 +234,7 @@ struct Layout {
     std::vector<Fallback> fallbacks;
     std::vector<LightBuffer> lightBuffers;
     std::string sourceFile;  // the file it was read from (or the name given to parseLayout)
+    FilePlace namePlace;
 
     const Field* findField(Attribute a) const;  // in targets or stencil; nullptr when not stored
     const Fallback* findFallback(Attribute a) const;

@@ -35,7 +35,7 @@ const char* typeName(const toml::node& n) {
     }
 }
 
-std::string quoted(std::string_view s) { return "'" + std::string(s) + "'"; }
+std::string squote(std::string_view s) { return "'" + std::string(s) + "'"; }
 
 std::string trim(std::string_view s) {
     size_t b = 0, e = s.size();
@@ -109,7 +109,7 @@ public:
             std::string list;
             for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
             error(placeOf(key.source()),
-                  "unknown key " + quoted(key.str()) + " in " + where + " (known: " + list + ")");
+                  "unknown key " + squote(key.str()) + " in " + where + " (known: " + list + ")");
         }
     }
 
@@ -201,8 +201,9 @@ Layout Parser::parse(std::string_view text) {
         });
         if (!ok)
             error(placeOf(*root.get("name")),
-                  "layout name " + quoted(*name) + " must be lowercase letters, digits, '-' or '_'");
+                  "layout name " + squote(*name) + " must be lowercase letters, digits, '-' or '_'");
         layout.name = *name;
+        layout.namePlace = placeOf(*root.get("name"));
     }
     if (auto title = getString(root, "title", true, top, "the layout")) layout.title = *title;
     parseSource(root, layout);
@@ -214,7 +215,7 @@ Layout Parser::parse(std::string_view text) {
             layout.pipeline = Pipeline::DeferredLighting;
         else
             error(placeOf(*root.get("pipeline")),
-                  "unknown pipeline " + quoted(*pipeline) + " (known: deferred-shading, deferred-lighting)");
+                  "unknown pipeline " + squote(*pipeline) + " (known: deferred-shading, deferred-lighting)");
     }
 
     parseDepth(root, layout);
@@ -295,7 +296,7 @@ void Parser::parseDepth(const toml::table& root, Layout& layout) {
             d.bytes = info->bytes;
         } else {
             error(d.formatPlace,
-                  "unknown depth format " + quoted(*format) + " (known: " + knownDepthFormatNames() + ")");
+                  "unknown depth format " + squote(*format) + " (known: " + knownDepthFormatNames() + ")");
         }
     }
     if (const toml::node* r = t->get("reversed_z")) {
@@ -332,7 +333,7 @@ void Parser::parseTarget(const toml::node& node, Layout& layout) {
     target.place = placeOf(node);
     checkKeys(*t, {"name", "format", "field"}, "[[target]]");
     target.name = getString(*t, "name", true, target.place, "[[target]]").value_or("");
-    const std::string where = target.name.empty() ? "[[target]]" : "target " + quoted(target.name);
+    const std::string where = target.name.empty() ? "[[target]]" : "target " + squote(target.name);
     if (auto format = getString(*t, "format", true, target.place, where)) {
         target.formatPlace = placeOf(*t->get("format"));
         if (const TargetFormatInfo* info = findTargetFormat(*format)) {
@@ -340,7 +341,7 @@ void Parser::parseTarget(const toml::node& node, Layout& layout) {
             target.channels = info->channels;
         } else {
             error(target.formatPlace,
-                  "unknown format " + quoted(*format) + " (known: " + knownTargetFormatNames() + ")");
+                  "unknown format " + squote(*format) + " (known: " + knownTargetFormatNames() + ")");
         }
     }
     if (const toml::node* fields = t->get("field")) {
@@ -378,11 +379,11 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
     const AttributeInfo* attr = findAttribute(*attrName);
     if (!attr) {
         error(placeOf(*t->get("attribute")),
-              "unknown attribute " + quoted(*attrName) + " (known: " + knownAttributeNames() + ")");
+              "unknown attribute " + squote(*attrName) + " (known: " + knownAttributeNames() + ")");
         return std::nullopt;
     }
     field.attribute = attr->id;
-    const std::string what = "field " + quoted(attr->name);
+    const std::string what = "field " + squote(attr->name);
 
     // encoding
     const toml::node* encNode = t->get("encoding");
@@ -392,14 +393,14 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
         if (encNode) {
             auto e = getString(*t, "encoding", false, field.place, what);
             if (e && *e != kIdEncoding) {
-                error(field.encodingPlace, quoted(attr->name) + " is an integer id: its encoding is 'id' "
-                                           "(the declared value is the code), not " + quoted(*e));
+                error(field.encodingPlace, squote(attr->name) + " is an integer id: its encoding is 'id' "
+                                           "(the declared value is the code), not " + squote(*e));
                 field.incomplete = true;
             }
         }
     } else if (stencil) {
         error(placeOf(*t->get("attribute")),
-              "the stencil holds integer extras only; " + quoted(attr->name) + " is not one");
+              "the stencil holds integer extras only; " + squote(attr->name) + " is not one");
         return std::nullopt;
     } else if (auto e = getString(*t, "encoding", true, field.place, what)) {
         std::string resolved = *e;
@@ -411,7 +412,7 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
             if (transform && std::find_if(std::begin(kTransforms), std::end(kTransforms), [&](const char* k) {
                                  return *transform == k;
                              }) == std::end(kTransforms)) {
-                error(placeOf(*trNode), "unknown transform " + quoted(*transform) +
+                error(placeOf(*trNode), "unknown transform " + squote(*transform) +
                                             " (known: gloss, cry_smoothness, sqrt)");
                 field.incomplete = true;
             }
@@ -421,7 +422,7 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
             if (interleave && std::find_if(std::begin(kInterleaves), std::end(kInterleaves), [&](const char* k) {
                                   return *interleave == k;
                               }) == std::end(kInterleaves)) {
-                error(placeOf(*ilNode), "unknown interleave " + quoted(*interleave) + " (known: checkerboard)");
+                error(placeOf(*ilNode), "unknown interleave " + squote(*interleave) + " (known: checkerboard)");
                 field.incomplete = true;
             }
         }
@@ -442,17 +443,17 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
                             (v.interleave ? " + interleave " + std::string(v.interleave) : "");
                 }
                 error(placeOf(trNode ? *trNode : *ilNode),
-                      "encoding " + quoted(*e) + " has no such variant (available: " + list + ")");
+                      "encoding " + squote(*e) + " has no such variant (available: " + list + ")");
                 field.incomplete = true;
             }
         }
         if (resolved == kIdEncoding) {
-            error(field.encodingPlace, "encoding 'id' holds integer extras only; " + quoted(attr->name) +
+            error(field.encodingPlace, "encoding 'id' holds integer extras only; " + squote(attr->name) +
                                            " needs one of: " + knownEncodingNames());
             field.incomplete = true;
         } else if (!field.incomplete && !findEncoding(resolved)) {
             error(field.encodingPlace,
-                  "unknown encoding " + quoted(*e) + " (known: " + knownEncodingNames() + ", id)");
+                  "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
             field.incomplete = true;
         }
         field.encoding = resolved;
@@ -515,7 +516,7 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
                     if (field.codes[i].bits() != want) {
                         error(field.codes[i].place,
                               what + ": 'bits' says " + std::to_string(want) + " but " +
-                                  quoted(field.codes[i].text) + " holds " + std::to_string(field.codes[i].bits()) +
+                                  squote(field.codes[i].text) + " holds " + std::to_string(field.codes[i].bits()) +
                                   " bits");
                         field.incomplete = true;
                     }
@@ -527,14 +528,14 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
     // value: extras only
     if (const toml::node* v = t->get("value")) {
         if (attr->cls != AttributeClass::Extra) {
-            error(placeOf(*v), "'value' is for extra attributes; " + quoted(attr->name) +
+            error(placeOf(*v), "'value' is for extra attributes; " + squote(attr->name) +
                                    " comes from the surface");
             field.incomplete = true;
         } else if (auto values = getNumbers(*v, what + ": 'value'")) {
             if (values->size() == 1 && attr->components > 1) values->assign(attr->components, values->front());
             if (static_cast<int>(values->size()) != attr->components) {
                 error(placeOf(*v), what + ": 'value' has " + std::to_string(values->size()) + " components, " +
-                                       quoted(attr->name) + " has " + std::to_string(attr->components));
+                                       squote(attr->name) + " has " + std::to_string(attr->components));
                 field.incomplete = true;
             }
             for (double x : *values) {
@@ -587,12 +588,12 @@ bool Parser::parsePlace(const toml::node& node, const std::vector<Channel>& chan
         const std::string name = piece.substr(0, i);
         auto ch = std::find_if(channels.begin(), channels.end(), [&](const Channel& c) { return c.name == name; });
         if (name.empty()) {
-            error(out.place, "bad place " + quoted(text) + ": expected a channel (" + channelList() +
+            error(out.place, "bad place " + squote(text) + ": expected a channel (" + channelList() +
                                  ") optionally followed by [bit] or [first:last]");
             return false;
         }
         if (ch == channels.end()) {
-            error(out.place, "unknown channel " + quoted(name) + " in " + quoted(text) + ": " + formatName +
+            error(out.place, "unknown channel " + squote(name) + " in " + squote(text) + ": " + formatName +
                                  " has " + channelList());
             return false;
         }
@@ -623,13 +624,13 @@ bool Parser::parsePlace(const toml::node& node, const std::vector<Channel>& chan
             }
             ok = ok && pos < piece.size() && piece[pos] == ']' && pos + 1 == piece.size();
             if (!ok) {
-                error(out.place, "bad bit range " + quoted(piece) + " in " + quoted(text) +
+                error(out.place, "bad bit range " + squote(piece) + " in " + squote(text) +
                                      ": write channel[bit] or channel[first:last], e.g. \"a[0:3]\"");
                 return false;
             }
             if (first < 0 || last < first) {
-                error(out.place, "bad bit range " + quoted(piece) + ": write the lower bit first, e.g. " +
-                                     quoted(name + "[" + std::to_string(last) + ":" + std::to_string(first) + "]"));
+                error(out.place, "bad bit range " + squote(piece) + ": write the lower bit first, e.g. " +
+                                     squote(name + "[" + std::to_string(last) + ":" + std::to_string(first) + "]"));
                 return false;
             }
             range.first = first;
@@ -654,18 +655,18 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
         const FilePlace keyPlace = placeOf(key.source());
         const AttributeInfo* attr = findAttribute(key.str());
         if (!attr) {
-            error(keyPlace, "unknown attribute " + quoted(key.str()) + " in [fallback] (known: " +
+            error(keyPlace, "unknown attribute " + squote(key.str()) + " in [fallback] (known: " +
                                 knownAttributeNames() + ")");
             continue;
         }
         if (attr->cls != AttributeClass::Shading) {
-            error(keyPlace, quoted(attr->name) + " takes no fallback: " +
+            error(keyPlace, squote(attr->name) + " takes no fallback: " +
                                 (attr->cls == AttributeClass::Extra ? "extras are stored with a declared value"
                                                                     : "unstored, position comes from depth"));
             continue;
         }
         if (attr->id == Attribute::Normal || attr->id == Attribute::Roughness) {
-            error(keyPlace, quoted(attr->name) + " cannot fall back: every layout must store normal and roughness");
+            error(keyPlace, squote(attr->name) + " cannot fall back: every layout must store normal and roughness");
             continue;
         }
         Fallback fb;
@@ -683,18 +684,18 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
                                    [&](const FallbackKeyword& k) { return word == k.name; });
             if (kw == std::end(kFallbackKeywords) ||
                 std::find(allowed.begin(), allowed.end(), kw->kind) == allowed.end()) {
-                error(fb.place, "unknown fallback " + quoted(word) + " for " + quoted(attr->name) +
+                error(fb.place, "unknown fallback " + squote(word) + " for " + squote(attr->name) +
                                     " (allowed: " + allowedList() + ")");
                 continue;
             }
             fb.kind = kw->kind;
         } else {
-            auto values = getNumbers(value, "fallback for " + quoted(attr->name));
+            auto values = getNumbers(value, "fallback for " + squote(attr->name));
             if (!values) continue;
             if (values->size() == 1 && attr->components > 1) values->assign(attr->components, values->front());
             if (static_cast<int>(values->size()) != attr->components) {
-                error(fb.place, "fallback for " + quoted(attr->name) + " has " + std::to_string(values->size()) +
-                                    " components, " + quoted(attr->name) + " has " +
+                error(fb.place, "fallback for " + squote(attr->name) + " has " + std::to_string(values->size()) +
+                                    " components, " + squote(attr->name) + " has " +
                                     std::to_string(attr->components));
                 continue;
             }
@@ -702,7 +703,7 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
             for (double x : *values) {
                 const bool inRange = attr->domain == ValueDomain::NonNegative ? x >= 0 : (x >= 0 && x <= 1);
                 if (!inRange) {
-                    error(fb.place, "fallback for " + quoted(attr->name) + ": " + std::to_string(x) + " is outside " +
+                    error(fb.place, "fallback for " + squote(attr->name) + ": " + std::to_string(x) + " is outside " +
                                         (attr->domain == ValueDomain::NonNegative ? "[0, inf)" : "[0,1]"));
                     ok = false;
                     break;
@@ -740,7 +741,7 @@ void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
             info = findTargetFormat(*format);
             if (!info)
                 error(placeOf(*t->get("format")),
-                      "unknown format " + quoted(*format) + " (known: " + knownTargetFormatNames() + ")");
+                      "unknown format " + squote(*format) + " (known: " + knownTargetFormatNames() + ")");
             else {
                 lb.format = info->name;
                 lb.bytes = info->bits / 8;
@@ -768,12 +769,12 @@ void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
                     lb.holds.push_back(LightQuantity::SpecularLuminance);
                     channelsNeeded += 1;
                 } else {
-                    error(placeOf(*h), "unknown light quantity " + quoted(word) +
+                    error(placeOf(*h), "unknown light quantity " + squote(word) +
                                            " (known: diffuse_rgb, specular_rgb, specular_luminance)");
                 }
             }
             if (info && channelsNeeded > static_cast<int>(info->channels.size()))
-                error(placeOf(*holds), "light buffer " + quoted(lb.name) + " holds " + std::to_string(channelsNeeded) +
+                error(placeOf(*holds), "light buffer " + squote(lb.name) + " holds " + std::to_string(channelsNeeded) +
                                            " channels but " + info->name + " has " +
                                            std::to_string(info->channels.size()));
         }
@@ -786,6 +787,24 @@ bool placeLess(const LayoutDiagnostic& a, const LayoutDiagnostic& b) {
     return a.place.column < b.place.column;
 }
 
+// Parses, then validates unless the TOML itself is broken; with `path`, also requires the layout's
+// name to equal the file's stem (`layouts show NAME` finds NAME.toml). Diagnostics in file order.
+Layout readAndCheck(std::string_view text, const std::string& fileName, const std::filesystem::path* path,
+                    std::vector<LayoutDiagnostic>& out) {
+    Layout layout = parseLayoutUnchecked(text, fileName, out);
+    const bool syntaxError = !out.empty() && out.front().message.rfind("TOML syntax error", 0) == 0;
+    if (!syntaxError) {
+        validateLayout(layout, out);
+        const std::string stem = path ? path->stem().string() : "";
+        if (path && !layout.name.empty() && layout.name != stem)
+            out.push_back({fileName, layout.namePlace,
+                           "layout name " + squote(layout.name) + " differs from the file name " + squote(stem) +
+                               ": rename one so that `layouts show " + stem + "` finds it"});
+    }
+    std::stable_sort(out.begin(), out.end(), placeLess);
+    return layout;
+}
+
 }  // namespace
 
 Layout parseLayoutUnchecked(std::string_view text, const std::string& fileName, std::vector<LayoutDiagnostic>& out) {
@@ -795,54 +814,16 @@ Layout parseLayoutUnchecked(std::string_view text, const std::string& fileName, 
 
 std::vector<LayoutDiagnostic> checkLayout(std::string_view text, const std::string& fileName) {
     std::vector<LayoutDiagnostic> out;
-    Layout layout = parseLayoutUnchecked(text, fileName, out);
-    const bool syntaxError = !out.empty() && out.front().message.rfind("TOML syntax error", 0) == 0;
-    if (!syntaxError) validateLayout(layout, out);
-    std::stable_sort(out.begin(), out.end(), placeLess);
+    readAndCheck(text, fileName, nullptr, out);
     return out;
 }
 
 Layout parseLayout(std::string_view text, const std::string& fileName) {
     std::vector<LayoutDiagnostic> out;
-    Layout layout = parseLayoutUnchecked(text, fileName, out);
-    const bool syntaxError = !out.empty() && out.front().message.rfind("TOML syntax error", 0) == 0;
-    if (!syntaxError) validateLayout(layout, out);
-    if (!out.empty()) {
-        std::stable_sort(out.begin(), out.end(), placeLess);
-        throw LayoutError(std::move(out));
-    }
+    Layout layout = readAndCheck(text, fileName, nullptr, out);
+    if (!out.empty()) throw LayoutError(std::move(out));
     return layout;
 }
-
-namespace {
-// The file's own name check: `layouts show NAME` finds NAME.toml, so the two must agree.
-void checkNameMatchesFile(const Layout& layout, const std::filesystem::path& path, std::string_view text,
-                          std::vector<LayoutDiagnostic>& out) {
-    const std::string stem = path.stem().string();
-    if (layout.name.empty() || layout.name == stem) return;
-    // find the line of `name =` for the place
-    FilePlace place{1, 1};
-    size_t lineStart = 0;
-    int line = 1;
-    while (lineStart < text.size()) {
-        size_t end = text.find('\n', lineStart);
-        if (end == std::string_view::npos) end = text.size();
-        std::string_view l = text.substr(lineStart, end - lineStart);
-        const size_t k = l.find_first_not_of(" \t");
-        if (k != std::string_view::npos && l.substr(k).rfind("name", 0) == 0 &&
-            l.substr(k + 4).find_first_not_of(" \t") != std::string_view::npos &&
-            l[l.find_first_not_of(" \t", k + 4)] == '=') {
-            place = {line, static_cast<int>(k) + 1};
-            break;
-        }
-        lineStart = end + 1;
-        ++line;
-    }
-    out.push_back({path.string(), place,
-                   "layout name " + quoted(layout.name) + " differs from the file name " + quoted(stem) +
-                       ": rename one so that `layouts show " + stem + "` finds it"});
-}
-}  // namespace
 
 std::vector<LayoutDiagnostic> checkLayoutFile(const std::filesystem::path& path) {
     std::string text;
@@ -852,29 +833,15 @@ std::vector<LayoutDiagnostic> checkLayoutFile(const std::filesystem::path& path)
         return {{path.string(), {}, e.what()}};
     }
     std::vector<LayoutDiagnostic> out;
-    Layout layout = parseLayoutUnchecked(text, path.string(), out);
-    const bool syntaxError = !out.empty() && out.front().message.rfind("TOML syntax error", 0) == 0;
-    if (!syntaxError) {
-        validateLayout(layout, out);
-        checkNameMatchesFile(layout, path, text, out);
-    }
-    std::stable_sort(out.begin(), out.end(), placeLess);
+    readAndCheck(text, path.string(), &path, out);
     return out;
 }
 
 Layout loadLayoutFile(const std::filesystem::path& path) {
     const std::string text = readTextFile(path);
     std::vector<LayoutDiagnostic> out;
-    Layout layout = parseLayoutUnchecked(text, path.string(), out);
-    const bool syntaxError = !out.empty() && out.front().message.rfind("TOML syntax error", 0) == 0;
-    if (!syntaxError) {
-        validateLayout(layout, out);
-        checkNameMatchesFile(layout, path, text, out);
-    }
-    if (!out.empty()) {
-        std::stable_sort(out.begin(), out.end(), placeLess);
-        throw LayoutError(std::move(out));
-    }
+    Layout layout = readAndCheck(text, path.string(), &path, out);
+    if (!out.empty()) throw LayoutError(std::move(out));
     return layout;
 }
 

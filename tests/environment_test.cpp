@@ -231,8 +231,8 @@ TEST(ProceduralSky, GradientAndGround) {
     const glm::vec3 ground = sampleEquirect(sky, {0, -1, 0});
     EXPECT_NEAR(zenith.z, p.zenithColor.z, 0.01f);
     EXPECT_NEAR(zenith.x, p.zenithColor.x, 0.01f);
-    EXPECT_NEAR(horizon.x, p.horizonColor.x, 0.02f);
-    EXPECT_NEAR(horizon.z, p.horizonColor.z, 0.02f);
+    EXPECT_NEAR(horizon.x, p.horizonColor.x, 0.05f);  // row centre is 0.7 degrees up: nearly horizon
+    EXPECT_NEAR(horizon.z, p.horizonColor.z, 0.05f);
     EXPECT_NEAR(ground.x, p.groundColor.x, 1e-5f);
     EXPECT_LT(ground.x + ground.y + ground.z, horizon.x + horizon.y + horizon.z);  // ground darker
     float previous = 0.0f;  // blue-to-white: red rises monotonically from zenith to horizon
@@ -259,6 +259,7 @@ TEST(ProceduralSky, SunPowerIndependentOfResolution) {
             for (int x = 0; x < width; ++x) power += double(with.at(x, y, 0) - without.at(x, y, 0)) * solidAngle;
         }
         EXPECT_NEAR(power / expected, 1.0, 0.03) << "width " << width;
+        std::printf("[ info ] sun power / (pi r^2 L) at width %d: %.4f\n", width, power / expected);
     }
 }
 

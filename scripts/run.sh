@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Set-up (packages + Release build), then gbufferlab's main job on the built-in default scene.
+# Extra arguments go to gbufferlab, e.g. scripts/run.sh render --size 640x360.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh build
+if [ $# -eq 0 ]; then set -- render; fi
+exec build/gbufferlab "$@"

@@ -1,0 +1,218 @@
+#include "cmd_layouts.h"
+
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+
+#include "layout_catalog.h"
+
+namespace gbl {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: gbufferlab layouts check [FILE...]   validate layout files (default: all in the layouts dir)\n"
+    "       gbufferlab layouts list              name, bytes per pixel and title of each layout\n"
+    "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel\n";
+
+std::string pad(std::string s, size_t width) {
+    if (s.size() < width) s.append(width - s.size(), ' ');
+    return s;
+}
+
+std::string number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+}
+
+std::string fallbackText(const Fallback& f) {
+    switch (f.kind) {
+        case FallbackKind::Constant: {
+            std::string s;
+            for (double v : f.value) s += (s.empty() ? "" : ", ") + number(v);
+            return f.value.size() > 1 ? "(" + s + ")" : s;
+        }
+        case FallbackKind::FromMetallic: return "from_metallic: mix(0.04, base_color, metallic)";
+        case FallbackKind::Ue4: return "ue4: mix(0.08 * specular, base_color, metallic)";
+        case FallbackKind::FromBaseColor: return "from_base_color: base_color * (1 - metallic)";
+        case FallbackKind::FromDiffuseSpecular:
+            return "from_diffuse_specular: diffuse_color + metallic * specular_color";
+        case FallbackKind::FromSpecularColor:
+            return "from_specular_color: clamp((max3(specular_color) - 0.04) / 0.96, 0, 1)";
+        case FallbackKind::MaterialPass: return "material_pass: read by the material (second geometry) pass";
+        case FallbackKind::Forward: return "forward: added to the lit output by the geometry pass, not stored";
+    }
+    return "?";
+}
+
+std::string placeText(const std::vector<Channel>& channels, const CodePlace& code) {
+    std::string s;
+    for (const BitRange& r : code.pieces) s += (s.empty() ? "" : " + ") + bitRangeText(channels, r);
+    return s;
+}
+
+// Free bit ranges of a target / stencil, "b[4:7], a" style; "none" when full.
+std::string unusedText(const std::vector<Channel>& channels, const std::vector<Field>& fields) {
+    std::vector<std::vector<bool>> used(channels.size());
+    for (size_t c = 0; c < channels.size(); ++c) used[c].assign(static_cast<size_t>(channels[c].bits), false);
+    for (const Field& f : fields)
+        for (const CodePlace& code : f.codes)
+            for (const BitRange& r : code.pieces)
+                for (int b = r.first; b < r.first + r.count && b < channels[r.channel].bits; ++b)
+                    used[static_cast<size_t>(r.channel)][static_cast<size_t>(b)] = true;
+    std::string s;
+    int total = 0;
+    for (size_t c = 0; c < channels.size(); ++c) {
+        const int n = channels[c].bits;
+        for (int b = 0; b < n;) {
+            if (used[c][static_cast<size_t>(b)]) {
+                ++b;
+                continue;
+            }
+            int e = b;
+            while (e < n && !used[c][static_cast<size_t>(e)]) ++e;
+            const BitRange r{static_cast<int>(c), b, e - b};
+            s += (s.empty() ? "" : ", ") + (r.count == n ? channels[c].name : bitRangeText(channels, r));
+            total += e - b;
+            b = e;
+        }
+    }
+    return s.empty() ? "none" : s + " (" + std::to_string(total) + " bits)";
+}
+
+void describeFields(std::ostream& o, const std::vector<Field>& fields, const std::vector<Channel>& channels) {
+    o << "  " << pad("bits", 18) << pad("attribute", 24) << pad("code", 8) << pad("encoding", 22) << "width\n";
+    for (const Field& f : fields) {
+        for (size_t i = 0; i < f.codes.size(); ++i) {
+            std::string attr = attributeName(f.attribute);
+            if (!f.value.empty()) {
+                const size_t k = std::min(i, f.value.size() - 1);
+                attr += " = " + number(f.value[k]);
+            }
+            o << "  " << pad(placeText(channels, f.codes[i]), 18) << pad(attr, 24) << pad(codeLabel(f, i), 8)
+              << pad(f.encoding, 22) << f.codes[i].bits() << "\n";
+        }
+    }
+    o << "  unused: " << unusedText(channels, fields) << "\n";
+}
+
+}  // namespace
+
+std::string describeLayout(const Layout& layout) {
+    std::ostringstream o;
+    o << layout.name << ": " << layout.title << "\n";
+    o << "source:   " << layout.source.text() << "\n";
+    o << "pipeline: " << pipelineName(layout.pipeline) << "\n";
+    o << "file:     " << layout.sourceFile << "\n";
+    int targetBytes = 0;
+    for (const Target& t : layout.targets) {
+        targetBytes += t.bytes();
+        o << "\ntarget " << t.name << "  " << t.format << "  " << t.bytes() << " bytes\n";
+        describeFields(o, t.fields, t.channels);
+    }
+    const Depth& d = layout.depth;
+    o << "\ndepth " << d.format << "  " << d.bytes << " bytes  " << d.depthBits << "-bit "
+      << (d.floatDepth ? "float" : "unorm") << (d.reversedZ ? ", reversed Z" : "") << "\n";
+    if (d.stencilBits > 0) {
+        const std::vector<Channel> channels = {{"s", d.stencilBits, 0, ChannelType::Uint}};
+        describeFields(o, d.stencil, channels);
+    }
+    o << "\nbits per attribute:\n";
+    for (const AttributeBits& ab : bitsPerAttribute(layout))
+        o << "  " << pad(attributeName(ab.attribute), 24) << ab.bits << "\n";
+    if (!layout.fallbacks.empty()) {
+        o << "\nfallbacks (not stored):\n";
+        for (const Fallback& f : layout.fallbacks)
+            o << "  " << pad(attributeName(f.attribute), 24) << fallbackText(f) << "\n";
+    }
+    if (!layout.lightBuffers.empty()) {
+        o << "\nlight buffers:\n";
+        for (const LightBuffer& b : layout.lightBuffers) {
+            std::string holds;
+            for (LightQuantity q : b.holds) holds += (holds.empty() ? "" : " + ") + std::string(lightQuantityName(q));
+            o << "  " << pad(b.name, 16) << pad(b.format, 26) << pad(std::to_string(b.bytes) + " bytes", 10) << holds
+              << "\n";
+        }
+    }
+    o << "\nbytes per pixel: " << bytesPerPixel(layout) << " (targets " << targetBytes << " + depth-stencil "
+      << d.bytes << ")";
+    if (!layout.lightBuffers.empty()) o << "; light buffers " << lightBufferBytesPerPixel(layout);
+    o << "\n";
+    return o.str();
+}
+
+int checkLayoutsCommand(const std::vector<std::string>& files, std::ostream& out, std::ostream& err) {
+    std::vector<std::string> list = files;
+    if (list.empty()) {
+        try {
+            const auto dir = layoutDirectory();
+            for (const std::string& name : listLayoutNames(dir)) list.push_back((dir / (name + ".toml")).string());
+        } catch (const UserError& e) {
+            err << e.what() << "\n";
+            return 1;
+        }
+        if (list.empty()) {
+            err << "no layout files to check\n";
+            return 1;
+        }
+    }
+    int bad = 0;
+    for (const std::string& f : list) {
+        const std::vector<LayoutDiagnostic> diags = checkLayoutFile(f);
+        if (diags.empty()) {
+            out << "ok " << f << "\n";
+            continue;
+        }
+        ++bad;
+        for (const LayoutDiagnostic& d : diags) err << d.text() << "\n";
+    }
+    if (bad) err << bad << " of " << list.size() << " layout files invalid\n";
+    return bad ? 1 : 0;
+}
+
+int listLayoutsCommand(std::ostream& out, std::ostream& err) {
+    std::filesystem::path dir;
+    std::vector<std::string> names;
+    try {
+        dir = layoutDirectory();
+        names = listLayoutNames(dir);
+    } catch (const UserError& e) {
+        err << e.what() << "\n";
+        return 1;
+    }
+    int bad = 0;
+    out << pad("name", 22) << pad("bytes/px", 10) << "title\n";
+    for (const std::string& name : names) {
+        try {
+            const Layout l = loadLayoutFile(dir / (name + ".toml"));
+            out << pad(name, 22) << pad(std::to_string(bytesPerPixel(l)), 10) << l.title << "\n";
+        } catch (const UserError& e) {
+            ++bad;
+            out << pad(name, 22) << pad("-", 10) << "(invalid: run `gbufferlab layouts check`)\n";
+            err << e.what() << "\n";
+        }
+    }
+    return bad ? 1 : 0;
+}
+
+int showLayoutCommand(const std::string& nameOrPath, std::ostream& out, std::ostream& err) {
+    try {
+        out << describeLayout(loadLayout(nameOrPath));
+        return 0;
+    } catch (const UserError& e) {
+        err << e.what() << "\n";
+        return 1;
+    }
+}
+
+int runLayoutsCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    if (!args.empty() && args[0] == "check")
+        return checkLayoutsCommand(std::vector<std::string>(args.begin() + 1, args.end()), out, err);
+    if (args.size() == 1 && args[0] == "list") return listLayoutsCommand(out, err);
+    if (args.size() == 2 && args[0] == "show") return showLayoutCommand(args[1], out, err);
+    err << kUsage;
+    return 2;
+}
+
+}  // namespace gbl

@@ -1,0 +1,27 @@
+#pragma once
+// `gbufferlab layouts ...`: check, list and show layout files. Each function takes the arguments
+// after "layouts", writes to `out` (results) and `err` (problems), and returns the exit status.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "layout.h"
+
+namespace gbl {
+
+// Dispatches "check FILE...", "list", "show NAME"; prints usage and returns 2 otherwise.
+int runLayoutsCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+// Prints "ok FILE" per valid file, else its diagnostics (file:line:col: message); returns 1 when any
+// file is invalid. With no files, checks every layout in the layouts directory.
+int checkLayoutsCommand(const std::vector<std::string>& files, std::ostream& out, std::ostream& err);
+
+// One line per layout in the layouts directory: name, bytes per pixel, title.
+int listLayoutsCommand(std::ostream& out, std::ostream& err);
+
+// A readable table of one layout (name or path): targets and their bits, stencil, bits per
+// attribute, fallbacks, light buffers, bytes per pixel.
+int showLayoutCommand(const std::string& nameOrPath, std::ostream& out, std::ostream& err);
+std::string describeLayout(const Layout& layout);
+
+}  // namespace gbl

@@ -1,0 +1,412 @@
+// Semantic checks of a parsed layout: encodings suit their attributes, each field places exactly
+// the codes its encoding produces with widths the encoding accepts, bits stay inside their channels
+// and targets and never overlap, required attributes are stored, every other shading attribute is
+// stored or has a declared fallback whose inputs exist, and the pipeline's own rules hold.
+// Runs fully before anything renders; every message names file:line:col.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "encoding_registry.h"
+#include "layout.h"
+
+namespace gbl {
+
+namespace {
+
+constexpr int kMaxColorTargets = 8;  // Vulkan's guaranteed maxColorAttachments (and lavapipe's)
+
+std::string squote(std::string_view s) { return "'" + std::string(s) + "'"; }
+std::string bitsText(int n) { return std::to_string(n) + (n == 1 ? " bit" : " bits"); }
+std::string lineText(FilePlace p) { return "line " + std::to_string(p.line); }
+
+class Validator {
+public:
+    Validator(const Layout& layout, std::vector<LayoutDiagnostic>& out) : layout_(layout), out_(out) {}
+
+    void run() {
+        checkTargets();
+        checkStencil();
+        checkStoredOnce();
+        checkRequired();
+        checkFallbacks();
+        checkPipeline();
+    }
+
+private:
+    void error(FilePlace place, std::string message) {
+        out_.push_back({layout_.sourceFile, place, std::move(message)});
+    }
+
+    // Number of codes a field's encoding produces for its attribute.
+    static int expectedCodes(const Field& f, const EncodingInfo* enc) {
+        const int components = attributeInfo(f.attribute).components;
+        if (!enc) return components;  // "id": one code per component
+        if (enc->kind == AttributeKind::Scalar) return components * enc->codeCount;
+        return enc->codeCount + (enc->extraBits > 0 ? 1 : 0);
+    }
+
+    // Why `enc` cannot hold `attr` ("" when it can).
+    static std::string unsuitable(const EncodingInfo& enc, const AttributeInfo& attr) {
+        const std::string a = squote(attr.name), e = squote(enc.name);
+        switch (enc.kind) {
+            case AttributeKind::Normal:
+                if (attr.id != Attribute::Normal) return e + " encodes unit normals, not " + a;
+                return "";
+            case AttributeKind::Color:
+                if (attr.components != 3 || attr.id == Attribute::Normal || attr.id == Attribute::Position)
+                    return e + " encodes RGB colours, not " + a;
+                return "";
+            case AttributeKind::Scalar: break;
+        }
+        if ((enc.name == "gloss" || enc.name == "smoothness_cry") && attr.id != Attribute::Roughness)
+            return e + " stores roughness only, not " + a;
+        if (attr.domain == ValueDomain::Signed && enc.name != "snorm" && enc.name != "float16" &&
+            enc.name != "float32")
+            return a + " has components in [-1,1] but " + e + " takes " + enc.inputRange +
+                   " (use a normal_* encoding, snorm, float16 or float32)";
+        if (attr.domain == ValueDomain::Any && enc.name != "float16" && enc.name != "float32")
+            return a + " is unbounded: store it as float16 or float32, not " + e;
+        return "";
+    }
+
+    // Everything about one field that does not involve other fields. `channels` is the target's
+    // (or the stencil's) channel list, `format` its name for messages.
+    void checkField(const Field& f, const std::vector<Channel>& channels, const std::string& format) {
+        if (f.incomplete) return;
+        const AttributeInfo& attr = attributeInfo(f.attribute);
+        const std::string what = "field " + squote(attr.name);
+        const bool isId = f.encoding == kIdEncoding;
+        const EncodingInfo* enc = isId ? nullptr : findEncoding(f.encoding);
+        if (!isId && !enc) return;  // reported by the parser
+
+        if (enc) {
+            const std::string why = unsuitable(*enc, attr);
+            if (!why.empty()) {
+                error(f.encodingPlace, why);
+                return;
+            }
+        }
+
+        // code count
+        const int want = expectedCodes(f, enc);
+        if (static_cast<int>(f.codes.size()) != want) {
+            std::string names;
+            Field probe = f;
+            probe.codes.resize(static_cast<size_t>(want));
+            for (int i = 0; i < want; ++i) {
+                const std::string l = codeLabel(probe, static_cast<size_t>(i));
+                names += (names.empty() ? "" : ", ") + (l.empty() ? "value" : l);
+            }
+            const FilePlace at = f.codes.empty() ? f.place : f.codes.front().place;
+            error(at, "encoding " + squote(f.encoding) + " has " + std::to_string(want) +
+                          (want == 1 ? " code" : " codes") + " (" + names + ") for " + squote(attr.name) + " but " +
+                          std::to_string(f.codes.size()) + (f.codes.size() == 1 ? " place is" : " places are") +
+                          " given in 'at'");
+            return;
+        }
+
+        // widths
+        const int mainCodes = enc && enc->kind != AttributeKind::Scalar ? enc->codeCount : want;
+        for (size_t i = 0; i < f.codes.size(); ++i) {
+            const CodePlace& c = f.codes[i];
+            const std::string label = codeLabel(f, i);
+            const std::string code = label.empty() ? "its code" : "code " + label;
+            const int bits = c.bits();
+            if (isId) {
+                if (bits > 32) {
+                    error(c.place, what + ": an id code holds at most 32 bits, " + squote(c.text) + " has " +
+                                       std::to_string(bits));
+                } else if (i < f.value.size() && f.value[i] >= std::ldexp(1.0, bits)) {
+                    error(c.place, what + ": value " + std::to_string(static_cast<long long>(f.value[i])) +
+                                       " does not fit in " + bitsText(bits) + " at " + squote(c.text) + " (max " +
+                                       std::to_string(static_cast<long long>(std::ldexp(1.0, bits)) - 1) + ")");
+                }
+                continue;
+            }
+            if (static_cast<int>(i) >= mainCodes) {  // the extra code (normal_xy_zsign's sign bit)
+                if (bits != enc->extraBits)
+                    error(c.place, "encoding " + squote(enc->name) + " stores " + code + " in exactly " +
+                                       bitsText(enc->extraBits) + "; " + squote(c.text) + " has " +
+                                       std::to_string(bits));
+                continue;
+            }
+            if (!encodingBitsValid(*enc, bits)) {
+                const std::string range = enc->minBits == enc->maxBits
+                                              ? bitsText(enc->minBits)
+                                              : std::to_string(enc->minBits) + ".." + bitsText(enc->maxBits);
+                error(c.place, "encoding " + squote(enc->name) + " takes " + range + " per code; " + code + " of " +
+                                   squote(attr.name) + " at " + squote(c.text) + " has " + std::to_string(bits));
+            } else if (enc->kind != AttributeKind::Scalar && i > 0 && bits != f.codes[0].bits()) {
+                error(c.place, "encoding " + squote(enc->name) + " takes one bit count for all its codes; " + code +
+                                   " at " + squote(c.text) + " has " + std::to_string(bits) + " but code " +
+                                   codeLabel(f, 0) + " has " + std::to_string(f.codes[0].bits()));
+            }
+        }
+
+        // every piece inside its channel; float and sRGB channels hold only whole codes of their kind
+        for (size_t i = 0; i < f.codes.size(); ++i) {
+            const CodePlace& c = f.codes[i];
+            for (const BitRange& r : c.pieces) {
+                const Channel& ch = channels[static_cast<size_t>(r.channel)];
+                const int end = r.first + r.count;
+                if (end > ch.bits) {
+                    error(c.place, "bit range " + squote(bitRangeText(channels, r)) + " overflows channel " +
+                                       squote(ch.name) + " of " + format + " (" + bitsText(ch.bits) + ") by " +
+                                       bitsText(end - ch.bits));
+                    continue;
+                }
+                const bool whole = c.pieces.size() == 1 && r.first == 0 && r.count == ch.bits;
+                if (ch.type == ChannelType::Sfloat || ch.type == ChannelType::Ufloat) {
+                    const std::string need = ch.type == ChannelType::Sfloat
+                                                 ? (ch.bits == 16 ? "float16" : "float32")
+                                                 : (ch.bits == 11 ? "float11" : "float10");
+                    if (!whole || f.encoding != need)
+                        error(c.place, "channel " + squote(ch.name) + " of " + format + " is a float channel: it "
+                                       "holds one whole " + need + " code, not " + squote(f.encoding) + " bits at " +
+                                       squote(c.text) + " (use a UNORM or UINT format for bit fields)");
+                } else if (ch.type == ChannelType::Srgb) {
+                    if (!whole || f.encoding != "srgb8")
+                        error(c.place, "channel " + squote(ch.name) + " of " + format + " is an sRGB channel: it "
+                                       "holds one whole srgb8 code, not " + squote(f.encoding) + " bits at " +
+                                       squote(c.text) + " (use the _UNORM format)");
+                }
+            }
+        }
+    }
+
+    // Bits of one target (or the stencil): total fits, no two codes share a bit.
+    void checkPacking(const std::vector<Field>& fields, const std::vector<Channel>& channels, int totalBits,
+                      const std::string& where, const std::string& format, FilePlace place) {
+        int used = 0;
+        for (const Field& f : fields)
+            if (!f.incomplete) used += f.totalBits();
+        if (used > totalBits)
+            error(place, "fields of " + where + " need " + bitsText(used) + " but " + format + " holds " +
+                             std::to_string(totalBits) + " (" + bitsText(used - totalBits) + " over)");
+
+        // owner[channel][bit] = index of the field holding it
+        struct Owner {
+            int field = -1;
+            const CodePlace* code = nullptr;
+        };
+        std::vector<std::vector<Owner>> owner(channels.size());
+        for (size_t c = 0; c < channels.size(); ++c) owner[c].resize(static_cast<size_t>(channels[c].bits));
+        std::map<std::pair<int, int>, bool> reported;
+        for (size_t fi = 0; fi < fields.size(); ++fi) {
+            const Field& f = fields[fi];
+            if (f.incomplete) continue;
+            for (const CodePlace& code : f.codes) {
+                for (const BitRange& r : code.pieces) {
+                    auto& bits = owner[static_cast<size_t>(r.channel)];
+                    int clashFirst = -1, clashLast = -1, other = -1;
+                    const CodePlace* otherCode = nullptr;
+                    for (int b = r.first; b < r.first + r.count && b < static_cast<int>(bits.size()); ++b) {
+                        Owner& o = bits[static_cast<size_t>(b)];
+                        if (o.field >= 0) {
+                            if (clashFirst < 0) {
+                                clashFirst = b;
+                                other = o.field;
+                                otherCode = o.code;
+                            }
+                            if (o.field == other) clashLast = b;
+                        } else {
+                            o.field = static_cast<int>(fi);
+                            o.code = &code;
+                        }
+                    }
+                    if (clashFirst < 0) continue;
+                    if (reported[{other, static_cast<int>(fi)}]) continue;
+                    reported[{other, static_cast<int>(fi)}] = true;
+                    const Field& g = fields[static_cast<size_t>(other)];
+                    const BitRange clash{r.channel, clashFirst, clashLast - clashFirst + 1};
+                    const std::string self = other == static_cast<int>(fi) ? " (the same field)" : "";
+                    error(code.place, "bits " + bitRangeText(channels, clash) + " of field " +
+                                          squote(attributeName(f.attribute)) + " at " + squote(code.text) +
+                                          " overlap field " + squote(attributeName(g.attribute)) + " at " +
+                                          squote(otherCode ? otherCode->text : "?") + " (" + lineText(g.place) + ")" +
+                                          self);
+                }
+            }
+        }
+    }
+
+    void checkTargets() {
+        std::map<std::string, FilePlace> names;
+        int count = 0;
+        for (const Target& t : layout_.targets) {
+            ++count;
+            if (count == kMaxColorTargets + 1)
+                error(t.place, "more than " + std::to_string(kMaxColorTargets) +
+                                   " render targets: Vulkan guarantees (and lavapipe has) 8 colour attachments");
+            if (!t.name.empty()) {
+                auto [it, fresh] = names.emplace(t.name, t.place);
+                if (!fresh) error(t.place, "target name " + squote(t.name) + " is already used (" +
+                                               lineText(it->second) + ")");
+            }
+            if (t.channels.empty()) continue;  // unknown format, reported
+            for (const Field& f : t.fields) checkField(f, t.channels, t.format);
+            checkPacking(t.fields, t.channels, t.bits(), "target " + squote(t.name), t.format, t.formatPlace);
+        }
+    }
+
+    void checkStencil() {
+        const Depth& d = layout_.depth;
+        if (d.stencil.empty() || d.stencilBits == 0) return;
+        const std::vector<Channel> channels = {{"s", d.stencilBits, 0, ChannelType::Uint}};
+        for (const Field& f : d.stencil) checkField(f, channels, "the stencil");
+        checkPacking(d.stencil, channels, d.stencilBits, "the stencil", d.format, d.formatPlace);
+    }
+
+    void checkStoredOnce() {
+        std::map<Attribute, const Field*> seen;
+        auto visit = [&](const Field& f) {
+            auto [it, fresh] = seen.emplace(f.attribute, &f);
+            if (!fresh)
+                error(f.place, "attribute " + squote(attributeName(f.attribute)) + " is already stored (" +
+                                   lineText(it->second->place) + "); store each attribute once");
+        };
+        for (const Target& t : layout_.targets)
+            for (const Field& f : t.fields) visit(f);
+        for (const Field& f : layout_.depth.stencil) visit(f);
+    }
+
+    FilePlace fallbackTablePlace() const {
+        return layout_.fallbacks.empty() ? FilePlace{1, 1} : layout_.fallbacks.front().place;
+    }
+
+    void checkRequired() {
+        for (Attribute a : {Attribute::Normal, Attribute::Roughness})
+            if (!layout_.stores(a))
+                error({1, 1}, "the layout stores no " + squote(attributeName(a)) +
+                                  ": every layout must store normal and roughness (the lighting pass reads them "
+                                  "from the G-buffer)");
+    }
+
+    // What each derived fallback reads.
+    static std::vector<Attribute> inputsOf(FallbackKind k) {
+        using A = Attribute;
+        switch (k) {
+            case FallbackKind::FromMetallic: return {A::BaseColor, A::Metallic};
+            case FallbackKind::Ue4: return {A::BaseColor, A::Metallic, A::Specular};
+            case FallbackKind::FromBaseColor: return {A::BaseColor, A::Metallic};
+            case FallbackKind::FromDiffuseSpecular: return {A::DiffuseColor, A::SpecularColor, A::Metallic};
+            case FallbackKind::FromSpecularColor: return {A::SpecularColor};
+            default: return {};
+        }
+    }
+
+    void checkFallbacks() {
+        // coverage: each shading attribute stored xor given a fallback
+        std::map<Attribute, const Fallback*> fb;
+        for (const Fallback& f : layout_.fallbacks) {
+            auto [it, fresh] = fb.emplace(f.attribute, &f);
+            if (!fresh) error(f.place, "second fallback for " + squote(attributeName(f.attribute)));
+            if (const Field* stored = layout_.findField(f.attribute))
+                error(f.place, "fallback for " + squote(attributeName(f.attribute)) + " but the layout stores it (" +
+                                   lineText(stored->place) + "); remove one");
+        }
+        for (const AttributeInfo& a : listAttributes()) {
+            if (a.cls != AttributeClass::Shading || a.id == Attribute::Normal || a.id == Attribute::Roughness)
+                continue;
+            if (!layout_.stores(a.id) && !fb.count(a.id))
+                error(fallbackTablePlace(),
+                      "the layout does not store " + squote(a.name) + " and declares no fallback for it: add " +
+                          std::string(a.name) + " = ... to [fallback] (a derivation such as " +
+                          (a.id == Attribute::SpecularColor   ? "\"from_metallic\""
+                           : a.id == Attribute::DiffuseColor  ? "\"from_base_color\""
+                           : a.id == Attribute::Emissive      ? "\"forward\""
+                           : a.id == Attribute::Metallic      ? "\"from_specular_color\""
+                           : a.id == Attribute::BaseColor     ? "\"from_diffuse_specular\""
+                           : layout_.pipeline == Pipeline::DeferredLighting ? "\"material_pass\""
+                                                                            : "a constant") +
+                          ", or a constant)");
+        }
+        // inputs of derived fallbacks exist, without cycles
+        for (const Fallback& f : layout_.fallbacks) {
+            for (Attribute in : inputsOf(f.kind))
+                if (!layout_.stores(in) && !fb.count(in))
+                    error(f.place, "fallback " + squote(fallbackKindName(f.kind)) + " for " +
+                                       squote(attributeName(f.attribute)) + " reads " + squote(attributeName(in)) +
+                                       ", which the layout neither stores nor derives");
+        }
+        // derived fallbacks must not feed each other in a circle (metallic from specular_color from
+        // metallic): depth-first search over "derives from" edges, one report per back edge
+        std::map<Attribute, int> state;  // 0 unvisited, 1 on the stack, 2 done
+        std::vector<Attribute> stack;
+        std::function<void(Attribute)> visit = [&](Attribute a) {
+            state[a] = 1;
+            stack.push_back(a);
+            for (Attribute in : inputsOf(fb.at(a)->kind)) {
+                if (layout_.stores(in) || !fb.count(in)) continue;
+                if (state[in] == 1) {
+                    std::string chain;
+                    auto from = std::find(stack.begin(), stack.end(), in);
+                    for (auto it = from; it != stack.end(); ++it) chain += std::string(attributeName(*it)) + " -> ";
+                    chain += attributeName(in);
+                    error(fb.at(in)->place, "fallbacks form a cycle: " + chain +
+                                                 "; store one of them or give one a constant");
+                } else if (state[in] == 0) {
+                    visit(in);
+                }
+            }
+            stack.pop_back();
+            state[a] = 2;
+        };
+        for (const Fallback& f : layout_.fallbacks)
+            if (fb.at(f.attribute) == &f && state[f.attribute] == 0) visit(f.attribute);
+    }
+
+    void checkPipeline() {
+        const bool lighting = layout_.pipeline == Pipeline::DeferredLighting;
+        for (const Fallback& f : layout_.fallbacks) {
+            if (f.kind == FallbackKind::MaterialPass && !lighting)
+                error(f.place, "fallback 'material_pass' for " + squote(attributeName(f.attribute)) +
+                                   " needs pipeline = \"deferred-lighting\" (a deferred-shading layout has no "
+                                   "material pass)");
+            if (f.kind == FallbackKind::Forward && lighting)
+                error(f.place, "fallback 'forward' for " + squote(attributeName(f.attribute)) +
+                                   " is for deferred shading; a deferred-lighting layout adds it in the "
+                                   "material pass ('material_pass')");
+        }
+        if (lighting) {
+            // The light pre-pass G-buffer holds what lighting needs; material colours come later.
+            for (Attribute a : {Attribute::BaseColor, Attribute::DiffuseColor, Attribute::SpecularColor,
+                                Attribute::Metallic, Attribute::Specular})
+                if (const Field* f = layout_.findField(a))
+                    error(f->place, "a deferred-lighting layout does not store " + squote(attributeName(a)) +
+                                        ": the material pass reads it (declare " + attributeName(a) +
+                                        " = \"material_pass\" in [fallback])");
+            bool diffuse = false, specular = false;
+            for (const LightBuffer& b : layout_.lightBuffers)
+                for (LightQuantity q : b.holds) {
+                    diffuse = diffuse || q == LightQuantity::DiffuseRgb;
+                    specular = specular || q != LightQuantity::DiffuseRgb;
+                }
+            if (layout_.lightBuffers.empty())
+                error({1, 1}, "a deferred-lighting layout declares its light buffers: add [[light_buffer]] tables "
+                              "(name, format, holds = diffuse_rgb / specular_rgb / specular_luminance)");
+            else if (!diffuse || !specular)
+                error(layout_.lightBuffers.front().place,
+                      std::string("the light buffers hold no ") + (diffuse ? "specular" : "diffuse") +
+                          " light (holds: diffuse_rgb, and specular_rgb or specular_luminance)");
+        } else if (!layout_.lightBuffers.empty()) {
+            error(layout_.lightBuffers.front().place,
+                  "light buffers belong to pipeline = \"deferred-lighting\"; a deferred-shading layout lights "
+                  "from the G-buffer directly");
+        }
+    }
+
+    const Layout& layout_;
+    std::vector<LayoutDiagnostic>& out_;
+};
+
+}  // namespace
+
+void validateLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out) {
+    Validator v(layout, out);
+    v.run();
+}
+
+}  // namespace gbl
