@@ -216,7 +216,7 @@ void filterRows(const float* in, float* out, int w, int h, const std::vector<flo
     std::vector<float> acc(static_cast<size_t>(w));
     for (int y = 0; y < h; ++y) {
         const float* row = in + size_t(y) * w;
-        for (int i = 0; i < w + 2 * r; ++i) pad[size_t(i)] = (i - r < 0 || i - r >= w) ? 0.0f : row[i - r];
+        for (int i = 0; i < w + 2 * r; ++i) pad[size_t(i)] = row[std::clamp(i - r, 0, w - 1)];
         std::fill(acc.begin(), acc.end(), 0.0f);
         for (size_t j = 0; j < k.size(); ++j) {
             const float kj = k[j];
