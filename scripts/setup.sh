@@ -11,7 +11,8 @@ packages=(
   glslang-dev glslang-tools spirv-tools libglm-dev libtinygltf-dev libopenexr-dev
   libbenchmark-dev libgtest-dev
   libtomlplusplus-dev libstb-dev nlohmann-json3-dev
-  assimp-testmodels
+  assimp-testmodels blender-data
+  chromium
 )
 
 missing=()

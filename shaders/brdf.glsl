@@ -40,6 +40,7 @@ const float kMinDirectRoughness = 0.045;
 // GGX / Trowbridge-Reitz normal distribution, alpha = roughness^2 [Karis13 eq. 3], [Walter07 eq. 33]:
 //   D(h) = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2);  integral of D(h)(n.h) over the
 //   hemisphere is 1 (brdf_test checks it numerically). Undefined (0/0) at roughness 0, NoH 1.
+//   In float, d cancels near NoH = 1: relative error ~1.2e-7 / alpha^2 at the peak.
 float dGgx(float NoH, float roughness) {
     float a = roughness * roughness;
     float a2 = a * a;
@@ -86,8 +87,9 @@ float visSmithSchlick(float NoV, float NoL, float k) {
     return 0.25 / ((NoL * (1.0 - k) + k) * (NoV * (1.0 - k) + k));
 }
 
-// Fresnel weights: F = f0 + (1 - f0) * w(c), c = v.h. Max |w - exact| over c in [0,1] is
-// asserted in brdf_test (FRESNEL_KARIS 8.1e-3? see src/brdf.h for the measured figures).
+// Fresnel weights: F = f0 + (1 - f0) * w(c), c = v.h. Max |w - (1-c)^5| over c in [0,1],
+// measured and asserted in brdf_test: FRESNEL_KARIS 3.77e-3 (c = 0.055), FRESNEL_SEED 3.88e-2
+// (c = 0.100).
 // Exact Schlick weight [Schlick94]: (1 - c)^5.
 float fresnelWeightSchlick(float VoH) {
     float m = 1.0 - VoH;

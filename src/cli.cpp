@@ -22,6 +22,8 @@ struct Command {
 const std::vector<std::pair<std::string, Command>>& commands() {
     static const std::vector<std::pair<std::string, Command>> list = {
         {"render", {"render a scene through the float reference G-buffer (EXR + PNG)", runRenderCommand}},
+        {"layouts", {"check, list and show G-buffer layout files (layouts/*.toml)", runLayoutsCliCommand}},
+        {"encodings", {"measure what each encoding loses on its own (mean / p99 / max error)", runEncodingsCommand}},
         {"devices", {"list the Vulkan devices gbufferlab can use (--device)", runDevicesCommand}},
     };
     return list;

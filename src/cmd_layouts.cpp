@@ -33,15 +33,20 @@ std::string fallbackText(const Fallback& f) {
             for (double v : f.value) s += (s.empty() ? "" : ", ") + number(v);
             return f.value.size() > 1 ? "(" + s + ")" : s;
         }
-        case FallbackKind::FromMetallic: return "from_metallic: mix(0.04, base_color, metallic)";
-        case FallbackKind::Ue4: return "ue4: mix(0.08 * specular, base_color, metallic)";
-        case FallbackKind::FromBaseColor: return "from_base_color: base_color * (1 - metallic)";
+        case FallbackKind::FromMetallic:
+            return "from_metallic: mix(0.04, base_color, metallic)";
+        case FallbackKind::Ue4:
+            return "ue4: mix(0.08 * specular, base_color, metallic)";
+        case FallbackKind::FromBaseColor:
+            return "from_base_color: base_color * (1 - metallic)";
         case FallbackKind::FromDiffuseSpecular:
             return "from_diffuse_specular: diffuse_color + metallic * specular_color";
         case FallbackKind::FromSpecularColor:
             return "from_specular_color: clamp((max3(specular_color) - 0.04) / 0.96, 0, 1)";
-        case FallbackKind::MaterialPass: return "material_pass: read by the material (second geometry) pass";
-        case FallbackKind::Forward: return "forward: added to the lit output by the geometry pass, not stored";
+        case FallbackKind::MaterialPass:
+            return "material_pass: read by the material (second geometry) pass";
+        case FallbackKind::Forward:
+            return "forward: added to the lit output by the geometry pass, not stored";
     }
     return "?";
 }
@@ -82,7 +87,7 @@ std::string unusedText(const std::vector<Channel>& channels, const std::vector<F
 }
 
 void describeFields(std::ostream& o, const std::vector<Field>& fields, const std::vector<Channel>& channels) {
-    o << "  " << pad("bits", 18) << pad("attribute", 24) << pad("code", 8) << pad("encoding", 22) << "width\n";
+    o << "  " << pad("bits", 18) << pad("attribute", 28) << pad("code", 8) << pad("encoding", 22) << "width\n";
     for (const Field& f : fields) {
         for (size_t i = 0; i < f.codes.size(); ++i) {
             std::string attr = attributeName(f.attribute);
@@ -90,7 +95,7 @@ void describeFields(std::ostream& o, const std::vector<Field>& fields, const std
                 const size_t k = std::min(i, f.value.size() - 1);
                 attr += " = " + number(f.value[k]);
             }
-            o << "  " << pad(placeText(channels, f.codes[i]), 18) << pad(attr, 24) << pad(codeLabel(f, i), 8)
+            o << "  " << pad(placeText(channels, f.codes[i]), 18) << pad(attr, 28) << pad(codeLabel(f, i), 8)
               << pad(f.encoding, 22) << f.codes[i].bits() << "\n";
         }
     }
@@ -135,8 +140,8 @@ std::string describeLayout(const Layout& layout) {
               << "\n";
         }
     }
-    o << "\nbytes per pixel: " << bytesPerPixel(layout) << " (targets " << targetBytes << " + depth-stencil "
-      << d.bytes << ")";
+    o << "\nbytes per pixel: " << bytesPerPixel(layout) << " (targets " << targetBytes << " + depth-stencil " << d.bytes
+      << ")";
     if (!layout.lightBuffers.empty()) o << "; light buffers " << lightBufferBytesPerPixel(layout);
     o << "\n";
     return o.str();

@@ -111,9 +111,12 @@ const Glyph* findGlyph(std::string_view key) {
     return nullptr;
 }
 
-// Splits off the next character (1 byte, or a 2-byte UTF-8 sequence) and returns its glyph.
+// Splits off the next character (a byte, or a UTF-8 sequence) and returns its glyph. Lower case
+// letters draw as upper case, except an 'e' right after a digit or '.', which is an exponent.
 const Glyph* nextGlyph(std::string_view text, size_t& pos) {
     const unsigned char c = static_cast<unsigned char>(text[pos]);
+    const char prev = pos > 0 ? text[pos - 1] : ' ';
+    const bool exponent = c == 'e' && ((prev >= '0' && prev <= '9') || prev == '.');
     size_t len = 1;
     if (c >= 0xC0 && c < 0xE0) len = 2;
     else if (c >= 0xE0 && c < 0xF0) len = 3;
@@ -121,7 +124,7 @@ const Glyph* nextGlyph(std::string_view text, size_t& pos) {
     len = std::min(len, text.size() - pos);
     std::string key(text.substr(pos, len));
     pos += len;
-    if (len == 1 && c >= 'a' && c <= 'z' && c != 'e') key[0] = char(c - 'a' + 'A');
+    if (len == 1 && c >= 'a' && c <= 'z' && !exponent) key[0] = char(c - 'a' + 'A');
     const Glyph* g = findGlyph(key);
     return g ? g : findGlyph("?");
 }
@@ -222,12 +225,13 @@ std::string formatTickValue(double v) {
     return s;
 }
 
-// Layout (s = text scale): pad 4s | bar 12s | tick 3s | gap 2s | labels | pad 4s.
+// Layout (s = text scale): pad 4s | bar 12s | gap 3s | labels | pad 4s. Tick marks are notches
+// cut into the bar's right edge (not dashes beside it, which would read as minus signs).
 int legendWidth(float lo, float hi, const LegendStyle& style, int mapHeight) {
     const int s = autoScale(style, mapHeight);
     int labelW = 0;
     for (double v : tickValues(lo, hi, style.ticks)) labelW = std::max(labelW, textWidth(formatTickValue(v), s));
-    return 4 * s + 12 * s + 3 * s + 2 * s + labelW + 4 * s;
+    return 4 * s + 12 * s + 3 * s + labelW + 4 * s;
 }
 
 void drawLegend(Image8& image, int x, int y, int height, float lo, float hi, const LegendStyle& style) {
@@ -248,8 +252,8 @@ void drawLegend(Image8& image, int x, int y, int height, float lo, float hi, con
     for (size_t i = 0; i < ticks.size(); ++i) {
         const double t = double(i) / double(ticks.size() - 1);
         const int ty = bottom - int(std::lround(t * (bottom - top)));
-        fillRect(image, barX + barW, ty - (s - 1) / 2, 3 * s, s, style.foreground);
-        drawText(image, barX + barW + 5 * s, ty - textHeight(s) / 2, formatTickValue(ticks[i]), style.foreground, s);
+        fillRect(image, barX + barW - 4 * s, ty - (s - 1) / 2, 4 * s, s, style.foreground);
+        drawText(image, barX + barW + 3 * s, ty - textHeight(s) / 2, formatTickValue(ticks[i]), style.foreground, s);
     }
 }
 

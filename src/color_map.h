@@ -27,7 +27,8 @@ const std::array<Rgb8, 256>& viridisTable();
 Image8 applyColorMap(const Image& scalar, float lo, float hi);
 
 // ---- Text: a built-in 5x7 bitmap font -----------------------------------------------------------
-// Glyphs: 0-9, A-Z (lower case letters draw as upper case, except 'e' for exponents),
+// Glyphs: 0-9, A-Z (lower case letters draw as upper case, except an 'e' after a digit or '.',
+// which draws as a lower case exponent 'e'),
 // . , - + : ( ) / % = _ ? space, and the degree sign (UTF-8 "\u00b0"). Other characters draw as '?'.
 // Each glyph is 5x7 on a 6-pixel advance, scaled by an integer factor.
 

@@ -7,5 +7,7 @@ namespace gbl {
 
 int runRenderCommand(const std::vector<std::string>& args);
 int runDevicesCommand(const std::vector<std::string>& args);
+int runEncodingsCommand(const std::vector<std::string>& args);
+int runLayoutsCliCommand(const std::vector<std::string>& args);
 
 }  // namespace gbl

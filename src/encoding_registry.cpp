@@ -68,7 +68,8 @@ std::vector<EncodingInfo> makeRegistry() {
                  "Lambert azimuthal equal-area projection, full sphere",
                  "Pranckevicius, 'Compact Normal Storage for Small G-Buffers', 2009 (method #4)"});
     v.push_back({"normal_stereographic", K::Normal, 2, 8, 2, 16, 0, false, "unit vector",
-                 "stereographic projection from -z, scaled to cover the sphere (z = -1 is a singularity)",
+                 "stereographic projection from -z, scaled by 1/1.7777: covers ~120 deg around +z "
+                 "(view-space normals); directions beyond clamp (not a full-sphere mapping)",
                  "Pranckevicius, 'Compact Normal Storage for Small G-Buffers', 2009 (method #7)"});
     v.push_back({"normal_octahedral", K::Normal, 2, 8, 2, 16, 0, false, "unit vector",
                  "octahedral projection, snorm per component",

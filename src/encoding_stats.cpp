@@ -222,10 +222,10 @@ std::vector<glm::vec3> roundTripChromaCheckerboard(std::string_view name, int bi
             stored[i] = glm::vec2(enc::dequantizeUnorm(enc::quantizeUnorm(t.x, b), b),
                                   enc::dequantizeUnorm(enc::quantizeUnorm(chroma, b), b));
         }
+    // Mirrored borders (-1 -> 1, n -> n-2) keep the checkerboard parity of the missing neighbour.
+    auto mirror = [](int i, int n) { return n == 1 ? 0 : i < 0 ? -i : i >= n ? 2 * n - 2 - i : i; };
     auto at = [&](int x, int y) {
-        x = std::clamp(x, 0, width - 1);
-        y = std::clamp(y, 0, height - 1);
-        return stored[size_t(y) * size_t(width) + size_t(x)];
+        return stored[size_t(mirror(y, height)) * size_t(width) + size_t(mirror(x, width))];
     };
     std::vector<vec3> out(rgb.size());
     for (int y = 0; y < height; ++y)

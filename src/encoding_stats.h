@@ -60,7 +60,8 @@ glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n);
 glm::vec3 roundTripColor(std::string_view name, int bits, glm::vec3 rgb);
 float roundTripScalar(std::string_view name, int bits, float x);
 
-// Checkerboard encodings over a whole image (row-major, width*height), borders replicated.
+// Checkerboard encodings over a whole image (row-major, width*height); missing neighbours at the
+// borders are fetched mirrored (x = -1 reads x = 1), which keeps the checkerboard parity.
 std::vector<glm::vec3> roundTripChromaCheckerboard(std::string_view name, int bits, const std::vector<glm::vec3>& rgb,
                                                    int width, int height);
 

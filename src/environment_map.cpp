@@ -65,12 +65,13 @@ void validateEnvironmentImage(const Image& image, const std::string& source) {
     if (image.channels < 1 || image.pixels.size() != image.pixelCount() * size_t(image.channels))
         throwUserError(source + ": environment map " + size + " has " + std::to_string(image.pixels.size()) +
                        " values for " + std::to_string(image.channels) + " channels; the image is inconsistent");
-    // A NaN or negative texel poisons every integral taken over the map (irradiance, prefilter),
-    // so it is refused, not clamped: the user should know their map is broken.
+    // A NaN, Inf or clearly negative texel poisons every integral taken over the map (irradiance,
+    // prefilter), so it is refused, not clamped: the user should know their map is broken. Tiny
+    // negatives (lossy-compression ringing, see kEnvironmentRingingTolerance) pass, to be clamped.
     size_t bad = 0, first = 0;
     for (size_t i = 0; i < image.pixels.size(); ++i) {
         const float value = image.pixels[i];
-        if (std::isfinite(value) && value >= 0.0f) continue;
+        if (std::isfinite(value) && value >= -kEnvironmentRingingTolerance) continue;
         if (bad++ == 0) first = i;
     }
     if (bad == 0) return;
@@ -83,14 +84,25 @@ void validateEnvironmentImage(const Image& image, const std::string& source) {
     char valueText[32];
     std::snprintf(valueText, sizeof valueText, "%.9g", double(image.pixels[first]));
     throwUserError(source + ": environment map has " + std::to_string(bad) +
-                   " invalid values (NaN, Inf or negative); the first is at x=" + std::to_string(pixel % size_t(image.width)) +
+                   " invalid values (NaN, Inf or below -1/64); the first is at x=" + std::to_string(pixel % size_t(image.width)) +
                    ", y=" + std::to_string(pixel / size_t(image.width)) + ", channel " + channelName + ", value " +
                    std::string(valueText) + "; fix the map (e.g. clamp negatives to 0) and export it again");
+}
+
+size_t clampEnvironmentRinging(Image& image) {
+    size_t clamped = 0;
+    for (float& value : image.pixels)
+        if (value < 0.0f && value >= -kEnvironmentRingingTolerance) {
+            value = 0.0f;
+            ++clamped;
+        }
+    return clamped;
 }
 
 EnvironmentMap loadEnvironmentMap(const std::string& path) {
     EnvironmentMap map{path, readEnvironmentFile(path)};
     validateEnvironmentImage(map.image, path);
+    map.clampedNegativeTexels = clampEnvironmentRinging(map.image);
     return map;
 }
 

@@ -85,25 +85,23 @@ Image readViaRgba(const std::string& path) {
 
 Image readExr(const std::string& path) {
     return guardedRead(path, [&]() -> Image {
-        bool luminanceOnly = false;
         {
             Imf::InputFile file(path.c_str());
             const auto& channels = file.header().channels();
             const auto has = [&](const char* name) { return channels.findChannel(name) != nullptr; };
             if (has("R") && has("G") && has("B")) return readFloatChannels(file, {"R", "G", "B"});
-            if (has("Y") && !has("RY") && !has("BY")) {
-                Image gray = readFloatChannels(file, {"Y"});
+            if (!has("Y"))
+                throwUserError(path + ": OpenEXR file has channels " + channelList(channels) +
+                               " but no R,G,B or Y; export a flat RGB .exr (no layers)");
+            if (!has("RY") && !has("BY")) {  // plain grayscale: shown as gray, at full precision
+                const Image gray = readFloatChannels(file, {"Y"});
                 Image rgb(gray.width, gray.height, 3);
                 for (size_t i = 0; i < gray.pixels.size(); ++i)
                     rgb.pixels[i * 3] = rgb.pixels[i * 3 + 1] = rgb.pixels[i * 3 + 2] = gray.pixels[i];
                 return rgb;
             }
-            luminanceOnly = has("Y");
-            if (!luminanceOnly)
-                throwUserError(path + ": OpenEXR file has channels " + channelList(channels) +
-                               " but no R,G,B or Y; export a flat RGB .exr (no layers)");
         }
-        return readViaRgba(path);
+        return readViaRgba(path);  // luminance + chroma
     });
 }
 

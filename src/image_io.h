@@ -11,6 +11,8 @@ namespace gbl {
 // Radiance .hdr (RGBE, flat or RLE) -> RGB float image.
 Image readHdr(const std::string& path);
 // OpenEXR (any compression OpenEXR 3 reads, DWAB included) -> RGB float image (R,G,B; A dropped).
+// A Y-only file is replicated to gray; luminance/chroma (Y,RY,BY) goes through OpenEXR's RGBA
+// conversion (half precision). The data window is read; the display window is ignored.
 Image readExr(const std::string& path);
 // Reads the named channels (any pixel type, converted to float) in the order given; a missing
 // channel is a UserError listing the channels the file has. For data EXRs (G-buffer dumps).

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <charconv>
 
 #include "encoding_registry.h"
 
@@ -16,8 +17,7 @@ using VD = ValueDomain;
 
 const std::vector<AttributeInfo>& attributeTable() {
     static const std::vector<AttributeInfo> table = {
-        {Attribute::Normal, "normal", 3, AC::Shading, VT::Float, VD::Signed,
-         "world-space unit normal"},
+        {Attribute::Normal, "normal", 3, AC::Shading, VT::Float, VD::Signed, "world-space unit normal"},
         {Attribute::BaseColor, "base_color", 3, AC::Shading, VT::Float, VD::Unit,
          "linear base colour (metallic workflow)"},
         {Attribute::Metallic, "metallic", 1, AC::Shading, VT::Float, VD::Unit, "metalness"},
@@ -59,8 +59,7 @@ const std::vector<AttributeInfo>& attributeTable() {
         {Attribute::MaterialFeature, "material_feature", 1, AC::Extra, VT::Integer, VD::Id,
          "material classification id for tiled lighting (HDRP-style)"},
         {Attribute::CoatMask, "coat_mask", 1, AC::Extra, VT::Float, VD::Unit, "clear-coat mask (HDRP)"},
-        {Attribute::Flags, "flags", 1, AC::Extra, VT::Integer, VD::Id,
-         "per-pixel mesh / material flags (Bevy)"},
+        {Attribute::Flags, "flags", 1, AC::Extra, VT::Integer, VD::Id, "per-pixel mesh / material flags (Bevy)"},
     };
     return table;
 }
@@ -69,11 +68,16 @@ Channel ch(const char* name, int bits, int offset, ChannelType type) { return {n
 
 std::string uintFormatForBits(int bits) {
     switch (bits) {
-        case 8: return "R8_UINT";
-        case 16: return "R16_UINT";
-        case 32: return "R32_UINT";
-        case 64: return "R32G32_UINT";
-        case 128: return "R32G32B32A32_UINT";
+        case 8:
+            return "R8_UINT";
+        case 16:
+            return "R16_UINT";
+        case 32:
+            return "R32_UINT";
+        case 64:
+            return "R32G32_UINT";
+        case 128:
+            return "R32G32B32A32_UINT";
     }
     assert(false && "no UINT format of this size");
     return "";
@@ -124,15 +128,12 @@ const std::vector<TargetFormatInfo>& targetFormatTable() {
         uniform("R8_UINT", "r", 8, T::Uint),
         uniform("R8G8_UINT", "rg", 8, T::Uint),
         uniform("R8G8B8A8_UINT", "rgba", 8, T::Uint),
-        custom("A2B10G10R10_UNORM_PACK32",
-               {ch("r", 10, 0, T::Unorm), ch("g", 10, 10, T::Unorm), ch("b", 10, 20, T::Unorm),
-                ch("a", 2, 30, T::Unorm)}),
-        custom("A2R10G10B10_UNORM_PACK32",
-               {ch("b", 10, 0, T::Unorm), ch("g", 10, 10, T::Unorm), ch("r", 10, 20, T::Unorm),
-                ch("a", 2, 30, T::Unorm)}),
+        custom("A2B10G10R10_UNORM_PACK32", {ch("r", 10, 0, T::Unorm), ch("g", 10, 10, T::Unorm),
+                                            ch("b", 10, 20, T::Unorm), ch("a", 2, 30, T::Unorm)}),
+        custom("A2R10G10B10_UNORM_PACK32", {ch("b", 10, 0, T::Unorm), ch("g", 10, 10, T::Unorm),
+                                            ch("r", 10, 20, T::Unorm), ch("a", 2, 30, T::Unorm)}),
         custom("A2B10G10R10_UINT_PACK32",
-               {ch("r", 10, 0, T::Uint), ch("g", 10, 10, T::Uint), ch("b", 10, 20, T::Uint),
-                ch("a", 2, 30, T::Uint)}),
+               {ch("r", 10, 0, T::Uint), ch("g", 10, 10, T::Uint), ch("b", 10, 20, T::Uint), ch("a", 2, 30, T::Uint)}),
         custom("B10G11R11_UFLOAT_PACK32",
                {ch("r", 11, 0, T::Ufloat), ch("g", 11, 11, T::Ufloat), ch("b", 10, 22, T::Ufloat)}),
         uniform("R16_UNORM", "r", 16, T::Unorm),
@@ -156,10 +157,8 @@ const std::vector<TargetFormatInfo>& targetFormatTable() {
 
 const std::vector<DepthFormatInfo>& depthFormatTable() {
     static const std::vector<DepthFormatInfo> table = {
-        {"D16_UNORM", 16, 0, false, 2},
-        {"X8_D24_UNORM_PACK32", 24, 0, false, 4},
-        {"D24_UNORM_S8_UINT", 24, 8, false, 4},
-        {"D32_SFLOAT", 32, 0, true, 4},
+        {"D16_UNORM", 16, 0, false, 2},         {"X8_D24_UNORM_PACK32", 24, 0, false, 4},
+        {"D24_UNORM_S8_UINT", 24, 8, false, 4}, {"D32_SFLOAT", 32, 0, true, 4},
         {"D32_SFLOAT_S8_UINT", 32, 8, true, 5},
     };
     return table;
@@ -229,23 +228,34 @@ const char* pipelineName(Pipeline p) {
 
 const char* fallbackKindName(FallbackKind k) {
     switch (k) {
-        case FallbackKind::Constant: return "constant";
-        case FallbackKind::FromMetallic: return "from_metallic";
-        case FallbackKind::Ue4: return "ue4";
-        case FallbackKind::FromBaseColor: return "from_base_color";
-        case FallbackKind::FromDiffuseSpecular: return "from_diffuse_specular";
-        case FallbackKind::FromSpecularColor: return "from_specular_color";
-        case FallbackKind::MaterialPass: return "material_pass";
-        case FallbackKind::Forward: return "forward";
+        case FallbackKind::Constant:
+            return "constant";
+        case FallbackKind::FromMetallic:
+            return "from_metallic";
+        case FallbackKind::Ue4:
+            return "ue4";
+        case FallbackKind::FromBaseColor:
+            return "from_base_color";
+        case FallbackKind::FromDiffuseSpecular:
+            return "from_diffuse_specular";
+        case FallbackKind::FromSpecularColor:
+            return "from_specular_color";
+        case FallbackKind::MaterialPass:
+            return "material_pass";
+        case FallbackKind::Forward:
+            return "forward";
     }
     return "?";
 }
 
 const char* lightQuantityName(LightQuantity q) {
     switch (q) {
-        case LightQuantity::DiffuseRgb: return "diffuse_rgb";
-        case LightQuantity::SpecularRgb: return "specular_rgb";
-        case LightQuantity::SpecularLuminance: return "specular_luminance";
+        case LightQuantity::DiffuseRgb:
+            return "diffuse_rgb";
+        case LightQuantity::SpecularRgb:
+            return "specular_rgb";
+        case LightQuantity::SpecularLuminance:
+            return "specular_luminance";
     }
     return "?";
 }
@@ -379,6 +389,73 @@ std::string bitRangeText(const std::vector<Channel>& channels, const BitRange& r
     const int last = range.first + range.count - 1;
     if (range.count == 1) return name + "[" + std::to_string(range.first) + "]";
     return name + "[" + std::to_string(range.first) + ":" + std::to_string(last) + "]";
+}
+
+// ---- places -----------------------------------------------------------------------------------
+
+namespace {
+std::string trim(std::string_view s) {
+    size_t b = 0, e = s.size();
+    while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
+    while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t')) --e;
+    return std::string(s.substr(b, e - b));
+}
+std::string sq(std::string_view s) { return "'" + std::string(s) + "'"; }
+}  // namespace
+
+std::string parseCodePlace(std::string_view text, const std::vector<Channel>& channels, const std::string& formatName,
+                           CodePlace& out) {
+    out.text = std::string(text);
+    out.pieces.clear();
+    std::string list;
+    for (const Channel& c : channels) list += (list.empty() ? "" : ", ") + c.name;
+    std::string_view rest = text;
+    while (true) {
+        const size_t plus = rest.find('+');
+        const std::string piece = trim(rest.substr(0, plus));
+        size_t i = 0;
+        while (i < piece.size() && piece[i] >= 'a' && piece[i] <= 'z') ++i;
+        const std::string name = piece.substr(0, i);
+        if (name.empty())
+            return "bad place " + sq(text) + ": expected a channel (" + list +
+                   ") optionally followed by [bit] or [first:last]";
+        auto ch = std::find_if(channels.begin(), channels.end(), [&](const Channel& c) { return c.name == name; });
+        if (ch == channels.end())
+            return "unknown channel " + sq(name) + " in " + sq(text) + ": " + formatName + " has " + list;
+        BitRange range;
+        range.channel = static_cast<int>(ch - channels.begin());
+        range.first = 0;
+        range.count = ch->bits;
+        if (i < piece.size()) {  // "[bit]" or "[first:last]"
+            auto number = [&](size_t& pos, int& value) {
+                const char* b = piece.data() + pos;
+                auto [p, ec] = std::from_chars(b, piece.data() + piece.size(), value);
+                if (ec != std::errc() || p == b) return false;
+                pos += static_cast<size_t>(p - b);
+                return true;
+            };
+            size_t pos = i + 1;
+            int first = 0, last = 0;
+            bool ok = piece[i] == '[' && number(pos, first);
+            last = first;
+            if (ok && pos < piece.size() && piece[pos] == ':') {
+                ++pos;
+                ok = number(pos, last);
+            }
+            ok = ok && pos + 1 == piece.size() && piece[pos] == ']';
+            if (!ok)
+                return "bad bit range " + sq(piece) + " in " + sq(text) +
+                       ": write channel[bit] or channel[first:last], e.g. \"a[0:3]\"";
+            if (first < 0 || last < first)
+                return "bad bit range " + sq(piece) + ": write the lower bit first, e.g. " +
+                       sq(name + "[" + std::to_string(last) + ":" + std::to_string(first) + "]");
+            range.first = first;
+            range.count = last - first + 1;
+        }
+        out.pieces.push_back(range);
+        if (plus == std::string_view::npos) return "";
+        rest = rest.substr(plus + 1);
+    }
 }
 
 // ---- diagnostics ------------------------------------------------------------------------------

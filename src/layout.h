@@ -36,7 +36,7 @@ enum class Attribute : uint8_t {
     Occlusion,      // [0,1], ambient occlusion
     Emissive,       // vec3 linear radiance >= 0
     // geometry
-    Position,       // vec3 view-space position; when not stored, reconstructed from depth
+    Position,  // vec3 view-space position; when not stored, reconstructed from depth
     // extras
     Translucency,
     SssProfile,
@@ -73,7 +73,7 @@ const std::vector<AttributeInfo>& listAttributes();
 const AttributeInfo& attributeInfo(Attribute a);
 const char* attributeName(Attribute a);
 const AttributeInfo* findAttribute(std::string_view name);  // nullptr when unknown
-std::string knownAttributeNames();                            // "normal, base_color, ..."
+std::string knownAttributeNames();                          // "normal, base_color, ..."
 bool isShadingAttribute(Attribute a);
 
 // ---------------------------------------------------------------------------------------------
@@ -86,16 +86,16 @@ enum class ChannelType : uint8_t { Unorm, Srgb, Sfloat, Ufloat, Uint };
 struct Channel {
     std::string name;  // "r", "g", "b", "a"; "s" for stencil
     int bits = 0;
-    int offset = 0;    // first bit of the channel in the pixel's bit string
+    int offset = 0;  // first bit of the channel in the pixel's bit string
     ChannelType type = ChannelType::Unorm;
 };
 
 struct TargetFormatInfo {
-    std::string name;                // Vulkan name without VK_FORMAT_, e.g. "A2B10G10R10_UNORM_PACK32"
-    std::vector<Channel> channels;   // in bit order
-    int bits = 0;                    // bits per pixel
-    std::string uintFormat;          // what the bit-exact path renders: R8_UINT, R16_UINT, R32_UINT,
-                                     // R32G32_UINT or R32G32B32A32_UINT, by pixel size
+    std::string name;               // Vulkan name without VK_FORMAT_, e.g. "A2B10G10R10_UNORM_PACK32"
+    std::vector<Channel> channels;  // in bit order
+    int bits = 0;                   // bits per pixel
+    std::string uintFormat;         // what the bit-exact path renders: R8_UINT, R16_UINT, R32_UINT,
+                                    // R32G32_UINT or R32G32B32A32_UINT, by pixel size
 };
 
 const std::vector<TargetFormatInfo>& listTargetFormats();
@@ -103,12 +103,12 @@ const TargetFormatInfo* findTargetFormat(std::string_view name);
 std::string knownTargetFormatNames();
 
 struct DepthFormatInfo {
-    std::string name;   // "D24_UNORM_S8_UINT", ...
+    std::string name;  // "D24_UNORM_S8_UINT", ...
     int depthBits = 0;
     int stencilBits = 0;
     bool floatDepth = false;
-    int bytes = 0;      // nominal bytes per pixel: depth + stencil (D32_SFLOAT_S8_UINT = 5; many GPUs
-                        // store its stencil in a separate 1-byte plane, some pad to 8)
+    int bytes = 0;  // nominal bytes per pixel: depth + stencil (D32_SFLOAT_S8_UINT = 5; many GPUs
+                    // store its stencil in a separate 1-byte plane, some pad to 8)
 };
 
 const std::vector<DepthFormatInfo>& listDepthFormats();
@@ -119,7 +119,7 @@ std::string knownDepthFormatNames();
 // The layout
 
 struct FilePlace {
-    int line = 0;    // 1-based; 0 = unknown
+    int line = 0;  // 1-based; 0 = unknown
     int column = 0;
 };
 
@@ -143,13 +143,14 @@ inline constexpr const char* kIdEncoding = "id";
 
 struct Field {
     Attribute attribute = Attribute::Normal;
-    std::string encoding;              // a registry name (after resolving transform/interleave) or "id"
-    std::vector<CodePlace> codes;      // in the encoding's code order (see codeLabel)
-    std::vector<double> value;         // extras: the declared constant, one per component
-    FilePlace place;                   // the field's table
-    FilePlace encodingPlace;           // the "encoding" value (or the field when implicit)
-    bool incomplete = false;           // a parse error was reported for it: validation skips it
-                                       // (never set in a Layout that parseLayout returns)
+    std::string encoding;          // a registry name (after resolving transform/interleave) or "id"
+    std::vector<CodePlace> codes;  // in the encoding's code order (see codeLabel)
+    std::vector<double> value;     // extras: the declared constant, one per component
+    FilePlace place;               // the field's table
+    FilePlace encodingPlace;       // the "encoding" value (or the field when implicit)
+    FilePlace atPlace;             // the "at" value
+    bool incomplete = false;       // a parse error was reported for it: validation skips it
+                                   // (never set in a Layout that parseLayout returns)
 
     // Bits of the encoding's main codes (the primitive's `bits` parameter). For per-component
     // (scalar) encodings each component may differ: bitsOfCode(i).
@@ -202,6 +203,7 @@ struct Fallback {
     FallbackKind kind = FallbackKind::Constant;
     std::vector<double> value;  // Constant: one per component
     FilePlace place;
+    bool incomplete = false;  // a parse error was reported for it (never in a returned Layout)
 };
 
 enum class LightQuantity : uint8_t { DiffuseRgb, SpecularRgb, SpecularLuminance };
@@ -218,8 +220,8 @@ struct LightBuffer {
 struct Source {
     std::string game;
     std::string engine;
-    std::string talk;     // talk / paper / article, with authors and venue
-    std::string code;     // source file the layout is read from (e.g. DeferredShadingCommon.ush)
+    std::string talk;  // talk / paper / article, with authors and venue
+    std::string code;  // source file the layout is read from (e.g. DeferredShadingCommon.ush)
     int year = 0;
     std::string text() const;  // one line for `layouts show`
 };
@@ -235,6 +237,7 @@ struct Layout {
     std::vector<LightBuffer> lightBuffers;
     std::string sourceFile;  // the file it was read from (or the name given to parseLayout)
     FilePlace namePlace;
+    FilePlace fallbackPlace;  // the [fallback] table (1:1 when absent)
 
     const Field* findField(Attribute a) const;  // in targets or stencil; nullptr when not stored
     const Fallback* findFallback(Attribute a) const;
@@ -255,6 +258,12 @@ std::vector<AttributeBits> bitsPerAttribute(const Layout& layout);
 
 // A code's name within its field: "x", "y", "z_sign", "Y", "Cb", "r", ... ("code N" if unnamed).
 std::string codeLabel(const Field& field, size_t code);
+// Reads a place written in a layout file into `out`: "r", "b[7]", "a[0:3]", or pieces joined by
+// '+' ("r + b[0:3]", the code's low bits first), against `channels` (of `formatName`, for messages).
+// Returns "" or what is wrong. Ranges are not checked against channel widths here (validation
+// reports overflow by how much).
+std::string parseCodePlace(std::string_view text, const std::vector<Channel>& channels, const std::string& formatName,
+                           CodePlace& out);
 // "r[0:6]" for one range.
 std::string bitRangeText(const std::vector<Channel>& channels, const BitRange& range);
 
@@ -287,8 +296,7 @@ std::vector<LayoutDiagnostic> checkLayoutFile(const std::filesystem::path& path)
 
 // Internal steps, exposed for tests: parsing appends structural problems to `out` and returns what
 // could be read; validation appends semantic problems of a parsed layout.
-Layout parseLayoutUnchecked(std::string_view text, const std::string& fileName,
-                            std::vector<LayoutDiagnostic>& out);
+Layout parseLayoutUnchecked(std::string_view text, const std::string& fileName, std::vector<LayoutDiagnostic>& out);
 void validateLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out);
 
 }  // namespace gbl

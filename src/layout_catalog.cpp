@@ -19,8 +19,9 @@ fs::path layoutDirectory() {
     fs::path dir(GBL_SOURCE_LAYOUT_DIR);
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
-        throwUserError(dir.string() + ": the layouts directory is missing; set GBL_LAYOUT_DIR to gbufferlab's "
-                                      "layouts/ directory");
+        throwUserError(dir.string() +
+                       ": the layouts directory is missing; set GBL_LAYOUT_DIR to gbufferlab's "
+                       "layouts/ directory");
     return dir;
 }
 

@@ -5,7 +5,6 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <optional>
 
@@ -25,24 +24,24 @@ FilePlace placeOf(const toml::node& n) { return placeOf(n.source()); }
 
 const char* typeName(const toml::node& n) {
     switch (n.type()) {
-        case toml::node_type::table: return "a table";
-        case toml::node_type::array: return "an array";
-        case toml::node_type::string: return "a string";
-        case toml::node_type::integer: return "an integer";
-        case toml::node_type::floating_point: return "a number";
-        case toml::node_type::boolean: return "a boolean";
-        default: return "a date/time";
+        case toml::node_type::table:
+            return "a table";
+        case toml::node_type::array:
+            return "an array";
+        case toml::node_type::string:
+            return "a string";
+        case toml::node_type::integer:
+            return "an integer";
+        case toml::node_type::floating_point:
+            return "a number";
+        case toml::node_type::boolean:
+            return "a boolean";
+        default:
+            return "a date/time";
     }
 }
 
 std::string squote(std::string_view s) { return "'" + std::string(s) + "'"; }
-
-std::string trim(std::string_view s) {
-    size_t b = 0, e = s.size();
-    while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
-    while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t')) --e;
-    return std::string(s.substr(b, e - b));
-}
 
 // ---- transforms and interleaving: spellings of registry encodings ------------------------------
 // The registry names one primitive per variant ("gloss", "ycbcr_sqrt", "ycbcr_checkerboard"); a
@@ -82,14 +81,22 @@ constexpr FallbackKeyword kFallbackKeywords[] = {
 std::vector<FallbackKind> allowedFallbacks(Attribute a) {
     using F = FallbackKind;
     switch (a) {
-        case Attribute::SpecularColor: return {F::FromMetallic, F::Ue4, F::MaterialPass};
-        case Attribute::DiffuseColor: return {F::FromBaseColor, F::MaterialPass};
-        case Attribute::BaseColor: return {F::FromDiffuseSpecular, F::MaterialPass};
-        case Attribute::Metallic: return {F::FromSpecularColor, F::MaterialPass};
-        case Attribute::Specular: return {F::MaterialPass};
-        case Attribute::Occlusion: return {F::MaterialPass};
-        case Attribute::Emissive: return {F::Forward, F::MaterialPass};
-        default: return {};
+        case Attribute::SpecularColor:
+            return {F::FromMetallic, F::Ue4, F::MaterialPass};
+        case Attribute::DiffuseColor:
+            return {F::FromBaseColor, F::MaterialPass};
+        case Attribute::BaseColor:
+            return {F::FromDiffuseSpecular, F::MaterialPass};
+        case Attribute::Metallic:
+            return {F::FromSpecularColor, F::MaterialPass};
+        case Attribute::Specular:
+            return {F::MaterialPass};
+        case Attribute::Occlusion:
+            return {F::MaterialPass};
+        case Attribute::Emissive:
+            return {F::Forward, F::MaterialPass};
+        default:
+            return {};
     }
 }
 
@@ -114,8 +121,8 @@ public:
     }
 
     // Value of `key` in `table` as a string; reports a missing key (when `required`) at `owner`.
-    std::optional<std::string> getString(const toml::table& table, const char* key, bool required,
-                                         FilePlace owner, const std::string& where) {
+    std::optional<std::string> getString(const toml::table& table, const char* key, bool required, FilePlace owner,
+                                         const std::string& where) {
         const toml::node* n = table.get(key);
         if (!n) {
             if (required) error(owner, where + " has no '" + key + "'");
@@ -225,8 +232,8 @@ Layout Parser::parse(std::string_view text) {
             for (const toml::node& t : *a) parseTarget(t, layout);
             if (a->empty()) error(placeOf(*targets), "'target' is empty: a layout needs at least one render target");
         } else {
-            error(placeOf(*targets), "'target' must be an array of tables ([[target]]), not " +
-                                         std::string(typeName(*targets)));
+            error(placeOf(*targets),
+                  "'target' must be an array of tables ([[target]]), not " + std::string(typeName(*targets)));
         }
     } else {
         error(top, "the layout has no render target: add a [[target]] table");
@@ -240,14 +247,15 @@ Layout Parser::parse(std::string_view text) {
 void Parser::parseSource(const toml::table& root, Layout& layout) {
     const toml::node* n = root.get("source");
     if (!n) {
-        error({1, 1}, "the layout has no 'source': cite the game, talk or code and the year "
-                      "(source = { game = \"...\", talk = \"...\", year = 2013 })");
+        error({1, 1},
+              "the layout has no 'source': cite the game, talk or code and the year "
+              "(source = { game = \"...\", talk = \"...\", year = 2013 })");
         return;
     }
     const toml::table* t = n->as_table();
     if (!t) {
-        error(placeOf(*n), "'source' must be a table (game, engine, talk, code, year), not " +
-                               std::string(typeName(*n)));
+        error(placeOf(*n),
+              "'source' must be a table (game, engine, talk, code, year), not " + std::string(typeName(*n)));
         return;
     }
     const FilePlace at = placeOf(*n);
@@ -308,13 +316,14 @@ void Parser::parseDepth(const toml::table& root, Layout& layout) {
     if (const toml::node* s = t->get("stencil")) {
         const toml::array* a = s->as_array();
         if (!a) {
-            error(placeOf(*s), "'stencil' must be an array of tables ([[depth.stencil]]), not " +
-                                   std::string(typeName(*s)));
+            error(placeOf(*s),
+                  "'stencil' must be an array of tables ([[depth.stencil]]), not " + std::string(typeName(*s)));
             return;
         }
         if (!d.format.empty() && d.stencilBits == 0) {
-            error(placeOf(*s), "depth format " + d.format + " has no stencil bits; use D24_UNORM_S8_UINT or "
-                                                           "D32_SFLOAT_S8_UINT to declare stencil fields");
+            error(placeOf(*s), "depth format " + d.format +
+                                   " has no stencil bits; use D24_UNORM_S8_UINT or "
+                                   "D32_SFLOAT_S8_UINT to declare stencil fields");
             return;
         }
         const std::vector<Channel> channels = {{"s", d.stencilBits > 0 ? d.stencilBits : 8, 0, ChannelType::Uint}};
@@ -393,8 +402,10 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
         if (encNode) {
             auto e = getString(*t, "encoding", false, field.place, what);
             if (e && *e != kIdEncoding) {
-                error(field.encodingPlace, squote(attr->name) + " is an integer id: its encoding is 'id' "
-                                           "(the declared value is the code), not " + squote(*e));
+                error(field.encodingPlace, squote(attr->name) +
+                                               " is an integer id: its encoding is 'id' "
+                                               "(the declared value is the code), not " +
+                                               squote(*e));
                 field.incomplete = true;
             }
         }
@@ -409,22 +420,24 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
         std::optional<std::string> transform, interleave;
         if (trNode) {
             transform = getString(*t, "transform", false, field.place, what);
-            if (transform && std::find_if(std::begin(kTransforms), std::end(kTransforms), [&](const char* k) {
-                                 return *transform == k;
-                             }) == std::end(kTransforms)) {
-                error(placeOf(*trNode), "unknown transform " + squote(*transform) +
-                                            " (known: gloss, cry_smoothness, sqrt)");
+            if (transform && std::find_if(std::begin(kTransforms), std::end(kTransforms),
+                                          [&](const char* k) { return *transform == k; }) == std::end(kTransforms)) {
+                error(placeOf(*trNode),
+                      "unknown transform " + squote(*transform) + " (known: gloss, cry_smoothness, sqrt)");
                 field.incomplete = true;
             }
         }
         if (ilNode) {
             interleave = getString(*t, "interleave", false, field.place, what);
-            if (interleave && std::find_if(std::begin(kInterleaves), std::end(kInterleaves), [&](const char* k) {
-                                  return *interleave == k;
-                              }) == std::end(kInterleaves)) {
+            if (interleave && std::find_if(std::begin(kInterleaves), std::end(kInterleaves),
+                                           [&](const char* k) { return *interleave == k; }) == std::end(kInterleaves)) {
                 error(placeOf(*ilNode), "unknown interleave " + squote(*interleave) + " (known: checkerboard)");
                 field.incomplete = true;
             }
+        }
+        if (!field.incomplete && (transform || interleave) && !findEncoding(*e)) {
+            error(field.encodingPlace, "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
+            field.incomplete = true;
         }
         if (!field.incomplete && (transform || interleave)) {
             const Variant* match = nullptr;
@@ -452,8 +465,7 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
                                            " needs one of: " + knownEncodingNames());
             field.incomplete = true;
         } else if (!field.incomplete && !findEncoding(resolved)) {
-            error(field.encodingPlace,
-                  "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
+            error(field.encodingPlace, "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
             field.incomplete = true;
         }
         field.encoding = resolved;
@@ -463,6 +475,7 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
 
     // at
     if (const toml::node* at = t->get("at")) {
+        field.atPlace = placeOf(*at);
         if (channels.empty()) {
             field.incomplete = true;  // unknown format, reported already
         } else if (const toml::array* a = at->as_array()) {
@@ -514,10 +527,9 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
                 for (size_t i = 0; i < checked; ++i) {
                     const int want = perCode ? declared[i] : declared[0];
                     if (field.codes[i].bits() != want) {
-                        error(field.codes[i].place,
-                              what + ": 'bits' says " + std::to_string(want) + " but " +
-                                  squote(field.codes[i].text) + " holds " + std::to_string(field.codes[i].bits()) +
-                                  " bits");
+                        error(field.codes[i].place, what + ": 'bits' says " + std::to_string(want) + " but " +
+                                                        squote(field.codes[i].text) + " holds " +
+                                                        std::to_string(field.codes[i].bits()) + " bits");
                         field.incomplete = true;
                     }
                 }
@@ -528,8 +540,7 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
     // value: extras only
     if (const toml::node* v = t->get("value")) {
         if (attr->cls != AttributeClass::Extra) {
-            error(placeOf(*v), "'value' is for extra attributes; " + squote(attr->name) +
-                                   " comes from the surface");
+            error(placeOf(*v), "'value' is for extra attributes; " + squote(attr->name) + " comes from the surface");
             field.incomplete = true;
         } else if (auto values = getNumbers(*v, what + ": 'value'")) {
             if (values->size() == 1 && attr->components > 1) values->assign(attr->components, values->front());
@@ -555,97 +566,33 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
             field.incomplete = true;
         }
     } else if (attr->cls == AttributeClass::Extra) {
-        error(field.place, what + " needs a 'value': extras hold a constant the layout declares (" +
-                               attr->meaning + ")");
+        error(field.place,
+              what + " needs a 'value': extras hold a constant the layout declares (" + attr->meaning + ")");
         field.incomplete = true;
     }
     return field;
 }
 
-// One code's place: "r", "b[7]", "a[0:3]", or pieces joined by '+' ("r + b[0:3]", low bits first).
-bool Parser::parsePlace(const toml::node& node, const std::vector<Channel>& channels,
-                        const std::string& formatName, CodePlace& out) {
+// One code's place (grammar in parseCodePlace, layout.cpp).
+bool Parser::parsePlace(const toml::node& node, const std::vector<Channel>& channels, const std::string& formatName,
+                        CodePlace& out) {
     out.place = placeOf(node);
     if (!node.is_string()) {
         error(out.place, "a place in 'at' must be a string like \"r\", \"b[7]\" or \"a[0:3]\", not " +
                              std::string(typeName(node)));
         return false;
     }
-    const std::string text = node.as_string()->get();
-    out.text = text;
-    std::string_view rest = text;
-    auto channelList = [&] {
-        std::string list;
-        for (const Channel& c : channels) list += (list.empty() ? "" : ", ") + c.name;
-        return list;
-    };
-    while (true) {
-        const size_t plus = rest.find('+');
-        const std::string piece = trim(rest.substr(0, plus));
-        // channel name
-        size_t i = 0;
-        while (i < piece.size() && piece[i] >= 'a' && piece[i] <= 'z') ++i;
-        const std::string name = piece.substr(0, i);
-        auto ch = std::find_if(channels.begin(), channels.end(), [&](const Channel& c) { return c.name == name; });
-        if (name.empty()) {
-            error(out.place, "bad place " + squote(text) + ": expected a channel (" + channelList() +
-                                 ") optionally followed by [bit] or [first:last]");
-            return false;
-        }
-        if (ch == channels.end()) {
-            error(out.place, "unknown channel " + squote(name) + " in " + squote(text) + ": " + formatName +
-                                 " has " + channelList());
-            return false;
-        }
-        BitRange range;
-        range.channel = static_cast<int>(ch - channels.begin());
-        if (i == piece.size()) {
-            range.first = 0;
-            range.count = ch->bits;
-        } else {
-            // [a] or [a:b]
-            auto number = [&](size_t& pos, int& value) {
-                const char* b = piece.data() + pos;
-                const char* e = piece.data() + piece.size();
-                auto [p, ec] = std::from_chars(b, e, value);
-                if (ec != std::errc() || p == b) return false;
-                pos += static_cast<size_t>(p - b);
-                return true;
-            };
-            size_t pos = i;
-            int first = 0, last = 0;
-            bool ok = piece[pos] == '[';
-            ++pos;
-            ok = ok && number(pos, first);
-            last = first;
-            if (ok && pos < piece.size() && piece[pos] == ':') {
-                ++pos;
-                ok = number(pos, last);
-            }
-            ok = ok && pos < piece.size() && piece[pos] == ']' && pos + 1 == piece.size();
-            if (!ok) {
-                error(out.place, "bad bit range " + squote(piece) + " in " + squote(text) +
-                                     ": write channel[bit] or channel[first:last], e.g. \"a[0:3]\"");
-                return false;
-            }
-            if (first < 0 || last < first) {
-                error(out.place, "bad bit range " + squote(piece) + ": write the lower bit first, e.g. " +
-                                     squote(name + "[" + std::to_string(last) + ":" + std::to_string(first) + "]"));
-                return false;
-            }
-            range.first = first;
-            range.count = last - first + 1;
-        }
-        out.pieces.push_back(range);
-        if (plus == std::string_view::npos) break;
-        rest = rest.substr(plus + 1);
-    }
-    return true;
+    const std::string problem = parseCodePlace(node.as_string()->get(), channels, formatName, out);
+    if (problem.empty()) return true;
+    error(out.place, problem);
+    return false;
 }
 
 void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
     const toml::node* n = root.get("fallback");
+    layout.fallbackPlace = {1, 1};
     if (!n) return;
+    layout.fallbackPlace = placeOf(*n);
     const toml::table* t = n->as_table();
     if (!t) {
         error(placeOf(*n), "'fallback' must be a table ([fallback]), not " + std::string(typeName(*n)));
@@ -655,8 +602,8 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
         const FilePlace keyPlace = placeOf(key.source());
         const AttributeInfo* attr = findAttribute(key.str());
         if (!attr) {
-            error(keyPlace, "unknown attribute " + squote(key.str()) + " in [fallback] (known: " +
-                                knownAttributeNames() + ")");
+            error(keyPlace,
+                  "unknown attribute " + squote(key.str()) + " in [fallback] (known: " + knownAttributeNames() + ")");
             continue;
         }
         if (attr->cls != AttributeClass::Shading) {
@@ -678,6 +625,9 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
             for (FallbackKind k : allowed) list += std::string(list.empty() ? "" : ", ") + fallbackKindName(k);
             return list + (list.empty() ? "" : ", or ") + "a constant";
         };
+        // A bad entry is still recorded (incomplete), so that the attribute does not also read as
+        // "no fallback declared".
+        fb.incomplete = true;
         if (value.is_string()) {
             const std::string word = value.as_string()->get();
             auto kw = std::find_if(std::begin(kFallbackKeywords), std::end(kFallbackKeywords),
@@ -686,35 +636,36 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
                 std::find(allowed.begin(), allowed.end(), kw->kind) == allowed.end()) {
                 error(fb.place, "unknown fallback " + squote(word) + " for " + squote(attr->name) +
                                     " (allowed: " + allowedList() + ")");
-                continue;
+            } else {
+                fb.kind = kw->kind;
+                fb.incomplete = false;
             }
-            fb.kind = kw->kind;
-        } else {
-            auto values = getNumbers(value, "fallback for " + squote(attr->name));
-            if (!values) continue;
+        } else if (auto values = getNumbers(value, "fallback for " + squote(attr->name))) {
             if (values->size() == 1 && attr->components > 1) values->assign(attr->components, values->front());
+            bool ok = true;
             if (static_cast<int>(values->size()) != attr->components) {
                 error(fb.place, "fallback for " + squote(attr->name) + " has " + std::to_string(values->size()) +
-                                    " components, " + squote(attr->name) + " has " +
-                                    std::to_string(attr->components));
-                continue;
+                                    " components, " + squote(attr->name) + " has " + std::to_string(attr->components));
+                ok = false;
             }
-            bool ok = true;
             for (double x : *values) {
                 const bool inRange = attr->domain == ValueDomain::NonNegative ? x >= 0 : (x >= 0 && x <= 1);
-                if (!inRange) {
+                if (ok && !inRange) {
                     error(fb.place, "fallback for " + squote(attr->name) + ": " + std::to_string(x) + " is outside " +
                                         (attr->domain == ValueDomain::NonNegative ? "[0, inf)" : "[0,1]"));
                     ok = false;
-                    break;
                 }
             }
-            if (!ok) continue;
             fb.kind = FallbackKind::Constant;
             fb.value = *values;
+            fb.incomplete = !ok;
         }
         layout.fallbacks.push_back(std::move(fb));
     }
+    // file order (toml++ iterates keys alphabetically)
+    std::stable_sort(layout.fallbacks.begin(), layout.fallbacks.end(), [](const Fallback& a, const Fallback& b) {
+        return a.place.line != b.place.line ? a.place.line < b.place.line : a.place.column < b.place.column;
+    });
 }
 
 void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
@@ -722,8 +673,8 @@ void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
     if (!n) return;
     const toml::array* a = n->as_array();
     if (!a) {
-        error(placeOf(*n), "'light_buffer' must be an array of tables ([[light_buffer]]), not " +
-                               std::string(typeName(*n)));
+        error(placeOf(*n),
+              "'light_buffer' must be an array of tables ([[light_buffer]]), not " + std::string(typeName(*n)));
         return;
     }
     for (const toml::node& node : *a) {

@@ -58,12 +58,12 @@ private:
                 if (attr.components != 3 || attr.id == Attribute::Normal || attr.id == Attribute::Position)
                     return e + " encodes RGB colours, not " + a;
                 return "";
-            case AttributeKind::Scalar: break;
+            case AttributeKind::Scalar:
+                break;
         }
         if ((enc.name == "gloss" || enc.name == "smoothness_cry") && attr.id != Attribute::Roughness)
             return e + " stores roughness only, not " + a;
-        if (attr.domain == ValueDomain::Signed && enc.name != "snorm" && enc.name != "float16" &&
-            enc.name != "float32")
+        if (attr.domain == ValueDomain::Signed && enc.name != "snorm" && enc.name != "float16" && enc.name != "float32")
             return a + " has components in [-1,1] but " + e + " takes " + enc.inputRange +
                    " (use a normal_* encoding, snorm, float16 or float32)";
         if (attr.domain == ValueDomain::Any && enc.name != "float16" && enc.name != "float32")
@@ -99,7 +99,7 @@ private:
                 const std::string l = codeLabel(probe, static_cast<size_t>(i));
                 names += (names.empty() ? "" : ", ") + (l.empty() ? "value" : l);
             }
-            const FilePlace at = f.codes.empty() ? f.place : f.codes.front().place;
+            const FilePlace at = f.atPlace.line > 0 ? f.atPlace : f.place;
             error(at, "encoding " + squote(f.encoding) + " has " + std::to_string(want) +
                           (want == 1 ? " code" : " codes") + " (" + names + ") for " + squote(attr.name) + " but " +
                           std::to_string(f.codes.size()) + (f.codes.size() == 1 ? " place is" : " places are") +
@@ -159,18 +159,21 @@ private:
                 }
                 const bool whole = c.pieces.size() == 1 && r.first == 0 && r.count == ch.bits;
                 if (ch.type == ChannelType::Sfloat || ch.type == ChannelType::Ufloat) {
-                    const std::string need = ch.type == ChannelType::Sfloat
-                                                 ? (ch.bits == 16 ? "float16" : "float32")
-                                                 : (ch.bits == 11 ? "float11" : "float10");
+                    const std::string need = ch.type == ChannelType::Sfloat ? (ch.bits == 16 ? "float16" : "float32")
+                                                                            : (ch.bits == 11 ? "float11" : "float10");
                     if (!whole || f.encoding != need)
-                        error(c.place, "channel " + squote(ch.name) + " of " + format + " is a float channel: it "
-                                       "holds one whole " + need + " code, not " + squote(f.encoding) + " bits at " +
-                                       squote(c.text) + " (use a UNORM or UINT format for bit fields)");
+                        error(c.place, "channel " + squote(ch.name) + " of " + format +
+                                           " is a float channel: it "
+                                           "holds one whole " +
+                                           need + " code, not " + squote(f.encoding) + " bits at " + squote(c.text) +
+                                           " (use a UNORM or UINT format for bit fields)");
                 } else if (ch.type == ChannelType::Srgb) {
                     if (!whole || f.encoding != "srgb8")
-                        error(c.place, "channel " + squote(ch.name) + " of " + format + " is an sRGB channel: it "
-                                       "holds one whole srgb8 code, not " + squote(f.encoding) + " bits at " +
-                                       squote(c.text) + " (use the _UNORM format)");
+                        error(c.place, "channel " + squote(ch.name) + " of " + format +
+                                           " is an sRGB channel: it "
+                                           "holds one whole srgb8 code, not " +
+                                           squote(f.encoding) + " bits at " + squote(c.text) +
+                                           " (use the _UNORM format)");
                 }
             }
         }
@@ -242,8 +245,8 @@ private:
                                    " render targets: Vulkan guarantees (and lavapipe has) 8 colour attachments");
             if (!t.name.empty()) {
                 auto [it, fresh] = names.emplace(t.name, t.place);
-                if (!fresh) error(t.place, "target name " + squote(t.name) + " is already used (" +
-                                               lineText(it->second) + ")");
+                if (!fresh)
+                    error(t.place, "target name " + squote(t.name) + " is already used (" + lineText(it->second) + ")");
             }
             if (t.channels.empty()) continue;  // unknown format, reported
             for (const Field& f : t.fields) checkField(f, t.channels, t.format);
@@ -273,7 +276,7 @@ private:
     }
 
     FilePlace fallbackTablePlace() const {
-        return layout_.fallbacks.empty() ? FilePlace{1, 1} : layout_.fallbacks.front().place;
+        return layout_.fallbackPlace.line > 0 ? layout_.fallbackPlace : FilePlace{1, 1};
     }
 
     void checkRequired() {
@@ -288,12 +291,18 @@ private:
     static std::vector<Attribute> inputsOf(FallbackKind k) {
         using A = Attribute;
         switch (k) {
-            case FallbackKind::FromMetallic: return {A::BaseColor, A::Metallic};
-            case FallbackKind::Ue4: return {A::BaseColor, A::Metallic, A::Specular};
-            case FallbackKind::FromBaseColor: return {A::BaseColor, A::Metallic};
-            case FallbackKind::FromDiffuseSpecular: return {A::DiffuseColor, A::SpecularColor, A::Metallic};
-            case FallbackKind::FromSpecularColor: return {A::SpecularColor};
-            default: return {};
+            case FallbackKind::FromMetallic:
+                return {A::BaseColor, A::Metallic};
+            case FallbackKind::Ue4:
+                return {A::BaseColor, A::Metallic, A::Specular};
+            case FallbackKind::FromBaseColor:
+                return {A::BaseColor, A::Metallic};
+            case FallbackKind::FromDiffuseSpecular:
+                return {A::DiffuseColor, A::SpecularColor, A::Metallic};
+            case FallbackKind::FromSpecularColor:
+                return {A::SpecularColor};
+            default:
+                return {};
         }
     }
 
@@ -308,23 +317,23 @@ private:
                                    lineText(stored->place) + "); remove one");
         }
         for (const AttributeInfo& a : listAttributes()) {
-            if (a.cls != AttributeClass::Shading || a.id == Attribute::Normal || a.id == Attribute::Roughness)
-                continue;
+            if (a.cls != AttributeClass::Shading || a.id == Attribute::Normal || a.id == Attribute::Roughness) continue;
             if (!layout_.stores(a.id) && !fb.count(a.id))
-                error(fallbackTablePlace(),
-                      "the layout does not store " + squote(a.name) + " and declares no fallback for it: add " +
-                          std::string(a.name) + " = ... to [fallback] (a derivation such as " +
-                          (a.id == Attribute::SpecularColor   ? "\"from_metallic\""
-                           : a.id == Attribute::DiffuseColor  ? "\"from_base_color\""
-                           : a.id == Attribute::Emissive      ? "\"forward\""
-                           : a.id == Attribute::Metallic      ? "\"from_specular_color\""
-                           : a.id == Attribute::BaseColor     ? "\"from_diffuse_specular\""
-                           : layout_.pipeline == Pipeline::DeferredLighting ? "\"material_pass\""
-                                                                            : "a constant") +
-                          ", or a constant)");
+                error(fallbackTablePlace(), "the layout does not store " + squote(a.name) +
+                                                " and declares no fallback for it: add " + std::string(a.name) +
+                                                " = ... to [fallback] (a derivation such as " +
+                                                (a.id == Attribute::SpecularColor  ? "\"from_metallic\""
+                                                 : a.id == Attribute::DiffuseColor ? "\"from_base_color\""
+                                                 : a.id == Attribute::Emissive     ? "\"forward\""
+                                                 : a.id == Attribute::Metallic     ? "\"from_specular_color\""
+                                                 : a.id == Attribute::BaseColor    ? "\"from_diffuse_specular\""
+                                                 : layout_.pipeline == Pipeline::DeferredLighting ? "\"material_pass\""
+                                                                                                  : "a constant") +
+                                                ", or a constant)");
         }
         // inputs of derived fallbacks exist, without cycles
         for (const Fallback& f : layout_.fallbacks) {
+            if (f.incomplete) continue;
             for (Attribute in : inputsOf(f.kind))
                 if (!layout_.stores(in) && !fb.count(in))
                     error(f.place, "fallback " + squote(fallbackKindName(f.kind)) + " for " +
@@ -345,8 +354,8 @@ private:
                     auto from = std::find(stack.begin(), stack.end(), in);
                     for (auto it = from; it != stack.end(); ++it) chain += std::string(attributeName(*it)) + " -> ";
                     chain += attributeName(in);
-                    error(fb.at(in)->place, "fallbacks form a cycle: " + chain +
-                                                 "; store one of them or give one a constant");
+                    error(fb.at(in)->place,
+                          "fallbacks form a cycle: " + chain + "; store one of them or give one a constant");
                 } else if (state[in] == 0) {
                     visit(in);
                 }
@@ -385,8 +394,9 @@ private:
                     specular = specular || q != LightQuantity::DiffuseRgb;
                 }
             if (layout_.lightBuffers.empty())
-                error({1, 1}, "a deferred-lighting layout declares its light buffers: add [[light_buffer]] tables "
-                              "(name, format, holds = diffuse_rgb / specular_rgb / specular_luminance)");
+                error({1, 1},
+                      "a deferred-lighting layout declares its light buffers: add [[light_buffer]] tables "
+                      "(name, format, holds = diffuse_rgb / specular_rgb / specular_luminance)");
             else if (!diffuse || !specular)
                 error(layout_.lightBuffers.front().place,
                       std::string("the light buffers hold no ") + (diffuse ? "specular" : "diffuse") +

@@ -22,7 +22,7 @@ struct Texture {
     int width = 0;
     int height = 0;
     std::vector<uint8_t> rgba;  // RGBA8, rows top to bottom (glTF uv (0,0) = first row)
-    bool srgb = false;          // true for base colour and emissive (glTF: sRGB-encoded)
+    bool srgb = false;          // true for base colour, emissive, specular colour (glTF: sRGB-encoded)
 };
 
 constexpr int kNoTexture = -1;

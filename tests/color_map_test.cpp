@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "color_difference.h"
 #include "color_map.h"
@@ -94,7 +95,22 @@ TEST(ColorMap, FontDrawsGlyphPixels) {
         EXPECT_NE(render(c), q) << c;
     EXPECT_EQ(render("~"), q);
     EXPECT_EQ(render("f"), render("F"));  // lower case draws as upper case...
-    EXPECT_NE(render("e"), render("E"));  // ...except e, for exponents
+    EXPECT_EQ(render("e"), render("E"));
+    // ...except an exponent e (after a digit or '.'): compare the second glyph of "1e" / "1E".
+    auto second = [](const std::string& s) {
+        Image8 r;
+        r.width = 12;
+        r.height = 7;
+        r.channels = 3;
+        r.pixels.assign(12 * 7 * 3, 0);
+        gbl::drawText(r, 0, 0, s, {255, 255, 255});
+        std::vector<unsigned char> g;
+        for (int y = 0; y < 7; ++y)
+            for (int x = 6; x < 11; ++x) g.push_back(pixel(r, x, y).r);
+        return g;
+    };
+    EXPECT_NE(second("1e"), second("1E"));
+    EXPECT_EQ(second("Re"), second("RE"));
 }
 
 TEST(ColorMap, TickFormat) {
@@ -128,12 +144,15 @@ TEST(ColorMap, HeatMapWithLegendLayout) {
         for (int x = 0; x < 60; ++x) ink += same(pixel(out, x, y), style.foreground);
     EXPECT_GT(ink, 20);
     // The bar: hi colour at the top, lo colour at the bottom, in the bar's columns.
-    const int barX = 200 + 4 * scale + 6 * scale;
+    const int barStart = 200 + 4 * scale, barX = barStart + 6 * scale;  // barX: mid bar, clear of notches
     const int top = titleH + 4 * scale + 3, bottom = titleH + 120 - 1 - 4 * scale - 3;
     EXPECT_TRUE(same(pixel(out, barX, top), t[255]));
     EXPECT_TRUE(same(pixel(out, barX, bottom), t[0]));
     // Labels: the lo label "0" is drawn centred on the bottom tick, the hi label "1" on the top.
-    const int labelX = 200 + 4 * scale + 12 * scale + 5 * scale;
+    const int labelX = 200 + 4 * scale + 12 * scale + 3 * scale;
+    // Tick notches in the bar's right edge at the ends.
+    EXPECT_TRUE(same(pixel(out, barStart + 11 * scale, top), style.foreground));
+    EXPECT_TRUE(same(pixel(out, barStart + 11 * scale, bottom), style.foreground));
     int loInk = 0, hiInk = 0;
     for (int y = bottom - 3; y <= bottom + 3; ++y)
         for (int x = labelX; x < labelX + 5; ++x) loInk += same(pixel(out, x, y), style.foreground);

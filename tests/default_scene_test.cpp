@@ -1,5 +1,185 @@
+// Tests of the built-in scene: what it must cover (roughness x metallic, coloured F0, a detailed
+// normal map), that its geometry is sound, and that its camera actually sees it.
 #include <gtest/gtest.h>
 
-#include "scene.h"
+#include <algorithm>
+#include <cmath>
+#include <set>
 
-TEST(Placeholder, Builds) { SUCCEED(); }
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene.h"
+#include "scene_detail_normal_map.h"
+#include "tangents.h"
+
+namespace gbl {
+namespace {
+
+const Scene& defaultScene() {
+    static const Scene scene = makeDefaultScene();
+    return scene;
+}
+
+// Draws whose geometry is the shared sphere (all but the ground plane, which uses a normal map).
+std::vector<const Draw*> sphereDraws(const Scene& s) {
+    std::vector<const Draw*> out;
+    for (const Draw& d : s.draws)
+        if (s.materials[size_t(d.material)].normalTexture == kNoTexture) out.push_back(&d);
+    return out;
+}
+
+glm::vec3 centreOf(const Draw& d) { return glm::vec3(d.model[3]); }
+
+TEST(DefaultScene, CoversRoughnessFromNearMirrorToFullyRoughForDielectricsAndMetals) {
+    const Scene& s = defaultScene();
+    std::set<float> dielectric, metal;
+    for (const Draw* d : sphereDraws(s)) {
+        const Material& m = s.materials[size_t(d->material)];
+        if (m.specularColorFactor != glm::vec3(1.0f)) continue;  // the coloured-specular row
+        if (m.metallicFactor == 0.0f) dielectric.insert(m.roughnessFactor);
+        if (m.metallicFactor == 1.0f) metal.insert(m.roughnessFactor);
+    }
+    for (const std::set<float>* sweep : {&dielectric, &metal}) {
+        ASSERT_GE(sweep->size(), 5u);
+        EXPECT_LE(*sweep->begin(), 0.1f);
+        EXPECT_EQ(*sweep->rbegin(), 1.0f);
+    }
+}
+
+TEST(DefaultScene, HasGoldCopperAndAColouredSpecularDielectric) {
+    const Scene& s = defaultScene();
+    bool gold = false, copper = false, tintedDielectric = false;
+    for (const Material& m : s.materials) {
+        const glm::vec3 base(m.baseColorFactor);
+        if (m.metallicFactor == 1.0f && glm::all(glm::lessThan(glm::abs(base - glm::vec3(1.0f, 0.766f, 0.336f)), glm::vec3(0.02f))))
+            gold = true;
+        if (m.metallicFactor == 1.0f && glm::all(glm::lessThan(glm::abs(base - glm::vec3(0.955f, 0.638f, 0.538f)), glm::vec3(0.02f))))
+            copper = true;
+        // KHR_materials_specular: F0 = min(0.04 * colour, 1) * factor; red clearly above green.
+        const glm::vec3 f0 = glm::min(0.04f * m.specularColorFactor, 1.0f) * m.specularFactor;
+        if (m.metallicFactor == 0.0f && f0.r > 2.0f * f0.g && f0.r > 0.06f) tintedDielectric = true;
+    }
+    EXPECT_TRUE(gold);
+    EXPECT_TRUE(copper);
+    EXPECT_TRUE(tintedDielectric);
+}
+
+TEST(DefaultScene, GroundNormalMapIsLinearDetailedAndDeterministic) {
+    const Scene& s = defaultScene();
+    const auto ground = std::find_if(s.materials.begin(), s.materials.end(),
+                                     [](const Material& m) { return m.normalTexture != kNoTexture; });
+    ASSERT_NE(ground, s.materials.end());
+    const Texture& map = s.textures[size_t(ground->normalTexture)];
+    EXPECT_EQ(map.width, 1024);
+    EXPECT_EQ(map.height, 1024);
+    EXPECT_FALSE(map.srgb);
+    ASSERT_EQ(map.rgba.size(), size_t(1024) * 1024 * 4);
+
+    // Decoded normals are unit-ish and face outwards; they vary a lot (not a flat map), and
+    // neighbouring texels differ (detail at the texel scale, not only large bumps).
+    double sumX = 0, sumY = 0, sumSqX = 0, neighbourDiff = 0;
+    size_t backFacing = 0;
+    const size_t n = size_t(map.width) * size_t(map.height);
+    for (size_t i = 0; i < n; ++i) {
+        const uint8_t* p = &map.rgba[i * 4];
+        const glm::vec3 normal = glm::vec3(p[0], p[1], p[2]) / 255.0f * 2.0f - 1.0f;
+        EXPECT_NEAR(glm::length(normal), 1.0f, 0.02f);
+        backFacing += normal.z <= 0.0f ? 1 : 0;
+        sumX += normal.x;
+        sumY += normal.y;
+        sumSqX += normal.x * normal.x;
+        if (i % 1024 != 1023) neighbourDiff += std::abs(int(p[0]) - int(p[4]));
+    }
+    EXPECT_EQ(backFacing, 0u);
+    EXPECT_NEAR(sumX / double(n), 0.0, 0.02);  // tileable height: slopes average out
+    EXPECT_NEAR(sumY / double(n), 0.0, 0.02);
+    EXPECT_GT(std::sqrt(sumSqX / double(n)), 0.1);   // measured 0.155
+    EXPECT_GT(neighbourDiff / double(n), 3.0);        // measured 12.8; mean |dR| between neighbours, in 8-bit steps
+
+    EXPECT_EQ(makeDetailNormalMap(1024).rgba, map.rgba) << "must be deterministic";
+}
+
+TEST(DefaultScene, NormalsAndTangentsAreUnitOrthogonalAndTrianglesFaceOutwards) {
+    const Scene& s = defaultScene();
+    for (const Vertex& v : s.vertices) {
+        ASSERT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
+        ASSERT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0f, 1e-5f);
+        ASSERT_LT(std::abs(glm::dot(v.normal, glm::vec3(v.tangent))), 1e-5f);
+        ASSERT_EQ(std::abs(v.tangent.w), 1.0f);
+    }
+    // Counter-clockwise triangles (glTF front faces) must face along their vertex normals.
+    for (const Draw& d : s.draws) {
+        for (uint32_t i = 0; i < d.indexCount; i += 3) {
+            const auto vertex = [&](uint32_t k) -> const Vertex& {
+                return s.vertices[s.indices[d.firstIndex + i + k] + uint32_t(d.vertexOffset)];
+            };
+            const glm::vec3 face = glm::cross(vertex(1).position - vertex(0).position, vertex(2).position - vertex(0).position);
+            ASSERT_GT(glm::length(face), 0.0f) << "degenerate triangle " << i;
+            ASSERT_GT(glm::dot(face, vertex(0).normal + vertex(1).normal + vertex(2).normal), 0.0f) << "triangle " << i;
+        }
+    }
+}
+
+TEST(DefaultScene, TangentsAgreeWithTheGeneratorsConvention) {
+    // The built-in meshes write analytic tangents; they must match what generateTangents (and
+    // glTF's own files, see scene_test) use, or the ground's bumps would light inside out.
+    const Scene& s = defaultScene();
+    std::vector<Vertex> generated = s.vertices;
+    std::set<int32_t> done;  // the sphere geometry is shared by many draws
+    for (const Draw& d : s.draws) {
+        if (!done.insert(d.vertexOffset).second) continue;
+        // Each draw's index range is relative to its vertexOffset.
+        std::span<Vertex> vertices(generated.data() + d.vertexOffset, generated.size() - size_t(d.vertexOffset));
+        generateTangents(vertices, std::span<const uint32_t>(s.indices.data() + d.firstIndex, d.indexCount));
+    }
+    size_t compared = 0;
+    for (size_t i = 0; i < generated.size(); ++i) {
+        if (std::abs(s.vertices[i].normal.y) > 0.999f && s.vertices[i].position.y != 0.0f) continue;  // sphere poles
+        EXPECT_GT(glm::dot(glm::vec3(generated[i].tangent), glm::vec3(s.vertices[i].tangent)), 0.99f) << i;
+        EXPECT_EQ(generated[i].tangent.w, s.vertices[i].tangent.w) << i;
+        ++compared;
+    }
+    EXPECT_GT(compared, 2000u);
+}
+
+TEST(DefaultScene, CameraSeesEverySphereWhole) {
+    const Scene& s = defaultScene();
+    const auto spheres = sphereDraws(s);
+    ASSERT_GE(spheres.size(), 18u);  // 6 roughness columns x (dielectric, metal, coloured) rows
+    const float radius = glm::length(s.vertices[0].position);  // sphere geometry comes first
+    for (float aspect : {1.0f, 16.0f / 9.0f}) {
+        const Camera& c = s.camera;
+        const glm::mat4 viewProj = glm::perspective(c.yFovRadians, aspect, c.zNear, c.zFar) * glm::lookAt(c.position, c.target, c.up);
+        for (const Draw* d : spheres) {
+            // Centre and the four silhouette extremes: the whole sphere is on screen.
+            for (const glm::vec3& offset : {glm::vec3(0), glm::vec3(radius, 0, 0), glm::vec3(-radius, 0, 0),
+                                            glm::vec3(0, radius, 0), glm::vec3(0, -radius, 0)}) {
+                const glm::vec4 clip = viewProj * glm::vec4(centreOf(*d) + offset, 1.0f);
+                EXPECT_GT(clip.w, 0.0f);
+                EXPECT_LE(std::abs(clip.x), clip.w) << "aspect " << aspect;
+                EXPECT_LE(std::abs(clip.y), clip.w) << "aspect " << aspect;
+                EXPECT_GE(clip.z, 0.0f);
+                EXPECT_LE(clip.z, clip.w);
+            }
+        }
+    }
+}
+
+TEST(DefaultScene, IsModestInSizeWithBoundsLightsAndSource) {
+    const Scene& s = defaultScene();
+    EXPECT_LT(s.vertices.size(), 10000u);  // one shared sphere mesh + the ground
+    EXPECT_EQ(s.source, "built-in default scene");
+    EXPECT_LE(s.bounds.min.y, 0.0f);        // ground at y = 0
+    EXPECT_GE(s.bounds.max.y, 2.8f);        // top row of spheres
+    EXPECT_GE(s.bounds.max.x - s.bounds.min.x, 6.0f);
+    ASSERT_GE(s.lights.size(), 1u);
+    EXPECT_EQ(s.lights[0].type, LightType::Directional);
+    for (const Light& l : s.lights) EXPECT_NEAR(glm::length(l.direction), 1.0f, 1e-5f);
+    for (const Draw& d : s.draws) {
+        ASSERT_LE(size_t(d.firstIndex) + d.indexCount, s.indices.size());
+        ASSERT_LT(size_t(d.material), s.materials.size());
+    }
+}
+
+}  // namespace
+}  // namespace gbl

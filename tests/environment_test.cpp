@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -168,6 +169,12 @@ struct TempDir {
     ~TempDir() { fs::remove_all(path); }
 };
 
+std::string writeCleanMap(const fs::path& dir) {
+    const auto path = (dir / "clean.exr").string();
+    writeExr(path, Image(16, 8, 3, 0.25f));
+    return path;
+}
+
 TEST(LoadEnvironmentMap, ValidatesFilesAndNamesThem) {
     TempDir dir;
     Image nan(16, 8, 3, 1.0f);
@@ -184,6 +191,73 @@ TEST(LoadEnvironmentMap, ValidatesFilesAndNamesThem) {
     const EnvironmentMap map = loadEnvironmentMap(good.string());
     EXPECT_EQ(map.source, good.string());
     EXPECT_EQ(map.image.width, 1024);
+}
+
+// Lossy-compression ringing: negatives within 1/64 are clamped to 0 and counted; anything
+// below is still refused with the file, the first bad texel and the count.
+TEST(Validate, RingingToleranceBoundary) {
+    Image image(16, 8, 3, 1.0f);
+    image.at(1, 1, 0) = -0.01f;
+    image.at(2, 2, 1) = -kEnvironmentRingingTolerance;  // exactly the tolerance: clamped
+    image.at(3, 3, 2) = -0.0f;                            // negative zero is zero: untouched, not counted
+    EXPECT_NO_THROW(validateEnvironmentImage(image, "ringing.exr"));
+    EXPECT_EQ(clampEnvironmentRinging(image), 2u);
+    EXPECT_EQ(image.at(1, 1, 0), 0.0f);
+    EXPECT_EQ(image.at(2, 2, 1), 0.0f);
+    EXPECT_FALSE(std::signbit(image.at(1, 1, 0)));
+    EXPECT_EQ(clampEnvironmentRinging(image), 0u);  // idempotent
+    Image past(16, 8, 3, 1.0f);
+    past.at(5, 6, 1) = std::nextafter(-kEnvironmentRingingTolerance, -1.0f);
+    EXPECT_NE(userErrorOf([&] { validateEnvironmentImage(past, "past.exr"); }).find("1 invalid values"),
+              std::string::npos);
+}
+
+TEST(LoadEnvironmentMap, SmallNegativesClampedLargeRejected) {
+    TempDir dir;
+    Image ringing(16, 8, 3, 0.5f);
+    ringing.at(7, 3, 2) = -0.01f;
+    ringing.at(8, 3, 2) = -0.004f;
+    const auto ringingPath = (dir.path / "ringing.exr").string();
+    writeExr(ringingPath, ringing);
+    const EnvironmentMap map = loadEnvironmentMap(ringingPath);
+    EXPECT_EQ(map.clampedNegativeTexels, 2u);
+    EXPECT_EQ(map.image.at(7, 3, 2), 0.0f);
+    EXPECT_EQ(map.image.at(8, 3, 2), 0.0f);
+    EXPECT_EQ(map.image.at(6, 3, 2), 0.5f);  // the rest untouched
+    for (float v : map.image.pixels) ASSERT_GE(v, 0.0f);
+
+    Image bad = ringing;
+    bad.at(2, 5, 1) = -0.5f;  // first bad texel (row-major) ...
+    bad.at(9, 6, 0) = -0.25f;  // ... and a second: count 2 (the -0.01 ringing is not counted)
+    const auto badPath = (dir.path / "negative.exr").string();
+    writeExr(badPath, bad);
+    const std::string message = userErrorOf([&] { loadEnvironmentMap(badPath); });
+    EXPECT_EQ(message.rfind(badPath + ": environment map has 2 invalid values", 0), 0u) << message;
+    EXPECT_NE(message.find("x=2, y=5, channel G, value -0.5;"), std::string::npos) << message;
+
+    const EnvironmentMap clean = loadEnvironmentMap(writeCleanMap(dir.path));
+    EXPECT_EQ(clean.clampedNegativeTexels, 0u);
+}
+
+// Debian's blender-data world maps are DWAB-compressed and ring slightly below zero: each must
+// load, with its ringing clamped (and counted), and nothing negative left.
+TEST(LoadEnvironmentMap, BlenderWorldMapsLoadWithClampedRinging) {
+    const fs::path worlds = "/usr/share/blender/datafiles/studiolights/world";
+    GBL_REQUIRE_FILE(worlds / "forest.exr");  // Debian blender-data (scripts/setup.sh installs it)
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(worlds)) {
+        if (entry.path().extension() != ".exr") continue;
+        const auto path = entry.path().string();
+        EnvironmentMap map;
+        ASSERT_NO_THROW(map = loadEnvironmentMap(path)) << path;
+        EXPECT_EQ(map.image.width, 1024) << path;
+        EXPECT_GT(map.clampedNegativeTexels, 0u) << path;
+        for (float v : map.image.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << path;
+        std::printf("[ info ] %s: %zu ringing texels clamped\n", entry.path().filename().c_str(),
+                    map.clampedNegativeTexels);
+        ++count;
+    }
+    EXPECT_GE(count, 8);
 }
 
 // Direction of the brightest texel (by luminance-ish sum).

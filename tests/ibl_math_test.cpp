@@ -279,15 +279,16 @@ TEST(IntegrateBRDF, MirrorLimit) {
 // White furnace: with f0 = 1 (F = 1), A + B is the directional albedo of the specular lobe; it
 // must never exceed 1, and stays close to 1 for smooth surfaces away from grazing.
 // Smith-Schlick (k = alpha/2) loses energy; measured with integrateBRDFDouble, 4096 samples,
-// 64 NoV midpoints (E_avg = 2 int E(mu) mu dmu; min over NoV >= 0.05):
-//   roughness  0.0    0.1    0.2    0.3    0.4    0.5    0.6    0.7    0.8    0.9    1.0
-//   E_avg      1.000  0.990  0.964  0.923  0.869  0.802  0.723  0.637  0.547  0.459  0.377
-//   min E      1.000  0.838  0.652  0.651  0.664  0.665  0.651  0.611  0.533  0.412  0.307
-//   (E at NoV = 1 is 0.895 at roughness 0.5 and 0.307 at 1, equal to an independent quadrature.)
+// 64 NoV midpoints (E_avg = 2 int E(mu) mu dmu, the cosine-weighted average):
+//   roughness        0.0    0.1    0.2    0.3    0.4    0.5    0.6    0.7    0.8    0.9    1.0
+//   E_avg            1.000  0.990  0.964  0.923  0.869  0.802  0.723  0.637  0.547  0.459  0.377
+//   min, NoV>=0.05   1.000  0.843  0.652  0.647  0.663  0.666  0.650  0.612  0.533  0.412  0.308
+//   min, NoV>=0.5    1.000  0.990  0.959  0.905  0.829  0.750  0.679  0.613  0.533  0.412  0.308
+//   (E at NoV = 1 is 0.895 at roughness 0.5 and 0.307 at 1; the quadrature agrees.)
 // Tolerances: <= 1 + 1e-3 for the float LUT (QMC noise of 1024 samples); E_avg within 0.005 of
 // the table (the table is for 4096 samples; a changed k or a lost factor moves it by >> 0.005);
-// close to 1 when smooth and not grazing: E >= 0.99 for roughness <= 0.1 and NoV >= 0.5
-// (measured min 0.9946), E >= 0.955 at roughness 0.2 and NoV >= 0.5 (measured min 0.959).
+// close to 1 when smooth and not grazing: E >= 0.985 for roughness <= 0.1 and NoV >= 0.5
+// (measured min 0.990), E >= 0.955 at roughness 0.2 and NoV >= 0.5 (measured min 0.959).
 TEST(IntegrateBRDF, WhiteFurnace) {
     gbl::Image lut = computeBrdfLutCpu(32, 1024);
     for (int y = 0; y < lut.height; ++y)
@@ -307,7 +308,7 @@ TEST(IntegrateBRDF, WhiteFurnace) {
             avg += 2.0 * e * nov / n;
             if (nov >= 0.05) mn = std::min(mn, e);
             if (nov >= 0.5 && ri <= 1) {
-                EXPECT_GE(e, 0.99) << r << " " << nov;
+                EXPECT_GE(e, 0.985) << r << " " << nov;
             }
             if (nov >= 0.5 && ri == 2) {
                 EXPECT_GE(e, 0.955) << r << " " << nov;

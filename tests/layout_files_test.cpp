@@ -1,3 +1,210 @@
+// Every file in layouts/ validates, and the seed layouts have the sizes and bit positions their
+// sources give (hand-computed below).
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "cmd_layouts.h"
 #include "layout.h"
-TEST(Stub, Nothing) {}
+#include "layout_catalog.h"
+
+using namespace gbl;
+
+namespace {
+
+std::filesystem::path layoutsDir() { return GBL_SOURCE_LAYOUT_DIR; }
+
+Layout load(const std::string& name) { return loadLayoutFile(layoutsDir() / (name + ".toml")); }
+
+const Target& target(const Layout& l, const std::string& name) {
+    for (const Target& t : l.targets)
+        if (t.name == name) return t;
+    throw std::runtime_error("no target " + name);
+}
+
+int bitsOf(const Layout& l, Attribute a) {
+    for (const AttributeBits& ab : bitsPerAttribute(l))
+        if (ab.attribute == a) return ab.bits;
+    return 0;
+}
+
+}  // namespace
+
+TEST(LayoutFiles, EveryFileValidates) {
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(layoutsDir())) {
+        if (entry.path().extension() != ".toml") continue;
+        ++files;
+        const auto diags = checkLayoutFile(entry.path());
+        std::string all;
+        for (const auto& d : diags) all += d.text() + "\n";
+        EXPECT_TRUE(diags.empty()) << all;
+    }
+    EXPECT_GE(files, 7);
+}
+
+TEST(LayoutFiles, SeedLayoutsArePresent) {
+    const auto names = listLayoutNames(layoutsDir());
+    for (const char* n :
+         {"reference", "crysis2-slim", "crysis3-thin", "ryse", "ue4", "fat-naive", "compact-octahedral"})
+        EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
+}
+
+// Hand-computed: targets' nominal sizes + the depth-stencil's (D24S8 = 4, D32 = 4, D32S8 = 5).
+TEST(LayoutFiles, BytesPerPixel) {
+    const std::map<std::string, int> expected = {
+        {"reference", 5 * 16 + 4},         // five RGBA32F + D32
+        {"crysis2-slim", 4 + 4},           // A8B8G8R8 + D24S8
+        {"crysis3-thin", 4 + 4 + 4},       // 2x A8B8G8R8 + D24S8
+        {"ryse", 3 * 4 + 4},               // 3x RGBA8 + D24S8
+        {"ue4", 5 * 4 + 5},                // GBufferA..E (4 bytes each) + D32S8
+        {"fat-naive", 8 + 8 + 4 + 4},      // 2x RGBA16F + RGBA8 + D24S8
+        {"compact-octahedral", 3 * 4 + 4}  // 3x RGBA8 + D32
+    };
+    for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
+    // crysis2's light buffers: two RGBA16F
+    EXPECT_EQ(lightBufferBytesPerPixel(load("crysis2-slim")), 16);
+}
+
+TEST(LayoutFiles, BitsPerAttribute) {
+    const Layout c3 = load("crysis3-thin");
+    EXPECT_EQ(bitsOf(c3, Attribute::Normal), 8 + 8 + 1);
+    EXPECT_EQ(bitsOf(c3, Attribute::Roughness), 7);
+    EXPECT_EQ(bitsOf(c3, Attribute::DiffuseColor), 16);  // Y + one chroma per pixel
+    EXPECT_EQ(bitsOf(c3, Attribute::SpecularColor), 8);  // luma only
+    EXPECT_EQ(bitsOf(c3, Attribute::AmbientId), 4);
+    const Layout ue4 = load("ue4");
+    EXPECT_EQ(bitsOf(ue4, Attribute::Normal), 30);
+    EXPECT_EQ(bitsOf(ue4, Attribute::PerObject), 2);
+    EXPECT_EQ(bitsOf(ue4, Attribute::ShadingModelId), 4);
+    EXPECT_EQ(bitsOf(ue4, Attribute::SelectiveOutputMask), 4);
+    EXPECT_EQ(bitsOf(ue4, Attribute::BaseColor), 24);
+    const Layout c2 = load("crysis2-slim");
+    EXPECT_EQ(bitsOf(c2, Attribute::Normal), 24);
+    EXPECT_EQ(bitsOf(c2, Attribute::Roughness), 8);
+    EXPECT_EQ(bitsOf(c2, Attribute::BaseColor), 0);  // deferred lighting: no albedo
+    EXPECT_EQ(bitsOf(c2, Attribute::SpecularColor), 0);
+    EXPECT_EQ(bitsOf(load("compact-octahedral"), Attribute::Normal), 24);
+    EXPECT_EQ(bitsOf(load("reference"), Attribute::Normal), 96);
+}
+
+// Crysis 3 RT0's third byte: gloss in bits 0..6, the normal's z sign in bit 7.
+TEST(LayoutFiles, Crysis3GlossAndZSignShareOneByte) {
+    const Layout l = load("crysis3-thin");
+    const Target& rt0 = target(l, "RT0");
+    EXPECT_EQ(rt0.format, "A8B8G8R8_UNORM_PACK32");
+    const Field* normal = l.findField(Attribute::Normal);
+    const Field* gloss = l.findField(Attribute::Roughness);
+    ASSERT_TRUE(normal && gloss);
+    EXPECT_EQ(normal->encoding, "normal_xy_zsign");
+    EXPECT_EQ(gloss->encoding, "gloss");
+    ASSERT_EQ(normal->codes.size(), 3u);
+    const int b = 2;  // channel index of "b"
+    ASSERT_EQ(rt0.channels[b].name, "b");
+    EXPECT_EQ(rt0.channels[b].offset, 16);
+    const BitRange sign = normal->codes[2].pieces.at(0);
+    EXPECT_EQ(sign.channel, b);
+    EXPECT_EQ(sign.first, 7);
+    EXPECT_EQ(sign.count, 1);
+    ASSERT_EQ(gloss->codes.size(), 1u);
+    const BitRange g = gloss->codes[0].pieces.at(0);
+    EXPECT_EQ(g.channel, b);
+    EXPECT_EQ(g.first, 0);
+    EXPECT_EQ(g.count, 7);
+    EXPECT_EQ(codeLabel(*normal, 2), "z_sign");
+    // x and y fill r and g
+    EXPECT_EQ(normal->codes[0].pieces.at(0).channel, 0);
+    EXPECT_EQ(normal->codes[0].bits(), 8);
+    EXPECT_EQ(normal->codes[1].pieces.at(0).channel, 1);
+    // the chroma checkerboard resolved to the registry's interleaved encoding
+    EXPECT_EQ(l.findField(Attribute::DiffuseColor)->encoding, "ycbcr_checkerboard");
+}
+
+TEST(LayoutFiles, Ue4ShadingModelAndMaskShareGBufferBAlpha) {
+    const Layout l = load("ue4");
+    const Field* id = l.findField(Attribute::ShadingModelId);
+    const Field* mask = l.findField(Attribute::SelectiveOutputMask);
+    ASSERT_TRUE(id && mask);
+    EXPECT_EQ(id->encoding, kIdEncoding);
+    EXPECT_EQ(id->value.at(0), 1.0);
+    const Target& b = target(l, "GBufferB");
+    EXPECT_EQ(b.channels[static_cast<size_t>(id->codes[0].pieces[0].channel)].name, "a");
+    EXPECT_EQ(id->codes[0].pieces[0].first, 0);
+    EXPECT_EQ(id->codes[0].pieces[0].count, 4);
+    EXPECT_EQ(mask->codes[0].pieces[0].first, 4);
+    EXPECT_EQ(mask->codes[0].pieces[0].count, 4);
+    EXPECT_TRUE(l.depth.reversedZ);
+    EXPECT_EQ(l.findFallback(Attribute::SpecularColor)->kind, FallbackKind::Ue4);
+}
+
+TEST(LayoutFiles, CompactNormalSpansChannels) {
+    const Layout l = load("compact-octahedral");
+    const Field* n = l.findField(Attribute::Normal);
+    ASSERT_TRUE(n);
+    ASSERT_EQ(n->codes.size(), 2u);
+    for (const CodePlace& c : n->codes) {
+        EXPECT_EQ(c.bits(), 12);
+        ASSERT_EQ(c.pieces.size(), 2u);
+        EXPECT_EQ(c.pieces[0].count, 8);  // low byte first
+        EXPECT_EQ(c.pieces[1].count, 4);
+    }
+    EXPECT_EQ(n->codes[0].pieces[1].first, 0);
+    EXPECT_EQ(n->codes[1].pieces[1].first, 4);
+}
+
+TEST(LayoutFiles, Crysis2IsDeferredLighting) {
+    const Layout l = load("crysis2-slim");
+    EXPECT_EQ(l.pipeline, Pipeline::DeferredLighting);
+    EXPECT_FALSE(l.stores(Attribute::BaseColor));
+    EXPECT_FALSE(l.stores(Attribute::SpecularColor));
+    EXPECT_EQ(l.findFallback(Attribute::BaseColor)->kind, FallbackKind::MaterialPass);
+    ASSERT_EQ(l.lightBuffers.size(), 2u);
+    EXPECT_EQ(l.depth.format, "D24_UNORM_S8_UINT");
+    ASSERT_EQ(l.depth.stencil.size(), 1u);
+    EXPECT_EQ(l.depth.stencil[0].attribute, Attribute::Indoor);
+}
+
+TEST(LayoutFiles, CatalogFindsByNameAndPath) {
+    setenv("GBL_LAYOUT_DIR", GBL_SOURCE_LAYOUT_DIR, 1);
+    EXPECT_EQ(loadLayout("ue4").name, "ue4");
+    EXPECT_EQ(loadLayout((layoutsDir() / "ryse.toml").string()).name, "ryse");
+    try {
+        loadLayout("ue5");
+        FAIL() << "expected an error";
+    } catch (const UserError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("unknown layout 'ue5'"), std::string::npos) << m;
+        EXPECT_NE(m.find("crysis3-thin"), std::string::npos) << m;
+    }
+    setenv("GBL_LAYOUT_DIR", "/nonexistent/layouts", 1);
+    EXPECT_THROW(layoutDirectory(), UserError);
+    unsetenv("GBL_LAYOUT_DIR");
+}
+
+TEST(LayoutFiles, Commands) {
+    setenv("GBL_LAYOUT_DIR", GBL_SOURCE_LAYOUT_DIR, 1);
+    std::ostringstream out, err;
+    EXPECT_EQ(checkLayoutsCommand({}, out, err), 0) << err.str();
+    EXPECT_NE(out.str().find("ok "), std::string::npos);
+    EXPECT_TRUE(err.str().empty()) << err.str();
+
+    out.str("");
+    EXPECT_EQ(listLayoutsCommand(out, err), 0) << err.str();
+    EXPECT_NE(out.str().find("crysis3-thin"), std::string::npos);
+    EXPECT_NE(out.str().find("12"), std::string::npos);
+
+    out.str("");
+    EXPECT_EQ(showLayoutCommand("crysis3-thin", out, err), 0) << err.str();
+    const std::string show = out.str();
+    EXPECT_NE(show.find("b[7]"), std::string::npos) << show;
+    EXPECT_NE(show.find("b[0:6]"), std::string::npos) << show;
+    EXPECT_NE(show.find("bytes per pixel: 12"), std::string::npos) << show;
+
+    out.str("");
+    err.str("");
+    EXPECT_EQ(runLayoutsCommand({"frobnicate"}, out, err), 2);
+    EXPECT_NE(err.str().find("usage"), std::string::npos);
+    unsetenv("GBL_LAYOUT_DIR");
+}

@@ -1,0 +1,163 @@
+#pragma once
+// The fixed parts of report.html: its style sheet and script. The page is self-contained (no
+// external scripts, fonts or CDNs: it must work offline, from file://), and readable without
+// the script (which only sorts the table and switches the plot).
+namespace gbl::report_template {
+
+inline constexpr const char* kCss = R"CSS(
+:root { --fg: #1d232b; --muted: #5b6672; --line: #d5dbe1; --bg: #ffffff; --panel: #f5f7f9;
+        --accent: #1f5fa8; --bad: #b3261e; --bad-bg: #fdecea; --ok: #1e7a34; }
+* { box-sizing: border-box; }
+body { margin: 0; color: var(--fg); background: var(--bg);
+       font: 14px/1.45 system-ui, -apple-system, "Segoe UI", "DejaVu Sans", Arial, sans-serif; }
+main { max-width: 1500px; margin: 0 auto; padding: 20px 28px 60px; }
+h1 { font-size: 22px; margin: 0 0 4px; }
+h2 { font-size: 18px; margin: 32px 0 10px; padding-bottom: 4px; border-bottom: 2px solid var(--line); }
+h3 { font-size: 15px; margin: 18px 0 8px; }
+a { color: var(--accent); text-decoration: none; }
+a:hover { text-decoration: underline; }
+code, .num, .mono { font-family: ui-monospace, "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 12.5px; }
+.num { font-variant-numeric: tabular-nums; text-align: right; white-space: nowrap; }
+.muted { color: var(--muted); }
+header.run { background: var(--panel); border: 1px solid var(--line); border-radius: 6px; padding: 14px 18px; }
+dl.info { display: grid; grid-template-columns: max-content 1fr max-content 1fr; gap: 3px 16px; margin: 10px 0 0; }
+dl.info dt { color: var(--muted); }
+dl.info dd { margin: 0; overflow-wrap: anywhere; }
+pre.cmd { margin: 8px 0 0; padding: 6px 10px; background: #fff; border: 1px solid var(--line); border-radius: 4px;
+          white-space: pre-wrap; overflow-wrap: anywhere; }
+ul.notes { margin: 8px 0 0; padding-left: 20px; }
+table { border-collapse: collapse; }
+table.data { width: 100%; }
+table.data th, table.data td { padding: 4px 8px; border-bottom: 1px solid var(--line); vertical-align: top; }
+table.data thead th { position: sticky; top: 0; background: #e9edf1; text-align: left; font-weight: 600;
+                      font-size: 12.5px; white-space: nowrap; }
+table.data thead th.num { text-align: right; }
+table.data tbody tr:nth-child(even) { background: #fafbfc; }
+table.data tbody tr:hover { background: #eef4fb; }
+table.sortable thead th { cursor: pointer; user-select: none; }
+table.sortable thead th::after { content: "\2195"; color: #9aa5b1; margin-left: 4px; font-size: 11px; }
+table.sortable thead th[aria-sort="ascending"]::after { content: "\25B2"; color: var(--fg); }
+table.sortable thead th[aria-sort="descending"]::after { content: "\25BC"; color: var(--fg); }
+td.status-ok { color: var(--ok); }
+tr.failed td { color: var(--bad); }
+tr.failed td a { color: var(--bad); }
+.errtext { color: var(--bad); font-size: 12px; white-space: pre-wrap; overflow-wrap: anywhere; max-width: 46ch; }
+.errorbox { color: var(--bad); background: var(--bad-bg); border: 1px solid #f1b5ae; border-radius: 4px;
+            padding: 8px 12px; white-space: pre-wrap; overflow-wrap: anywhere; }
+.hint { color: var(--muted); font-size: 12.5px; margin: 6px 0 0; }
+.toggle { display: inline-flex; border: 1px solid var(--line); border-radius: 5px; overflow: hidden; margin-bottom: 8px; }
+.toggle button { font: inherit; border: 0; padding: 5px 14px; background: #fff; color: var(--fg); cursor: pointer; }
+.toggle button + button { border-left: 1px solid var(--line); }
+.toggle button[aria-pressed="true"] { background: var(--accent); color: #fff; }
+figure.plot { margin: 0; }
+figure.plot[hidden] { display: none; }
+figure.plot svg { width: 100%; max-width: 900px; height: auto; display: block; background: #fff;
+                  border: 1px solid var(--line); border-radius: 6px; }
+.legend { display: flex; flex-wrap: wrap; gap: 6px 18px; margin: 8px 0 0; font-size: 13px; color: var(--muted); }
+.legend span { display: inline-flex; align-items: center; gap: 6px; }
+.legend svg { border: 0; width: auto; }
+section.layout { border-top: 1px solid var(--line); margin-top: 26px; padding-top: 4px; }
+section.layout h2 { border: 0; margin-top: 18px; }
+.cite { color: var(--muted); font-size: 13px; margin: -6px 0 8px; }
+.cols { display: flex; flex-wrap: wrap; gap: 18px 32px; align-items: flex-start; }
+table.small th, table.small td { padding: 2px 8px; border-bottom: 1px solid var(--line); }
+table.small th { text-align: left; font-weight: 600; color: var(--muted); font-size: 12.5px; }
+table.small td.num { text-align: right; }
+.gallery { display: grid; grid-template-columns: repeat(auto-fill, minmax(260px, 1fr)); gap: 12px; margin: 10px 0; }
+.gallery figure, .crop figure { margin: 0; }
+.gallery img, .crop img { display: block; width: 100%; height: auto; border: 1px solid var(--line);
+                          background: repeating-conic-gradient(#eee 0 25%, #fff 0 50%) 0 0 / 16px 16px; }
+.crop img { image-rendering: pixelated; }
+figcaption { font-size: 12.5px; color: var(--muted); margin-top: 3px; }
+img.missing { min-height: 60px; border: 1px dashed var(--bad); }
+.crops { display: flex; flex-direction: column; gap: 10px; }
+.crop { display: grid; grid-template-columns: repeat(3, minmax(120px, 220px)); gap: 10px; align-items: start; }
+.crop > .where { grid-column: 1 / -1; font-size: 12.5px; color: var(--muted); }
+footer { margin-top: 40px; color: var(--muted); font-size: 12px; }
+)CSS";
+
+// Sorting: every sortable <th> has data-key and data-dir (the first click's direction); a
+// numeric cell has data-v (a number, "Infinity" for an infinite PSNR, absent when there is no
+// value: those rows stay last either way). The URL fragment "#sort=KEY:asc|desc&plot=psnr"
+// sorts and picks the plot on load, so a view can be linked.
+inline constexpr const char* kScript = R"JS(
+(function () {
+  'use strict';
+  var table = document.getElementById('layouts');
+  function sortTable(key, dir) {
+    if (!table) return false;
+    var headers = table.tHead.rows[0].cells, col = -1, i;
+    for (i = 0; i < headers.length; i++) if (headers[i].getAttribute('data-key') === key) col = i;
+    if (col < 0) return false;
+    var numeric = headers[col].classList.contains('num');
+    var body = table.tBodies[0];
+    var rows = Array.prototype.slice.call(body.rows);
+    var sign = dir === 'descending' ? -1 : 1;
+    rows.forEach(function (row, index) { row._order = index; });
+    rows.sort(function (a, b) {
+      var ca = a.cells[col], cb = b.cells[col], result = 0;
+      if (numeric) {
+        var ha = ca.hasAttribute('data-v'), hb = cb.hasAttribute('data-v');
+        if (ha !== hb) return ha ? -1 : 1;           /* rows without a value go last */
+        if (ha) {
+          var va = Number(ca.getAttribute('data-v')), vb = Number(cb.getAttribute('data-v'));
+          result = va < vb ? -1 : va > vb ? 1 : 0;   /* Infinity compares above every number */
+        }
+      } else {
+        result = ca.textContent.trim().localeCompare(cb.textContent.trim(), undefined, { numeric: true });
+      }
+      return result !== 0 ? sign * result : a._order - b._order;  /* stable */
+    });
+    rows.forEach(function (row) { body.appendChild(row); });
+    for (i = 0; i < headers.length; i++) headers[i].removeAttribute('aria-sort');
+    headers[col].setAttribute('aria-sort', dir);
+    return true;
+  }
+  function showPlot(name) {
+    var figures = document.querySelectorAll('figure.plot');
+    var buttons = document.querySelectorAll('.toggle button[data-plot]');
+    var found = false, i;
+    for (i = 0; i < figures.length; i++) if (figures[i].id === 'plot-' + name) found = true;
+    if (!found) return;
+    for (i = 0; i < figures.length; i++) figures[i].hidden = figures[i].id !== 'plot-' + name;
+    for (i = 0; i < buttons.length; i++)
+      buttons[i].setAttribute('aria-pressed', buttons[i].getAttribute('data-plot') === name ? 'true' : 'false');
+  }
+  if (table) {
+    Array.prototype.forEach.call(table.tHead.rows[0].cells, function (th) {
+      if (!th.hasAttribute('data-key')) return;
+      th.tabIndex = 0;
+      function activate() {
+        var current = th.getAttribute('aria-sort');
+        var dir = current === 'ascending' ? 'descending'
+                : current === 'descending' ? 'ascending' : (th.getAttribute('data-dir') || 'ascending');
+        sortTable(th.getAttribute('data-key'), dir);
+      }
+      th.addEventListener('click', activate);
+      th.addEventListener('keydown', function (e) {
+        if (e.key === 'Enter' || e.key === ' ') { e.preventDefault(); activate(); }
+      });
+    });
+  }
+  Array.prototype.forEach.call(document.querySelectorAll('.toggle button[data-plot]'), function (button) {
+    button.addEventListener('click', function () { showPlot(button.getAttribute('data-plot')); });
+  });
+  var hash = window.location.hash.replace(/^#/, '');
+  hash.split('&').forEach(function (part) {
+    var eq = part.indexOf('=');
+    if (eq < 0) return;
+    var name = part.slice(0, eq), value = decodeURIComponent(part.slice(eq + 1));
+    if (name === 'sort') {
+      var colon = value.indexOf(':');
+      var key = colon < 0 ? value : value.slice(0, colon);
+      var dir = colon < 0 ? 'ascending' : (value.slice(colon + 1) === 'desc' ? 'descending' : 'ascending');
+      sortTable(key, dir);
+    } else if (name === 'plot') {
+      showPlot(value);
+    }
+  });
+  document.documentElement.setAttribute('data-script', 'ready');
+})();
+)JS";
+
+}  // namespace gbl::report_template

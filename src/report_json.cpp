@@ -1,0 +1,349 @@
+#include "report_json.h"
+
+#include <cmath>
+#include <cstdint>
+
+#include "error.h"
+#include "file_io.h"
+
+namespace gbl {
+namespace {
+using Json = nlohmann::ordered_json;
+
+// ---- Writing ------------------------------------------------------------------------------------
+
+Json number(double v) {
+    if (std::isfinite(v)) return v;
+    if (std::isnan(v)) return nullptr;
+    return v > 0 ? "inf" : "-inf";
+}
+
+Json statsJson(const ScalarStats& s) {
+    return Json{{"count", s.count}, {"mean", number(s.mean)}, {"rms", number(s.rms)},
+                {"p99", number(s.p99)}, {"max", number(s.max)}};
+}
+
+Json attributeStatsJson(const AttributeStats& a) {
+    Json j = statsJson(a.error);
+    if (a.rmse) j["rmse"] = number(*a.rmse);
+    return j;
+}
+
+Json attributesJson(const AttributeErrorTable& table) {
+    Json j = Json::object();
+    for (ErrorAttribute a : kErrorAttributes) {
+        const AttributeErrors& e = table[a];
+        if (e.empty()) continue;
+        Json entry{{"unit", errorAttributeUnit(a)}};
+        if (e.all) entry["all"] = attributeStatsJson(*e.all);
+        if (e.metal) entry["metal"] = attributeStatsJson(*e.metal);
+        if (e.dielectric) entry["dielectric"] = attributeStatsJson(*e.dielectric);
+        j[errorAttributeName(a)] = std::move(entry);
+    }
+    return j;
+}
+
+Json frameJson(const FrameTraffic& f) {
+    return Json{{"width", f.width},
+                {"height", f.height},
+                {"samples", f.samples},
+                {"geometry_write_bytes", number(f.geometryWriteBytes)},
+                {"lighting_read_bytes", number(f.lightingReadBytes)},
+                {"light_buffer_bytes", number(f.lightBufferBytes)},
+                {"total_bytes", number(f.totalBytes)},
+                {"gb_per_s_at_60fps", number(f.gigabytesPerSecond(60.0))},
+                {"lit_output_bytes", number(f.litOutputBytes)},
+                {"on_chip_external_bytes", number(f.onChipExternalBytes)}};
+}
+
+Json imageErrorsJson(const ImageErrors& e) {
+    return Json{{"rmse_linear", number(e.rmseLinear)},
+                {"psnr_linear_db", number(e.psnrLinear)},
+                {"rmse_tonemapped", number(e.rmseToneMapped)},
+                {"psnr_tonemapped_db", number(e.psnrToneMapped)},
+                {"max_abs", number(e.maxAbs)},
+                {"p99_abs", number(e.p99Abs)},
+                {"flip_mean", number(e.flipMean)},
+                {"flip_median", number(e.flipMedian)}};
+}
+
+Json imagesJson(const RunImages& images) {
+    Json crops = Json::array();
+    for (const ReportCrop& c : images.crops)
+        crops.push_back(Json{{"x", c.x}, {"y", c.y}, {"w", c.w}, {"h", c.h},
+                             {"reference", c.reference}, {"layout", c.layout}, {"heat", c.heat}});
+    return Json{{"render", images.render},         {"error_heatmap", images.errorHeatmap},
+                {"flip", images.flip},             {"normal_error", images.normalError},
+                {"difference", images.difference}, {"errors_exr", images.errorsExr},
+                {"crops", std::move(crops)}};
+}
+
+Json runJson(const RunReport& r) {
+    Json j{{"layout", r.layout},
+           {"title", r.title},
+           {"source", r.source},
+           {"pipeline", r.pipeline},
+           {"ibl_mode", r.iblMode},
+           {"status", runStatusName(r.status)},
+           {"error", r.error},
+           {"bytes_per_pixel", Json{{"targets", r.bytesPerPixel.targets},
+                                    {"depth", r.bytesPerPixel.depth},
+                                    {"light_buffers", r.bytesPerPixel.lightBuffers},
+                                    {"total", r.bytesPerPixel.total}}}};
+    Json frames = Json::array();
+    for (const FrameTraffic& f : r.bandwidth) frames.push_back(frameJson(f));
+    j["bandwidth"] = std::move(frames);
+    j["attribute_errors"] = attributesJson(r.attributes);
+    if (r.image) j["image_errors"] = imageErrorsJson(*r.image);
+    if (r.times)
+        j["pass_times_ms"] = Json{{"gbuffer", number(r.times->gbufferMs)},
+                                  {"lighting", number(r.times->lightingMs)},
+                                  {"device", r.times->device}};
+    j["images"] = imagesJson(r.images);
+    return j;
+}
+
+// ---- Reading ------------------------------------------------------------------------------------
+
+// A JSON value and where it is ("runs[2].image_errors"), for error messages.
+struct Node {
+    const Json& j;
+    std::string where;
+
+    [[noreturn]] void fail(const std::string& what) const {
+        throwUserError("report.json: " + (where.empty() ? std::string("the document") : where) + ": " + what);
+    }
+    std::string child(const std::string& key) const { return where.empty() ? key : where + "." + key; }
+    bool has(const char* key) const { return j.is_object() && j.contains(key); }
+    Node operator[](const char* key) const {
+        if (!j.is_object()) fail("expected an object");
+        const auto it = j.find(key);
+        if (it == j.end()) fail("missing field \"" + std::string(key) + "\"");
+        return {*it, child(key)};
+    }
+    Node at(size_t i) const { return {j[i], where + "[" + std::to_string(i) + "]"}; }
+    const Json& array() const {
+        if (!j.is_array()) fail("expected an array");
+        return j;
+    }
+    void object() const {
+        if (!j.is_object()) fail("expected an object");
+    }
+    std::string str() const {
+        if (!j.is_string()) fail("expected a string");
+        return j.get<std::string>();
+    }
+    double num() const {
+        if (j.is_number()) return j.get<double>();
+        if (j.is_null()) return std::nan("");
+        if (j.is_string()) {
+            const std::string s = j.get<std::string>();
+            if (s == "inf") return INFINITY;
+            if (s == "-inf") return -INFINITY;
+        }
+        fail("expected a number (or \"inf\", \"-inf\", null)");
+    }
+    long long integer(long long lo, long long hi) const {
+        if (!j.is_number_integer()) fail("expected an integer");
+        const long long v = j.get<long long>();
+        if (v < lo || v > hi) fail("value " + std::to_string(v) + " out of range");
+        return v;
+    }
+    int i32() const { return int(integer(INT32_MIN, INT32_MAX)); }
+    std::vector<std::string> strings() const {
+        std::vector<std::string> out;
+        for (size_t i = 0; i < array().size(); ++i) out.push_back(at(i).str());
+        return out;
+    }
+};
+
+ScalarStats readStats(const Node& n) {
+    ScalarStats s;
+    s.count = size_t(n["count"].integer(0, INT64_MAX));
+    s.mean = n["mean"].num();
+    s.rms = n["rms"].num();
+    s.p99 = n["p99"].num();
+    s.max = n["max"].num();
+    return s;
+}
+
+AttributeStats readAttributeStats(const Node& n) {
+    AttributeStats a;
+    a.error = readStats(n);
+    if (n.has("rmse")) a.rmse = n["rmse"].num();
+    return a;
+}
+
+AttributeErrorTable readAttributes(const Node& n) {
+    n.object();
+    AttributeErrorTable table;
+    for (auto it = n.j.begin(); it != n.j.end(); ++it) {
+        const Node entry{it.value(), n.child(it.key())};
+        bool known = false;
+        for (ErrorAttribute a : kErrorAttributes) {
+            if (it.key() != errorAttributeName(a)) continue;
+            known = true;
+            if (entry["unit"].str() != errorAttributeUnit(a))
+                entry["unit"].fail("expected \"" + std::string(errorAttributeUnit(a)) + "\"");
+            AttributeErrors& e = table[a];
+            if (entry.has("all")) e.all = readAttributeStats(entry["all"]);
+            if (entry.has("metal")) e.metal = readAttributeStats(entry["metal"]);
+            if (entry.has("dielectric")) e.dielectric = readAttributeStats(entry["dielectric"]);
+        }
+        if (!known) entry.fail("unknown attribute");
+    }
+    return table;
+}
+
+FrameTraffic readFrame(const Node& n) {
+    FrameTraffic f;
+    f.width = uint32_t(n["width"].integer(0, UINT32_MAX));
+    f.height = uint32_t(n["height"].integer(0, UINT32_MAX));
+    f.samples = n["samples"].i32();
+    f.geometryWriteBytes = n["geometry_write_bytes"].num();
+    f.lightingReadBytes = n["lighting_read_bytes"].num();
+    f.lightBufferBytes = n["light_buffer_bytes"].num();
+    f.totalBytes = n["total_bytes"].num();
+    f.litOutputBytes = n["lit_output_bytes"].num();
+    f.onChipExternalBytes = n["on_chip_external_bytes"].num();
+    return f;  // gb_per_s_at_60fps is derived from total_bytes
+}
+
+ImageErrors readImageErrors(const Node& n) {
+    ImageErrors e;
+    e.rmseLinear = n["rmse_linear"].num();
+    e.psnrLinear = n["psnr_linear_db"].num();
+    e.rmseToneMapped = n["rmse_tonemapped"].num();
+    e.psnrToneMapped = n["psnr_tonemapped_db"].num();
+    e.maxAbs = n["max_abs"].num();
+    e.p99Abs = n["p99_abs"].num();
+    e.flipMean = n["flip_mean"].num();
+    e.flipMedian = n["flip_median"].num();
+    return e;
+}
+
+RunImages readImages(const Node& n) {
+    RunImages images;
+    images.render = n["render"].str();
+    images.errorHeatmap = n["error_heatmap"].str();
+    images.flip = n["flip"].str();
+    images.normalError = n["normal_error"].str();
+    images.difference = n["difference"].str();
+    images.errorsExr = n["errors_exr"].str();
+    const Node crops = n["crops"];
+    for (size_t i = 0; i < crops.array().size(); ++i) {
+        const Node c = crops.at(i);
+        images.crops.push_back({c["x"].i32(), c["y"].i32(), c["w"].i32(), c["h"].i32(), c["reference"].str(),
+                                c["layout"].str(), c["heat"].str()});
+    }
+    return images;
+}
+
+RunReport readRun(const Node& n) {
+    RunReport r;
+    r.layout = n["layout"].str();
+    r.title = n["title"].str();
+    r.source = n["source"].str();
+    r.pipeline = n["pipeline"].str();
+    r.iblMode = n["ibl_mode"].str();
+    const std::string status = n["status"].str();
+    if (status == "ok") r.status = RunStatus::Ok;
+    else if (status == "failed") r.status = RunStatus::Failed;
+    else n["status"].fail("expected \"ok\" or \"failed\", not \"" + status + "\"");
+    r.error = n["error"].str();
+    const Node bpp = n["bytes_per_pixel"];
+    r.bytesPerPixel = {bpp["targets"].i32(), bpp["depth"].i32(), bpp["light_buffers"].i32(), bpp["total"].i32()};
+    const Node frames = n["bandwidth"];
+    for (size_t i = 0; i < frames.array().size(); ++i) r.bandwidth.push_back(readFrame(frames.at(i)));
+    r.attributes = readAttributes(n["attribute_errors"]);
+    if (n.has("image_errors")) r.image = readImageErrors(n["image_errors"]);
+    if (n.has("pass_times_ms")) {
+        const Node t = n["pass_times_ms"];
+        r.times = PassTimes{t["gbuffer"].num(), t["lighting"].num(), t["device"].str()};
+    }
+    r.images = readImages(n["images"]);
+    return r;
+}
+
+}  // namespace
+
+Json reportToJson(const ReportModel& model) {
+    const ReportRunInfo& run = model.run;
+    Json references = Json::array();
+    for (const ReferenceImage& image : model.reference.images)
+        references.push_back(Json{{"ibl_mode", image.iblMode}, {"render", image.render}});
+    Json runs = Json::array();
+    for (const RunReport& r : model.runs) runs.push_back(runJson(r));
+    return Json{{"schema", "gbufferlab-report"},
+                {"schema_version", kReportSchemaVersion},
+                {"run", Json{{"scene", run.scene},
+                             {"environment", run.environment},
+                             {"width", run.width},
+                             {"height", run.height},
+                             {"device", Json{{"name", run.device.name},
+                                             {"driver", run.device.driver},
+                                             {"type", run.device.type}}},
+                             {"date", run.date},
+                             {"command_line", run.commandLine},
+                             {"ibl_modes", run.iblModes},
+                             {"notes", run.notes}}},
+                {"reference", Json{{"layout", model.reference.layout}, {"images", std::move(references)}}},
+                {"runs", std::move(runs)}};
+}
+
+ReportModel reportFromJson(const Json& json) {
+    const Node root{json, ""};
+    if (root["schema"].str() != "gbufferlab-report") root["schema"].fail("expected \"gbufferlab-report\"");
+    const int version = root["schema_version"].i32();
+    if (version != kReportSchemaVersion)
+        root["schema_version"].fail("version " + std::to_string(version) + "; this gbufferlab reads version " +
+                                    std::to_string(kReportSchemaVersion));
+    ReportModel model;
+    const Node run = root["run"];
+    model.run.scene = run["scene"].str();
+    model.run.environment = run["environment"].str();
+    model.run.width = run["width"].i32();
+    model.run.height = run["height"].i32();
+    const Node device = run["device"];
+    model.run.device = {device["name"].str(), device["driver"].str(), device["type"].str()};
+    model.run.date = run["date"].str();
+    model.run.commandLine = run["command_line"].str();
+    model.run.iblModes = run["ibl_modes"].strings();
+    model.run.notes = run["notes"].strings();
+    const Node reference = root["reference"];
+    model.reference.layout = reference["layout"].str();
+    const Node images = reference["images"];
+    for (size_t i = 0; i < images.array().size(); ++i)
+        model.reference.images.push_back({images.at(i)["ibl_mode"].str(), images.at(i)["render"].str()});
+    const Node runs = root["runs"];
+    for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
+    return model;
+}
+
+void to_json(Json& json, const ReportModel& model) { json = reportToJson(model); }
+void from_json(const Json& json, ReportModel& model) { model = reportFromJson(json); }
+
+void writeReportJson(const std::filesystem::path& path, const ReportModel& model) {
+    // Invalid UTF-8 (say, in a driver's error text) is replaced, not a reason to lose the report.
+    writeFileAtomic(path, reportToJson(model).dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
+}
+
+ReportModel readReportJson(const std::filesystem::path& path) {
+    const std::string text = readTextFile(path);
+    Json json;
+    try {
+        json = Json::parse(text);
+    } catch (const nlohmann::json::exception& e) {
+        throwUserError(path.string() + ": not valid JSON: " + e.what());
+    }
+    try {
+        return reportFromJson(json);
+    } catch (const UserError& e) {
+        std::string message = e.what();
+        const std::string prefix = "report.json: ";
+        if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
+        throwUserError(path.string() + ": " + message);
+    }
+}
+
+}  // namespace gbl

@@ -1,0 +1,181 @@
+#pragma once
+// What a comparison report holds: the data behind report.html, report.json and report.csv.
+// Plain structs, filled by the compare command; docs/report-schema.md documents each field as it
+// appears in report.json (units and meaning). Image paths are relative to the report directory
+// ("" = not written). Error statistics reuse the metrics module's ScalarStats (count, mean, rms,
+// nearest-rank p99, max) and the bandwidth module's FrameTraffic.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bandwidth.h"
+#include "metrics.h"
+
+namespace gbl {
+
+struct ReportDevice {
+    std::string name;    // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string driver;  // driver name and version
+    std::string type;    // "cpu", "discrete-gpu", "integrated-gpu", ...
+};
+
+struct ReportRunInfo {
+    std::string scene;        // scene file, or the built-in scene's name
+    std::string environment;  // environment map file, or "built-in procedural sky"
+    int width = 0, height = 0;
+    ReportDevice device;
+    std::string date;         // when the comparison ran, ISO 8601 (e.g. 2024-05-01T12:00:00Z)
+    std::string commandLine;  // the gbufferlab command line, as typed
+    std::vector<std::string> iblModes;
+    std::vector<std::string> notes;  // free-form remarks (e.g. "12 ringing texels clamped to 0")
+};
+
+struct ReferenceImage {
+    std::string iblMode;
+    std::string render;  // render.png of the reference under this IBL mode
+};
+
+struct ReportReference {
+    std::string layout;                 // the float reference layout's name
+    std::vector<ReferenceImage> images;  // one per IBL mode
+    const ReferenceImage* find(const std::string& iblMode) const {
+        for (const ReferenceImage& image : images)
+            if (image.iblMode == iblMode) return &image;
+        return nullptr;
+    }
+};
+
+enum class RunStatus : uint8_t { Ok, Failed };
+inline const char* runStatusName(RunStatus s) { return s == RunStatus::Ok ? "ok" : "failed"; }
+
+struct BytesPerPixel {
+    int targets = 0;       // G-buffer colour targets
+    int depth = 0;         // depth-stencil attachment
+    int lightBuffers = 0;  // deferred lighting's light buffers (0 for deferred shading)
+    int total = 0;         // targets + depth + lightBuffers: the table's "bytes/pixel"
+};
+// Fills all four from computeBandwidth's result (total as stated above).
+inline BytesPerPixel bytesPerPixelOf(const BandwidthReport& bandwidth) {
+    return {bandwidth.targetBytesPerPixel, bandwidth.depthBytesPerPixel, bandwidth.lightBufferBytesPerPixel,
+            bandwidth.targetBytesPerPixel + bandwidth.depthBytesPerPixel + bandwidth.lightBufferBytesPerPixel};
+}
+
+// The G-buffer attributes whose error is measured, in report order.
+enum class ErrorAttribute : uint8_t { Normal, BaseColor, DiffuseColor, SpecularColor, Roughness, Metallic, Depth };
+constexpr size_t kErrorAttributeCount = 7;
+constexpr std::array<ErrorAttribute, kErrorAttributeCount> kErrorAttributes = {
+    ErrorAttribute::Normal,        ErrorAttribute::BaseColor, ErrorAttribute::DiffuseColor,
+    ErrorAttribute::SpecularColor, ErrorAttribute::Roughness, ErrorAttribute::Metallic,
+    ErrorAttribute::Depth};
+// "normal", "base_color", ... (the JSON / CSV keys)
+inline const char* errorAttributeName(ErrorAttribute a) {
+    constexpr const char* kNames[] = {"normal",    "base_color", "diffuse_color", "specular_color",
+                                      "roughness", "metallic",   "depth"};
+    return kNames[size_t(a)];
+}
+// "degrees" (angle), "delta_e_2000" (CIEDE2000), "absolute" (|test - reference|),
+// "relative" (|test - reference| / reference)
+inline const char* errorAttributeUnit(ErrorAttribute a) {
+    switch (a) {
+        case ErrorAttribute::Normal: return "degrees";
+        case ErrorAttribute::BaseColor:
+        case ErrorAttribute::DiffuseColor:
+        case ErrorAttribute::SpecularColor: return "delta_e_2000";
+        case ErrorAttribute::Depth: return "relative";
+        default: return "absolute";
+    }
+}
+// Base / diffuse / specular colour: measured in CIEDE2000, with an RMSE of linear RGB too.
+inline bool errorAttributeIsColor(ErrorAttribute a) {
+    return a == ErrorAttribute::BaseColor || a == ErrorAttribute::DiffuseColor || a == ErrorAttribute::SpecularColor;
+}
+
+// Errors of one attribute over one set of pixels.
+struct AttributeStats {
+    ScalarStats error;          // in errorAttributeUnit: angle, CIEDE2000, |difference|, |d|/reference
+    std::optional<double> rmse;  // colours only: RMSE of the linear RGB values (pooled over channels)
+};
+
+// One attribute, over all covered pixels and per material class; absent when not applicable
+// (the attribute is not measured, or no pixel of that class is covered).
+struct AttributeErrors {
+    std::optional<AttributeStats> all;
+    std::optional<AttributeStats> metal;       // pixels of metal materials (as the compare command classes them)
+    std::optional<AttributeStats> dielectric;  // pixels of dielectric (non-metal) materials
+    bool empty() const { return !all && !metal && !dielectric; }
+};
+
+struct AttributeErrorTable {
+    std::array<AttributeErrors, kErrorAttributeCount> byAttribute{};
+    AttributeErrors& operator[](ErrorAttribute a) { return byAttribute[size_t(a)]; }
+    const AttributeErrors& operator[](ErrorAttribute a) const { return byAttribute[size_t(a)]; }
+};
+
+// Errors of the lit image against the reference render.
+struct ImageErrors {
+    double rmseLinear = 0.0;      // linear HDR radiance, pooled over RGB
+    double psnrLinear = std::numeric_limits<double>::infinity();      // dB, peak = reference maximum; +inf = identical
+    double rmseToneMapped = 0.0;  // tone-mapped, sRGB-encoded [0,1]
+    double psnrToneMapped = std::numeric_limits<double>::infinity();  // dB, peak 1; +inf = identical
+    double maxAbs = 0.0;          // largest |test - reference|, linear HDR
+    double p99Abs = 0.0;          // nearest-rank 0.99 of |test - reference|, linear HDR
+    double flipMean = 0.0;        // LDR-FLIP, 0 (same) .. 1
+    double flipMedian = 0.0;
+};
+
+struct PassTimes {
+    double gbufferMs = 0.0;   // geometry (G-buffer) pass
+    double lightingMs = 0.0;  // lighting pass
+    std::string device;       // the device they were measured on
+};
+
+struct ReportCrop {
+    int x = 0, y = 0, w = 0, h = 0;  // pixels in the render
+    std::string reference, layout, heat;  // PNG crops: reference render, this layout's render, heat map
+};
+
+struct RunImages {
+    std::string render;        // render.png (tone-mapped)
+    std::string errorHeatmap;  // error_heatmap.png
+    std::string flip;          // flip.png
+    std::string normalError;   // normal_error.png
+    std::string difference;    // difference.png (amplified)
+    std::string errorsExr;     // errors.exr (per-pixel errors, float)
+    std::vector<ReportCrop> crops;
+};
+
+// One layout rendered under one IBL mode.
+struct RunReport {
+    std::string layout;    // name
+    std::string title;
+    std::string source;    // citation text (Source::text())
+    std::string pipeline;  // "deferred-shading" / "deferred-lighting"
+    std::string iblMode;
+    RunStatus status = RunStatus::Ok;
+    std::string error;     // why it failed ("" when ok)
+    BytesPerPixel bytesPerPixel;
+    std::vector<FrameTraffic> bandwidth;  // one per (resolution, MSAA samples)
+    AttributeErrorTable attributes;
+    std::optional<ImageErrors> image;  // absent when the run failed before measuring
+    std::optional<PassTimes> times;    // absent when not measured
+    RunImages images;
+
+    // The 1920x1080, 1-sample frame's traffic at 60 fps in GB/s; nullopt when not in `bandwidth`.
+    std::optional<double> gigabytesPerSecond1080p60() const {
+        for (const FrameTraffic& frame : bandwidth)
+            if (frame.width == 1920 && frame.height == 1080 && frame.samples == 1) return frame.gigabytesPerSecond(60.0);
+        return std::nullopt;
+    }
+};
+
+struct ReportModel {
+    ReportRunInfo run;
+    ReportReference reference;
+    std::vector<RunReport> runs;
+};
+
+}  // namespace gbl
