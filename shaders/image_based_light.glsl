@@ -1,9 +1,104 @@
-// Image-based lighting, included by the lighting pass after sampleEnvironment() is defined.
-// Placeholder until the IBL issue lands: no environment light on surfaces, so the backbone
-// renders direct light only. Keep this the single place where IBL enters the lighting pass.
+// Image-based lighting, included by the lighting pass after sampleEnvironment() and the IBL
+// bindings (environmentCube, prefilteredCube, brdfLut, frame) are declared. The single place
+// where IBL enters the lighting pass. Specular mode = frame.environment.z (IblMode in
+// src/ibl_precompute.h); diffuse (SH9 irradiance, Lambert) for every mode when frame.environment.w.
+//
+//   0 ground-truth      [Karis13 SpecularIBL]: specularIBLGroundTruth, frame.ibl.x samples per
+//                       pixel of environment-cube mip 0 (exact Schlick, Smith-Schlick k = alpha/2).
+//   1 split-sum-shader  both sums in the shader, per pixel with the real N and V (no n = v = r):
+//                       (sum L(l) NoL / sum NoL) * (f0 A + B), A, B = integrateBRDF(roughness, NoV),
+//                       frame.ibl.x samples each -- row (b) of the seed's figure.
+//   2 split-sum         pre-filtered cube at mipFromRoughness + LUT, UE4's shipping
+//                       EnvBRDF (f0 A + saturate(50 f0.g) B, the 2% rule) -- row (c).
+//   3 envbrdf-approx    pre-filtered cube * UE4 mobile EnvBRDFApprox. Rules: roughness >= 0.999
+//                       takes the fully-rough shortcut (diffuse += 0.45 f0, no specular);
+//                       otherwise an F0 that is grey and within 0.002 of 0.04 in every channel
+//                       (UE4's default dielectric, the only F0 EnvBRDFApproxNonmetal is a fit for)
+//                       uses EnvBRDFApproxNonmetal; everything else the general EnvBRDFApprox.
+//                       The rule reads F0 only, so it works for layouts that do not store metallic.
+//   4 bo2               pre-filtered cube * Black Ops 2 EnvironmentBRDF(glossFromRoughness(r)).
 #ifndef GBL_IMAGE_BASED_LIGHT_GLSL
 #define GBL_IMAGE_BASED_LIGHT_GLSL
-vec3 evaluateImageBasedLight(Surface s, vec3 N, vec3 V) {
-    return vec3(0.0);
+
+#define GBL_IBL_GROUND_TRUTH 0
+#define GBL_IBL_SPLIT_SUM_SHADER 1
+#define GBL_IBL_SPLIT_SUM 2
+#define GBL_IBL_ENVBRDF_APPROX 3
+#define GBL_IBL_BO2 4
+
+vec3 sampleEnvironmentLod(vec3 dir, float lod) {
+    return textureLod(environmentCube, dir, lod).rgb * frame.environment.x;
 }
+#define GBL_IBL_HAS_ENVIRONMENT
+#include "ibl.glsl"
+
+// E(n) from the SH9 coefficients (cosine convolution folded in), clamped at 0 against ringing.
+vec3 irradianceFromSh(vec3 n) {
+    vec3 e = frame.irradianceSh[0].rgb * 0.282095;
+    e += frame.irradianceSh[1].rgb * (0.488603 * n.y);
+    e += frame.irradianceSh[2].rgb * (0.488603 * n.z);
+    e += frame.irradianceSh[3].rgb * (0.488603 * n.x);
+    e += frame.irradianceSh[4].rgb * (1.092548 * n.x * n.y);
+    e += frame.irradianceSh[5].rgb * (1.092548 * n.y * n.z);
+    e += frame.irradianceSh[6].rgb * (0.315392 * (3.0 * n.z * n.z - 1.0));
+    e += frame.irradianceSh[7].rgb * (1.092548 * n.x * n.z);
+    e += frame.irradianceSh[8].rgb * (0.546274 * (n.x * n.x - n.y * n.y));
+    return max(e, vec3(0.0)) * frame.environment.x;
+}
+
+vec3 prefilteredRadiance(vec3 R, float roughness) {
+    float lod = mipFromRoughness(roughness, frame.environment.y);
+    return textureLod(prefilteredCube, R, lod).rgb * frame.environment.x;
+}
+
+// The first split sum evaluated per pixel: GGX-importance-sampled radiance around the real N
+// and V, weighted by NoL (PrefilterEnvMap without n = v = r).
+vec3 prefilteredRadianceInShader(vec3 N, vec3 V, float roughness, uint numSamples) {
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (uint i = 0u; i < numSamples; i++) {
+        vec3 H = importanceSampleGGX(hammersley(i, numSamples), roughness, N);
+        vec3 L = 2.0 * dot(V, H) * H - V;
+        float NoL = clamp(dot(N, L), 0.0, 1.0);
+        if (NoL > 0.0) {
+            sum += sampleEnvironmentLod(L, 0.0) * NoL;
+            weight += NoL;
+        }
+    }
+    return weight > 0.0 ? sum / weight : vec3(0.0);
+}
+
+vec3 evaluateImageBasedLight(Surface s, vec3 N, vec3 V) {
+    int mode = int(frame.environment.z);
+    uint samples = uint(frame.ibl.x);
+    float roughness = clamp(s.roughness, 0.0, 1.0);
+    float NoV = max(clamp(dot(N, V), 0.0, 1.0), kMinIblNoV);
+    vec3 R = reflect(-V, N);
+    vec3 diffuseColor = s.diffuseColor;
+    vec3 specularColor = s.specularColor;
+    vec3 specular = vec3(0.0);
+    if (mode == GBL_IBL_GROUND_TRUTH) {
+        specular = specularIBLGroundTruth(specularColor, roughness, N, V, samples);
+    } else if (mode == GBL_IBL_SPLIT_SUM_SHADER) {
+        vec2 AB = integrateBRDF(roughness, NoV, samples);
+        specular = prefilteredRadianceInShader(N, V, roughness, samples) * (specularColor * AB.x + AB.y);
+    } else if (mode == GBL_IBL_SPLIT_SUM) {
+        vec2 AB = texture(brdfLut, vec2(NoV, roughness)).rg;
+        specular = prefilteredRadiance(R, roughness) * envBRDF(specularColor, AB);
+    } else if (mode == GBL_IBL_ENVBRDF_APPROX) {
+        if (roughness >= 0.999) {
+            envBRDFApproxFullyRough(diffuseColor, specularColor);
+        } else {
+            bool nonmetal = all(lessThanEqual(abs(specularColor - vec3(0.04)), vec3(0.002)));
+            vec3 brdf = nonmetal ? vec3(envBRDFApproxNonmetal(roughness, NoV))
+                                 : envBRDFApprox(specularColor, roughness, NoV);
+            specular = prefilteredRadiance(R, roughness) * brdf;
+        }
+    } else {
+        specular = prefilteredRadiance(R, roughness) * environmentBRDF(glossFromRoughness(roughness), NoV, specularColor);
+    }
+    vec3 diffuse = frame.environment.w > 0.5 ? diffuseColor * (1.0 / kPi) * irradianceFromSh(N) : vec3(0.0);
+    return diffuse + specular;
+}
+
 #endif

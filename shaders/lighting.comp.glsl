@@ -17,6 +17,9 @@ layout(set = 0, binding = 1) readonly buffer Lights { GpuLight lights[]; };
 layout(set = 0, binding = 2) uniform sampler2D depthTexture;
 layout(set = 0, binding = 3) uniform sampler2D environmentEquirect;
 layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D hdrOutput;
+layout(set = 0, binding = 5) uniform samplerCube environmentCube;  // box-filtered mips (ground truth: mip 0)
+layout(set = 0, binding = 6) uniform samplerCube prefilteredCube;  // roughness = mip / (mips - 1)
+layout(set = 0, binding = 7) uniform sampler2D brdfLut;            // (A, B) at uv = (NoV, roughness)
 
 vec3 sampleEnvironment(vec3 direction) {
     return textureLod(environmentEquirect, directionToEquirectUv(direction), 0.0).rgb * frame.environment.x;

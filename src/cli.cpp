@@ -24,6 +24,7 @@ const std::vector<std::pair<std::string, Command>>& commands() {
         {"render", {"render a scene through the float reference G-buffer (EXR + PNG)", runRenderCommand}},
         {"layouts", {"check, list and show G-buffer layout files (layouts/*.toml)", runLayoutsCliCommand}},
         {"encodings", {"measure what each encoding loses on its own (mean / p99 / max error)", runEncodingsCommand}},
+        {"ibl", {"pre-compute the image-based light of an environment (cube mips, BRDF LUT)", runIblCommand}},
         {"devices", {"list the Vulkan devices gbufferlab can use (--device)", runDevicesCommand}},
     };
     return list;

@@ -9,5 +9,6 @@ int runRenderCommand(const std::vector<std::string>& args);
 int runDevicesCommand(const std::vector<std::string>& args);
 int runEncodingsCommand(const std::vector<std::string>& args);
 int runLayoutsCliCommand(const std::vector<std::string>& args);
+int runIblCommand(const std::vector<std::string>& args);
 
 }  // namespace gbl

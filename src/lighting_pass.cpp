@@ -23,6 +23,9 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+        {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
     };
     std::vector<Binding> set1;
     for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
@@ -42,7 +45,13 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         .image(pass.sets[0], 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.environment->view,
                in.environmentSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
         .image(pass.sets[0], 4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pass.hdr.view, VK_NULL_HANDLE,
-               VK_IMAGE_LAYOUT_GENERAL);
+               VK_IMAGE_LAYOUT_GENERAL)
+        .image(pass.sets[0], 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.ibl->environmentCube.view,
+               in.ibl->cubeSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .image(pass.sets[0], 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.ibl->prefiltered.view,
+               in.ibl->cubeSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .image(pass.sets[0], 7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.ibl->brdfLut.view, in.ibl->lutSampler,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
         writer.image(pass.sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.gbuffer->targets[i].view,
                      in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

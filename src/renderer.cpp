@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "error.h"
+#include "ibl_cache.h"
 #include "renderer_passes.h"
 
 namespace gbl {
@@ -44,7 +45,18 @@ CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool re
 
 Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment)
     : ctx_(ctx), scene_(scene) {
-    gpuScene_ = uploadScene(ctx, scene);
+    init(environment, loadOrComputeIbl(ctx, environment, IblSettings{}));
+}
+
+Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment,
+                   const IblMaps& ibl)
+    : ctx_(ctx), scene_(scene) {
+    init(environment, ibl);
+}
+
+void Renderer::init(const EnvironmentMap& environment, const IblMaps& ibl) {
+    ibl_ = createIblGpu(ctx_, environment, ibl);
+    gpuScene_ = uploadScene(ctx_, scene_);
     const Image& env = environment.image;
     std::vector<float> rgba(size_t(env.width) * env.height * 4, 1.0f);
     for (size_t i = 0; i < env.pixelCount(); ++i)
@@ -54,12 +66,12 @@ Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const Environme
     d.width = uint32_t(env.width);
     d.height = uint32_t(env.height);
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    environmentTexture_ = createImage(ctx, d);
-    uploadImage(ctx, environmentTexture_, rgba.data(), rgba.size() * sizeof(float),
+    environmentTexture_ = createImage(ctx_, d);
+    uploadImage(ctx_, environmentTexture_, rgba.data(), rgba.size() * sizeof(float),
                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false);
-    environmentSampler_ = createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST,
+    environmentSampler_ = createSampler(ctx_, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                         VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    nearestSampler_ = createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST,
+    nearestSampler_ = createSampler(ctx_, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                     VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
 }
 
@@ -67,6 +79,7 @@ Renderer::~Renderer() {
     vkDeviceWaitIdle(ctx_.device);
     destroyGpuScene(ctx_, gpuScene_);
     destroyImage(ctx_, environmentTexture_);
+    destroyIblGpu(ctx_, ibl_);
     vkDestroySampler(ctx_.device, environmentSampler_, nullptr);
     vkDestroySampler(ctx_.device, nearestSampler_, nullptr);
 }
@@ -82,13 +95,18 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     frame.invViewProj = cam.invViewProj;
     frame.cameraPosition = glm::vec4(scene_.camera.position, 1.0f);
     frame.extent = glm::uvec4(w, h, gpuScene_.lightCount, wiring.reversedZ ? 1u : 0u);
-    frame.environment = glm::vec4(settings.environmentIntensity, 0.0f, 0.0f, 0.0f);
+    if (settings.groundTruthSamples < 1)
+        throwUserError("--ibl-samples " + std::to_string(settings.groundTruthSamples) + ": must be at least 1");
+    frame.environment = glm::vec4(settings.environmentIntensity, float(ibl_.prefilteredMips),
+                                  float(int(settings.specularIbl)), settings.diffuseIbl ? 1.0f : 0.0f);
+    frame.ibl = glm::vec4(float(settings.groundTruthSamples), float(ibl_.sourceFaceSize), 0.0f, 0.0f);
+    for (int k = 0; k < 9; ++k) frame.irradianceSh[k] = glm::vec4(ibl_.irradianceSh[k], 0.0f);
     frame.shading = glm::vec4(float(settings.fresnelMode), wiring.reversedZ ? 0.0f : 1.0f, 0.0f, 0.0f);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
     GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h);
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
-                          nearestSampler_};
+                          nearestSampler_, &ibl_};
     LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h);
 
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};

@@ -8,6 +8,7 @@
 #include "environment_map.h"
 #include "gbuffer_wiring.h"
 #include "gpu_scene.h"
+#include "ibl_precompute.h"
 #include "image.h"
 #include "scene.h"
 
@@ -18,6 +19,12 @@ struct RenderSettings {
     uint32_t height = 720;
     int fresnelMode = 1;              // brdf.glsl FRESNEL_* (1 = Karis' exp2 form, UE4's)
     float environmentIntensity = 1.0f;
+    // Image-based light (ibl_precompute.h): the specular approximation, and the samples per pixel
+    // of the two in-shader modes (ground-truth, split-sum-shader). Diffuse IBL (SH9 irradiance)
+    // applies to every mode unless diffuseIbl is off.
+    IblMode specularIbl = IblMode::SplitSum;
+    int groundTruthSamples = 1024;  // the seed's NumSamples
+    bool diffuseIbl = true;
 };
 
 struct PassTimings {
@@ -37,7 +44,10 @@ void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t heigh
 
 class Renderer {
 public:
+    // Pre-computes the IBL of `environment` through the disk cache (ibl_cache.h, default settings).
     Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment);
+    // Uses pre-computed IBL maps (from loadOrComputeIbl / computeIblMaps of the same environment).
+    Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment, const IblMaps& ibl);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -45,14 +55,17 @@ public:
     RenderOutput render(const GBufferWiring& wiring, const RenderSettings& settings);
 
     const Scene& scene() const { return scene_; }
+    const IblGpu& ibl() const { return ibl_; }
 
 private:
+    void init(const EnvironmentMap& environment, const IblMaps& ibl);
     const VulkanContext& ctx_;
     const Scene& scene_;
     GpuScene gpuScene_;
     GpuImage environmentTexture_;
     VkSampler environmentSampler_ = VK_NULL_HANDLE;
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
+    IblGpu ibl_;
 };
 
 // Camera matrices for the frame, with Vulkan's y-down flip and optional reversed Z.

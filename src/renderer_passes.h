@@ -2,6 +2,7 @@
 // The two passes of a deferred renderer, as plain structs built for one wiring and one size.
 #include "gbuffer_wiring.h"
 #include "gpu_scene.h"
+#include "ibl_precompute.h"
 #include "shared_types.h"
 #include "vk_resources.h"
 
@@ -41,6 +42,7 @@ struct LightingInputs {
     const GpuImage* environment;
     VkSampler environmentSampler;
     VkSampler nearestSampler;
+    const IblGpu* ibl;  // environment cube, pre-filtered cube, BRDF LUT (bindings 5, 6, 7)
 };
 
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,

@@ -47,22 +47,22 @@ std::string typeName(int type) {
     }
 }
 
-std::string attributeName(AttributeKind kind) {
+std::string attributeName(GltfVertexAttribute kind) {
     switch (kind) {
-        case AttributeKind::Position: return "POSITION";
-        case AttributeKind::Normal: return "NORMAL";
-        case AttributeKind::Tangent: return "TANGENT";
-        case AttributeKind::TexCoord: return "TEXCOORD_0";
+        case GltfVertexAttribute::Position: return "POSITION";
+        case GltfVertexAttribute::Normal: return "NORMAL";
+        case GltfVertexAttribute::Tangent: return "TANGENT";
+        case GltfVertexAttribute::TexCoord: return "TEXCOORD_0";
     }
     return "?";
 }
 
-int expectedType(AttributeKind kind) {
+int expectedType(GltfVertexAttribute kind) {
     switch (kind) {
-        case AttributeKind::Position:
-        case AttributeKind::Normal: return TINYGLTF_TYPE_VEC3;
-        case AttributeKind::Tangent: return TINYGLTF_TYPE_VEC4;
-        case AttributeKind::TexCoord: return TINYGLTF_TYPE_VEC2;
+        case GltfVertexAttribute::Position:
+        case GltfVertexAttribute::Normal: return TINYGLTF_TYPE_VEC3;
+        case GltfVertexAttribute::Tangent: return TINYGLTF_TYPE_VEC4;
+        case GltfVertexAttribute::TexCoord: return TINYGLTF_TYPE_VEC2;
     }
     return -1;
 }
@@ -73,8 +73,8 @@ bool isOneOf(int value, std::initializer_list<int> allowed) {
 
 // glTF 2.0 core allows float everywhere plus normalised unsigned byte/short texcoords;
 // KHR_mesh_quantization adds the integer forms (see its README's attribute table).
-bool componentTypeAllowed(AttributeKind kind, int ct, bool normalized, bool quantized) {
-    using enum AttributeKind;
+bool componentTypeAllowed(GltfVertexAttribute kind, int ct, bool normalized, bool quantized) {
+    using enum GltfVertexAttribute;
     constexpr int B = TINYGLTF_COMPONENT_TYPE_BYTE, UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
     constexpr int S = TINYGLTF_COMPONENT_TYPE_SHORT, US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
     if (ct == TINYGLTF_COMPONENT_TYPE_FLOAT) return true;
@@ -233,12 +233,12 @@ std::vector<T> readElements(const GltfContext& ctx, const tinygltf::Accessor& ac
 
 }  // namespace
 
-int componentsOf(AttributeKind kind) {
+int componentsOf(GltfVertexAttribute kind) {
     switch (kind) {
-        case AttributeKind::Position:
-        case AttributeKind::Normal: return 3;
-        case AttributeKind::Tangent: return 4;
-        case AttributeKind::TexCoord: return 2;
+        case GltfVertexAttribute::Position:
+        case GltfVertexAttribute::Normal: return 3;
+        case GltfVertexAttribute::Tangent: return 4;
+        case GltfVertexAttribute::TexCoord: return 2;
     }
     return 0;
 }
@@ -247,7 +247,7 @@ size_t accessorCount(const GltfContext& ctx, int accessorIndex, const std::strin
     return checkedAccessor(ctx, accessorIndex, where).count;
 }
 
-std::vector<float> readAttribute(const GltfContext& ctx, int accessorIndex, AttributeKind kind,
+std::vector<float> readAttribute(const GltfContext& ctx, int accessorIndex, GltfVertexAttribute kind,
                                  const std::string& where) {
     const std::string what = where + ": " + attributeName(kind) + " accessor " + std::to_string(accessorIndex);
     const tinygltf::Accessor& acc = checkedAccessor(ctx, accessorIndex, what);

@@ -10,15 +10,15 @@
 namespace gbl {
 
 // Which vertex attribute an accessor feeds; decides the accepted type and component types.
-enum class AttributeKind { Position, Normal, Tangent, TexCoord };
+enum class GltfVertexAttribute { Position, Normal, Tangent, TexCoord };
 
 // Components per element for an attribute: 3, 3, 4, 2.
-int componentsOf(AttributeKind kind);
+int componentsOf(GltfVertexAttribute kind);
 
 // The accessor's elements as floats (count * componentsOf(kind) values), with glTF's
 // normalisation rules applied to normalised integer components and sparse substitution done.
 // `where` names the mesh and primitive for error messages.
-std::vector<float> readAttribute(const GltfContext& ctx, int accessorIndex, AttributeKind kind,
+std::vector<float> readAttribute(const GltfContext& ctx, int accessorIndex, GltfVertexAttribute kind,
                                  const std::string& where);
 
 // An index accessor (SCALAR unsigned byte/short/int) as 32-bit indices.

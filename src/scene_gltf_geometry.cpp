@@ -44,7 +44,7 @@ std::optional<PrimitiveGeometry> loadTrianglePrimitive(const GltfContext& ctx, s
     const int positionAccessor = attributeAccessor(prim, "POSITION");
     if (positionAccessor < 0) return std::nullopt;
 
-    const std::vector<float> positions = readAttribute(ctx, positionAccessor, AttributeKind::Position, where);
+    const std::vector<float> positions = readAttribute(ctx, positionAccessor, GltfVertexAttribute::Position, where);
     const size_t vertexCount = positions.size() / 3;
     if (vertexCount == 0) return std::nullopt;
     // Non-finite positions are an error, not a dropped primitive: they would poison the bounds
@@ -55,7 +55,7 @@ std::optional<PrimitiveGeometry> loadTrianglePrimitive(const GltfContext& ctx, s
                  "fix or remove the broken vertices in the source model and re-export");
 
     // Every other attribute must describe the same vertices.
-    auto readMatching = [&](const char* name, AttributeKind kind) -> std::vector<float> {
+    auto readMatching = [&](const char* name, GltfVertexAttribute kind) -> std::vector<float> {
         const int index = attributeAccessor(prim, name);
         if (index < 0) return {};
         const size_t count = accessorCount(ctx, index, where + ": " + name);
@@ -65,9 +65,9 @@ std::optional<PrimitiveGeometry> loadTrianglePrimitive(const GltfContext& ctx, s
                      "all attributes of a primitive must have the same count; re-export the file");
         return readAttribute(ctx, index, kind, where);
     };
-    const std::vector<float> normals = readMatching("NORMAL", AttributeKind::Normal);
-    const std::vector<float> tangents = readMatching("TANGENT", AttributeKind::Tangent);
-    const std::vector<float> uvs = readMatching("TEXCOORD_0", AttributeKind::TexCoord);
+    const std::vector<float> normals = readMatching("NORMAL", GltfVertexAttribute::Normal);
+    const std::vector<float> tangents = readMatching("TANGENT", GltfVertexAttribute::Tangent);
+    const std::vector<float> uvs = readMatching("TEXCOORD_0", GltfVertexAttribute::TexCoord);
     if (size_t bad = 0; !allFinite(uvs, bad))
         ctx.fail(where + ": TEXCOORD_0 accessor " + std::to_string(attributeAccessor(prim, "TEXCOORD_0")),
                  "vertex " + std::to_string(bad / 2) + " has a non-finite texture coordinate",

@@ -1,0 +1,51 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Decodes the layout's G-buffer with its generated readGBuffer() -- exactly what the lighting
+// pass sees -- and writes every Surface attribute as floats, so attribute errors can be measured
+// against the reference layout's decode.
+#include "shared_types.h"
+#include "surface.glsl"
+#define GBUFFER_READ 1
+#include "gbuffer_wiring.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0) uniform Frame { FrameConstants frame; };
+layout(set = 0, binding = 1) uniform sampler2D depthTexture;
+
+struct DecodedPixel {
+    vec4 normalRoughness;      // xyz normal, w roughness
+    vec4 baseColorMetallic;    // rgb base colour, a metallic
+    vec4 diffuseOcclusion;     // rgb diffuse colour, a occlusion
+    vec4 specularColorSpecular;  // rgb F0, a UE4 scalar specular
+    vec4 emissiveViewDepth;    // rgb emissive, a view depth (0 where uncovered)
+};
+layout(set = 0, binding = 2, std430) writeonly buffer Decoded { DecodedPixel decoded[]; };
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.extent.xy)))) return;
+    uint index = uint(pixel.y) * frame.extent.x + uint(pixel.x);
+    float depth = texelFetch(depthTexture, pixel, 0).r;
+    DecodedPixel d;
+    if (depth == frame.shading.y) {
+        d.normalRoughness = vec4(0.0);
+        d.baseColorMetallic = vec4(0.0);
+        d.diffuseOcclusion = vec4(0.0);
+        d.specularColorSpecular = vec4(0.0);
+        d.emissiveViewDepth = vec4(0.0);
+        decoded[index] = d;
+        return;
+    }
+    Surface s = readGBuffer(pixel);
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0;
+    vec4 world = frame.invViewProj * vec4(ndc, depth, 1.0);
+    vec3 position = world.xyz / world.w;
+    float viewDepth = -(frame.view * vec4(position, 1.0)).z;
+    d.normalRoughness = vec4(s.normal, s.roughness);
+    d.baseColorMetallic = vec4(s.baseColor, s.metallic);
+    d.diffuseOcclusion = vec4(s.diffuseColor, s.occlusion);
+    d.specularColorSpecular = vec4(s.specularColor, s.specular);
+    d.emissiveViewDepth = vec4(s.emissive, viewDepth);
+    decoded[index] = d;
+}

@@ -1,0 +1,97 @@
+#include "decode_pass.h"
+
+#include <cstring>
+
+#include "shader_compiler.h"
+#include "vk_pipeline.h"
+
+namespace gbl {
+
+namespace {
+constexpr int kFloatsPerPixel = 20;  // five vec4, see DecodedPixel in decode_surface.comp.glsl
+}
+
+SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
+                             const Buffer& frameConstants, VkSampler nearestSampler,
+                             const std::vector<float>& depthValues) {
+    const uint32_t w = gbuffer.depth.extent.width, h = gbuffer.depth.extent.height;
+    const size_t pixels = size_t(w) * h;
+    Buffer output = createBuffer(ctx, pixels * kFloatsPerPixel * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+
+    const std::vector<Binding> set0 = {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    };
+    std::vector<Binding> set1;
+    for (uint32_t i = 0; i < gbuffer.targets.size(); ++i) set1.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    VkDescriptorSetLayout layouts[2] = {createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT),
+                                        createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT)};
+    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, {layouts[0], layouts[1]}, 0, 0);
+    VkDescriptorPool pool = createPoolFor(ctx.device, {set0, set1});
+    VkDescriptorSet sets[2] = {allocateSet(ctx.device, pool, layouts[0]), allocateSet(ctx.device, pool, layouts[1])};
+    DescriptorWriter writer;
+    writer.buffer(sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
+        .image(sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
+               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+        .buffer(sets[0], 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output.buffer);
+    for (uint32_t i = 0; i < gbuffer.targets.size(); ++i)
+        writer.image(sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.targets[i].view, nearestSampler,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    writer.flush(ctx.device);
+
+    ShaderSource cs = loadShaderFile("decode_surface.comp.glsl");
+    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    cs.name = "decode_surface.comp.glsl (layout " + wiring.layoutName + ")";
+    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
+    VkPipeline pipeline = createComputePipeline(ctx.device, pipelineLayout, module);
+    vkDestroyShaderModule(ctx.device, module, nullptr);
+
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, 2, sets, 0, nullptr);
+        vkCmdDispatch(cmd, (w + 7) / 8, (h + 7) / 8, 1);
+        fullBarrier(cmd);
+    });
+
+    SurfaceImages s;
+    const int iw = int(w), ih = int(h);
+    s.normal = Image(iw, ih, 3);
+    s.baseColor = Image(iw, ih, 3);
+    s.diffuseColor = Image(iw, ih, 3);
+    s.specularColor = Image(iw, ih, 3);
+    s.emissive = Image(iw, ih, 3);
+    s.roughness = Image(iw, ih, 1);
+    s.metallic = Image(iw, ih, 1);
+    s.occlusion = Image(iw, ih, 1);
+    s.viewDepth = Image(iw, ih, 1);
+    s.depth = Image(iw, ih, 1);
+    s.coverage.assign(pixels, 0);
+    const float* src = static_cast<const float*>(output.mapped);
+    const float clearDepth = gbuffer.clearDepth;
+    for (size_t i = 0; i < pixels; ++i) {
+        const float* p = src + i * kFloatsPerPixel;
+        for (int c = 0; c < 3; ++c) {
+            s.normal.pixels[i * 3 + c] = p[0 + c];
+            s.baseColor.pixels[i * 3 + c] = p[4 + c];
+            s.diffuseColor.pixels[i * 3 + c] = p[8 + c];
+            s.specularColor.pixels[i * 3 + c] = p[12 + c];
+            s.emissive.pixels[i * 3 + c] = p[16 + c];
+        }
+        s.roughness.pixels[i] = p[3];
+        s.metallic.pixels[i] = p[7];
+        s.occlusion.pixels[i] = p[11];
+        s.viewDepth.pixels[i] = p[19];
+        s.depth.pixels[i] = depthValues[i];
+        s.coverage[i] = depthValues[i] != clearDepth;
+    }
+
+    destroyBuffer(ctx, output);
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
+    vkDestroyPipelineLayout(ctx.device, pipelineLayout, nullptr);
+    for (auto l : layouts) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
+    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
+    return s;
+}
+
+}  // namespace gbl

@@ -1,0 +1,17 @@
+#pragma once
+// The decode pass: runs a layout's readGBuffer() over every pixel and reads the Surface back as
+// SurfaceImages (see shaders/decode_surface.comp.glsl).
+#include "gbuffer_wiring.h"
+#include "renderer_passes.h"
+#include "surface_images.h"
+
+namespace gbl {
+
+// Decodes the G-buffer `gbuffer` (targets in SHADER_READ_ONLY_OPTIMAL, depth in
+// DEPTH_STENCIL_READ_ONLY_OPTIMAL) written with `wiring`. `depthValues` are the depth buffer's
+// values, already read back (they go into SurfaceImages::depth).
+SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
+                             const Buffer& frameConstants, VkSampler nearestSampler,
+                             const std::vector<float>& depthValues);
+
+}  // namespace gbl

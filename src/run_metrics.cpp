@@ -1,0 +1,301 @@
+#include "run_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "color_difference.h"
+#include "error.h"
+#include "flip.h"
+#include "tone_map.h"
+
+namespace gbl {
+namespace {
+
+void checkSize(const Image& image, int width, int height, const char* what) {
+    if (image.empty()) return;
+    if (image.width != width || image.height != height || image.channels < 1 ||
+        image.pixels.size() != image.pixelCount() * size_t(image.channels))
+        throwUserError(std::string("compare: ") + what + " is " + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + " but the render is " + std::to_string(width) + "x" +
+                       std::to_string(height) + "; every image of a run must have the render's size");
+}
+
+void checkSurface(const SurfaceImages& s, int width, int height, const char* side) {
+    const std::string prefix(side);
+    const std::pair<const Image*, const char*> images[] = {
+        {&s.normal, "normal"},       {&s.baseColor, "base colour"}, {&s.diffuseColor, "diffuse colour"},
+        {&s.specularColor, "specular colour"}, {&s.roughness, "roughness"}, {&s.metallic, "metallic"},
+        {&s.occlusion, "occlusion"}, {&s.emissive, "emissive"},     {&s.depth, "depth"},
+        {&s.viewDepth, "view depth"}};
+    for (const auto& [image, name] : images) checkSize(*image, width, height, (prefix + " " + name).c_str());
+    if (s.coverage.size() != size_t(width) * size_t(height))
+        throwUserError("compare: the " + prefix + " coverage mask has " + std::to_string(s.coverage.size()) +
+                       " entries for " + std::to_string(size_t(width) * size_t(height)) +
+                       " pixels; give one byte per pixel");
+}
+
+bool usable(const Image& a, const Image& b, int channels, const char* what) {
+    if (a.empty() || b.empty()) return false;
+    if (a.channels < channels || b.channels < channels)
+        throwUserError(std::string("compare: ") + what + " needs " + std::to_string(channels) +
+                       " channels but the images have " + std::to_string(a.channels) + " and " +
+                       std::to_string(b.channels));
+    return true;
+}
+
+// Per-class sample pools of one attribute.
+struct Pools {
+    std::vector<double> all, metal, dielectric;
+    double sqAll = 0.0, sqMetal = 0.0, sqDielectric = 0.0;  // colour: summed squared RGB error
+    size_t skipped = 0;
+};
+
+ClassStats finish(std::vector<double>& samples, double sq, bool color) {
+    ClassStats out;
+    const size_t n = samples.size();
+    out.error = summarize(samples);
+    if (color && n > 0) out.rmse = std::sqrt(sq / (3.0 * double(n)));
+    std::vector<double>().swap(samples);
+    return out;
+}
+
+AttributeMetrics finish(Pools& p, bool color) {
+    AttributeMetrics m;
+    m.all = finish(p.all, p.sqAll, color);
+    m.metal = finish(p.metal, p.sqMetal, color);
+    m.dielectric = finish(p.dielectric, p.sqDielectric, color);
+    m.skipped = p.skipped;
+    return m;
+}
+
+// Runs errorAt(i, ok, sq) for every measured pixel, pools the results by class and writes the
+// per-pixel value into `map` (0 where not measured). sq: summed squared channel error (colours).
+template <class ErrorAt>
+AttributeMetrics measure(const Mask& measured, const Mask& metal, size_t metalCount, Image* map, bool color,
+                         ErrorAt&& errorAt) {
+    Pools p;
+    const size_t n = measured.size();
+    size_t both = 0;
+    for (uint8_t m : measured) both += m ? 1 : 0;
+    p.all.reserve(both);
+    p.metal.reserve(metalCount);
+    p.dielectric.reserve(both - metalCount);
+    for (size_t i = 0; i < n; ++i) {
+        if (!measured[i]) continue;
+        bool ok = true;
+        double sq = 0.0;
+        const double e = errorAt(i, ok, sq);
+        if (!ok) {
+            ++p.skipped;
+            continue;
+        }
+        if (map) map->pixels[i] = float(e);
+        p.all.push_back(e);
+        p.sqAll += sq;
+        if (metal[i]) {
+            p.metal.push_back(e);
+            p.sqMetal += sq;
+        } else {
+            p.dielectric.push_back(e);
+            p.sqDielectric += sq;
+        }
+    }
+    return finish(p, color);
+}
+
+double angleDeg(const float* a, const float* b, bool& ok) {
+    const double ax = a[0], ay = a[1], az = a[2], bx = b[0], by = b[1], bz = b[2];
+    const double la = ax * ax + ay * ay + az * az, lb = bx * bx + by * by + bz * bz;
+    ok = std::isfinite(la) && std::isfinite(lb) && la > 0.0 && lb > 0.0;
+    if (!ok) return 0.0;
+    const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz) *
+           (180.0 / std::numbers::pi);
+}
+
+Image* mapOrNull(RunErrorMaps* maps, Image RunErrorMaps::*member, int width, int height, bool wanted) {
+    if (!maps || !wanted) return nullptr;
+    Image& image = maps->*member;
+    image = Image(width, height, 1);
+    return &image;
+}
+
+AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask& measured, const Mask& metal,
+                                size_t metalCount, Image* map, const char* what) {
+    if (!usable(ref, test, 3, what)) return {};
+    const size_t rc = size_t(ref.channels), tc = size_t(test.channels);
+    return measure(measured, metal, metalCount, map, true, [&](size_t i, bool& ok, double& sq) {
+        const float* a = &ref.pixels[i * rc];
+        const float* b = &test.pixels[i * tc];
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(b[c]) - double(a[c]);
+            sq += d * d;
+        }
+        const double e = deltaE2000(linearSrgbToLab(a[0], a[1], a[2]), linearSrgbToLab(b[0], b[1], b[2]));
+        ok = std::isfinite(e);
+        return e;
+    });
+}
+
+AttributeMetrics scalarAttribute(const Image& ref, const Image& test, const Mask& measured, const Mask& metal,
+                                 size_t metalCount, Image* map, const char* what) {
+    if (!usable(ref, test, 1, what)) return {};
+    const size_t rc = size_t(ref.channels), tc = size_t(test.channels);
+    return measure(measured, metal, metalCount, map, false, [&](size_t i, bool& ok, double&) {
+        const double e = std::abs(double(test.pixels[i * tc]) - double(ref.pixels[i * rc]));
+        ok = std::isfinite(e);
+        return e;
+    });
+}
+
+double luminance(const float* p, int channels) {
+    if (channels < 3) return p[0];
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+}  // namespace
+
+Image relativeLuminanceError(const Image& ref, const Image& test) {
+    if (ref.width != test.width || ref.height != test.height)
+        throwUserError("relative luminance error: reference is " + std::to_string(ref.width) + "x" +
+                       std::to_string(ref.height) + " but test is " + std::to_string(test.width) + "x" +
+                       std::to_string(test.height));
+    const size_t n = ref.pixelCount();
+    double sum = 0.0;
+    size_t finite = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const double y = luminance(&ref.pixels[i * size_t(ref.channels)], ref.channels);
+        if (std::isfinite(y) && y > 0.0) sum += y;
+        finite += std::isfinite(y) ? 1 : 0;
+    }
+    const double mean = finite ? sum / double(finite) : 0.0;
+    const double floor = std::max(1e-2 * mean, 1e-6);
+    Image out(ref.width, ref.height, 1);
+    for (size_t i = 0; i < n; ++i) {
+        const double yr = luminance(&ref.pixels[i * size_t(ref.channels)], ref.channels);
+        const double yt = luminance(&test.pixels[i * size_t(test.channels)], test.channels);
+        const double e = std::abs(yt - yr) / std::max(std::isfinite(yr) ? yr : 0.0, floor);
+        out.pixels[i] = std::isfinite(e) ? float(e) : std::numeric_limits<float>::quiet_NaN();
+    }
+    return out;
+}
+
+RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
+                             const Image& testHdr, float exposure) {
+    return computeRunMetrics(reference, test, referenceHdr, testHdr, exposure, RunMetricsOptions{});
+}
+
+RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
+                             const Image& testHdr, float exposure, const RunMetricsOptions& options) {
+    const int w = referenceHdr.width, h = referenceHdr.height;
+    if (referenceHdr.empty() || referenceHdr.channels < 3)
+        throwUserError("compare: the reference render needs 3 or 4 channels (RGB[A]) and pixels");
+    if (testHdr.channels < 3) throwUserError("compare: the layout's render needs 3 or 4 channels (RGB[A])");
+    checkSize(testHdr, w, h, "the layout's render");
+    if (testHdr.empty()) throwUserError("compare: the layout's render is empty");
+    checkSurface(reference, w, h, "reference");
+    checkSurface(test, w, h, "layout's");
+
+    RunMetrics out;
+    RunErrorMaps* maps = options.maps;
+    const size_t n = referenceHdr.pixelCount();
+
+    // Coverage and material classes.
+    Mask measured(n, 0), metal(n, 0);
+    const bool haveMetallic = !reference.metallic.empty();
+    out.coverage.pixels = n;
+    for (size_t i = 0; i < n; ++i) {
+        const bool r = reference.coverage[i] != 0, t = test.coverage[i] != 0;
+        if (r && t) {
+            measured[i] = 1;
+            ++out.coverage.both;
+            const bool isMetal =
+                haveMetallic && reference.metallic.pixels[i * size_t(reference.metallic.channels)] > 0.5f;
+            metal[i] = isMetal ? 1 : 0;
+            ++(isMetal ? out.coverage.metal : out.coverage.dielectric);
+        } else if (r) {
+            ++out.coverage.referenceOnly;
+        } else if (t) {
+            ++out.coverage.testOnly;
+        }
+    }
+    const size_t mc = out.coverage.metal;
+
+    // Attributes.
+    if (usable(reference.normal, test.normal, 3, "normal")) {
+        const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
+        out.normal = measure(measured, metal, mc, mapOrNull(maps, &RunErrorMaps::normalDeg, w, h, true), false,
+                             [&](size_t i, bool& ok, double&) {
+                                 return angleDeg(&reference.normal.pixels[i * rc], &test.normal.pixels[i * tc], ok);
+                             });
+    }
+    out.baseColor = colorAttribute(reference.baseColor, test.baseColor, measured, metal, mc,
+                                   mapOrNull(maps, &RunErrorMaps::baseColorDe, w, h, true), "base colour");
+    out.diffuseColor = colorAttribute(reference.diffuseColor, test.diffuseColor, measured, metal, mc,
+                                      mapOrNull(maps, &RunErrorMaps::diffuseColorDe, w, h, true), "diffuse colour");
+    out.specularColor = colorAttribute(reference.specularColor, test.specularColor, measured, metal, mc,
+                                       mapOrNull(maps, &RunErrorMaps::specularColorDe, w, h, true), "specular colour");
+    out.roughness = scalarAttribute(reference.roughness, test.roughness, measured, metal, mc,
+                                    mapOrNull(maps, &RunErrorMaps::roughnessAbs, w, h, true), "roughness");
+    out.metallic = scalarAttribute(reference.metallic, test.metallic, measured, metal, mc,
+                                   mapOrNull(maps, &RunErrorMaps::metallicAbs, w, h, true), "metallic");
+    out.occlusion = scalarAttribute(reference.occlusion, test.occlusion, measured, metal, mc,
+                                    mapOrNull(maps, &RunErrorMaps::occlusionAbs, w, h, true), "occlusion");
+    if (usable(reference.viewDepth, test.viewDepth, 1, "view depth")) {
+        const size_t rc = size_t(reference.viewDepth.channels), tc = size_t(test.viewDepth.channels);
+        out.depth = measure(measured, metal, mc, mapOrNull(maps, &RunErrorMaps::depthRel, w, h, true), false,
+                            [&](size_t i, bool& ok, double&) {
+                                const double r = reference.viewDepth.pixels[i * rc];
+                                const double t = test.viewDepth.pixels[i * tc];
+                                const double e = std::abs(t - r) / r;
+                                ok = r > 0.0 && std::isfinite(r) && std::isfinite(e);
+                                return ok ? e : 0.0;
+                            });
+    }
+
+    // The shaded image, every pixel, RGB.
+    const ImageErrorStats linear = imageErrorStats(referenceHdr, testHdr, nullptr, PsnrPeak::ReferenceMax, 3);
+    out.image.rmseLinear = linear.rmse;
+    out.image.psnrLinear = linear.psnr;
+    out.image.peakLinear = linear.peak;
+    out.image.maxAbs = linear.maxAbs;
+    out.image.p99Abs = linear.p99Abs;
+    out.image.meanAbs = linear.meanAbs;
+
+    Image refSrgb = toneMapToSrgbFloat(referenceHdr, exposure);
+    Image testSrgb = toneMapToSrgbFloat(testHdr, exposure);
+    const ImageErrorStats tone = imageErrorStats(refSrgb, testSrgb, nullptr, PsnrPeak::One, 3);
+    out.image.rmseToneMapped = tone.rmse;
+    out.image.psnrToneMapped = tone.psnr;
+
+    Image flip = flipLdr(refSrgb, testSrgb);
+    const FlipStats fs = flipStats(flip);
+    out.image.flipMean = fs.mean;
+    out.image.flipMedian = fs.median;
+
+    Image hdrFlip;
+    if (options.hdrFlip) {
+        hdrFlip = flipHdr(referenceHdr, testHdr).flip;
+        out.image.hdrFlipMean = flipStats(hdrFlip).mean;
+        out.image.hdrFlipComputed = true;
+    }
+
+    if (maps) {
+        maps->referenceSrgb = std::move(refSrgb);
+        maps->testSrgb = std::move(testSrgb);
+        maps->flip = std::move(flip);
+        maps->hdrFlip = std::move(hdrFlip);
+        maps->absLinear = Image(w, h, 3);
+        const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
+        for (size_t i = 0; i < n; ++i)
+            for (size_t c = 0; c < 3; ++c)
+                maps->absLinear.pixels[i * 3 + c] = std::abs(testHdr.pixels[i * tc + c] - referenceHdr.pixels[i * rc + c]);
+        maps->relLuminance = relativeLuminanceError(referenceHdr, testHdr);
+        maps->measured = std::move(measured);
+    }
+    return out;
+}
+
+}  // namespace gbl

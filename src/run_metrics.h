@@ -1,0 +1,118 @@
+#pragma once
+// The per-run comparison in numbers: one layout's decoded G-buffer and shaded image against the
+// float reference's, under the same camera and lighting.
+//
+// Which pixels count
+//  * Attribute errors: pixels covered in BOTH the reference and the test (coverage != 0).
+//    Pixels covered in only one of them are counted in CoverageCounts, not measured.
+//  * Material class: "metal" when the REFERENCE metallic > 0.5, else "dielectric".
+//  * Image errors: every pixel (background/sky included), RGB only (alpha = coverage is
+//    not compared): the final image is what users see.
+//
+// Units and choices
+//  * normal:                 angle between the normals, degrees (atan2(|a x b|, a . b)). Pixels
+//                            whose reference or test normal is zero / not finite are skipped
+//                            (counted in AttributeMetrics::skipped).
+//  * base/diffuse/specular:  CIEDE2000 (linear sRGB -> XYZ D65 -> CIELAB) per pixel, plus the
+//                            RMSE of the linear RGB values pooled over the three channels.
+//  * roughness/metallic/occlusion: |test - reference|.
+//  * depth:                  |viewDepth_test - viewDepth_ref| / viewDepth_ref; pixels with a
+//                            reference viewDepth <= 0 or not finite are skipped.
+//  * Linear HDR PSNR:        peak = the largest reference RGB value over the whole image
+//                            (metrics PsnrPeak::ReferenceMax; 1 if the image is black).
+//  * Tone-mapped:            toneMapToSrgbFloat(exposure) of both, sRGB-encoded [0,1], peak 1.
+//  * maxAbs / p99Abs:        of |test - reference| over RGB samples, linear HDR (no exposure).
+//  * LDR-FLIP:               flipLdr on the tone-mapped images (default 67 pixels/degree).
+//  * HDR-FLIP:               flipHdr on the linear images (exposure range from the reference;
+//                            the exposure factor cancels out).
+// The reference against itself gives exactly 0 everywhere and PSNR = +infinity.
+#include <cstddef>
+#include <limits>
+
+#include "image.h"
+#include "metrics.h"
+#include "surface_images.h"
+
+namespace gbl {
+
+struct ClassStats {
+    ScalarStats error;   // in the attribute's unit (see above)
+    double rmse = 0.0;   // colours only: RMSE of linear RGB (0 for the other attributes)
+};
+
+struct AttributeMetrics {
+    ClassStats all;
+    ClassStats metal;       // reference metallic > 0.5
+    ClassStats dielectric;  // the rest
+    size_t skipped = 0;     // covered pixels left out (invalid normal / reference depth)
+};
+
+struct CoverageCounts {
+    size_t pixels = 0;         // width x height
+    size_t both = 0;           // covered in reference and test: the attribute pixels
+    size_t referenceOnly = 0;  // mismatches: geometry lost by the layout
+    size_t testOnly = 0;       // mismatches: geometry the reference does not have
+    size_t metal = 0;          // of `both`
+    size_t dielectric = 0;     // of `both`
+};
+
+struct ShadedErrors {
+    double rmseLinear = 0.0;
+    double psnrLinear = std::numeric_limits<double>::infinity();  // dB
+    double peakLinear = 1.0;                                      // the PSNR peak used
+    double rmseToneMapped = 0.0;
+    double psnrToneMapped = std::numeric_limits<double>::infinity();  // dB, peak 1
+    double maxAbs = 0.0;   // linear
+    double p99Abs = 0.0;   // linear, nearest rank
+    double meanAbs = 0.0;  // linear
+    double flipMean = 0.0;    // LDR-FLIP
+    double flipMedian = 0.0;  // LDR-FLIP, nearest-rank lower median
+    double hdrFlipMean = 0.0; // HDR-FLIP (0 when not computed)
+    bool hdrFlipComputed = false;
+};
+
+struct RunMetrics {
+    CoverageCounts coverage;
+    AttributeMetrics normal;         // degrees
+    AttributeMetrics baseColor;      // CIEDE2000 (+ rmse)
+    AttributeMetrics diffuseColor;   // CIEDE2000 (+ rmse)
+    AttributeMetrics specularColor;  // CIEDE2000 (+ rmse)
+    AttributeMetrics roughness;      // absolute
+    AttributeMetrics metallic;       // absolute
+    AttributeMetrics occlusion;      // absolute
+    AttributeMetrics depth;          // relative
+    ShadedErrors image;
+};
+
+// Per-pixel error images behind the numbers (all width x height; 1 channel unless stated).
+// Attribute maps are 0 where a pixel is not measured (see `measured`).
+struct RunErrorMaps {
+    Image referenceSrgb;  // 3 ch: tone-mapped reference, sRGB-encoded [0,1]
+    Image testSrgb;       // 3 ch: tone-mapped test
+    Image flip;           // LDR-FLIP [0,1]
+    Image hdrFlip;        // HDR-FLIP [0,1] (empty when not computed)
+    Image absLinear;      // 3 ch: |test - reference|, linear HDR
+    Image relLuminance;   // |Y_t - Y_r| / max(Y_r, floor), linear; see relativeLuminanceError
+    Image normalDeg, baseColorDe, diffuseColorDe, specularColorDe;
+    Image roughnessAbs, metallicAbs, occlusionAbs, depthRel;
+    std::vector<uint8_t> measured;  // 1 where attributes were compared (covered in both)
+};
+
+struct RunMetricsOptions {
+    bool hdrFlip = true;   // HDR-FLIP costs one LDR-FLIP per exposure; off for quick runs
+    RunErrorMaps* maps = nullptr;  // when set, filled with the per-pixel images
+};
+
+// Throws UserError when sizes disagree or an attribute image has too few channels. An attribute
+// image that is empty on either side is not measured (its stats keep count 0).
+RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
+                             const Image& testHdr, float exposure, const RunMetricsOptions& options);
+RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
+                             const Image& testHdr, float exposure);
+
+// Per-pixel relative luminance error of linear RGB images (CIE Y of linear sRGB):
+// |Y_t - Y_r| / max(Y_r, floor), floor = 1e-2 x the reference's mean luminance (at least 1e-6),
+// so black pixels do not divide by zero and near-black noise does not dominate. 1 channel.
+Image relativeLuminanceError(const Image& referenceLinear, const Image& testLinear);
+
+}  // namespace gbl

@@ -1,0 +1,262 @@
+// report.html in a real browser (headless Chromium, offline): it loads without console errors
+// or failed image loads, its script sorts the table and switches the plot, and its screenshot
+// is a picture, not a blank page. Skipped when /usr/bin/chromium is absent (scripts/setup.sh
+// installs it).
+//
+// How console errors are seen: with --enable-logging=stderr, Chromium prints every console
+// message, uncaught exception and failed resource load as a line containing ":CONSOLE" (e.g.
+// `[..:INFO:CONSOLE:2] "boom", source: file:///..../t.html (2)`). Chromium 156 logs them all at
+// INFO whatever the console level, so the level cannot tell an error from a log: any :CONSOLE
+// line (the report itself never logs) or "Uncaught" fails. The CanaryPages test proves that the
+// check fires on a deliberate console.error and an uncaught exception, and stays quiet on a clean
+// page. A missing image is not logged at all (Chromium 156): report.html marks a broken <img>
+// with class "missing" (onerror), which the DOM tests look for.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "file_io.h"
+#include "image_io.h"
+#include "report_html.h"
+#include "report_sample.h"
+
+namespace gbl {
+namespace {
+namespace fs = std::filesystem;
+
+const char* kChromium = "/usr/bin/chromium";
+
+struct TempDir {
+    fs::path path;
+    explicit TempDir(const std::string& tag)
+        : path(fs::temp_directory_path() / ("gbl_report_browser_" + tag + "_" + std::to_string(::getpid()))) {
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        if (!std::getenv("GBL_KEEP_REPORT")) fs::remove_all(path);
+    }
+};
+
+std::string shellQuote(const std::string& s) {
+    std::string out = "'";
+    for (char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return out + "'";
+}
+
+struct BrowserRun {
+    int exitCode = -1;
+    std::string stdoutText, stderrText;
+    double seconds = 0;
+};
+
+// Runs headless Chromium on `url` with a fresh profile; `mode` is "--screenshot=<png>" or "--dump-dom".
+BrowserRun runChromium(const fs::path& work, const std::string& url, const std::string& mode) {
+    static int runs = 0;
+    const fs::path profile = work / ("profile" + std::to_string(++runs));
+    const fs::path out = work / ("chromium" + std::to_string(runs) + ".out");
+    const fs::path err = work / ("chromium" + std::to_string(runs) + ".err");
+    fs::create_directories(profile);
+    const std::string command =
+        "timeout 120 " + std::string(kChromium) +
+        " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking"
+        " --disable-component-update --disable-sync --user-data-dir=" + shellQuote(profile.string()) +
+        " --enable-logging=stderr --v=0 " + mode + " --window-size=1400,1000 " + shellQuote(url) + " >" +
+        shellQuote(out.string()) + " 2>" + shellQuote(err.string()) + " </dev/null";
+    const auto start = std::chrono::steady_clock::now();
+    const int status = std::system(command.c_str());
+    BrowserRun run;
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.stdoutText = fs::exists(out) ? readTextFile(out) : "";
+    run.stderrText = fs::exists(err) ? readTextFile(err) : "";
+    return run;
+}
+
+// The lines that mean the page went wrong (see the file comment).
+std::vector<std::string> consoleProblems(const std::string& stderrText) {
+    std::vector<std::string> problems;
+    size_t begin = 0;
+    while (begin < stderrText.size()) {
+        size_t end = stderrText.find('\n', begin);
+        if (end == std::string::npos) end = stderrText.size();
+        const std::string line = stderrText.substr(begin, end - begin);
+        if (line.find(":CONSOLE") != std::string::npos || line.find("Uncaught") != std::string::npos)
+            problems.push_back(line);
+        begin = end + 1;
+    }
+    return problems;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+    std::string out;
+    for (const std::string& l : lines) out += l + "\n";
+    return out;
+}
+
+std::string fileUrl(const fs::path& path) { return "file://" + urlPathEscape(fs::absolute(path).string()); }
+
+#define GBL_REQUIRE_CHROMIUM()                                                                         \
+    do {                                                                                               \
+        if (!fs::exists(kChromium)) GTEST_SKIP() << kChromium << " is absent (scripts/setup.sh installs it)"; \
+    } while (0)
+
+TEST(ReportBrowser, CanaryPagesProveTheConsoleCheck) {
+    GBL_REQUIRE_CHROMIUM();
+    TempDir dir("canary");
+    struct Page {
+        const char* name;
+        const char* body;
+        const char* expect;  // a problem line must contain this ("" = no problem expected)
+    };
+    const Page pages[] = {
+        {"clean.html", "<p>fine</p><script>document.body.dataset.ok = '1';</script>", ""},
+        {"console_error.html", "<script>console.error('deliberate console error');</script>", "deliberate console error"},
+        {"uncaught.html", "<script>undefinedFunction();</script>", "Uncaught ReferenceError"},
+    };
+    for (const Page& page : pages) {
+        SCOPED_TRACE(page.name);
+        writeFileAtomic(dir.path / page.name,
+                        std::string("<!DOCTYPE html><html><head><meta charset=\"utf-8\"></head><body>") + page.body +
+                            "</body></html>");
+        const BrowserRun run = runChromium(dir.path, fileUrl(dir.path / page.name), "--dump-dom");
+        ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+        ASSERT_NE(run.stdoutText.find("</html>"), std::string::npos) << "the page did not load";
+        const auto problems = consoleProblems(run.stderrText);
+        if (*page.expect == 0) {
+            EXPECT_TRUE(problems.empty()) << joined(problems);
+        } else {
+            ASSERT_FALSE(problems.empty()) << "the check missed it; Chromium's stderr:\n" << run.stderrText;
+            EXPECT_NE(joined(problems).find(page.expect), std::string::npos) << joined(problems);
+        }
+    }
+}
+
+// The sample report, with every image it names, in `dir`.
+fs::path writeSampleReport(const fs::path& dir) {
+    const ReportModel model = test::sampleReport();
+    test::writeSampleImages(dir, model);
+    writeReport(dir, model);
+    return dir / "report.html";
+}
+
+TEST(ReportBrowser, ScreenshotHasNoConsoleErrorsAndIsNotBlank) {
+    GBL_REQUIRE_CHROMIUM();
+    TempDir dir("shot");
+    const fs::path html = writeSampleReport(dir.path / "report dir");  // a space: URLs are escaped
+    const fs::path png = dir.path / "screenshot.png";
+    const BrowserRun run = runChromium(dir.path, fileUrl(html), "--screenshot=" + shellQuote(png.string()));
+    std::printf("[ info ] chromium screenshot run: %.2f s\n", run.seconds);
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    EXPECT_TRUE(consoleProblems(run.stderrText).empty()) << joined(consoleProblems(run.stderrText));
+    ASSERT_TRUE(fs::exists(png)) << run.stderrText;
+    const Image8 shot = readImage8(png.string());
+    EXPECT_EQ(shot.width, 1400);
+    EXPECT_EQ(shot.height, 1000);
+    ASSERT_GE(shot.channels, 3);
+    // Not blank: the luminance varies and there are many colours (text, table stripes, images).
+    double sum = 0, sumSquares = 0;
+    std::set<uint32_t> colors;
+    const size_t pixels = size_t(shot.width) * size_t(shot.height);
+    for (size_t i = 0; i < pixels; ++i) {
+        const unsigned char* p = &shot.pixels[i * size_t(shot.channels)];
+        const double luma = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        sum += luma;
+        sumSquares += luma * luma;
+        colors.insert(uint32_t(p[0]) << 16 | uint32_t(p[1]) << 8 | p[2]);
+    }
+    const double mean = sum / double(pixels), variance = sumSquares / double(pixels) - mean * mean;
+    std::printf("[ info ] screenshot: mean luma %.1f, variance %.1f, %zu distinct colours\n", mean, variance,
+                colors.size());
+    EXPECT_GT(variance, 100.0);
+    EXPECT_GT(colors.size(), 50u);
+    EXPECT_GT(mean, 128.0);  // dark on light
+}
+
+// Extracts, in document order, the layout names of the table's rows from a dumped DOM.
+std::vector<std::string> tableOrder(const std::string& dom) {
+    std::vector<std::string> names;
+    const size_t body = dom.find("<tbody>", dom.find("id=\"layouts\""));
+    const size_t end = dom.find("</tbody>", body);
+    for (size_t at = dom.find("<tr", body); at < end; at = dom.find("<tr", at + 1)) {
+        const size_t a = dom.find("<a href=\"#", at);
+        const size_t open = dom.find('>', a) + 1;
+        const size_t ibl = dom.find("<td>", open) + 4;
+        names.push_back(dom.substr(open, dom.find("</a>", open) - open) + "/" +
+                        dom.substr(ibl, dom.find("</td>", ibl) - ibl));
+    }
+    return names;
+}
+
+TEST(ReportBrowser, ScriptSortsTheTableAndSwitchesThePlot) {
+    GBL_REQUIRE_CHROMIUM();
+    TempDir dir("dom");
+    const fs::path html = writeSampleReport(dir.path / "report");
+    const BrowserRun plain = runChromium(dir.path, fileUrl(html), "--dump-dom");
+    ASSERT_EQ(plain.exitCode, 0) << plain.stderrText;
+    EXPECT_TRUE(consoleProblems(plain.stderrText).empty()) << joined(consoleProblems(plain.stderrText));
+    EXPECT_NE(plain.stdoutText.find("data-script=\"ready\""), std::string::npos) << "the script did not finish";
+    EXPECT_EQ(plain.stdoutText.find("class=\"missing\""), std::string::npos) << "an image failed to load";
+    const std::vector<std::string> original = {"ue4/split-sum",  "compact-octahedral/split-sum",
+                                               "fat-naive/split-sum", "ryse/split-sum",
+                                               "ue4/none",       "compact-octahedral/none",
+                                               "broken&lt;layout&gt;/split-sum"};
+    EXPECT_EQ(tableOrder(plain.stdoutText), original);
+
+    // PSNR, best first: ∞ above every number; the failed run (no value) last.
+    const BrowserRun psnr = runChromium(dir.path, fileUrl(html) + "#sort=psnr:desc&plot=psnr", "--dump-dom");
+    ASSERT_EQ(psnr.exitCode, 0) << psnr.stderrText;
+    EXPECT_TRUE(consoleProblems(psnr.stderrText).empty()) << joined(consoleProblems(psnr.stderrText));
+    EXPECT_EQ(tableOrder(psnr.stdoutText),
+              (std::vector<std::string>{"fat-naive/split-sum", "ue4/none", "ue4/split-sum", "compact-octahedral/none",
+                                        "compact-octahedral/split-sum", "ryse/split-sum",
+                                        "broken&lt;layout&gt;/split-sum"}));
+    EXPECT_NE(psnr.stdoutText.find("data-key=\"psnr\" data-dir=\"descending\" title="), std::string::npos);
+    EXPECT_NE(psnr.stdoutText.find("aria-sort=\"descending\""), std::string::npos);
+    // The plot switched: the PSNR figure shown, the FLIP one hidden.
+    EXPECT_NE(psnr.stdoutText.find("<figure class=\"plot\" id=\"plot-psnr\">"), std::string::npos);
+    EXPECT_NE(psnr.stdoutText.find("<figure class=\"plot\" id=\"plot-flip\" hidden=\"\">"), std::string::npos);
+
+    // Ascending: numbers sort as numbers (12 < 16 < 20 < 44, not as text), the failed run still last...
+    const BrowserRun bytes = runChromium(dir.path, fileUrl(html) + "#sort=bpp:asc", "--dump-dom");
+    ASSERT_EQ(bytes.exitCode, 0) << bytes.stderrText;
+    const auto byBytes = tableOrder(bytes.stdoutText);
+    ASSERT_EQ(byBytes.size(), 7u);
+    EXPECT_EQ(byBytes[0].rfind("compact-octahedral/", 0), 0u);
+    EXPECT_EQ(byBytes[2], "ryse/split-sum");
+    EXPECT_EQ(byBytes[5], "broken&lt;layout&gt;/split-sum");  // 28 B/px: failed, but its size is known
+    EXPECT_EQ(byBytes[6], "fat-naive/split-sum");
+    // ...and by FLIP ascending, the failed run (no value) stays last.
+    const BrowserRun flip = runChromium(dir.path, fileUrl(html) + "#sort=flip:asc", "--dump-dom");
+    const auto byFlip = tableOrder(flip.stdoutText);
+    ASSERT_EQ(byFlip.size(), 7u);
+    EXPECT_EQ(byFlip[0], "fat-naive/split-sum");
+    EXPECT_EQ(byFlip[6], "broken&lt;layout&gt;/split-sum");
+}
+
+TEST(ReportBrowser, MissingImageIsReported) {
+    GBL_REQUIRE_CHROMIUM();
+    TempDir dir("missing");
+    const fs::path html = writeSampleReport(dir.path / "report");
+    fs::remove(dir.path / "report" / "runs" / "ue4-none" / "flip.png");
+    const BrowserRun run = runChromium(dir.path, fileUrl(html), "--dump-dom");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    // Chromium 156 does not log a failed image load to the console; the page's onerror marks it.
+    const size_t img = run.stdoutText.find("src=\"runs/ue4-none/flip.png\"");
+    ASSERT_NE(img, std::string::npos);
+    EXPECT_NE(run.stdoutText.substr(img, 200).find("class=\"missing\""), std::string::npos)
+        << run.stdoutText.substr(img, 200);
+    size_t marked = 0;
+    for (size_t at = run.stdoutText.find("class=\"missing\""); at != std::string::npos;
+         at = run.stdoutText.find("class=\"missing\"", at + 1))
+        ++marked;
+    EXPECT_EQ(marked, 1u);  // only that one
+}
+
+}  // namespace
+}  // namespace gbl
