@@ -44,6 +44,7 @@ Surface evaluateMaterial(vec3 worldPosition, vec3 normal, vec4 tangent, vec2 uv,
         n = normalize(t * tn.x + b * tn.y + n * tn.z);
     }
     s.normal = n;
+    s.position = worldPosition;
     return s;
 }
 #endif

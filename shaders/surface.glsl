@@ -12,5 +12,6 @@ struct Surface {
     vec3 diffuseColor;   // Lambert albedo = baseColor * (1 - metallic)
     float occlusion;
     vec3 emissive;       // linear radiance
+    vec3 position;       // world space; read back only where the layout stores `position`
 };
 #endif

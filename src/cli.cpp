@@ -21,6 +21,8 @@ struct Command {
 
 const std::vector<std::pair<std::string, Command>>& commands() {
     static const std::vector<std::pair<std::string, Command>> list = {
+        {"compare", {"render the reference and every layout, measure what each loses and costs, write a report",
+                     runCompareCommand}},
         {"render", {"render a scene through the float reference G-buffer (EXR + PNG)", runRenderCommand}},
         {"layouts", {"check, list and show G-buffer layout files (layouts/*.toml)", runLayoutsCliCommand}},
         {"encodings", {"measure what each encoding loses on its own (mean / p99 / max error)", runEncodingsCommand}},

@@ -1,10 +1,12 @@
 #include "cmd_layouts.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <ostream>
 #include <sstream>
 
 #include "layout_catalog.h"
+#include "wiring_codegen.h"
 
 namespace gbl {
 
@@ -13,7 +15,9 @@ namespace {
 constexpr const char* kUsage =
     "usage: gbufferlab layouts check [FILE...]   validate layout files (default: all in the layouts dir)\n"
     "       gbufferlab layouts list              name, bytes per pixel and title of each layout\n"
-    "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel\n";
+    "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel\n"
+    "       gbufferlab layouts glsl NAME|FILE [--native-formats]\n"
+    "                                            print the generated GLSL wiring (writeGBuffer / readGBuffer)\n";
 
 std::string pad(std::string s, size_t width) {
     if (s.size() < width) s.append(width - s.size(), ' ');
@@ -211,7 +215,26 @@ int showLayoutCommand(const std::string& nameOrPath, std::ostream& out, std::ost
     }
 }
 
+int printLayoutGlslCommand(const std::string& nameOrPath, bool nativeFormats, std::ostream& out, std::ostream& err) {
+    try {
+        WiringOptions options;
+        options.nativeFormats = nativeFormats;
+        out << generateWiringGlsl(loadLayout(nameOrPath), options);
+        return 0;
+    } catch (const UserError& e) {
+        err << e.what() << "\n";
+        return 1;
+    }
+}
+
 int runLayoutsCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    if (!args.empty() && args[0] == "glsl") {
+        std::vector<std::string> rest(args.begin() + 1, args.end());
+        const auto flag = std::find(rest.begin(), rest.end(), "--native-formats");
+        const bool native = flag != rest.end();
+        if (native) rest.erase(flag);
+        if (rest.size() == 1) return printLayoutGlslCommand(rest[0], native, out, err);
+    }
     if (!args.empty() && args[0] == "check")
         return checkLayoutsCommand(std::vector<std::string>(args.begin() + 1, args.end()), out, err);
     if (args.size() == 1 && args[0] == "list") return listLayoutsCommand(out, err);

@@ -9,7 +9,7 @@
 
 namespace gbl {
 
-// Dispatches "check FILE...", "list", "show NAME"; prints usage and returns 2 otherwise.
+// Dispatches "check FILE...", "list", "show NAME", "glsl NAME [--native-formats]"; prints usage and returns 2 otherwise.
 int runLayoutsCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 // Prints "ok FILE" per valid file, else its diagnostics (file:line:col: message); returns 1 when any
@@ -23,5 +23,8 @@ int listLayoutsCommand(std::ostream& out, std::ostream& err);
 // attribute, fallbacks, light buffers, bytes per pixel.
 int showLayoutCommand(const std::string& nameOrPath, std::ostream& out, std::ostream& err);
 std::string describeLayout(const Layout& layout);
+
+// The generated GLSL wiring of one layout (name or path), optionally in native-formats mode.
+int printLayoutGlslCommand(const std::string& nameOrPath, bool nativeFormats, std::ostream& out, std::ostream& err);
 
 }  // namespace gbl

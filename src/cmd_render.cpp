@@ -42,6 +42,8 @@ int runRenderCommand(const std::vector<std::string>& args) {
         {"force", "", "write into a non-empty --out directory, replacing files of the same name"},
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
         {"exposure", "X", "exposure multiplier for the PNG tone map (default 1)"},
+        {"ibl", "MODE", "specular IBL: ground-truth, split-sum-shader, split-sum (default), envbrdf-approx, bo2"},
+        {"ibl-samples", "N", "samples per pixel of the ground-truth and split-sum-shader modes (default 1024)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -67,6 +69,18 @@ int runRenderCommand(const std::vector<std::string>& args) {
         }
         if (!(exposure > 0.0f)) throwUserError("--exposure " + parsed.get("exposure") + ": must be positive");
     }
+    const IblMode iblMode = parseIblMode(parsed.get("ibl", "split-sum"));
+    int iblSamples = 1024;
+    if (parsed.has("ibl-samples")) {
+        size_t used = 0;
+        try {
+            iblSamples = std::stoi(parsed.get("ibl-samples"), &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used != parsed.get("ibl-samples").size() || iblSamples < 1 || iblSamples > 65536)
+            throwUserError("--ibl-samples " + parsed.get("ibl-samples") + ": expected a whole number from 1 to 65536");
+    }
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("render");
     // Refuse a non-empty output directory before any work, but create it only once all succeeded.
     checkOutputDirectory(outDir, parsed.has("force"), "--out");
@@ -77,6 +91,8 @@ int runRenderCommand(const std::vector<std::string>& args) {
     RenderSettings settings;
     settings.width = width;
     settings.height = height;
+    settings.specularIbl = iblMode;
+    settings.groundTruthSamples = iblSamples;
     const RenderOutput out = renderer.render(makeReferenceWiring(), settings);
 
     prepareOutputDirectory(outDir, parsed.has("force"), "--out");

@@ -6,6 +6,7 @@
 namespace gbl {
 
 int runRenderCommand(const std::vector<std::string>& args);
+int runCompareCommand(const std::vector<std::string>& args);
 int runDevicesCommand(const std::vector<std::string>& args);
 int runEncodingsCommand(const std::vector<std::string>& args);
 int runLayoutsCliCommand(const std::vector<std::string>& args);

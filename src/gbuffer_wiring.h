@@ -18,9 +18,18 @@ struct GBufferWiring {
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
     bool reversedZ = false;
     std::string glsl;
+    // emissive = "forward": the G-buffer does not store emissive and readGBuffer returns 0; the
+    // renderer must add the surface's emissive in a forward pass.
+    bool emissiveForward = false;
+    // Deferred lighting's material pass: the renderer runs a second geometry pass compiled with
+    // MATERIAL_PASS_WRITE into these targets (float32 bits, see wiring_codegen.h) and binds them
+    // for readGBuffer at set 2, binding i.
+    bool materialPass = false;
+    std::vector<VkFormat> materialTargetFormats;
 };
 
-// The float reference: every attribute as 32-bit float bits in RGBA32_UINT targets.
+// The float reference: layouts/reference.toml (every attribute as 32-bit float bits in RGBA32_UINT
+// targets) through generateWiring (wiring_codegen.h).
 GBufferWiring makeReferenceWiring();
 
 }  // namespace gbl

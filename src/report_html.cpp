@@ -377,8 +377,8 @@ void writePlot(std::string& out, const ReportModel& model, const PlotSpec& spec,
                kSeriesColors[s % 7] + "\"/></svg>layouts, IBL " + htmlEscape(modes[s]) + "</span>";
     }
     out += std::string("<span><svg width=\"26\" height=\"12\" viewBox=\"0 0 26 12\"><line x1=\"1\" y1=\"6\" x2=\"25\" "
-                       "y2=\"6\" stroke=\"#5b6672\" stroke-width=\"2\"/></svg>Pareto front (no layout is both smaller "
-                       "and ") +
+                       "y2=\"6\" stroke=\"#5b6672\" stroke-width=\"2\"/></svg>Pareto front, per IBL mode (no layout is "
+                       "both smaller and ") +
            (spec.higherIsBetter ? "higher" : "lower") + ")</span>";
     if (anyInfinite) out += std::string("<span>") + kInfinity + ": identical to the reference</span>";
     out += "</div>\n</figure>\n";
@@ -399,12 +399,15 @@ void statRow(std::string& out, const char* name, const std::string& value, const
     out += std::string("<tr><th>") + name + "</th><td class=\"num\">" + value + "</td><td class=\"muted\">" + unit +
            "</td></tr>\n";
 }
+void textRow(std::string& out, const char* name, const std::string& valueHtml) {
+    out += std::string("<tr><th>") + name + "</th><td class=\"text\" colspan=\"2\">" + valueHtml + "</td></tr>\n";
+}
 
 void writeAttributeTable(std::string& out, const AttributeErrorTable& table) {
     bool any = false;
     for (ErrorAttribute a : kErrorAttributes) any = any || !table[a].empty();
     if (!any) return;
-    out += "<table class=\"small\"><thead><tr><th>Attribute</th><th>Unit</th><th>Pixels</th>"
+    out += "<table class=\"small\"><thead><tr><th>Attribute</th><th>Unit</th><th>Class</th>"
            "<th class=\"num\">Mean</th><th class=\"num\">p99</th><th class=\"num\">Max</th>"
            "<th class=\"num\">RMSE</th></tr></thead><tbody>\n";
     const std::pair<const char*, std::optional<AttributeStats> AttributeErrors::*> classes[] = {
@@ -430,7 +433,7 @@ void writeRunSection(std::string& out, const ReportModel& model, const RunReport
     if (r.status == RunStatus::Failed)
         out += "<div class=\"errorbox\"><strong>Failed:</strong> " + htmlEscape(r.error) + "</div>\n";
     out += "<div class=\"cols\">\n<table class=\"small\"><tbody>\n";
-    statRow(out, "Pipeline", htmlEscape(r.pipeline));
+    textRow(out, "Pipeline", htmlEscape(r.pipeline));
     statRow(out, "Targets", formatFixed(r.bytesPerPixel.targets, 0), "B/px");
     statRow(out, "Depth-stencil", formatFixed(r.bytesPerPixel.depth, 0), "B/px");
     if (r.bytesPerPixel.lightBuffers) statRow(out, "Light buffers", formatFixed(r.bytesPerPixel.lightBuffers, 0), "B/px");
@@ -439,7 +442,7 @@ void writeRunSection(std::string& out, const ReportModel& model, const RunReport
     if (r.times) {
         statRow(out, "G-buffer pass", formatSignificant(r.times->gbufferMs, 3), "ms");
         statRow(out, "Lighting pass", formatSignificant(r.times->lightingMs, 3), "ms");
-        statRow(out, "Timed on", htmlEscape(r.times->device));
+        textRow(out, "Timed on", htmlEscape(r.times->device));
     }
     out += "</tbody></table>\n";
     if (r.image) {

@@ -31,7 +31,8 @@ table.data { width: 100%; }
 table.data th, table.data td { padding: 4px 8px; border-bottom: 1px solid var(--line); vertical-align: top; }
 table.data thead th { position: sticky; top: 0; background: #e9edf1; text-align: left; font-weight: 600;
                       font-size: 12.5px; white-space: nowrap; }
-table.data thead th.num { text-align: right; }
+table.data thead th.num { text-align: right; font-family: inherit; font-size: 12.5px; }
+table.data td:nth-child(-n+2) { white-space: nowrap; }
 table.data tbody tr:nth-child(even) { background: #fafbfc; }
 table.data tbody tr:hover { background: #eef4fb; }
 table.sortable thead th { cursor: pointer; user-select: none; }
@@ -43,7 +44,7 @@ tr.failed td { color: var(--bad); }
 tr.failed td a { color: var(--bad); }
 .errtext { color: var(--bad); font-size: 12px; white-space: pre-wrap; overflow-wrap: anywhere; max-width: 46ch; }
 .errorbox { color: var(--bad); background: var(--bad-bg); border: 1px solid #f1b5ae; border-radius: 4px;
-            padding: 8px 12px; white-space: pre-wrap; overflow-wrap: anywhere; }
+            padding: 8px 12px; margin-bottom: 10px; white-space: pre-wrap; overflow-wrap: anywhere; }
 .hint { color: var(--muted); font-size: 12.5px; margin: 6px 0 0; }
 .toggle { display: inline-flex; border: 1px solid var(--line); border-radius: 5px; overflow: hidden; margin-bottom: 8px; }
 .toggle button { font: inherit; border: 0; padding: 5px 14px; background: #fff; color: var(--fg); cursor: pointer; }
@@ -51,11 +52,11 @@ tr.failed td a { color: var(--bad); }
 .toggle button[aria-pressed="true"] { background: var(--accent); color: #fff; }
 figure.plot { margin: 0; }
 figure.plot[hidden] { display: none; }
-figure.plot svg { width: 100%; max-width: 900px; height: auto; display: block; background: #fff;
+figure.plot > svg { width: 100%; max-width: 900px; height: auto; display: block; background: #fff;
                   border: 1px solid var(--line); border-radius: 6px; }
 .legend { display: flex; flex-wrap: wrap; gap: 6px 18px; margin: 8px 0 0; font-size: 13px; color: var(--muted); }
 .legend span { display: inline-flex; align-items: center; gap: 6px; }
-.legend svg { border: 0; width: auto; }
+.legend svg { display: inline-block; flex: none; }
 section.layout { border-top: 1px solid var(--line); margin-top: 26px; padding-top: 4px; }
 section.layout h2 { border: 0; margin-top: 18px; }
 .cite { color: var(--muted); font-size: 13px; margin: -6px 0 8px; }
@@ -63,6 +64,7 @@ section.layout h2 { border: 0; margin-top: 18px; }
 table.small th, table.small td { padding: 2px 8px; border-bottom: 1px solid var(--line); }
 table.small th { text-align: left; font-weight: 600; color: var(--muted); font-size: 12.5px; }
 table.small td.num { text-align: right; }
+table.small td.text { font-size: 13px; }
 .gallery { display: grid; grid-template-columns: repeat(auto-fill, minmax(260px, 1fr)); gap: 12px; margin: 10px 0; }
 .gallery figure, .crop figure { margin: 0; }
 .gallery img, .crop img { display: block; width: 100%; height: auto; border: 1px solid var(--line);

@@ -133,6 +133,7 @@ AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask&
             const double d = double(b[c]) - double(a[c]);
             sq += d * d;
         }
+        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) return 0.0;  // common (stored exactly); saves the costly path
         const double e = deltaE2000(linearSrgbToLab(a[0], a[1], a[2]), linearSrgbToLab(b[0], b[1], b[2]));
         ok = std::isfinite(e);
         return e;
@@ -277,7 +278,9 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
 
     Image hdrFlip;
     if (options.hdrFlip) {
-        hdrFlip = flipHdr(referenceHdr, testHdr).flip;
+        HdrFlipResult result = flipHdr(referenceHdr, testHdr);
+        out.image.hdrFlipExposures = result.range.count;
+        hdrFlip = std::move(result.flip);
         out.image.hdrFlipMean = flipStats(hdrFlip).mean;
         out.image.hdrFlipComputed = true;
     }

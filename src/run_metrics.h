@@ -69,6 +69,7 @@ struct ShadedErrors {
     double flipMedian = 0.0;  // LDR-FLIP, nearest-rank lower median
     double hdrFlipMean = 0.0; // HDR-FLIP (0 when not computed)
     bool hdrFlipComputed = false;
+    int hdrFlipExposures = 0;  // how many exposures HDR-FLIP evaluated (its cost is ~ this x LDR-FLIP)
 };
 
 struct RunMetrics {

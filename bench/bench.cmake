@@ -1,0 +1,16 @@
+# Benchmarks (issue 6): Google Benchmark executables, built with GBL_BUILD_BENCH=ON (the default)
+# and run by bench/run.sh. They are not registered with CTest: goals are read from their output,
+# not asserted by timed tests.
+#
+#   codec_bench     CPU mirror: per-encoding and per-layout encode/decode throughput vs memcpy
+#   gpu_pass_bench  G-buffer and lighting pass times per layout (Vulkan timestamp queries)
+#   compare_bench   computeRunMetrics / FLIP at 1080p on synthetic images
+function(gbl_bench name)
+  cmake_parse_arguments(B "" "" "DEPS" ${ARGN})
+  add_executable(${name} bench/${name}.cpp)
+  target_link_libraries(${name} PRIVATE ${B_DEPS} benchmark::benchmark)
+endfunction()
+
+gbl_bench(codec_bench DEPS gbl_encoding gbl_layout gbl_codegen)
+gbl_bench(gpu_pass_bench DEPS gbl_render gbl_layout gbl_codegen gbl_imageio gbl_scene)
+gbl_bench(compare_bench DEPS gbl_compare gbl_metrics)

@@ -1,0 +1,352 @@
+// `gbufferlab compare`: the product's main job. Renders the float reference and every chosen
+// layout (under every chosen IBL mode) at the same camera, measures attribute and image error,
+// writes error images, the bandwidth model and report.html / report.json / report.csv.
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "bandwidth.h"
+#include "cli_args.h"
+#include "color_map.h"
+#include "commands.h"
+#include "error.h"
+#include "error_images.h"
+#include "file_io.h"
+#include "ibl_precompute.h"
+#include "image_io.h"
+#include "layout_catalog.h"
+#include "progress.h"
+#include "renderer.h"
+#include "report_html.h"
+#include "report_model.h"
+#include "run_metrics.h"
+#include "scene_inputs.h"
+#include "tone_map.h"
+#include "vk_context.h"
+#include "wiring_codegen.h"
+#include "worst_regions.h"
+
+namespace gbl {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kReferenceLayout = "reference";
+constexpr const char* kGroundTruth = "ground-truth";
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream ss(text);
+    for (std::string item; std::getline(ss, item, ',');)
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+std::string joinList(const std::vector<std::string>& items) {
+    std::string out;
+    for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+    return out;
+}
+
+// Resolves --layouts: "all" (or nothing) = every file in layouts/ but the reference; otherwise
+// names or paths. Every file is parsed and validated here, before any rendering.
+std::vector<Layout> resolveLayouts(const std::string& spec) {
+    std::vector<std::string> names;
+    const std::vector<std::string> known = listLayoutNames();
+    if (spec.empty() || spec == "all") {
+        for (const auto& n : known)
+            if (n != kReferenceLayout) names.push_back(n);
+    } else {
+        names = splitList(spec);
+    }
+    std::vector<Layout> layouts;
+    for (const std::string& n : names) {
+        const bool isPath = n.find('/') != std::string::npos || n.find(".toml") != std::string::npos;
+        if (!isPath && std::find(known.begin(), known.end(), n) == known.end())
+            throwUserError("--layouts: unknown layout '" + n + "' (known: " + joinList(known) + ", or all)");
+        layouts.push_back(loadLayout(n));
+    }
+    return layouts;
+}
+
+std::optional<AttributeStats> toReport(const ClassStats& c, bool color) {
+    if (c.error.count == 0) return std::nullopt;
+    AttributeStats s;
+    s.error = c.error;
+    if (color) s.rmse = c.rmse;
+    return s;
+}
+
+AttributeErrors toReport(const AttributeMetrics& m, bool color) {
+    return {toReport(m.all, color), toReport(m.metal, color), toReport(m.dielectric, color)};
+}
+
+void fillMetrics(RunReport& run, const RunMetrics& m) {
+    run.attributes[ErrorAttribute::Normal] = toReport(m.normal, false);
+    run.attributes[ErrorAttribute::BaseColor] = toReport(m.baseColor, true);
+    run.attributes[ErrorAttribute::DiffuseColor] = toReport(m.diffuseColor, true);
+    run.attributes[ErrorAttribute::SpecularColor] = toReport(m.specularColor, true);
+    run.attributes[ErrorAttribute::Roughness] = toReport(m.roughness, false);
+    run.attributes[ErrorAttribute::Metallic] = toReport(m.metallic, false);
+    run.attributes[ErrorAttribute::Depth] = toReport(m.depth, false);
+    ImageErrors e;
+    e.rmseLinear = m.image.rmseLinear;
+    e.psnrLinear = m.image.psnrLinear;
+    e.rmseToneMapped = m.image.rmseToneMapped;
+    e.psnrToneMapped = m.image.psnrToneMapped;
+    e.maxAbs = m.image.maxAbs;
+    e.p99Abs = m.image.p99Abs;
+    e.flipMean = m.image.flipMean;
+    e.flipMedian = m.image.flipMedian;
+    run.image = e;
+}
+
+struct ReferenceRender {
+    RenderOutput output;
+    std::string renderPng;  // relative to the report dir
+};
+
+std::string isoDate() {
+    const std::time_t now = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return buf;
+}
+
+std::string formatPsnr(double db) {
+    if (std::isinf(db)) return "inf";
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.1f dB", db);
+    return buf;
+}
+
+// The comparison of one rendered run against its reference: metrics, images, crops.
+void measureRun(RunReport& run, const RenderOutput& test, const RenderOutput& reference, const fs::path& outDir,
+                const std::string& prefix, float exposure, const std::string& referencePng) {
+    RunErrorMaps maps;
+    RunMetricsOptions options;
+    options.maps = &maps;
+    const RunMetrics m =
+        computeRunMetrics(reference.surfaces, test.surfaces, reference.hdr, test.hdr, exposure, options);
+    fillMetrics(run, m);
+    ErrorImageOptions imageOptions;
+    imageOptions.label = run.layout + " / " + run.iblMode;
+    const ErrorImagePaths paths = writeErrorImages(outDir, prefix, maps, m, imageOptions);
+    run.images.render = paths.render;
+    run.images.errorHeatmap = paths.heatmap;
+    run.images.flip = paths.flip;
+    run.images.normalError = paths.normalError;
+    run.images.difference = paths.difference;
+    run.images.errorsExr = paths.errorsExr;
+    const int cropSize = std::max(32, std::min(test.hdr.width, test.hdr.height) / 12);
+    const std::vector<Crop> crops = findWorstRegions(maps.relLuminance, cropSize, 3);
+    if (!crops.empty()) {
+        const Image8 heat = applyColorMap(maps.relLuminance, 0.0f, imageOptions.heatMax);
+        const auto files = writeCrops(outDir, prefix, crops, srgbFloatTo8(maps.referenceSrgb),
+                                      srgbFloatTo8(maps.testSrgb), heat);
+        for (size_t i = 0; i < crops.size(); ++i)
+            run.images.crops.push_back({crops[i].x, crops[i].y, crops[i].size, crops[i].size, files[i].reference,
+                                        files[i].test, files[i].heat});
+    }
+    (void)referencePng;
+}
+
+void printTable(const ReportModel& model) {
+    std::printf("\n%-20s %-16s %6s %9s %9s %9s %10s %8s\n", "layout", "ibl", "B/px", "GB/s@1080", "normal°",
+                "albedoΔE", "PSNR(tm)", "FLIP");
+    for (const RunReport& r : model.runs) {
+        if (r.status == RunStatus::Failed) {
+            std::printf("%-20s %-16s FAILED: %s\n", r.layout.c_str(), r.iblMode.c_str(), r.error.c_str());
+            continue;
+        }
+        const auto& n = r.attributes[ErrorAttribute::Normal].all;
+        const auto& a = r.attributes[ErrorAttribute::DiffuseColor].all;
+        std::printf("%-20s %-16s %6d %9.2f %9.3f %9.3f %10s %8.4f\n", r.layout.c_str(), r.iblMode.c_str(),
+                    r.bytesPerPixel.total, r.gigabytesPerSecond1080p60().value_or(0.0), n ? n->error.mean : 0.0,
+                    a ? a->error.mean : 0.0, formatPsnr(r.image ? r.image->psnrToneMapped : 0.0).c_str(),
+                    r.image ? r.image->flipMean : 0.0);
+    }
+}
+
+}  // namespace
+
+int runCompareCommand(const std::vector<std::string>& args) {
+    const std::vector<FlagSpec> specs = {
+        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in sphere grid"},
+        {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
+        {"layouts", "A,B,...", "layouts to compare (names in layouts/ or .toml paths), or all (default)"},
+        {"ibl", "MODES", "specular IBL modes, comma-separated (default split-sum; known: " +
+                             joinList(iblModeNames()) + ")"},
+        {"samples", "N", "samples per pixel of the ground-truth IBL mode (default 1024)"},
+        {"size", "WxH", "image size (default 1920x1080)"},
+        {"out", "DIR", "output directory, new or empty (default: out/compare-<time>)"},
+        {"force", "", "write into a non-empty --out directory, replacing files of the same name"},
+        {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
+        {"exposure", "X", "exposure for tone-mapped images and their metrics (default 1)"},
+        {"native-formats", "", "render targets in their real UNORM/SRGB/float formats where the layout allows"},
+        {"no-hdr-flip", "", "skip HDR-FLIP (faster)"},
+        {"validation", "", "enable Vulkan validation layers"},
+        {"help", "", "show this help"},
+    };
+    const ParsedArgs parsed = parseArgs("compare", args, specs);
+    if (parsed.has("help")) {
+        std::printf("%s", formatHelp("gbufferlab compare [--scene F] [--env F] [--layouts A,B,...|all] [--ibl MODES] "
+                                     "[--size WxH] [--out DIR]",
+                                     "Renders the float reference and each layout at the same camera, and reports "
+                                     "what each loses\n(attribute and image error, FLIP, error images) and costs "
+                                     "(bytes per pixel, bandwidth).\nWith --ibl listing several modes and "
+                                     "ground-truth among them, the reference under each mode is also\ncompared with "
+                                     "the reference under ground-truth: the error of the lighting approximation.",
+                                     specs)
+                               .c_str());
+        return 0;
+    }
+    if (!parsed.positional.empty())
+        throwUserError("gbufferlab compare: unexpected argument '" + parsed.positional[0] + "' (see --help)");
+    const auto [width, height] = parseSize(parsed.get("size", "1920x1080"), "--size");
+    float exposure = 1.0f;
+    if (parsed.has("exposure")) {
+        try {
+            exposure = std::stof(parsed.get("exposure"));
+        } catch (...) {
+            exposure = -1.0f;
+        }
+        if (!(exposure > 0.0f)) throwUserError("--exposure " + parsed.get("exposure") + ": expected a positive number");
+    }
+    std::vector<IblMode> modes;
+    std::vector<std::string> modeNames = splitList(parsed.get("ibl", "split-sum"));
+    if (modeNames.empty()) throwUserError("--ibl: give at least one mode (known: " + joinList(iblModeNames()) + ")");
+    for (const auto& n : modeNames) modes.push_back(parseIblMode(n));
+    int groundTruthSamples = 1024;
+    if (parsed.has("samples")) {
+        try {
+            groundTruthSamples = std::stoi(parsed.get("samples"));
+        } catch (...) {
+            groundTruthSamples = 0;
+        }
+        if (groundTruthSamples < 1 || groundTruthSamples > 65536)
+            throwUserError("--samples " + parsed.get("samples") + ": expected a whole number from 1 to 65536");
+    }
+    const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("compare");
+    const bool force = parsed.has("force");
+    checkOutputDirectory(outDir, force, "--out");
+
+    // Everything the user gave is read and validated before the first pixel is rendered.
+    const std::vector<Layout> layouts = resolveLayouts(parsed.get("layouts"));
+    const Layout referenceLayout = loadLayout(kReferenceLayout);
+    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height));
+
+    VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
+    validateResolution(ctx, width, height, "--size");
+    WiringOptions wiringOptions;
+    wiringOptions.nativeFormats = parsed.has("native-formats");
+
+    ReportModel model;
+    model.run.scene = inputs.scene.source;
+    model.run.environment = inputs.environment.source;
+    model.run.width = int(width);
+    model.run.height = int(height);
+    model.run.device = {ctx.info.name, ctx.info.driver, ctx.info.typeName};
+    model.run.date = isoDate();
+    model.run.commandLine = "gbufferlab compare";
+    for (const auto& a : args) model.run.commandLine += " " + a;
+    model.run.iblModes = modeNames;
+    model.reference.layout = kReferenceLayout;
+
+    const bool compareLighting = modes.size() > 1 &&
+                                 std::find(modeNames.begin(), modeNames.end(), kGroundTruth) != modeNames.end();
+    const int steps = int(modes.size()) * (1 + int(layouts.size())) + (compareLighting ? int(modes.size()) - 1 : 0);
+    Progress progress(steps, stderr);
+    prepareOutputDirectory(outDir, force, "--out");
+
+    Renderer renderer(ctx, inputs.scene, inputs.environment);
+    const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
+    std::map<std::string, ReferenceRender> references;
+    for (size_t m = 0; m < modes.size(); ++m) {
+        RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.specularIbl = modes[m];
+        settings.groundTruthSamples = groundTruthSamples;
+        settings.decodeSurfaces = true;
+        progress.begin("reference / " + modeNames[m]);
+        ReferenceRender ref;
+        ref.output = renderer.render(referenceWiring, settings);
+        ref.renderPng = "reference-" + modeNames[m] + ".png";
+        writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
+        model.reference.images.push_back({modeNames[m], ref.renderPng});
+        progress.end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
+                     std::to_string(int(ref.output.timings.lightingMs)) + " ms");
+        references[modeNames[m]] = std::move(ref);
+    }
+
+    auto makeRun = [&](const Layout& layout, const std::string& mode) {
+        RunReport run;
+        run.layout = layout.name;
+        run.title = layout.title;
+        run.source = layout.source.text();
+        run.pipeline = pipelineName(layout.pipeline);
+        run.iblMode = mode;
+        const BandwidthReport bw = computeBandwidth(layout, width, height);
+        run.bytesPerPixel = bytesPerPixelOf(bw);
+        run.bandwidth = bw.frames;
+        return run;
+    };
+
+    // The lighting approximations: the reference layout under each mode vs under ground truth.
+    if (compareLighting) {
+        const ReferenceRender& truth = references.at(kGroundTruth);
+        for (const auto& mode : modeNames) {
+            if (mode == kGroundTruth) continue;
+            progress.begin("lighting " + mode + " vs " + kGroundTruth);
+            RunReport run = makeRun(referenceLayout, mode);
+            run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
+            const ReferenceRender& approx = references.at(mode);
+            run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx.info.name};
+            measureRun(run, approx.output, truth.output, outDir, "lighting/" + mode + "/", exposure, truth.renderPng);
+            progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
+                         std::to_string(run.image->flipMean).substr(0, 6));
+            model.runs.push_back(std::move(run));
+        }
+    }
+
+    for (size_t m = 0; m < modes.size(); ++m) {
+        const ReferenceRender& ref = references.at(modeNames[m]);
+        for (const Layout& layout : layouts) {
+            progress.begin(layout.name + " / " + modeNames[m]);
+            RunReport run = makeRun(layout, modeNames[m]);
+            try {
+                RenderSettings settings;
+                settings.width = width;
+                settings.height = height;
+                settings.specularIbl = modes[m];
+                settings.groundTruthSamples = groundTruthSamples;
+                settings.decodeSurfaces = true;
+                const RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settings);
+                run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
+                measureRun(run, out, ref.output, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure,
+                           ref.renderPng);
+                progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
+                             std::to_string(run.image->flipMean).substr(0, 6));
+            } catch (const std::exception& e) {
+                // One layout that cannot be rendered must not sink the others: report it as failed.
+                run.status = RunStatus::Failed;
+                run.error = e.what();
+                run.image.reset();
+                progress.end("FAILED: " + std::string(e.what()).substr(0, 200));
+            }
+            model.runs.push_back(std::move(run));
+        }
+    }
+
+    writeReport(outDir, model);
+    printTable(model);
+    std::printf("\nreport: %s\n", (outDir / "report.html").string().c_str());
+    return 0;
+}
+
+}  // namespace gbl
