@@ -7,6 +7,9 @@
 #   compare_bench   computeRunMetrics / FLIP at 1080p on synthetic images
 function(gbl_bench name)
   cmake_parse_arguments(B "" "" "DEPS" ${ARGN})
+  if(NOT EXISTS ${CMAKE_SOURCE_DIR}/bench/${name}.cpp)
+    return()
+  endif()
   add_executable(${name} bench/${name}.cpp)
   target_link_libraries(${name} PRIVATE ${B_DEPS} benchmark::benchmark)
 endfunction()

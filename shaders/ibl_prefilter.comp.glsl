@@ -17,10 +17,11 @@ layout(push_constant) uniform Params {
     float maxLod;          // last mip of sourceCube
     uint outputSize;       // face width of this output mip
     uint filtered;
+    float lodBias;         // added to every filtered sample's lod ([KC08] suggest 1); 0 for the brute force
 } pc;
 
 vec3 sampleEnvironmentLod(vec3 dir, float lod) {
-    return textureLod(sourceCube, dir, min(lod, pc.maxLod)).rgb;
+    return textureLod(sourceCube, dir, min(lod + pc.lodBias, pc.maxLod)).rgb;
 }
 #define GBL_IBL_HAS_ENVIRONMENT
 #include "ibl.glsl"

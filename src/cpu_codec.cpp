@@ -107,7 +107,7 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
     const std::string& e = f.encoding;
     const uint b = uint(f.bitsOfCode(0));
     const vec3 v = wholeValue(f, s);
-    ColorFn fwd, inv;
+    ColorFn fwd = nullptr, inv = nullptr;
     if (e == "srgb8") {
         c = {encodeSrgb8(v.x), encodeSrgb8(v.y), encodeSrgb8(v.z)};
     } else if (e == "luma") {
@@ -144,7 +144,7 @@ vec3 decodeField(const Field& f, const std::vector<uint>& c) {
         return r;
     }
     const uint b = uint(f.bitsOfCode(0));
-    ColorFn fwd, inv;
+    ColorFn fwd = nullptr, inv = nullptr;
     if (e == "srgb8") return vec3(decodeSrgb8(c[0]), decodeSrgb8(c[1]), decodeSrgb8(c[2]));
     if (e == "luma") return vec3(dequantizeUnorm(c[0], b));
     if (colorTransform(e, fwd, inv))
@@ -285,7 +285,7 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                     if (!member(s, f.attribute)) continue;
                     const EncodingInfo* info = findEncoding(f.encoding);
                     if (info && info->needsNeighbours) {
-                        ColorFn fwd, inv;
+                        ColorFn fwd = nullptr, inv = nullptr;
                         colorTransform(f.encoding, fwd, inv);
                         const uint b = uint(f.bitsOfCode(0));
                         auto lumaChroma = [&](int px, int py) {

@@ -210,6 +210,7 @@ GpuImage prefilterEnvironment(const VulkanContext& ctx, const GpuImage& sourceCu
         float maxLod;
         uint32_t outputSize;
         uint32_t filtered;
+        float lodBias;
     };
     Kernel k = createKernel(ctx, "ibl_prefilter.comp.glsl", b, sizeof(Push), p.mipCount);
     std::vector<VkDescriptorSet> sets;
@@ -234,6 +235,7 @@ GpuImage prefilterEnvironment(const VulkanContext& ctx, const GpuImage& sourceCu
             push.maxLod = float(sourceCube.mipLevels - 1);
             push.outputSize = size;
             push.filtered = p.filtered ? 1u : 0u;
+            push.lodBias = p.filtered ? p.lodBias : 0.0f;
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.layout, 0, 1, &sets[m], 0, nullptr);
             vkCmdPushConstants(cmd, k.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
             vkCmdDispatch(cmd, (size + 7) / 8, (size + 7) / 8, 6);

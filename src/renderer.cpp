@@ -1,5 +1,7 @@
 #include "renderer.h"
 
+#include "decode_pass.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -86,6 +88,9 @@ Renderer::~Renderer() {
 
 RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings& settings) {
     validateResolution(ctx_, settings.width, settings.height, "--size");
+    if (wiring.materialPass)
+        throw std::runtime_error("layout " + wiring.layoutName +
+                                 ": deferred lighting's material pass is not implemented by the renderer yet");
     const uint32_t w = settings.width, h = settings.height;
     const CameraMatrices cam = computeCameraMatrices(scene_.camera, float(w) / float(h), wiring.reversedZ);
     gpu::FrameConstants frame{};
@@ -160,6 +165,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
             out.depth[i] = float(double(v & 0xFFFFFFu) / 16777215.0);
         }
     }
+    if (settings.decodeSurfaces)
+        out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth);
     destroyLightingPass(ctx_, lighting);
     destroyGBufferPass(ctx_, gbuffer);
     destroyBuffer(ctx_, frameBuffer);

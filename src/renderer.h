@@ -11,6 +11,7 @@
 #include "ibl_precompute.h"
 #include "image.h"
 #include "scene.h"
+#include "surface_images.h"
 
 namespace gbl {
 
@@ -25,6 +26,9 @@ struct RenderSettings {
     IblMode specularIbl = IblMode::SplitSum;
     int groundTruthSamples = 1024;  // the seed's NumSamples
     bool diffuseIbl = true;
+    // Also run the layout's readGBuffer() over every pixel and return the Surface as floats
+    // (RenderOutput::surfaces): what attribute errors are measured on.
+    bool decodeSurfaces = false;
 };
 
 struct PassTimings {
@@ -37,6 +41,7 @@ struct RenderOutput {
     std::vector<std::vector<uint32_t>> targetWords;  // per target, row-major, texel size / 4 words per pixel
     std::vector<float> depth;                        // row-major depth-buffer values
     PassTimings timings;
+    SurfaceImages surfaces;  // filled when RenderSettings::decodeSurfaces
 };
 
 // Checks a requested resolution against the device's limits; throws UserError naming `flag`.

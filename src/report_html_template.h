@@ -148,7 +148,8 @@ inline constexpr const char* kScript = R"JS(
   hash.split('&').forEach(function (part) {
     var eq = part.indexOf('=');
     if (eq < 0) return;
-    var name = part.slice(0, eq), value = decodeURIComponent(part.slice(eq + 1));
+    var name = part.slice(0, eq), value = part.slice(eq + 1);
+    try { value = decodeURIComponent(value); } catch (e) { /* a malformed escape: use it as typed */ }
     if (name === 'sort') {
       var colon = value.indexOf(':');
       var key = colon < 0 ? value : value.slice(0, colon);

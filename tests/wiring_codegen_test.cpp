@@ -227,8 +227,12 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
         EXPECT_GT(checked, 0);
         // Emissive forward reads back 0, the material pass at full precision.
         const Fallback* em = l.findFallback(Attribute::Emissive);
-        if (em && em->kind == FallbackKind::Forward) EXPECT_EQ(out[5].emissive, glm::vec3(0.0f));
-        if (em && em->kind == FallbackKind::MaterialPass) EXPECT_EQ(out[5].emissive, in[5].emissive);
+        if (em && em->kind == FallbackKind::Forward) {
+            EXPECT_EQ(out[5].emissive, glm::vec3(0.0f));
+        }
+        if (em && em->kind == FallbackKind::MaterialPass) {
+            EXPECT_EQ(out[5].emissive, in[5].emissive);
+        }
     }
 }
 

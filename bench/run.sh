@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Builds the benchmarks in Release and runs them, writing Google Benchmark JSON to
+# bench/results/<name>.json (gitignored), then prints the summary (bench/summarize.py), also
+# written to bench/results/summary.txt.
+#
+# usage: bench/run.sh [codec] [gpu] [compare] [e2e]    (default: codec gpu compare)
+#   codec    codec_bench: CPU mirror encode/decode vs memcpy of the same bytes
+#   gpu      gpu_pass_bench: G-buffer and lighting pass per layout (GBL_BENCH_4K=1 adds 3840x2160)
+#   compare  compare_bench: computeRunMetrics and FLIP at 1080p
+#   e2e      `gbufferlab compare` of all layouts at 1080p, run twice (the second, warm, is timed)
+# environment:
+#   GBL_BENCH_REPETITIONS (default 3; medians are reported), GBL_BENCH_BUILD_DIR (default build-bench),
+#   GBL_BENCH_FILTER (a --benchmark_filter regex), GBL_BENCH_4K, GBL_BENCH_LAYOUTS, GBL_BENCH_DEVICE
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=${GBL_BENCH_BUILD_DIR:-build-bench}
+reps=${GBL_BENCH_REPETITIONS:-3}
+results=bench/results
+what=("$@")
+[ ${#what[@]} -eq 0 ] && what=(codec gpu compare)
+
+targets=(codec_bench gpu_pass_bench compare_bench)
+for w in "${what[@]}"; do [ "$w" = e2e ] && targets+=(gbufferlab); done
+
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGBL_BUILD_BENCH=ON >/dev/null
+cmake --build "$build" --target "${targets[@]}" -j2
+mkdir -p "$results"
+
+run_bench() {  # name
+    local args=(--benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
+                --benchmark_out="$results/$1.json" --benchmark_out_format=json)
+    [ -n "${GBL_BENCH_FILTER:-}" ] && args+=(--benchmark_filter="$GBL_BENCH_FILTER")
+    echo "== $1 -> $results/$1.json"
+    "$build/$1" "${args[@]}"
+}
+
+for w in "${what[@]}"; do
+    case "$w" in
+        codec) run_bench codec_bench ;;
+        gpu) run_bench gpu_pass_bench ;;
+        compare) run_bench compare_bench ;;
+        e2e)
+            out="$results/compare-e2e"
+            echo "== gbufferlab compare (warm-up run)"
+            "$build/gbufferlab" compare --out "$out" --force >/dev/null
+            echo "== gbufferlab compare (timed run)"
+            start=$(date +%s.%N)
+            "$build/gbufferlab" compare --out "$out" --force >/dev/null
+            end=$(date +%s.%N)
+            python3 -c "import json,sys; json.dump({'wall_s': $end - $start}, open(sys.argv[1], 'w'))" \
+                "$results/compare_e2e.json"
+            ;;
+        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e)" >&2; exit 2 ;;
+    esac
+done
+
+python3 bench/summarize.py "$results" | tee "$results/summary.txt"

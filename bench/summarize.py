@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""Summarises bench/results/*.json (Google Benchmark JSON, medians of the repetitions).
+
+usage: bench/summarize.py [RESULTS_DIR]   (default bench/results)
+Prints: codec GB/s as a ratio of memcpy GB/s of the same bytes (goal >= 0.25x); GPU pass times
+per layout and the 4K/1080p ratio; the CPU metrics cost per layout as a ratio of the GPU passes;
+`compare` wall time as a ratio of its GPU pass times (goal <= 1.5x); peak RSS (goal < 2 GiB).
+"""
+import json
+import os
+import re
+import sys
+
+CODEC_GOAL = 0.25
+COMPARE_GOAL = 1.5
+RSS_GOAL_MIB = 2048.0
+
+
+def base_name(run_name):
+    name = re.sub(r"/iterations:\d+", "", run_name)
+    for suffix in ("/manual_time", "/real_time"):
+        if name.endswith(suffix):
+            name = name[: -len(suffix)]
+    return name
+
+
+def medians(path):
+    """{base name: median entry}, plus the JSON context."""
+    if not os.path.exists(path):
+        return None, None
+    with open(path) as f:
+        doc = json.load(f)
+    out = {}
+    for b in doc.get("benchmarks", []):
+        if b.get("error_occurred"):
+            out[base_name(b.get("run_name", b["name"]))] = {"error": b.get("error_message", "error")}
+            continue
+        agg = b.get("aggregate_name")
+        if agg not in (None, "median"):
+            continue
+        key = base_name(b.get("run_name", b["name"]))
+        if agg == "median" or key not in out:
+            out[key] = b
+    return out, doc.get("context", {})
+
+
+def ms(entry):
+    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[entry.get("time_unit", "ns")]
+    return entry["real_time"] * scale
+
+
+def codec(results):
+    rows, ctx = medians(os.path.join(results, "codec_bench.json"))
+    if rows is None:
+        return
+    print("== codec_bench: CPU mirror GB/s of encoded bytes / memcpy GB/s of the same bytes, same run "
+          f"(goal >= {CODEC_GOAL}x; medians; {ctx.get('num_cpus', '?')} CPUs)")
+    memcpy = {int(round(v["bytes"])): v["GB_per_s"] for k, v in rows.items()
+              if k.startswith("memcpy/") and "GB_per_s" in v}
+    groups = [("per encoding, 1M elements", ("encode/", "decode/")),
+              ("per layout, 1920x1080 image (cpu_codec)", ("layout_encode/", "layout_decode/"))]
+    for title, prefixes in groups:
+        names = sorted({k.split("/", 1)[1] for k in rows if k.startswith(prefixes)})
+        if not names:
+            continue
+        print(f"  {title}")
+        print(f"    {'name':28s} {'bytes':>10s} {'enc GB/s':>9s} {'x memcpy':>9s} {'dec GB/s':>9s} {'x memcpy':>9s}"
+              f" {'Mpix/s enc':>10s} {'Mpix/s dec':>10s}")
+        misses = []
+        for n in names:
+            e, d = rows.get(prefixes[0] + n, {}), rows.get(prefixes[1] + n, {})
+            ref = e or d
+            if "bytes" not in ref:
+                print(f"    {n:28s} {'error: ' + ref.get('error', 'missing')}")
+                continue
+            nbytes = int(round(ref["bytes"]))
+            m = memcpy.get(nbytes)
+            cells = []
+            for x in (e, d):
+                if "GB_per_s" in x and m:
+                    r = x["GB_per_s"] / m
+                    cells.append(f"{x['GB_per_s']:9.3f} {r:8.3f}x")
+                    if r < CODEC_GOAL:
+                        misses.append(f"{prefixes[0 if x is e else 1]}{n} {r:.3f}x")
+                else:
+                    cells.append(f"{'-':>9s} {'-':>9s}")
+            pix = [f"{x['pixels_per_s'] / 1e6:10.1f}" if "pixels_per_s" in x else f"{'-':>10s}" for x in (e, d)]
+            print(f"    {n:28s} {nbytes:10d} {cells[0]} {cells[1]} {pix[0]} {pix[1]}")
+        print(f"    memcpy of those sizes: " + ", ".join(f"{b / 1e6:.1f} MB {g:.1f} GB/s" for b, g in
+                                                        sorted(memcpy.items()) if b in
+                                                        {int(round(rows[p + n]['bytes'])) for n in names
+                                                         for p in prefixes if 'bytes' in rows.get(p + n, {})}))
+        print(f"    below goal: {', '.join(misses) if misses else 'none'}")
+
+
+def gpu(results):
+    rows, ctx = medians(os.path.join(results, "gpu_pass_bench.json"))
+    if rows is None:
+        return None
+    print(f"== gpu_pass_bench on {ctx.get('vulkan_device', '?')} ({ctx.get('vulkan_driver', '?')}); "
+          "medians of timestamp-query pass times")
+    layouts = sorted({k.split("/")[1] for k in rows if k.startswith("gbuffer_pass/")})
+    sizes = sorted({k.split("/")[2] for k in rows if k.startswith("gbuffer_pass/")},
+                   key=lambda s: int(s.split("x")[0]))
+    passes = {}
+    print(f"    {'layout':20s} {'B/px':>5s} " + " ".join(f"{'gbuf ' + s:>15s} {'light ' + s:>16s}" for s in sizes) +
+          ("   4K/1080p gbuf  light" if len(sizes) > 1 else ""))
+    peak = 0.0
+    for lay in layouts:
+        cells, bpp = [], "-"
+        for s in sizes:
+            g, l = rows.get(f"gbuffer_pass/{lay}/{s}", {}), rows.get(f"lighting_pass/{lay}/{s}", {})
+            if "real_time" in g and "real_time" in l:
+                passes[(lay, s)] = (ms(g), ms(l))
+                bpp = f"{g['bytes_per_pixel']:.0f}"
+                peak = max(peak, g.get("peak_rss_MiB", 0), l.get("peak_rss_MiB", 0))
+                cells.append(f"{ms(g):12.1f} ms {ms(l):13.1f} ms")
+            else:
+                cells.append(f"{'error: ' + (g or l).get('error', 'missing'):>32s}")
+        line = f"    {lay:20s} {bpp:>5s} " + " ".join(cells)
+        if len(sizes) > 1 and (lay, sizes[0]) in passes and (lay, sizes[-1]) in passes:
+            a, b = passes[(lay, sizes[0])], passes[(lay, sizes[-1])]
+            line += f"   {b[0] / a[0]:8.2f}x {b[1] / a[1]:6.2f}x"
+        print(line)
+    print(f"    (absolute times: {ctx.get('vulkan_device', '?')} on {ctx.get('num_cpus', '?')} CPUs, context only)")
+    print(f"    peak RSS of the process: {peak:.0f} MiB (goal < {RSS_GOAL_MIB:.0f} MiB at 4K; "
+          f"4K {'included' if len(sizes) > 1 else 'NOT run: GBL_BENCH_4K=1'})")
+    return passes
+
+
+def compare(results, passes):
+    rows, _ = medians(os.path.join(results, "compare_bench.json"))
+    if rows is not None:
+        print("== compare_bench (1920x1080, synthetic images, medians)")
+        for k in sorted(rows):
+            if "real_time" in rows[k]:
+                extra = f", {rows[k]['exposures']:.0f} exposures" if "exposures" in rows[k] else ""
+                print(f"    {k:28s} {ms(rows[k]):9.1f} ms{extra}")
+        hd = [v for (lay, s), v in (passes or {}).items() if s == "1920x1080"]
+        full = rows.get("run_metrics/full", {})
+        if hd and "real_time" in full:
+            mean_pass = sum(g + l for g, l in hd) / len(hd)
+            print(f"    metrics of one layout (run_metrics/full) / its GPU passes (mean over layouts, 1080p): "
+                  f"{ms(full) / mean_pass:.2f}x")
+    e2e = os.path.join(results, "compare_e2e.json")
+    report = os.path.join(results, "compare-e2e", "report.json")
+    if os.path.exists(e2e) and os.path.exists(report):
+        wall = json.load(open(e2e))["wall_s"] * 1000.0
+        runs = json.load(open(report)).get("runs", [])
+        gpu_ms = sum(r["pass_times_ms"]["gbuffer"] + r["pass_times_ms"]["lighting"]
+                     for r in runs if "pass_times_ms" in r)
+        print(f"== gbufferlab compare end to end (warm, 1080p, {len(runs)} runs): wall {wall / 1000:.1f} s, "
+              f"GPU passes of the runs {gpu_ms / 1000:.2f} s -> {wall / gpu_ms if gpu_ms else float('nan'):.2f}x "
+              f"(goal <= {COMPARE_GOAL}x; the reference render's passes are not in report.json, not counted)")
+
+
+def main():
+    results = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "results")
+    codec(results)
+    passes = gpu(results)
+    compare(results, passes)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,378 @@
+// GPU vs CPU mirror, for every layouts/*.toml on lavapipe: random Surfaces at 256x256 are written
+// by the generated writeGBuffer (a full-screen triangle into the layout's UINT targets, the
+// Surface fetched from an SSBO by pixel) and the packed words must equal the CPU mirror's bit for
+// bit. Then the generated readGBuffer decodes them in a compute shader and must match the CPU
+// decode within a few ulps. Deferred-lighting layouts also run the material pass.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <random>
+
+#include "cpu_codec.h"
+#include "layout_catalog.h"
+#include "shader_compiler.h"
+#include "vk_pipeline.h"
+#include "vk_resources.h"
+#include "vk_test_support.h"
+#include "wiring_codegen.h"
+
+namespace gbl {
+namespace {
+
+constexpr uint32_t kSize = 256;
+constexpr int kFloatsPerSurface = 28;  // 7 vec4, see kSurfaceIn
+
+const char* kSurfaceIn = R"(
+struct SurfaceIn { vec4 a[7]; };
+layout(set = 0, binding = 0, std430) readonly buffer Surfaces { SurfaceIn surfaces[]; };
+Surface fetchSurface(ivec2 p) {
+    SurfaceIn i = surfaces[p.y * SIZE + p.x];
+    Surface s;
+    s.normal = i.a[0].xyz; s.metallic = i.a[0].w;
+    s.baseColor = i.a[1].xyz; s.roughness = i.a[1].w;
+    s.specularColor = i.a[2].xyz; s.specular = i.a[2].w;
+    s.diffuseColor = i.a[3].xyz; s.occlusion = i.a[3].w;
+    s.emissive = i.a[4].xyz;
+    s.position = i.a[5].xyz;
+    return s;
+}
+)";
+
+const char* kVertex = R"(#version 450
+void main() {
+    vec2 p = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+std::string fragmentSource() {
+    return std::string("#version 450\n#extension GL_GOOGLE_include_directive : require\n#include \"surface.glsl\"\n") +
+           kSurfaceIn + "#include \"gbuffer_wiring.glsl\"\nvoid main() { ivec2 p = ivec2(gl_FragCoord.xy); "
+                        "writeGBuffer(fetchSurface(p), p); }\n";
+}
+
+std::string decodeSource() {
+    return R"(#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "surface.glsl"
+#define GBUFFER_READ 1
+#include "gbuffer_wiring.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0, std430) writeonly buffer Out { vec4 decoded[]; };
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    Surface s = readGBuffer(p);
+    uint i = uint(p.y * SIZE + p.x) * 7u;
+    decoded[i + 0u] = vec4(s.normal, s.metallic);
+    decoded[i + 1u] = vec4(s.baseColor, s.roughness);
+    decoded[i + 2u] = vec4(s.specularColor, s.specular);
+    decoded[i + 3u] = vec4(s.diffuseColor, s.occlusion);
+    decoded[i + 4u] = vec4(s.emissive, 0.0);
+    decoded[i + 5u] = vec4(s.position, 0.0);
+    decoded[i + 6u] = vec4(0.0);
+}
+)";
+}
+
+std::vector<float> packSurfaces(const std::vector<Surface>& v) {
+    std::vector<float> f(v.size() * kFloatsPerSurface, 0.0f);
+    for (size_t i = 0; i < v.size(); ++i) {
+        float* p = &f[i * kFloatsPerSurface];
+        const Surface& s = v[i];
+        auto put = [&](int k, glm::vec3 a, float w) {
+            p[k * 4] = a.x;
+            p[k * 4 + 1] = a.y;
+            p[k * 4 + 2] = a.z;
+            p[k * 4 + 3] = w;
+        };
+        put(0, s.normal, s.metallic);
+        put(1, s.baseColor, s.roughness);
+        put(2, s.specularColor, s.specular);
+        put(3, s.diffuseColor, s.occlusion);
+        put(4, s.emissive, 0.0f);
+        put(5, s.position, 0.0f);
+    }
+    return f;
+}
+
+std::vector<Surface> unpackSurfaces(const float* f, size_t n) {
+    std::vector<Surface> v(n);
+    for (size_t i = 0; i < n; ++i) {
+        const float* p = f + i * kFloatsPerSurface;
+        Surface& s = v[i];
+        s.normal = {p[0], p[1], p[2]};
+        s.metallic = p[3];
+        s.baseColor = {p[4], p[5], p[6]};
+        s.roughness = p[7];
+        s.specularColor = {p[8], p[9], p[10]};
+        s.specular = p[11];
+        s.diffuseColor = {p[12], p[13], p[14]};
+        s.occlusion = p[15];
+        s.emissive = {p[16], p[17], p[18]};
+        s.position = {p[20], p[21], p[22]};
+    }
+    return v;
+}
+
+std::vector<Surface> randomSurfaces(uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<Surface> v(size_t(kSize) * kSize);
+    for (Surface& s : v) {
+        glm::vec3 n;
+        do n = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
+        while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
+        s.normal = glm::normalize(n);
+        s.baseColor = {u(rng), u(rng), u(rng)};
+        s.metallic = u(rng);
+        s.roughness = u(rng);
+        s.specular = u(rng);
+        s.specularColor = {u(rng), u(rng), u(rng)};
+        s.diffuseColor = {u(rng), u(rng), u(rng)};
+        s.occlusion = u(rng);
+        s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 8.0f;
+        s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 100.0f;
+    }
+    return v;
+}
+
+// Renders the full-screen triangle with `defines` into `formats`; returns the images (in
+// SHADER_READ_ONLY_OPTIMAL).
+std::vector<GpuImage> renderTargets(const VulkanContext& ctx, const GBufferWiring& w, const std::vector<VkFormat>& formats,
+                                    const Buffer& surfaces, const std::string& define) {
+    std::vector<GpuImage> images;
+    for (VkFormat f : formats) {
+        ImageDesc d;
+        d.format = f;
+        d.width = d.height = kSize;
+        d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        images.push_back(createImage(ctx, d));
+    }
+    const std::vector<Binding> set0 = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    VkDescriptorSetLayout setLayout = createSetLayout(ctx.device, set0, VK_SHADER_STAGE_FRAGMENT_BIT);
+    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, {setLayout}, 0, 0);
+    VkDescriptorPool pool = createPoolFor(ctx.device, {set0});
+    VkDescriptorSet set = allocateSet(ctx.device, pool, setLayout);
+    DescriptorWriter().buffer(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, surfaces.buffer).flush(ctx.device);
+
+    ShaderSource vs{"fullscreen.vert (test)", kVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}};
+    ShaderSource fs{"gpu_cpu_bits.frag (layout " + w.layoutName + ")", fragmentSource(), VK_SHADER_STAGE_FRAGMENT_BIT,
+                    {{"SIZE", std::to_string(kSize)}, {define, "1"}}, {{"gbuffer_wiring.glsl", w.glsl}}};
+    VkShaderModule vsm = createShaderModule(ctx.device, compileGlsl(vs));
+    VkShaderModule fsm = createShaderModule(ctx.device, compileGlsl(fs));
+    VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vsm;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = fsm;
+    stages[1].pName = "main";
+    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkViewport viewport{0, 0, float(kSize), float(kSize), 0, 1};
+    VkRect2D scissor{{0, 0}, {kSize, kSize}};
+    VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewportState.viewportCount = 1;
+    viewportState.pViewports = &viewport;
+    viewportState.scissorCount = 1;
+    viewportState.pScissors = &scissor;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = VK_CULL_MODE_NONE;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    std::vector<VkPipelineColorBlendAttachmentState> blend(formats.size());
+    for (auto& b : blend) b.colorWriteMask = 0xF;
+    VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    colorBlend.attachmentCount = uint32_t(blend.size());
+    colorBlend.pAttachments = blend.data();
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = uint32_t(formats.size());
+    rendering.pColorAttachmentFormats = formats.data();
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+    info.stageCount = 2;
+    info.pStages = stages;
+    info.pVertexInputState = &vertexInput;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewportState;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pColorBlendState = &colorBlend;
+    info.layout = pipelineLayout;
+    VkPipeline pipeline;
+    VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    vkDestroyShaderModule(ctx.device, vsm, nullptr);
+    vkDestroyShaderModule(ctx.device, fsm, nullptr);
+
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        std::vector<VkRenderingAttachmentInfo> attachments;
+        for (GpuImage& img : images) {
+            transitionImage(cmd, img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+            VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            a.imageView = img.view;
+            a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+            a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+            a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            attachments.push_back(a);
+        }
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = scissor;
+        ri.layerCount = 1;
+        ri.colorAttachmentCount = uint32_t(attachments.size());
+        ri.pColorAttachments = attachments.data();
+        vkCmdBeginRendering(cmd, &ri);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &set, 0, nullptr);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        vkCmdEndRendering(cmd);
+        for (GpuImage& img : images)
+            transitionImage(cmd, img, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    });
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
+    vkDestroyPipelineLayout(ctx.device, pipelineLayout, nullptr);
+    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
+    vkDestroyDescriptorSetLayout(ctx.device, setLayout, nullptr);
+    return images;
+}
+
+std::vector<uint32_t> readWords(const VulkanContext& ctx, const GpuImage& img) {
+    const std::vector<uint8_t> bytes = downloadImage(ctx, img, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    std::vector<uint32_t> words(bytes.size() / 4);
+    std::memcpy(words.data(), bytes.data(), words.size() * 4);
+    return words;
+}
+
+std::vector<Surface> gpuDecode(const VulkanContext& ctx, const GBufferWiring& w, const std::vector<GpuImage>& targets,
+                               const std::vector<GpuImage>& material) {
+    const size_t pixels = size_t(kSize) * kSize;
+    Buffer out = createBuffer(ctx, pixels * kFloatsPerSurface * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    VkSampler sampler = createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                                      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    std::vector<std::vector<Binding>> sets = {{{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}}, {}, {}};
+    for (uint32_t i = 0; i < targets.size(); ++i) sets[1].push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    for (uint32_t i = 0; i < material.size(); ++i) sets[2].push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    if (material.empty()) sets.pop_back();
+    std::vector<VkDescriptorSetLayout> layouts;
+    for (const auto& s : sets) layouts.push_back(createSetLayout(ctx.device, s, VK_SHADER_STAGE_COMPUTE_BIT));
+    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, layouts, 0, 0);
+    VkDescriptorPool pool = createPoolFor(ctx.device, sets);
+    std::vector<VkDescriptorSet> ds;
+    for (VkDescriptorSetLayout l : layouts) ds.push_back(allocateSet(ctx.device, pool, l));
+    DescriptorWriter writer;
+    writer.buffer(ds[0], 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.buffer);
+    for (uint32_t i = 0; i < targets.size(); ++i)
+        writer.image(ds[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, targets[i].view, sampler,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    for (uint32_t i = 0; i < material.size(); ++i)
+        writer.image(ds[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, material[i].view, sampler,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    writer.flush(ctx.device);
+    ShaderSource cs{"gpu_cpu_bits.comp (layout " + w.layoutName + ")", decodeSource(), VK_SHADER_STAGE_COMPUTE_BIT,
+                    {{"SIZE", std::to_string(kSize)}}, {{"gbuffer_wiring.glsl", w.glsl}}};
+    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
+    VkPipeline pipeline = createComputePipeline(ctx.device, pipelineLayout, module);
+    vkDestroyShaderModule(ctx.device, module, nullptr);
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, uint32_t(ds.size()), ds.data(),
+                                0, nullptr);
+        vkCmdDispatch(cmd, kSize / 8, kSize / 8, 1);
+        fullBarrier(cmd);
+    });
+    std::vector<Surface> result = unpackSurfaces(static_cast<const float*>(out.mapped), pixels);
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
+    vkDestroyPipelineLayout(ctx.device, pipelineLayout, nullptr);
+    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
+    for (VkDescriptorSetLayout l : layouts) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
+    vkDestroySampler(ctx.device, sampler, nullptr);
+    destroyBuffer(ctx, out);
+    return result;
+}
+
+bool near(float a, float b) {
+    if (a == b) return true;
+    return std::abs(a - b) <= 4.0f * std::numeric_limits<float>::epsilon() * std::max(1.0f, std::abs(b));
+}
+
+class GpuCpuBits : public test::VulkanTest {};
+
+TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
+    VulkanContext& c = ctx();
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    const std::vector<std::string> names = listLayoutNames(dir);
+    ASSERT_GE(names.size(), 7u);
+    uint32_t seed = 1;
+    for (const std::string& name : names) {
+        SCOPED_TRACE(name);
+        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
+        const GBufferWiring w = generateWiring(layout);
+        const std::vector<Surface> surfaces = randomSurfaces(seed++);
+        const CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
+        const std::vector<float> packed = packSurfaces(surfaces);
+        Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        std::vector<GpuImage> targets = renderTargets(c, w, w.targetFormats, ssbo, "GBUFFER_WRITE");
+        std::vector<GpuImage> material;
+        if (w.materialPass) material = renderTargets(c, w, w.materialTargetFormats, ssbo, "MATERIAL_PASS_WRITE");
+
+        size_t compared = 0, mismatches = 0;
+        for (size_t t = 0; t < targets.size(); ++t) {
+            std::vector<uint32_t> gpu = readWords(c, targets[t]);
+            ASSERT_EQ(gpu.size(), cpu.targetWords[t].size()) << "target " << t;
+            for (size_t i = 0; i < gpu.size(); ++i) {
+                ++compared;
+                if (gpu[i] != cpu.targetWords[t][i] && mismatches++ < 5)
+                    ADD_FAILURE() << "target " << layout.targets[t].name << " word " << i << ": gpu 0x" << std::hex
+                                  << gpu[i] << " cpu 0x" << cpu.targetWords[t][i] << std::dec;
+            }
+        }
+        for (size_t t = 0; t < material.size(); ++t) {
+            std::vector<uint32_t> gpu = readWords(c, material[t]);
+            for (size_t i = 0; i < gpu.size(); ++i) {
+                ++compared;
+                if (gpu[i] != cpu.materialWords[t][i] && mismatches++ < 5)
+                    ADD_FAILURE() << "material target " << t << " word " << i;
+            }
+        }
+        EXPECT_EQ(mismatches, 0u);
+        std::printf("[ bits     ] %-20s %8zu words compared, %zu mismatches\n", name.c_str(), compared, mismatches);
+
+        const std::vector<Surface> gpuDecoded = gpuDecode(c, w, targets, material);
+        const std::vector<Surface> cpuDecoded = decodeGBuffer(layout, cpu);
+        size_t decodeMismatches = 0;
+        float worst = 0.0f;
+        for (size_t i = 0; i < gpuDecoded.size(); ++i) {
+            const Surface& g = gpuDecoded[i];
+            const Surface& s = cpuDecoded[i];
+            const float a[] = {g.normal.x, g.normal.y, g.normal.z, g.baseColor.x, g.baseColor.y, g.baseColor.z,
+                               g.metallic, g.roughness, g.specular, g.specularColor.x, g.specularColor.y,
+                               g.specularColor.z, g.diffuseColor.x, g.diffuseColor.y, g.diffuseColor.z,
+                               g.occlusion, g.emissive.x, g.emissive.y, g.emissive.z, g.position.x, g.position.y,
+                               g.position.z};
+            const float b[] = {s.normal.x, s.normal.y, s.normal.z, s.baseColor.x, s.baseColor.y, s.baseColor.z,
+                               s.metallic, s.roughness, s.specular, s.specularColor.x, s.specularColor.y,
+                               s.specularColor.z, s.diffuseColor.x, s.diffuseColor.y, s.diffuseColor.z,
+                               s.occlusion, s.emissive.x, s.emissive.y, s.emissive.z, s.position.x, s.position.y,
+                               s.position.z};
+            for (size_t k = 0; k < std::size(a); ++k) {
+                worst = std::max(worst, std::abs(a[k] - b[k]));
+                if (!near(a[k], b[k]) && decodeMismatches++ < 5)
+                    ADD_FAILURE() << "decode pixel " << i << " value " << k << ": gpu " << a[k] << " cpu " << b[k];
+            }
+        }
+        EXPECT_EQ(decodeMismatches, 0u);
+        std::printf("[ decode   ] %-20s max |gpu - cpu| %g, %zu beyond 4 ulp\n", name.c_str(), double(worst),
+                    decodeMismatches);
+        for (GpuImage& img : targets) destroyImage(c, img);
+        for (GpuImage& img : material) destroyImage(c, img);
+        destroyBuffer(c, ssbo);
+    }
+}
+
+}  // namespace
+}  // namespace gbl
