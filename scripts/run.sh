@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh build
-if [ $# -eq 0 ]; then set -- render; fi
+if [ $# -eq 0 ]; then set -- compare; fi
 exec build/gbufferlab "$@"
