@@ -13,7 +13,7 @@ constexpr int kFloatsPerPixel = 20;  // five vec4, see DecodedPixel in decode_su
 
 SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
                              const Buffer& frameConstants, VkSampler nearestSampler,
-                             const std::vector<float>& depthValues) {
+                             const std::vector<float>& depthValues, const GBufferPass* materialPass) {
     const uint32_t w = gbuffer.depth.extent.width, h = gbuffer.depth.extent.height;
     const size_t pixels = size_t(w) * h;
     Buffer output = createBuffer(ctx, pixels * kFloatsPerPixel * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
@@ -23,13 +23,16 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     };
-    std::vector<Binding> set1;
-    for (uint32_t i = 0; i < gbuffer.targets.size(); ++i) set1.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
-    VkDescriptorSetLayout layouts[2] = {createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT),
-                                        createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT)};
-    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, {layouts[0], layouts[1]}, 0, 0);
-    VkDescriptorPool pool = createPoolFor(ctx.device, {set0, set1});
-    VkDescriptorSet sets[2] = {allocateSet(ctx.device, pool, layouts[0]), allocateSet(ctx.device, pool, layouts[1])};
+    const std::vector<Binding> set1 = targetReadBindings(gbuffer);
+    const std::vector<Binding> set2 = materialPass ? targetReadBindings(*materialPass) : std::vector<Binding>{};
+    const uint32_t setCount = materialPass ? 3 : 2;
+    std::vector<VkDescriptorSetLayout> layouts = {createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT),
+                                                  createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT)};
+    if (materialPass) layouts.push_back(createSetLayout(ctx.device, set2, VK_SHADER_STAGE_COMPUTE_BIT));
+    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, layouts, 0, 0);
+    VkDescriptorPool pool = createPoolFor(ctx.device, {set0, set1, set2});
+    std::vector<VkDescriptorSet> sets;
+    for (VkDescriptorSetLayout l : layouts) sets.push_back(allocateSet(ctx.device, pool, l));
     DescriptorWriter writer;
     writer.buffer(sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
         .image(sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
@@ -38,6 +41,10 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     for (uint32_t i = 0; i < gbuffer.targets.size(); ++i)
         writer.image(sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.targets[i].view, nearestSampler,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    if (materialPass)
+        for (uint32_t i = 0; i < materialPass->targets.size(); ++i)
+            writer.image(sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, materialPass->targets[i].view,
+                         nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     writer.flush(ctx.device);
 
     ShaderSource cs = loadShaderFile("decode_surface.comp.glsl");
@@ -49,7 +56,8 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
 
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, 2, sets, 0, nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, setCount, sets.data(), 0,
+                                nullptr);
         vkCmdDispatch(cmd, (w + 7) / 8, (h + 7) / 8, 1);
         fullBarrier(cmd);
     });

@@ -9,9 +9,10 @@ namespace gbl {
 
 // Decodes the G-buffer `gbuffer` (targets in SHADER_READ_ONLY_OPTIMAL, depth in
 // DEPTH_STENCIL_READ_ONLY_OPTIMAL) written with `wiring`. `depthValues` are the depth buffer's
-// values, already read back (they go into SurfaceImages::depth).
+// values, already read back (they go into SurfaceImages::depth). `materialPass`: deferred
+// lighting's material targets, bound at set 2 as in the lighting pass.
 SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
                              const Buffer& frameConstants, VkSampler nearestSampler,
-                             const std::vector<float>& depthValues);
+                             const std::vector<float>& depthValues, const GBufferPass* materialPass = nullptr);
 
 }  // namespace gbl

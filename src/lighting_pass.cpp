@@ -5,6 +5,12 @@
 
 namespace gbl {
 
+std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
+    std::vector<Binding> bindings;
+    for (uint32_t i = 0; i < pass.targets.size(); ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    return bindings;
+}
+
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
                                 uint32_t width, uint32_t height) {
     LightingPass pass;
@@ -27,15 +33,16 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
     };
-    std::vector<Binding> set1;
-    for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
-        set1.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    const std::vector<Binding> set1 = targetReadBindings(*in.gbuffer);
+    const std::vector<Binding> set2 = in.materialPass ? targetReadBindings(*in.materialPass) : std::vector<Binding>{};
+    pass.setCount = in.materialPass ? 3 : 2;
     pass.setLayouts[0] = createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT);
     pass.setLayouts[1] = createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT);
-    pass.pipelineLayout = createPipelineLayout(ctx.device, {pass.setLayouts[0], pass.setLayouts[1]}, 0, 0);
-    pass.pool = createPoolFor(ctx.device, {set0, set1});
-    pass.sets[0] = allocateSet(ctx.device, pass.pool, pass.setLayouts[0]);
-    pass.sets[1] = allocateSet(ctx.device, pass.pool, pass.setLayouts[1]);
+    if (in.materialPass) pass.setLayouts[2] = createSetLayout(ctx.device, set2, VK_SHADER_STAGE_COMPUTE_BIT);
+    pass.pipelineLayout = createPipelineLayout(
+        ctx.device, std::vector<VkDescriptorSetLayout>(pass.setLayouts, pass.setLayouts + pass.setCount), 0, 0);
+    pass.pool = createPoolFor(ctx.device, {set0, set1, set2});
+    for (uint32_t i = 0; i < pass.setCount; ++i) pass.sets[i] = allocateSet(ctx.device, pass.pool, pass.setLayouts[i]);
 
     DescriptorWriter writer;
     writer.buffer(pass.sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.frameConstants->buffer)
@@ -55,6 +62,10 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
         writer.image(pass.sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.gbuffer->targets[i].view,
                      in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    if (in.materialPass)
+        for (uint32_t i = 0; i < in.materialPass->targets.size(); ++i)
+            writer.image(pass.sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.materialPass->targets[i].view,
+                         in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     writer.flush(ctx.device);
 
     ShaderSource cs = loadShaderFile("lighting.comp.glsl");
@@ -69,7 +80,8 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
 void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass) {
     transitionImage(cmd, pass.hdr, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipelineLayout, 0, 2, pass.sets, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipelineLayout, 0, pass.setCount, pass.sets, 0,
+                            nullptr);
     vkCmdDispatch(cmd, (pass.width + 7) / 8, (pass.height + 7) / 8, 1);
     fullBarrier(cmd);
 }

@@ -88,9 +88,6 @@ Renderer::~Renderer() {
 
 RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings& settings) {
     validateResolution(ctx_, settings.width, settings.height, "--size");
-    if (wiring.materialPass)
-        throw std::runtime_error("layout " + wiring.layoutName +
-                                 ": deferred lighting's material pass is not implemented by the renderer yet");
     const uint32_t w = settings.width, h = settings.height;
     const CameraMatrices cam = computeCameraMatrices(scene_.camera, float(w) / float(h), wiring.reversedZ);
     gpu::FrameConstants frame{};
@@ -110,8 +107,19 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
     GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h);
+    // Deferred lighting: the second geometry pass writes the material attributes the slim
+    // G-buffer leaves out, at full precision (the same generated GLSL, MATERIAL_PASS_WRITE).
+    GBufferPass materialPass;
+    if (wiring.materialPass) {
+        GBufferWiring materialWiring = wiring;
+        materialWiring.layoutName = wiring.layoutName + " material pass";
+        materialWiring.targetFormats = wiring.materialTargetFormats;
+        materialWiring.glsl = "#define MATERIAL_PASS_WRITE 1\n" + wiring.glsl;
+        materialPass = createGBufferPass(ctx_, materialWiring, gpuScene_, frameBuffer, w, h);
+    }
+    const GBufferPass* material = wiring.materialPass ? &materialPass : nullptr;
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
-                          nearestSampler_, &ibl_};
+                          nearestSampler_, &ibl_, material};
     LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h);
 
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -124,6 +132,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         vkCmdResetQueryPool(cmd, queries, 0, 3);
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries, 0);
         recordGBufferPass(cmd, gbuffer, gpuScene_);
+        if (material) recordGBufferPass(cmd, *material, gpuScene_);  // timed with the geometry passes
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 1);
         recordLightingPass(cmd, lighting);
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 2);
@@ -166,8 +175,9 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         }
     }
     if (settings.decodeSurfaces)
-        out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth);
+        out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth, material);
     destroyLightingPass(ctx_, lighting);
+    if (material) destroyGBufferPass(ctx_, materialPass);
     destroyGBufferPass(ctx_, gbuffer);
     destroyBuffer(ctx_, frameBuffer);
     return out;

@@ -4,6 +4,7 @@
 #include "gpu_scene.h"
 #include "ibl_precompute.h"
 #include "shared_types.h"
+#include "vk_pipeline.h"
 #include "vk_resources.h"
 
 namespace gbl {
@@ -27,11 +28,14 @@ void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass);
 
 struct LightingPass {
     GpuImage hdr;  // RGBA32F storage image, left in GENERAL
-    VkDescriptorSetLayout setLayouts[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    // Set 0: frame, lights, depth, environment, output, IBL; set 1: the G-buffer targets;
+    // set 2 (deferred lighting only): the material pass's targets.
+    VkDescriptorSetLayout setLayouts[3] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
     VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet sets[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    VkDescriptorSet sets[3] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
+    uint32_t setCount = 2;
     uint32_t width = 0, height = 0;
 };
 
@@ -43,7 +47,11 @@ struct LightingInputs {
     VkSampler environmentSampler;
     VkSampler nearestSampler;
     const IblGpu* ibl;  // environment cube, pre-filtered cube, BRDF LUT (bindings 5, 6, 7)
+    const GBufferPass* materialPass = nullptr;  // deferred lighting's second geometry pass (set 2)
 };
+
+// The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2).
+std::vector<Binding> targetReadBindings(const GBufferPass& pass);
 
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
                                 uint32_t width, uint32_t height);

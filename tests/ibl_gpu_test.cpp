@@ -157,13 +157,14 @@ TEST_F(IblGpuTest, FastPrefilterMatchesBruteForceWithinItsNoise) {
         std::printf("  mip %u (roughness %.1f): fast64 vs brute16384 %.4f, brute1024 vs brute16384 (noise) %.4f, "
                     "fast64 vs brute1024 %.4f\n", m, m / double(mips - 1), fastErr, noise, fastVsBrute);
         if (m == 0) {
-            EXPECT_LT(fastErr, 1e-4);  // roughness 0: all three read the mirror direction
+            EXPECT_LT(fastErr, 1e-3);  // roughness 0: all read the mirror direction (float sums of N equal terms)
         } else {
             // Measured on venice_sunset_1k (fast / noise): r 0.2 0.054 / 0.017, r 0.4 0.020 / 0.044,
             // r 0.6 0.022 / 0.099, r 0.8 0.026 / 0.076, r 1 0.060 / 0.045. At r 0.2 the sample lod
             // clamps to 0 (the lobe is narrower than a source texel), so 64 samples are plain MC.
-            if (env.source.find("venice_sunset") != std::string::npos)
+            if (env.source.find("venice_sunset") != std::string::npos) {
                 EXPECT_LT(fastErr, std::max(1.5 * noise, 0.06)) << "mip " << m;
+            }
         }
     }
 }
