@@ -159,7 +159,7 @@ inline constexpr const char* kScript = R"JS(
       showPlot(value);
     }
   });
-  document.documentElement.setAttribute('data-script', 'ready'); console.error('mutation');
+  document.documentElement.setAttribute('data-script', 'ready');
 })();
 )JS";
 

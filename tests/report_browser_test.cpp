@@ -15,7 +15,6 @@
 
 #include <chrono>
 #include <cstdlib>
-#include <fstream>
 #include <set>
 #include <sys/wait.h>
 #include <unistd.h>

@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <regex>
 #include <unistd.h>
 
 #include "error.h"
