@@ -24,7 +24,7 @@
 //   prescribes for IBL; analytic lights use (roughness+1)^2/8 (see brdf.glsl).
 //   Mip <-> roughness of the pre-filtered cube: linear, roughness = mip / (mipCount - 1).
 //   Black Ops 2 gloss from roughness: through the Blinn-Phong power, g = log2(2/alpha^2 - 2)/13
-//   (glossFromRoughness; src/ibl_math.h has the measurements against g = 1 - roughness).
+//   (bo2GlossFromRoughness; src/ibl_math.h has the measurements against g = 1 - roughness).
 //   BRDF LUT (src/brdf_lut.h): u = NoV, v = roughness, so sample it at vec2(NoV, roughness).
 #ifndef GBL_IBL_GLSL
 #define GBL_IBL_GLSL
@@ -237,7 +237,7 @@ float glossFromRoughnessBlinnPhong(float roughness) {
 
 // The mapping environmentBRDF is driven with: the Blinn-Phong-power one, which fits our LUT
 // better than 1 - roughness (measured in src/ibl_math.h) and is what "gloss" means in [Lazarov13].
-float glossFromRoughness(float roughness) {
+float bo2GlossFromRoughness(float roughness) {
     return glossFromRoughnessBlinnPhong(roughness);
 }
 

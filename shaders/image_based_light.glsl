@@ -17,7 +17,7 @@
 //                       uses EnvBRDFApproxNonmetal; everything else the general EnvBRDFApprox.
 //                       The rule reads F0 only, so it works for layouts that do not store metallic.
 //   4 bo2               pre-filtered cube * Black Ops 2 EnvironmentBRDF(g, NoV, f0), g from ibl.glsl's
-//                       glossFromRoughness (log2(2/alpha^2 - 2)/13, the Blinn-Phong power match).
+//                       bo2GlossFromRoughness (log2(2/alpha^2 - 2)/13, the Blinn-Phong power match).
 #ifndef GBL_IMAGE_BASED_LIGHT_GLSL
 #define GBL_IMAGE_BASED_LIGHT_GLSL
 
@@ -31,11 +31,7 @@ vec3 sampleEnvironmentLod(vec3 dir, float lod) {
     return textureLod(environmentCube, dir, lod).rgb * frame.environment.x;
 }
 #define GBL_IBL_HAS_ENVIRONMENT
-// encodings.glsl (included by the layout's wiring) has its own glossFromRoughness (1 - roughness,
-// the G-buffer gloss encoding) with the same signature: rename ibl.glsl's BO2 mapping here.
-#define glossFromRoughness bo2GlossFromRoughness
 #include "ibl.glsl"
-#undef glossFromRoughness
 
 // E(n) from the SH9 coefficients (cosine convolution folded in), clamped at 0 against ringing.
 vec3 irradianceFromSh(vec3 n) {

@@ -215,7 +215,7 @@ float glossFromRoughnessBlinnPhong(float roughness) {
     return std::clamp(std::log2(std::max(n, 1.0f)) / 13.0f, 0.0f, 1.0f);
 }
 
-float glossFromRoughness(float roughness) { return glossFromRoughnessBlinnPhong(roughness); }
+float bo2GlossFromRoughness(float roughness) { return glossFromRoughnessBlinnPhong(roughness); }
 
 // [Karis13 SpecularIBL]: ground truth, G with k = alpha/2.
 glm::vec3 specularIBLGroundTruth(const EnvironmentLodFn& sampleEnvironmentLod, glm::vec3 specularColor,

@@ -7,7 +7,7 @@
 //   analytic lights use k = (roughness+1)^2/8 (brdf.h).
 //   Pre-filtered cube mips: linear, roughness = mip / (mipCount - 1), mip 0 = mirror.
 //   Black Ops 2 gloss: through the Blinn-Phong power, g = log2(2/alpha^2 - 2)/13 clamped to [0,1]
-//   (glossFromRoughness), chosen by the measurements below.
+//   (bo2GlossFromRoughness), chosen by the measurements below.
 //   BRDF LUT (brdf_lut.h): u = NoV, v = roughness.
 //   Environment access: where the GLSL calls the includer's sampleEnvironmentLod(dir, lod), the
 //   C++ takes it as the first argument (an EnvironmentLodFn).
@@ -28,7 +28,7 @@
 // reflects everything) and, for BO2 at f0 = 1, at full roughness: a1vf = 0.25 g + 0.75 knows
 // nothing of the energy Smith-Schlick loses (our A + B is 0.31..0.38 at roughness 1).
 // Gloss mapping: the Blinn-Phong one wins on every aggregate (rms, NoV >= 0.25) at both f0, so
-// glossFromRoughness uses it. (BO2's power 2^(13 g), range 1..8192, is quoted from memory of
+// bo2GlossFromRoughness uses it. (BO2's power 2^(13 g), range 1..8192, is quoted from memory of
 // [Lazarov13]; the measurement, not the citation, is what justifies the choice.)
 // envBRDFApproxNonmetal = envBRDFApprox(0.04) up to 1.6e-3 (its constants are rounded);
 // envBRDFApprox(f0, roughness 1, NoV) = 0.4524 f0 - 0.0024, hence UE4's 0.45 f0 shortcut.
@@ -102,7 +102,7 @@ float glossFromRoughnessLinear(float roughness);
 // g = log2(2/alpha^2 - 2) / 13 clamped to [0,1] (BO2 power 2^(13 g) matched to GGX alpha).
 float glossFromRoughnessBlinnPhong(float roughness);
 // The mapping used with environmentBRDF: glossFromRoughnessBlinnPhong.
-float glossFromRoughness(float roughness);
+float bo2GlossFromRoughness(float roughness);
 
 // Ground truth [Karis13 SpecularIBL]: F = (1-Fc) f0 + Fc, Fc = (1-VoH)^5, G with k = alpha/2.
 glm::vec3 specularIBLGroundTruth(const EnvironmentLodFn& sampleEnvironmentLod, glm::vec3 specularColor,

@@ -374,5 +374,57 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
     }
 }
 
+// --native-formats: targets in their real formats (the hardware quantises), decoded on the GPU and
+// compared with the CPU's bit-exact decode within a quantisation step (lavapipe's SFLOAT
+// conversion truncates, its SRGB one is off by a step on ~6% of values: STACK-FACTS.md).
+TEST_F(GpuCpuBits, NativeFormatsRenderAndDecodeNearTheBitExactPath) {
+    VulkanContext& c = ctx();
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    uint32_t seed = 100;
+    for (const std::string& name : listLayoutNames(dir)) {
+        SCOPED_TRACE(name);
+        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
+        const GBufferWiring w = generateWiring(layout, WiringOptions{true});
+        const std::vector<Surface> surfaces = randomSurfaces(seed++);
+        const CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
+        const std::vector<float> packed = packSurfaces(surfaces);
+        Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        std::vector<GpuImage> targets = renderTargets(c, w, w.targetFormats, ssbo, "GBUFFER_WRITE");
+        std::vector<GpuImage> material;
+        if (w.materialPass) material = renderTargets(c, w, w.materialTargetFormats, ssbo, "MATERIAL_PASS_WRITE");
+        const std::vector<Surface> g = gpuDecode(c, w, targets, material);
+        const std::vector<Surface> s = decodeGBuffer(layout, cpu);
+        size_t native = 0, far = 0;
+        for (size_t t = 0; t < w.targetFormats.size(); ++t) native += w.targetFormats[t] != uintFormatOf(layout.targets[t]);
+        float worst = 0.0f;
+        for (size_t i = 0; i < g.size(); ++i) {
+            auto cmp = [&](float a, float b) {
+                const float d = std::abs(a - b) / std::max(1.0f, std::abs(b));
+                worst = std::max(worst, d);
+                far += d > 0.01f;
+            };
+            for (int k = 0; k < 3; ++k) {
+                cmp(g[i].normal[k], s[i].normal[k]);
+                cmp(g[i].baseColor[k], s[i].baseColor[k]);
+                cmp(g[i].specularColor[k], s[i].specularColor[k]);
+                cmp(g[i].diffuseColor[k], s[i].diffuseColor[k]);
+                cmp(g[i].emissive[k], s[i].emissive[k]);
+                cmp(g[i].position[k], s[i].position[k]);
+            }
+            cmp(g[i].metallic, s[i].metallic);
+            cmp(g[i].roughness, s[i].roughness);
+            cmp(g[i].specular, s[i].specular);
+            cmp(g[i].occlusion, s[i].occlusion);
+        }
+        EXPECT_EQ(far, 0u) << "worst relative difference " << worst;
+        std::printf("[ native   ] %-20s %zu of %zu targets native, max rel. diff vs bit-exact decode %g\n",
+                    name.c_str(), native, w.targetFormats.size(), double(worst));
+        for (GpuImage& img : targets) destroyImage(c, img);
+        for (GpuImage& img : material) destroyImage(c, img);
+        destroyBuffer(c, ssbo);
+    }
+}
+
 }  // namespace
 }  // namespace gbl

@@ -525,7 +525,7 @@ TEST(BlackOps2, GlossMappings) {
         EXPECT_LE(g, previous);
         EXPECT_GE(g, 0.0f);
         previous = g;
-        EXPECT_EQ(glossFromRoughness(r), g);
+        EXPECT_EQ(bo2GlossFromRoughness(r), g);
     }
 }
 
