@@ -1,5 +1,7 @@
 #include "encoding_stats.h"
 
+#include "color_difference.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -85,63 +87,15 @@ std::vector<glm::vec3> syntheticImage(int width, int height, std::mt19937_64& rn
 
 // ---- colour science ------------------------------------------------------------------------
 
+// One CIEDE2000 in the project: the metrics module's (src/color_difference.h), tested against
+// Sharma, Wu & Dalal's 34 published pairs.
 glm::dvec3 linearSrgbToLab(glm::dvec3 c) {
-    // IEC 61966-2-1 primaries, D65 white (X, Y, Z) = (0.95047, 1, 1.08883).
-    double X = 0.4124564 * c.x + 0.3575761 * c.y + 0.1804375 * c.z;
-    double Y = 0.2126729 * c.x + 0.7151522 * c.y + 0.0721750 * c.z;
-    double Z = 0.0193339 * c.x + 0.1191920 * c.y + 0.9503041 * c.z;
-    auto f = [](double t) {
-        const double d = 6.0 / 29.0;
-        return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
-    };
-    double fx = f(X / 0.95047), fy = f(Y), fz = f(Z / 1.08883);
-    return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
+    const Lab lab = gbl::linearSrgbToLab(c.x, c.y, c.z);
+    return {lab.L, lab.a, lab.b};
 }
 
 double deltaE2000(glm::dvec3 lab1, glm::dvec3 lab2) {
-    // Sharma, Wu, Dalal, "The CIEDE2000 Color-Difference Formula: Implementation Notes,
-    // Supplementary Test Data, and Mathematical Observations", Color Res. Appl. 30(1), 2005.
-    const double pi = std::numbers::pi, deg = pi / 180.0;
-    const double pow25_7 = 6103515625.0;  // 25^7
-    double C1 = std::hypot(lab1.y, lab1.z), C2 = std::hypot(lab2.y, lab2.z);
-    double Cbar = 0.5 * (C1 + C2);
-    double Cbar7 = std::pow(Cbar, 7.0);
-    double G = 0.5 * (1.0 - std::sqrt(Cbar7 / (Cbar7 + pow25_7)));
-    double a1 = (1.0 + G) * lab1.y, a2 = (1.0 + G) * lab2.y;
-    double C1p = std::hypot(a1, lab1.z), C2p = std::hypot(a2, lab2.z);
-    auto hue = [&](double b, double a) {
-        if (a == 0.0 && b == 0.0) return 0.0;
-        double h = std::atan2(b, a) / deg;
-        return h < 0.0 ? h + 360.0 : h;
-    };
-    double h1 = hue(lab1.z, a1), h2 = hue(lab2.z, a2);
-    double dL = lab2.x - lab1.x, dC = C2p - C1p;
-    double dh = 0.0;
-    if (C1p * C2p != 0.0) {
-        dh = h2 - h1;
-        if (dh > 180.0) dh -= 360.0;
-        else if (dh < -180.0) dh += 360.0;
-    }
-    double dH = 2.0 * std::sqrt(C1p * C2p) * std::sin(0.5 * dh * deg);
-    double Lbar = 0.5 * (lab1.x + lab2.x), Cpbar = 0.5 * (C1p + C2p);
-    double hbar = h1 + h2;
-    if (C1p * C2p != 0.0) {
-        if (std::fabs(h1 - h2) <= 180.0) hbar = 0.5 * (h1 + h2);
-        else if (h1 + h2 < 360.0) hbar = 0.5 * (h1 + h2 + 360.0);
-        else hbar = 0.5 * (h1 + h2 - 360.0);
-    }
-    double T = 1.0 - 0.17 * std::cos((hbar - 30.0) * deg) + 0.24 * std::cos(2.0 * hbar * deg) +
-               0.32 * std::cos((3.0 * hbar + 6.0) * deg) - 0.20 * std::cos((4.0 * hbar - 63.0) * deg);
-    double dTheta = 30.0 * std::exp(-((hbar - 275.0) / 25.0) * ((hbar - 275.0) / 25.0));
-    double Cpbar7 = std::pow(Cpbar, 7.0);
-    double RC = 2.0 * std::sqrt(Cpbar7 / (Cpbar7 + pow25_7));
-    double L50 = (Lbar - 50.0) * (Lbar - 50.0);
-    double SL = 1.0 + 0.015 * L50 / std::sqrt(20.0 + L50);
-    double SC = 1.0 + 0.045 * Cpbar;
-    double SH = 1.0 + 0.015 * Cpbar * T;
-    double RT = -std::sin(2.0 * dTheta * deg) * RC;
-    double l = dL / SL, c = dC / SC, h = dH / SH;
-    return std::sqrt(std::max(0.0, l * l + c * c + h * h + RT * c * h));
+    return gbl::deltaE2000(Lab{lab1.x, lab1.y, lab1.z}, Lab{lab2.x, lab2.y, lab2.z});
 }
 
 double angleDegrees(glm::dvec3 a, glm::dvec3 b) {
