@@ -28,8 +28,12 @@ def medians(path):
     """{base name: median entry}, plus the JSON context."""
     if not os.path.exists(path):
         return None, None
-    with open(path) as f:
-        doc = json.load(f)
+    try:
+        with open(path) as f:
+            doc = json.load(f)
+    except json.JSONDecodeError as e:
+        print(f"== {os.path.basename(path)}: unreadable ({e}); still being written?")
+        return None, None
     out = {}
     for b in doc.get("benchmarks", []):
         if b.get("error_occurred"):
@@ -93,11 +97,11 @@ def codec(results):
         print(f"    below goal: {', '.join(misses) if misses else 'none'}")
 
 
-def gpu(results):
-    rows, ctx = medians(os.path.join(results, "gpu_pass_bench.json"))
+def gpu(results, file_name="gpu_pass_bench.json"):
+    rows, ctx = medians(os.path.join(results, file_name))
     if rows is None:
         return None
-    print(f"== gpu_pass_bench on {ctx.get('vulkan_device', '?')} ({ctx.get('vulkan_driver', '?')}); "
+    print(f"== {file_name} on {ctx.get('vulkan_device', '?')} ({ctx.get('vulkan_driver', '?')}); "
           "medians of timestamp-query pass times")
     layouts = sorted({k.split("/")[1] for k in rows if k.startswith("gbuffer_pass/")})
     sizes = sorted({k.split("/")[2] for k in rows if k.startswith("gbuffer_pass/")},
@@ -158,6 +162,7 @@ def main():
     results = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "results")
     codec(results)
     passes = gpu(results)
+    gpu(results, "gpu_pass_bench_4k.json")  # GBL_BENCH_4K=1 run written under this name, if any
     compare(results, passes)
 
 

@@ -384,7 +384,7 @@ void main() {
     vec3 d = vec3(0.5), sp = vec3(0.04);
     envBRDFApproxFullyRough(d, sp);
     s += d + sp;
-    float g = glossFromRoughness(0.5) + glossFromRoughnessLinear(0.5) + glossFromRoughnessBlinnPhong(0.5);
+    float g = bo2GlossFromRoughness(0.5) + glossFromRoughnessLinear(0.5) + glossFromRoughnessBlinnPhong(0.5);
     s += environmentBRDF(g, 0.5, vec3(0.04));
     s.x += bo2A0(g, 0.5) + bo2A1(g, 0.5) + bo2A0f(g, 0.5) + bo2A1f(g, 0.5) + bo2A0r(g, 0.5);
     s += specularIBLGroundTruth(vec3(1), 0.5, N, V) + specularIBLGroundTruth(vec3(1), 0.5, N, V, 16u);
