@@ -141,7 +141,7 @@ def compare(results, passes):
                 extra = f", {rows[k]['exposures']:.0f} exposures" if "exposures" in rows[k] else ""
                 print(f"    {k:28s} {ms(rows[k]):9.1f} ms{extra}")
         hd = [v for (lay, s), v in (passes or {}).items() if s == "1920x1080"]
-        full = rows.get("run_metrics/full", {})
+        full = next((v for k, v in rows.items() if k.startswith("run_metrics/full")), {})
         if hd and "real_time" in full:
             mean_pass = sum(g + l for g, l in hd) / len(hd)
             print(f"    metrics of one layout (run_metrics/full) / its GPU passes (mean over layouts, 1080p): "
