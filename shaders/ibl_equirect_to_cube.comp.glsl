@@ -11,14 +11,7 @@ layout(set = 0, binding = 0) uniform sampler2D equirect;
 layout(set = 0, binding = 1, rgba32f) uniform writeonly image2DArray cubeMip0;
 layout(push_constant) uniform Params { uint faceSize; } pc;
 
-vec3 cubeDirection(uint face, vec2 st) {  // st in [-1,1], s right, t down on the face
-    if (face == 0u) return vec3(1.0, -st.y, -st.x);
-    if (face == 1u) return vec3(-1.0, -st.y, st.x);
-    if (face == 2u) return vec3(st.x, 1.0, st.y);
-    if (face == 3u) return vec3(st.x, -1.0, -st.y);
-    if (face == 4u) return vec3(st.x, -st.y, 1.0);
-    return vec3(-st.x, -st.y, -1.0);
-}
+#include "cube_face.glsl"
 
 void main() {
     uvec3 id = gl_GlobalInvocationID;

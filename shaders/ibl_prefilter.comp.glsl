@@ -26,14 +26,7 @@ vec3 sampleEnvironmentLod(vec3 dir, float lod) {
 #define GBL_IBL_HAS_ENVIRONMENT
 #include "ibl.glsl"
 
-vec3 cubeDirection(uint face, vec2 st) {  // same as ibl_equirect_to_cube.comp.glsl
-    if (face == 0u) return vec3(1.0, -st.y, -st.x);
-    if (face == 1u) return vec3(-1.0, -st.y, st.x);
-    if (face == 2u) return vec3(st.x, 1.0, st.y);
-    if (face == 3u) return vec3(st.x, -1.0, -st.y);
-    if (face == 4u) return vec3(st.x, -st.y, 1.0);
-    return vec3(-st.x, -st.y, -1.0);
-}
+#include "cube_face.glsl"
 
 void main() {
     uvec3 id = gl_GlobalInvocationID;

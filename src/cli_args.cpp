@@ -1,6 +1,8 @@
 #include "cli_args.h"
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 
 #include "error.h"
 
@@ -64,6 +66,27 @@ std::string formatHelp(const std::string& usage, const std::string& summary, con
         out += left + s.help + "\n";
     }
     return out;
+}
+
+int parseIntFlag(const ParsedArgs& args, const std::string& flag, int fallback, int lo, int hi) {
+    if (!args.has(flag)) return fallback;
+    const std::string text = args.get(flag);
+    int v = 0;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || v < lo || v > hi)
+        throwUserError("--" + flag + " " + text + ": expected a whole number from " + std::to_string(lo) + " to " +
+                       std::to_string(hi));
+    return v;
+}
+
+float parsePositiveFloatFlag(const ParsedArgs& args, const std::string& flag, float fallback) {
+    if (!args.has(flag)) return fallback;
+    const std::string text = args.get(flag);
+    char* end = nullptr;
+    const float v = std::strtof(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || !(v > 0.0f))
+        throwUserError("--" + flag + " " + text + ": expected a positive number, e.g. 1.5");
+    return v;
 }
 
 std::pair<uint32_t, uint32_t> parseSize(const std::string& text, const std::string& flag) {

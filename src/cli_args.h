@@ -25,6 +25,12 @@ ParsedArgs parseArgs(const std::string& command, const std::vector<std::string>&
                      const std::vector<FlagSpec>& specs);
 std::string formatHelp(const std::string& usage, const std::string& summary, const std::vector<FlagSpec>& specs);
 
+// The flag's value as a whole number in [lo, hi] (all of it: "12abc" is refused), or `fallback`
+// when absent; anything else is a UserError naming the flag and the range.
+int parseIntFlag(const ParsedArgs& args, const std::string& flag, int fallback, int lo, int hi);
+// The flag's value as a finite number > 0, or `fallback` when absent.
+float parsePositiveFloatFlag(const ParsedArgs& args, const std::string& flag, float fallback);
+
 // "1920x1080" -> (1920, 1080); anything else is a UserError naming the flag.
 std::pair<uint32_t, uint32_t> parseSize(const std::string& text, const std::string& flag);
 

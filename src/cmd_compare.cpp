@@ -126,7 +126,7 @@ std::string formatPsnr(double db) {
 
 // The comparison of one rendered run against its reference: metrics, images, crops.
 void measureRun(RunReport& run, const RenderOutput& test, const RenderOutput& reference, const fs::path& outDir,
-                const std::string& prefix, float exposure, const std::string& referencePng) {
+                const std::string& prefix, float exposure) {
     RunErrorMaps maps;
     RunMetricsOptions options;
     options.maps = &maps;
@@ -152,7 +152,6 @@ void measureRun(RunReport& run, const RenderOutput& test, const RenderOutput& re
             run.images.crops.push_back({crops[i].x, crops[i].y, crops[i].size, crops[i].size, files[i].reference,
                                         files[i].test, files[i].heat});
     }
-    (void)referencePng;
 }
 
 void printTable(const ReportModel& model) {
@@ -208,29 +207,12 @@ int runCompareCommand(const std::vector<std::string>& args) {
     if (!parsed.positional.empty())
         throwUserError("gbufferlab compare: unexpected argument '" + parsed.positional[0] + "' (see --help)");
     const auto [width, height] = parseSize(parsed.get("size", "1920x1080"), "--size");
-    float exposure = 1.0f;
-    if (parsed.has("exposure")) {
-        try {
-            exposure = std::stof(parsed.get("exposure"));
-        } catch (...) {
-            exposure = -1.0f;
-        }
-        if (!(exposure > 0.0f)) throwUserError("--exposure " + parsed.get("exposure") + ": expected a positive number");
-    }
+    const float exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     std::vector<IblMode> modes;
     std::vector<std::string> modeNames = splitList(parsed.get("ibl", "split-sum"));
     if (modeNames.empty()) throwUserError("--ibl: give at least one mode (known: " + joinList(iblModeNames()) + ")");
     for (const auto& n : modeNames) modes.push_back(parseIblMode(n));
-    int groundTruthSamples = 1024;
-    if (parsed.has("samples")) {
-        try {
-            groundTruthSamples = std::stoi(parsed.get("samples"));
-        } catch (...) {
-            groundTruthSamples = 0;
-        }
-        if (groundTruthSamples < 1 || groundTruthSamples > 65536)
-            throwUserError("--samples " + parsed.get("samples") + ": expected a whole number from 1 to 65536");
-    }
+    const int groundTruthSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("compare");
     const bool force = parsed.has("force");
     checkOutputDirectory(outDir, force, "--out");
@@ -265,17 +247,21 @@ int runCompareCommand(const std::vector<std::string>& args) {
 
     Renderer renderer(ctx, inputs.scene, inputs.environment);
     const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
-    std::map<std::string, ReferenceRender> references;
-    for (size_t m = 0; m < modes.size(); ++m) {
+    // Every run renders the same way but for the IBL mode, and decodes its G-buffer for metrics.
+    auto settingsFor = [&](IblMode mode) {
         RenderSettings settings;
         settings.width = width;
         settings.height = height;
-        settings.specularIbl = modes[m];
+        settings.specularIbl = mode;
         settings.groundTruthSamples = groundTruthSamples;
         settings.decodeSurfaces = true;
+        return settings;
+    };
+    std::map<std::string, ReferenceRender> references;
+    for (size_t m = 0; m < modes.size(); ++m) {
         progress.begin("reference / " + modeNames[m]);
         ReferenceRender ref;
-        ref.output = renderer.render(referenceWiring, settings);
+        ref.output = renderer.render(referenceWiring, settingsFor(modes[m]));
         ref.renderPng = "reference-" + modeNames[m] + ".png";
         writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
         model.reference.images.push_back({modeNames[m], ref.renderPng});
@@ -307,7 +293,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
             run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
             const ReferenceRender& approx = references.at(mode);
             run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx.info.name};
-            measureRun(run, approx.output, truth.output, outDir, "lighting/" + mode + "/", exposure, truth.renderPng);
+            measureRun(run, approx.output, truth.output, outDir, "lighting/" + mode + "/", exposure);
             progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                          std::to_string(run.image->flipMean).substr(0, 6));
             model.runs.push_back(std::move(run));
@@ -320,16 +306,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
             progress.begin(layout.name + " / " + modeNames[m]);
             RunReport run = makeRun(layout, modeNames[m]);
             try {
-                RenderSettings settings;
-                settings.width = width;
-                settings.height = height;
-                settings.specularIbl = modes[m];
-                settings.groundTruthSamples = groundTruthSamples;
-                settings.decodeSurfaces = true;
-                const RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settings);
+                const RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settingsFor(modes[m]));
                 run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
-                measureRun(run, out, ref.output, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure,
-                           ref.renderPng);
+                measureRun(run, out, ref.output, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure);
                 progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                              std::to_string(run.image->flipMean).substr(0, 6));
             } catch (const std::exception& e) {

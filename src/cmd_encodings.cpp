@@ -1,4 +1,3 @@
-#include <charconv>
 #include <cstdio>
 #include <iostream>
 
@@ -13,18 +12,6 @@
 
 namespace gbl {
 
-namespace {
-
-int parsePositiveInt(const std::string& text, const std::string& flag, int lo, int hi) {
-    int v = 0;
-    const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (r.ec != std::errc() || r.ptr != text.data() + text.size() || v < lo || v > hi)
-        throwUserError(flag + " " + text + ": expected a whole number from " + std::to_string(lo) + " to " +
-                       std::to_string(hi));
-    return v;
-}
-
-}  // namespace
 
 int runEncodingsCommand(const std::vector<std::string>& args) {
     const std::vector<FlagSpec> specs = {
@@ -52,14 +39,14 @@ int runEncodingsCommand(const std::vector<std::string>& args) {
                         e.description.c_str());
         return 0;
     }
-    const int samples = parsePositiveInt(parsed.get("samples", "1048576"), "--samples", 1, 1 << 26);
-    const int seed = parsePositiveInt(parsed.get("seed", "1"), "--seed", 0, 1 << 30);
+    const int samples = parseIntFlag(parsed, "samples", 1 << 20, 1, 1 << 26);
+    const int seed = parseIntFlag(parsed, "seed", 1, 0, 1 << 30);
     std::vector<EncodingStats> stats;
     if (parsed.has("encoding")) {
         const std::string name = parsed.get("encoding");
         const EncodingInfo* info = findEncoding(name);
         if (!info) throwUserError("--encoding " + name + ": unknown encoding (known: " + knownEncodingNames() + ")");
-        const int bits = parsed.has("bits") ? parsePositiveInt(parsed.get("bits"), "--bits", 1, 32) : info->defaultBits;
+        const int bits = parseIntFlag(parsed, "bits", info->defaultBits, 1, 32);
         stats.push_back(measureEncoding(name, bits, samples, uint64_t(seed)));
     } else {
         if (parsed.has("bits")) throwUserError("--bits needs --encoding NAME (bits differ per encoding)");

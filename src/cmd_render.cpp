@@ -60,27 +60,9 @@ int runRenderCommand(const std::vector<std::string>& args) {
     if (!parsed.positional.empty())
         throwUserError("gbufferlab render: unexpected argument '" + parsed.positional[0] + "' (see --help)");
     const auto [width, height] = parseSize(parsed.get("size", "1280x720"), "--size");
-    float exposure = 1.0f;
-    if (parsed.has("exposure")) {
-        try {
-            exposure = std::stof(parsed.get("exposure"));
-        } catch (...) {
-            throwUserError("--exposure " + parsed.get("exposure") + ": expected a positive number, e.g. 1.5");
-        }
-        if (!(exposure > 0.0f)) throwUserError("--exposure " + parsed.get("exposure") + ": must be positive");
-    }
+    const float exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     const IblMode iblMode = parseIblMode(parsed.get("ibl", "split-sum"));
-    int iblSamples = 1024;
-    if (parsed.has("ibl-samples")) {
-        size_t used = 0;
-        try {
-            iblSamples = std::stoi(parsed.get("ibl-samples"), &used);
-        } catch (...) {
-            used = 0;
-        }
-        if (used != parsed.get("ibl-samples").size() || iblSamples < 1 || iblSamples > 65536)
-            throwUserError("--ibl-samples " + parsed.get("ibl-samples") + ": expected a whole number from 1 to 65536");
-    }
+    const int iblSamples = parseIntFlag(parsed, "ibl-samples", 1024, 1, 65536);
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("render");
     // Refuse a non-empty output directory before any work, but create it only once all succeeded.
     checkOutputDirectory(outDir, parsed.has("force"), "--out");

@@ -71,7 +71,8 @@ uint64_t iblCacheKey(const EnvironmentMap& environment, const IblSettings& s) {
     f.bytes(fields, sizeof(fields));
     // The shaders that produce the data: an edited shader must not reuse old results.
     for (const char* name : {"ibl_equirect_to_cube.comp.glsl", "ibl_downsample.comp.glsl", "ibl_prefilter.comp.glsl",
-                             "ibl_brdf_lut.comp.glsl", "ibl.glsl", "brdf.glsl", "environment.glsl"}) {
+                             "ibl_brdf_lut.comp.glsl", "ibl.glsl", "brdf.glsl", "environment.glsl",
+                             "cube_face.glsl"}) {
         const std::string text = readTextFile(fs::path(shaderDirectory()) / name);
         f.bytes(text.data(), text.size());
     }

@@ -155,6 +155,28 @@ void fullBarrier(VkCommandBuffer cmd) {
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+namespace {
+
+// One mip level, just written by a transfer, becomes the source of the next transfer (blit).
+void mipWrittenToReadable(VkCommandBuffer cmd, const GpuImage& image, uint32_t mip) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    b.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image.image;
+    b.subresourceRange = {image.aspect, mip, 1, 0, image.layers};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+}  // namespace
+
 void uploadImage(const VulkanContext& ctx, GpuImage& image, const void* pixels, VkDeviceSize bytes,
                  VkImageLayout finalLayout, bool generateMips) {
     Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
@@ -168,20 +190,7 @@ void uploadImage(const VulkanContext& ctx, GpuImage& image, const void* pixels, 
         if (generateMips && image.mipLevels > 1) {
             int32_t w = int32_t(image.extent.width), h = int32_t(image.extent.height);
             for (uint32_t mip = 1; mip < image.mipLevels; ++mip) {
-                VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-                b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-                b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-                b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-                b.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-                b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-                b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-                b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                b.image = image.image;
-                b.subresourceRange = {image.aspect, mip - 1, 1, 0, image.layers};
-                VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-                dep.imageMemoryBarrierCount = 1;
-                dep.pImageMemoryBarriers = &b;
-                vkCmdPipelineBarrier2(cmd, &dep);
+                mipWrittenToReadable(cmd, image, mip - 1);
                 VkImageBlit blit{};
                 blit.srcSubresource = {image.aspect, mip - 1, 0, image.layers};
                 blit.srcOffsets[1] = {w, h, 1};
@@ -193,20 +202,7 @@ void uploadImage(const VulkanContext& ctx, GpuImage& image, const void* pixels, 
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
             }
             // Mips 0..n-2 are TRANSFER_SRC, the last is TRANSFER_DST: bring the last one in line.
-            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-            b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-            b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-            b.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-            b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-            b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            b.image = image.image;
-            b.subresourceRange = {image.aspect, image.mipLevels - 1, 1, 0, image.layers};
-            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dep.imageMemoryBarrierCount = 1;
-            dep.pImageMemoryBarriers = &b;
-            vkCmdPipelineBarrier2(cmd, &dep);
+            mipWrittenToReadable(cmd, image, image.mipLevels - 1);
             transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, finalLayout);
         } else {
             transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout);
