@@ -6,9 +6,11 @@ namespace gbl {
 
 SceneInputs loadSceneInputs(const std::string& scenePath, const std::string& environmentPath, float aspect) {
     SceneInputs in;
+    // A file the user named is read before anything is built in code, so bad input fails fast.
+    if (!environmentPath.empty()) in.environment = loadEnvironmentMap(environmentPath);
     in.scene = scenePath.empty() ? makeDefaultScene() : loadGltfScene(scenePath);
     if (!in.scene.camera.fromFile && !scenePath.empty()) in.scene.camera = frameBounds(in.scene.bounds, aspect);
-    in.environment = environmentPath.empty() ? makeProceduralSky() : loadEnvironmentMap(environmentPath);
+    if (environmentPath.empty()) in.environment = makeProceduralSky();
     return in;
 }
 
