@@ -6,6 +6,10 @@
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <optional>
+
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "bandwidth.h"
@@ -24,6 +28,7 @@
 #include "report_model.h"
 #include "run_metrics.h"
 #include "scene_inputs.h"
+#include "stage_clock.h"
 #include "tone_map.h"
 #include "vk_context.h"
 #include "wiring_codegen.h"
@@ -102,12 +107,17 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
     e.p99Abs = m.image.p99Abs;
     e.flipMean = m.image.flipMean;
     e.flipMedian = m.image.flipMedian;
+    if (m.image.hdrFlipComputed) {
+        e.hdrFlipMean = m.image.hdrFlipMean;
+        e.hdrFlipExposures = m.image.hdrFlipExposures;
+    }
     run.image = e;
 }
 
 struct ReferenceRender {
     RenderOutput output;
     std::string renderPng;  // relative to the report dir
+    std::unique_ptr<PreparedReference> prepared;  // of output.hdr, shared by the runs measured against it
 };
 
 std::string isoDate() {
@@ -125,14 +135,20 @@ std::string formatPsnr(double db) {
 }
 
 // The comparison of one rendered run against its reference: metrics, images, crops.
-void measureRun(RunReport& run, const RenderOutput& test, const RenderOutput& reference, const fs::path& outDir,
-                const std::string& prefix, float exposure) {
+void measureRun(RunReport& run, const RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
+                const std::string& prefix, float exposure, bool hdrFlip) {
     RunErrorMaps maps;
     RunMetricsOptions options;
     options.maps = &maps;
+    options.hdrFlip = hdrFlip;
+    options.prepared = reference.prepared.get();
+    std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
     const RunMetrics m =
-        computeRunMetrics(reference.surfaces, test.surfaces, reference.hdr, test.hdr, exposure, options);
+        computeRunMetrics(reference.output.surfaces, test.surfaces, reference.output.hdr, test.hdr, exposure, options);
     fillMetrics(run, m);
+    const int cropSize = std::max(32, std::min(test.hdr.width, test.hdr.height) / 12);
+    const std::vector<Crop> crops = findWorstRegions(maps.relLuminance, cropSize, 3);
+    timed.emplace(Stage::Report);
     ErrorImageOptions imageOptions;
     imageOptions.label = run.layout + " / " + run.iblMode;
     const ErrorImagePaths paths = writeErrorImages(outDir, prefix, maps, m, imageOptions);
@@ -142,8 +158,6 @@ void measureRun(RunReport& run, const RenderOutput& test, const RenderOutput& re
     run.images.normalError = paths.normalError;
     run.images.difference = paths.difference;
     run.images.errorsExr = paths.errorsExr;
-    const int cropSize = std::max(32, std::min(test.hdr.width, test.hdr.height) / 12);
-    const std::vector<Crop> crops = findWorstRegions(maps.relLuminance, cropSize, 3);
     if (!crops.empty()) {
         const Image8 heat = applyColorMap(maps.relLuminance, 0.0f, imageOptions.heatMax);
         const auto files = writeCrops(outDir, prefix, crops, srgbFloatTo8(maps.referenceSrgb),
@@ -171,6 +185,27 @@ void printTable(const ReportModel& model) {
     }
 }
 
+// Where the time went, stage by stage (stage_clock.h), against the GPU passes' own time (the
+// timestamp queries of every frame rendered): printed, and written as timings.json for bench/.
+void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPassMs) {
+    nlohmann::ordered_json j;
+    j["schema"] = "gbufferlab-timings";
+    j["schema_version"] = 1;
+    nlohmann::ordered_json stages;
+    std::printf("\ntime by stage (wall):");
+    for (size_t s = 0; s < kStageCount; ++s) {
+        stages[stageName(Stage(s))] = t.ms[s];
+        std::printf("%s %s %.2f s", s ? "," : "", stageName(Stage(s)), t.ms[s] / 1000.0);
+    }
+    j["stages_ms"] = stages;
+    j["total_ms"] = t.totalMs;
+    j["gpu_pass_ms"] = gpuPassMs;
+    j["total_over_gpu_passes"] = gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0;
+    std::printf("\ntotal %.2f s = %.2fx the GPU passes' own %.2f s (timestamps)\n", t.totalMs / 1000.0,
+                gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0, gpuPassMs / 1000.0);
+    writeFileAtomic(outDir / "timings.json", j.dump(2) + "\n");
+}
+
 }  // namespace
 
 int runCompareCommand(const std::vector<std::string>& args) {
@@ -187,7 +222,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
         {"exposure", "X", "exposure for tone-mapped images and their metrics (default 1)"},
         {"native-formats", "", "render targets in their real UNORM/SRGB/float formats where the layout allows"},
-        {"no-hdr-flip", "", "skip HDR-FLIP (faster)"},
+        {"hdr-flip", "", "also compute HDR-FLIP over the linear images (costs one FLIP per exposure: 14 on the "
+                         "built-in sky)"},
+        {"no-hdr-flip", "", "skip HDR-FLIP (the default; kept for older scripts)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -206,6 +243,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
     }
     if (!parsed.positional.empty())
         throwUserError("gbufferlab compare: unexpected argument '" + parsed.positional[0] + "' (see --help)");
+    StageClock::global().start();
+    std::optional<ScopedStage> timedSetup(std::in_place, Stage::Setup);
     const auto [width, height] = parseSize(parsed.get("size", "1920x1080"), "--size");
     const float exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     std::vector<IblMode> modes;
@@ -215,6 +254,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const int groundTruthSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("compare");
     const bool force = parsed.has("force");
+    if (parsed.has("hdr-flip") && parsed.has("no-hdr-flip"))
+        throwUserError("gbufferlab compare: --hdr-flip and --no-hdr-flip contradict each other; give one");
+    const bool hdrFlip = parsed.has("hdr-flip");
     checkOutputDirectory(outDir, force, "--out");
 
     // Everything the user gave is read and validated before the first pixel is rendered.
@@ -244,6 +286,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const int steps = int(modes.size()) * (1 + int(layouts.size())) + (compareLighting ? int(modes.size()) - 1 : 0);
     Progress progress(steps, stderr);
     prepareOutputDirectory(outDir, force, "--out");
+    timedSetup.reset();
+    double gpuPassMs = 0.0;  // timestamps of every frame rendered
 
     Renderer renderer(ctx, inputs.scene, inputs.environment);
     const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
@@ -255,6 +299,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         settings.specularIbl = mode;
         settings.groundTruthSamples = groundTruthSamples;
         settings.decodeSurfaces = true;
+        settings.readTargetWords = false;
         return settings;
     };
     std::map<std::string, ReferenceRender> references;
@@ -262,12 +307,16 @@ int runCompareCommand(const std::vector<std::string>& args) {
         progress.begin("reference / " + modeNames[m]);
         ReferenceRender ref;
         ref.output = renderer.render(referenceWiring, settingsFor(modes[m]));
+        gpuPassMs += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
         ref.renderPng = "reference-" + modeNames[m] + ".png";
+        ScopedStage timed(Stage::Report);
         writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
         model.reference.images.push_back({modeNames[m], ref.renderPng});
         progress.end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
                      std::to_string(int(ref.output.timings.lightingMs)) + " ms");
-        references[modeNames[m]] = std::move(ref);
+        ReferenceRender& stored = references[modeNames[m]] = std::move(ref);
+        ScopedStage timedPrepare(Stage::Metrics);
+        stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, exposure);
     }
 
     auto makeRun = [&](const Layout& layout, const std::string& mode) {
@@ -293,7 +342,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
             run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
             const ReferenceRender& approx = references.at(mode);
             run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx.info.name};
-            measureRun(run, approx.output, truth.output, outDir, "lighting/" + mode + "/", exposure);
+            measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip);
             progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                          std::to_string(run.image->flipMean).substr(0, 6));
             model.runs.push_back(std::move(run));
@@ -307,8 +356,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
             RunReport run = makeRun(layout, modeNames[m]);
             try {
                 const RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settingsFor(modes[m]));
+                gpuPassMs += out.timings.gbufferMs + out.timings.lightingMs;
                 run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
-                measureRun(run, out, ref.output, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure);
+                measureRun(run, out, ref, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure, hdrFlip);
                 progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                              std::to_string(run.image->flipMean).substr(0, 6));
             } catch (const std::exception& e) {
@@ -322,9 +372,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
         }
     }
 
-    writeReport(outDir, model);
+    {
+        ScopedStage timed(Stage::Report);
+        writeReport(outDir, model);
+    }
     printTable(model);
-    std::printf("\nreport: %s\n", (outDir / "report.html").string().c_str());
+    reportStageTimes(outDir, StageClock::global().read(), gpuPassMs);
+    std::printf("report: %s\n", (outDir / "report.html").string().c_str());
     return 0;
 }
 

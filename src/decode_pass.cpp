@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "parallel_for.h"
 #include "shader_compiler.h"
 #include "vk_pipeline.h"
 
@@ -77,7 +78,9 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     s.coverage.assign(pixels, 0);
     const float* src = static_cast<const float*>(output.mapped);
     const float clearDepth = gbuffer.clearDepth;
-    for (size_t i = 0; i < pixels; ++i) {
+    // Split across threads: most of this loop's time is the kernel faulting in the fresh pages.
+    parallelFor(int64_t(ih), 0, [&](int64_t y0, int64_t y1) {
+    for (size_t i = size_t(y0) * w; i < size_t(y1) * w; ++i) {
         const float* p = src + i * kFloatsPerPixel;
         for (int c = 0; c < 3; ++c) {
             s.normal.pixels[i * 3 + c] = p[0 + c];
@@ -93,6 +96,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
         s.depth.pixels[i] = depthValues[i];
         s.coverage[i] = depthValues[i] != clearDepth;
     }
+    });
 
     destroyBuffer(ctx, output);
     vkDestroyPipeline(ctx.device, pipeline, nullptr);

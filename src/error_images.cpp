@@ -10,11 +10,13 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <functional>
 
 #include "color_map.h"
 #include "error.h"
 #include "file_io.h"
 #include "image_io.h"
+#include "parallel_invoke.h"
 
 namespace gbl {
 namespace {
@@ -198,6 +200,7 @@ void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& m) {
 
     Imf::Header header(w, h);
     header.compression() = Imf::ZIP_COMPRESSION;
+    header.zipCompressionLevel() = 1;  // error planes are noisy floats: higher levels cost time, save little
     Imf::FrameBuffer frame;
     for (auto& [name, plane] : planes) {
         header.channels().insert(name, Imf::Channel(Imf::FLOAT));
@@ -224,37 +227,50 @@ ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::st
     requireMap(maps.referenceSrgb, "tone-mapped reference");
     requireMap(maps.relLuminance, "relative luminance error");
     requireMap(maps.flip, "FLIP");
+    // The files are independent: encode them side by side (PNG deflate is single-threaded).
     ErrorImagePaths paths;
-    paths.render = writePngAt(dir, prefix, "render.png", srgbFloatTo8(maps.testSrgb));
+    std::vector<std::function<void()>> writes;
+    writes.push_back([&] { paths.render = writePngAt(dir, prefix, "render.png", srgbFloatTo8(maps.testSrgb)); });
 
     const float heatMax = o.heatMax > 0.0f ? o.heatMax : 0.1f;
-    paths.heatmap = writePngAt(
-        dir, prefix, "error_heatmap.png",
-        heatMapImage(maps.relLuminance, 0.0f, heatMax,
-                     titled(o, "RELATIVE LUMINANCE ERROR, 0-" + fmt("%g", 100.0 * heatMax) + "% (CLIPPED)")));
+    writes.push_back([&] {
+        paths.heatmap = writePngAt(
+            dir, prefix, "error_heatmap.png",
+            heatMapImage(maps.relLuminance, 0.0f, heatMax,
+                         titled(o, "RELATIVE LUMINANCE ERROR, 0-" + fmt("%g", 100.0 * heatMax) + "% (CLIPPED)")));
+    });
 
-    paths.flip = writePngAt(dir, prefix, "flip.png",
-                            heatMapImage(maps.flip, 0.0f, 1.0f,
-                                         titled(o, "LDR-FLIP  MEAN " + fmt("%.4f", metrics.image.flipMean))));
+    writes.push_back([&] {
+        paths.flip = writePngAt(dir, prefix, "flip.png",
+                                heatMapImage(maps.flip, 0.0f, 1.0f,
+                                             titled(o, "LDR-FLIP  MEAN " + fmt("%.4f", metrics.image.flipMean))));
+    });
 
     if (!maps.normalDeg.empty()) {
-        const float hi = std::max(o.normalMinScaleDeg, float(metrics.normal.all.error.p99));
-        paths.normalError = writePngAt(
-            dir, prefix, "normal_error.png",
-            heatMapImage(maps.normalDeg, 0.0f, hi,
-                         titled(o, "NORMAL ERROR (\u00b0)  MEAN " + fmt("%.3g", metrics.normal.all.error.mean) +
-                                       "  P99 " + fmt("%.3g", metrics.normal.all.error.p99)),
-                         &maps.referenceSrgb, &maps.measured));
+        writes.push_back([&] {
+            const float hi = std::max(o.normalMinScaleDeg, float(metrics.normal.all.error.p99));
+            paths.normalError = writePngAt(
+                dir, prefix, "normal_error.png",
+                heatMapImage(maps.normalDeg, 0.0f, hi,
+                             titled(o, "NORMAL ERROR (\u00b0)  MEAN " + fmt("%.3g", metrics.normal.all.error.mean) +
+                                           "  P99 " + fmt("%.3g", metrics.normal.all.error.p99)),
+                             &maps.referenceSrgb, &maps.measured));
+        });
     }
 
     const float k = o.amplification > 0.0f ? o.amplification : 8.0f;
-    paths.difference =
-        writePngAt(dir, prefix, "difference.png",
-                   amplifiedDifferenceImage(maps.referenceSrgb, maps.testSrgb, k,
-                                            titled(o, "ABS(TEST - REF) X " + fmt("%g", k) + ", TONE-MAPPED")));
+    writes.push_back([&] {
+        paths.difference =
+            writePngAt(dir, prefix, "difference.png",
+                       amplifiedDifferenceImage(maps.referenceSrgb, maps.testSrgb, k,
+                                                titled(o, "ABS(TEST - REF) X " + fmt("%g", k) + ", TONE-MAPPED")));
+    });
 
-    paths.errorsExr = prefix + "errors.exr";
-    writeErrorExr(dir / paths.errorsExr, maps);
+    writes.push_back([&] {
+        writeErrorExr(dir / (prefix + "errors.exr"), maps);
+        paths.errorsExr = prefix + "errors.exr";
+    });
+    parallelInvoke(writes);
     return paths;
 }
 

@@ -10,6 +10,7 @@
 #include "color_difference.h"
 #include "error.h"
 #include "metrics.h"
+#include "parallel_for.h"
 
 // Equation numbers below are those of the FLIP paper (HPG 2020) unless marked [HDR], which
 // refers to the HDR-FLIP paper (Eurographics 2021 short). Every comment also restates the
@@ -231,39 +232,64 @@ Kernels makeKernels(double ppd) {
     return k;
 }
 
+// ---- Parallel loops -----------------------------------------------------------------------------
+// Every output pixel is computed by the same expression whatever the split, so the maps are
+// identical for any thread count.
+
+constexpr size_t kMinRowsPerThread = 16;
+constexpr size_t kMinPixelsPerThread = 1 << 15;
+
+// body(begin, end) over [0, count), in chunks of at least minChunk items (small images stay on
+// one thread: starting threads costs more than it saves).
+template <class Body>
+void forChunks(size_t count, size_t minChunk, Body&& body) {
+    const int threads = int(std::clamp<size_t>(count / minChunk, 1, size_t(hardwareThreads())));
+    parallelFor(int64_t(count), threads, [&](int64_t b, int64_t e) { body(size_t(b), size_t(e)); });
+}
+
+// body(begin, end) over pixel ranges of an n-pixel plane.
+template <class Body>
+void forPixels(size_t n, Body&& body) {
+    forChunks(n, kMinPixelsPerThread, body);
+}
+
 // ---- Separable filtering (clamp-to-edge), correlation order ------------------------------------
 
 // out(x, y) = sum_j k[j] in(clamp(x + j - r), y).
 void filterRows(const float* in, float* out, int w, int h, const std::vector<float>& k) {
     const int r = int(k.size() / 2);
-    std::vector<float> pad(static_cast<size_t>(w + 2 * r));
-    std::vector<float> acc(static_cast<size_t>(w));
-    for (int y = 0; y < h; ++y) {
-        const float* row = in + size_t(y) * w;
-        for (int i = 0; i < w + 2 * r; ++i) pad[size_t(i)] = row[std::clamp(i - r, 0, w - 1)];
-        std::fill(acc.begin(), acc.end(), 0.0f);
-        for (size_t j = 0; j < k.size(); ++j) {
-            const float kj = k[j];
-            const float* src = pad.data() + j;
-            float* a = acc.data();
-            for (int x = 0; x < w; ++x) a[x] += kj * src[x];
+    forChunks(size_t(h), kMinRowsPerThread, [&](size_t y0, size_t y1) {
+        std::vector<float> pad(static_cast<size_t>(w + 2 * r));
+        std::vector<float> acc(static_cast<size_t>(w));
+        for (size_t y = y0; y < y1; ++y) {
+            const float* row = in + y * size_t(w);
+            for (int i = 0; i < w + 2 * r; ++i) pad[size_t(i)] = row[std::clamp(i - r, 0, w - 1)];
+            std::fill(acc.begin(), acc.end(), 0.0f);
+            for (size_t j = 0; j < k.size(); ++j) {
+                const float kj = k[j];
+                const float* src = pad.data() + j;
+                float* a = acc.data();
+                for (int x = 0; x < w; ++x) a[x] += kj * src[x];
+            }
+            std::copy(acc.begin(), acc.end(), out + y * size_t(w));
         }
-        std::copy(acc.begin(), acc.end(), out + size_t(y) * w);
-    }
+    });
 }
 
 // out(x, y) = sum_j k[j] in(x, clamp(y + j - r)).
 void filterCols(const float* in, float* out, int w, int h, const std::vector<float>& k) {
     const int r = int(k.size() / 2);
-    for (int y = 0; y < h; ++y) {
-        float* o = out + size_t(y) * w;
-        std::fill(o, o + w, 0.0f);
-        for (size_t j = 0; j < k.size(); ++j) {
-            const float kj = k[j];
-            const float* src = in + size_t(std::clamp(y + int(j) - r, 0, h - 1)) * w;
-            for (int x = 0; x < w; ++x) o[x] += kj * src[x];
+    forChunks(size_t(h), kMinRowsPerThread, [&](size_t y0, size_t y1) {
+        for (size_t y = y0; y < y1; ++y) {
+            float* o = out + y * size_t(w);
+            std::fill(o, o + w, 0.0f);
+            for (size_t j = 0; j < k.size(); ++j) {
+                const float kj = k[j];
+                const float* src = in + size_t(std::clamp(int(y) + int(j) - r, 0, h - 1)) * size_t(w);
+                for (int x = 0; x < w; ++x) o[x] += kj * src[x];
+            }
         }
-    }
+    });
 }
 
 // ---- The per-image pipeline ------------------------------------------------------------------
@@ -349,7 +375,10 @@ Prepared prepare(const Plane rgb[3], int w, int h, const Kernels& k, Workspace& 
     out.edge.resize(n);
     out.point.resize(n);
 
-    rgbToOpponent(rgb[0].data(), rgb[1].data(), rgb[2].data(), yy.data(), cx.data(), cz.data(), lum.data(), n, cc);
+    forPixels(n, [&](size_t b, size_t e) {
+        rgbToOpponent(rgb[0].data() + b, rgb[1].data() + b, rgb[2].data() + b, yy.data() + b, cx.data() + b,
+                      cz.data() + b, lum.data() + b, e - b, cc);
+    });
 
     // Spatial (CSF) filtering per channel, in place: yy, cx, cz become filtered.
     filterRows(yy.data(), tmp.data(), w, h, k.csfA);
@@ -361,14 +390,19 @@ Prepared prepare(const Plane rgb[3], int w, int h, const Kernels& k, Workspace& 
     if (k.wBY2 != 0.0f) {
         filterRows(cz.data(), tmp.data(), w, h, k.csfBY2);
         filterCols(tmp.data(), f2.data(), w, h, k.csfBY2);
-        for (size_t i = 0; i < n; ++i) cz[i] = k.wBY1 * f1[i] + k.wBY2 * f2[i];
+        forPixels(n, [&](size_t b, size_t e) {
+            for (size_t i = b; i < e; ++i) cz[i] = k.wBY1 * f1[i] + k.wBY2 * f2[i];
+        });
     } else {
         cz.swap(f1);
     }
 
     // Back to linear RGB (clamped) and to Hunt-adjusted CIELAB.
-    opponentToClampedRgb(yy.data(), cx.data(), cz.data(), n, cc);
-    rgbToHuntLab(yy.data(), cx.data(), cz.data(), out.L.data(), out.a.data(), out.b.data(), n, cc);
+    forPixels(n, [&](size_t b, size_t e) {
+        opponentToClampedRgb(yy.data() + b, cx.data() + b, cz.data() + b, e - b, cc);
+        rgbToHuntLab(yy.data() + b, cx.data() + b, cz.data() + b, out.L.data() + b, out.a.data() + b,
+                     out.b.data() + b, e - b, cc);
+    });
 
     // Feature pipeline: detection on the (unfiltered) normalised luminance.
     // x-derivative filters: edge(x) gauss(y), point(x) gauss(y); y-derivative: transposed.
@@ -380,10 +414,14 @@ Prepared prepare(const Plane rgb[3], int w, int h, const Kernels& k, Workspace& 
     filterRows(lum.data(), hg.data(), w, h, k.gauss);
     filterCols(hd.data(), f1.data(), w, h, k.gauss);  // e_x
     filterCols(hg.data(), f2.data(), w, h, k.edge);   // e_y
-    for (size_t i = 0; i < n; ++i) out.edge[i] = std::sqrt(f1[i] * f1[i] + f2[i] * f2[i]);
+    forPixels(n, [&](size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) out.edge[i] = std::sqrt(f1[i] * f1[i] + f2[i] * f2[i]);
+    });
     filterCols(hp.data(), f1.data(), w, h, k.gauss);  // p_x
     filterCols(hg.data(), f2.data(), w, h, k.point);  // p_y
-    for (size_t i = 0; i < n; ++i) out.point[i] = std::sqrt(f1[i] * f1[i] + f2[i] * f2[i]);
+    forPixels(n, [&](size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) out.point[i] = std::sqrt(f1[i] * f1[i] + f2[i] * f2[i]);
+    });
     return out;
 }
 
@@ -406,22 +444,24 @@ void toLinearPlanes(const Image& im, Input mode, Plane rgb[3]) {
     const size_t n = im.pixelCount();
     for (int c = 0; c < 3; ++c) rgb[c].resize(n);
     const int ch = im.channels;
-    for (size_t i = 0; i < n; ++i) {
-        const float* p = im.pixels.data() + i * size_t(ch);
-        for (int c = 0; c < 3; ++c) {
-            const float v = p[ch == 1 ? 0 : c];
-            rgb[c][i] = mode == Input::Srgb ? srgbToLinearF(v) : clamp01(v);
+    forPixels(n, [&](size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) {
+            const float* p = im.pixels.data() + i * size_t(ch);
+            for (int c = 0; c < 3; ++c) {
+                const float v = p[ch == 1 ? 0 : c];
+                rgb[c][i] = mode == Input::Srgb ? srgbToLinearF(v) : clamp01(v);
+            }
         }
-    }
+    });
 }
 
-// Combines two prepared images into the FLIP map, eqs. (5)-(10).
-void combine(const Prepared& r, const Prepared& t, float cMax, float* out, size_t n) {
+// Combines two prepared images into the FLIP map, eqs. (5)-(10), pixels [begin, end).
+void combineRange(const Prepared& r, const Prepared& t, float cMax, float* out, size_t begin, size_t end) {
     const float pcCmax = float(kPc) * cMax;
     const float lowScale = float(kPt) / pcCmax;
     const float highScale = float(1.0 - kPt) / (cMax - pcCmax);
     const float invSqrt2 = float(1.0 / std::numbers::sqrt2);
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = begin; i < end; ++i) {
         // Colour: HyAB (eq. (5)) raised to q_c, then the piecewise-linear remap (eq. (8)):
         // [0, p_c c_max) -> [0, p_t), [p_c c_max, c_max] -> [p_t, 1].
         const float dE = hyab({r.L[i], r.a[i], r.b[i]}, {t.L[i], t.a[i], t.b[i]});
@@ -436,6 +476,10 @@ void combine(const Prepared& r, const Prepared& t, float cMax, float* out, size_
         // FLIP, eq. (10): dE_c^(1 - dE_f).
         out[i] = dEf == 0.0f ? dEc : std::pow(dEc, 1.0f - dEf);
     }
+}
+
+void combine(const Prepared& r, const Prepared& t, float cMax, float* out, size_t n) {
+    forPixels(n, [&](size_t b, size_t e) { combineRange(r, t, cMax, out, b, e); });
 }
 
 Image flipLdrImpl(const Image& ref, const Image& test, double ppd, Input mode, const char* what) {
@@ -469,6 +513,48 @@ double flipPixelsPerDegree(double distanceMeters, double monitorWidthPixels, dou
 
 Image flipLdr(const Image& referenceSrgb, const Image& testSrgb, double pixelsPerDegree) {
     return flipLdrImpl(referenceSrgb, testSrgb, pixelsPerDegree, Input::Srgb, "flipLdr");
+}
+
+struct LdrFlipReference::State {
+    Image shape;  // the reference's size and channels (no pixels), for checkPair
+    double ppd = 0.0;
+    Kernels kernels;
+    Prepared prepared;
+};
+
+LdrFlipReference::LdrFlipReference(const Image& referenceSrgb, double pixelsPerDegree) : state_(new State) {
+    checkPair(referenceSrgb, referenceSrgb, "LdrFlipReference");
+    if (!(pixelsPerDegree > 0.0) || !std::isfinite(pixelsPerDegree))
+        throwUserError("LdrFlipReference: pixels per degree is " + std::to_string(pixelsPerDegree) +
+                       "; give a positive value (default 67.02)");
+    State& s = *state_;
+    s.shape.width = referenceSrgb.width;
+    s.shape.height = referenceSrgb.height;
+    s.shape.channels = referenceSrgb.channels;
+    s.ppd = pixelsPerDegree;
+    s.kernels = makeKernels(pixelsPerDegree);
+    Workspace ws(referenceSrgb.pixelCount());
+    Plane rgb[3];
+    toLinearPlanes(referenceSrgb, Input::Srgb, rgb);
+    s.prepared = prepare(rgb, referenceSrgb.width, referenceSrgb.height, s.kernels, ws);
+}
+
+LdrFlipReference::~LdrFlipReference() = default;
+
+Image LdrFlipReference::compare(const Image& testSrgb) const {
+    const State& s = *state_;
+    if (testSrgb.width != s.shape.width || testSrgb.height != s.shape.height)
+        throwUserError("LdrFlipReference: reference is " + std::to_string(s.shape.width) + "x" +
+                       std::to_string(s.shape.height) + " but test is " + std::to_string(testSrgb.width) + "x" +
+                       std::to_string(testSrgb.height) + "; compare images of the same size");
+    checkPair(testSrgb, testSrgb, "LdrFlipReference");
+    Workspace ws(testSrgb.pixelCount());
+    Plane rgb[3];
+    toLinearPlanes(testSrgb, Input::Srgb, rgb);
+    const Prepared pt = prepare(rgb, testSrgb.width, testSrgb.height, s.kernels, ws);
+    Image out(testSrgb.width, testSrgb.height, 1);
+    combine(s.prepared, pt, float(maxColorDifference()), out.pixels.data(), out.pixelCount());
+    return out;
 }
 
 Image flipLdrLinear(const Image& referenceLinear, const Image& testLinear, double pixelsPerDegree) {
@@ -557,10 +643,12 @@ HdrFlipResult flipHdr(const Image& ref, const Image& test, double ppd, FlipExpos
             const Image& im = which == 0 ? ref : test;
             Plane* dst = which == 0 ? pr : pt;
             const int ch = im.channels;
-            for (size_t i = 0; i < n; ++i) {
-                const float* p = im.pixels.data() + i * size_t(ch);
-                for (int c = 0; c < 3; ++c) dst[c][i] = flipToneMap(hdrClamp(p[ch == 1 ? 0 : c]) * scale);
-            }
+            forPixels(n, [&](size_t b, size_t end) {
+                for (size_t i = b; i < end; ++i) {
+                    const float* p = im.pixels.data() + i * size_t(ch);
+                    for (int c = 0; c < 3; ++c) dst[c][i] = flipToneMap(hdrClamp(p[ch == 1 ? 0 : c]) * scale);
+                }
+            });
         }
         const Prepared a = prepare(pr, w, h, k, ws);
         const Prepared b = prepare(pt, w, h, k, ws);

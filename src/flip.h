@@ -14,6 +14,7 @@
 //  * All filters read outside the image as the nearest edge pixel (clamp-to-edge).
 //  * The map is computed in float; kernels in double, rounded to float.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "image.h"
@@ -28,6 +29,22 @@ double flipPixelsPerDegree(double distanceMeters = 0.7, double monitorWidthPixel
 
 // LDR-FLIP of two sRGB-encoded images: a 1-channel map, every value in [0,1].
 Image flipLdr(const Image& referenceSrgb, const Image& testSrgb, double pixelsPerDegree = flipPixelsPerDegree());
+
+// The reference's half of LDR-FLIP (its filtered colour and feature planes, 20 bytes per pixel),
+// prepared once and reused against many test images: `compare` measures every layout against
+// the same reference render. compare(test) equals flipLdr(reference, test) bit for bit.
+class LdrFlipReference {
+public:
+    explicit LdrFlipReference(const Image& referenceSrgb, double pixelsPerDegree = flipPixelsPerDegree());
+    ~LdrFlipReference();
+    LdrFlipReference(const LdrFlipReference&) = delete;
+    LdrFlipReference& operator=(const LdrFlipReference&) = delete;
+    Image compare(const Image& testSrgb) const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
 
 // The same pipeline on linear RGB in [0,1] (no sRGB decode; values clamped to [0,1]).
 Image flipLdrLinear(const Image& referenceLinear, const Image& testLinear,

@@ -1,6 +1,7 @@
 #include "renderer_passes.h"
 
 #include "shader_compiler.h"
+#include "stage_clock.h"
 #include "vk_pipeline.h"
 
 namespace gbl {
@@ -88,6 +89,7 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
     info.pDynamicState = &dynamic;
     info.layout = layout;
     VkPipeline pipeline;
+    ScopedStage timed(Stage::ShaderCompile);  // the driver compiles the shaders here
     VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
     vkDestroyShaderModule(ctx.device, vsModule, nullptr);
     vkDestroyShaderModule(ctx.device, fsModule, nullptr);

@@ -10,6 +10,7 @@
 #include "error.h"
 #include "ibl_cache.h"
 #include "renderer_passes.h"
+#include "stage_clock.h"
 
 namespace gbl {
 
@@ -47,12 +48,14 @@ CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool re
 
 Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment)
     : ctx_(ctx), scene_(scene) {
+    ScopedStage timed(Stage::Precompute);
     init(environment, loadOrComputeIbl(ctx, environment, IblSettings{}));
 }
 
 Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment,
                    const IblMaps& ibl)
     : ctx_(ctx), scene_(scene) {
+    ScopedStage timed(Stage::Precompute);
     init(environment, ibl);
 }
 
@@ -87,6 +90,7 @@ Renderer::~Renderer() {
 }
 
 RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings& settings) {
+    ScopedStage timedRender(Stage::Render);  // pass set-up and the frame; compiles and read-back nest
     validateResolution(ctx_, settings.width, settings.height, "--size");
     const uint32_t w = settings.width, h = settings.height;
     const CameraMatrices cam = computeCameraMatrices(scene_.camera, float(w) / float(h), wiring.reversedZ);
@@ -147,10 +151,12 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     out.timings.lightingMs = double(stamps[2] - stamps[1]) * period;
     vkDestroyQueryPool(ctx_.device, queries, nullptr);
 
+    ScopedStage timedReadback(Stage::Readback);
     auto hdrBytes = downloadImage(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL);
     out.hdr = Image(int(w), int(h), 4);
     std::memcpy(out.hdr.pixels.data(), hdrBytes.data(), hdrBytes.size());
     for (const GpuImage& t : gbuffer.targets) {
+        if (!settings.readTargetWords) break;
         auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         std::vector<uint32_t> words(bytes.size() / 4);
         std::memcpy(words.data(), bytes.data(), words.size() * 4);

@@ -29,6 +29,9 @@ struct RenderSettings {
     // Also run the layout's readGBuffer() over every pixel and return the Surface as floats
     // (RenderOutput::surfaces): what attribute errors are measured on.
     bool decodeSurfaces = false;
+    // Copy each target's raw words to RenderOutput::targetWords (bit tests need them; compare
+    // only needs the decoded surfaces, and skipping the copy saves up to 80 bytes per pixel).
+    bool readTargetWords = true;
 };
 
 struct PassTimings {
@@ -39,6 +42,7 @@ struct PassTimings {
 struct RenderOutput {
     Image hdr;  // RGBA float: linear radiance, alpha 1 where geometry covers the pixel
     std::vector<std::vector<uint32_t>> targetWords;  // per target, row-major, texel size / 4 words per pixel
+                                                     // (empty unless RenderSettings::readTargetWords)
     std::vector<float> depth;                        // row-major depth-buffer values
     PassTimings timings;
     SurfaceImages surfaces;  // filled when RenderSettings::decodeSurfaces

@@ -67,6 +67,9 @@ std::vector<Column> columns() {
     image("p99_abs", &ImageErrors::p99Abs);
     image("flip_mean", &ImageErrors::flipMean);
     image("flip_median", &ImageErrors::flipMedian);
+    c.push_back({"hdr_flip_mean", [](const RunReport& r) {
+                     return r.image && r.image->hdrFlipMean ? numberText(*r.image->hdrFlipMean) : std::string();
+                 }});
     c.push_back({"gbuffer_ms", [](const RunReport& r) {
                      return r.times ? numberText(r.times->gbufferMs) : std::string();
                  }});

@@ -456,6 +456,9 @@ void writeRunSection(std::string& out, const ReportModel& model, const RunReport
         statRow(out, "p99 |error|", formatSignificant(e.p99Abs, 3), "linear");
         statRow(out, "FLIP mean", formatFixed(e.flipMean, 4));
         statRow(out, "FLIP median", formatFixed(e.flipMedian, 4));
+        if (e.hdrFlipMean)
+            statRow(out, "HDR-FLIP mean", formatFixed(*e.hdrFlipMean, 4),
+                    (std::to_string(e.hdrFlipExposures) + " exposures").c_str());
         out += "</tbody></table>\n";
     }
     writeAttributeTable(out, r.attributes);

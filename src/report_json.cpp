@@ -57,7 +57,7 @@ Json frameJson(const FrameTraffic& f) {
 }
 
 Json imageErrorsJson(const ImageErrors& e) {
-    return Json{{"rmse_linear", number(e.rmseLinear)},
+    Json j{{"rmse_linear", number(e.rmseLinear)},
                 {"psnr_linear_db", number(e.psnrLinear)},
                 {"rmse_tonemapped", number(e.rmseToneMapped)},
                 {"psnr_tonemapped_db", number(e.psnrToneMapped)},
@@ -65,6 +65,11 @@ Json imageErrorsJson(const ImageErrors& e) {
                 {"p99_abs", number(e.p99Abs)},
                 {"flip_mean", number(e.flipMean)},
                 {"flip_median", number(e.flipMedian)}};
+    if (e.hdrFlipMean) {
+        j["hdr_flip_mean"] = number(*e.hdrFlipMean);
+        j["hdr_flip_exposures"] = e.hdrFlipExposures;
+    }
+    return j;
 }
 
 Json imagesJson(const RunImages& images) {
@@ -219,6 +224,10 @@ ImageErrors readImageErrors(const Node& n) {
     e.p99Abs = n["p99_abs"].num();
     e.flipMean = n["flip_mean"].num();
     e.flipMedian = n["flip_median"].num();
+    if (n.has("hdr_flip_mean")) {
+        e.hdrFlipMean = n["hdr_flip_mean"].num();
+        e.hdrFlipExposures = int(n["hdr_flip_exposures"].num());
+    }
     return e;
 }
 

@@ -125,6 +125,9 @@ struct ImageErrors {
     double p99Abs = 0.0;          // nearest-rank 0.99 of |test - reference|, linear HDR
     double flipMean = 0.0;        // LDR-FLIP, 0 (same) .. 1
     double flipMedian = 0.0;
+    // HDR-FLIP over the linear images (absent with --no-hdr-flip) and the exposures it took.
+    std::optional<double> hdrFlipMean;
+    int hdrFlipExposures = 0;
 };
 
 struct PassTimes {

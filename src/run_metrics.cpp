@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "color_difference.h"
 #include "error.h"
 #include "flip.h"
+#include "parallel_invoke.h"
 #include "tone_map.h"
 
 namespace gbl {
@@ -183,6 +186,9 @@ Image relativeLuminanceError(const Image& ref, const Image& test) {
     return out;
 }
 
+PreparedReference::PreparedReference(const Image& referenceHdr, float exposure_)
+    : hdr(&referenceHdr), exposure(exposure_), srgb(toneMapToSrgbFloat(referenceHdr, exposure_)), flip(srgb) {}
+
 RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
                              const Image& testHdr, float exposure) {
     return computeRunMetrics(reference, test, referenceHdr, testHdr, exposure, RunMetricsOptions{});
@@ -224,27 +230,41 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
     }
     const size_t mc = out.coverage.metal;
 
-    // Attributes.
-    if (usable(reference.normal, test.normal, 3, "normal")) {
+    // Attributes, side by side (each task fills its own fields and maps; each is computed exactly
+    // as alone, so results do not depend on the thread count).
+    std::vector<std::function<void()>> tasks;
+    if (usable(reference.normal, test.normal, 3, "normal")) tasks.push_back([&] {
         const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
         out.normal = measure(measured, metal, mc, mapOrNull(maps, &RunErrorMaps::normalDeg, w, h, true), false,
                              [&](size_t i, bool& ok, double&) {
                                  return angleDeg(&reference.normal.pixels[i * rc], &test.normal.pixels[i * tc], ok);
                              });
-    }
-    out.baseColor = colorAttribute(reference.baseColor, test.baseColor, measured, metal, mc,
+    });
+    tasks.push_back([&] {
+        out.baseColor = colorAttribute(reference.baseColor, test.baseColor, measured, metal, mc,
                                    mapOrNull(maps, &RunErrorMaps::baseColorDe, w, h, true), "base colour");
-    out.diffuseColor = colorAttribute(reference.diffuseColor, test.diffuseColor, measured, metal, mc,
+    });
+    tasks.push_back([&] {
+        out.diffuseColor = colorAttribute(reference.diffuseColor, test.diffuseColor, measured, metal, mc,
                                       mapOrNull(maps, &RunErrorMaps::diffuseColorDe, w, h, true), "diffuse colour");
-    out.specularColor = colorAttribute(reference.specularColor, test.specularColor, measured, metal, mc,
+    });
+    tasks.push_back([&] {
+        out.specularColor = colorAttribute(reference.specularColor, test.specularColor, measured, metal, mc,
                                        mapOrNull(maps, &RunErrorMaps::specularColorDe, w, h, true), "specular colour");
-    out.roughness = scalarAttribute(reference.roughness, test.roughness, measured, metal, mc,
+    });
+    tasks.push_back([&] {
+        out.roughness = scalarAttribute(reference.roughness, test.roughness, measured, metal, mc,
                                     mapOrNull(maps, &RunErrorMaps::roughnessAbs, w, h, true), "roughness");
-    out.metallic = scalarAttribute(reference.metallic, test.metallic, measured, metal, mc,
+    });
+    tasks.push_back([&] {
+        out.metallic = scalarAttribute(reference.metallic, test.metallic, measured, metal, mc,
                                    mapOrNull(maps, &RunErrorMaps::metallicAbs, w, h, true), "metallic");
-    out.occlusion = scalarAttribute(reference.occlusion, test.occlusion, measured, metal, mc,
+    });
+    tasks.push_back([&] {
+        out.occlusion = scalarAttribute(reference.occlusion, test.occlusion, measured, metal, mc,
                                     mapOrNull(maps, &RunErrorMaps::occlusionAbs, w, h, true), "occlusion");
-    if (usable(reference.viewDepth, test.viewDepth, 1, "view depth")) {
+    });
+    if (usable(reference.viewDepth, test.viewDepth, 1, "view depth")) tasks.push_back([&] {
         const size_t rc = size_t(reference.viewDepth.channels), tc = size_t(test.viewDepth.channels);
         out.depth = measure(measured, metal, mc, mapOrNull(maps, &RunErrorMaps::depthRel, w, h, true), false,
                             [&](size_t i, bool& ok, double&) {
@@ -254,24 +274,32 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
                                 ok = r > 0.0 && std::isfinite(r) && std::isfinite(e);
                                 return ok ? e : 0.0;
                             });
-    }
+    });
 
     // The shaded image, every pixel, RGB.
-    const ImageErrorStats linear = imageErrorStats(referenceHdr, testHdr, nullptr, PsnrPeak::ReferenceMax, 3);
-    out.image.rmseLinear = linear.rmse;
-    out.image.psnrLinear = linear.psnr;
-    out.image.peakLinear = linear.peak;
-    out.image.maxAbs = linear.maxAbs;
-    out.image.p99Abs = linear.p99Abs;
-    out.image.meanAbs = linear.meanAbs;
-
-    Image refSrgb = toneMapToSrgbFloat(referenceHdr, exposure);
+    tasks.push_back([&] {
+        const ImageErrorStats linear = imageErrorStats(referenceHdr, testHdr, nullptr, PsnrPeak::ReferenceMax, 3);
+        out.image.rmseLinear = linear.rmse;
+        out.image.psnrLinear = linear.psnr;
+        out.image.peakLinear = linear.peak;
+        out.image.maxAbs = linear.maxAbs;
+        out.image.p99Abs = linear.p99Abs;
+        out.image.meanAbs = linear.meanAbs;
+    });
+    const PreparedReference* prepared = options.prepared;
+    if (prepared && (prepared->hdr != &referenceHdr || prepared->exposure != exposure))
+        throw std::invalid_argument("computeRunMetrics: the prepared reference is of another image or exposure");
+    std::optional<PreparedReference> local;
+    if (!prepared) prepared = &local.emplace(referenceHdr, exposure);
     Image testSrgb = toneMapToSrgbFloat(testHdr, exposure);
-    const ImageErrorStats tone = imageErrorStats(refSrgb, testSrgb, nullptr, PsnrPeak::One, 3);
-    out.image.rmseToneMapped = tone.rmse;
-    out.image.psnrToneMapped = tone.psnr;
+    tasks.push_back([&] {
+        const ImageErrorStats tone = imageErrorStats(prepared->srgb, testSrgb, nullptr, PsnrPeak::One, 3);
+        out.image.rmseToneMapped = tone.rmse;
+        out.image.psnrToneMapped = tone.psnr;
+    });
+    parallelInvoke(tasks);
 
-    Image flip = flipLdr(refSrgb, testSrgb);
+    Image flip = prepared->flip.compare(testSrgb);
     const FlipStats fs = flipStats(flip);
     out.image.flipMean = fs.mean;
     out.image.flipMedian = fs.median;
@@ -286,7 +314,7 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
     }
 
     if (maps) {
-        maps->referenceSrgb = std::move(refSrgb);
+        maps->referenceSrgb = prepared->srgb;
         maps->testSrgb = std::move(testSrgb);
         maps->flip = std::move(flip);
         maps->hdrFlip = std::move(hdrFlip);

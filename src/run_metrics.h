@@ -29,6 +29,7 @@
 #include <cstddef>
 #include <limits>
 
+#include "flip.h"
 #include "image.h"
 #include "metrics.h"
 #include "surface_images.h"
@@ -99,9 +100,23 @@ struct RunErrorMaps {
     std::vector<uint8_t> measured;  // 1 where attributes were compared (covered in both)
 };
 
+// What the metrics derive from the reference render alone (its tone-mapped image, its half of
+// LDR-FLIP), computed once and shared by every run measured against that reference. Keeps a
+// pointer to `referenceHdr`, which must outlive it.
+struct PreparedReference {
+    PreparedReference(const Image& referenceHdr, float exposure);
+    const Image* hdr;
+    float exposure;
+    Image srgb;  // toneMapToSrgbFloat(*hdr, exposure)
+    LdrFlipReference flip;
+};
+
 struct RunMetricsOptions {
     bool hdrFlip = true;   // HDR-FLIP costs one LDR-FLIP per exposure; off for quick runs
     RunErrorMaps* maps = nullptr;  // when set, filled with the per-pixel images
+    // When set, must be prepared from the same referenceHdr object and exposure (else
+    // std::invalid_argument); the results are identical to a run without it.
+    const PreparedReference* prepared = nullptr;
 };
 
 // Throws UserError when sizes disagree or an attribute image has too few channels. An attribute

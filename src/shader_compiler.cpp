@@ -12,6 +12,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "stage_clock.h"
 #include "vk_context.h"
 
 namespace gbl {
@@ -120,6 +121,7 @@ ShaderSource loadShaderFile(const std::string& fileName) {
 }
 
 std::vector<uint32_t> compileGlsl(const ShaderSource& src) {
+    ScopedStage timed(Stage::ShaderCompile);
     initGlslang();
     const EShLanguage stage = toGlslangStage(src.stage);
     glslang::TShader shader(stage);

@@ -1,5 +1,7 @@
 #include "vk_pipeline.h"
 
+#include "stage_clock.h"
+
 #include <map>
 
 namespace gbl {
@@ -99,6 +101,7 @@ VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, VkSha
     info.stage.pName = "main";
     info.layout = layout;
     VkPipeline pipeline;
+    ScopedStage timed(Stage::ShaderCompile);  // the driver compiles the shader here
     VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
     return pipeline;
 }

@@ -365,6 +365,21 @@ TEST(Flip, RandomNoiseMatchesIndependentImplementation) {
     EXPECT_LT(maxDiff(gbl::flipLdr(a, c), slow::flipSrgb(a, c, gbl::flipPixelsPerDegree())), kTol);
 }
 
+TEST(Flip, PreparedReferenceGivesTheSameMapBitForBit) {
+    // 300x200 = 60000 pixels: large enough that the filters and per-pixel loops split across
+    // threads, so this also checks the split changes nothing.
+    const Image a = noise(300, 200, 31), b = noise(300, 200, 32), c = noise(300, 200, 33);
+    const gbl::LdrFlipReference prepared(a);
+    for (const Image* test : {&b, &c, &a}) {
+        const Image once = gbl::flipLdr(a, *test);
+        const Image reused = prepared.compare(*test);
+        ASSERT_EQ(once.pixels.size(), reused.pixels.size());
+        for (size_t i = 0; i < once.pixels.size(); ++i) ASSERT_EQ(once.pixels[i], reused.pixels[i]) << i;
+    }
+    EXPECT_NE(gbl::flipStats(prepared.compare(b)).mean, 0.0);
+    EXPECT_THROW(prepared.compare(noise(299, 200, 34)), gbl::UserError);
+}
+
 TEST(Flip, OtherSizesAndPpdMatchIndependentImplementation) {
     // Non-square, smaller than the kernels in one direction, and a different ppd (other radii).
     const Image a = noise(41, 9, 11), b = noise(41, 9, 12);

@@ -309,6 +309,35 @@ TEST(RunMetrics, BadSizesAreUserErrors) {
     EXPECT_EQ(r.roughness.all.error.count, coveredCount(s));
 }
 
+TEST(RunMetrics, PreparedReferenceGivesIdenticalResults) {
+    const SurfaceImages ref = makeSurface(200, 180, 7), test = makeSurface(200, 180, 8);
+    const Image refHdr = makeHdr(200, 180, 3), testHdr = makeHdr(200, 180, 4);
+    gbl::RunMetricsOptions plain;
+    plain.hdrFlip = false;
+    const gbl::RunMetrics a = gbl::computeRunMetrics(ref, test, refHdr, testHdr, 1.5f, plain);
+    const gbl::PreparedReference prepared(refHdr, 1.5f);
+    gbl::RunMetricsOptions reuse = plain;
+    reuse.prepared = &prepared;
+    const gbl::RunMetrics b = gbl::computeRunMetrics(ref, test, refHdr, testHdr, 1.5f, reuse);
+    EXPECT_GT(a.image.flipMean, 0.0);
+    EXPECT_EQ(a.image.flipMean, b.image.flipMean);
+    EXPECT_EQ(a.image.flipMedian, b.image.flipMedian);
+    EXPECT_EQ(a.image.psnrToneMapped, b.image.psnrToneMapped);
+    EXPECT_EQ(a.image.psnrLinear, b.image.psnrLinear);
+    for (int i = 0; i < 8; ++i) {
+        EXPECT_EQ(allAttributes(a, i)->all.error.mean, allAttributes(b, i)->all.error.mean) << kNames[i];
+        EXPECT_EQ(allAttributes(a, i)->all.error.p99, allAttributes(b, i)->all.error.p99) << kNames[i];
+    }
+    EXPECT_FALSE(b.image.hdrFlipComputed);
+    // Prepared from another image or exposure: refused, not silently wrong.
+    const Image otherHdr = refHdr;
+    const gbl::PreparedReference wrong(otherHdr, 1.5f);
+    reuse.prepared = &wrong;
+    EXPECT_THROW(gbl::computeRunMetrics(ref, test, refHdr, testHdr, 1.5f, reuse), std::invalid_argument);
+    reuse.prepared = &prepared;
+    EXPECT_THROW(gbl::computeRunMetrics(ref, test, refHdr, testHdr, 2.0f, reuse), std::invalid_argument);
+}
+
 TEST(RunMetrics, RelativeLuminanceError) {
     Image ref(2, 1, 3, 0.0f), test(2, 1, 3, 0.0f);
     for (int c = 0; c < 3; ++c) ref.at(0, 0, c) = 2.0f, test.at(0, 0, c) = 2.2f;
