@@ -20,12 +20,15 @@ struct DecodedPixel {
     vec4 specularColorSpecular;  // rgb F0, a UE4 scalar specular
     vec4 emissiveViewDepth;    // rgb emissive, a view depth (0 where uncovered)
 };
+// The frame is decoded in bands of rows (bounded read-back memory at 4K): this dispatch covers
+// rows firstRow.. and writes them from decoded[0].
 layout(set = 0, binding = 2, std430) writeonly buffer Decoded { DecodedPixel decoded[]; };
+layout(push_constant) uniform Band { uint firstRow; } band;
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, int(band.firstRow));
     if (any(greaterThanEqual(pixel, ivec2(frame.extent.xy)))) return;
-    uint index = uint(pixel.y) * frame.extent.x + uint(pixel.x);
+    uint index = uint(pixel.y - int(band.firstRow)) * frame.extent.x + uint(pixel.x);
     float depth = texelFetch(depthTexture, pixel, 0).r;
     DecodedPixel d;
     if (depth == frame.shading.y) {

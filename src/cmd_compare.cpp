@@ -134,9 +134,10 @@ std::string formatPsnr(double db) {
     return buf;
 }
 
-// The comparison of one rendered run against its reference: metrics, images, crops.
-void measureRun(RunReport& run, const RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
-                const std::string& prefix, float exposure, bool hdrFlip) {
+// The comparison of one rendered run against its reference: metrics, images, crops. `test` is
+// moved from when `releaseTest` (its surfaces are freed once measured: peak memory at 4K).
+void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
+                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest) {
     RunErrorMaps maps;
     RunMetricsOptions options;
     options.maps = &maps;
@@ -144,7 +145,10 @@ void measureRun(RunReport& run, const RenderOutput& test, const ReferenceRender&
     options.prepared = reference.prepared.get();
     std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
     const RunMetrics m =
-        computeRunMetrics(reference.output.surfaces, test.surfaces, reference.output.hdr, test.hdr, exposure, options);
+        releaseTest ? computeRunMetrics(reference.output.surfaces, std::move(test.surfaces), reference.output.hdr,
+                                        test.hdr, exposure, options)
+                    : computeRunMetrics(reference.output.surfaces, test.surfaces, reference.output.hdr, test.hdr,
+                                        exposure, options);
     fillMetrics(run, m);
     const int cropSize = std::max(32, std::min(test.hdr.width, test.hdr.height) / 12);
     const std::vector<Crop> crops = findWorstRegions(maps.relLuminance, cropSize, 3);
@@ -160,7 +164,7 @@ void measureRun(RunReport& run, const RenderOutput& test, const ReferenceRender&
     run.images.errorsExr = paths.errorsExr;
     if (!crops.empty()) {
         const Image8 heat = applyColorMap(maps.relLuminance, 0.0f, imageOptions.heatMax);
-        const auto files = writeCrops(outDir, prefix, crops, srgbFloatTo8(maps.referenceSrgb),
+        const auto files = writeCrops(outDir, prefix, crops, srgbFloatTo8(*maps.referenceSrgb),
                                       srgbFloatTo8(maps.testSrgb), heat);
         for (size_t i = 0; i < crops.size(); ++i)
             run.images.crops.push_back({crops[i].x, crops[i].y, crops[i].size, crops[i].size, files[i].reference,
@@ -340,9 +344,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
             progress.begin("lighting " + mode + " vs " + kGroundTruth);
             RunReport run = makeRun(referenceLayout, mode);
             run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
-            const ReferenceRender& approx = references.at(mode);
+            ReferenceRender& approx = references.at(mode);
             run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx.info.name};
-            measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip);
+            measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip, false);
             progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                          std::to_string(run.image->flipMean).substr(0, 6));
             model.runs.push_back(std::move(run));
@@ -355,10 +359,10 @@ int runCompareCommand(const std::vector<std::string>& args) {
             progress.begin(layout.name + " / " + modeNames[m]);
             RunReport run = makeRun(layout, modeNames[m]);
             try {
-                const RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settingsFor(modes[m]));
+                RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settingsFor(modes[m]));
                 gpuPassMs += out.timings.gbufferMs + out.timings.lightingMs;
                 run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
-                measureRun(run, out, ref, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure, hdrFlip);
+                measureRun(run, out, ref, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure, hdrFlip, true);
                 progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                              std::to_string(run.image->flipMean).substr(0, 6));
             } catch (const std::exception& e) {

@@ -8,11 +8,13 @@
 namespace gbl {
 
 // Decodes the G-buffer `gbuffer` (targets in SHADER_READ_ONLY_OPTIMAL, depth in
-// DEPTH_STENCIL_READ_ONLY_OPTIMAL) written with `wiring`. `depthValues` are the depth buffer's
+// DEPTH_STENCIL_READ_ONLY_OPTIMAL) written with `wiring`, in bands of `bandRows` rows (a multiple
+// of 8; 0: as many as fit in 64 MiB of floats). `depthValues` are the depth buffer's
 // values, already read back (they go into SurfaceImages::depth). `materialPass`: deferred
 // lighting's material targets, bound at set 2 as in the lighting pass.
 SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
                              const Buffer& frameConstants, VkSampler nearestSampler,
-                             const std::vector<float>& depthValues, const GBufferPass* materialPass = nullptr);
+                             const std::vector<float>& depthValues, const GBufferPass* materialPass = nullptr,
+                             uint32_t bandRows = 0);
 
 }  // namespace gbl

@@ -224,7 +224,8 @@ void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& m) {
 ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::string& prefix, const RunErrorMaps& maps,
                                  const RunMetrics& metrics, const ErrorImageOptions& o) {
     requireMap(maps.testSrgb, "tone-mapped render");
-    requireMap(maps.referenceSrgb, "tone-mapped reference");
+    if (!maps.referenceSrgb) throwUserError("error images: the tone-mapped reference map is missing");
+    requireMap(*maps.referenceSrgb, "tone-mapped reference");
     requireMap(maps.relLuminance, "relative luminance error");
     requireMap(maps.flip, "FLIP");
     // The files are independent: encode them side by side (PNG deflate is single-threaded).
@@ -254,7 +255,7 @@ ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::st
                 heatMapImage(maps.normalDeg, 0.0f, hi,
                              titled(o, "NORMAL ERROR (\u00b0)  MEAN " + fmt("%.3g", metrics.normal.all.error.mean) +
                                            "  P99 " + fmt("%.3g", metrics.normal.all.error.p99)),
-                             &maps.referenceSrgb, &maps.measured));
+                             maps.referenceSrgb.get(), &maps.measured));
         });
     }
 
@@ -262,7 +263,7 @@ ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::st
     writes.push_back([&] {
         paths.difference =
             writePngAt(dir, prefix, "difference.png",
-                       amplifiedDifferenceImage(maps.referenceSrgb, maps.testSrgb, k,
+                       amplifiedDifferenceImage(*maps.referenceSrgb, maps.testSrgb, k,
                                                 titled(o, "ABS(TEST - REF) X " + fmt("%g", k) + ", TONE-MAPPED")));
     });
 

@@ -152,9 +152,13 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     vkDestroyQueryPool(ctx_.device, queries, nullptr);
 
     ScopedStage timedReadback(Stage::Readback);
-    auto hdrBytes = downloadImage(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL);
-    out.hdr = Image(int(w), int(h), 4);
-    std::memcpy(out.hdr.pixels.data(), hdrBytes.data(), hdrBytes.size());
+    {
+        const std::vector<uint8_t> hdrBytes = downloadImage(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL);
+        out.hdr = Image(int(w), int(h), 4);
+        std::memcpy(out.hdr.pixels.data(), hdrBytes.data(), hdrBytes.size());
+    }
+    // Free what the decode does not read before it allocates (peak memory at 4K).
+    destroyLightingPass(ctx_, lighting);
     for (const GpuImage& t : gbuffer.targets) {
         if (!settings.readTargetWords) break;
         auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -162,7 +166,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         std::memcpy(words.data(), bytes.data(), words.size() * 4);
         out.targetWords.push_back(std::move(words));
     }
-    auto depthBytes = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
+    std::vector<uint8_t> depthBytes = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
                                     VK_IMAGE_ASPECT_DEPTH_BIT);
     out.depth.resize(size_t(w) * h);
     if (wiring.depthFormat == VK_FORMAT_D32_SFLOAT || wiring.depthFormat == VK_FORMAT_D32_SFLOAT_S8_UINT) {
@@ -180,9 +184,10 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
             out.depth[i] = float(double(v & 0xFFFFFFu) / 16777215.0);
         }
     }
+    std::vector<uint8_t>().swap(depthBytes);
     if (settings.decodeSurfaces)
-        out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth, material);
-    destroyLightingPass(ctx_, lighting);
+        out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth, material,
+                                      settings.decodeBandRows);
     if (material) destroyGBufferPass(ctx_, materialPass);
     destroyGBufferPass(ctx_, gbuffer);
     destroyBuffer(ctx_, frameBuffer);

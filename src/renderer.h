@@ -32,6 +32,8 @@ struct RenderSettings {
     // Copy each target's raw words to RenderOutput::targetWords (bit tests need them; compare
     // only needs the decoded surfaces, and skipping the copy saves up to 80 bytes per pixel).
     bool readTargetWords = true;
+    // Rows per read-back band of the decode pass (a multiple of 8); 0: as many as fit in 64 MiB.
+    uint32_t decodeBandRows = 0;
 };
 
 struct PassTimings {

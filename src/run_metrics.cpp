@@ -187,15 +187,22 @@ Image relativeLuminanceError(const Image& ref, const Image& test) {
 }
 
 PreparedReference::PreparedReference(const Image& referenceHdr, float exposure_)
-    : hdr(&referenceHdr), exposure(exposure_), srgb(toneMapToSrgbFloat(referenceHdr, exposure_)), flip(srgb) {}
+    : hdr(&referenceHdr),
+      exposure(exposure_),
+      srgb(std::make_shared<const Image>(toneMapToSrgbFloat(referenceHdr, exposure_))),
+      flip(*srgb) {}
 
 RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
                              const Image& testHdr, float exposure) {
     return computeRunMetrics(reference, test, referenceHdr, testHdr, exposure, RunMetricsOptions{});
 }
 
-RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
-                             const Image& testHdr, float exposure, const RunMetricsOptions& options) {
+namespace {
+
+// `release`: when set (it is `test`), emptied once the attribute metrics no longer need it.
+RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
+                       const Image& testHdr, float exposure, const RunMetricsOptions& options,
+                       SurfaceImages* release) {
     const int w = referenceHdr.width, h = referenceHdr.height;
     if (referenceHdr.empty() || referenceHdr.channels < 3)
         throwUserError("compare: the reference render needs 3 or 4 channels (RGB[A]) and pixels");
@@ -293,11 +300,12 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
     if (!prepared) prepared = &local.emplace(referenceHdr, exposure);
     Image testSrgb = toneMapToSrgbFloat(testHdr, exposure);
     tasks.push_back([&] {
-        const ImageErrorStats tone = imageErrorStats(prepared->srgb, testSrgb, nullptr, PsnrPeak::One, 3);
+        const ImageErrorStats tone = imageErrorStats(*prepared->srgb, testSrgb, nullptr, PsnrPeak::One, 3);
         out.image.rmseToneMapped = tone.rmse;
         out.image.psnrToneMapped = tone.psnr;
     });
     parallelInvoke(tasks);
+    if (release) *release = SurfaceImages{};
 
     Image flip = prepared->flip.compare(testSrgb);
     const FlipStats fs = flipStats(flip);
@@ -314,7 +322,7 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
     }
 
     if (maps) {
-        maps->referenceSrgb = prepared->srgb;
+        maps->referenceSrgb = prepared->srgb;  // shared: outlives `local`
         maps->testSrgb = std::move(testSrgb);
         maps->flip = std::move(flip);
         maps->hdrFlip = std::move(hdrFlip);
@@ -327,6 +335,18 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
         maps->measured = std::move(measured);
     }
     return out;
+}
+
+}  // namespace
+
+RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
+                             const Image& testHdr, float exposure, const RunMetricsOptions& options) {
+    return computeImpl(reference, test, referenceHdr, testHdr, exposure, options, nullptr);
+}
+
+RunMetrics computeRunMetrics(const SurfaceImages& reference, SurfaceImages&& test, const Image& referenceHdr,
+                             const Image& testHdr, float exposure, const RunMetricsOptions& options) {
+    return computeImpl(reference, test, referenceHdr, testHdr, exposure, options, &test);
 }
 
 }  // namespace gbl

@@ -28,6 +28,7 @@
 // The reference against itself gives exactly 0 everywhere and PSNR = +infinity.
 #include <cstddef>
 #include <limits>
+#include <memory>
 
 #include "flip.h"
 #include "image.h"
@@ -89,7 +90,7 @@ struct RunMetrics {
 // Per-pixel error images behind the numbers (all width x height; 1 channel unless stated).
 // Attribute maps are 0 where a pixel is not measured (see `measured`).
 struct RunErrorMaps {
-    Image referenceSrgb;  // 3 ch: tone-mapped reference, sRGB-encoded [0,1]
+    std::shared_ptr<const Image> referenceSrgb;  // 3 ch: tone-mapped reference, sRGB [0,1] (shared, not copied)
     Image testSrgb;       // 3 ch: tone-mapped test
     Image flip;           // LDR-FLIP [0,1]
     Image hdrFlip;        // HDR-FLIP [0,1] (empty when not computed)
@@ -107,7 +108,7 @@ struct PreparedReference {
     PreparedReference(const Image& referenceHdr, float exposure);
     const Image* hdr;
     float exposure;
-    Image srgb;  // toneMapToSrgbFloat(*hdr, exposure)
+    std::shared_ptr<const Image> srgb;  // toneMapToSrgbFloat(*hdr, exposure)
     LdrFlipReference flip;
 };
 
@@ -125,6 +126,10 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
                              const Image& testHdr, float exposure, const RunMetricsOptions& options);
 RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
                              const Image& testHdr, float exposure);
+// The same, taking the test surfaces: they are freed (left empty) as soon as the attribute metrics
+// are done, before FLIP's working planes are allocated (peak memory: 80 bytes per pixel).
+RunMetrics computeRunMetrics(const SurfaceImages& reference, SurfaceImages&& test, const Image& referenceHdr,
+                             const Image& testHdr, float exposure, const RunMetricsOptions& options);
 
 // Per-pixel relative luminance error of linear RGB images (CIE Y of linear sRGB):
 // |Y_t - Y_r| / max(Y_r, floor), floor = 1e-2 x the reference's mean luminance (at least 1e-6),

@@ -128,6 +128,37 @@ TEST_F(RenderTest, BackgroundShowsTheEnvironmentAndDepthIsCleared) {
     EXPECT_GT(luminance(pixel(r.output.hdr, {int(kWidth / 2), 0})), 0.0f);
 }
 
+TEST_F(RenderTest, DecodeInBandsEqualsDecodeInOnePass) {
+    // 270 rows in bands of 16: 17 bands, the last one partial.
+    Scene scene = makeDefaultScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(test::sharedContext(), scene, sky);
+    RenderSettings s;
+    s.width = kWidth;
+    s.height = kHeight;
+    s.decodeSurfaces = true;
+    s.readTargetWords = false;
+    const RenderOutput whole = renderer.render(makeReferenceWiring(), s);
+    s.decodeBandRows = 16;
+    const RenderOutput banded = renderer.render(makeReferenceWiring(), s);
+    EXPECT_TRUE(whole.targetWords.empty());
+    const std::pair<const Image*, const Image*> pairs[] = {
+        {&whole.surfaces.normal, &banded.surfaces.normal},       {&whole.surfaces.baseColor, &banded.surfaces.baseColor},
+        {&whole.surfaces.roughness, &banded.surfaces.roughness}, {&whole.surfaces.viewDepth, &banded.surfaces.viewDepth},
+        {&whole.surfaces.specularColor, &banded.surfaces.specularColor}};
+    for (const auto& [a, b] : pairs) {
+        ASSERT_EQ(a->pixels.size(), size_t(kWidth) * kHeight * size_t(a->channels));
+        ASSERT_EQ(a->pixels, b->pixels);
+    }
+    EXPECT_EQ(whole.surfaces.coverage, banded.surfaces.coverage);
+    size_t covered = 0;
+    for (uint8_t c : whole.surfaces.coverage) covered += c;
+    EXPECT_GT(covered, size_t(kWidth) * kHeight / 10);  // the spheres are there, in every band's rows
+    EXPECT_GT(whole.surfaces.viewDepth.at(kWidth / 2, kHeight - 40, 0) + whole.surfaces.viewDepth.at(kWidth / 2, 40, 0) +
+                  whole.surfaces.viewDepth.at(kWidth / 2, kHeight / 2, 0),
+              0.0f);
+}
+
 TEST_F(RenderTest, ReversedZMatchesForwardZ) {
     const Rendered& r = defaultRender();
     const EnvironmentMap sky = makeProceduralSky(256);
