@@ -2,13 +2,12 @@
 // seed): what one layout's comparison costs outside the GPU passes.
 //
 //   run_metrics/no_hdr_flip   computeRunMetrics, attributes + image errors + LDR-FLIP
-//   run_metrics/full          the same with HDR-FLIP (as `compare` runs by default)
+//   run_metrics/full          the same with HDR-FLIP (as `compare --hdr-flip` runs)
 //   flip_ldr                  flipLdr of two sRGB images
 //   flip_hdr                  flipHdr of two linear HDR images (exposure count as a counter)
 //
-// The stages of `compare` end to end (set-up, shader compile, pre-computation, rendering,
-// read-back, metrics, report writing) need timers inside src/cmd_compare.cpp: see bench/README.md
-// (TODO). bench/run.sh times the whole command instead.
+// `compare` itself, end to end and split into stages, is timed by `bench/run.sh e2e` (its
+// timings.json).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -7,7 +7,8 @@
 #   codec    codec_bench: CPU mirror encode/decode vs memcpy of the same bytes
 #   gpu      gpu_pass_bench: G-buffer and lighting pass per layout (GBL_BENCH_4K=1 adds 3840x2160)
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
-#   e2e      `gbufferlab compare` of all layouts at 1080p, run twice (the second, warm, is timed)
+#   e2e      `gbufferlab compare` of all layouts at 1080p, run twice (the second, warm, is timed by
+#            stage: its timings.json), then once at 3840x2160 with one layout for peak memory
 # environment:
 #   GBL_BENCH_REPETITIONS (default 3; medians are reported), GBL_BENCH_BUILD_DIR (default build-bench),
 #   GBL_BENCH_FILTER (a --benchmark_filter regex), GBL_BENCH_4K, GBL_BENCH_LAYOUTS, GBL_BENCH_DEVICE
@@ -43,13 +44,13 @@ for w in "${what[@]}"; do
         e2e)
             out="$results/compare-e2e"
             echo "== gbufferlab compare (warm-up run)"
-            "$build/gbufferlab" compare --out "$out" --force >/dev/null
+            "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force >/dev/null
             echo "== gbufferlab compare (timed run)"
-            start=$(date +%s.%N)
-            "$build/gbufferlab" compare --out "$out" --force >/dev/null
-            end=$(date +%s.%N)
-            python3 -c "import json,sys; json.dump({'wall_s': $end - $start}, open(sys.argv[1], 'w'))" \
-                "$results/compare_e2e.json"
+            "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force >/dev/null
+            cp "$out/timings.json" "$results/compare_e2e.json"
+            echo "== gbufferlab compare at 3840x2160, ${GBL_BENCH_4K_LAYOUT:-ue4} (peak memory)"
+            /usr/bin/time -f '%M' -o "$results/compare_4k_rss_kib.txt" "$build/gbufferlab" compare \
+                --device "${GBL_BENCH_DEVICE:-cpu}" --size 3840x2160 --layouts "${GBL_BENCH_4K_LAYOUT:-ue4}" --out "$results/compare-4k" --force >/dev/null
             ;;
         *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e)" >&2; exit 2 ;;
     esac
