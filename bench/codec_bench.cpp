@@ -4,14 +4,20 @@
 //   encode/<encoding>, decode/<encoding>   one primitive over 1M elements (floats, colours or unit
 //                                          normals -> packed codes in the smallest word that holds them)
 //   layout_encode/<layout>, layout_decode/<layout>
-//                                          a whole 1920x1080 image of Surfaces through cpu_codec
-//   memcpy/bytes:<n>                       memcpy of n bytes (one per distinct encoded size above)
+//                                          a whole 1920x1080 image of Surfaces through CpuCodec, on
+//                                          hardwareThreads() threads, into reused buffers
+//   memcpy/bytes:<n>                       memcpy of n bytes (per-encoding sizes), one thread
+//   memcpy/bytes:<n>/threads:<t>           memcpy of n bytes (per-layout sizes), on 1 thread and split
+//                                          over the codec's t threads (parallelFor, as the codec)
 //
 // Counters: pixels_per_s (elements or pixels per second), GB_per_s (encoded G-buffer bytes per
 // second, 1e9 bytes), bytes (encoded bytes per iteration: match it to memcpy/bytes:<n> for the
-// ratio; bench/run.sh prints the ratios). Timed in CPU time (Google Benchmark's default; rates are
-// per CPU second): the work is single-threaded on the calling thread, and CPU time keeps the
-// codec/memcpy ratios steady on a shared, loaded machine where wall time includes waiting.
+// ratio; bench/run.sh prints the ratios); per layout also threads, bytes_per_pixel,
+// surface_bytes_per_pixel (sizeof(Surface)) and material_bytes_per_pixel (deferred lighting's
+// material words, which the codec writes and reads too) for the memory-bound roofline.
+// Per-encoding benchmarks are single-threaded and timed in CPU time (steady on a shared, loaded
+// machine); the per-layout ones and their memcpy run on several threads and are timed in wall
+// time (CPU time would count the calling thread only).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -27,8 +33,10 @@
 
 #include "cpu_codec.h"
 #include "encodings.h"
+#include "encodings_fast.h"
 #include "layout.h"
 #include "layout_catalog.h"
+#include "parallel_for.h"
 #include "surface.h"
 #include "wiring_codegen.h"
 
@@ -40,10 +48,17 @@ constexpr size_t kElements = size_t(1) << 20;  // 1M
 constexpr int kImageWidth = 1920;
 constexpr int kImageHeight = 1080;
 
-std::set<int64_t>& memcpySizes() {
+std::set<int64_t>& memcpySizes() {  // per-encoding sizes: single-threaded, CPU time
     static std::set<int64_t> sizes;
     return sizes;
 }
+std::set<int64_t>& layoutMemcpySizes() {  // per-layout sizes: 1 and codecThreads() threads, wall time
+    static std::set<int64_t> sizes;
+    return sizes;
+}
+
+// The threads the layout benchmarks run on: CpuCodec's default.
+int codecThreads() { return gbl::hardwareThreads(); }
 
 void setCounters(benchmark::State& state, double elements, double bytes) {
     const double it = double(state.iterations());
@@ -201,6 +216,11 @@ void registerPrimitives() {
     registerPrimitive<uint32_t>(
         "normal_bestfit", 24, normals, [](vec3 n) { return pack3(encodeNormalBestFit(n), 8); },
         [](uint w) { return decodeNormalBestFit(unpack3(w, 8)); });
+    // The CPU codec's search (same codes, vectorised over the 128 candidates): the speed-up is the
+    // ratio of the two encode rows.
+    registerPrimitive<uint32_t>(
+        "normal_bestfit_fast", 24, normals, [](vec3 n) { return pack3(encodeNormalBestFitFast(n), 8); },
+        [](uint w) { return decodeNormalBestFit(unpack3(w, 8)); });
     registerPrimitive<uint32_t>(
         "normal_xy_zsign8", 17, normals, [](vec3 n) { return pack3(encodeNormalXyZSign(n, 8), 8); },
         [](uint w) { return decodeNormalXyZSign(unpack3(w, 8), 8); });
@@ -257,6 +277,16 @@ double layoutImageBytes(const gbl::Layout& layout) {
     return perPixel * kImageWidth * kImageHeight;
 }
 
+void setLayoutCounters(benchmark::State& state, const gbl::Layout& layout, const gbl::CpuCodec& codec,
+                       double bytes) {
+    const double pixels = double(kImageWidth) * kImageHeight;
+    setCounters(state, pixels, std::llround(bytes));
+    state.counters["bytes_per_pixel"] = benchmark::Counter(bytes / pixels);
+    state.counters["surface_bytes_per_pixel"] = benchmark::Counter(double(sizeof(gbl::Surface)));
+    state.counters["material_bytes_per_pixel"] = benchmark::Counter(16.0 * gbl::materialTargetCount(layout));
+    state.counters["threads"] = benchmark::Counter(codec.threads());
+}
+
 void registerLayouts() {
     std::vector<std::string> names;
     try {
@@ -274,26 +304,31 @@ void registerLayouts() {
             continue;
         }
         const double bytes = layoutImageBytes(layout);
-        memcpySizes().insert(int64_t(std::llround(bytes)));
-        const double pixels = double(kImageWidth) * kImageHeight;
+        layoutMemcpySizes().insert(int64_t(std::llround(bytes)));
+        // Both write into buffers allocated before timing, as memcpy does: a fresh 20-180 MB
+        // vector per iteration would time the kernel's page faults, not the codec.
         benchmark::RegisterBenchmark(("layout_encode/" + name).c_str(), [=](benchmark::State& state) {
+            const gbl::CpuCodec codec(layout, gbl::CpuCodecOptions{codecThreads()});
             const std::vector<gbl::Surface>& in = surfaces();
+            gbl::CpuGBuffer g = codec.encode(in, kImageWidth, kImageHeight);
             for (auto _ : state) {
-                gbl::CpuGBuffer g = gbl::encodeGBuffer(layout, in, kImageWidth, kImageHeight);
+                codec.encode(in, kImageWidth, kImageHeight, g);
                 benchmark::DoNotOptimize(g.targetWords.data());
+                benchmark::ClobberMemory();
             }
-            setCounters(state, pixels, std::llround(bytes));
-            state.counters["bytes_per_pixel"] = benchmark::Counter(bytes / pixels);
-        })->Unit(benchmark::kMillisecond);
+            setLayoutCounters(state, layout, codec, bytes);
+        })->Unit(benchmark::kMillisecond)->UseRealTime();
         benchmark::RegisterBenchmark(("layout_decode/" + name).c_str(), [=](benchmark::State& state) {
-            const gbl::CpuGBuffer g = gbl::encodeGBuffer(layout, surfaces(), kImageWidth, kImageHeight);
+            const gbl::CpuCodec codec(layout, gbl::CpuCodecOptions{codecThreads()});
+            const gbl::CpuGBuffer g = codec.encode(surfaces(), kImageWidth, kImageHeight);
+            std::vector<gbl::Surface> out = codec.decode(g);
             for (auto _ : state) {
-                std::vector<gbl::Surface> out = gbl::decodeGBuffer(layout, g);
+                codec.decode(g, out);
                 benchmark::DoNotOptimize(out.data());
+                benchmark::ClobberMemory();
             }
-            setCounters(state, pixels, std::llround(bytes));
-            state.counters["bytes_per_pixel"] = benchmark::Counter(bytes / pixels);
-        })->Unit(benchmark::kMillisecond);
+            setLayoutCounters(state, layout, codec, bytes);
+        })->Unit(benchmark::kMillisecond)->UseRealTime();
     }
 }
 
@@ -311,6 +346,25 @@ void registerMemcpy() {
             setCounters(state, double(n), double(n));
         })->Unit(benchmark::kMillisecond);
     }
+    // The machine's copy bandwidth for the layout sizes: one thread, and split into as many
+    // contiguous chunks as the codec has threads, started the same way (parallelFor per call).
+    const std::set<int> threadCounts = {1, codecThreads()};
+    for (const int64_t n : layoutMemcpySizes())
+        for (const int threads : threadCounts) {
+            const std::string name = "memcpy/bytes:" + std::to_string(n) + "/threads:" + std::to_string(threads);
+            benchmark::RegisterBenchmark(name.c_str(), [n, threads](benchmark::State& state) {
+                std::vector<unsigned char> src(size_t(n), 1), dst(size_t(n), 0);
+                for (auto _ : state) {
+                    gbl::parallelFor(n, threads, [&](int64_t begin, int64_t end) {
+                        std::memcpy(dst.data() + begin, src.data() + begin, size_t(end - begin));
+                    });
+                    benchmark::DoNotOptimize(dst.data());
+                    benchmark::ClobberMemory();
+                }
+                setCounters(state, double(n), double(n));
+                state.counters["threads"] = benchmark::Counter(threads);
+            })->Unit(benchmark::kMillisecond)->UseRealTime();
+        }
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 """Summarises bench/results/*.json (Google Benchmark JSON, medians of the repetitions).
 
 usage: bench/summarize.py [RESULTS_DIR]   (default bench/results)
-Prints: codec GB/s as a ratio of memcpy GB/s of the same bytes (goal >= 0.25x); GPU pass times
+Prints: codec GB/s as a ratio of memcpy GB/s of the same bytes (goal >= 0.25x; per layout against
+the faster of memcpy on 1 thread and on the codec's threads, with the memory-bound ceiling); GPU pass times
 per layout and the 4K/1080p ratio; the CPU metrics cost per layout as a ratio of the GPU passes;
 `compare` wall time as a ratio of its GPU pass times (goal <= 1.5x); peak RSS (goal < 2 GiB).
 """
@@ -53,48 +54,107 @@ def ms(entry):
     return entry["real_time"] * scale
 
 
+def codec_primitives(rows):
+    """Per-encoding rows: single-threaded CPU time, against memcpy/bytes:<n> (one thread, CPU time)."""
+    memcpy = {int(round(v["bytes"])): v["GB_per_s"] for k, v in rows.items()
+              if re.fullmatch(r"memcpy/bytes:\d+", k) and "GB_per_s" in v}
+    prefixes = ("encode/", "decode/")
+    names = sorted({k.split("/", 1)[1] for k in rows if k.startswith(prefixes)})
+    if not names:
+        return
+    print("  per encoding, 1M elements (one thread, CPU time)")
+    print(f"    {'name':28s} {'bytes':>10s} {'enc GB/s':>9s} {'x memcpy':>9s} {'dec GB/s':>9s} {'x memcpy':>9s}"
+          f" {'Mpix/s enc':>10s} {'Mpix/s dec':>10s}")
+    misses = []
+    for n in names:
+        e, d = rows.get(prefixes[0] + n, {}), rows.get(prefixes[1] + n, {})
+        ref = e or d
+        if "bytes" not in ref:
+            print(f"    {n:28s} {'error: ' + ref.get('error', 'missing')}")
+            continue
+        nbytes = int(round(ref["bytes"]))
+        m = memcpy.get(nbytes)
+        cells = []
+        for x, prefix in ((e, prefixes[0]), (d, prefixes[1])):
+            if "GB_per_s" in x and m:
+                r = x["GB_per_s"] / m
+                cells.append(f"{x['GB_per_s']:9.3f} {r:8.3f}x")
+                if r < CODEC_GOAL:
+                    misses.append(f"{prefix}{n} {r:.3f}x")
+            else:
+                cells.append(f"{'-':>9s} {'-':>9s}")
+        pix = [f"{x['pixels_per_s'] / 1e6:10.1f}" if "pixels_per_s" in x else f"{'-':>10s}" for x in (e, d)]
+        print(f"    {n:28s} {nbytes:10d} {cells[0]} {cells[1]} {pix[0]} {pix[1]}")
+    used = {int(round(rows[p + n]["bytes"])) for n in names for p in prefixes if "bytes" in rows.get(p + n, {})}
+    print("    memcpy of those sizes: " + ", ".join(f"{b / 1e6:.1f} MB {g:.1f} GB/s" for b, g in sorted(memcpy.items())
+                                                 if b in used))
+    print(f"    below goal: {', '.join(misses) if misses else 'none'}")
+
+
+def codec_layouts(rows):
+    """Per-layout rows: CpuCodec on its threads, wall time, against memcpy of the same bytes on 1
+    thread and on the codec's threads (same run); the goal ratio uses the faster of the two, i.e.
+    the machine's copy bandwidth. Bound: the memory-bound ceiling of that ratio."""
+    # memcpy/bytes:<n>/threads:<t> -> {n: {t: GB/s}}
+    memcpy = {}
+    for k, v in rows.items():
+        m = re.fullmatch(r"memcpy/bytes:(\d+)/threads:(\d+)", k)
+        if m and "GB_per_s" in v:
+            memcpy.setdefault(int(m.group(1)), {})[int(m.group(2))] = v["GB_per_s"]
+    prefixes = ("layout_encode/", "layout_decode/")
+    names = sorted({k.split("/", 1)[1] for k in rows if k.startswith(prefixes)})
+    if not names:
+        return
+    threads = sorted({int(round(rows[p + n]["threads"])) for n in names for p in prefixes
+                      if "threads" in rows.get(p + n, {})})
+    t = threads[-1] if threads else 0
+    print(f"  per layout, 1920x1080 image (CpuCodec on {t} threads, wall time; x1 / x{t}: / memcpy of the same "
+          f"bytes on 1 / {t} threads; x copy: / the faster of the two = the goal ratio; bound: memory-bound "
+          "ceiling 2G / (S + G + M))")
+    print(f"    {'layout':20s} {'B/px':>4s} {'bound':>6s} | {'enc GB/s':>8s} {'x1':>7s} {'x' + str(t):>7s} "
+          f"{'x copy':>7s} | {'dec GB/s':>8s} {'x1':>7s} {'x' + str(t):>7s} {'x copy':>7s} | "
+          f"{'Mpix/s enc':>10s} {'dec':>6s}")
+    misses = []
+    for n in names:
+        e, d = rows.get(prefixes[0] + n, {}), rows.get(prefixes[1] + n, {})
+        ref = e or d
+        if "bytes" not in ref:
+            print(f"    {n:20s} {'error: ' + ref.get('error', 'missing')}")
+            continue
+        nbytes = int(round(ref["bytes"]))
+        g, s_, m_ = (ref.get(k, 0.0) for k in ("bytes_per_pixel", "surface_bytes_per_pixel", "material_bytes_per_pixel"))
+        bound = 2.0 * g / (s_ + g + m_) if s_ + g + m_ > 0 else float("nan")
+        copies = memcpy.get(nbytes, {})
+        one, many = copies.get(1), copies.get(t)
+        best = max([c for c in (one, many) if c], default=None)
+        cells = []
+        for x, prefix in ((e, prefixes[0]), (d, prefixes[1])):
+            if "GB_per_s" not in x or not best:
+                cells.append(f"{'-':>8s} {'-':>7s} {'-':>7s} {'-':>7s}")
+                continue
+            gbs = x["GB_per_s"]
+            r1 = f"{gbs / one:6.3f}x" if one else f"{'-':>7s}"
+            rt = f"{gbs / many:6.3f}x" if many else f"{'-':>7s}"
+            rb = gbs / best
+            cells.append(f"{gbs:8.3f} {r1} {rt} {rb:6.3f}x")
+            if rb < CODEC_GOAL:
+                misses.append(f"{prefix}{n} {rb:.3f}x (bound {bound:.2f}x)")
+        pix = [f"{x['pixels_per_s'] / 1e6:10.1f}" if "pixels_per_s" in x else f"{'-':>10s}" for x in (e, d)]
+        print(f"    {n:20s} {g:4.0f} {bound:5.2f}x | {cells[0]} | {cells[1]} | {pix[0]} {pix[1].strip():>6s}")
+    print("    memcpy of those sizes (GB/s, 1 / " + str(t) + " threads): " +
+          ", ".join(f"{b / 1e6:.1f} MB {c.get(1, float('nan')):.1f} / {c.get(t, float('nan')):.1f}"
+                    for b, c in sorted(memcpy.items())))
+    print(f"    below goal: {', '.join(misses) if misses else 'none'}")
+
+
 def codec(results):
     rows, ctx = medians(os.path.join(results, "codec_bench.json"))
     if rows is None:
         return
     print("== codec_bench: CPU mirror GB/s of encoded bytes / memcpy GB/s of the same bytes, same run "
           f"(goal >= {CODEC_GOAL}x; medians; {ctx.get('num_cpus', '?')} CPUs)")
-    memcpy = {int(round(v["bytes"])): v["GB_per_s"] for k, v in rows.items()
-              if k.startswith("memcpy/") and "GB_per_s" in v}
-    groups = [("per encoding, 1M elements", ("encode/", "decode/")),
-              ("per layout, 1920x1080 image (cpu_codec)", ("layout_encode/", "layout_decode/"))]
-    for title, prefixes in groups:
-        names = sorted({k.split("/", 1)[1] for k in rows if k.startswith(prefixes)})
-        if not names:
-            continue
-        print(f"  {title}")
-        print(f"    {'name':28s} {'bytes':>10s} {'enc GB/s':>9s} {'x memcpy':>9s} {'dec GB/s':>9s} {'x memcpy':>9s}"
-              f" {'Mpix/s enc':>10s} {'Mpix/s dec':>10s}")
-        misses = []
-        for n in names:
-            e, d = rows.get(prefixes[0] + n, {}), rows.get(prefixes[1] + n, {})
-            ref = e or d
-            if "bytes" not in ref:
-                print(f"    {n:28s} {'error: ' + ref.get('error', 'missing')}")
-                continue
-            nbytes = int(round(ref["bytes"]))
-            m = memcpy.get(nbytes)
-            cells = []
-            for x in (e, d):
-                if "GB_per_s" in x and m:
-                    r = x["GB_per_s"] / m
-                    cells.append(f"{x['GB_per_s']:9.3f} {r:8.3f}x")
-                    if r < CODEC_GOAL:
-                        misses.append(f"{prefixes[0 if x is e else 1]}{n} {r:.3f}x")
-                else:
-                    cells.append(f"{'-':>9s} {'-':>9s}")
-            pix = [f"{x['pixels_per_s'] / 1e6:10.1f}" if "pixels_per_s" in x else f"{'-':>10s}" for x in (e, d)]
-            print(f"    {n:28s} {nbytes:10d} {cells[0]} {cells[1]} {pix[0]} {pix[1]}")
-        print(f"    memcpy of those sizes: " + ", ".join(f"{b / 1e6:.1f} MB {g:.1f} GB/s" for b, g in
-                                                        sorted(memcpy.items()) if b in
-                                                        {int(round(rows[p + n]['bytes'])) for n in names
-                                                         for p in prefixes if 'bytes' in rows.get(p + n, {})}))
-        print(f"    below goal: {', '.join(misses) if misses else 'none'}")
+    codec_primitives(rows)
+    codec_layouts(rows)
 
 
 def gpu(results, file_name="gpu_pass_bench.json"):

@@ -1,0 +1,216 @@
+#include "cpu_codec_plan.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+#include "cpu_codec_kernels.h"
+#include "encoding_registry.h"
+#include "wiring_codegen.h"
+
+namespace gbl::codec {
+
+namespace {
+
+constexpr int kFloat = int(sizeof(float));
+
+Codec resolveCodec(const std::string& e) {
+    static const std::pair<const char*, Codec> names[] = {
+        {kIdEncoding, Codec::Id},
+        {"unorm", Codec::Unorm},
+        {"snorm", Codec::Snorm},
+        {"float16", Codec::Float16},
+        {"float11", Codec::Float11},
+        {"float10", Codec::Float10},
+        {"float32", Codec::Float32},
+        {"depth24", Codec::Depth24},
+        {"gloss", Codec::Gloss},
+        {"smoothness_cry", Codec::SmoothnessCry},
+        {"srgb8", Codec::Srgb8},
+        {"luma", Codec::Luma},
+        {"ycbcr", Codec::YCbCr},
+        {"ycbcr_sqrt", Codec::YCbCrSqrt},
+        {"ycocg", Codec::YCoCg},
+        {"ycbcr_checkerboard", Codec::YCbCrCheckerboard},
+        {"ycocg_checkerboard", Codec::YCoCgCheckerboard},
+        {"normal_xyz", Codec::NormalXyz},
+        {"normal_bestfit", Codec::NormalBestFit},
+        {"normal_xy_zsign", Codec::NormalXyZSign},
+        {"normal_spheremap", Codec::NormalSpheremap},
+        {"normal_stereographic", Codec::NormalStereographic},
+        {"normal_octahedral", Codec::NormalOctahedral},
+        {"normal_octahedral_precise", Codec::NormalOctahedralPrecise},
+    };
+    for (const auto& [name, codec] : names)
+        if (e == name) return codec;
+    throw std::logic_error("cpu codec: no encoder for " + e);
+}
+
+// Codes the encoder produces (0: one per component, any number).
+size_t codeCount(Codec c) {
+    switch (c) {
+        case Codec::Srgb8:
+        case Codec::YCbCr:
+        case Codec::YCbCrSqrt:
+        case Codec::YCoCg:
+        case Codec::NormalXyz:
+        case Codec::NormalBestFit:
+        case Codec::NormalXyZSign: return 3;
+        case Codec::Luma: return 1;
+        case Codec::YCbCrCheckerboard:
+        case Codec::YCoCgCheckerboard:
+        case Codec::NormalSpheremap:
+        case Codec::NormalStereographic:
+        case Codec::NormalOctahedral:
+        case Codec::NormalOctahedralPrecise: return 2;
+        default: return 0;
+    }
+}
+
+CodePlan planCode(const Target& t, const CodePlace& cp, int words) {
+    CodePlan code;
+    code.bits = uint32_t(cp.bits());
+    int codeShift = 0;
+    for (const BitRange& r : cp.pieces) {
+        const int at = t.channels.at(size_t(r.channel)).offset + r.first;
+        if (at / 32 >= words || r.count <= 0 || at % 32 + r.count > 32)
+            throw std::logic_error("cpu codec: " + cp.text + " does not fit the words of target " + t.name);
+        code.pieces.push_back({at / 32, at % 32, codeShift, r.count >= 32 ? 0xffffffffu : (1u << r.count) - 1u});
+        codeShift += r.count;
+    }
+    return code;
+}
+
+void placeConstant(const CodePlan& code, uint32_t value, uint32_t* words) {
+    for (const Piece& p : code.pieces) words[p.word] |= ((value >> p.codeShift) & p.mask) << p.shift;
+}
+
+FieldPlan planField(const Target& t, const Field& f, int words) {
+    FieldPlan fp;
+    fp.codec = resolveCodec(f.encoding);
+    fp.source = surfaceOffset(f.attribute);
+    fp.components = fp.source >= 0 ? attributeInfo(f.attribute).components : 0;
+    for (const CodePlace& cp : f.codes) fp.codes.push_back(planCode(t, cp, words));
+    const size_t expected = codeCount(fp.codec);
+    if (fp.codes.empty() || fp.codes.size() > 4 || (expected != 0 && fp.codes.size() != expected))
+        throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) + " (" + f.encoding +
+                               ") has " + std::to_string(f.codes.size()) + " codes");
+    fp.inputs = isScalar(fp.codec) ? int(fp.codes.size()) : 3;
+    if (fp.source >= 0 && fp.source + fp.inputs > kSurfaceFloats)
+        throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) +
+                               " reads past the Surface");
+    for (size_t i = 0; i < 4; ++i)
+        fp.constant[i] = f.value.empty() ? 0.0f : float(f.value[std::min(i, f.value.size() - 1)]);
+    return fp;
+}
+
+// The attributes a derived fallback reads (FallbackKind's formulas, as orderedFallbacks).
+std::vector<Attribute> fallbackInputs(FallbackKind k) {
+    using A = Attribute;
+    switch (k) {
+        case FallbackKind::FromMetallic: return {A::BaseColor, A::Metallic};
+        case FallbackKind::Ue4: return {A::BaseColor, A::Metallic, A::Specular};
+        case FallbackKind::FromBaseColor: return {A::BaseColor, A::Metallic};
+        case FallbackKind::FromDiffuseSpecular: return {A::DiffuseColor, A::Metallic, A::SpecularColor};
+        case FallbackKind::FromSpecularColor: return {A::SpecularColor};
+        default: return {};
+    }
+}
+
+}  // namespace
+
+bool isScalar(Codec c) { return c <= Codec::SmoothnessCry; }
+
+bool isCheckerboard(Codec c) { return c == Codec::YCbCrCheckerboard || c == Codec::YCoCgCheckerboard; }
+
+int surfaceOffset(Attribute a) {
+    switch (a) {
+        case Attribute::Normal: return int(offsetof(Surface, normal)) / kFloat;
+        case Attribute::BaseColor: return int(offsetof(Surface, baseColor)) / kFloat;
+        case Attribute::Metallic: return int(offsetof(Surface, metallic)) / kFloat;
+        case Attribute::Roughness: return int(offsetof(Surface, roughness)) / kFloat;
+        case Attribute::Specular: return int(offsetof(Surface, specular)) / kFloat;
+        case Attribute::SpecularColor: return int(offsetof(Surface, specularColor)) / kFloat;
+        case Attribute::DiffuseColor: return int(offsetof(Surface, diffuseColor)) / kFloat;
+        case Attribute::Occlusion: return int(offsetof(Surface, occlusion)) / kFloat;
+        case Attribute::Emissive: return int(offsetof(Surface, emissive)) / kFloat;
+        case Attribute::Position: return int(offsetof(Surface, position)) / kFloat;
+        default: return -1;
+    }
+}
+
+CodecPlan compilePlan(const Layout& layout) {
+    CodecPlan plan;
+    for (const Target& t : layout.targets) {
+        TargetPlan tp;
+        tp.words = wordsPerPixel(t);
+        if (tp.words != 1 && tp.words != 2 && tp.words != 4)
+            throw std::logic_error("cpu codec: target " + t.name + " has " + std::to_string(tp.words) +
+                                   " words per pixel");
+        for (const Field& f : t.fields) {
+            FieldPlan fp = planField(t, f, tp.words);
+            if (fp.source >= 0) {
+                if (fp.codec == Codec::Id && !plan.decodeError)
+                    plan.decodeError = "cpu codec: no scalar decoder for id";
+                tp.decodeFields.push_back(fp);
+            }
+            if (fp.codec == Codec::Id) {
+                // The declared integer is the code, uint(v) of the double, whatever the attribute.
+                for (size_t i = 0; i < fp.codes.size(); ++i) {
+                    const double v = f.value.empty() ? 0.0 : f.value[std::min(i, f.value.size() - 1)];
+                    placeConstant(fp.codes[i], uint32_t(v), tp.constantWords);
+                }
+            } else if (fp.source < 0 && !isCheckerboard(fp.codec)) {
+                // A constant extra: encode its value once, through the same loop as the pixels.
+                EncodeBlock b;
+                for (int c = 0; c < 4; ++c) b.in[c][0] = fp.constant[c];
+                encodeCodes(fp, 1, 0, 0, b);
+                for (size_t i = 0; i < fp.codes.size(); ++i) placeConstant(fp.codes[i], b.code[i][0], tp.constantWords);
+            } else {
+                tp.encodeFields.push_back(std::move(fp));  // per pixel (a checkerboard extra: by parity)
+            }
+        }
+        plan.targets.push_back(std::move(tp));
+    }
+
+    const std::vector<MaterialSlot> slots = materialPassSlots(layout);
+    plan.materialTargets = materialTargetCount(layout);
+    plan.materialSource.assign(size_t(plan.materialTargets) * 4, -1);
+    for (const MaterialSlot& s : slots) {
+        const int dest = surfaceOffset(s.attribute);
+        if (dest < 0) throw std::logic_error("cpu codec: material slot of an extra");
+        for (int c = 0; c < s.components; ++c) plan.materialSource.at(size_t(s.firstFloat + c)) = dest + c;
+        plan.materialSlots.push_back({dest, attributeInfo(s.attribute).components, s.components, s.firstFloat});
+    }
+
+    for (const Fallback* fb : orderedFallbacks(layout)) {
+        FallbackPlan p;
+        p.kind = fb->kind;
+        p.dest = surfaceOffset(fb->attribute);
+        if (p.dest < 0) continue;  // an extra: nothing in the Surface to set
+        // The decode loop writes a fallback straight into its attribute while reading its inputs.
+        for (const Attribute in : fallbackInputs(fb->kind))
+            if (in == fb->attribute)
+                throw std::logic_error("cpu codec: fallback of " + std::string(attributeName(in)) + " reads itself");
+        p.components = attributeInfo(fb->attribute).components;
+        for (size_t i = 0; i < 3; ++i)
+            p.value[i] = fb->value.empty() ? 0.0f : float(fb->value[std::min(i, fb->value.size() - 1)]);
+        plan.fallbacks.push_back(p);
+    }
+
+    std::vector<bool> written(kSurfaceFloats, false);
+    auto mark = [&](int first, int count) {
+        for (int c = 0; c < count; ++c) written.at(size_t(first + c)) = true;
+    };
+    for (const TargetPlan& t : plan.targets)
+        for (const FieldPlan& f : t.decodeFields) mark(f.source, f.components);
+    for (const MaterialSlotPlan& s : plan.materialSlots) mark(s.dest, s.components);
+    for (const FallbackPlan& f : plan.fallbacks)
+        if (f.kind != FallbackKind::MaterialPass) mark(f.dest, f.components);
+    for (int k = 0; k < kSurfaceFloats; ++k)
+        if (!written[size_t(k)]) plan.unwritten.push_back(k);
+    return plan;
+}
+
+}  // namespace gbl::codec

@@ -1,0 +1,115 @@
+// encodeNormalBestFitFast. Why the codes equal encodeNormalBestFit's for every input:
+// - The reference evaluates 128 candidates i = 0..127 in order, each with the same float
+//   expressions (k = 255 - 2i; d = 2 floor(q k / 2) + 1 per component; err = |d / |d| - n|^2) and
+//   keeps the first one whose err is strictly below the best so far, starting from 8 and
+//   (1, 1, 255). That is: the first index i whose err equals the minimum of the errs that are
+//   below 8 (a NaN err is never below anything), or (1, 1, 255) when none is.
+// - Here the same expressions, in the same order, are evaluated for all 128 candidates in a loop
+//   the compiler vectorises (8 candidates per AVX2 instruction). Each lane performs the identical
+//   IEEE-754 single-precision operations (+ - * / sqrt floor are correctly rounded, and
+//   -ffp-contract=off forbids FMA), so every err is bit-identical to the reference's.
+// - The first index of the minimum is then found lane-wise: lane l keeps the first candidate of
+//   the subsequence l, l+8, l+16, ... with the smallest err (strict <, so earlier wins), and the
+//   lanes are merged by (err, index). That is the same first-minimum. The winner's d is
+//   recomputed with the reference's expressions and converted to codes as the reference does.
+// - Non-finite inputs (never produced by the renderer) take the reference path unchanged, so
+//   NaN and infinity behave exactly as in the reference (e.g. inf / inf = NaN in q).
+#include "encodings_fast.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "simd_clones.h"
+
+namespace gbl::enc {
+
+namespace {
+
+constexpr int kCandidates = 128;
+constexpr int kLanes = 8;
+
+// Index of the winning candidate, or -1 when no err is below 8 (the reference keeps (1, 1, 255)).
+GBL_SIMD_CLONES int bestCandidate(vec3 n, vec3 q) {
+    alignas(32) float err[kCandidates];
+    for (int i = 0; i < kCandidates; ++i) {
+        float k = float(255 - 2 * i);
+        float dx = 2.0f * floor(q.x * k * 0.5f) + 1.0f;
+        float dy = 2.0f * floor(q.y * k * 0.5f) + 1.0f;
+        float dz = 2.0f * floor(q.z * k * 0.5f) + 1.0f;
+        float len = sqrt(dx * dx + dy * dy + dz * dz);
+        float ex = dx / len - n.x;
+        float ey = dy / len - n.y;
+        float ez = dz / len - n.z;
+        err[i] = ex * ex + ey * ey + ez * ez;
+    }
+    float laneErr[kLanes];
+    int laneIndex[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+        laneErr[l] = 8.0f;
+        laneIndex[l] = -1;
+    }
+    for (int g = 0; g < kCandidates; g += kLanes)
+        for (int l = 0; l < kLanes; ++l) {
+            const bool better = err[g + l] < laneErr[l];
+            laneErr[l] = better ? err[g + l] : laneErr[l];
+            laneIndex[l] = better ? g + l : laneIndex[l];
+        }
+    int best = -1;
+    float bestErr = 8.0f;
+    for (int l = 0; l < kLanes; ++l)
+        if (laneIndex[l] >= 0 && (laneErr[l] < bestErr || (laneErr[l] == bestErr && laneIndex[l] < best))) {
+            bestErr = laneErr[l];
+            best = laneIndex[l];
+        }
+    return best;
+}
+
+}  // namespace
+
+uvec3 encodeNormalBestFitFast(vec3 n) {
+    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) return encodeNormalBestFit(n);
+    // From here on, the reference's own statements.
+    float m = max(abs(n.x), max(abs(n.y), abs(n.z)));
+    if (!(m > 0.0f)) return uvec3(128u, 128u, 255u);
+    vec3 q = vec3(n.x / m, n.y / m, n.z / m);
+    const int i = bestCandidate(n, q);
+    if (i < 0) return uvec3(128u, 128u, 255u);  // vec3(1, 1, 255), the reference's initial best
+    float k = float(255 - 2 * i);
+    float dx = 2.0f * floor(q.x * k * 0.5f) + 1.0f;
+    float dy = 2.0f * floor(q.y * k * 0.5f) + 1.0f;
+    float dz = 2.0f * floor(q.z * k * 0.5f) + 1.0f;
+    return uvec3(uint(dx + 255.0f) >> 1u, uint(dy + 255.0f) >> 1u, uint(dz + 255.0f) >> 1u);
+}
+
+// encodeSrgb8Fast. The reference's binary search returns the number of thresholds <= x (they
+// increase strictly; NaN compares false everywhere and gives 0). For x in [first, last), x > 0
+// and finite, so its bits order like its value. Its bucket b = bits >> 16 spans the floats with
+// those upper bits; `base` counts the thresholds below the bucket, and a threshold inside it (at
+// most one, checked here) has the same upper bits, so it is <= x exactly when its low 16 bits are
+// <= x's. Count = base + that comparison. Outside [first, last) the count is 0 or 255.
+const Srgb8EncodeTable& srgb8EncodeTable() {
+    static const std::vector<uint32_t> entries = [] {
+        constexpr int k = Srgb8EncodeTable::kShift;
+        const uint32_t first = floatBitsToUint(kSrgbEncodeThresholds[0]) >> k;
+        const uint32_t last = floatBitsToUint(kSrgbEncodeThresholds[254]) >> k;
+        std::vector<uint32_t> v;
+        size_t below = 0;  // thresholds below the current bucket
+        for (uint32_t b = first; b <= last; ++b) {
+            while (below < 255 && (floatBitsToUint(kSrgbEncodeThresholds[below]) >> k) < b) ++below;
+            size_t inside = below;
+            while (inside < 255 && (floatBitsToUint(kSrgbEncodeThresholds[inside]) >> k) == b) ++inside;
+            if (inside - below > 1) throw std::logic_error("srgb8EncodeTable: two thresholds in one bucket");
+            const uint32_t cut = inside > below ? (floatBitsToUint(kSrgbEncodeThresholds[below]) & 0xffffu) : 0x10000u;
+            v.push_back(uint32_t(below) | (cut << 8));
+        }
+        return v;
+    }();
+    constexpr int k = Srgb8EncodeTable::kShift;
+    static const Srgb8EncodeTable table{floatBitsToUint(kSrgbEncodeThresholds[0]) >> k,
+                                        floatBitsToUint(kSrgbEncodeThresholds[254]) >> k, kSrgbEncodeThresholds[0],
+                                        kSrgbEncodeThresholds[254], entries.data()};
+    return table;
+}
+
+}  // namespace gbl::enc
