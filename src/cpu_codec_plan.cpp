@@ -105,19 +105,6 @@ FieldPlan planField(const Target& t, const Field& f, int words) {
     return fp;
 }
 
-// The attributes a derived fallback reads (FallbackKind's formulas, as orderedFallbacks).
-std::vector<Attribute> fallbackInputs(FallbackKind k) {
-    using A = Attribute;
-    switch (k) {
-        case FallbackKind::FromMetallic: return {A::BaseColor, A::Metallic};
-        case FallbackKind::Ue4: return {A::BaseColor, A::Metallic, A::Specular};
-        case FallbackKind::FromBaseColor: return {A::BaseColor, A::Metallic};
-        case FallbackKind::FromDiffuseSpecular: return {A::DiffuseColor, A::Metallic, A::SpecularColor};
-        case FallbackKind::FromSpecularColor: return {A::SpecularColor};
-        default: return {};
-    }
-}
-
 }  // namespace
 
 bool isScalar(Codec c) { return c <= Codec::SmoothnessCry; }

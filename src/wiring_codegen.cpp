@@ -455,18 +455,19 @@ int materialTargetCount(const Layout& layout) {
     return (floats + 3) / 4;
 }
 
+std::vector<Attribute> fallbackInputs(FallbackKind kind) {
+    using A = Attribute;
+    switch (kind) {
+        case FallbackKind::FromMetallic: return {A::BaseColor, A::Metallic};
+        case FallbackKind::Ue4: return {A::BaseColor, A::Metallic, A::Specular};
+        case FallbackKind::FromBaseColor: return {A::BaseColor, A::Metallic};
+        case FallbackKind::FromDiffuseSpecular: return {A::DiffuseColor, A::Metallic, A::SpecularColor};
+        case FallbackKind::FromSpecularColor: return {A::SpecularColor};
+        default: return {};
+    }
+}
+
 std::vector<const Fallback*> orderedFallbacks(const Layout& layout) {
-    auto inputs = [](const Fallback& f) -> std::vector<Attribute> {
-        using A = Attribute;
-        switch (f.kind) {
-            case FallbackKind::FromMetallic: return {A::BaseColor, A::Metallic};
-            case FallbackKind::Ue4: return {A::BaseColor, A::Metallic, A::Specular};
-            case FallbackKind::FromBaseColor: return {A::BaseColor, A::Metallic};
-            case FallbackKind::FromDiffuseSpecular: return {A::DiffuseColor, A::Metallic, A::SpecularColor};
-            case FallbackKind::FromSpecularColor: return {A::SpecularColor};
-            default: return {};
-        }
-    };
     std::set<Attribute> pending;
     for (const Fallback& f : layout.fallbacks) pending.insert(f.attribute);
     std::vector<const Fallback*> out;
@@ -475,7 +476,7 @@ std::vector<const Fallback*> orderedFallbacks(const Layout& layout) {
         for (size_t i = 0; i < layout.fallbacks.size(); ++i) {
             if (done[i]) continue;
             bool ready = true;
-            for (Attribute a : inputs(layout.fallbacks[i])) ready &= pending.count(a) == 0;
+            for (Attribute a : fallbackInputs(layout.fallbacks[i].kind)) ready &= pending.count(a) == 0;
             if (!ready) continue;
             done[i] = true;
             pending.erase(layout.fallbacks[i].attribute);

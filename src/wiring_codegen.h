@@ -62,6 +62,8 @@ int materialTargetCount(const Layout& layout);
 // The layout's fallbacks in an order where each one's inputs are stored or already derived.
 // Throws std::logic_error on a cycle (validation rules those out).
 std::vector<const Fallback*> orderedFallbacks(const Layout& layout);
+// The attributes a derived fallback's formula reads (none for constants, forward, material pass).
+std::vector<Attribute> fallbackInputs(FallbackKind kind);
 
 // Surface member name of a shading / geometry attribute ("baseColor"); nullptr for extras.
 const char* surfaceMemberName(Attribute a);
