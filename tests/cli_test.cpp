@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -119,6 +121,41 @@ TEST(Cli, RenderWritesExrAndPng) {
     const std::string png = slurp(scratch() / "ok" / "reference.png");
     ASSERT_GT(png.size(), 8u);
     EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
+    RunResult r = run("compare --out cmp --size 96x64 --layouts ue4,crysis3-thin");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "cmp" / "report.json"));
+    ASSERT_EQ(report["runs"].size(), 2u);
+    for (const auto& run : report["runs"]) {
+        EXPECT_TRUE(run["image_errors"].contains("flip_mean")) << run["layout"];
+        EXPECT_FALSE(run["image_errors"].contains("hdr_flip_mean")) << "HDR-FLIP is opt-in";
+    }
+    // The stages are exclusive: they add up to the total, and the frames' own GPU time is known.
+    const nlohmann::json t = nlohmann::json::parse(slurp(scratch() / "cmp" / "timings.json"));
+    double sum = 0.0;
+    for (const auto& [stage, ms] : t["stages_ms"].items()) {
+        EXPECT_GE(ms.get<double>(), 0.0) << stage;
+        sum += ms.get<double>();
+    }
+    EXPECT_EQ(t["stages_ms"].size(), 8u);
+    EXPECT_NEAR(sum, t["total_ms"].get<double>(), 1e-6 * sum);
+    EXPECT_GT(t["gpu_pass_ms"].get<double>(), 0.0);
+    EXPECT_GT(t["stages_ms"]["rendering"].get<double>(), 0.0);
+    EXPECT_NE(r.out.find("time by stage"), std::string::npos) << r.out;
+
+    r = run("compare --out cmp-hdr --size 96x64 --layouts crysis3-thin --hdr-flip");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json hdr = nlohmann::json::parse(slurp(scratch() / "cmp-hdr" / "report.json"));
+    const auto& errors = hdr["runs"][0]["image_errors"];
+    ASSERT_TRUE(errors.contains("hdr_flip_mean"));
+    EXPECT_GT(errors["hdr_flip_mean"].get<double>(), 0.0);  // crysis3-thin loses visible colour
+    EXPECT_GE(errors["hdr_flip_exposures"].get<int>(), 2);
+
+    r = run("compare --out cmp-both --size 96x64 --hdr-flip --no-hdr-flip");
+    expectOneLineError(r, {"--hdr-flip", "--no-hdr-flip"});
+    EXPECT_FALSE(fs::exists(scratch() / "cmp-both"));
 }
 
 TEST(Cli, UnknownFlagsAndCommandsAreExplained) {
