@@ -257,13 +257,18 @@ void drawLegend(Image8& image, int x, int y, int height, float lo, float hi, con
     }
 }
 
-Image8 heatMapWithLegend(const Image& scalar, float lo, float hi, std::string_view title, const LegendStyle& style) {
-    const Image8 map = applyColorMap(scalar, lo, hi);
-    const int s = autoScale(style, scalar.height);
-    const int titleH = textHeight(s) + 6 * s;
-    const int legendW = legendWidth(lo, hi, style, scalar.height);
+int titleBandHeight(int mapHeight, const LegendStyle& style) {
+    const int s = autoScale(style, mapHeight);
+    return textHeight(s) + 6 * s;
+}
+
+Image8 titledPicture(const Image8& map, std::string_view title, bool legend, float lo, float hi,
+                     const LegendStyle& style) {
+    const int s = autoScale(style, map.height);
+    const int titleH = titleBandHeight(map.height, style);
+    const int legendW = legend ? legendWidth(lo, hi, style, map.height) : 0;
     // Tall enough for the legend's end labels even when the map is tiny.
-    const int bodyH = std::max(map.height, 2 * textHeight(s) + 16 * s);
+    const int bodyH = legend ? std::max(map.height, 2 * textHeight(s) + 16 * s) : map.height;
     Image8 out;
     out.width = std::max(map.width + legendW, textWidth(title, s) + 6 * s);
     out.height = titleH + bodyH;
@@ -274,8 +279,12 @@ Image8 heatMapWithLegend(const Image& scalar, float lo, float hi, std::string_vi
     for (int y = 0; y < map.height; ++y)
         std::memcpy(out.pixels.data() + (size_t(titleH + y) * size_t(out.width)) * 3,
                     map.pixels.data() + size_t(y) * size_t(map.width) * 3, size_t(map.width) * 3);
-    drawLegend(out, map.width, titleH, bodyH, lo, hi, style);
+    if (legend) drawLegend(out, map.width, titleH, bodyH, lo, hi, style);
     return out;
+}
+
+Image8 heatMapWithLegend(const Image& scalar, float lo, float hi, std::string_view title, const LegendStyle& style) {
+    return titledPicture(applyColorMap(scalar, lo, hi), title, true, lo, hi, style);
 }
 
 }  // namespace gbl

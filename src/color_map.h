@@ -56,6 +56,13 @@ int legendWidth(float lo, float hi, const LegendStyle& style, int mapHeight);
 // labels to its right, into the rectangle [x, x + legendWidth) x [y, y + height) of `image`.
 void drawLegend(Image8& image, int x, int y, int height, float lo, float hi, const LegendStyle& style);
 
+// An annotated picture: `map` under a title band and, when `legend`, the lo..hi legend on its
+// right. The map's pixel (x, y) is the picture's (x, y + titleBandHeight(map.height)).
+Image8 titledPicture(const Image8& map, std::string_view title, bool legend, float lo, float hi,
+                     const LegendStyle& style = {});
+// The height of the title band titledPicture puts above a map of this height.
+int titleBandHeight(int mapHeight, const LegendStyle& style = {});
+
 // A readable heat-map picture: the colour-mapped scalar image, a title line above it, and the
 // legend on the right with lo and hi (and the ticks between) labelled.
 Image8 heatMapWithLegend(const Image& scalar, float lo, float hi, std::string_view title,

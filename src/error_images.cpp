@@ -21,30 +21,6 @@
 namespace gbl {
 namespace {
 
-int textScaleFor(int mapHeight) { return mapHeight < 400 ? 1 : 2; }
-
-// A picture: title band on top, the map below it at x = 0, and (optionally) a legend to its right.
-Image8 compose(const Image8& map, std::string_view title, bool legend, float lo, float hi) {
-    LegendStyle style;
-    const int s = textScaleFor(map.height);
-    style.textScale = s;
-    const int titleH = titleBandHeight(map.height);
-    const int legendW = legend ? legendWidth(lo, hi, style, map.height) : 0;
-    const int bodyH = legend ? std::max(map.height, 2 * textHeight(s) + 16 * s) : map.height;
-    Image8 out;
-    out.width = std::max(map.width + legendW, textWidth(title, s) + 6 * s);
-    out.height = titleH + bodyH;
-    out.channels = 3;
-    out.pixels.assign(size_t(out.width) * size_t(out.height) * 3, 0);
-    fillRect(out, 0, 0, out.width, out.height, style.background);
-    drawText(out, 3 * s, 3 * s, title, style.foreground, s);
-    for (int y = 0; y < map.height; ++y)
-        std::memcpy(out.pixels.data() + (size_t(titleH + y) * size_t(out.width)) * 3,
-                    map.pixels.data() + size_t(y) * size_t(map.width) * 3, size_t(map.width) * 3);
-    if (legend) drawLegend(out, map.width, titleH, bodyH, lo, hi, style);
-    return out;
-}
-
 std::string fmt(const char* format, double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, format, v);
@@ -71,10 +47,6 @@ std::string writePngAt(const std::filesystem::path& dir, const std::string& pref
 
 }  // namespace
 
-int titleBandHeight(int mapHeight) {
-    const int s = textScaleFor(mapHeight);
-    return textHeight(s) + 6 * s;
-}
 
 std::vector<std::string> ErrorImagePaths::all() const {
     std::vector<std::string> out;
@@ -119,7 +91,7 @@ Image8 heatMapImage(const Image& scalar, float lo, float hi, std::string_view ti
             map.pixels[i * 3 + 0] = map.pixels[i * 3 + 1] = map.pixels[i * 3 + 2] = g;
         }
     }
-    return compose(map, title, true, lo, hi);
+    return titledPicture(map, title, true, lo, hi);
 }
 
 Image8 amplifiedDifferenceImage(const Image& referenceSrgb, const Image& testSrgb, float k, std::string_view title) {
@@ -135,7 +107,7 @@ Image8 amplifiedDifferenceImage(const Image& referenceSrgb, const Image& testSrg
             d = std::isnan(d) ? 1.0f : std::min(d, 1.0f);
             map.pixels[i * 3 + c] = static_cast<unsigned char>(std::floor(d * 255.0f + 0.5f));
         }
-    return compose(map, title, false, 0.0f, 1.0f);
+    return titledPicture(map, title, false, 0.0f, 1.0f);
 }
 
 std::vector<std::string> errorExrChannels(const RunErrorMaps& m) {

@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "color_map.h"  // titledPicture / titleBandHeight: the layout of these pictures
 #include "image.h"
 #include "run_metrics.h"
 
@@ -67,9 +68,5 @@ Image8 heatMapImage(const Image& scalar, float lo, float hi, std::string_view ti
 
 // min(1, k |test - reference|) per channel of two sRGB float images, with a title line.
 Image8 amplifiedDifferenceImage(const Image& referenceSrgb, const Image& testSrgb, float k, std::string_view title);
-
-// The height of the title band heatMapImage / amplifiedDifferenceImage put above a map of
-// this height: the map's pixel (x, y) is the picture's (x, y + titleBandHeight(h)).
-int titleBandHeight(int mapHeight);
 
 }  // namespace gbl
