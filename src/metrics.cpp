@@ -40,6 +40,8 @@ int resolveChannels(const Image& ref, const Image& test, int channels, const cha
 
 inline bool covered(const Mask* mask, size_t i) { return !mask || mask->empty() || (*mask)[i] != 0; }
 
+}  // namespace
+
 double normalAngleDeg(const float* a, const float* b, bool& ok) {
     const double ax = a[0], ay = a[1], az = a[2], bx = b[0], by = b[1], bz = b[2];
     const double la = ax * ax + ay * ay + az * az, lb = bx * bx + by * by + bz * bz;
@@ -54,8 +56,6 @@ double normalAngleDeg(const float* a, const float* b, bool& ok) {
 double pixelDeltaE(const float* a, const float* b) {
     return deltaE2000(linearSrgbToLab(a[0], a[1], a[2]), linearSrgbToLab(b[0], b[1], b[2]));
 }
-
-}  // namespace
 
 size_t nearestRankIndex(double p, size_t n) {
     if (n == 0) return 0;

@@ -21,6 +21,13 @@ namespace gbl {
 
 using Mask = std::vector<uint8_t>;
 
+// Per-pixel errors, as every metric here computes them.
+// Angle in degrees between two 3-vectors, atan2(|a x b|, a . b) in double (accurate near 0 deg,
+// where acos is not); ok = false (and 0) when either is zero or not finite.
+double normalAngleDeg(const float* a, const float* b, bool& ok);
+// CIEDE2000 of two linear sRGB colours (via XYZ D65 and CIELAB).
+double pixelDeltaE(const float* a, const float* b);
+
 // 0-based index of the nearest-rank p-quantile among n samples: max(ceil(p n), 1) - 1, with
 // ceil computed so that p n within 1e-9 relative of an integer counts as that integer
 // (0.99 * 100 is 99, not 99.00000000000001).

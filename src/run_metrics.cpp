@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "color_difference.h"
 #include "error.h"
 #include "flip.h"
 #include "parallel_invoke.h"
@@ -108,15 +107,6 @@ AttributeMetrics measure(const Mask& measured, const Mask& metal, size_t metalCo
     return finish(p, color);
 }
 
-double angleDeg(const float* a, const float* b, bool& ok) {
-    const double ax = a[0], ay = a[1], az = a[2], bx = b[0], by = b[1], bz = b[2];
-    const double la = ax * ax + ay * ay + az * az, lb = bx * bx + by * by + bz * bz;
-    ok = std::isfinite(la) && std::isfinite(lb) && la > 0.0 && lb > 0.0;
-    if (!ok) return 0.0;
-    const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
-    return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz) *
-           (180.0 / std::numbers::pi);
-}
 
 Image* mapOrNull(RunErrorMaps* maps, Image RunErrorMaps::*member, int width, int height, bool wanted) {
     if (!maps || !wanted) return nullptr;
@@ -137,7 +127,7 @@ AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask&
             sq += d * d;
         }
         if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) return 0.0;  // common (stored exactly); saves the costly path
-        const double e = deltaE2000(linearSrgbToLab(a[0], a[1], a[2]), linearSrgbToLab(b[0], b[1], b[2]));
+        const double e = pixelDeltaE(a, b);
         ok = std::isfinite(e);
         return e;
     });
@@ -244,7 +234,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
         out.normal = measure(measured, metal, mc, mapOrNull(maps, &RunErrorMaps::normalDeg, w, h, true), false,
                              [&](size_t i, bool& ok, double&) {
-                                 return angleDeg(&reference.normal.pixels[i * rc], &test.normal.pixels[i * tc], ok);
+                                 return normalAngleDeg(&reference.normal.pixels[i * rc], &test.normal.pixels[i * tc], ok);
                              });
     });
     tasks.push_back([&] {
