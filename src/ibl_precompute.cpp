@@ -64,22 +64,7 @@ void destroyKernel(const VulkanContext& ctx, Kernel& k) {
 
 // Submits `record` between two timestamps; returns the GPU time in ms.
 double submitTimed(const VulkanContext& ctx, const std::function<void(VkCommandBuffer)>& record) {
-    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    qi.queryCount = 2;
-    VkQueryPool pool;
-    VK_CHECK(vkCreateQueryPool(ctx.device, &qi, nullptr, &pool));
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdResetQueryPool(cmd, pool, 0, 2);
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool, 0);
-        record(cmd);
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool, 1);
-    });
-    uint64_t t[2] = {};
-    VK_CHECK(vkGetQueryPoolResults(ctx.device, pool, 0, 2, sizeof(t), t, sizeof(uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    vkDestroyQueryPool(ctx.device, pool, nullptr);
-    return double(t[1] - t[0]) * ctx.properties.limits.timestampPeriod * 1e-6;
+    return submitTimedSegments(ctx, {record})[0];
 }
 
 VkSampler cubeSamplerFor(const VulkanContext& ctx) {

@@ -126,30 +126,15 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
                           nearestSampler_, &ibl_, material};
     LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h);
 
-    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    queryInfo.queryCount = 3;
-    VkQueryPool queries;
-    VK_CHECK(vkCreateQueryPool(ctx_.device, &queryInfo, nullptr, &queries));
-
-    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdResetQueryPool(cmd, queries, 0, 3);
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries, 0);
-        recordGBufferPass(cmd, gbuffer, gpuScene_);
-        if (material) recordGBufferPass(cmd, *material, gpuScene_);  // timed with the geometry passes
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 1);
-        recordLightingPass(cmd, lighting);
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, 2);
-    });
-
+    const std::vector<double> passMs = submitTimedSegments(
+        ctx_, {[&](VkCommandBuffer cmd) {
+                   recordGBufferPass(cmd, gbuffer, gpuScene_);
+                   if (material) recordGBufferPass(cmd, *material, gpuScene_);  // timed with the geometry passes
+               },
+               [&](VkCommandBuffer cmd) { recordLightingPass(cmd, lighting); }});
     RenderOutput out;
-    uint64_t stamps[3] = {};
-    VK_CHECK(vkGetQueryPoolResults(ctx_.device, queries, 0, 3, sizeof(stamps), stamps, sizeof(uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const double period = ctx_.properties.limits.timestampPeriod * 1e-6;
-    out.timings.gbufferMs = double(stamps[1] - stamps[0]) * period;
-    out.timings.lightingMs = double(stamps[2] - stamps[1]) * period;
-    vkDestroyQueryPool(ctx_.device, queries, nullptr);
+    out.timings.gbufferMs = passMs[0];
+    out.timings.lightingMs = passMs[1];
 
     ScopedStage timedReadback(Stage::Readback);
     {

@@ -254,4 +254,30 @@ VkSampler createSampler(const VulkanContext& ctx, VkFilter filter, VkSamplerMipm
     return s;
 }
 
+std::vector<double> submitTimedSegments(const VulkanContext& ctx,
+                                        const std::vector<std::function<void(VkCommandBuffer)>>& segments) {
+    const uint32_t stamps = uint32_t(segments.size()) + 1;
+    VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    info.queryCount = stamps;
+    VkQueryPool pool;
+    VK_CHECK(vkCreateQueryPool(ctx.device, &info, nullptr, &pool));
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdResetQueryPool(cmd, pool, 0, stamps);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, pool, 0);
+        for (uint32_t i = 0; i < segments.size(); ++i) {
+            segments[i](cmd);
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool, i + 1);
+        }
+    });
+    std::vector<uint64_t> t(stamps);
+    VK_CHECK(vkGetQueryPoolResults(ctx.device, pool, 0, stamps, t.size() * sizeof(uint64_t), t.data(),
+                                   sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    vkDestroyQueryPool(ctx.device, pool, nullptr);
+    const double msPerTick = double(ctx.properties.limits.timestampPeriod) * 1e-6;
+    std::vector<double> ms(segments.size());
+    for (size_t i = 0; i < ms.size(); ++i) ms[i] = double(t[i + 1] - t[i]) * msPerTick;
+    return ms;
+}
+
 }  // namespace gbl

@@ -2,6 +2,7 @@
 // Plain resource structs and free functions (niagara style): no ownership magic beyond a
 // destroy function per type, so lifetimes stay visible at the call site.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -69,5 +70,10 @@ uint32_t mipCountFor(uint32_t width, uint32_t height);
 
 VkSampler createSampler(const VulkanContext& ctx, VkFilter filter, VkSamplerMipmapMode mipMode,
                         VkSamplerAddressMode addressU, VkSamplerAddressMode addressV, float maxAnisotropy = 1.0f);
+
+// One submission of `segments` in order, with a timestamp before the first and after each;
+// waits, and returns each segment's GPU time in ms (timestamp queries x timestampPeriod).
+std::vector<double> submitTimedSegments(const VulkanContext& ctx,
+                                        const std::vector<std::function<void(VkCommandBuffer)>>& segments);
 
 }  // namespace gbl
