@@ -1,4 +1,4 @@
-// codec_bench: throughput of the CPU mirror (src/encodings.h, src/cpu_codec.h), each figure beside
+// codec_bench: throughput of the CPU mirror (src/encoding/encodings.h, src/codec/cpu_codec.h), each figure beside
 // memcpy of the same number of bytes measured in the same run.
 //
 //   encode/<encoding>, decode/<encoding>   one primitive over 1M elements (floats, colours or unit

@@ -1,5 +1,5 @@
 // brdf.glsl -- the UE4 (SIGGRAPH 2013) shading model: every BRDF term as a choice.
-// Include file (GLSL 450, no #version). The C++ mirror is src/brdf.h / src/brdf.cpp, with the
+// Include file (GLSL 450, no #version). The C++ mirror is src/shading/brdf.h / src/shading/brdf.cpp, with the
 // same names and the same math, line for line; keep the two in step.
 //
 // Sources:
@@ -13,7 +13,7 @@
 //   All cosines (NoH, NoV, NoL, VoH) are clamped to [0,1] by the caller or by evaluateDirectLight.
 //   Which Smith-Schlick k each path uses:
 //     analytic (punctual/directional) lights: k = (roughness + 1)^2 / 8  -> gSmithSchlickAnalytic
-//     image-based lighting (ibl.glsl: SpecularIBL ground truth, IntegrateBRDF / the LUT):
+//     image-based lighting (ibl_math.glsl: SpecularIBL ground truth, IntegrateBRDF / the LUT):
 //                                             k = alpha / 2               -> gSmithSchlickIbl
 //   [Karis13] p.3: the (roughness+1)/2 remap "is only for analytic light sources"; with IBL
 //   it makes glancing angles too dark.
@@ -22,7 +22,7 @@
 #ifndef GBL_BRDF_GLSL
 #define GBL_BRDF_GLSL
 
-// ---- choices (int constants shared with src/brdf.h; brdf_test checks that they agree) ----
+// ---- choices (int constants shared with src/shading/brdf.h; brdf_test checks that they agree) ----
 const int NDF_GGX = 0;                    // the only D: GGX / Trowbridge-Reitz
 const int GEOMETRY_SMITH_SCHLICK_ANALYTIC = 0;  // k = (roughness+1)^2/8
 const int GEOMETRY_SMITH_SCHLICK_IBL = 1;       // k = alpha/2
@@ -76,7 +76,7 @@ float gSmithSchlickAnalytic(float roughness, float NoV, float NoL) {
     return gSmithSchlick(NoV, NoL, kSmithSchlickAnalytic(roughness));
 }
 
-// Smith-Schlick G for IBL, k = alpha/2 [Karis13 p.3]. Used by ibl.glsl (ground truth and LUT).
+// Smith-Schlick G for IBL, k = alpha/2 [Karis13 p.3]. Used by ibl_math.glsl (ground truth and LUT).
 float gSmithSchlickIbl(float roughness, float NoV, float NoL) {
     return gSmithSchlick(NoV, NoL, kSmithSchlickIbl(roughness));
 }

@@ -4,7 +4,7 @@
 // Texel (x, y) = integrateBRDF(roughness = (y + 0.5) / size, NoV = (x + 0.5) / size, samples):
 // the layout of src/brdf_lut.h (computeBrdfLutCpu), so the two compare texel by texel.
 #include "brdf.glsl"
-#include "ibl.glsl"
+#include "ibl_math.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0, rg32f) uniform writeonly image2D lut;

@@ -2,9 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // IBL pre-computation, step 1: resample the equirect environment into mip 0 of a cube map
 // (bilinear lookups of the lat-long map at each cube texel centre's direction).
-// Vulkan cube layers: 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z (src/ibl_precompute.cpp: cubeTexelDirection
+// Vulkan cube layers: 0 +X, 1 -X, 2 +Y, 3 -Y, 4 +Z, 5 -Z (src/shading/ibl_precompute.cpp: cubeTexelDirection
 // is the C++ mirror of cubeDirection below).
-#include "environment.glsl"
+#include "environment_map.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform sampler2D equirect;

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // IBL pre-computation, step 3: one mip of the pre-filtered specular cube, roughness =
-// mip / (mipCount - 1) (ibl.glsl mipFromRoughness), n = v = r [Karis13 PrefilterEnvMap].
+// mip / (mipCount - 1) (ibl_math.glsl mipFromRoughness), n = v = r [Karis13 PrefilterEnvMap].
 //   filtered == 1: prefilterEnvMapFiltered -- each sample reads the source mip whose texel solid
 //                  angle matches the sample's [KC08]: few samples (default 64) suffice.
 //   filtered == 0: prefilterEnvMap -- the seed's brute force, source mip 0 only (1024 samples).
@@ -24,7 +24,7 @@ vec3 sampleEnvironmentLod(vec3 dir, float lod) {
     return textureLod(sourceCube, dir, min(lod + pc.lodBias, pc.maxLod)).rgb;
 }
 #define GBL_IBL_HAS_ENVIRONMENT
-#include "ibl.glsl"
+#include "ibl_math.glsl"
 
 #include "cube_face.glsl"
 

@@ -1,7 +1,7 @@
 // Image-based lighting, included by the lighting pass after sampleEnvironment() and the IBL
 // bindings (environmentCube, prefilteredCube, brdfLut, frame) are declared. The single place
 // where IBL enters the lighting pass. Specular mode = frame.environment.z (IblMode in
-// src/ibl_precompute.h); diffuse (SH9 irradiance, Lambert) for every mode when frame.environment.w.
+// src/shading/ibl_precompute.h); diffuse (SH9 irradiance, Lambert) for every mode when frame.environment.w.
 //
 //   0 ground-truth      [Karis13 SpecularIBL]: specularIBLGroundTruth, frame.ibl.x samples per
 //                       pixel of environment-cube mip 0 (exact Schlick, Smith-Schlick k = alpha/2).
@@ -16,7 +16,7 @@
 //                       (UE4's default dielectric, the only F0 EnvBRDFApproxNonmetal is a fit for)
 //                       uses EnvBRDFApproxNonmetal; everything else the general EnvBRDFApprox.
 //                       The rule reads F0 only, so it works for layouts that do not store metallic.
-//   4 bo2               pre-filtered cube * Black Ops 2 EnvironmentBRDF(g, NoV, f0), g from ibl.glsl's
+//   4 bo2               pre-filtered cube * Black Ops 2 EnvironmentBRDF(g, NoV, f0), g from ibl_math.glsl's
 //                       bo2GlossFromRoughness (log2(2/alpha^2 - 2)/13, the Blinn-Phong power match).
 #ifndef GBL_IMAGE_BASED_LIGHT_GLSL
 #define GBL_IMAGE_BASED_LIGHT_GLSL
@@ -31,7 +31,7 @@ vec3 sampleEnvironmentLod(vec3 dir, float lod) {
     return textureLod(environmentCube, dir, lod).rgb * frame.environment.x;
 }
 #define GBL_IBL_HAS_ENVIRONMENT
-#include "ibl.glsl"
+#include "ibl_math.glsl"
 
 // E(n) from the SH9 coefficients (cosine convolution folded in), clamped at 0 against ringing.
 vec3 irradianceFromSh(vec3 n) {

@@ -27,7 +27,7 @@ struct FrameConstants {
     vec4 environment;     // x intensity, y prefiltered mip count, z specular IBL mode (IblMode), w diffuse IBL on
     vec4 shading;         // x Fresnel mode, y clear depth, zw unused
     vec4 ibl;             // x ground-truth / split-sum-shader samples per pixel, y environment cube face, zw unused
-    vec4 irradianceSh[9]; // rgb: SH9 of the irradiance, cosine convolution folded in (src/ibl_precompute.h)
+    vec4 irradianceSh[9]; // rgb: SH9 of the irradiance, cosine convolution folded in (src/shading/ibl_precompute.h)
 };
 
 struct GpuLight {

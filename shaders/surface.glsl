@@ -1,5 +1,5 @@
 // Surface: every shading attribute the G-buffer pass produces and the lighting pass consumes.
-// The C++ mirror is src/surface.h (same member names and order).
+// The C++ mirror is src/codec/surface.h (same member names and order).
 #ifndef GBL_SURFACE_GLSL
 #define GBL_SURFACE_GLSL
 struct Surface {

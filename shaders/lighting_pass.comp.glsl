@@ -1,0 +1,79 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The lighting pass: decode the layout's G-buffer with its generated readGBuffer(), rebuild the
+// position from depth, and shade with the UE4 model: direct lights + image-based light.
+// Pixels with no geometry show the environment.
+#include "shared_types.h"
+#include "surface.glsl"
+#include "brdf.glsl"
+#include "environment_map.glsl"
+#define GBUFFER_READ 1
+#include "gbuffer_wiring.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0) uniform Frame { FrameConstants frame; };
+layout(set = 0, binding = 1) readonly buffer Lights { GpuLight lights[]; };
+layout(set = 0, binding = 2) uniform sampler2D depthTexture;
+layout(set = 0, binding = 3) uniform sampler2D environmentEquirect;
+layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D hdrOutput;
+layout(set = 0, binding = 5) uniform samplerCube environmentCube;  // box-filtered mips (ground truth: mip 0)
+layout(set = 0, binding = 6) uniform samplerCube prefilteredCube;  // roughness = mip / (mips - 1)
+layout(set = 0, binding = 7) uniform sampler2D brdfLut;            // (A, B) at uv = (NoV, roughness)
+
+vec3 sampleEnvironment(vec3 direction) {
+    return textureLod(environmentEquirect, directionToEquirectUv(direction), 0.0).rgb * frame.environment.x;
+}
+
+#include "image_based_light.glsl"
+
+vec3 worldPositionFromDepth(ivec2 pixel, float depth) {
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0;
+    vec4 world = frame.invViewProj * vec4(ndc, depth, 1.0);
+    return world.xyz / world.w;
+}
+
+vec3 lightRadianceAndDirection(GpuLight light, vec3 position, out vec3 L) {
+    vec3 radiance = light.colorIntensity.rgb * light.colorIntensity.a;
+    if (int(light.positionType.w) == GBL_LIGHT_DIRECTIONAL) {
+        L = -normalize(light.directionRange.xyz);
+        return radiance;
+    }
+    vec3 toLight = light.positionType.xyz - position;
+    float d2 = max(dot(toLight, toLight), 1e-8);
+    L = toLight * inversesqrt(d2);
+    // KHR_lights_punctual: inverse-square falloff, windowed to zero at `range` (UE4's window).
+    float falloff = 1.0 / d2;
+    float range = light.directionRange.w;
+    if (range > 0.0) {
+        float r = d2 / (range * range);
+        float window = clamp(1.0 - r * r, 0.0, 1.0);
+        falloff *= window * window;
+    }
+    return radiance * falloff;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, ivec2(frame.extent.xy)))) return;
+    float depth = texelFetch(depthTexture, pixel, 0).r;
+    if (depth == frame.shading.y) {  // cleared: no geometry here
+        vec3 viewDir = normalize(worldPositionFromDepth(pixel, 0.5) - frame.cameraPosition.xyz);
+        imageStore(hdrOutput, pixel, vec4(sampleEnvironment(viewDir), 0.0));
+        return;
+    }
+    Surface s = readGBuffer(pixel);
+    vec3 position = worldPositionFromDepth(pixel, depth);
+    vec3 V = normalize(frame.cameraPosition.xyz - position);
+    vec3 N = normalize(s.normal);
+    vec3 color = vec3(0.0);
+    for (uint i = 0u; i < frame.extent.z; ++i) {
+        vec3 L;
+        vec3 radiance = lightRadianceAndDirection(lights[i], position, L);
+        color += evaluateDirectLightMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, radiance,
+                                         int(frame.shading.x));
+    }
+    color += evaluateImageBasedLight(s, N, V) * s.occlusion;
+    color += s.emissive;
+    imageStore(hdrOutput, pixel, vec4(color, 1.0));
+}

@@ -1,0 +1,397 @@
+// Decode loops of the CPU codec, a mirror of the generated readGBuffer: for each block of up to
+// kBlock pixels of a row, the block's Surfaces are built member-major (one row of floats per
+// Surface float, all zero to start, as readGBuffer starts from Surface(0)), then per field the
+// codes are extracted and decoded by the field's primitive (src/encoding/encodings.h, inline) in one loop,
+// then the material words and the fallbacks (in dependency order) fill the rest, and the block
+// is written out as Surfaces. The loops vectorise (AVX2 clone, see simd_clones.h); they need
+// -fno-math-errno -fno-trapping-math (set for this file in CMakeLists.txt), which change no value.
+#include <algorithm>
+#include <cstddef>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "cpu_codec_kernels.h"
+#include "encodings.h"
+#include "simd_clones.h"
+#include "stream_copy.h"
+
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
+namespace gbl::codec {
+
+using namespace enc;
+
+namespace {
+
+struct DecodeBlock {
+    alignas(32) uint32_t code[4][kBlock + 2];
+    alignas(32) float val[3][kBlock];
+    alignas(32) float s[kSurfaceFloats][kBlock];  // the block's Surfaces, member-major
+    // Checkerboard: luma and chroma of the centre row (x0 - 1 .. x0 + n), the row above, below.
+    alignas(32) float luma[3][kBlock + 2];
+    alignas(32) float chroma[3][kBlock + 2];
+    alignas(32) float pixels[kSurfaceFloats * kBlock];  // the block's Surfaces, interleaved
+};
+
+// The image border mirror of the former per-pixel codec (x = -1 reads x = 1).
+GBL_CLONE_INLINE int mirror(int p, int size) {
+    p = std::abs(p);
+    p = (size - 1) - std::abs((size - 1) - p);
+    return std::clamp(p, 0, size - 1);
+}
+
+template <int Words>
+GBL_CLONE_INLINE void extractCode(const CodePlan& code, int n, const uint32_t* __restrict words,
+                                  uint32_t* __restrict out) {
+    if (code.pieces.empty()) std::fill(out, out + n, 0u);
+    for (size_t i = 0; i < code.pieces.size(); ++i) {
+        const Piece& p = code.pieces[i];
+        const int w = p.word, shift = p.shift, codeShift = p.codeShift;
+        const uint32_t mask = p.mask;
+        if (i == 0) {  // assigned, not ORed into zeros: a memset per code cost more than the loop
+            for (int j = 0; j < n; ++j) out[j] = ((words[j * Words + w] >> shift) & mask) << codeShift;
+        } else {
+            for (int j = 0; j < n; ++j) out[j] |= ((words[j * Words + w] >> shift) & mask) << codeShift;
+        }
+    }
+}
+
+GBL_CLONE_INLINE uint32_t extractOne(const CodePlan& code, const uint32_t* words) {
+    uint32_t c = 0u;
+    for (const Piece& p : code.pieces) c |= ((words[p.word] >> p.shift) & p.mask) << p.codeShift;
+    return c;
+}
+
+template <class Fn>
+GBL_CLONE_INLINE void map1(int n, const uint32_t* __restrict c, float* __restrict out, Fn fn) {
+    for (int j = 0; j < n; ++j) out[j] = fn(c[j]);
+}
+
+// Up to 3 codes per pixel in, a vec3 per pixel out.
+template <class Fn>
+GBL_CLONE_INLINE void map3(int n, const uint32_t* __restrict c0, const uint32_t* __restrict c1,
+                           const uint32_t* __restrict c2, float* __restrict x, float* __restrict y, float* __restrict z,
+                           Fn fn) {
+    for (int j = 0; j < n; ++j) {
+        const vec3 v = fn(c0[j], c1[j], c2[j]);
+        x[j] = v.x;
+        y[j] = v.y;
+        z[j] = v.z;
+    }
+}
+
+// Linear values of a row of sRGB codes (n <= kBlock). Written to a local array first: in
+// target_clones clones GCC 12 drops `restrict`, and then cannot rule out that the stores change
+// kSrgbDecode (floats, like `out`), so the loop stays scalar; a local array cannot alias it.
+GBL_SIMD_CLONES void srgb8Row(int n, const uint32_t* c, float* out) {
+    alignas(32) float values[kBlock];
+    for (int j = 0; j < n; ++j) values[j] = decodeSrgb8(c[j]);
+    std::copy(values, values + n, out);
+}
+
+// Mirror of the colour decoders: the inverse transform of the 3 dequantised codes.
+template <vec3 (*Inv)(vec3)>
+GBL_CLONE_INLINE void transformedRow(int n, const uint32_t* c0, const uint32_t* c1, const uint32_t* c2, float* x,
+                                     float* y, float* z, uint bits) {
+    map3(n, c0, c1, c2, x, y, z, [bits](uint a, uint b1, uint b2) {
+        return Inv(vec3(dequantizeUnorm(a, bits), dequantizeUnorm(b1, bits), dequantizeUnorm(b2, bits)));
+    });
+}
+
+// Where a decoded vec3 goes: component c into the Surface row dest + c when the attribute has it,
+// else into scratch (b.val), as setMember drops the components beyond the attribute's.
+struct Outputs {
+    float* c[3];
+};
+GBL_CLONE_INLINE Outputs outputsFor(DecodeBlock& b, int dest, int components) {
+    Outputs o;
+    for (int c = 0; c < 3; ++c) o.c[c] = c < components ? b.s[dest + c] : b.val[c];
+    return o;
+}
+
+// Decoded attribute of a non-checkerboard field, from b.code into `o` (mirror of decodeFieldExpr):
+// scalars per component (components beyond the codes are 0), vec3 encodings with code 0's bits.
+GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, const Outputs& o) {
+    if (isScalar(f.codec)) {
+        for (size_t k = 0; k < 3; ++k) {
+            float* out = o.c[k];
+            if (k >= f.codes.size()) {
+                std::fill(out, out + n, 0.0f);
+                continue;
+            }
+            const uint bk = f.codes[k].bits;
+            const uint32_t* c = b.code[k];
+            switch (f.codec) {
+                case Codec::Unorm: map1(n, c, out, [bk](uint x) { return dequantizeUnorm(x, bk); }); break;
+                case Codec::Snorm: map1(n, c, out, [bk](uint x) { return dequantizeSnorm(x, bk); }); break;
+                case Codec::Float16: map1(n, c, out, [](uint x) { return decodeFloat16(x); }); break;
+                case Codec::Float11: map1(n, c, out, [](uint x) { return decodeFloat11(x); }); break;
+                case Codec::Float10: map1(n, c, out, [](uint x) { return decodeFloat10(x); }); break;
+                case Codec::Float32: map1(n, c, out, [](uint x) { return decodeFloat32(x); }); break;
+                case Codec::Depth24: map1(n, c, out, [](uint x) { return dequantizeDepth24(x); }); break;
+                case Codec::Gloss:
+                    map1(n, c, out, [bk](uint x) { return roughnessFromGloss(dequantizeUnorm(x, bk)); });
+                    break;
+                case Codec::SmoothnessCry:
+                    map1(n, c, out, [bk](uint x) { return roughnessFromSmoothnessCry(dequantizeUnorm(x, bk)); });
+                    break;
+                default: break;  // Id: CpuCodec::decode throws before (plan.decodeError)
+            }
+        }
+        return;
+    }
+    const uint bits = f.codes[0].bits;
+    const uint32_t *c0 = b.code[0], *c1 = b.code[1], *c2 = b.code[2];
+    float *x = o.c[0], *y = o.c[1], *z = o.c[2];
+    switch (f.codec) {
+        case Codec::Srgb8:
+            srgb8Row(n, c0, x);
+            srgb8Row(n, c1, y);
+            srgb8Row(n, c2, z);
+            return;
+        case Codec::Luma:
+            map1(n, c0, x, [bits](uint c) { return dequantizeUnorm(c, bits); });
+            std::copy(x, x + n, y);
+            std::copy(x, x + n, z);
+            return;
+        case Codec::YCbCr: transformedRow<yCbCrToRgb>(n, c0, c1, c2, x, y, z, bits); return;
+        case Codec::YCbCrSqrt: transformedRow<yCbCrSqrtToRgb>(n, c0, c1, c2, x, y, z, bits); return;
+        case Codec::YCoCg: transformedRow<yCoCgToRgb>(n, c0, c1, c2, x, y, z, bits); return;
+        case Codec::NormalXyz:
+            map3(n, c0, c1, c2, x, y, z,
+                 [bits](uint a, uint b1, uint b2) { return decodeNormalXyz(uvec3(a, b1, b2), bits); });
+            return;
+        case Codec::NormalBestFit:
+            map3(n, c0, c1, c2, x, y, z,
+                 [](uint a, uint b1, uint b2) { return decodeNormalBestFit(uvec3(a, b1, b2)); });
+            return;
+        case Codec::NormalXyZSign:
+            map3(n, c0, c1, c2, x, y, z,
+                 [bits](uint a, uint b1, uint b2) { return decodeNormalXyZSign(uvec3(a, b1, b2), bits); });
+            return;
+        case Codec::NormalSpheremap:
+            map3(n, c0, c1, c1, x, y, z,
+                 [bits](uint a, uint b1, uint) { return decodeNormalSpheremap(uvec2(a, b1), bits); });
+            return;
+        case Codec::NormalStereographic:
+            map3(n, c0, c1, c1, x, y, z,
+                 [bits](uint a, uint b1, uint) { return decodeNormalStereographic(uvec2(a, b1), bits); });
+            return;
+        case Codec::NormalOctahedral:
+            map3(n, c0, c1, c1, x, y, z,
+                 [bits](uint a, uint b1, uint) { return decodeNormalOctahedral(uvec2(a, b1), bits); });
+            return;
+        case Codec::NormalOctahedralPrecise:
+            map3(n, c0, c1, c1, x, y, z,
+                 [bits](uint a, uint b1, uint) { return decodeNormalOctahedralPrecise(uvec2(a, b1), bits); });
+            return;
+        default: return;  // checkerboard: decodeCheckerboard
+    }
+}
+
+// Dequantised luma and chroma codes of `count` pixels of `row` from x = xFrom, mirrored at the
+// image's left and right edges: the inside of the image in contiguous loops, the (at most two)
+// pixels beyond its edges one by one.
+template <int Words>
+GBL_CLONE_INLINE void lumaChromaRow(const FieldPlan& f, const uint32_t* image, int width, int row, int xFrom,
+                                    int count, float* __restrict luma, float* __restrict chroma, DecodeBlock& b) {
+    const uint bits = f.codes[0].bits;
+    const int lo = std::max(xFrom, 0), hi = std::min(xFrom + count, width);
+    const uint32_t* rowWords = image + size_t(row) * size_t(width) * Words;
+    uint32_t* __restrict lumaCode = b.code[2];  // free: a checkerboard field has 2 codes
+    uint32_t* __restrict chromaCode = b.code[3];
+    extractCode<Words>(f.codes[0], hi - lo, rowWords + size_t(lo) * Words, lumaCode + (lo - xFrom));
+    extractCode<Words>(f.codes[1], hi - lo, rowWords + size_t(lo) * Words, chromaCode + (lo - xFrom));
+    for (int k = 0; k < count; ++k) {
+        if (xFrom + k >= lo && xFrom + k < hi) continue;
+        const uint32_t* w = rowWords + size_t(mirror(xFrom + k, width)) * Words;
+        lumaCode[k] = extractOne(f.codes[0], w);
+        chromaCode[k] = extractOne(f.codes[1], w);
+    }
+    for (int k = 0; k < count; ++k) {
+        luma[k] = dequantizeUnorm(lumaCode[k], bits);
+        chroma[k] = dequantizeUnorm(chromaCode[k], bits);
+    }
+}
+
+// The reconstruction over a block (restrict views of the rows: centre luma / chroma l0 / k0 at
+// x0 - 1 .. x0 + n, above l1 / k1 and below l2 / k2 at x0 .. x0 + n - 1).
+template <vec3 (*Inv)(vec3)>
+GBL_CLONE_INLINE void reconstructRow(int n, int x0, int y, const float* __restrict l0, const float* __restrict k0,
+                                     const float* __restrict l1, const float* __restrict k1,
+                                     const float* __restrict l2, const float* __restrict k2, float* __restrict x,
+                                     float* __restrict yv, float* __restrict z) {
+    for (int j = 0; j < n; ++j) {
+        const vec2 c = vec2(l0[j + 1], k0[j + 1]);
+        const vec2 n0 = vec2(l0[j + 2], k0[j + 2]);
+        const vec2 n1 = vec2(l0[j], k0[j]);
+        const vec2 n2 = vec2(l2[j], k2[j]);
+        const vec2 n3 = vec2(l1[j], k1[j]);
+        // reconstructChroma(ivec2(x0 + j, y), ...) is this call plus the swap below where
+        // chromaIsSecond; written out with an int parity because GCC 12 does not vectorise the
+        // loop through chromaIsSecond's bool.
+        const vec2 r = reconstructChroma(c.x, c.y, vec4(n0.x, n1.x, n2.x, n3.x), vec4(n0.y, n1.y, n2.y, n3.y));
+        const int second = (x0 + j + y) & 1;
+        const vec2 ch = vec2(second ? r.y : r.x, second ? r.x : r.y);
+        const vec3 v = Inv(vec3(c.x, ch.x, ch.y));
+        x[j] = v.x;
+        yv[j] = v.y;
+        z[j] = v.z;
+    }
+}
+
+// Checkerboard chroma (mirror of the generated readGBuffer and the former per-pixel codec): the
+// centre's luma and chroma, the other chroma rebuilt from the 4 neighbours (+x, -x, +y, -y),
+// mirrored at the borders, then the inverse colour transform.
+template <int Words, vec3 (*Inv)(vec3)>
+GBL_CLONE_INLINE void decodeCheckerboard(const FieldPlan& f, const uint32_t* image, int width, int height, int x0,
+                                         int y, int n, DecodeBlock& b) {
+    lumaChromaRow<Words>(f, image, width, y, x0 - 1, n + 2, b.luma[0], b.chroma[0], b);
+    lumaChromaRow<Words>(f, image, width, mirror(y - 1, height), x0, n, b.luma[1], b.chroma[1], b);
+    lumaChromaRow<Words>(f, image, width, mirror(y + 1, height), x0, n, b.luma[2], b.chroma[2], b);
+    const Outputs o = outputsFor(b, f.source, f.components);
+    reconstructRow<Inv>(n, x0, y, b.luma[0], b.chroma[0], b.luma[1], b.chroma[1], b.luma[2], b.chroma[2], o.c[0],
+                        o.c[1], o.c[2]);
+}
+
+template <int Words>
+GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, int width, int height, int x0, int y,
+                                   int n, DecodeBlock& b) {
+    const uint32_t* words = image + (size_t(y) * size_t(width) + size_t(x0)) * Words;
+    prefetchAhead(words, size_t(n) * Words * sizeof(uint32_t));
+    for (const FieldPlan& f : t.decodeFields) {
+        if (f.codec == Codec::YCbCrCheckerboard) {
+            decodeCheckerboard<Words, yCbCrToRgb>(f, image, width, height, x0, y, n, b);
+        } else if (f.codec == Codec::YCoCgCheckerboard) {
+            decodeCheckerboard<Words, yCoCgToRgb>(f, image, width, height, x0, y, n, b);
+        } else {
+            for (size_t k = 0; k < f.codes.size(); ++k) extractCode<Words>(f.codes[k], n, words, b.code[k]);
+            decodeValues(f, n, b, outputsFor(b, f.source, f.components));
+        }
+    }
+}
+
+GBL_SIMD_CLONES void decodeTargetBlock(const TargetPlan& t, const uint32_t* image, int width, int height, int x0,
+                                       int y, int n, DecodeBlock& b) {
+    switch (t.words) {
+        case 1: decodeTarget<1>(t, image, width, height, x0, y, n, b); return;
+        case 2: decodeTarget<2>(t, image, width, height, x0, y, n, b); return;
+        default: decodeTarget<4>(t, image, width, height, x0, y, n, b); return;
+    }
+}
+
+// The material words of the block's pixels into their Surface floats (0 beyond the slot's).
+GBL_CLONE_INLINE void decodeMaterial(const CodecPlan& plan, const uint32_t* const* material, size_t first, int n,
+                                    DecodeBlock& b) {
+    for (int m = 0; m < plan.materialTargets; ++m) prefetchAhead(material[m] + first * 4, size_t(n) * 16);
+    for (const MaterialSlotPlan& slot : plan.materialSlots)
+        for (int c = 0; c < slot.components; ++c) {
+            float* out = b.s[slot.dest + c];
+            if (c >= slot.slotComponents) {
+                std::fill(out, out + n, 0.0f);
+                continue;
+            }
+            const int k = slot.firstFloat + c;
+            const uint32_t* words = material[k / 4] + first * 4 + size_t(k % 4);
+            for (int j = 0; j < n; ++j) out[j] = uintBitsToFloat(words[size_t(j) * 4]);
+        }
+}
+
+// Mirror of applyFallback in the former per-pixel codec (the same vec3 expressions per pixel).
+GBL_SIMD_CLONES void applyFallbacks(const CodecPlan& plan, int n, DecodeBlock& b) {
+    const int base = surfaceOffset(Attribute::BaseColor), met = surfaceOffset(Attribute::Metallic);
+    const int spec = surfaceOffset(Attribute::Specular), specColor = surfaceOffset(Attribute::SpecularColor);
+    const int diffuse = surfaceOffset(Attribute::DiffuseColor);
+    auto at = [&](int first, int j) { return vec3(b.s[first][j], b.s[first + 1][j], b.s[first + 2][j]); };
+    for (const FallbackPlan& fb : plan.fallbacks) {
+        if (fb.kind == FallbackKind::MaterialPass) continue;  // decodeMaterial
+        // Straight into the attribute's rows: no fallback reads the attribute it sets.
+        const Outputs o = outputsFor(b, fb.dest, fb.components);
+        float* __restrict x = o.c[0];
+        float* __restrict y = o.c[1];
+        float* __restrict z = o.c[2];
+        auto each = [&](auto fn) {
+            for (int j = 0; j < n; ++j) {
+                const vec3 v = fn(j);
+                x[j] = v.x;
+                y[j] = v.y;
+                z[j] = v.z;
+            }
+        };
+        switch (fb.kind) {
+            case FallbackKind::Constant:
+                each([&](int) { return vec3(fb.value[0], fb.value[1], fb.value[2]); });
+                break;
+            case FallbackKind::FromMetallic:
+                each([&](int j) { return vec3(0.04f) * (1.0f - b.s[met][j]) + at(base, j) * b.s[met][j]; });
+                break;
+            case FallbackKind::Ue4:
+                each([&](int j) { return specularColorUE4(at(base, j), b.s[met][j], b.s[spec][j]); });
+                break;
+            case FallbackKind::FromBaseColor: each([&](int j) { return at(base, j) * (1.0f - b.s[met][j]); }); break;
+            case FallbackKind::FromDiffuseSpecular:
+                each([&](int j) { return at(diffuse, j) + b.s[met][j] * at(specColor, j); });
+                break;
+            case FallbackKind::FromSpecularColor:
+                each([&](int j) {
+                    const vec3 f0 = at(specColor, j);
+                    return vec3(clamp((max(f0.x, max(f0.y, f0.z)) - 0.04f) / 0.96f, 0.0f, 1.0f));
+                });
+                break;
+            default: each([](int) { return vec3(0.0f); }); break;  // Forward: emissive reads back 0
+        }
+    }
+}
+
+// The block's member-major floats out as n Surfaces: interleaved here (4 x 4 transposes: 4 pixels
+// by 4 members at a time, the last 2 members one by one), then streamed to the image.
+GBL_SIMD_CLONES void writeSurfaces(DecodeBlock& b, int n, Surface* out) {
+    float* __restrict o = b.pixels;
+    int j = 0;
+#if defined(__SSE2__)
+    static_assert(kSurfaceFloats == 22, "5 groups of 4 members + 2");
+    for (; j + 4 <= n; j += 4) {
+        for (int k = 0; k < 20; k += 4) {
+            __m128 r0 = _mm_load_ps(&b.s[k][j]), r1 = _mm_load_ps(&b.s[k + 1][j]);
+            __m128 r2 = _mm_load_ps(&b.s[k + 2][j]), r3 = _mm_load_ps(&b.s[k + 3][j]);
+            _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+            _mm_storeu_ps(o + (j + 0) * kSurfaceFloats + k, r0);
+            _mm_storeu_ps(o + (j + 1) * kSurfaceFloats + k, r1);
+            _mm_storeu_ps(o + (j + 2) * kSurfaceFloats + k, r2);
+            _mm_storeu_ps(o + (j + 3) * kSurfaceFloats + k, r3);
+        }
+        for (int p = 0; p < 4; ++p) {
+            o[(j + p) * kSurfaceFloats + 20] = b.s[20][j + p];
+            o[(j + p) * kSurfaceFloats + 21] = b.s[21][j + p];
+        }
+    }
+#endif
+    for (; j < n; ++j)
+        for (int k = 0; k < kSurfaceFloats; ++k) o[j * kSurfaceFloats + k] = b.s[k][j];
+    streamCopy(out, o, size_t(n) * sizeof(Surface));
+}
+
+}  // namespace
+
+void decodeRows(const CodecPlan& plan, const ConstWordViews& in, int width, int height, int y0, int y1,
+                Surface* out) {
+    if (plan.decodeError) throw std::logic_error(plan.decodeError);
+    DecodeBlock b;
+    for (int y = y0; y < y1; ++y)
+        for (int x0 = 0; x0 < width; x0 += kBlock) {
+            const int n = std::min(kBlock, width - x0);
+            const size_t first = size_t(y) * size_t(width) + size_t(x0);
+            // Surface(0), readGBuffer's start: only the floats nothing below sets need it.
+            for (const int k : plan.unwritten) std::fill(b.s[k], b.s[k] + kBlock, 0.0f);
+            for (size_t t = 0; t < plan.targets.size(); ++t)
+                decodeTargetBlock(plan.targets[t], in.targets[t], width, height, x0, y, n, b);
+            decodeMaterial(plan, in.material, first, n, b);
+            applyFallbacks(plan, n, b);
+            writeSurfaces(b, n, out + first);
+        }
+    streamFence();
+}
+
+}  // namespace gbl::codec

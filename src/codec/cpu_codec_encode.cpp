@@ -1,0 +1,282 @@
+// Encode loops of the CPU codec: for each block of up to kBlock pixels of a row, the Surfaces are
+// transposed member-major once; then each target's words start from its constant words, and field
+// by field the inputs are turned into codes by the field's primitive (src/encoding/encodings.h, inline) in
+// one tight loop per field, and OR-ed into place. The loops vectorise (AVX2 clone, see
+// simd_clones.h); they need -fno-math-errno -fno-trapping-math (set for this file in
+// CMakeLists.txt), which change no value.
+#include <algorithm>
+#include <cstddef>
+
+#include "cpu_codec_kernels.h"
+#include "encodings.h"
+#include "encodings_fast.h"
+#include "simd_clones.h"
+#include "stream_copy.h"
+
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
+namespace gbl::codec {
+
+using namespace enc;
+
+namespace {
+
+// The Surfaces as one array of floats (22 per pixel, static_assert in cpu_codec_plan.h): member
+// `index` of pixel j is floats(px)[j * kSurfaceFloats + index]. Plain float loads: a byte-wise
+// copy here made GCC assemble the gathered vectors through the stack (store-forwarding stalls).
+GBL_CLONE_INLINE const float* floats(const Surface* px) { return reinterpret_cast<const float*>(px); }
+
+// One input, one code per pixel.
+template <class Fn>
+GBL_CLONE_INLINE void map1(int n, const float* __restrict in, uint32_t* __restrict out, Fn fn) {
+    for (int j = 0; j < n; ++j) out[j] = fn(in[j]);
+}
+
+// A vec3 per pixel (in[0..2]), 1-3 codes per pixel.
+template <class Fn>
+GBL_CLONE_INLINE void map3to1(int n, const float* __restrict x, const float* __restrict y,
+                              const float* __restrict z, uint32_t* __restrict o0, Fn fn) {
+    for (int j = 0; j < n; ++j) o0[j] = fn(vec3(x[j], y[j], z[j]));
+}
+template <class Fn>
+GBL_CLONE_INLINE void map3to2(int n, const float* __restrict x, const float* __restrict y,
+                              const float* __restrict z, uint32_t* __restrict o0, uint32_t* __restrict o1, Fn fn) {
+    for (int j = 0; j < n; ++j) {
+        const uvec2 c = fn(vec3(x[j], y[j], z[j]), j);
+        o0[j] = c.x;
+        o1[j] = c.y;
+    }
+}
+template <class Fn>
+GBL_CLONE_INLINE void map3to3(int n, const float* __restrict x, const float* __restrict y,
+                              const float* __restrict z, uint32_t* __restrict o0, uint32_t* __restrict o1,
+                              uint32_t* __restrict o2, Fn fn) {
+    for (int j = 0; j < n; ++j) {
+        const uvec3 c = fn(vec3(x[j], y[j], z[j]));
+        o0[j] = c.x;
+        o1[j] = c.y;
+        o2[j] = c.z;
+    }
+}
+
+// Mirror of the generated writeGBuffer for colour transforms: 3 unorm codes of fwd(rgb).
+template <vec3 (*Fwd)(vec3)>
+GBL_CLONE_INLINE void transformed3(int n, EncodeBlock& b, uint bits) {
+    map3to3(n, b.in[0], b.in[1], b.in[2], b.code[0], b.code[1], b.code[2], [bits](vec3 v) {
+        const vec3 t = Fwd(v);
+        return uvec3(quantizeUnorm(t.x, bits), quantizeUnorm(t.y, bits), quantizeUnorm(t.z, bits));
+    });
+}
+
+// Luma and the chroma this pixel's parity stores. chromaForPixel(ivec2(x0 + j, y), (t.y, t.z)) is
+// written out with an int parity: GCC 12 does not vectorise the loop through chromaIsSecond's bool.
+template <vec3 (*Fwd)(vec3)>
+GBL_CLONE_INLINE void checkerboard(int n, int x0, int y, EncodeBlock& b, uint bits) {
+    map3to2(n, b.in[0], b.in[1], b.in[2], b.code[0], b.code[1], [bits, x0, y](vec3 v, int j) {
+        const vec3 t = Fwd(v);
+        const int second = (x0 + j + y) & 1;
+        return uvec2(quantizeUnorm(t.x, bits), quantizeUnorm(second ? t.z : t.y, bits));
+    });
+}
+
+// sRGB codes of a row (n <= kBlock). Written to a local array first: in target_clones clones GCC
+// 12 drops `restrict`, and then cannot rule out that the stores change the look-up table, so the
+// loop stays scalar (3.7x slower); a local array whose address never escapes cannot alias it.
+GBL_SIMD_CLONES void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8EncodeTable& table) {
+    const Srgb8EncodeTable t = table;
+    alignas(32) uint32_t codes[kBlock];
+    for (int j = 0; j < n; ++j) codes[j] = encodeSrgb8Fast(in[j], t);
+    std::copy(codes, codes + n, out);
+}
+
+// The block's Surfaces member-major (b.s[k][j] = float k of pixel j): 4 x 4 transposes (4 pixels
+// by 4 members at a time, the last 2 members one by one), cheaper than gathering each field's
+// members with strided loads. The Surfaces ahead are prefetched as we go: without it the loads
+// stall on the first touch of each line (about 20 % more time at 1080p).
+GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, EncodeBlock& b) {
+    const float* __restrict in = floats(px);
+    int j = 0;
+#if defined(__SSE2__)
+    static_assert(kSurfaceFloats == 22, "5 groups of 4 members + 2");
+    for (; j + 4 <= n; j += 4) {
+        prefetchAhead(in + j * kSurfaceFloats, 4 * sizeof(Surface));
+        for (int k = 0; k < 20; k += 4) {
+            __m128 r0 = _mm_loadu_ps(in + (j + 0) * kSurfaceFloats + k);
+            __m128 r1 = _mm_loadu_ps(in + (j + 1) * kSurfaceFloats + k);
+            __m128 r2 = _mm_loadu_ps(in + (j + 2) * kSurfaceFloats + k);
+            __m128 r3 = _mm_loadu_ps(in + (j + 3) * kSurfaceFloats + k);
+            _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+            _mm_store_ps(&b.s[k][j], r0);
+            _mm_store_ps(&b.s[k + 1][j], r1);
+            _mm_store_ps(&b.s[k + 2][j], r2);
+            _mm_store_ps(&b.s[k + 3][j], r3);
+        }
+        for (int p = 0; p < 4; ++p) {
+            b.s[20][j + p] = in[(j + p) * kSurfaceFloats + 20];
+            b.s[21][j + p] = in[(j + p) * kSurfaceFloats + 21];
+        }
+    }
+#endif
+    for (; j < n; ++j)
+        for (int k = 0; k < kSurfaceFloats; ++k) b.s[k][j] = in[j * kSurfaceFloats + k];
+}
+
+// The field's input components for the block: its Surface members or its constant.
+GBL_CLONE_INLINE void gatherInputs(const FieldPlan& f, int n, EncodeBlock& b) {
+    for (int c = 0; c < f.inputs; ++c) {
+        float* __restrict in = b.in[c];
+        if (f.source < 0) {
+            std::fill(in, in + n, f.constant[c]);
+        } else {
+            const float* __restrict src = b.s[f.source + c];
+            std::copy(src, src + n, in);
+        }
+    }
+}
+
+// ORs a code's pieces into the block's words, kept word-major (words[w][j]) so that each piece
+// is one contiguous, vectorised loop.
+GBL_CLONE_INLINE void placeCode(const CodePlan& code, int n, const uint32_t* __restrict c,
+                                uint32_t (*__restrict words)[kBlock]) {
+    for (const Piece& p : code.pieces) {
+        uint32_t* __restrict w = words[p.word];
+        const int shift = p.shift, codeShift = p.codeShift;
+        const uint32_t mask = p.mask;
+        for (int j = 0; j < n; ++j) w[j] |= ((c[j] >> codeShift) & mask) << shift;
+    }
+}
+
+// Every pixel starts from the target's constant words, then the fields are ORed in; the block's
+// words are then interleaved into the image (Words per pixel).
+template <int Words>
+GBL_CLONE_INLINE void encodeTarget(const TargetPlan& t, int n, int x0, int y, EncodeBlock& b,
+                                   uint32_t* __restrict out) {
+    for (int k = 0; k < Words; ++k) std::fill(b.words[k], b.words[k] + kBlock, t.constantWords[k]);
+    for (const FieldPlan& f : t.encodeFields) {
+        gatherInputs(f, n, b);
+        encodeCodes(f, n, x0, y, b);
+        for (size_t k = 0; k < f.codes.size(); ++k) placeCode(f.codes[k], n, b.code[k], b.words);
+    }
+    uint32_t* __restrict pixels = b.pixels;
+    for (int j = 0; j < n; ++j)
+        for (int k = 0; k < Words; ++k) pixels[j * Words + k] = b.words[k][j];
+    streamCopy(out, pixels, size_t(n) * Words * sizeof(uint32_t));
+}
+
+GBL_SIMD_CLONES void encodeBlock(const TargetPlan& t, int n, int x0, int y, EncodeBlock& b, uint32_t* words) {
+    switch (t.words) {
+        case 1: encodeTarget<1>(t, n, x0, y, b, words); return;
+        case 2: encodeTarget<2>(t, n, x0, y, b, words); return;
+        default: encodeTarget<4>(t, n, x0, y, b, words); return;
+    }
+}
+
+// Material pass words: the float32 bits of the slots' attributes, 0 in unused channels.
+GBL_SIMD_CLONES void encodeMaterial(const CodecPlan& plan, int n, size_t first, uint32_t* const* material,
+                                    EncodeBlock& b) {
+    for (int m = 0; m < plan.materialTargets; ++m) {
+        uint32_t* __restrict words = b.pixels;
+        for (int ch = 0; ch < 4; ++ch) {
+            const int src = plan.materialSource[size_t(m * 4 + ch)];
+            if (src < 0) {
+                for (int j = 0; j < n; ++j) words[j * 4 + ch] = 0u;
+            } else {
+                const float* __restrict in = b.s[src];
+                for (int j = 0; j < n; ++j) words[j * 4 + ch] = floatBitsToUint(in[j]);
+            }
+        }
+        streamCopy(material[m] + first * 4, words, size_t(n) * 4 * sizeof(uint32_t));
+    }
+}
+
+}  // namespace
+
+// Mirror of encodeField in the former per-pixel codec (and of emitEncodeField in wiring_codegen):
+// scalars per component with each code's bits, vec3 encodings with the first code's bits.
+GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, EncodeBlock& b) {
+    const uint bits = f.codes[0].bits;
+    if (isScalar(f.codec)) {
+        for (size_t k = 0; k < f.codes.size(); ++k) {
+            const uint bk = f.codes[k].bits;
+            const float* in = b.in[k];
+            uint32_t* out = b.code[k];
+            switch (f.codec) {
+                case Codec::Unorm: map1(n, in, out, [bk](float x) { return quantizeUnorm(x, bk); }); break;
+                case Codec::Snorm: map1(n, in, out, [bk](float x) { return quantizeSnorm(x, bk); }); break;
+                case Codec::Float16: map1(n, in, out, [](float x) { return encodeFloat16Fast(x); }); break;
+                case Codec::Float11: map1(n, in, out, [](float x) { return encodeFloat11Fast(x); }); break;
+                case Codec::Float10: map1(n, in, out, [](float x) { return encodeFloat10Fast(x); }); break;
+                case Codec::Float32: map1(n, in, out, [](float x) { return encodeFloat32(x); }); break;
+                case Codec::Depth24: map1(n, in, out, [](float x) { return quantizeDepth24(x); }); break;
+                case Codec::Gloss:
+                    map1(n, in, out, [bk](float x) { return quantizeUnorm(glossFromRoughness(x), bk); });
+                    break;
+                case Codec::SmoothnessCry:
+                    map1(n, in, out, [bk](float x) { return quantizeUnorm(smoothnessFromRoughnessCry(x), bk); });
+                    break;
+                default: break;  // Id: folded into the target's constant words by compilePlan
+            }
+        }
+        return;
+    }
+    const float *x = b.in[0], *yv = b.in[1], *z = b.in[2];
+    uint32_t *c0 = b.code[0], *c1 = b.code[1], *c2 = b.code[2];
+    switch (f.codec) {
+        case Codec::Srgb8:
+            srgb8Row(n, x, c0, srgb8EncodeTable());
+            srgb8Row(n, yv, c1, srgb8EncodeTable());
+            srgb8Row(n, z, c2, srgb8EncodeTable());
+            return;
+        case Codec::Luma:
+            map3to1(n, x, yv, z, c0, [bits](vec3 v) { return quantizeUnorm(lumaBt601(v), bits); });
+            return;
+        case Codec::YCbCr: transformed3<rgbToYCbCr>(n, b, bits); return;
+        case Codec::YCbCrSqrt: transformed3<rgbToYCbCrSqrt>(n, b, bits); return;
+        case Codec::YCoCg: transformed3<rgbToYCoCg>(n, b, bits); return;
+        case Codec::YCbCrCheckerboard: checkerboard<rgbToYCbCr>(n, x0, y, b, bits); return;
+        case Codec::YCoCgCheckerboard: checkerboard<rgbToYCoCg>(n, x0, y, b, bits); return;
+        case Codec::NormalXyz:
+            map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyz(v, bits); });
+            return;
+        case Codec::NormalBestFit:
+            map3to3(n, x, yv, z, c0, c1, c2, [](vec3 v) { return encodeNormalBestFitFast(v); });
+            return;
+        case Codec::NormalXyZSign:
+            map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyZSign(v, bits); });
+            return;
+        case Codec::NormalSpheremap:
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalSpheremap(v, bits); });
+            return;
+        case Codec::NormalStereographic:
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalStereographic(v, bits); });
+            return;
+        case Codec::NormalOctahedral:
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedral(v, bits); });
+            return;
+        case Codec::NormalOctahedralPrecise:
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralPrecise(v, bits); });
+            return;
+        default: return;  // scalars: above
+    }
+}
+
+void encodeRows(const CodecPlan& plan, const Surface* surfaces, int width, int y0, int y1, const WordViews& out) {
+    EncodeBlock b;
+    for (int y = y0; y < y1; ++y)
+        for (int x0 = 0; x0 < width; x0 += kBlock) {
+            const int n = std::min(kBlock, width - x0);
+            const size_t first = size_t(y) * size_t(width) + size_t(x0);
+            const Surface* px = surfaces + first;
+            loadSurfaces(px, n, b);
+            for (size_t t = 0; t < plan.targets.size(); ++t) {
+                const TargetPlan& tp = plan.targets[t];
+                encodeBlock(tp, n, x0, y, b, out.targets[t] + first * size_t(tp.words));
+            }
+            if (plan.materialTargets > 0) encodeMaterial(plan, n, first, out.material, b);
+        }
+    streamFence();
+}
+
+}  // namespace gbl::codec

@@ -1,0 +1,38 @@
+#pragma once
+// Facts about a layout that both of its interpreters need, the generated GLSL (wiring_codegen.h)
+// and the CPU mirror (cpu_codec.h): the words each target renders to, the material pass's float
+// slots, the order fallbacks are applied in, and the Surface member each attribute fills.
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "layout.h"
+
+namespace gbl {
+
+// 32-bit words per pixel of a target as rendered (1 for targets of <= 32 bits).
+int wordsPerPixel(const Target& target);
+VkFormat uintFormatOf(const Target& target);
+// The nominal format as a VkFormat (VK_FORMAT_UNDEFINED when unknown).
+VkFormat vkFormatFromName(const std::string& name);
+// Material pass (deferred lighting): the float slots of the attributes whose fallback is
+// material_pass, packed 4 per R32G32B32A32_UINT material target.
+struct MaterialSlot {
+    Attribute attribute;
+    int components;
+    int firstFloat;  // float index over all material targets (target = index / 4, channel = index % 4)
+};
+std::vector<MaterialSlot> materialPassSlots(const Layout& layout);
+int materialTargetCount(const Layout& layout);
+
+// The layout's fallbacks in an order where each one's inputs are stored or already derived.
+// Throws std::logic_error on a cycle (validation rules those out).
+std::vector<const Fallback*> orderedFallbacks(const Layout& layout);
+// The attributes a derived fallback's formula reads (none for constants, forward, material pass).
+std::vector<Attribute> fallbackInputs(FallbackKind kind);
+
+// Surface member name of a shading / geometry attribute ("baseColor"); nullptr for extras.
+const char* surfaceMemberName(Attribute a);
+
+}  // namespace gbl

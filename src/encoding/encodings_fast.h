@@ -1,0 +1,79 @@
+#pragma once
+// CPU-only fast variants of encoders of src/encoding/encodings.h, returning the reference's codes for
+// every input (the reference stays the mirror of shaders/encodings.glsl; the GPU runs that one).
+// The CPU codec (src/codec/cpu_codec.h) uses these. Why each is identical is argued in
+// encodings_fast.cpp; tests/codec/cpu_codec_test.cpp compares them with the reference on millions of
+// random and adversarial inputs.
+#include <cstdint>
+
+#include "encodings.h"
+
+namespace gbl::enc {
+
+// encodeNormalBestFit's codes: the same 128-candidate search, vectorised over the candidates.
+uvec3 encodeNormalBestFitFast(vec3 n);
+
+// encodeSrgb8's codes (the number of kSrgbEncodeThresholds <= x) from one table look-up instead
+// of 8 dependent binary-search steps. The table has an entry per 2^-7 relative step of float
+// (bits >> 16) between the first and the last threshold; no such bucket holds two thresholds
+// (their relative spacing is >= 0.89 %, a bucket's <= 0.79 %; srgb8EncodeTable() checks it).
+// Identical for all 2^32 float bit patterns (checked exhaustively once; the test samples it).
+struct Srgb8EncodeTable {
+    static constexpr int kShift = 16;  // bucket = float bits >> kShift (exponent + 7 mantissa bits)
+    uint32_t firstBucket = 0;
+    uint32_t lastBucket = 0;
+    float first = 0.0f;  // kSrgbEncodeThresholds[0]
+    float last = 0.0f;   // kSrgbEncodeThresholds[254]
+    // Per bucket: bits 0-7 the number of thresholds below the bucket; bits 8-24 the low 16 bits
+    // of the threshold inside the bucket, or 0x10000 (never reached) when there is none.
+    const uint32_t* entries = nullptr;
+};
+const Srgb8EncodeTable& srgb8EncodeTable();
+
+// Branch-free (the bucket is clamped so every input reads a valid entry), so loops vectorise.
+inline uint encodeSrgb8Fast(float x, const Srgb8EncodeTable& t) {
+    const uint bits = floatBitsToUint(x);
+    const uint bucket = min(max(bits >> Srgb8EncodeTable::kShift, t.firstBucket), t.lastBucket) - t.firstBucket;
+    const uint32_t e = t.entries[bucket];
+    const uint inside = (e & 0xffu) + ((bits & 0xffffu) >= (e >> 8) ? 1u : 0u);
+    // Below every threshold (also -0, negatives, NaN): 0; at or above the last: 255.
+    return x >= t.last ? 255u : (x >= t.first ? inside : 0u);
+}
+
+// encodeSmallFloatMagnitude's code, branch-free so that loops over it vectorise: its three
+// outcomes (overflow, normal, subnormal) are all computed and one is selected. The subnormal
+// shift is clamped to [1, 25], which keeps every shift defined and changes nothing: where the
+// reference returns 0 (shift > 24), a shift of 25 gives 0 too (mantissa < 2^24, no round-up).
+// Identical for every a < 2^31 (checked exhaustively once; tests/codec/cpu_codec_test.cpp samples it).
+inline uint encodeSmallFloatMagnitudeFast(uint a, uint mantissaBits) {
+    uint shift = 23u - mantissaBits;
+    uint maxFinite = (30u << mantissaBits) | ((1u << mantissaBits) - 1u);
+    uint overflow = 0x47000000u | (((2u << mantissaBits) - 1u) << (shift - 1u));
+    uint odd = (a >> shift) & 1u;
+    uint normal = (a - 0x38000000u + ((1u << (shift - 1u)) - 1u) + odd) >> shift;
+    uint e = a >> 23u;
+    uint sub = min(max(136u - mantissaBits - e, 1u), 25u);
+    uint m = (a & 0x7fffffu) | 0x800000u;
+    uint q = m >> sub;
+    uint rem = m & ((1u << sub) - 1u);
+    uint halfway = 1u << (sub - 1u);
+    uint subnormal = q + ((rem > halfway || (rem == halfway && (q & 1u) == 1u)) ? 1u : 0u);
+    return a >= overflow ? maxFinite : (a >= 0x38800000u ? normal : subnormal);
+}
+
+// encodeFloat16 / encodeFloat11 / encodeFloat10 with the branch-free magnitude (same text otherwise).
+inline uint encodeFloat16Fast(float x) {
+    uint a = floatBitsToUint(x);
+    uint sign = (a >> 16u) & 0x8000u;
+    return sign | encodeSmallFloatMagnitudeFast(a & 0x7fffffffu, 10u);
+}
+inline uint encodeFloat11Fast(float x) {
+    uint a = floatBitsToUint(x);
+    return a >= 0x80000000u ? 0u : encodeSmallFloatMagnitudeFast(a, 6u);
+}
+inline uint encodeFloat10Fast(float x) {
+    uint a = floatBitsToUint(x);
+    return a >= 0x80000000u ? 0u : encodeSmallFloatMagnitudeFast(a, 5u);
+}
+
+}  // namespace gbl::enc

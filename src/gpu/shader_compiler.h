@@ -1,0 +1,37 @@
+#pragma once
+// GLSL -> SPIR-V at run time with glslang as a library. Shaders live in shaders/ and may
+// #include other files from there or "virtual" files held in memory (the generated layout
+// wiring). A compile error throws ShaderCompileError whose message names the shader, prints the
+// offending source lines with line numbers, and glslang's log.
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace gbl {
+
+struct ShaderCompileError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct ShaderSource {
+    std::string name;  // for messages: "lighting_pass.comp.glsl" or "generated wiring of ue4"
+    std::string text;
+    VkShaderStageFlagBits stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    std::vector<std::pair<std::string, std::string>> defines;  // #define NAME VALUE
+    std::map<std::string, std::string> virtualFiles;          // include name -> text
+};
+
+// The shaders/ directory: $GBL_SHADER_DIR, else the source tree's shaders/.
+std::string shaderDirectory();
+// Reads shaders/<fileName> into a ShaderSource with the stage taken from the name
+// (*.vert.glsl, *.frag.glsl, *.comp.glsl).
+ShaderSource loadShaderFile(const std::string& fileName);
+
+std::vector<uint32_t> compileGlsl(const ShaderSource& source);
+
+VkShaderModule createShaderModule(VkDevice device, const std::vector<uint32_t>& spirv);
+
+}  // namespace gbl

@@ -1,0 +1,302 @@
+#pragma once
+// The data model of a G-buffer layout, as read from a layouts/*.toml file (layouts/README.md is
+// the language reference). A layout is data: which attributes of the Surface it stores, through
+// which encoding (src/encoding/encoding_registry.h), in which bits of which channel of which render target;
+// the depth(-stencil) format and what its stencil bits hold; a declared fallback for every
+// shading attribute it does not store; for deferred lighting, the light buffers.
+//
+// Bits: a target's pixel is a little-endian bit string; channel c occupies bits
+// [offset, offset + bits) of it (R8G8B8A8: r = 0..7, g = 8..15, ...; A2B10G10R10_PACK32:
+// r = 0..9, ..., a = 30..31). A code is placed in one or more bit ranges of channels, its low bits
+// in the first range. Every placement is integer-only: shifts and masks, no float conversion.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "error.h"
+
+namespace gbl {
+
+// ---------------------------------------------------------------------------------------------
+// Attributes: the names a layout file uses. The shading ones are the members of Surface
+// (shaders/surface.glsl); "extras" carry no shading meaning in gbufferlab but take bits, exactly
+// as in the engine the layout comes from, and hold a constant the layout declares.
+
+enum class Attribute : uint8_t {
+    // shading (Surface members)
+    Normal,         // vec3, world space, unit
+    BaseColor,      // vec3, linear [0,1]
+    Metallic,       // [0,1]
+    Roughness,      // perceptual [0,1]; GGX alpha = roughness^2
+    Specular,       // UE4 scalar [0,1]; dielectric F0 = 0.08 * specular
+    SpecularColor,  // vec3 F0, linear [0,1]
+    DiffuseColor,   // vec3 Lambert albedo = base_color * (1 - metallic)
+    Occlusion,      // [0,1], ambient occlusion
+    Emissive,       // vec3 linear radiance >= 0
+    // geometry
+    Position,  // vec3 view-space position; when not stored, reconstructed from depth
+    // extras
+    Translucency,
+    SssProfile,
+    ShadingModelId,
+    SelectiveOutputMask,
+    PerObject,
+    AmbientId,
+    Decals,
+    Indoor,
+    PerProject,
+    CustomData,
+    PrecomputedShadow,
+    MaterialFeature,
+    CoatMask,
+    Flags,
+};
+
+enum class AttributeClass : uint8_t { Shading, Geometry, Extra };
+enum class ValueType : uint8_t { Float, Integer };
+// What values an attribute's components take (used to reject encodings that cannot hold them).
+enum class ValueDomain : uint8_t { Unit, Signed, NonNegative, Any, Id };
+
+struct AttributeInfo {
+    Attribute id;
+    const char* name;  // layout-language name, snake_case
+    int components;
+    AttributeClass cls;
+    ValueType type;
+    ValueDomain domain;
+    const char* meaning;  // one line: what it is and where it comes from
+};
+
+const std::vector<AttributeInfo>& listAttributes();
+const AttributeInfo& attributeInfo(Attribute a);
+const char* attributeName(Attribute a);
+const AttributeInfo* findAttribute(std::string_view name);  // nullptr when unknown
+std::string knownAttributeNames();                          // "normal, base_color, ..."
+bool isShadingAttribute(Attribute a);
+
+// ---------------------------------------------------------------------------------------------
+// Formats
+
+// How the real (native) format interprets a channel. The default render path writes UINT targets
+// of the same size and ignores this; the native-formats mode and validation use it.
+enum class ChannelType : uint8_t { Unorm, Srgb, Sfloat, Ufloat, Uint };
+
+struct Channel {
+    std::string name;  // "r", "g", "b", "a"; "s" for stencil
+    int bits = 0;
+    int offset = 0;  // first bit of the channel in the pixel's bit string
+    ChannelType type = ChannelType::Unorm;
+};
+
+struct TargetFormatInfo {
+    std::string name;               // Vulkan name without VK_FORMAT_, e.g. "A2B10G10R10_UNORM_PACK32"
+    std::vector<Channel> channels;  // in bit order
+    int bits = 0;                   // bits per pixel
+    std::string uintFormat;         // what the bit-exact path renders: R8_UINT, R16_UINT, R32_UINT,
+                                    // R32G32_UINT or R32G32B32A32_UINT, by pixel size
+};
+
+const std::vector<TargetFormatInfo>& listTargetFormats();
+const TargetFormatInfo* findTargetFormat(std::string_view name);
+std::string knownTargetFormatNames();
+
+struct DepthFormatInfo {
+    std::string name;  // "D24_UNORM_S8_UINT", ...
+    int depthBits = 0;
+    int stencilBits = 0;
+    bool floatDepth = false;
+    int bytes = 0;  // nominal bytes per pixel: depth + stencil (D32_SFLOAT_S8_UINT = 5; many GPUs
+                    // store its stencil in a separate 1-byte plane, some pad to 8)
+};
+
+const std::vector<DepthFormatInfo>& listDepthFormats();
+const DepthFormatInfo* findDepthFormat(std::string_view name);
+std::string knownDepthFormatNames();
+
+// ---------------------------------------------------------------------------------------------
+// The layout
+
+struct FilePlace {
+    int line = 0;  // 1-based; 0 = unknown
+    int column = 0;
+};
+
+// One contiguous run of bits inside one channel: bits [first, first + count) of channel `channel`.
+struct BitRange {
+    int channel = 0;  // index into Target::channels (or the stencil channel, index 0)
+    int first = 0;
+    int count = 0;
+};
+
+// Where one code goes: one or more bit ranges, the code's lowest bits in pieces[0].
+struct CodePlace {
+    std::vector<BitRange> pieces;
+    std::string text;  // as written, e.g. "b[0:6]" or "r + b[0:3]"
+    FilePlace place;
+    int bits() const;
+};
+
+// The name "id" is the layout-level encoding of integer extras: the declared integer is the code.
+inline constexpr const char* kIdEncoding = "id";
+
+struct Field {
+    Attribute attribute = Attribute::Normal;
+    std::string encoding;          // a registry name (after resolving transform/interleave) or "id"
+    std::vector<CodePlace> codes;  // in the encoding's code order (see codeLabel)
+    std::vector<double> value;     // extras: the declared constant, one per component
+    FilePlace place;               // the field's table
+    FilePlace encodingPlace;       // the "encoding" value (or the field when implicit)
+    FilePlace atPlace;             // the "at" value
+    bool incomplete = false;       // a parse error was reported for it: validation skips it
+                                   // (never set in a Layout that parseLayout returns)
+
+    // Bits of the encoding's main codes (the primitive's `bits` parameter). For per-component
+    // (scalar) encodings each component may differ: bitsOfCode(i).
+    int bitsOfCode(size_t i) const { return codes[i].bits(); }
+    int totalBits() const;
+};
+
+struct Target {
+    std::string name;
+    std::string format;
+    std::vector<Channel> channels;
+    std::vector<Field> fields;
+    FilePlace place;
+    FilePlace formatPlace;
+    int bits() const;
+    int bytes() const { return bits() / 8; }
+    int usedBits() const;
+};
+
+struct Depth {
+    std::string format;
+    int depthBits = 0;
+    int stencilBits = 0;
+    bool floatDepth = false;
+    int bytes = 0;
+    bool reversedZ = false;
+    std::vector<Field> stencil;  // integer extras placed in channel "s"
+    FilePlace place;
+    FilePlace formatPlace;
+};
+
+enum class Pipeline : uint8_t { DeferredShading, DeferredLighting };
+const char* pipelineName(Pipeline p);  // "deferred-shading" / "deferred-lighting"
+
+// How an attribute the layout does not store is obtained. Formulas in layouts/README.md.
+enum class FallbackKind : uint8_t {
+    Constant,             // value
+    FromMetallic,         // specular_color = mix(vec3(0.04), base_color, metallic)
+    Ue4,                  // specular_color = mix(vec3(0.08 * specular), base_color, metallic)
+    FromBaseColor,        // diffuse_color = base_color * (1 - metallic)
+    FromDiffuseSpecular,  // base_color = diffuse_color + metallic * specular_color
+    FromSpecularColor,    // metallic = clamp((max3(specular_color) - 0.04) / 0.96, 0, 1)
+    MaterialPass,         // deferred lighting: read by the second geometry (material) pass
+    Forward,              // emissive: added to the lighting output by the geometry pass, unstored
+};
+const char* fallbackKindName(FallbackKind k);  // the keyword, "constant" for Constant
+
+struct Fallback {
+    Attribute attribute = Attribute::Normal;
+    FallbackKind kind = FallbackKind::Constant;
+    std::vector<double> value;  // Constant: one per component
+    FilePlace place;
+    bool incomplete = false;  // a parse error was reported for it (never in a returned Layout)
+};
+
+enum class LightQuantity : uint8_t { DiffuseRgb, SpecularRgb, SpecularLuminance };
+const char* lightQuantityName(LightQuantity q);
+
+struct LightBuffer {
+    std::string name;
+    std::string format;
+    std::vector<LightQuantity> holds;  // assigned to the format's channels in order (rgb = 3, luminance = 1)
+    FilePlace place;
+    int bytes = 0;
+};
+
+struct Source {
+    std::string game;
+    std::string engine;
+    std::string talk;  // talk / paper / article, with authors and venue
+    std::string code;  // source file the layout is read from (e.g. DeferredShadingCommon.ush)
+    int year = 0;
+    std::string text() const;  // one line for `layouts show`
+};
+
+struct Layout {
+    std::string name;
+    std::string title;
+    Source source;
+    Pipeline pipeline = Pipeline::DeferredShading;
+    Depth depth;
+    std::vector<Target> targets;
+    std::vector<Fallback> fallbacks;
+    std::vector<LightBuffer> lightBuffers;
+    std::string sourceFile;  // the file it was read from (or the name given to parseLayout)
+    FilePlace namePlace;
+    FilePlace fallbackPlace;  // the [fallback] table (1:1 when absent)
+
+    const Field* findField(Attribute a) const;  // in targets or stencil; nullptr when not stored
+    const Fallback* findFallback(Attribute a) const;
+    bool stores(Attribute a) const { return findField(a) != nullptr; }
+};
+
+// G-buffer bytes per pixel: all targets plus the depth-stencil attachment.
+int bytesPerPixel(const Layout& layout);
+// Light-buffer bytes per pixel (deferred lighting; 0 otherwise).
+int lightBufferBytesPerPixel(const Layout& layout);
+
+struct AttributeBits {
+    Attribute attribute;
+    int bits;
+};
+// Bits each stored attribute takes (all its codes, stencil included), in attribute order.
+std::vector<AttributeBits> bitsPerAttribute(const Layout& layout);
+
+// A code's name within its field: "x", "y", "z_sign", "Y", "Cb", "r", ... ("code N" if unnamed).
+std::string codeLabel(const Field& field, size_t code);
+// Reads a place written in a layout file into `out`: "r", "b[7]", "a[0:3]", or pieces joined by
+// '+' ("r + b[0:3]", the code's low bits first), against `channels` (of `formatName`, for messages).
+// Returns "" or what is wrong. Ranges are not checked against channel widths here (validation
+// reports overflow by how much).
+std::string parseCodePlace(std::string_view text, const std::vector<Channel>& channels, const std::string& formatName,
+                           CodePlace& out);
+// "r[0:6]" for one range.
+std::string bitRangeText(const std::vector<Channel>& channels, const BitRange& range);
+
+// ---------------------------------------------------------------------------------------------
+// Reading and checking
+
+struct LayoutDiagnostic {
+    std::string file;
+    FilePlace place;
+    std::string message;
+    std::string text() const;  // "file:line:col: message"
+};
+
+// Thrown for any invalid layout file; what() is every diagnostic, one per line, in file order.
+struct LayoutError : UserError {
+    explicit LayoutError(std::vector<LayoutDiagnostic> diagnostics);
+    std::vector<LayoutDiagnostic> diagnostics;
+};
+
+// Parses and fully validates a layout written in `text`; `fileName` is used in messages and as
+// Layout::sourceFile. Throws LayoutError listing every problem found.
+Layout parseLayout(std::string_view text, const std::string& fileName);
+
+// Reads `path` and parses it; also requires the layout's `name` to equal the file's stem.
+Layout loadLayoutFile(const std::filesystem::path& path);
+
+// Same checks without throwing: every diagnostic (empty when the text is a valid layout).
+std::vector<LayoutDiagnostic> checkLayout(std::string_view text, const std::string& fileName);
+std::vector<LayoutDiagnostic> checkLayoutFile(const std::filesystem::path& path);
+
+// Internal steps, exposed for tests: parsing appends structural problems to `out` and returns what
+// could be read; validation appends semantic problems of a parsed layout.
+Layout parseLayoutUnchecked(std::string_view text, const std::string& fileName, std::vector<LayoutDiagnostic>& out);
+void validateLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out);
+
+}  // namespace gbl

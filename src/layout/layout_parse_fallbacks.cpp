@@ -1,0 +1,198 @@
+// The [fallback] table (what a layout derives instead of storing) and the [[light_buffer]] tables of
+// deferred lighting. Part of the layout parser (layout_parser_detail.h).
+#include <algorithm>
+#include <cmath>
+
+#include "encoding_registry.h"
+#include "layout_parser_detail.h"
+
+namespace gbl::layout_parser {
+
+namespace {
+
+struct FallbackKeyword {
+    const char* name;
+    FallbackKind kind;
+};
+constexpr FallbackKeyword kFallbackKeywords[] = {
+    {"from_metallic", FallbackKind::FromMetallic},
+    {"ue4", FallbackKind::Ue4},
+    {"from_base_color", FallbackKind::FromBaseColor},
+    {"from_diffuse_specular", FallbackKind::FromDiffuseSpecular},
+    {"from_specular_color", FallbackKind::FromSpecularColor},
+    {"material_pass", FallbackKind::MaterialPass},
+    {"forward", FallbackKind::Forward},
+};
+
+// Which derived fallbacks each shading attribute accepts (all accept a constant except normal and
+// roughness, which every layout must store).
+std::vector<FallbackKind> allowedFallbacks(Attribute a) {
+    using F = FallbackKind;
+    switch (a) {
+        case Attribute::SpecularColor:
+            return {F::FromMetallic, F::Ue4, F::MaterialPass};
+        case Attribute::DiffuseColor:
+            return {F::FromBaseColor, F::MaterialPass};
+        case Attribute::BaseColor:
+            return {F::FromDiffuseSpecular, F::MaterialPass};
+        case Attribute::Metallic:
+            return {F::FromSpecularColor, F::MaterialPass};
+        case Attribute::Specular:
+            return {F::MaterialPass};
+        case Attribute::Occlusion:
+            return {F::MaterialPass};
+        case Attribute::Emissive:
+            return {F::Forward, F::MaterialPass};
+        default:
+            return {};
+    }
+}
+
+}  // namespace
+
+void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
+    const toml::node* n = root.get("fallback");
+    layout.fallbackPlace = {1, 1};
+    if (!n) return;
+    layout.fallbackPlace = placeOf(*n);
+    const toml::table* t = n->as_table();
+    if (!t) {
+        error(placeOf(*n), "'fallback' must be a table ([fallback]), not " + std::string(typeName(*n)));
+        return;
+    }
+    for (auto&& [key, value] : *t) {
+        const FilePlace keyPlace = placeOf(key.source());
+        const AttributeInfo* attr = findAttribute(key.str());
+        if (!attr) {
+            error(keyPlace,
+                  "unknown attribute " + squote(key.str()) + " in [fallback] (known: " + knownAttributeNames() + ")");
+            continue;
+        }
+        if (attr->cls != AttributeClass::Shading) {
+            error(keyPlace, squote(attr->name) + " takes no fallback: " +
+                                (attr->cls == AttributeClass::Extra ? "extras are stored with a declared value"
+                                                                    : "unstored, position comes from depth"));
+            continue;
+        }
+        if (attr->id == Attribute::Normal || attr->id == Attribute::Roughness) {
+            error(keyPlace, squote(attr->name) + " cannot fall back: every layout must store normal and roughness");
+            continue;
+        }
+        Fallback fb;
+        fb.attribute = attr->id;
+        fb.place = placeOf(value);
+        const std::vector<FallbackKind> allowed = allowedFallbacks(attr->id);
+        auto allowedList = [&] {
+            std::string list;
+            for (FallbackKind k : allowed) list += std::string(list.empty() ? "" : ", ") + fallbackKindName(k);
+            return list + (list.empty() ? "" : ", or ") + "a constant";
+        };
+        // A bad entry is still recorded (incomplete), so that the attribute does not also read as
+        // "no fallback declared".
+        fb.incomplete = true;
+        if (value.is_string()) {
+            const std::string word = value.as_string()->get();
+            auto kw = std::find_if(std::begin(kFallbackKeywords), std::end(kFallbackKeywords),
+                                   [&](const FallbackKeyword& k) { return word == k.name; });
+            if (kw == std::end(kFallbackKeywords) ||
+                std::find(allowed.begin(), allowed.end(), kw->kind) == allowed.end()) {
+                error(fb.place, "unknown fallback " + squote(word) + " for " + squote(attr->name) +
+                                    " (allowed: " + allowedList() + ")");
+            } else {
+                fb.kind = kw->kind;
+                fb.incomplete = false;
+            }
+        } else if (auto values = getNumbers(value, "fallback for " + squote(attr->name))) {
+            if (values->size() == 1 && attr->components > 1) values->assign(attr->components, values->front());
+            bool ok = true;
+            if (static_cast<int>(values->size()) != attr->components) {
+                error(fb.place, "fallback for " + squote(attr->name) + " has " + std::to_string(values->size()) +
+                                    " components, " + squote(attr->name) + " has " + std::to_string(attr->components));
+                ok = false;
+            }
+            for (double x : *values) {
+                const bool inRange = attr->domain == ValueDomain::NonNegative ? x >= 0 : (x >= 0 && x <= 1);
+                if (ok && !inRange) {
+                    error(fb.place, "fallback for " + squote(attr->name) + ": " + std::to_string(x) + " is outside " +
+                                        (attr->domain == ValueDomain::NonNegative ? "[0, inf)" : "[0,1]"));
+                    ok = false;
+                }
+            }
+            fb.kind = FallbackKind::Constant;
+            fb.value = *values;
+            fb.incomplete = !ok;
+        }
+        layout.fallbacks.push_back(std::move(fb));
+    }
+    // file order (toml++ iterates keys alphabetically)
+    std::stable_sort(layout.fallbacks.begin(), layout.fallbacks.end(), [](const Fallback& a, const Fallback& b) {
+        return a.place.line != b.place.line ? a.place.line < b.place.line : a.place.column < b.place.column;
+    });
+}
+
+void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
+    const toml::node* n = root.get("light_buffer");
+    if (!n) return;
+    const toml::array* a = n->as_array();
+    if (!a) {
+        error(placeOf(*n),
+              "'light_buffer' must be an array of tables ([[light_buffer]]), not " + std::string(typeName(*n)));
+        return;
+    }
+    for (const toml::node& node : *a) {
+        const toml::table* t = node.as_table();
+        if (!t) {
+            error(placeOf(node), "each [[light_buffer]] must be a table");
+            continue;
+        }
+        LightBuffer lb;
+        lb.place = placeOf(node);
+        checkKeys(*t, {"name", "format", "holds"}, "[[light_buffer]]");
+        lb.name = getString(*t, "name", true, lb.place, "[[light_buffer]]").value_or("");
+        const TargetFormatInfo* info = nullptr;
+        if (auto format = getString(*t, "format", true, lb.place, "[[light_buffer]]")) {
+            info = findTargetFormat(*format);
+            if (!info)
+                error(placeOf(*t->get("format")),
+                      "unknown format " + squote(*format) + " (known: " + knownTargetFormatNames() + ")");
+            else {
+                lb.format = info->name;
+                lb.bytes = info->bits / 8;
+            }
+        }
+        const toml::node* holds = t->get("holds");
+        if (!holds) {
+            error(lb.place, "[[light_buffer]] has no 'holds' (diffuse_rgb, specular_rgb, specular_luminance)");
+        } else {
+            std::vector<const toml::node*> items;
+            if (const toml::array* ha = holds->as_array())
+                for (const toml::node& h : *ha) items.push_back(&h);
+            else
+                items.push_back(holds);
+            int channelsNeeded = 0;
+            for (const toml::node* h : items) {
+                const std::string word = h->is_string() ? h->as_string()->get() : "";
+                if (word == "diffuse_rgb") {
+                    lb.holds.push_back(LightQuantity::DiffuseRgb);
+                    channelsNeeded += 3;
+                } else if (word == "specular_rgb") {
+                    lb.holds.push_back(LightQuantity::SpecularRgb);
+                    channelsNeeded += 3;
+                } else if (word == "specular_luminance") {
+                    lb.holds.push_back(LightQuantity::SpecularLuminance);
+                    channelsNeeded += 1;
+                } else {
+                    error(placeOf(*h), "unknown light quantity " + squote(word) +
+                                           " (known: diffuse_rgb, specular_rgb, specular_luminance)");
+                }
+            }
+            if (info && channelsNeeded > static_cast<int>(info->channels.size()))
+                error(placeOf(*holds), "light buffer " + squote(lb.name) + " holds " + std::to_string(channelsNeeded) +
+                                           " channels but " + info->name + " has " +
+                                           std::to_string(info->channels.size()));
+        }
+        layout.lightBuffers.push_back(std::move(lb));
+    }
+}
+
+}  // namespace gbl::layout_parser

@@ -1,0 +1,255 @@
+// A target's fields: attribute, encoding (+ transform / interleave), the places of its codes, bits
+// and constant values. Part of the layout parser (layout_parser_detail.h).
+#include <algorithm>
+#include <cmath>
+
+#include "encoding_registry.h"
+#include "layout_parser_detail.h"
+
+namespace gbl::layout_parser {
+
+namespace {
+
+// ---- transforms and interleaving: spellings of registry encodings ------------------------------
+// The registry names one primitive per variant ("gloss", "ycbcr_sqrt", "ycbcr_checkerboard"); a
+// layout may also write the base encoding plus `transform` / `interleave`, which resolve here.
+struct Variant {
+    const char* base;
+    const char* transform;   // nullptr: none
+    const char* interleave;  // nullptr: none
+    const char* encoding;    // the registry name it resolves to
+};
+constexpr Variant kVariants[] = {
+    {"unorm", "gloss", nullptr, "gloss"},
+    {"unorm", "cry_smoothness", nullptr, "smoothness_cry"},
+    {"ycbcr", "sqrt", nullptr, "ycbcr_sqrt"},
+    {"ycbcr", nullptr, "checkerboard", "ycbcr_checkerboard"},
+    {"ycocg", nullptr, "checkerboard", "ycocg_checkerboard"},
+};
+constexpr const char* kTransforms[] = {"gloss", "cry_smoothness", "sqrt"};
+constexpr const char* kInterleaves[] = {"checkerboard"};
+
+}  // namespace
+
+// Reads one field: attribute, encoding (+ transform / interleave), at, bits, value.
+std::optional<Field> Parser::parseField(const toml::node& node, const std::vector<Channel>& channels,
+                                        const std::string& formatName, bool stencil) {
+    const toml::table* t = node.as_table();
+    if (!t) {
+        error(placeOf(node), "each field must be a table ({ attribute = ..., encoding = ..., at = [...] }), not " +
+                                 std::string(typeName(node)));
+        return std::nullopt;
+    }
+    Field field;
+    field.place = placeOf(node);
+    if (stencil)
+        checkKeys(*t, {"attribute", "encoding", "at", "bits", "value"}, "a stencil field");
+    else
+        checkKeys(*t, {"attribute", "encoding", "transform", "interleave", "at", "bits", "value"}, "a field");
+
+    auto attrName = getString(*t, "attribute", true, field.place, "the field");
+    if (!attrName) return std::nullopt;
+    const AttributeInfo* attr = findAttribute(*attrName);
+    if (!attr) {
+        error(placeOf(*t->get("attribute")),
+              "unknown attribute " + squote(*attrName) + " (known: " + knownAttributeNames() + ")");
+        return std::nullopt;
+    }
+    field.attribute = attr->id;
+    const std::string what = "field " + squote(attr->name);
+
+    // encoding
+    const toml::node* encNode = t->get("encoding");
+    field.encodingPlace = encNode ? placeOf(*encNode) : field.place;
+    if (attr->type == ValueType::Integer) {
+        field.encoding = kIdEncoding;
+        if (encNode) {
+            auto e = getString(*t, "encoding", false, field.place, what);
+            if (e && *e != kIdEncoding) {
+                error(field.encodingPlace, squote(attr->name) +
+                                               " is an integer id: its encoding is 'id' "
+                                               "(the declared value is the code), not " +
+                                               squote(*e));
+                field.incomplete = true;
+            }
+        }
+    } else if (stencil) {
+        error(placeOf(*t->get("attribute")),
+              "the stencil holds integer extras only; " + squote(attr->name) + " is not one");
+        return std::nullopt;
+    } else if (auto e = getString(*t, "encoding", true, field.place, what)) {
+        std::string resolved = *e;
+        const toml::node* trNode = t->get("transform");
+        const toml::node* ilNode = t->get("interleave");
+        std::optional<std::string> transform, interleave;
+        if (trNode) {
+            transform = getString(*t, "transform", false, field.place, what);
+            if (transform && std::find_if(std::begin(kTransforms), std::end(kTransforms),
+                                          [&](const char* k) { return *transform == k; }) == std::end(kTransforms)) {
+                error(placeOf(*trNode),
+                      "unknown transform " + squote(*transform) + " (known: gloss, cry_smoothness, sqrt)");
+                field.incomplete = true;
+            }
+        }
+        if (ilNode) {
+            interleave = getString(*t, "interleave", false, field.place, what);
+            if (interleave && std::find_if(std::begin(kInterleaves), std::end(kInterleaves),
+                                           [&](const char* k) { return *interleave == k; }) == std::end(kInterleaves)) {
+                error(placeOf(*ilNode), "unknown interleave " + squote(*interleave) + " (known: checkerboard)");
+                field.incomplete = true;
+            }
+        }
+        if (!field.incomplete && (transform || interleave) && !findEncoding(*e)) {
+            error(field.encodingPlace, "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
+            field.incomplete = true;
+        }
+        if (!field.incomplete && (transform || interleave)) {
+            const Variant* match = nullptr;
+            for (const Variant& v : kVariants) {
+                const bool sameTransform = transform ? (v.transform && *transform == v.transform) : !v.transform;
+                const bool sameInterleave = interleave ? (v.interleave && *interleave == v.interleave) : !v.interleave;
+                if (*e == v.base && sameTransform && sameInterleave) match = &v;
+            }
+            if (match) {
+                resolved = match->encoding;
+            } else {
+                std::string list;
+                for (const Variant& v : kVariants) {
+                    list += list.empty() ? "" : ", ";
+                    list += std::string(v.base) + (v.transform ? " + transform " + std::string(v.transform) : "") +
+                            (v.interleave ? " + interleave " + std::string(v.interleave) : "");
+                }
+                error(placeOf(trNode ? *trNode : *ilNode),
+                      "encoding " + squote(*e) + " has no such variant (available: " + list + ")");
+                field.incomplete = true;
+            }
+        }
+        if (resolved == kIdEncoding) {
+            error(field.encodingPlace, "encoding 'id' holds integer extras only; " + squote(attr->name) +
+                                           " needs one of: " + knownEncodingNames());
+            field.incomplete = true;
+        } else if (!field.incomplete && !findEncoding(resolved)) {
+            error(field.encodingPlace, "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
+            field.incomplete = true;
+        }
+        field.encoding = resolved;
+    } else {
+        field.incomplete = true;
+    }
+
+    // at
+    if (const toml::node* at = t->get("at")) {
+        field.atPlace = placeOf(*at);
+        if (channels.empty()) {
+            field.incomplete = true;  // unknown format, reported already
+        } else if (const toml::array* a = at->as_array()) {
+            if (a->empty()) {
+                error(placeOf(*at), what + ": 'at' is empty");
+                field.incomplete = true;
+            }
+            for (const toml::node& p : *a) {
+                CodePlace code;
+                if (parsePlace(p, channels, formatName, code))
+                    field.codes.push_back(std::move(code));
+                else
+                    field.incomplete = true;
+            }
+        } else {
+            CodePlace code;
+            if (parsePlace(*at, channels, formatName, code))
+                field.codes.push_back(std::move(code));
+            else
+                field.incomplete = true;
+        }
+    } else {
+        error(field.place, what + " has no 'at': say where each code goes, e.g. at = [\"r\", \"g\", \"b[7]\"]");
+        field.incomplete = true;
+    }
+
+    // bits: an optional cross-check of the widths given by 'at'
+    if (const toml::node* b = t->get("bits")) {
+        std::vector<int> declared;
+        if (const toml::array* a = b->as_array()) {
+            for (const toml::node& e : *a)
+                if (auto v = getInteger(e, "'bits'")) declared.push_back(static_cast<int>(*v));
+        } else if (auto v = getInteger(*b, "'bits'")) {
+            declared.push_back(static_cast<int>(*v));
+        }
+        if (!field.incomplete && !declared.empty()) {
+            const bool perCode = b->is_array();
+            if (perCode && declared.size() != field.codes.size()) {
+                error(placeOf(*b), what + ": 'bits' lists " + std::to_string(declared.size()) +
+                                       " widths but 'at' places " + std::to_string(field.codes.size()) + " codes");
+                field.incomplete = true;
+            } else {
+                // A single number is the encoding's bits per code: it applies to every code except a
+                // fixed-width extra one (normal_xy_zsign's sign bit).
+                const EncodingInfo* enc = findEncoding(field.encoding);
+                const size_t checked = (!perCode && enc && enc->extraBits > 0 && field.codes.size() > 1)
+                                           ? field.codes.size() - 1
+                                           : field.codes.size();
+                for (size_t i = 0; i < checked; ++i) {
+                    const int want = perCode ? declared[i] : declared[0];
+                    if (field.codes[i].bits() != want) {
+                        error(field.codes[i].place, what + ": 'bits' says " + std::to_string(want) + " but " +
+                                                        squote(field.codes[i].text) + " holds " +
+                                                        std::to_string(field.codes[i].bits()) + " bits");
+                        field.incomplete = true;
+                    }
+                }
+            }
+        }
+    }
+
+    // value: extras only
+    if (const toml::node* v = t->get("value")) {
+        if (attr->cls != AttributeClass::Extra) {
+            error(placeOf(*v), "'value' is for extra attributes; " + squote(attr->name) + " comes from the surface");
+            field.incomplete = true;
+        } else if (auto values = getNumbers(*v, what + ": 'value'")) {
+            if (values->size() == 1 && attr->components > 1) values->assign(attr->components, values->front());
+            if (static_cast<int>(values->size()) != attr->components) {
+                error(placeOf(*v), what + ": 'value' has " + std::to_string(values->size()) + " components, " +
+                                       squote(attr->name) + " has " + std::to_string(attr->components));
+                field.incomplete = true;
+            }
+            for (double x : *values) {
+                if (attr->type == ValueType::Integer && (x != std::floor(x) || x < 0)) {
+                    error(placeOf(*v), what + ": 'value' must be a non-negative integer (an id)");
+                    field.incomplete = true;
+                    break;
+                }
+                if (attr->type == ValueType::Float && attr->domain == ValueDomain::Unit && (x < 0 || x > 1)) {
+                    error(placeOf(*v), what + ": 'value' " + std::to_string(x) + " is outside [0,1]");
+                    field.incomplete = true;
+                    break;
+                }
+            }
+            field.value = *values;
+        } else {
+            field.incomplete = true;
+        }
+    } else if (attr->cls == AttributeClass::Extra) {
+        error(field.place,
+              what + " needs a 'value': extras hold a constant the layout declares (" + attr->meaning + ")");
+        field.incomplete = true;
+    }
+    return field;
+}
+
+// One code's place (grammar in parseCodePlace, layout.cpp).
+bool Parser::parsePlace(const toml::node& node, const std::vector<Channel>& channels, const std::string& formatName,
+                        CodePlace& out) {
+    out.place = placeOf(node);
+    if (!node.is_string()) {
+        error(out.place, "a place in 'at' must be a string like \"r\", \"b[7]\" or \"a[0:3]\", not " +
+                             std::string(typeName(node)));
+        return false;
+    }
+    const std::string problem = parseCodePlace(node.as_string()->get(), channels, formatName, out);
+    if (problem.empty()) return true;
+    error(out.place, problem);
+    return false;
+}
+
+}  // namespace gbl::layout_parser

@@ -1,0 +1,133 @@
+#pragma once
+// The layout parser's own parts, shared by the files that read one section each of a layout file:
+// layout_parser.cpp (document, source, depth, targets, and the public functions of layout.h),
+// layout_parse_fields.cpp (a target's fields and code places) and layout_parse_fallbacks.cpp
+// (fallbacks and light buffers). Not part of the layout library's interface.
+#include <toml++/toml.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "layout.h"
+
+namespace gbl::layout_parser {
+
+inline FilePlace placeOf(const toml::source_region& r) {
+    if (r.begin.line == 0) return {1, 1};
+    return {static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+}
+inline FilePlace placeOf(const toml::node& n) { return placeOf(n.source()); }
+
+inline const char* typeName(const toml::node& n) {
+    switch (n.type()) {
+        case toml::node_type::table:
+            return "a table";
+        case toml::node_type::array:
+            return "an array";
+        case toml::node_type::string:
+            return "a string";
+        case toml::node_type::integer:
+            return "an integer";
+        case toml::node_type::floating_point:
+            return "a number";
+        case toml::node_type::boolean:
+            return "a boolean";
+        default:
+            return "a date/time";
+    }
+}
+
+inline std::string squote(std::string_view s) { return "'" + std::string(s) + "'"; }
+
+class Parser {
+public:
+    Parser(std::string file, std::vector<LayoutDiagnostic>& out) : file_(std::move(file)), out_(out) {}
+
+    void error(FilePlace place, std::string message) { out_.push_back({file_, place, std::move(message)}); }
+
+    // Reports keys of `table` not in `known`.
+    void checkKeys(const toml::table& table, std::initializer_list<const char*> known, const char* where) {
+        for (auto&& [key, node] : table) {
+            (void)node;
+            bool ok = false;
+            for (const char* k : known) ok = ok || key.str() == k;
+            if (ok) continue;
+            std::string list;
+            for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+            error(placeOf(key.source()),
+                  "unknown key " + squote(key.str()) + " in " + where + " (known: " + list + ")");
+        }
+    }
+
+    // Value of `key` in `table` as a string; reports a missing key (when `required`) at `owner`.
+    std::optional<std::string> getString(const toml::table& table, const char* key, bool required, FilePlace owner,
+                                         const std::string& where) {
+        const toml::node* n = table.get(key);
+        if (!n) {
+            if (required) error(owner, where + " has no '" + key + "'");
+            return std::nullopt;
+        }
+        if (!n->is_string()) {
+            error(placeOf(*n), "'" + std::string(key) + "' must be a string, not " + typeName(*n));
+            return std::nullopt;
+        }
+        return n->as_string()->get();
+    }
+
+    std::optional<int64_t> getInteger(const toml::node& n, const std::string& what) {
+        if (!n.is_integer()) {
+            error(placeOf(n), what + " must be an integer, not " + typeName(n));
+            return std::nullopt;
+        }
+        return n.as_integer()->get();
+    }
+
+    std::optional<double> getNumber(const toml::node& n, const std::string& what) {
+        if (n.is_integer()) return static_cast<double>(n.as_integer()->get());
+        if (n.is_floating_point()) return n.as_floating_point()->get();
+        error(placeOf(n), what + " must be a number, not " + typeName(n));
+        return std::nullopt;
+    }
+
+    // A number or an array of numbers.
+    std::optional<std::vector<double>> getNumbers(const toml::node& n, const std::string& what) {
+        std::vector<double> v;
+        if (const toml::array* a = n.as_array()) {
+            for (const toml::node& e : *a) {
+                auto x = getNumber(e, what);
+                if (!x) return std::nullopt;
+                v.push_back(*x);
+            }
+            if (v.empty()) {
+                error(placeOf(n), what + " is an empty array");
+                return std::nullopt;
+            }
+            return v;
+        }
+        auto x = getNumber(n, what);
+        if (!x) return std::nullopt;
+        v.push_back(*x);
+        return v;
+    }
+
+    Layout parse(std::string_view text);
+
+private:
+    void parseSource(const toml::table& root, Layout& layout);
+    void parseDepth(const toml::table& root, Layout& layout);
+    void parseTarget(const toml::node& node, Layout& layout);
+    std::optional<Field> parseField(const toml::node& node, const std::vector<Channel>& channels,
+                                    const std::string& formatName, bool stencil);
+    bool parsePlace(const toml::node& node, const std::vector<Channel>& channels, const std::string& formatName,
+                    CodePlace& out);
+    void parseFallbacks(const toml::table& root, Layout& layout);
+    void parseLightBuffers(const toml::table& root, Layout& layout);
+
+    std::string file_;
+    std::vector<LayoutDiagnostic>& out_;
+};
+
+}  // namespace gbl::layout_parser

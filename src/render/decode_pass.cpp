@@ -1,0 +1,126 @@
+#include "decode_pass.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "parallel_for.h"
+#include "shader_compiler.h"
+#include "vk_pipeline.h"
+
+namespace gbl {
+
+namespace {
+constexpr int kFloatsPerPixel = 20;  // five vec4, see DecodedPixel in decode_pass.comp.glsl
+// Rows per band: the read-back buffer holds one band, not the frame (at 3840x2160 the whole
+// frame would be 663 MB on top of the SurfaceImages it is copied into). A multiple of the
+// shader's 8-row workgroups.
+constexpr size_t kBandBytes = size_t(64) << 20;
+uint32_t bandRows(uint32_t width, uint32_t height) {
+    const size_t rowBytes = size_t(width) * kFloatsPerPixel * sizeof(float);
+    const uint32_t rows = uint32_t(std::max<size_t>(8, kBandBytes / rowBytes / 8 * 8));
+    return std::min(rows, (height + 7) / 8 * 8);
+}
+}  // namespace
+
+SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
+                             const Buffer& frameConstants, VkSampler nearestSampler,
+                             const std::vector<float>& depthValues, const GBufferPass* materialPass,
+                             uint32_t bandRowsWanted) {
+    const uint32_t w = gbuffer.depth.extent.width, h = gbuffer.depth.extent.height;
+    const size_t pixels = size_t(w) * h;
+    const uint32_t band = bandRowsWanted ? std::max(8u, bandRowsWanted / 8 * 8) : bandRows(w, h);
+    Buffer output =
+        createBuffer(ctx, size_t(w) * band * kFloatsPerPixel * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+
+    const std::vector<Binding> set0 = {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    };
+    const std::vector<Binding> set1 = targetReadBindings(gbuffer);
+    const std::vector<Binding> set2 = materialPass ? targetReadBindings(*materialPass) : std::vector<Binding>{};
+    const uint32_t setCount = materialPass ? 3 : 2;
+    std::vector<VkDescriptorSetLayout> layouts = {createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT),
+                                                  createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT)};
+    if (materialPass) layouts.push_back(createSetLayout(ctx.device, set2, VK_SHADER_STAGE_COMPUTE_BIT));
+    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, layouts, 4, VK_SHADER_STAGE_COMPUTE_BIT);
+    VkDescriptorPool pool = createPoolFor(ctx.device, {set0, set1, set2});
+    std::vector<VkDescriptorSet> sets;
+    for (VkDescriptorSetLayout l : layouts) sets.push_back(allocateSet(ctx.device, pool, l));
+    DescriptorWriter writer;
+    writer.buffer(sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
+        .image(sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
+               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+        .buffer(sets[0], 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output.buffer);
+    for (uint32_t i = 0; i < gbuffer.targets.size(); ++i)
+        writer.image(sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.targets[i].view, nearestSampler,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    if (materialPass)
+        for (uint32_t i = 0; i < materialPass->targets.size(); ++i)
+            writer.image(sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, materialPass->targets[i].view,
+                         nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    writer.flush(ctx.device);
+
+    ShaderSource cs = loadShaderFile("decode_pass.comp.glsl");
+    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ")";
+    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
+    VkPipeline pipeline = createComputePipeline(ctx.device, pipelineLayout, module);
+    vkDestroyShaderModule(ctx.device, module, nullptr);
+
+    SurfaceImages s;
+    const int iw = int(w), ih = int(h);
+    s.normal = Image(iw, ih, 3);
+    s.baseColor = Image(iw, ih, 3);
+    s.diffuseColor = Image(iw, ih, 3);
+    s.specularColor = Image(iw, ih, 3);
+    s.emissive = Image(iw, ih, 3);
+    s.roughness = Image(iw, ih, 1);
+    s.metallic = Image(iw, ih, 1);
+    s.occlusion = Image(iw, ih, 1);
+    s.viewDepth = Image(iw, ih, 1);
+    s.depth = Image(iw, ih, 1);
+    s.coverage.assign(pixels, 0);
+    const float clearDepth = gbuffer.clearDepth;
+    for (uint32_t firstRow = 0; firstRow < h; firstRow += band) {
+        const uint32_t rows = std::min(band, h - firstRow);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, setCount, sets.data(), 0,
+                                    nullptr);
+            vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &firstRow);
+            vkCmdDispatch(cmd, (w + 7) / 8, (rows + 7) / 8, 1);
+            fullBarrier(cmd);
+        });
+        const float* src = static_cast<const float*>(output.mapped);
+        const size_t first = size_t(firstRow) * w;
+        // Split across threads: much of this loop's time is the kernel faulting in fresh pages.
+        parallelFor(int64_t(rows), 0, [&](int64_t y0, int64_t y1) {
+            for (size_t i = first + size_t(y0) * w; i < first + size_t(y1) * w; ++i) {
+                const float* p = src + (i - first) * kFloatsPerPixel;
+                for (int c = 0; c < 3; ++c) {
+                    s.normal.pixels[i * 3 + c] = p[0 + c];
+                    s.baseColor.pixels[i * 3 + c] = p[4 + c];
+                    s.diffuseColor.pixels[i * 3 + c] = p[8 + c];
+                    s.specularColor.pixels[i * 3 + c] = p[12 + c];
+                    s.emissive.pixels[i * 3 + c] = p[16 + c];
+                }
+                s.roughness.pixels[i] = p[3];
+                s.metallic.pixels[i] = p[7];
+                s.occlusion.pixels[i] = p[11];
+                s.viewDepth.pixels[i] = p[19];
+                s.depth.pixels[i] = depthValues[i];
+                s.coverage[i] = depthValues[i] != clearDepth;
+            }
+        });
+    }
+
+    destroyBuffer(ctx, output);
+    vkDestroyPipeline(ctx.device, pipeline, nullptr);
+    vkDestroyPipelineLayout(ctx.device, pipelineLayout, nullptr);
+    for (auto l : layouts) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
+    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
+    return s;
+}
+
+}  // namespace gbl

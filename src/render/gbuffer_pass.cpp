@@ -1,0 +1,210 @@
+#include "renderer_passes.h"
+
+#include "shader_compiler.h"
+#include "stage_clock.h"
+#include "vk_pipeline.h"
+
+namespace gbl {
+
+namespace {
+
+bool isStencilFormat(VkFormat f) {
+    return f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D16_UNORM_S8_UINT;
+}
+
+VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, VkPipelineLayout layout,
+                                 uint32_t textureCount) {
+    ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
+    ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
+    fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
+    fs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    fs.name = "gbuffer_pass.frag.glsl (layout " + wiring.layoutName + ")";
+    VkShaderModule vsModule = createShaderModule(ctx.device, compileGlsl(vs));
+    VkShaderModule fsModule = createShaderModule(ctx.device, compileGlsl(fs));
+
+    VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vsModule;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = fsModule;
+    stages[1].pName = "main";
+
+    VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    VkVertexInputAttributeDescription attributes[4] = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+        {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
+        {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+    };
+    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vertexInput.vertexBindingDescriptionCount = 1;
+    vertexInput.pVertexBindingDescriptions = &binding;
+    vertexInput.vertexAttributeDescriptionCount = 4;
+    vertexInput.pVertexAttributeDescriptions = attributes;
+
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = VK_CULL_MODE_NONE;  // glTF double-sided materials; single-sided back faces are hidden by depth
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = VK_TRUE;
+    depth.depthWriteEnable = VK_TRUE;
+    depth.depthCompareOp = wiring.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
+    std::vector<VkPipelineColorBlendAttachmentState> blend(wiring.targetFormats.size());
+    for (auto& b : blend) b.colorWriteMask = 0xF;  // UINT targets: no blending
+    VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    colorBlend.attachmentCount = uint32_t(blend.size());
+    colorBlend.pAttachments = blend.data();
+    VkDynamicState dynamicStates[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamic.dynamicStateCount = 2;
+    dynamic.pDynamicStates = dynamicStates;
+
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = uint32_t(wiring.targetFormats.size());
+    rendering.pColorAttachmentFormats = wiring.targetFormats.data();
+    rendering.depthAttachmentFormat = wiring.depthFormat;
+    rendering.stencilAttachmentFormat = isStencilFormat(wiring.depthFormat) ? wiring.depthFormat : VK_FORMAT_UNDEFINED;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+    info.stageCount = 2;
+    info.pStages = stages;
+    info.pVertexInputState = &vertexInput;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &colorBlend;
+    info.pDynamicState = &dynamic;
+    info.layout = layout;
+    VkPipeline pipeline;
+    ScopedStage timed(Stage::ShaderCompile);  // the driver compiles the shaders here
+    VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    vkDestroyShaderModule(ctx.device, vsModule, nullptr);
+    vkDestroyShaderModule(ctx.device, fsModule, nullptr);
+    return pipeline;
+}
+
+}  // namespace
+
+GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
+                              const Buffer& frameConstants, uint32_t width, uint32_t height) {
+    GBufferPass pass;
+    pass.clearDepth = wiring.reversedZ ? 0.0f : 1.0f;
+    for (VkFormat format : wiring.targetFormats) {
+        ImageDesc d;
+        d.format = format;
+        d.width = width;
+        d.height = height;
+        d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        pass.targets.push_back(createImage(ctx, d));
+    }
+    ImageDesc dd;
+    dd.format = wiring.depthFormat;
+    dd.width = width;
+    dd.height = height;
+    dd.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    dd.aspect = VK_IMAGE_ASPECT_DEPTH_BIT | (isStencilFormat(wiring.depthFormat) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+    dd.viewAspect = VK_IMAGE_ASPECT_DEPTH_BIT;  // sampled as depth only
+    pass.depth = createImage(ctx, dd);
+
+    const uint32_t textureCount = uint32_t(scene.textures.size());
+    const std::vector<Binding> bindings = {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount},
+    };
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    pass.setLayout = createSetLayout(ctx.device, bindings, stages);
+    pass.pipelineLayout = createPipelineLayout(ctx.device, {pass.setLayout}, sizeof(gpu::DrawConstants), stages);
+    pass.pool = createPoolFor(ctx.device, {bindings});
+    pass.set = allocateSet(ctx.device, pass.pool, pass.setLayout);
+    DescriptorWriter writer;
+    writer.buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
+        .buffer(pass.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materials.buffer);
+    for (uint32_t i = 0; i < textureCount; ++i)
+        writer.image(pass.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene.textures[i].view,
+                     scene.textureSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
+    writer.flush(ctx.device);
+    pass.pipeline = createGBufferPipeline(ctx, wiring, pass.pipelineLayout, textureCount);
+    return pass;
+}
+
+void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene) {
+    const VkExtent2D extent = pass.depth.extent;
+    for (const GpuImage& t : pass.targets)
+        transitionImage(cmd, t, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    transitionImage(cmd, pass.depth, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+
+    std::vector<VkRenderingAttachmentInfo> colors;
+    for (const GpuImage& t : pass.targets) {
+        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = t.view;
+        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        a.clearValue.color.uint32[0] = a.clearValue.color.uint32[1] = 0;
+        a.clearValue.color.uint32[2] = a.clearValue.color.uint32[3] = 0;
+        colors.push_back(a);
+    }
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = pass.depth.view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {pass.clearDepth, 0};
+    VkRenderingAttachmentInfo stencil = depth;
+
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, extent};
+    info.layerCount = 1;
+    info.colorAttachmentCount = uint32_t(colors.size());
+    info.pColorAttachments = colors.data();
+    info.pDepthAttachment = &depth;
+    info.pStencilAttachment = (pass.depth.aspect & VK_IMAGE_ASPECT_STENCIL_BIT) ? &stencil : nullptr;
+    vkCmdBeginRendering(cmd, &info);
+    VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0.0f, 1.0f};
+    VkRect2D scissor{{0, 0}, extent};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipelineLayout, 0, 1, &pass.set, 0, nullptr);
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &scene.vertices.buffer, &offset);
+    vkCmdBindIndexBuffer(cmd, scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    for (size_t i = 0; i < scene.draws.size(); ++i) {
+        vkCmdPushConstants(cmd, pass.pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(gpu::DrawConstants), &scene.draws[i]);
+        const Draw& d = scene.drawRanges[i];
+        vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+    }
+    vkCmdEndRendering(cmd);
+    for (const GpuImage& t : pass.targets)
+        transitionImage(cmd, t, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    transitionImage(cmd, pass.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+}
+
+void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {
+    for (auto& t : pass.targets) destroyImage(ctx, t);
+    pass.targets.clear();
+    destroyImage(ctx, pass.depth);
+    if (pass.pipeline) vkDestroyPipeline(ctx.device, pass.pipeline, nullptr);
+    if (pass.pipelineLayout) vkDestroyPipelineLayout(ctx.device, pass.pipelineLayout, nullptr);
+    if (pass.setLayout) vkDestroyDescriptorSetLayout(ctx.device, pass.setLayout, nullptr);
+    if (pass.pool) vkDestroyDescriptorPool(ctx.device, pass.pool, nullptr);
+    pass = GBufferPass{};
+}
+
+}  // namespace gbl

@@ -1,0 +1,582 @@
+#include "report_html.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <optional>
+
+#include "error.h"
+#include "file_io.h"
+#include "report_csv.h"
+#include "report_html_template.h"
+#include "report_json.h"
+
+namespace gbl {
+
+std::string htmlEscape(const std::string& text) {
+    std::string out;
+    out.reserve(text.size() + 8);
+    for (char ch : text) {
+        switch (ch) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&#39;"; break;
+            default: out += ch;
+        }
+    }
+    return out;
+}
+
+std::string urlPathEscape(const std::string& path) {
+    static const char* kHex = "0123456789ABCDEF";
+    std::string out;
+    for (unsigned char ch : path) {
+        const bool plain = (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') ||
+                           ch == '-' || ch == '.' || ch == '_' || ch == '~' || ch == '/';
+        if (plain) {
+            out += char(ch);
+        } else {
+            out += '%';
+            out += kHex[ch >> 4];
+            out += kHex[ch & 15];
+        }
+    }
+    return out;
+}
+
+namespace {
+const char* kInfinity = "\xE2\x88\x9E";  // ∞
+
+std::string nonFinite(double v) {
+    if (std::isnan(v)) return "NaN";
+    return v > 0 ? kInfinity : std::string("-") + kInfinity;
+}
+
+std::string printf1(const char* format, int precision, double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, format, precision, v);
+    return buffer;
+}
+}  // namespace
+
+std::string formatSignificant(double v, int digits) {
+    if (!std::isfinite(v)) return nonFinite(v);
+    if (v == 0.0) return "0";
+    digits = std::max(digits, 1);
+    // The exponent after rounding to `digits` (9.996 -> 1.00e+01), so "10.0", not "9.996" or "10.00".
+    const std::string scientific = printf1("%.*e", digits - 1, v);
+    const int exponent = std::atoi(scientific.c_str() + scientific.find('e') + 1);
+    if (exponent < -4 || exponent >= 6) return scientific.substr(0, scientific.find('e')) + "e" +
+                                               (exponent < 0 ? "-" : "+") + (std::abs(exponent) < 10 ? "0" : "") +
+                                               std::to_string(std::abs(exponent));
+    return printf1("%.*f", std::max(0, digits - 1 - exponent), v);
+}
+
+std::string formatFixed(double v, int decimals) {
+    if (!std::isfinite(v)) return nonFinite(v);
+    std::string text = printf1("%.*f", std::max(decimals, 0), v);
+    if (text.find_first_not_of("-0.") == std::string::npos && text[0] == '-') text.erase(0, 1);  // no "-0.00"
+    return text;
+}
+
+std::vector<size_t> paretoFront(const std::vector<std::pair<double, double>>& points, bool higherIsBetter) {
+    std::vector<size_t> order;
+    for (size_t i = 0; i < points.size(); ++i)
+        if (!std::isnan(points[i].first) && !std::isnan(points[i].second)) order.push_back(i);
+    const auto better = [&](double a, double b) { return higherIsBetter ? a > b : a < b; };
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        if (points[a].first != points[b].first) return points[a].first < points[b].first;
+        return better(points[a].second, points[b].second);
+    });
+    std::vector<size_t> front;
+    for (size_t i : order)
+        if (front.empty() || better(points[i].second, points[front.back()].second)) front.push_back(i);
+    return front;
+}
+
+namespace {
+
+// Full precision for data-v (sorting) attributes; JavaScript's Number() reads "Infinity".
+std::string dataNumber(double v) {
+    if (std::isnan(v)) return "NaN";
+    if (std::isinf(v)) return v > 0 ? "Infinity" : "-Infinity";
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+    return std::string(buffer, result.ptr);
+}
+
+std::optional<double> attributeMean(const RunReport& r, ErrorAttribute a) {
+    const auto& all = r.attributes[a].all;
+    return all ? std::optional<double>(all->error.mean) : std::nullopt;
+}
+
+// ---- The summary table -------------------------------------------------------------------------
+
+struct TableColumn {
+    const char* key;       // data-key, for sorting and #sort=
+    const char* header;    // HTML (already escaped)
+    const char* tooltip;
+    bool numeric;
+    const char* firstDir;  // the first click's direction: the better end first
+    std::function<std::optional<double>(const RunReport&)> value;  // numeric columns
+    std::function<std::string(double)> format;
+};
+
+std::vector<TableColumn> numericColumns() {
+    const auto sig3 = [](double v) { return formatSignificant(v, 3); };
+    const auto imageValue = [](double ImageErrors::*field) {
+        return [field](const RunReport& r) { return r.image ? std::optional<double>(*r.image.*field) : std::nullopt; };
+    };
+    return {
+        {"bpp", "Bytes/px", "G-buffer bytes per pixel: targets + depth-stencil + light buffers", true, "ascending",
+         [](const RunReport& r) { return std::optional<double>(r.bytesPerPixel.total); },
+         [](double v) { return formatFixed(v, 0); }},
+        {"gbps", "GB/s 1080p60", "Render-target traffic at 1920x1080, 1 sample, 60 frames/s (model: src/measure/bandwidth.h)",
+         true, "ascending", [](const RunReport& r) { return r.gigabytesPerSecond1080p60(); },
+         [](double v) { return formatFixed(v, 2); }},
+        {"normal_mean", "Normal mean&nbsp;&deg;", "Mean angle between stored and reference normals, degrees", true,
+         "ascending", [](const RunReport& r) { return attributeMean(r, ErrorAttribute::Normal); }, sig3},
+        {"normal_p99", "Normal p99&nbsp;&deg;", "99th percentile of the normal angle error, degrees", true, "ascending",
+         [](const RunReport& r) {
+             const auto& all = r.attributes[ErrorAttribute::Normal].all;
+             return all ? std::optional<double>(all->error.p99) : std::nullopt;
+         },
+         sig3},
+        {"albedo_de", "Albedo &Delta;E", "Base colour, mean CIEDE2000", true, "ascending",
+         [](const RunReport& r) { return attributeMean(r, ErrorAttribute::BaseColor); }, sig3},
+        {"specular_de", "Specular &Delta;E", "Specular colour (F0), mean CIEDE2000", true, "ascending",
+         [](const RunReport& r) { return attributeMean(r, ErrorAttribute::SpecularColor); }, sig3},
+        {"roughness", "Roughness err", "Roughness, mean absolute error", true, "ascending",
+         [](const RunReport& r) { return attributeMean(r, ErrorAttribute::Roughness); }, sig3},
+        {"psnr", "PSNR dB", "PSNR of the tone-mapped sRGB image, peak 1 (&#8734; = identical to the reference)", true,
+         "descending", imageValue(&ImageErrors::psnrToneMapped), [](double v) { return formatFixed(v, 2); }},
+        {"flip", "FLIP mean", "Mean LDR-FLIP error, 0 (identical) to 1", true, "ascending",
+         imageValue(&ImageErrors::flipMean), [](double v) { return formatFixed(v, 4); }},
+    };
+}
+
+struct Ids {
+    std::map<std::string, int> used;
+    std::string make(const std::string& text) {
+        std::string id = "run-";
+        for (unsigned char ch : text) {
+            if (std::isalnum(ch)) id += char(std::tolower(ch));
+            else if (id.back() != '-') id += '-';
+        }
+        while (id.size() > 4 && id.back() == '-') id.pop_back();
+        const int n = ++used[id];
+        return n == 1 ? id : id + "-" + std::to_string(n);
+    }
+};
+
+void writeTable(std::string& out, const ReportModel& model, const std::vector<std::string>& ids) {
+    const std::vector<TableColumn> columns = numericColumns();
+    out += "<table id=\"layouts\" class=\"data sortable\">\n<thead><tr>"
+           "<th data-key=\"layout\" data-dir=\"ascending\" title=\"Layout name\">Layout</th>"
+           "<th data-key=\"ibl\" data-dir=\"ascending\" title=\"Image-based lighting mode\">IBL</th>";
+    for (const TableColumn& c : columns)
+        out += std::string("<th class=\"num\" data-key=\"") + c.key + "\" data-dir=\"" + c.firstDir + "\" title=\"" +
+               c.tooltip + "\">" + c.header + "</th>";
+    out += "<th data-key=\"status\" data-dir=\"ascending\">Status</th></tr></thead>\n<tbody>\n";
+    for (size_t i = 0; i < model.runs.size(); ++i) {
+        const RunReport& r = model.runs[i];
+        const bool failed = r.status == RunStatus::Failed;
+        out += failed ? "<tr class=\"failed\">" : "<tr>";
+        out += "<td><a href=\"#" + ids[i] + "\" title=\"" + htmlEscape(r.title) + "\">" + htmlEscape(r.layout) +
+               "</a></td><td>" + htmlEscape(r.iblMode) + "</td>";
+        for (const TableColumn& c : columns) {
+            const std::optional<double> v = c.value(r);
+            if (v) out += "<td class=\"num\" data-v=\"" + dataNumber(*v) + "\">" + c.format(*v) + "</td>";
+            else out += "<td class=\"num\"></td>";
+        }
+        if (failed) out += "<td>failed<div class=\"errtext\">" + htmlEscape(r.error) + "</div></td>";
+        else out += "<td class=\"status-ok\">ok</td>";
+        out += "</tr>\n";
+    }
+    out += "</tbody>\n</table>\n";
+}
+
+// ---- The plot ------------------------------------------------------------------------------------
+
+const char* kSeriesColors[] = {"#1f5fa8", "#c0392b", "#218c4b", "#7b3fa0", "#d9730d", "#6b4f3a", "#0f8a8a"};
+
+struct Axis {
+    double lo = 0, hi = 1, step = 0.2;
+    int decimals = 1;
+};
+
+// Ticks at 1, 2, 2.5 or 5 x 10^k, about `count` of them over [lo, hi].
+Axis niceAxis(double lo, double hi, int count, bool fromZero) {
+    if (fromZero) lo = std::min(lo, 0.0);
+    if (!(hi > lo)) hi = lo + (lo == 0 ? 1.0 : std::abs(lo) * 0.1);
+    const double raw = (hi - lo) / count;
+    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+    double step = magnitude;
+    for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+        if (m * magnitude >= raw) {
+            step = m * magnitude;
+            break;
+        }
+    Axis a;
+    a.step = step;
+    a.lo = std::floor(lo / step + 1e-9) * step;
+    a.hi = std::ceil(hi / step - 1e-9) * step;
+    if (a.hi <= a.lo) a.hi = a.lo + step;
+    const double fractional = step / std::pow(10.0, std::floor(std::log10(step)));
+    a.decimals = std::max(0, -int(std::floor(std::log10(step))) + (fractional == 2.5 ? 1 : 0));
+    return a;
+}
+
+struct Box {
+    double x0, y0, x1, y1;
+    bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+struct PlotSpec {
+    const char* id;          // figure id: plot-<id>
+    const char* yLabel;
+    bool higherIsBetter;
+    bool yFromZero;
+    double ImageErrors::*field;
+    std::function<std::string(double)> format;
+};
+
+void writePlot(std::string& out, const ReportModel& model, const PlotSpec& spec, bool hidden) {
+    // Series: one per IBL mode, in the run info's order, then any others the runs name.
+    std::vector<std::string> modes = model.run.iblModes;
+    for (const RunReport& r : model.runs)
+        if (std::find(modes.begin(), modes.end(), r.iblMode) == modes.end()) modes.push_back(r.iblMode);
+    struct Point {
+        double x, y;
+        const RunReport* run;
+    };
+    std::vector<std::vector<Point>> series(modes.size());
+    double xMax = 0, yMin = INFINITY, yMax = -INFINITY;
+    bool anyInfinite = false;
+    for (const RunReport& r : model.runs) {
+        if (r.status != RunStatus::Ok || !r.image) continue;
+        const double y = *r.image.*spec.field;
+        if (std::isnan(y)) continue;
+        const size_t s = size_t(std::find(modes.begin(), modes.end(), r.iblMode) - modes.begin());
+        series[s].push_back({double(r.bytesPerPixel.total), y, &r});
+        xMax = std::max(xMax, double(r.bytesPerPixel.total));
+        if (std::isinf(y)) {
+            anyInfinite = true;
+        } else {
+            yMin = std::min(yMin, y);
+            yMax = std::max(yMax, y);
+        }
+    }
+    out += std::string("<figure class=\"plot\" id=\"plot-") + spec.id + "\"" + (hidden ? " hidden" : "") + ">\n";
+    const double W = 900, H = 460, left = 70, right = 150, top = anyInfinite ? 46 : 24, bottom = 52;
+    const double plotW = W - left - right, plotH = H - top - bottom;
+    out += "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + formatFixed(W, 0) + " " + formatFixed(H, 0) +
+           "\" role=\"img\" aria-label=\"" + htmlEscape(spec.yLabel) + " against bytes per pixel\" "
+           "font-family=\"system-ui, 'DejaVu Sans', Arial, sans-serif\" font-size=\"12\">\n";
+    size_t pointCount = 0;
+    for (const auto& s : series) pointCount += s.size();
+    if (pointCount == 0) {
+        out += "<text x=\"" + formatFixed(W / 2, 0) + "\" y=\"" + formatFixed(H / 2, 0) +
+               "\" text-anchor=\"middle\" fill=\"#5b6672\">No measured runs to plot.</text>\n</svg>\n</figure>\n";
+        return;
+    }
+    if (yMin > yMax) yMin = 0, yMax = 1;  // every value infinite
+    const Axis xa = niceAxis(0, xMax * 1.05, 6, true);
+    const Axis ya = niceAxis(spec.yFromZero ? 0 : yMin - (yMax - yMin) * 0.05, yMax + (yMax - yMin) * 0.05, 5,
+                             spec.yFromZero);
+    const auto px = [&](double x) { return left + (x - xa.lo) / (xa.hi - xa.lo) * plotW; };
+    const auto py = [&](double y) {
+        if (std::isinf(y)) return y > 0 ? top - 22 : top + plotH;  // +inf: the "∞" lane above the axes
+        return top + plotH - (y - ya.lo) / (ya.hi - ya.lo) * plotH;
+    };
+    const auto f1 = [](double v) { return formatFixed(v, 1); };
+    // Grid and ticks.
+    out += "<g stroke=\"#e3e7eb\" stroke-width=\"1\">\n";
+    for (double x = xa.lo; x <= xa.hi + xa.step * 1e-6; x += xa.step)
+        out += "<line x1=\"" + f1(px(x)) + "\" y1=\"" + f1(top) + "\" x2=\"" + f1(px(x)) + "\" y2=\"" +
+               f1(top + plotH) + "\"/>\n";
+    for (double y = ya.lo; y <= ya.hi + ya.step * 1e-6; y += ya.step)
+        out += "<line x1=\"" + f1(left) + "\" y1=\"" + f1(py(y)) + "\" x2=\"" + f1(left + plotW) + "\" y2=\"" +
+               f1(py(y)) + "\"/>\n";
+    out += "</g>\n<rect x=\"" + f1(left) + "\" y=\"" + f1(top) + "\" width=\"" + f1(plotW) + "\" height=\"" + f1(plotH) +
+           "\" fill=\"none\" stroke=\"#9aa5b1\"/>\n<g fill=\"#5b6672\">\n";
+    for (double x = xa.lo; x <= xa.hi + xa.step * 1e-6; x += xa.step)
+        out += "<text x=\"" + f1(px(x)) + "\" y=\"" + f1(top + plotH + 16) + "\" text-anchor=\"middle\">" +
+               formatFixed(x, xa.decimals) + "</text>\n";
+    for (double y = ya.lo; y <= ya.hi + ya.step * 1e-6; y += ya.step)
+        out += "<text x=\"" + f1(left - 6) + "\" y=\"" + f1(py(y) + 4) + "\" text-anchor=\"end\">" +
+               formatFixed(y, ya.decimals) + "</text>\n";
+    if (anyInfinite)
+        out += "<text x=\"" + f1(left - 6) + "\" y=\"" + f1(py(INFINITY) + 5) + "\" text-anchor=\"end\" font-size=\"15\">" +
+               kInfinity + "</text>\n<line x1=\"" + f1(left) + "\" y1=\"" + f1(py(INFINITY)) + "\" x2=\"" +
+               f1(left + plotW) + "\" y2=\"" + f1(py(INFINITY)) + "\" stroke=\"#e3e7eb\" stroke-dasharray=\"3 3\"/>\n";
+    out += "<text x=\"" + f1(left + plotW / 2) + "\" y=\"" + f1(H - 10) +
+           "\" text-anchor=\"middle\" fill=\"#1d232b\">G-buffer bytes per pixel (targets + depth + light buffers)</text>\n";
+    out += "<text transform=\"translate(16 " + f1(top + plotH / 2) + ") rotate(-90)\" text-anchor=\"middle\" "
+           "fill=\"#1d232b\">" + htmlEscape(spec.yLabel) + "</text>\n</g>\n";
+    // Pareto fronts, then points, then labels (placed to avoid each other and the points).
+    std::vector<Box> taken;
+    for (size_t s = 0; s < series.size(); ++s) {
+        std::vector<std::pair<double, double>> xy;
+        for (const Point& p : series[s]) xy.push_back({p.x, p.y});
+        const std::vector<size_t> front = paretoFront(xy, spec.higherIsBetter);
+        if (front.size() >= 2) {
+            std::string points;
+            for (size_t i : front) points += f1(px(series[s][i].x)) + "," + f1(py(series[s][i].y)) + " ";
+            points.pop_back();
+            out += std::string("<polyline class=\"pareto\" fill=\"none\" stroke=\"") + kSeriesColors[s % 7] +
+                   "\" stroke-width=\"2\" stroke-opacity=\"0.75\" points=\"" + points + "\"/>\n";
+        }
+        for (const Point& p : series[s]) taken.push_back({px(p.x) - 5, py(p.y) - 5, px(p.x) + 5, py(p.y) + 5});
+    }
+    for (size_t s = 0; s < series.size(); ++s) {
+        const char* color = kSeriesColors[s % 7];
+        for (const Point& p : series[s]) {
+            const std::string tip = p.run->layout + " (" + p.run->iblMode + "): " + formatFixed(p.x, 0) + " B/px, " +
+                                    spec.yLabel + " " + spec.format(p.y);
+            out += "<circle cx=\"" + f1(px(p.x)) + "\" cy=\"" + f1(py(p.y)) + "\" r=\"4.5\" fill=\"" + color +
+                   "\" stroke=\"#fff\" stroke-width=\"1\"><title>" + htmlEscape(tip) + "</title></circle>\n";
+        }
+    }
+    out += "<g font-size=\"11\" fill=\"#1d232b\">\n";
+    for (size_t s = 0; s < series.size(); ++s)
+        for (const Point& p : series[s]) {
+            const double cx = px(p.x), cy = py(p.y);
+            const double w = 6.4 * double(p.run->layout.size()) + 2, h = 13;
+            struct Candidate {
+                double x, y;  // text anchor (start) and baseline
+            };
+            const Candidate candidates[] = {{cx + 7, cy + 4},      {cx + 7, cy - 7},      {cx + 7, cy + 15},
+                                            {cx - 7 - w, cy + 4},  {cx - w / 2, cy - 9},  {cx - w / 2, cy + 18},
+                                            {cx - 7 - w, cy - 7},  {cx - 7 - w, cy + 15}, {cx + 7, cy - 18},
+                                            {cx + 7, cy + 26}};
+            const Candidate* chosen = &candidates[0];
+            for (const Candidate& c : candidates) {
+                const Box b{c.x, c.y - h + 3, c.x + w, c.y + 3};
+                const bool inside = b.x0 >= 2 && b.x1 <= W - 2 && b.y0 >= 2 && b.y1 <= H - bottom + 14;
+                if (inside && std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(b); })) {
+                    chosen = &c;
+                    break;
+                }
+            }
+            taken.push_back({chosen->x, chosen->y - h + 3, chosen->x + w, chosen->y + 3});
+            out += "<text x=\"" + f1(chosen->x) + "\" y=\"" + f1(chosen->y) + "\">" + htmlEscape(p.run->layout) +
+                   "</text>\n";
+        }
+    out += "</g>\n</svg>\n<div class=\"legend\">";
+    for (size_t s = 0; s < series.size(); ++s) {
+        if (series[s].empty()) continue;
+        out += std::string("<span><svg width=\"12\" height=\"12\" viewBox=\"0 0 12 12\"><circle cx=\"6\" cy=\"6\" "
+                           "r=\"4.5\" fill=\"") +
+               kSeriesColors[s % 7] + "\"/></svg>layouts, IBL " + htmlEscape(modes[s]) + "</span>";
+    }
+    out += std::string("<span><svg width=\"26\" height=\"12\" viewBox=\"0 0 26 12\"><line x1=\"1\" y1=\"6\" x2=\"25\" "
+                       "y2=\"6\" stroke=\"#5b6672\" stroke-width=\"2\"/></svg>Pareto front, per IBL mode (no layout is "
+                       "both smaller and ") +
+           (spec.higherIsBetter ? "higher" : "lower") + ")</span>";
+    if (anyInfinite) out += std::string("<span>") + kInfinity + ": identical to the reference</span>";
+    out += "</div>\n</figure>\n";
+}
+
+// ---- Per-run sections ----------------------------------------------------------------------------
+
+void writeImage(std::string& out, const std::string& path, const std::string& caption, const char* figureClass = "") {
+    if (path.empty()) return;
+    const std::string src = urlPathEscape(path);
+    out += std::string("<figure") + (*figureClass ? std::string(" class=\"") + figureClass + "\"" : "") + "><a href=\"" +
+           src + "\"><img src=\"" + src + "\" alt=\"" + htmlEscape(caption) +
+           "\" onerror=\"this.classList.add('missing')\"></a><figcaption>" + htmlEscape(caption) +
+           "</figcaption></figure>\n";
+}
+
+void statRow(std::string& out, const char* name, const std::string& value, const char* unit = "") {
+    out += std::string("<tr><th>") + name + "</th><td class=\"num\">" + value + "</td><td class=\"muted\">" + unit +
+           "</td></tr>\n";
+}
+void textRow(std::string& out, const char* name, const std::string& valueHtml) {
+    out += std::string("<tr><th>") + name + "</th><td class=\"text\" colspan=\"2\">" + valueHtml + "</td></tr>\n";
+}
+
+void writeAttributeTable(std::string& out, const AttributeErrorTable& table) {
+    bool any = false;
+    for (ErrorAttribute a : kErrorAttributes) any = any || !table[a].empty();
+    if (!any) return;
+    out += "<table class=\"small\"><thead><tr><th>Attribute</th><th>Unit</th><th>Class</th>"
+           "<th class=\"num\">Mean</th><th class=\"num\">p99</th><th class=\"num\">Max</th>"
+           "<th class=\"num\">RMSE</th></tr></thead><tbody>\n";
+    const std::pair<const char*, std::optional<AttributeStats> AttributeErrors::*> classes[] = {
+        {"all", &AttributeErrors::all}, {"metal", &AttributeErrors::metal}, {"dielectric", &AttributeErrors::dielectric}};
+    for (ErrorAttribute a : kErrorAttributes)
+        for (const auto& [className, member] : classes) {
+            const auto& s = table[a].*member;
+            if (!s) continue;
+            out += std::string("<tr><td>") + errorAttributeName(a) + "</td><td class=\"muted\">" +
+                   errorAttributeUnit(a) + "</td><td class=\"muted\">" + className + "</td><td class=\"num\">" +
+                   formatSignificant(s->error.mean, 3) + "</td><td class=\"num\">" + formatSignificant(s->error.p99, 3) +
+                   "</td><td class=\"num\">" + formatSignificant(s->error.max, 3) + "</td><td class=\"num\">" +
+                   (s->rmse ? formatSignificant(*s->rmse, 3) : std::string()) + "</td></tr>\n";
+        }
+    out += "</tbody></table>\n";
+}
+
+void writeRunSection(std::string& out, const ReportModel& model, const RunReport& r, const std::string& id) {
+    out += "<section class=\"layout\" id=\"" + id + "\">\n<h2>" + htmlEscape(r.layout) +
+           (r.title.empty() ? "" : " &mdash; " + htmlEscape(r.title)) + " <span class=\"muted\">(IBL " +
+           htmlEscape(r.iblMode) + ")</span></h2>\n";
+    if (!r.source.empty()) out += "<p class=\"cite\">" + htmlEscape(r.source) + "</p>\n";
+    if (r.status == RunStatus::Failed)
+        out += "<div class=\"errorbox\"><strong>Failed:</strong> " + htmlEscape(r.error) + "</div>\n";
+    out += "<div class=\"cols\">\n<table class=\"small\"><tbody>\n";
+    textRow(out, "Pipeline", htmlEscape(r.pipeline));
+    statRow(out, "Targets", formatFixed(r.bytesPerPixel.targets, 0), "B/px");
+    statRow(out, "Depth-stencil", formatFixed(r.bytesPerPixel.depth, 0), "B/px");
+    if (r.bytesPerPixel.lightBuffers) statRow(out, "Light buffers", formatFixed(r.bytesPerPixel.lightBuffers, 0), "B/px");
+    statRow(out, "Total", formatFixed(r.bytesPerPixel.total, 0), "B/px");
+    if (const auto gbps = r.gigabytesPerSecond1080p60()) statRow(out, "1080p60 traffic", formatFixed(*gbps, 2), "GB/s");
+    if (r.times) {
+        statRow(out, "G-buffer pass", formatSignificant(r.times->gbufferMs, 3), "ms");
+        statRow(out, "Lighting pass", formatSignificant(r.times->lightingMs, 3), "ms");
+        textRow(out, "Timed on", htmlEscape(r.times->device));
+    }
+    out += "</tbody></table>\n";
+    if (r.image) {
+        const ImageErrors& e = *r.image;
+        out += "<table class=\"small\"><tbody>\n";
+        statRow(out, "PSNR tone-mapped", formatFixed(e.psnrToneMapped, 2), "dB");
+        statRow(out, "RMSE tone-mapped", formatSignificant(e.rmseToneMapped, 3));
+        statRow(out, "PSNR linear HDR", formatFixed(e.psnrLinear, 2), "dB");
+        statRow(out, "RMSE linear HDR", formatSignificant(e.rmseLinear, 3));
+        statRow(out, "Max |error|", formatSignificant(e.maxAbs, 3), "linear");
+        statRow(out, "p99 |error|", formatSignificant(e.p99Abs, 3), "linear");
+        statRow(out, "FLIP mean", formatFixed(e.flipMean, 4));
+        statRow(out, "FLIP median", formatFixed(e.flipMedian, 4));
+        if (e.hdrFlipMean)
+            statRow(out, "HDR-FLIP mean", formatFixed(*e.hdrFlipMean, 4),
+                    (std::to_string(e.hdrFlipExposures) + " exposures").c_str());
+        out += "</tbody></table>\n";
+    }
+    writeAttributeTable(out, r.attributes);
+    out += "</div>\n";
+    const RunImages& im = r.images;
+    const ReferenceImage* reference = model.reference.find(r.iblMode);
+    if (!reference && model.reference.images.size() == 1) reference = &model.reference.images[0];
+    std::string gallery;
+    if (reference && !im.render.empty())
+        writeImage(gallery, reference->render, "Reference (" + model.reference.layout + ")");
+    writeImage(gallery, im.render, "Render: " + r.layout);
+    writeImage(gallery, im.errorHeatmap, "Error heat map");
+    writeImage(gallery, im.flip, "FLIP");
+    writeImage(gallery, im.normalError, "Normal error");
+    writeImage(gallery, im.difference, "Difference (amplified)");
+    if (!gallery.empty()) out += "<div class=\"gallery\">\n" + gallery + "</div>\n";
+    if (!im.errorsExr.empty())
+        out += "<p class=\"hint\">Per-pixel errors (float): <a href=\"" + urlPathEscape(im.errorsExr) + "\"><code>" +
+               htmlEscape(im.errorsExr) + "</code></a></p>\n";
+    if (!im.crops.empty()) {
+        out += "<h3>Crops</h3>\n<div class=\"crops\">\n";
+        for (const ReportCrop& c : im.crops) {
+            out += "<div class=\"crop\"><div class=\"where\">x " + std::to_string(c.x) + ", y " + std::to_string(c.y) +
+                   ", " + std::to_string(c.w) + "&times;" + std::to_string(c.h) + "</div>\n";
+            writeImage(out, c.reference, "Reference");
+            writeImage(out, c.layout, r.layout);
+            writeImage(out, c.heat, "Error");
+            out += "</div>\n";
+        }
+        out += "</div>\n";
+    }
+    out += "</section>\n";
+}
+
+void infoRow(std::string& out, const char* name, const std::string& valueHtml) {
+    out += std::string("<dt>") + name + "</dt><dd>" + valueHtml + "</dd>";
+}
+
+}  // namespace
+
+std::string reportHtml(const ReportModel& model) {
+    const ReportRunInfo& run = model.run;
+    std::string out;
+    out.reserve(64 * 1024 + model.runs.size() * 8 * 1024);
+    out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+           "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+           "<title>gbufferlab report";
+    if (!run.scene.empty()) out += " &mdash; " + htmlEscape(run.scene);
+    out += "</title>\n<style>";
+    out += report_template::kCss;
+    out += "</style>\n</head>\n<body>\n<main>\n<header class=\"run\">\n<h1>G-buffer layout comparison</h1>\n";
+    size_t failed = 0;
+    for (const RunReport& r : model.runs) failed += r.status == RunStatus::Failed;
+    out += "<dl class=\"info\">";
+    infoRow(out, "Scene", htmlEscape(run.scene));
+    infoRow(out, "Environment", htmlEscape(run.environment));
+    infoRow(out, "Resolution", std::to_string(run.width) + "&times;" + std::to_string(run.height));
+    infoRow(out, "Reference", htmlEscape(model.reference.layout));
+    infoRow(out, "Device", htmlEscape(run.device.name) +
+                               (run.device.type.empty() ? "" : " <span class=\"muted\">(" +
+                                                                   htmlEscape(run.device.type) + ")</span>"));
+    infoRow(out, "Driver", htmlEscape(run.device.driver));
+    infoRow(out, "Date", htmlEscape(run.date));
+    std::string modes;
+    for (const std::string& m : run.iblModes) modes += (modes.empty() ? "" : ", ") + htmlEscape(m);
+    infoRow(out, "IBL modes", modes);
+    infoRow(out, "Runs", std::to_string(model.runs.size()) + (failed ? ", <span style=\"color:var(--bad)\">" +
+                                                                           std::to_string(failed) + " failed</span>"
+                                                                     : std::string()));
+    out += "</dl>\n";
+    if (!run.commandLine.empty()) out += "<pre class=\"cmd\"><code>" + htmlEscape(run.commandLine) + "</code></pre>\n";
+    if (!run.notes.empty()) {
+        out += "<ul class=\"notes\">";
+        for (const std::string& n : run.notes) out += "<li>" + htmlEscape(n) + "</li>";
+        out += "</ul>\n";
+    }
+    out += "</header>\n";
+
+    Ids idMaker;
+    std::vector<std::string> ids;
+    for (const RunReport& r : model.runs) ids.push_back(idMaker.make(r.layout + "-" + r.iblMode));
+
+    out += "<section id=\"summary\">\n<h2>Layouts</h2>\n";
+    writeTable(out, model, ids);
+    out += "<p class=\"hint\">Click a column header to sort (again to reverse). Errors are against the float "
+           "reference; means are over covered pixels. Also in <a href=\"report.csv\">report.csv</a> and "
+           "<a href=\"report.json\">report.json</a>.</p>\n</section>\n";
+
+    out += "<section id=\"plots\">\n<h2>Error against bytes per pixel</h2>\n<div class=\"toggle\" role=\"group\">"
+           "<button type=\"button\" data-plot=\"flip\" aria-pressed=\"true\">FLIP mean</button>"
+           "<button type=\"button\" data-plot=\"psnr\" aria-pressed=\"false\">PSNR</button></div>\n";
+    writePlot(out, model, {"flip", "FLIP mean", false, true, &ImageErrors::flipMean,
+                           [](double v) { return formatFixed(v, 4); }},
+              false);
+    writePlot(out, model, {"psnr", "PSNR dB (tone-mapped)", true, false, &ImageErrors::psnrToneMapped,
+                           [](double v) { return formatFixed(v, 2); }},
+              true);
+    out += "</section>\n";
+
+    for (size_t i = 0; i < model.runs.size(); ++i) writeRunSection(out, model, model.runs[i], ids[i]);
+    out += "<footer>Written by gbufferlab. Images are files beside this page; numbers are also in report.csv and "
+           "report.json (schema: docs/report-schema.md).</footer>\n</main>\n<script>";
+    out += report_template::kScript;
+    out += "</script>\n</body>\n</html>\n";
+    return out;
+}
+
+void writeReportHtml(const std::filesystem::path& path, const ReportModel& model) {
+    writeFileAtomic(path, reportHtml(model));
+}
+
+void writeReport(const std::filesystem::path& dir, const ReportModel& model) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throwUserError(dir.string() + ": cannot create the report directory: " + ec.message());
+    writeReportJson(dir / "report.json", model);
+    writeReportCsv(dir / "report.csv", model);
+    writeReportHtml(dir / "report.html", model);
+}
+
+}  // namespace gbl

@@ -1,0 +1,681 @@
+// The compiled, multithreaded CPU codec (src/codec/cpu_codec.h) against the per-pixel codec it replaced,
+// kept below as the specification (`reference`, the former src/codec/cpu_codec.cpp with its string
+// dispatch): for every layout in layouts/, the words of a 1-thread run, of several multithreaded
+// runs and of the reference must be identical, and so must the decoded Surfaces, bit for bit.
+// Also: the fast encoder variants it uses (src/encoding/encodings_fast.h: best-fit normal search, sRGB,
+// float16/11/10) return the reference's codes for millions of random and adversarial inputs, and
+// parallelFor covers its range and passes exceptions on.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cpu_codec.h"
+#include "encoding_registry.h"
+#include "encodings.h"
+#include "layout_catalog.h"
+#include "encodings_fast.h"
+#include "parallel_for.h"
+#include "wiring_codegen.h"
+
+namespace gbl {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// The former per-pixel codec, unchanged apart from its namespace.
+namespace reference {
+
+using namespace enc;
+
+int components(Attribute a) { return attributeInfo(a).components; }
+
+float* member(Surface& s, Attribute a) {
+    switch (a) {
+        case Attribute::Normal: return &s.normal.x;
+        case Attribute::BaseColor: return &s.baseColor.x;
+        case Attribute::Metallic: return &s.metallic;
+        case Attribute::Roughness: return &s.roughness;
+        case Attribute::Specular: return &s.specular;
+        case Attribute::SpecularColor: return &s.specularColor.x;
+        case Attribute::DiffuseColor: return &s.diffuseColor.x;
+        case Attribute::Occlusion: return &s.occlusion;
+        case Attribute::Emissive: return &s.emissive.x;
+        case Attribute::Position: return &s.position.x;
+        default: return nullptr;
+    }
+}
+const float* member(const Surface& s, Attribute a) { return member(const_cast<Surface&>(s), a); }
+
+bool isScalar(const Field& f) {
+    return f.encoding == kIdEncoding || findEncoding(f.encoding)->kind == AttributeKind::Scalar;
+}
+
+float componentValue(const Field& f, const Surface& s, int i) {
+    if (const float* m = member(s, f.attribute)) return m[i];
+    return f.value.empty() ? 0.0f : float(f.value[std::min<size_t>(size_t(i), f.value.size() - 1)]);
+}
+vec3 wholeValue(const Field& f, const Surface& s) {
+    return vec3(componentValue(f, s, 0), componentValue(f, s, 1), componentValue(f, s, 2));
+}
+
+uint scalarEncode(const Field& f, float x, size_t i) {
+    const std::string& e = f.encoding;
+    const uint b = uint(f.bitsOfCode(i));
+    if (e == kIdEncoding) {
+        const double v = f.value.empty() ? 0.0 : f.value[std::min(i, f.value.size() - 1)];
+        return uint(v);
+    }
+    if (e == "unorm") return quantizeUnorm(x, b);
+    if (e == "snorm") return quantizeSnorm(x, b);
+    if (e == "float16") return encodeFloat16(x);
+    if (e == "float11") return encodeFloat11(x);
+    if (e == "float10") return encodeFloat10(x);
+    if (e == "float32") return encodeFloat32(x);
+    if (e == "depth24") return quantizeDepth24(x);
+    if (e == "gloss") return quantizeUnorm(glossFromRoughness(x), b);
+    if (e == "smoothness_cry") return quantizeUnorm(smoothnessFromRoughnessCry(x), b);
+    throw std::logic_error("cpu codec: no scalar encoder for " + e);
+}
+
+float scalarDecode(const Field& f, uint c, size_t i) {
+    const std::string& e = f.encoding;
+    const uint b = uint(f.bitsOfCode(i));
+    if (e == "unorm") return dequantizeUnorm(c, b);
+    if (e == "snorm") return dequantizeSnorm(c, b);
+    if (e == "float16") return decodeFloat16(c);
+    if (e == "float11") return decodeFloat11(c);
+    if (e == "float10") return decodeFloat10(c);
+    if (e == "float32") return decodeFloat32(c);
+    if (e == "depth24") return dequantizeDepth24(c);
+    if (e == "gloss") return roughnessFromGloss(dequantizeUnorm(c, b));
+    if (e == "smoothness_cry") return roughnessFromSmoothnessCry(dequantizeUnorm(c, b));
+    throw std::logic_error("cpu codec: no scalar decoder for " + e);
+}
+
+using ColorFn = vec3 (*)(vec3);
+bool colorTransform(const std::string& e, ColorFn& fwd, ColorFn& inv) {
+    if (e == "ycbcr" || e == "ycbcr_checkerboard") {
+        fwd = rgbToYCbCr;
+        inv = yCbCrToRgb;
+    } else if (e == "ycbcr_sqrt") {
+        fwd = rgbToYCbCrSqrt;
+        inv = yCbCrSqrtToRgb;
+    } else if (e == "ycocg" || e == "ycocg_checkerboard") {
+        fwd = rgbToYCoCg;
+        inv = yCoCgToRgb;
+    } else {
+        return false;
+    }
+    return true;
+}
+
+std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
+    std::vector<uint> c;
+    if (isScalar(f)) {
+        for (size_t i = 0; i < f.codes.size(); ++i) c.push_back(scalarEncode(f, componentValue(f, s, int(i)), i));
+        return c;
+    }
+    const std::string& e = f.encoding;
+    const uint b = uint(f.bitsOfCode(0));
+    const vec3 v = wholeValue(f, s);
+    ColorFn fwd = nullptr, inv = nullptr;
+    if (e == "srgb8") {
+        c = {encodeSrgb8(v.x), encodeSrgb8(v.y), encodeSrgb8(v.z)};
+    } else if (e == "luma") {
+        c = {quantizeUnorm(lumaBt601(v), b)};
+    } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
+        colorTransform(e, fwd, inv);
+        const vec3 t = fwd(v);
+        c = {quantizeUnorm(t.x, b), quantizeUnorm(chromaForPixel(pixel, vec2(t.y, t.z)), b)};
+    } else if (colorTransform(e, fwd, inv)) {
+        const vec3 t = fwd(v);
+        c = {quantizeUnorm(t.x, b), quantizeUnorm(t.y, b), quantizeUnorm(t.z, b)};
+    } else if (e == "normal_xyz" || e == "normal_bestfit" || e == "normal_xy_zsign") {
+        const uvec3 u = e == "normal_xyz"       ? encodeNormalXyz(v, b)
+                        : e == "normal_bestfit" ? encodeNormalBestFit(v)
+                                                : encodeNormalXyZSign(v, b);
+        c = {u.x, u.y, u.z};
+    } else {
+        const uvec2 u = e == "normal_spheremap"       ? encodeNormalSpheremap(v, b)
+                        : e == "normal_stereographic" ? encodeNormalStereographic(v, b)
+                        : e == "normal_octahedral"    ? encodeNormalOctahedral(v, b)
+                        : e == "normal_octahedral_precise" ? encodeNormalOctahedralPrecise(v, b)
+                                                           : throw std::logic_error("cpu codec: no encoder for " + e);
+        c = {u.x, u.y};
+    }
+    return c;
+}
+
+vec3 decodeField(const Field& f, const std::vector<uint>& c) {
+    const std::string& e = f.encoding;
+    if (isScalar(f)) {
+        vec3 r(0.0f);
+        for (size_t i = 0; i < c.size() && i < 3; ++i) r[int(i)] = scalarDecode(f, c[i], i);
+        return r;
+    }
+    const uint b = uint(f.bitsOfCode(0));
+    ColorFn fwd = nullptr, inv = nullptr;
+    if (e == "srgb8") return vec3(decodeSrgb8(c[0]), decodeSrgb8(c[1]), decodeSrgb8(c[2]));
+    if (e == "luma") return vec3(dequantizeUnorm(c[0], b));
+    if (colorTransform(e, fwd, inv))
+        return inv(vec3(dequantizeUnorm(c[0], b), dequantizeUnorm(c[1], b), dequantizeUnorm(c[2], b)));
+    if (e == "normal_xyz") return decodeNormalXyz(uvec3(c[0], c[1], c[2]), b);
+    if (e == "normal_bestfit") return decodeNormalBestFit(uvec3(c[0], c[1], c[2]));
+    if (e == "normal_xy_zsign") return decodeNormalXyZSign(uvec3(c[0], c[1], c[2]), b);
+    if (e == "normal_spheremap") return decodeNormalSpheremap(uvec2(c[0], c[1]), b);
+    if (e == "normal_stereographic") return decodeNormalStereographic(uvec2(c[0], c[1]), b);
+    if (e == "normal_octahedral") return decodeNormalOctahedral(uvec2(c[0], c[1]), b);
+    return decodeNormalOctahedralPrecise(uvec2(c[0], c[1]), b);
+}
+
+void placeCode(const Target& t, const CodePlace& cp, uint code, uint32_t* words) {
+    int shift = 0;
+    for (const BitRange& r : cp.pieces) {
+        const int at = t.channels[size_t(r.channel)].offset + r.first;
+        const uint mask = r.count >= 32 ? 0xffffffffu : (1u << r.count) - 1u;
+        words[at / 32] |= ((code >> shift) & mask) << (at % 32);
+        shift += r.count;
+    }
+}
+
+uint extractCode(const Target& t, const CodePlace& cp, const uint32_t* words) {
+    uint code = 0;
+    int shift = 0;
+    for (const BitRange& r : cp.pieces) {
+        const int at = t.channels[size_t(r.channel)].offset + r.first;
+        const uint mask = r.count >= 32 ? 0xffffffffu : (1u << r.count) - 1u;
+        code |= ((words[at / 32] >> (at % 32)) & mask) << shift;
+        shift += r.count;
+    }
+    return code;
+}
+
+int mirror(int p, int size) {
+    p = std::abs(p);
+    p = (size - 1) - std::abs((size - 1) - p);
+    return std::clamp(p, 0, size - 1);
+}
+
+void setMember(Surface& s, Attribute a, vec3 v) {
+    float* m = member(s, a);
+    if (!m) return;
+    for (int i = 0; i < components(a); ++i) m[i] = v[i];
+}
+
+void applyFallback(const Fallback& fb, Surface& s) {
+    switch (fb.kind) {
+        case FallbackKind::Constant: {
+            vec3 v(0.0f);
+            for (int i = 0; i < 3; ++i)
+                v[i] = fb.value.empty() ? 0.0f : float(fb.value[std::min<size_t>(size_t(i), fb.value.size() - 1)]);
+            setMember(s, fb.attribute, v);
+            return;
+        }
+        case FallbackKind::FromMetallic:
+            setMember(s, fb.attribute, vec3(0.04f) * (1.0f - s.metallic) + s.baseColor * s.metallic);
+            return;
+        case FallbackKind::Ue4:
+            setMember(s, fb.attribute, specularColorUE4(s.baseColor, s.metallic, s.specular));
+            return;
+        case FallbackKind::FromBaseColor:
+            setMember(s, fb.attribute, s.baseColor * (1.0f - s.metallic));
+            return;
+        case FallbackKind::FromDiffuseSpecular:
+            setMember(s, fb.attribute, s.diffuseColor + s.metallic * s.specularColor);
+            return;
+        case FallbackKind::FromSpecularColor: {
+            const vec3 f0 = s.specularColor;
+            setMember(s, fb.attribute, vec3(clamp((max(f0.x, max(f0.y, f0.z)) - 0.04f) / 0.96f, 0.0f, 1.0f)));
+            return;
+        }
+        case FallbackKind::Forward:
+            setMember(s, fb.attribute, vec3(0.0f));
+            return;
+        case FallbackKind::MaterialPass:
+            return;
+    }
+}
+
+CpuGBuffer encodeGBuffer(const Layout& layout, const std::vector<Surface>& surfaces, int width, int height) {
+    CpuGBuffer g;
+    g.width = width;
+    g.height = height;
+    const size_t pixels = surfaces.size();
+    for (const Target& t : layout.targets) {
+        const int wpp = wordsPerPixel(t);
+        std::vector<uint32_t> words(pixels * size_t(wpp), 0u);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const size_t i = size_t(y) * size_t(width) + size_t(x);
+                uint32_t* w = &words[i * size_t(wpp)];
+                for (const Field& f : t.fields) {
+                    const std::vector<uint> codes = encodeField(f, surfaces[i], ivec2(x, y));
+                    for (size_t k = 0; k < codes.size(); ++k) placeCode(t, f.codes[k], codes[k], w);
+                }
+            }
+        g.targetWords.push_back(std::move(words));
+    }
+    const int mt = materialTargetCount(layout);
+    g.materialWords.assign(size_t(mt), std::vector<uint32_t>(pixels * 4, 0u));
+    for (const MaterialSlot& slot : materialPassSlots(layout))
+        for (size_t i = 0; i < pixels; ++i)
+            for (int c = 0; c < slot.components; ++c) {
+                const int k = slot.firstFloat + c;
+                g.materialWords[size_t(k / 4)][i * 4 + size_t(k % 4)] =
+                    floatBitsToUint(member(surfaces[i], slot.attribute)[c]);
+            }
+    return g;
+}
+
+std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
+    const int width = g.width, height = g.height;
+    const size_t pixels = size_t(width) * size_t(height);
+    std::vector<Surface> out(pixels);
+    const std::vector<const Fallback*> fallbacks = orderedFallbacks(layout);
+    const std::vector<MaterialSlot> slots = materialPassSlots(layout);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const size_t i = size_t(y) * size_t(width) + size_t(x);
+            Surface& s = out[i];
+            s = Surface{};
+            s.normal = vec3(0.0f);
+            s.occlusion = 0.0f;
+            for (size_t t = 0; t < layout.targets.size(); ++t) {
+                const Target& tg = layout.targets[t];
+                const int wpp = wordsPerPixel(tg);
+                auto wordsAt = [&](int px, int py) {
+                    return &g.targetWords[t][(size_t(py) * size_t(width) + size_t(px)) * size_t(wpp)];
+                };
+                const uint32_t* w = wordsAt(x, y);
+                for (const Field& f : tg.fields) {
+                    if (!member(s, f.attribute)) continue;
+                    const EncodingInfo* info = findEncoding(f.encoding);
+                    if (info && info->needsNeighbours) {
+                        ColorFn fwd = nullptr, inv = nullptr;
+                        colorTransform(f.encoding, fwd, inv);
+                        const uint b = uint(f.bitsOfCode(0));
+                        auto lumaChroma = [&](int px, int py) {
+                            const uint32_t* nw = wordsAt(px, py);
+                            return vec2(dequantizeUnorm(extractCode(tg, f.codes[0], nw), b),
+                                        dequantizeUnorm(extractCode(tg, f.codes[1], nw), b));
+                        };
+                        const vec2 c = lumaChroma(x, y);
+                        const vec2 n0 = lumaChroma(mirror(x + 1, width), mirror(y, height));
+                        const vec2 n1 = lumaChroma(mirror(x - 1, width), mirror(y, height));
+                        const vec2 n2 = lumaChroma(mirror(x, width), mirror(y + 1, height));
+                        const vec2 n3 = lumaChroma(mirror(x, width), mirror(y - 1, height));
+                        const vec2 ch = reconstructChroma(ivec2(x, y), c.x, c.y, vec4(n0.x, n1.x, n2.x, n3.x),
+                                                          vec4(n0.y, n1.y, n2.y, n3.y));
+                        setMember(s, f.attribute, inv(vec3(c.x, ch.x, ch.y)));
+                        continue;
+                    }
+                    std::vector<uint> codes;
+                    for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, w));
+                    setMember(s, f.attribute, decodeField(f, codes));
+                }
+            }
+            for (const MaterialSlot& slot : slots) {
+                vec3 v(0.0f);
+                for (int c = 0; c < slot.components; ++c) {
+                    const int k = slot.firstFloat + c;
+                    v[c] = uintBitsToFloat(g.materialWords[size_t(k / 4)][i * 4 + size_t(k % 4)]);
+                }
+                setMember(s, slot.attribute, v);
+            }
+            for (const Fallback* fb : fallbacks) applyFallback(*fb, s);
+        }
+    return out;
+}
+
+}  // namespace reference
+
+// ---------------------------------------------------------------------------------------------
+
+std::vector<Layout> allLayouts() {
+    std::vector<Layout> v;
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    for (const std::string& name : listLayoutNames(dir)) v.push_back(loadLayoutFile(dir / (name + ".toml")));
+    return v;
+}
+
+glm::vec3 randomUnit(std::mt19937& rng) {
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    glm::vec3 n;
+    do n = glm::vec3(u(rng), u(rng), u(rng));
+    while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
+    return glm::normalize(n);
+}
+
+// Mostly in-range values, with a share of what the encoders clamp or round at the edges: exact
+// 0 and 1, -0, values outside [0,1], float16 overflow, tiny and huge magnitudes, axis normals and
+// non-unit normals. All finite: float -> integer conversion of NaN is undefined in C++.
+std::vector<Surface> makeSurfaces(int w, int h, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const float edges[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 1e-30f, -1e-30f, 1.5f, -0.25f, 70000.0f, -70000.0f,
+                           1e-7f, 0.99999994f, 0.54705882f, std::numeric_limits<float>::denorm_min()};
+    auto value = [&](float scale) {
+        const float r = u(rng);
+        if (r < 0.1f) return edges[size_t(u(rng) * float(std::size(edges))) % std::size(edges)];
+        if (r < 0.2f) return (u(rng) * 3.0f - 1.0f) * scale;
+        return u(rng) * scale;
+    };
+    std::vector<Surface> v(size_t(w) * size_t(h));
+    for (Surface& s : v) {
+        const float r = u(rng);
+        if (r < 0.05f) {
+            glm::vec3 axis(0.0f);
+            axis[int(u(rng) * 3.0f) % 3] = u(rng) < 0.5f ? -1.0f : 1.0f;
+            s.normal = axis;
+        } else if (r < 0.1f) {
+            s.normal = randomUnit(rng) * (0.5f + u(rng));
+        } else {
+            s.normal = randomUnit(rng);
+        }
+        s.baseColor = {value(1), value(1), value(1)};
+        s.metallic = value(1);
+        s.roughness = value(1);
+        s.specular = value(1);
+        s.specularColor = {value(1), value(1), value(1)};
+        s.diffuseColor = {value(1), value(1), value(1)};
+        s.occlusion = value(1);
+        s.emissive = {value(8), value(8), value(8)};
+        s.position = {value(100), value(100), value(100)};
+    }
+    return v;
+}
+
+// Counts words that differ; reports the first few.
+size_t compareWords(const CpuGBuffer& a, const CpuGBuffer& b, const std::string& what) {
+    size_t bad = 0;
+    EXPECT_EQ(a.targetWords.size(), b.targetWords.size()) << what;
+    EXPECT_EQ(a.materialWords.size(), b.materialWords.size()) << what;
+    auto compare = [&](const std::vector<std::vector<uint32_t>>& x, const std::vector<std::vector<uint32_t>>& y,
+                       const char* kind) {
+        for (size_t t = 0; t < std::min(x.size(), y.size()); ++t) {
+            EXPECT_EQ(x[t].size(), y[t].size()) << what << " " << kind << " " << t;
+            for (size_t i = 0; i < std::min(x[t].size(), y[t].size()); ++i)
+                if (x[t][i] != y[t][i] && bad++ < 5)
+                    ADD_FAILURE() << what << ": " << kind << " " << t << " word " << i << ": 0x" << std::hex
+                                  << x[t][i] << " vs 0x" << y[t][i];
+        }
+    };
+    compare(a.targetWords, b.targetWords, "target");
+    compare(a.materialWords, b.materialWords, "material target");
+    return bad;
+}
+
+// Counts Surfaces whose bytes differ (bit-identical floats: -0 and +0 differ too).
+size_t compareSurfaces(const std::vector<Surface>& a, const std::vector<Surface>& b, const std::string& what) {
+    EXPECT_EQ(a.size(), b.size()) << what;
+    size_t bad = 0;
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+        if (std::memcmp(&a[i], &b[i], sizeof(Surface)) != 0 && bad++ < 5) {
+            const float* x = &a[i].normal.x;
+            const float* y = &b[i].normal.x;
+            int k = 0;
+            while (k < 21 && std::memcmp(x + k, y + k, sizeof(float)) == 0) ++k;
+            ADD_FAILURE() << what << ": pixel " << i << " float " << k << ": " << x[k] << " vs " << y[k];
+        }
+    return bad;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(CpuCodec, EveryLayoutMatchesTheReferenceAtEveryThreadCount) {
+    const std::vector<Layout> layouts = allLayouts();
+    ASSERT_GE(layouts.size(), 7u);
+    // Sizes: block edges (kBlock = 128 pixels per row block), one row, one column, one pixel, and
+    // more rows than threads and fewer.
+    const std::pair<int, int> sizes[] = {{131, 67}, {128, 3}, {257, 130}, {1, 1}, {1, 9}, {9, 1}, {2, 2}};
+    uint32_t seed = 11;
+    for (const Layout& layout : layouts) {
+        for (const auto& [w, h] : sizes) {
+            SCOPED_TRACE(layout.name + " " + std::to_string(w) + "x" + std::to_string(h));
+            const std::vector<Surface> in = makeSurfaces(w, h, seed++);
+            const CpuGBuffer ref = reference::encodeGBuffer(layout, in, w, h);
+            const std::vector<Surface> refDecoded = reference::decodeGBuffer(layout, ref);
+            for (int threads : {1, 2, 3, 8}) {
+                const std::string what = layout.name + " threads " + std::to_string(threads);
+                const CpuCodec codec(layout, CpuCodecOptions{threads});
+                const CpuGBuffer g = codec.encode(in, w, h);
+                EXPECT_EQ(compareWords(g, ref, what), 0u);
+                EXPECT_EQ(compareSurfaces(codec.decode(g), refDecoded, what), 0u);
+            }
+            // The one-shot forms and buffer reuse (a second encode into the same CpuGBuffer).
+            EXPECT_EQ(compareWords(encodeGBuffer(layout, in, w, h), ref, "encodeGBuffer"), 0u);
+            EXPECT_EQ(compareSurfaces(decodeGBuffer(layout, ref), refDecoded, "decodeGBuffer"), 0u);
+            const CpuCodec codec(layout);
+            CpuGBuffer reused = codec.encode(makeSurfaces(w, h, seed + 1000), w, h);
+            std::vector<Surface> decoded(3);
+            codec.encode(in, w, h, reused);
+            codec.decode(reused, decoded);
+            EXPECT_EQ(compareWords(reused, ref, "reused buffers"), 0u);
+            EXPECT_EQ(compareSurfaces(decoded, refDecoded, "reused buffers"), 0u);
+        }
+    }
+}
+
+// A large image, where every thread gets many bands' worth of rows, at 1 and 2 threads.
+TEST(CpuCodec, LargeImageIsTheSameAtOneAndTwoThreads) {
+    constexpr int w = 640, h = 360;
+    for (const Layout& layout : allLayouts()) {
+        SCOPED_TRACE(layout.name);
+        const std::vector<Surface> in = makeSurfaces(w, h, 99u);
+        const CpuCodec one(layout, CpuCodecOptions{1}), two(layout, CpuCodecOptions{2});
+        const CpuGBuffer a = one.encode(in, w, h), b = two.encode(in, w, h);
+        EXPECT_EQ(compareWords(a, b, layout.name), 0u);
+        EXPECT_EQ(compareSurfaces(one.decode(a), two.decode(b), layout.name), 0u);
+    }
+}
+
+TEST(CpuCodec, RejectsMismatchedSizes) {
+    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml");
+    const CpuCodec codec(layout);
+    EXPECT_THROW(codec.encode(std::vector<Surface>(5), 2, 2), std::invalid_argument);
+    CpuGBuffer g = codec.encode(std::vector<Surface>(4), 2, 2);
+    g.targetWords[0].pop_back();
+    EXPECT_THROW(codec.decode(g), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Best-fit normals: the vectorised search returns the reference's codes.
+
+// Counts normals whose codes differ; reports the first few.
+size_t compareBestFit(const std::vector<glm::vec3>& normals, const char* what) {
+    size_t bad = 0;
+    for (const glm::vec3& n : normals) {
+        const glm::uvec3 fast = enc::encodeNormalBestFitFast(n), ref = enc::encodeNormalBestFit(n);
+        if (fast != ref && bad++ < 5)
+            ADD_FAILURE() << what << ": n = (" << n.x << ", " << n.y << ", " << n.z << "): fast " << fast.x << " "
+                          << fast.y << " " << fast.z << ", reference " << ref.x << " " << ref.y << " " << ref.z;
+    }
+    std::printf("[ bestfit  ] %-44s %8zu normals, %zu differ\n", what, normals.size(), bad);
+    return bad;
+}
+
+TEST(NormalBestFitFast, SameCodesAsTheReferenceOnRandomNormals) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<glm::vec3> normals(2000000);
+    for (glm::vec3& n : normals) {  // uniform on the sphere, as in the renderer
+        const float z = 1.0f - 2.0f * u(rng), phi = 6.2831853f * u(rng);
+        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        n = glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+    }
+    EXPECT_EQ(compareBestFit(normals, "uniform on the sphere"), 0u);
+}
+
+TEST(NormalBestFitFast, SameCodesAsTheReferenceOnAdversarialNormals) {
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<glm::vec3> special;
+    // Axes, face diagonals, body diagonals, in every sign, unit and not, and with -0.
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z) {
+                const glm::vec3 d = glm::vec3(x, y, z);
+                for (float scale : {1.0f, 0.5f, 3.0f, 1e-20f, 1e20f, 1.0f / std::sqrt(glm::dot(d, d) + 1e-30f)})
+                    special.push_back(d * scale);
+            }
+    special.push_back(glm::vec3(-0.0f, -0.0f, 1.0f));
+    special.push_back(glm::vec3(0.0f, -0.0f, -0.0f));  // zero: the reference returns (128, 128, 255)
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float tiny = std::numeric_limits<float>::denorm_min(), big = std::numeric_limits<float>::max();
+    for (const glm::vec3& n : {glm::vec3(inf, 0, 0), glm::vec3(-inf, inf, 1), glm::vec3(nan, 0, 1),
+                               glm::vec3(0, nan, nan), glm::vec3(tiny, tiny, tiny), glm::vec3(tiny, 0, -tiny),
+                               glm::vec3(big, big, -big), glm::vec3(big, 1, 0)})
+        special.push_back(n);
+    EXPECT_EQ(compareBestFit(special, "axes, diagonals, zero, non-finite"), 0u);
+
+    // Directions of integer vectors (lattice rays hit several candidates exactly: near-ties),
+    // and the decoded direction of every 24th code (the search's own fixed points), each with
+    // its float neighbours.
+    std::vector<glm::vec3> lattice;
+    for (int x = -12; x <= 12; ++x)
+        for (int y = -12; y <= 12; ++y)
+            for (int z = -12; z <= 12; ++z) {
+                if (x == 0 && y == 0 && z == 0) continue;
+                const glm::vec3 d = glm::normalize(glm::vec3(x, y, z));
+                lattice.push_back(d);
+                lattice.push_back(glm::vec3(std::nextafter(d.x, 2.0f), d.y, std::nextafter(d.z, -2.0f)));
+                lattice.push_back(glm::vec3(d.x, std::nextafter(d.y, -2.0f), std::nextafter(d.z, 2.0f)));
+            }
+    for (uint32_t c = 0; c < (1u << 24); c += 24) {
+        const glm::vec3 d = enc::decodeNormalBestFit(glm::uvec3(c & 255u, (c >> 8) & 255u, c >> 16));
+        lattice.push_back(d);
+        lattice.push_back(glm::vec3(std::nextafter(d.x, 2.0f), std::nextafter(d.y, -2.0f), d.z));
+    }
+    EXPECT_EQ(compareBestFit(lattice, "lattice rays, decoded codes, +-1 ulp"), 0u);
+
+    // Near-ties by construction: midway between the directions of two neighbouring codes, where
+    // two candidates' errors agree to the last bits; and tiny random offsets from the axes.
+    std::vector<glm::vec3> ties;
+    for (int i = 0; i < 300000; ++i) {
+        const glm::uvec3 c(uint32_t(u(rng) * 255.0f), uint32_t(u(rng) * 255.0f), uint32_t(u(rng) * 255.0f));
+        glm::uvec3 d = c;
+        d[int(u(rng) * 3.0f) % 3] += 1u;
+        const glm::vec3 a = enc::decodeNormalBestFit(c), b = enc::decodeNormalBestFit(glm::min(d, glm::uvec3(255u)));
+        ties.push_back(glm::normalize(a + b));
+        ties.push_back(a + b);  // not unit: the search compares against n itself
+    }
+    for (int i = 0; i < 300000; ++i) {
+        glm::vec3 n(0.0f);
+        n[i % 3] = i % 2 ? 1.0f : -1.0f;
+        n += glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f) * std::ldexp(1.0f, -int(u(rng) * 24.0f));
+        ties.push_back(n);
+    }
+    EXPECT_EQ(compareBestFit(ties, "midpoints of neighbouring codes, near axes"), 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// sRGB and small-float encoders: branch-free / table variants with the reference's codes. Both were
+// compared once on all 2^32 float bit patterns (0 differ); here: every place where the code steps
+// (each sRGB threshold, each bucket edge, each small-float exponent and rounding boundary) with
+// its float neighbours, a sweep over the whole bit range, and the special values.
+
+std::vector<float> floatSweep() {
+    std::vector<float> v;
+    for (uint64_t bits = 0; bits < (uint64_t(1) << 32); bits += 4099) v.push_back(enc::uintBitsToFloat(uint32_t(bits)));
+    const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max(),
+                              65504.0f, 65519.996f, 65520.0f, 65024.0f, 64512.0f};
+    v.insert(v.end(), std::begin(specials), std::end(specials));
+    return v;
+}
+
+// x and its float neighbours, `ulps` each way.
+void addNeighbours(std::vector<float>& v, float x, int ulps) {
+    float lo = x, hi = x;
+    v.push_back(x);
+    for (int i = 0; i < ulps; ++i) {
+        lo = std::nextafter(lo, -std::numeric_limits<float>::infinity());
+        hi = std::nextafter(hi, std::numeric_limits<float>::infinity());
+        v.push_back(lo);
+        v.push_back(hi);
+    }
+}
+
+TEST(Srgb8EncodeFast, SameCodesAsTheReference) {
+    std::vector<float> xs = floatSweep();
+    for (float t : enc::kSrgbEncodeThresholds) addNeighbours(xs, t, 4);
+    const enc::Srgb8EncodeTable& table = enc::srgb8EncodeTable();
+    for (uint32_t b = table.firstBucket; b <= table.lastBucket + 1; ++b)
+        addNeighbours(xs, enc::uintBitsToFloat(b << enc::Srgb8EncodeTable::kShift), 2);
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(-0.1f, 1.1f);
+    for (int i = 0; i < 2000000; ++i) xs.push_back(u(rng));
+    size_t bad = 0;
+    for (float x : xs)
+        if (enc::encodeSrgb8Fast(x, table) != enc::encodeSrgb8(x) && bad++ < 5)
+            ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
+                          << "): fast " << enc::encodeSrgb8Fast(x, table) << ", reference " << enc::encodeSrgb8(x);
+    std::printf("[ srgb8    ] %zu values, %zu differ\n", xs.size(), bad);
+    EXPECT_EQ(bad, 0u);
+}
+
+TEST(SmallFloatEncodeFast, SameCodesAsTheReference) {
+    std::vector<float> xs = floatSweep();
+    // Every exponent, with mantissas at and around the rounding points of 10, 6 and 5 kept bits
+    // (and of the subnormal shifts), in both signs.
+    for (uint32_t sign = 0; sign < 2; ++sign)
+        for (uint32_t e = 0; e < 256; ++e)
+            for (int k = 0; k < 24; ++k)
+                for (uint32_t m : {(1u << k) - 1u, 1u << k, (1u << k) + 1u, (3u << k) >> 1, ((3u << k) >> 1) + 1u,
+                                   ((3u << k) >> 1) - 1u, 0x7fffffu, 0x400000u | (1u << k)}) {
+                    const uint32_t bits = (sign << 31) | (e << 23) | (m & 0x7fffffu);
+                    xs.push_back(enc::uintBitsToFloat(bits));
+                }
+    size_t bad = 0;
+    for (float x : xs) {
+        const uint32_t f[3] = {enc::encodeFloat16Fast(x), enc::encodeFloat11Fast(x), enc::encodeFloat10Fast(x)};
+        const uint32_t r[3] = {enc::encodeFloat16(x), enc::encodeFloat11(x), enc::encodeFloat10(x)};
+        for (int i = 0; i < 3; ++i)
+            if (f[i] != r[i] && bad++ < 5)
+                ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
+                              << "), float" << (i == 0 ? 16 : i == 1 ? 11 : 10) << ": fast " << f[i] << ", reference "
+                              << r[i];
+    }
+    std::printf("[ float16  ] %zu values x 3 encoders, %zu differ\n", xs.size(), bad);
+    EXPECT_EQ(bad, 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(ParallelFor, CoversTheRangeOnceInContiguousChunks) {
+    for (int threads : {1, 2, 3, 7, 64})
+        for (int64_t count : {0, 1, 2, 5, 100, 1001}) {
+            std::vector<std::atomic<int>> hits(static_cast<size_t>(count));
+            std::atomic<int> chunks{0};
+            parallelFor(count, threads, [&](int64_t begin, int64_t end) {
+                EXPECT_LT(begin, end);
+                ++chunks;
+                for (int64_t i = begin; i < end; ++i) ++hits[size_t(i)];
+            });
+            for (const std::atomic<int>& h : hits) EXPECT_EQ(h.load(), 1);
+            EXPECT_EQ(chunks.load(), int(std::min<int64_t>(count, threads)));
+        }
+}
+
+TEST(ParallelFor, RethrowsAfterEveryChunkFinished) {
+    std::atomic<int> finished{0};
+    EXPECT_THROW(parallelFor(4, 4,
+                             [&](int64_t begin, int64_t) {
+                                 if (begin == 2) throw std::runtime_error("chunk 2");
+                                 ++finished;
+                             }),
+                 std::runtime_error);
+    EXPECT_EQ(finished.load(), 3);
+}
+
+}  // namespace
+}  // namespace gbl

@@ -1,0 +1,251 @@
+// Generated wiring: the GLSL of every layouts/*.toml compiles inside its includers (G-buffer pass,
+// material pass, lighting, decode), in both bit-exact and native-formats modes; and the CPU mirror
+// round-trips random surfaces within each encoding's documented error bound.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <sstream>
+
+#include "cmd_layouts.h"
+#include "cpu_codec.h"
+#include "encoding_registry.h"
+#include "encodings.h"
+#include "layout_catalog.h"
+#include "shader_compiler.h"
+#include "wiring_codegen.h"
+
+using namespace gbl;
+
+namespace {
+
+std::vector<Layout> allLayouts() {
+    std::vector<Layout> v;
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    for (const std::string& name : listLayoutNames(dir)) v.push_back(loadLayoutFile(dir / (name + ".toml")));
+    return v;
+}
+
+void compileWith(const std::string& shader, const GBufferWiring& w,
+                 std::vector<std::pair<std::string, std::string>> defines = {}) {
+    ShaderSource s = loadShaderFile(shader);
+    s.defines.push_back({"TEXTURE_COUNT", "4"});
+    for (auto& d : defines) s.defines.push_back(d);
+    s.virtualFiles["gbuffer_wiring.glsl"] = w.glsl;
+    s.name = shader + " (generated wiring of layout " + w.layoutName + ")";
+    EXPECT_NO_THROW(compileGlsl(s)) << w.glsl;
+}
+
+float angleDeg(glm::vec3 a, glm::vec3 b) {
+    const float c = glm::dot(glm::normalize(a), glm::normalize(b));
+    return std::acos(std::min(1.0f, std::max(-1.0f, c))) * 57.2957795f;
+}
+
+// Smooth random fields (checkerboard chroma reconstructs from neighbours) plus per-pixel noise
+// where the attribute is not stored as checkerboard chroma.
+std::vector<Surface> makeSurfaces(int w, int h, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<Surface> v(size_t(w) * size_t(h));
+    const float ph[6] = {u(rng) * 6, u(rng) * 6, u(rng) * 6, u(rng) * 6, u(rng) * 6, u(rng) * 6};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            Surface& s = v[size_t(y) * size_t(w) + size_t(x)];
+            glm::vec3 n;
+            do n = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
+            while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
+            s.normal = glm::normalize(n);
+            auto smooth = [&](int k) {
+                return 0.5f + 0.45f * std::sin(0.07f * float(x) + ph[k]) * std::cos(0.05f * float(y) + ph[(k + 3) % 6]);
+            };
+            s.baseColor = glm::vec3(u(rng), u(rng), u(rng));
+            s.metallic = u(rng);
+            s.roughness = u(rng);
+            s.specular = u(rng);
+            s.specularColor = glm::vec3(u(rng), u(rng), u(rng));
+            s.diffuseColor = glm::vec3(smooth(0), smooth(1), smooth(2));
+            s.occlusion = u(rng);
+            s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 4.0f;
+            s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 50.0f;
+        }
+    return v;
+}
+
+// Documented bounds (shaders/encodings.glsl comments), per code width.
+double unormBound(int b) { return (0.5 + std::ldexp(1.0, b - 24)) / (std::ldexp(1.0, b) - 1.0) + 1e-7; }
+
+}  // namespace
+
+TEST(WiringCodegen, GeneratedGlslCompilesForEveryLayout) {
+    const std::vector<Layout> layouts = allLayouts();
+    ASSERT_GE(layouts.size(), 7u);
+    for (const Layout& l : layouts) {
+        for (bool native : {false, true}) {
+            SCOPED_TRACE(l.name + (native ? " (native formats)" : ""));
+            const GBufferWiring w = generateWiring(l, WiringOptions{native});
+            EXPECT_NE(w.glsl.find("generated from layouts/" + l.name + ".toml by gbufferlab"), std::string::npos);
+            EXPECT_EQ(w.targetFormats.size(), l.targets.size());
+            compileWith("gbuffer_pass.frag.glsl", w);
+            compileWith("lighting_pass.comp.glsl", w);
+            compileWith("decode_pass.comp.glsl", w);
+            if (w.materialPass) compileWith("gbuffer_pass.frag.glsl", w, {{"MATERIAL_PASS_WRITE", "1"}});
+        }
+    }
+}
+
+TEST(WiringCodegen, CompileErrorNamesTheLayout) {
+    GBufferWiring w = generateWiring(loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml"));
+    w.glsl += "\nthis is not glsl;\n";
+    ShaderSource s = loadShaderFile("decode_pass.comp.glsl");
+    s.virtualFiles["gbuffer_wiring.glsl"] = w.glsl;
+    s.name = "decode_pass.comp.glsl (generated wiring of layout ue4)";
+    try {
+        compileGlsl(s);
+        FAIL() << "expected a compile error";
+    } catch (const ShaderCompileError& e) {
+        EXPECT_NE(std::string(e.what()).find("ue4"), std::string::npos) << e.what();
+    }
+}
+
+TEST(WiringCodegen, WiringFlagsAndFormats) {
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    const GBufferWiring c2 = generateWiring(loadLayoutFile(dir / "crysis2-slim.toml"));
+    EXPECT_TRUE(c2.materialPass);
+    EXPECT_EQ(c2.materialTargetFormats.size(), 4u);  // 15 floats
+    const GBufferWiring c3 = generateWiring(loadLayoutFile(dir / "crysis3-thin.toml"));
+    EXPECT_TRUE(c3.emissiveForward);
+    EXPECT_FALSE(c3.materialPass);
+    EXPECT_EQ(c3.targetFormats, (std::vector<VkFormat>{VK_FORMAT_R32_UINT, VK_FORMAT_R32_UINT}));
+    EXPECT_EQ(c3.depthFormat, VK_FORMAT_D24_UNORM_S8_UINT);
+    const GBufferWiring fat = generateWiring(loadLayoutFile(dir / "fat-naive.toml"), WiringOptions{true});
+    EXPECT_EQ(fat.targetFormats, (std::vector<VkFormat>{VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                                        VK_FORMAT_R8G8B8A8_UNORM}));
+    const GBufferWiring ref = makeReferenceWiring();
+    EXPECT_EQ(ref.layoutName, "reference");
+    EXPECT_EQ(ref.targetFormats.size(), 5u);
+    // Bits inside a channel keep a target UINT under native formats, and the GLSL says why.
+    const GBufferWiring c3n = generateWiring(loadLayoutFile(dir / "crysis3-thin.toml"), WiringOptions{true});
+    EXPECT_EQ(c3n.targetFormats[0], VK_FORMAT_R32_UINT);
+    EXPECT_NE(c3n.glsl.find("stays UINT"), std::string::npos);
+}
+
+TEST(WiringCodegen, LayoutsGlslCommandPrintsTheWiring) {
+    std::ostringstream out, err;
+    EXPECT_EQ(runLayoutsCommand({"glsl", "crysis3-thin"}, out, err), 0) << err.str();
+    EXPECT_NE(out.str().find("generated from layouts/crysis3-thin.toml"), std::string::npos);
+    EXPECT_NE(out.str().find("void writeGBuffer(Surface s, ivec2 pixel)"), std::string::npos);
+    std::ostringstream out2, err2;
+    EXPECT_EQ(runLayoutsCommand({"glsl", "no-such-layout"}, out2, err2), 1);
+}
+
+TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
+    constexpr int W = 64, H = 48;
+    for (const Layout& l : allLayouts()) {
+        SCOPED_TRACE(l.name);
+        const std::vector<Surface> in = makeSurfaces(W, H, 7u);
+        const CpuGBuffer g = encodeGBuffer(l, in, W, H);
+        ASSERT_EQ(g.targetWords.size(), l.targets.size());
+        for (size_t t = 0; t < l.targets.size(); ++t)
+            EXPECT_EQ(g.targetWords[t].size(), size_t(W * H * wordsPerPixel(l.targets[t])));
+        const std::vector<Surface> out = decodeGBuffer(l, g);
+        int checked = 0;
+        for (const Target& t : l.targets)
+            for (const Field& f : t.fields) {
+                const char* m = surfaceMemberName(f.attribute);
+                if (!m) continue;
+                ++checked;
+                const std::string& e = f.encoding;
+                const int b = f.bitsOfCode(0);
+                for (size_t i = 0; i < in.size(); ++i) {
+                    const Surface& a = in[i];
+                    const Surface& d = out[i];
+                    auto vec = [&](const Surface& s) -> glm::vec3 {
+                        switch (f.attribute) {
+                            case Attribute::Normal: return s.normal;
+                            case Attribute::BaseColor: return s.baseColor;
+                            case Attribute::SpecularColor: return s.specularColor;
+                            case Attribute::DiffuseColor: return s.diffuseColor;
+                            case Attribute::Emissive: return s.emissive;
+                            case Attribute::Position: return s.position;
+                            case Attribute::Metallic: return glm::vec3(s.metallic);
+                            case Attribute::Roughness: return glm::vec3(s.roughness);
+                            case Attribute::Specular: return glm::vec3(s.specular);
+                            case Attribute::Occlusion: return glm::vec3(s.occlusion);
+                            default: return glm::vec3(0.0f);
+                        }
+                    };
+                    const glm::vec3 x = vec(a), y = vec(d);
+                    double err = 0.0, bound = 0.0;
+                    if (f.attribute == Attribute::Normal && e.rfind("normal_", 0) == 0) {
+                        err = angleDeg(x, y);
+                        const double s8 = 255.0 / (std::ldexp(1.0, b) - 1.0);
+                        const double o8 = 127.0 / (std::ldexp(1.0, b - 1) - 1.0);
+                        if (e == "normal_xyz") bound = 0.39 * s8 * 1.1;
+                        else if (e == "normal_bestfit") bound = 0.31 * 1.05;
+                        else if (e == "normal_xy_zsign") bound = b >= 16 ? 0.35 : b >= 10 ? 2.9 : 5.8 * 1.05;
+                        else if (e.rfind("normal_octahedral", 0) == 0) bound = 0.95 * o8 * 1.1;
+                        else if (e == "normal_spheremap") bound = 11.5 * std::sqrt(s8) * 1.1;
+                        else bound = 180.0;  // stereographic: not a full-sphere mapping
+                    } else if (e == "float32") {
+                        err = glm::length(x - y);
+                        bound = 0.0;
+                    } else if (e == "float16") {
+                        for (int c = 0; c < 3; ++c)
+                            err = std::max(err, double(std::abs(x[c] - y[c])) / std::max(1e-3, double(std::abs(x[c]))));
+                        bound = std::ldexp(1.0, -11) * 1.01;
+                    } else if (e == "unorm" || e == "gloss") {
+                        for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
+                        bound = unormBound(b);
+                    } else if (e == "smoothness_cry") {
+                        err = std::abs(x.x - y.x);
+                        bound = 2.0 * unormBound(b);
+                    } else if (e == "srgb8") {
+                        for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
+                        bound = 0.0045;
+                    } else if (e == "luma") {
+                        err = std::abs(enc::lumaBt601(x) - y.x);
+                        bound = unormBound(b);
+                    } else if (e == "ycbcr" || e == "ycbcr_sqrt" || e == "ycocg") {
+                        for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
+                        const double s8 = 255.0 / (std::ldexp(1.0, b) - 1.0);
+                        bound = (e == "ycbcr" ? 0.0054 : e == "ycocg" ? 0.0058 : 0.011) * s8 * 1.05;
+                    } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
+                        // Smooth input: the quantisation bound plus the neighbours' chroma change.
+                        for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
+                        bound = 0.0058 * 255.0 / (std::ldexp(1.0, b) - 1.0) + 0.03;
+                    } else {
+                        ADD_FAILURE() << "no bound for " << e;
+                    }
+                    if (err > bound) {
+                        ADD_FAILURE() << l.name << " " << attributeName(f.attribute) << " (" << e << ") pixel " << i
+                                      << ": error " << err << " > bound " << bound;
+                        break;
+                    }
+                }
+            }
+        EXPECT_GT(checked, 0);
+        // Emissive forward reads back 0, the material pass at full precision.
+        const Fallback* em = l.findFallback(Attribute::Emissive);
+        if (em && em->kind == FallbackKind::Forward) {
+            EXPECT_EQ(out[5].emissive, glm::vec3(0.0f));
+        }
+        if (em && em->kind == FallbackKind::MaterialPass) {
+            EXPECT_EQ(out[5].emissive, in[5].emissive);
+        }
+    }
+}
+
+TEST(WiringCodegen, BitPlacementLowBitsFirst) {
+    // compact-octahedral: normal u at "r + b[0:3]" -> low 8 bits in r (bits 0..7), high 4 in b[0:3] (16..19).
+    const Layout l = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "compact-octahedral.toml");
+    Surface s;
+    s.normal = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+    const CpuGBuffer g = encodeGBuffer(l, {s}, 1, 1);
+    const glm::uvec2 c = enc::encodeNormalOctahedral(s.normal, 12);
+    const uint32_t w = g.targetWords[1][0];
+    EXPECT_EQ(w & 0xffu, c.x & 0xffu);
+    EXPECT_EQ((w >> 16) & 0xfu, c.x >> 8);
+    EXPECT_EQ((w >> 8) & 0xffu, c.y & 0xffu);
+    EXPECT_EQ((w >> 20) & 0xfu, c.y >> 8);
+}
