@@ -1,6 +1,6 @@
 #pragma once
 // The decode pass: runs a layout's readGBuffer() over every pixel and reads the Surface back as
-// SurfaceImages (see shaders/decode_surface.comp.glsl).
+// SurfaceImages (see shaders/decode_pass.comp.glsl).
 #include "gbuffer_wiring.h"
 #include "renderer_passes.h"
 #include "surface_images.h"

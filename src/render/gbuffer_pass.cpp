@@ -12,13 +12,11 @@ bool isStencilFormat(VkFormat f) {
     return f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D16_UNORM_S8_UINT;
 }
 
+}  // namespace
+
 VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, VkPipelineLayout layout,
-                                 uint32_t textureCount) {
-    ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
-    ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
-    fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
+                                 const ShaderSource& vs, ShaderSource fs, bool sceneVertices) {
     fs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
-    fs.name = "gbuffer_pass.frag.glsl (layout " + wiring.layoutName + ")";
     VkShaderModule vsModule = createShaderModule(ctx.device, compileGlsl(vs));
     VkShaderModule fsModule = createShaderModule(ctx.device, compileGlsl(fs));
 
@@ -39,10 +37,12 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
         {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
     };
     VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    vertexInput.vertexBindingDescriptionCount = 1;
-    vertexInput.pVertexBindingDescriptions = &binding;
-    vertexInput.vertexAttributeDescriptionCount = 4;
-    vertexInput.pVertexAttributeDescriptions = attributes;
+    if (sceneVertices) {
+        vertexInput.vertexBindingDescriptionCount = 1;
+        vertexInput.pVertexBindingDescriptions = &binding;
+        vertexInput.vertexAttributeDescriptionCount = 4;
+        vertexInput.pVertexAttributeDescriptions = attributes;
+    }
 
     VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -96,11 +96,8 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
     return pipeline;
 }
 
-}  // namespace
-
-GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
-                              const Buffer& frameConstants, uint32_t width, uint32_t height) {
-    GBufferPass pass;
+void createGBufferImages(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t width, uint32_t height,
+                         GBufferPass& pass) {
     pass.clearDepth = wiring.reversedZ ? 0.0f : 1.0f;
     for (VkFormat format : wiring.targetFormats) {
         ImageDesc d;
@@ -118,7 +115,20 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
     dd.aspect = VK_IMAGE_ASPECT_DEPTH_BIT | (isStencilFormat(wiring.depthFormat) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
     dd.viewAspect = VK_IMAGE_ASPECT_DEPTH_BIT;  // sampled as depth only
     pass.depth = createImage(ctx, dd);
+}
 
+GBufferWiring materialPassWiring(const GBufferWiring& wiring) {
+    GBufferWiring material = wiring;
+    material.layoutName = wiring.layoutName + " material pass";
+    material.targetFormats = wiring.materialTargetFormats;
+    material.glsl = "#define MATERIAL_PASS_WRITE 1\n" + wiring.glsl;
+    return material;
+}
+
+GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
+                              const Buffer& frameConstants, uint32_t width, uint32_t height) {
+    GBufferPass pass;
+    createGBufferImages(ctx, wiring, width, height, pass);
     const uint32_t textureCount = uint32_t(scene.textures.size());
     const std::vector<Binding> bindings = {
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
@@ -137,11 +147,15 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
         writer.image(pass.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene.textures[i].view,
                      scene.textureSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
     writer.flush(ctx.device);
-    pass.pipeline = createGBufferPipeline(ctx, wiring, pass.pipelineLayout, textureCount);
+    const ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
+    ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
+    fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
+    fs.name = "gbuffer_pass.frag.glsl (layout " + wiring.layoutName + ")";
+    pass.pipeline = createGBufferPipeline(ctx, wiring, pass.pipelineLayout, vs, fs, true);
     return pass;
 }
 
-void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene) {
+void beginGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass) {
     const VkExtent2D extent = pass.depth.extent;
     for (const GpuImage& t : pass.targets)
         transitionImage(cmd, t, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -180,6 +194,18 @@ void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuSc
     vkCmdSetScissor(cmd, 0, 1, &scissor);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipelineLayout, 0, 1, &pass.set, 0, nullptr);
+}
+
+void endGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass) {
+    vkCmdEndRendering(cmd);
+    for (const GpuImage& t : pass.targets)
+        transitionImage(cmd, t, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    transitionImage(cmd, pass.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+}
+
+void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene) {
+    beginGBufferPass(cmd, pass);
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &scene.vertices.buffer, &offset);
     vkCmdBindIndexBuffer(cmd, scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
@@ -189,11 +215,7 @@ void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuSc
         const Draw& d = scene.drawRanges[i];
         vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
     }
-    vkCmdEndRendering(cmd);
-    for (const GpuImage& t : pass.targets)
-        transitionImage(cmd, t, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    transitionImage(cmd, pass.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                    VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+    endGBufferPass(cmd, pass);
 }
 
 void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {

@@ -114,13 +114,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     // Deferred lighting: the second geometry pass writes the material attributes the slim
     // G-buffer leaves out, at full precision (the same generated GLSL, MATERIAL_PASS_WRITE).
     GBufferPass materialPass;
-    if (wiring.materialPass) {
-        GBufferWiring materialWiring = wiring;
-        materialWiring.layoutName = wiring.layoutName + " material pass";
-        materialWiring.targetFormats = wiring.materialTargetFormats;
-        materialWiring.glsl = "#define MATERIAL_PASS_WRITE 1\n" + wiring.glsl;
-        materialPass = createGBufferPass(ctx_, materialWiring, gpuScene_, frameBuffer, w, h);
-    }
+    if (wiring.materialPass)
+        materialPass = createGBufferPass(ctx_, materialPassWiring(wiring), gpuScene_, frameBuffer, w, h);
     const GBufferPass* material = wiring.materialPass ? &materialPass : nullptr;
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
                           nearestSampler_, &ibl_, material};

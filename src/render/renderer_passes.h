@@ -3,6 +3,7 @@
 #include "gbuffer_wiring.h"
 #include "gpu_scene.h"
 #include "ibl_precompute.h"
+#include "shader_compiler.h"
 #include "shared_types.h"
 #include "vk_pipeline.h"
 #include "vk_resources.h"
@@ -25,6 +26,25 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
 // Records the pass; leaves targets and depth in SHADER_READ_ONLY_OPTIMAL.
 void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene);
 void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass);
+
+// The parts createGBufferPass is made of, for a G-buffer filled by other shaders (the GPU/CPU bit
+// test draws ready-made Surfaces from a buffer) through the same targets, pipeline state,
+// clears and transitions as the renderer's:
+//   the colour targets (one per wiring.targetFormats) and depth, in `pass`;
+void createGBufferImages(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t width, uint32_t height,
+                         GBufferPass& pass);
+//   the pipeline, compiling `fragment` with the wiring's GLSL as "gbuffer_wiring.glsl"; with
+//   sceneVertices, the vertex input is the GpuScene's Vertex, else none;
+VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, VkPipelineLayout layout,
+                                 const ShaderSource& vertex, ShaderSource fragment, bool sceneVertices);
+//   begin: targets and depth cleared, viewport and scissor set, pass.pipeline and pass.set bound;
+//   end: targets left in SHADER_READ_ONLY_OPTIMAL, depth in DEPTH_STENCIL_READ_ONLY_OPTIMAL.
+void beginGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass);
+void endGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass);
+
+// Deferred lighting's material pass: a second geometry pass through the same generated GLSL,
+// compiled with MATERIAL_PASS_WRITE, into the wiring's material targets.
+GBufferWiring materialPassWiring(const GBufferWiring& wiring);
 
 struct LightingPass {
     GpuImage hdr;  // RGBA32F storage image, left in GENERAL

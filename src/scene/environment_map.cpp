@@ -12,7 +12,7 @@ namespace {
 constexpr float kPi = 3.14159265358979323846f;
 }
 
-// Equirectangular convention (identical in shaders/environment.glsl; keep them in step):
+// Equirectangular convention (identical in shaders/environment_map.glsl; keep them in step):
 // world space is right-handed, +Y up, and the camera's default view is down -Z.
 //   u = 0.5 + atan2(d.x, -d.z) / (2 pi)   -> u = 0.5 straight ahead (-Z), 0.75 at +X, 0.25 at -X,
 //                                            0 / 1 behind (+Z), where the map's seam is

@@ -38,7 +38,7 @@ void validateEnvironmentImage(const Image& image, const std::string& source);
 size_t clampEnvironmentRinging(Image& image);
 
 // Direction (unit, world space, +Y up) <-> equirect uv in [0,1]^2. Shared convention with
-// shaders/environment.glsl.
+// shaders/environment_map.glsl.
 glm::vec2 directionToEquirectUv(glm::vec3 direction);
 glm::vec3 equirectUvToDirection(glm::vec2 uv);
 

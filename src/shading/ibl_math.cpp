@@ -1,4 +1,4 @@
-// C++ mirror of shaders/ibl.glsl. Keep in step with the shader.
+// C++ mirror of shaders/ibl_math.glsl. Keep in step with the shader.
 //   [Karis13]   B. Karis, "Real Shading in Unreal Engine 4", SIGGRAPH 2013 course notes.
 //   [Karis14]   B. Karis, "Physically Based Shading on Mobile", 2014.
 //   [Lazarov13] D. Lazarov, "Getting More Physical in Call of Duty: Black Ops II", SIGGRAPH 2013.

@@ -1,5 +1,5 @@
 #pragma once
-// Image-based lighting maths on the CPU: the C++ mirror of shaders/ibl.glsl (same names, same
+// Image-based lighting maths on the CPU: the C++ mirror of shaders/ibl_math.glsl (same names, same
 // math; the sources of each formula are cited there and in ibl_math.cpp). Namespace gbl::shading.
 //
 // Conventions (identical to the GLSL):

@@ -2,7 +2,7 @@
 // Image-based lighting pre-computation on the GPU: the environment as a cube map (with a box-
 // filtered mip chain), the pre-filtered specular cube (one roughness per mip), the diffuse
 // irradiance as 9 spherical-harmonic coefficients, and the split-sum BRDF LUT.
-// The maths are in shaders/ibl.glsl (CPU mirror src/shading/ibl_math.h); the shaders are
+// The maths are in shaders/ibl_math.glsl (CPU mirror src/shading/ibl_math.h); the shaders are
 // shaders/ibl_*.comp.glsl. The disk cache is src/shading/ibl_cache.h.
 //
 // Conventions:

@@ -12,6 +12,7 @@
 
 #include "cpu_codec.h"
 #include "layout_catalog.h"
+#include "renderer_passes.h"
 #include "shader_compiler.h"
 #include "vk_pipeline.h"
 #include "vk_resources.h"
@@ -43,13 +44,13 @@ Surface fetchSurface(ivec2 p) {
 const char* kVertex = R"(#version 450
 void main() {
     vec2 p = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+    gl_Position = vec4(p * 2.0 - 1.0, 0.5, 1.0);  // depth 0.5 passes LESS and reversed-Z GREATER
 }
 )";
 
 std::string fragmentSource() {
     return std::string("#version 450\n#extension GL_GOOGLE_include_directive : require\n#include \"surface.glsl\"\n") +
-           kSurfaceIn + "#include \"gbuffer_wiring.glsl\"\nvoid main() { ivec2 p = ivec2(gl_FragCoord.xy); "
+           kSurfaceIn + "#define GBUFFER_WRITE 1\n#include \"gbuffer_wiring.glsl\"\nvoid main() { ivec2 p = ivec2(gl_FragCoord.xy); "
                         "writeGBuffer(fetchSurface(p), p); }\n";
 }
 
@@ -138,106 +139,30 @@ std::vector<Surface> randomSurfaces(uint32_t seed) {
     return v;
 }
 
-// Renders the full-screen triangle with `defines` into `formats`; returns the images (in
-// SHADER_READ_ONLY_OPTIMAL).
-std::vector<GpuImage> renderTargets(const VulkanContext& ctx, const GBufferWiring& w, const std::vector<VkFormat>& formats,
-                                    const Buffer& surfaces, const std::string& define) {
-    std::vector<GpuImage> images;
-    for (VkFormat f : formats) {
-        ImageDesc d;
-        d.format = f;
-        d.width = d.height = kSize;
-        d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-        images.push_back(createImage(ctx, d));
-    }
+// Writes the Surfaces in `surfaces` through the generated writeGBuffer, one per pixel, into a
+// G-buffer made by the renderer's own code (renderer_passes.h: targets, depth, pipeline state,
+// clears and transitions); only the shaders are the test's: a full-screen triangle whose fragment
+// shader fetches its Surface from the buffer instead of evaluating a material. Returns the pass
+// with its targets in SHADER_READ_ONLY_OPTIMAL.
+GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, const Buffer& surfaces) {
+    GBufferPass pass;
+    createGBufferImages(ctx, w, kSize, kSize, pass);
     const std::vector<Binding> set0 = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    VkDescriptorSetLayout setLayout = createSetLayout(ctx.device, set0, VK_SHADER_STAGE_FRAGMENT_BIT);
-    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, {setLayout}, 0, 0);
-    VkDescriptorPool pool = createPoolFor(ctx.device, {set0});
-    VkDescriptorSet set = allocateSet(ctx.device, pool, setLayout);
-    DescriptorWriter().buffer(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, surfaces.buffer).flush(ctx.device);
-
-    ShaderSource vs{"fullscreen.vert (test)", kVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}};
-    ShaderSource fs{"gpu_cpu_bits.frag (layout " + w.layoutName + ")", fragmentSource(), VK_SHADER_STAGE_FRAGMENT_BIT,
-                    {{"SIZE", std::to_string(kSize)}, {define, "1"}}, {{"gbuffer_wiring.glsl", w.glsl}}};
-    VkShaderModule vsm = createShaderModule(ctx.device, compileGlsl(vs));
-    VkShaderModule fsm = createShaderModule(ctx.device, compileGlsl(fs));
-    VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
-                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    stages[0].module = vsm;
-    stages[0].pName = "main";
-    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[1].module = fsm;
-    stages[1].pName = "main";
-    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkViewport viewport{0, 0, float(kSize), float(kSize), 0, 1};
-    VkRect2D scissor{{0, 0}, {kSize, kSize}};
-    VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewportState.viewportCount = 1;
-    viewportState.pViewports = &viewport;
-    viewportState.scissorCount = 1;
-    viewportState.pScissors = &scissor;
-    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    std::vector<VkPipelineColorBlendAttachmentState> blend(formats.size());
-    for (auto& b : blend) b.colorWriteMask = 0xF;
-    VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    colorBlend.attachmentCount = uint32_t(blend.size());
-    colorBlend.pAttachments = blend.data();
-    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = uint32_t(formats.size());
-    rendering.pColorAttachmentFormats = formats.data();
-    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
-    info.stageCount = 2;
-    info.pStages = stages;
-    info.pVertexInputState = &vertexInput;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &viewportState;
-    info.pRasterizationState = &raster;
-    info.pMultisampleState = &multisample;
-    info.pColorBlendState = &colorBlend;
-    info.layout = pipelineLayout;
-    VkPipeline pipeline;
-    VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-    vkDestroyShaderModule(ctx.device, vsm, nullptr);
-    vkDestroyShaderModule(ctx.device, fsm, nullptr);
-
+    pass.setLayout = createSetLayout(ctx.device, set0, VK_SHADER_STAGE_FRAGMENT_BIT);
+    pass.pipelineLayout = createPipelineLayout(ctx.device, {pass.setLayout}, 0, 0);
+    pass.pool = createPoolFor(ctx.device, {set0});
+    pass.set = allocateSet(ctx.device, pass.pool, pass.setLayout);
+    DescriptorWriter().buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, surfaces.buffer).flush(ctx.device);
+    const ShaderSource vs{"fullscreen.vert (test)", kVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}};
+    const ShaderSource fs{"gpu_cpu_bits.frag (layout " + w.layoutName + ")", fragmentSource(),
+                          VK_SHADER_STAGE_FRAGMENT_BIT, {{"SIZE", std::to_string(kSize)}}, {}};
+    pass.pipeline = createGBufferPipeline(ctx, w, pass.pipelineLayout, vs, fs, false);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        std::vector<VkRenderingAttachmentInfo> attachments;
-        for (GpuImage& img : images) {
-            transitionImage(cmd, img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-            VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            a.imageView = img.view;
-            a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-            a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-            a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            attachments.push_back(a);
-        }
-        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        ri.renderArea = scissor;
-        ri.layerCount = 1;
-        ri.colorAttachmentCount = uint32_t(attachments.size());
-        ri.pColorAttachments = attachments.data();
-        vkCmdBeginRendering(cmd, &ri);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &set, 0, nullptr);
+        beginGBufferPass(cmd, pass);
         vkCmdDraw(cmd, 3, 1, 0, 0);
-        vkCmdEndRendering(cmd);
-        for (GpuImage& img : images)
-            transitionImage(cmd, img, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        endGBufferPass(cmd, pass);
     });
-    vkDestroyPipeline(ctx.device, pipeline, nullptr);
-    vkDestroyPipelineLayout(ctx.device, pipelineLayout, nullptr);
-    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
-    vkDestroyDescriptorSetLayout(ctx.device, setLayout, nullptr);
-    return images;
+    return pass;
 }
 
 std::vector<uint32_t> readWords(const VulkanContext& ctx, const GpuImage& img) {
@@ -316,9 +241,11 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
         const std::vector<float> packed = packSurfaces(surfaces);
         Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        std::vector<GpuImage> targets = renderTargets(c, w, w.targetFormats, ssbo, "GBUFFER_WRITE");
-        std::vector<GpuImage> material;
-        if (w.materialPass) material = renderTargets(c, w, w.materialTargetFormats, ssbo, "MATERIAL_PASS_WRITE");
+        GBufferPass gbuffer = renderTargets(c, w, ssbo);
+        GBufferPass materialPass;
+        if (w.materialPass) materialPass = renderTargets(c, materialPassWiring(w), ssbo);
+        const std::vector<GpuImage>& targets = gbuffer.targets;
+        const std::vector<GpuImage>& material = materialPass.targets;
 
         size_t compared = 0, mismatches = 0;
         for (size_t t = 0; t < targets.size(); ++t) {
@@ -368,8 +295,8 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
         EXPECT_EQ(decodeMismatches, 0u);
         std::printf("[ decode   ] %-20s max |gpu - cpu| %g, %zu beyond 4 ulp\n", name.c_str(), double(worst),
                     decodeMismatches);
-        for (GpuImage& img : targets) destroyImage(c, img);
-        for (GpuImage& img : material) destroyImage(c, img);
+        destroyGBufferPass(c, gbuffer);
+        destroyGBufferPass(c, materialPass);
         destroyBuffer(c, ssbo);
     }
 }
@@ -390,9 +317,11 @@ TEST_F(GpuCpuBits, NativeFormatsRenderAndDecodeNearTheBitExactPath) {
         const std::vector<float> packed = packSurfaces(surfaces);
         Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        std::vector<GpuImage> targets = renderTargets(c, w, w.targetFormats, ssbo, "GBUFFER_WRITE");
-        std::vector<GpuImage> material;
-        if (w.materialPass) material = renderTargets(c, w, w.materialTargetFormats, ssbo, "MATERIAL_PASS_WRITE");
+        GBufferPass gbuffer = renderTargets(c, w, ssbo);
+        GBufferPass materialPass;
+        if (w.materialPass) materialPass = renderTargets(c, materialPassWiring(w), ssbo);
+        const std::vector<GpuImage>& targets = gbuffer.targets;
+        const std::vector<GpuImage>& material = materialPass.targets;
         const std::vector<Surface> g = gpuDecode(c, w, targets, material);
         const std::vector<Surface> s = decodeGBuffer(layout, cpu);
         size_t native = 0, far = 0;
@@ -420,8 +349,8 @@ TEST_F(GpuCpuBits, NativeFormatsRenderAndDecodeNearTheBitExactPath) {
         EXPECT_EQ(far, 0u) << "worst relative difference " << worst;
         std::printf("[ native   ] %-20s %zu of %zu targets native, max rel. diff vs bit-exact decode %g\n",
                     name.c_str(), native, w.targetFormats.size(), double(worst));
-        for (GpuImage& img : targets) destroyImage(c, img);
-        for (GpuImage& img : material) destroyImage(c, img);
+        destroyGBufferPass(c, gbuffer);
+        destroyGBufferPass(c, materialPass);
         destroyBuffer(c, ssbo);
     }
 }

@@ -298,7 +298,7 @@ TEST(DirectLight, WhiteFurnaceAnalyticK) {
 }
 
 // The FRESNEL_* / NDF_* / ... int constants, kPi, kMinDirectRoughness (shaders/brdf.glsl vs
-// src/shading/brdf.h) and kIblDefaultSamples, kMinIblNoV (shaders/ibl.glsl vs src/shading/ibl_math.h) are written
+// src/shading/brdf.h) and kIblDefaultSamples, kMinIblNoV (shaders/ibl_math.glsl vs src/shading/ibl_math.h) are written
 // twice; they must agree exactly.
 TEST(Shared, GlslConstantsMatchCpp) {
     std::string glsl = readText(std::filesystem::path(GBL_SOURCE_SHADER_DIR) / "brdf.glsl");
@@ -355,7 +355,7 @@ TEST(Shared, GlslConstantsMatchCpp) {
     EXPECT_TRUE(found.count("kMinIblNoV"));
 }
 
-// shaders/brdf.glsl + shaders/ibl.glsl compile for Vulkan 1.2, with and without the environment
+// shaders/brdf.glsl + shaders/ibl_math.glsl compile for Vulkan 1.2, with and without the environment
 // hook (GBL_IBL_HAS_ENVIRONMENT). Skipped when glslangValidator is not installed.
 TEST(Shared, GlslCompiles) {
     if (std::system("command -v glslangValidator > /dev/null 2>&1") != 0)
