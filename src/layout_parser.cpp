@@ -820,7 +820,10 @@ std::vector<LayoutDiagnostic> checkLayoutFile(const std::filesystem::path& path)
     try {
         text = readTextFile(path);
     } catch (const UserError& e) {
-        return {{path.string(), {}, e.what()}};
+        std::string message = e.what();  // "path: why"; the diagnostic adds the path itself
+        const std::string prefix = escapeText(path.string()) + ": ";
+        if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
+        return {{path.string(), {}, message}};
     }
     std::vector<LayoutDiagnostic> out;
     readAndCheck(text, path.string(), &path, out);
