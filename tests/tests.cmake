@@ -11,6 +11,7 @@ gbl_test(scene/scene_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_jso
 gbl_test(scene/default_scene_test LABELS unit DEPS gbl_scene)
 gbl_test(encoding/encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # checks the stats of each encoding too
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
+gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
 gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec)

@@ -4,6 +4,7 @@
 // file or flag, the place, what is wrong and the fix; main() prints it and exits non-zero.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace gbl {
 
@@ -15,5 +16,17 @@ struct UserError : std::runtime_error {
 std::string formatPlace(const std::string& file, int line = 0, int column = 0);
 
 [[noreturn]] void throwUserError(const std::string& message);
+
+// Text from a file or flag made safe for a one-line message: control characters, backslashes,
+// quotes and bytes >= 0x80 become C-style escapes (\n, \\, \', \xNN), so a name can neither
+// break the line nor put raw bytes on the terminal.
+std::string escapeText(std::string_view text);
+// escapeText in single quotes (not "quoted": std::quoted would be found by ADL): the way messages quote names.
+std::string quoteName(std::string_view text);
+
+// The JSON library's parse error as gbufferlab's own: "file:line:col: not valid JSON: what",
+// the place computed from the byte offset it reports, its "[json.exception...] parse error at
+// ..." prefix dropped and the rest escaped (it quotes bytes from the file).
+std::string jsonParseErrorMessage(const std::string& file, std::string_view text, size_t byte, const std::string& what);
 
 }  // namespace gbl

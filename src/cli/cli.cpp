@@ -62,8 +62,10 @@ int runCli(int argc, char** argv) {
             return 3;
         }
     }
-    std::fprintf(stderr, "gbufferlab: error: unknown command '%s'\n", args[0].c_str());
-    printUsage(stderr);
+    std::string known;
+    for (const auto& [name, cmd] : commands()) known += (known.empty() ? "" : ", ") + name;
+    std::fprintf(stderr, "gbufferlab: error: unknown command %s (known: %s; see gbufferlab --help)\n",
+                 quoteName(args[0]).c_str(), known.c_str());
     return 2;
 }
 

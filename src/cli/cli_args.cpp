@@ -38,7 +38,7 @@ ParsedArgs parseArgs(const std::string& command, const std::vector<std::string>&
         if (!spec) {
             std::string known;
             for (const FlagSpec& s : specs) known += (known.empty() ? "--" : ", --") + s.name;
-            throwUserError("gbufferlab " + command + ": unknown flag --" + name + " (known: " + known +
+            throwUserError("gbufferlab " + command + ": unknown flag --" + escapeText(name) + " (known: " + known +
                            "; see gbufferlab " + command + " --help)");
         }
         if (spec->valueName.empty()) {
@@ -49,8 +49,17 @@ ParsedArgs parseArgs(const std::string& command, const std::vector<std::string>&
         if (!inlineValue) {
             if (i + 1 >= args.size())
                 throwUserError("gbufferlab " + command + ": --" + name + " needs a value (" + spec->valueName + ")");
+            // "--out --force" is a forgotten value, not a directory named "--force"; a value that
+            // really starts with "--" can be given as --out=--force.
+            if (args[i + 1].rfind("--", 0) == 0 && args[i + 1].size() > 2)
+                throwUserError("gbufferlab " + command + ": --" + name + " needs a value (" + spec->valueName +
+                               ") but is followed by the flag " + escapeText(args[i + 1]) + "; give the value (or --" +
+                               name + "=VALUE)");
             value = args[++i];
         }
+        if (parsed.values.count(name))
+            throwUserError("gbufferlab " + command + ": --" + name + " is given twice (" +
+                           quoteName(parsed.values[name]) + " and " + quoteName(value) + "); give it once");
         parsed.values[name] = value;
     }
     return parsed;
@@ -87,6 +96,21 @@ float parsePositiveFloatFlag(const ParsedArgs& args, const std::string& flag, fl
     if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || !(v > 0.0f))
         throwUserError("--" + flag + " " + text + ": expected a positive number, e.g. 1.5");
     return v;
+}
+
+std::vector<std::string> splitFlagList(const std::string& text, const std::string& flag) {
+    std::vector<std::string> items;
+    size_t start = 0;
+    for (;;) {
+        const size_t comma = text.find(',', start);
+        items.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (items.back().empty())
+            throwUserError(flag + " " + quoteName(text) +
+                           ": an empty name in the list; give names separated by single commas, e.g. ue4,ryse");
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return items;
 }
 
 std::pair<uint32_t, uint32_t> parseSize(const std::string& text, const std::string& flag) {

@@ -1,6 +1,7 @@
 #pragma once
 // A small argument parser for subcommands: "--flag value", "--flag=value" and boolean
-// "--flag". Unknown flags are a UserError naming the flag and listing the known ones.
+// "--flag". Unknown flags are a UserError naming the flag and listing the known ones; so are a
+// value flag followed by another flag instead of its value, and a value flag given twice.
 #include <map>
 #include <optional>
 #include <string>
@@ -30,6 +31,10 @@ std::string formatHelp(const std::string& usage, const std::string& summary, con
 int parseIntFlag(const ParsedArgs& args, const std::string& flag, int fallback, int lo, int hi);
 // The flag's value as a finite number > 0, or `fallback` when absent.
 float parsePositiveFloatFlag(const ParsedArgs& args, const std::string& flag, float fallback);
+
+// "a,b,c" -> {a, b, c}; an empty list or an empty item ("", ",", "a,,b", "a,") is a UserError
+// naming the flag.
+std::vector<std::string> splitFlagList(const std::string& text, const std::string& flag);
 
 // "1920x1080" -> (1920, 1080); anything else is a UserError naming the flag.
 std::pair<uint32_t, uint32_t> parseSize(const std::string& text, const std::string& flag);

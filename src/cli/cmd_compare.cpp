@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,7 @@
 #include "file_io.h"
 #include "ibl_precompute.h"
 #include "image_io.h"
+#include "interrupt.h"
 #include "layout_catalog.h"
 #include "progress.h"
 #include "renderer.h"
@@ -42,14 +44,10 @@ namespace {
 
 constexpr const char* kReferenceLayout = "reference";
 constexpr const char* kGroundTruth = "ground-truth";
-
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream ss(text);
-    for (std::string item; std::getline(ss, item, ',');)
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
+// In the output folder while it is incomplete (see runCompareCommand).
+constexpr const char* kIncompleteMarker = "INCOMPLETE";
+// Exit status when the report was written but some runs failed (1: bad input, 2: usage, 3: bug).
+constexpr int kExitRunsFailed = 4;
 
 std::string joinList(const std::vector<std::string>& items) {
     std::string out;
@@ -57,22 +55,25 @@ std::string joinList(const std::vector<std::string>& items) {
     return out;
 }
 
-// Resolves --layouts: "all" (or nothing) = every file in layouts/ but the reference; otherwise
+// Resolves --layouts: "all" (or no flag) = every file in layouts/ but the reference; otherwise
 // names or paths. Every file is parsed and validated here, before any rendering.
-std::vector<Layout> resolveLayouts(const std::string& spec) {
+std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec) {
     std::vector<std::string> names;
     const std::vector<std::string> known = listLayoutNames();
-    if (spec.empty() || spec == "all") {
+    const std::vector<std::string> given = spec ? splitFlagList(*spec, "--layouts") : std::vector<std::string>{"all"};
+    if (given.size() > 1 && std::find(given.begin(), given.end(), "all") != given.end())
+        throwUserError("--layouts " + quoteName(*spec) + ": 'all' already names every layout; give all alone, or names");
+    if (given.front() == "all") {
         for (const auto& n : known)
             if (n != kReferenceLayout) names.push_back(n);
     } else {
-        names = splitList(spec);
+        names = given;
     }
     std::vector<Layout> layouts;
     for (const std::string& n : names) {
         const bool isPath = n.find('/') != std::string::npos || n.find(".toml") != std::string::npos;
         if (!isPath && std::find(known.begin(), known.end(), n) == known.end())
-            throwUserError("--layouts: unknown layout '" + n + "' (known: " + joinList(known) + ", or all)");
+            throwUserError("--layouts: unknown layout " + quoteName(n) + " (known: " + joinList(known) + ", or all)");
         layouts.push_back(loadLayout(n));
     }
     return layouts;
@@ -216,6 +217,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const std::vector<FlagSpec> specs = {
         {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in sphere grid"},
         {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
+        {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
         {"layouts", "A,B,...", "layouts to compare (names in layouts/ or .toml paths), or all (default)"},
         {"ibl", "MODES", "specular IBL modes, comma-separated (default split-sum; known: " +
                              joinList(iblModeNames()) + ")"},
@@ -252,8 +254,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const auto [width, height] = parseSize(parsed.get("size", "1920x1080"), "--size");
     const float exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     std::vector<IblMode> modes;
-    std::vector<std::string> modeNames = splitList(parsed.get("ibl", "split-sum"));
-    if (modeNames.empty()) throwUserError("--ibl: give at least one mode (known: " + joinList(iblModeNames()) + ")");
+    std::vector<std::string> modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
     for (const auto& n : modeNames) modes.push_back(parseIblMode(n));
     const int groundTruthSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("compare");
@@ -264,9 +265,11 @@ int runCompareCommand(const std::vector<std::string>& args) {
     checkOutputDirectory(outDir, force, "--out");
 
     // Everything the user gave is read and validated before the first pixel is rendered.
-    const std::vector<Layout> layouts = resolveLayouts(parsed.get("layouts"));
+    const std::vector<Layout> layouts =
+        resolveLayouts(parsed.has("layouts") ? std::optional<std::string>(parsed.get("layouts")) : std::nullopt);
     const Layout referenceLayout = loadLayout(kReferenceLayout);
-    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height));
+    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
+                                                GltfLoadOptions{parsed.has("allow-outside-scene")});
 
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
     validateResolution(ctx, width, height, "--size");
@@ -290,6 +293,25 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const int steps = int(modes.size()) * (1 + int(layouts.size())) + (compareLighting ? int(modes.size()) - 1 : 0);
     Progress progress(steps, stderr);
     prepareOutputDirectory(outDir, force, "--out");
+    // Until the report is complete the folder says so: an interruption (SIGINT, SIGTERM) writes
+    // the report of the runs that finished and leaves this file, naming the signal; a kill -9
+    // leaves it as written here. The finished report removes it.
+    const fs::path incompleteMarker = outDir / kIncompleteMarker;
+    writeFileAtomic(incompleteMarker, "gbufferlab compare started " + model.run.date +
+                                          " and has not finished: this folder is incomplete\n");
+    std::mutex modelMutex;  // model.runs, shared with the interrupt action
+    bool reportComplete = false;
+    setInterruptAction([&](int signal) {
+        std::lock_guard lock(modelMutex);
+        if (reportComplete) return;
+        ReportModel partial = model;
+        const std::string what = std::string("INCOMPLETE: interrupted by ") + signalName(signal) + " after " +
+                                 std::to_string(partial.runs.size()) + " of " + std::to_string(steps - int(modes.size())) +
+                                 " runs; this report lists only the runs that finished";
+        partial.run.notes.push_back(what);
+        writeReport(outDir, partial);
+        writeFileAtomic(incompleteMarker, what + "\n");
+    });
     timedSetup.reset();
     double gpuPassMs = 0.0;  // timestamps of every frame rendered
 
@@ -349,6 +371,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
             measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip, false);
             progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                          std::to_string(run.image->flipMean).substr(0, 6));
+            std::lock_guard lock(modelMutex);
             model.runs.push_back(std::move(run));
         }
     }
@@ -372,17 +395,32 @@ int runCompareCommand(const std::vector<std::string>& args) {
                 run.image.reset();
                 progress.end("FAILED: " + std::string(e.what()).substr(0, 200));
             }
+            std::lock_guard lock(modelMutex);
             model.runs.push_back(std::move(run));
         }
     }
 
     {
         ScopedStage timed(Stage::Report);
+        std::lock_guard lock(modelMutex);
         writeReport(outDir, model);
+        printTable(model);
+        reportStageTimes(outDir, StageClock::global().read(), gpuPassMs);
+        std::error_code ec;
+        fs::remove(incompleteMarker, ec);
+        reportComplete = true;
     }
-    printTable(model);
-    reportStageTimes(outDir, StageClock::global().read(), gpuPassMs);
+    setInterruptAction({});
     std::printf("report: %s\n", (outDir / "report.html").string().c_str());
+    // The report lists what failed and why; the exit status says that something did, so that
+    // scripts and CI notice (2 runs failed of 7: exit 4).
+    const auto failed = std::count_if(model.runs.begin(), model.runs.end(),
+                                      [](const RunReport& r) { return r.status == RunStatus::Failed; });
+    if (failed > 0) {
+        std::fprintf(stderr, "gbufferlab: error: %d of %d runs failed (see the FAILED rows above and in %s)\n",
+                     int(failed), int(model.runs.size()), escapeText((outDir / "report.html").string()).c_str());
+        return kExitRunsFailed;
+    }
     return 0;
 }
 

@@ -37,6 +37,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const std::vector<FlagSpec> specs = {
         {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in sphere grid"},
         {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
+        {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
         {"size", "WxH", "image size (default 1280x720)"},
         {"out", "DIR", "output directory, new or empty (default: out/render-<time>)"},
         {"force", "", "write into a non-empty --out directory, replacing files of the same name"},
@@ -67,7 +68,8 @@ int runRenderCommand(const std::vector<std::string>& args) {
     // Refuse a non-empty output directory before any work, but create it only once all succeeded.
     checkOutputDirectory(outDir, parsed.has("force"), "--out");
 
-    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height));
+    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
+                                                GltfLoadOptions{parsed.has("allow-outside-scene")});
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
     Renderer renderer(ctx, inputs.scene, inputs.environment);
     RenderSettings settings;

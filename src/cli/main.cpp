@@ -1,3 +1,7 @@
 #include "cli.h"
+#include "interrupt.h"
 
-int main(int argc, char** argv) { return gbl::runCli(argc, argv); }
+int main(int argc, char** argv) {
+    gbl::installInterruptHandling();  // before any thread (lavapipe's, ours) exists
+    return gbl::runCli(argc, argv);
+}

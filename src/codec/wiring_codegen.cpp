@@ -20,6 +20,18 @@ std::string lit(double v) {
     return s;
 }
 
+// Layout text (title, target names) only ever appears in GLSL comments, and only as this: printable
+// ASCII without backslashes or double quotes (a trailing backslash would continue the comment onto
+// the next line; a quote would unbalance the #error line).
+// The parser already refuses control characters; this holds for a Layout built any other way too.
+std::string commentText(const std::string& text) {
+    std::string out = text;
+    for (char& c : out)
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f || c == '\\' || c == '"')
+            c = '?';
+    return out;
+}
+
 std::string ulit(uint64_t v) { return std::to_string(v) + "u"; }
 
 std::string maskLit(int bits) { return bits >= 32 ? "0xffffffffu" : ulit((uint64_t(1) << bits) - 1); }
@@ -369,8 +381,8 @@ std::string nativeFormatObstacle(const Target& target) {
 
 std::string generateWiringGlsl(const Layout& layout, const WiringOptions& options) {
     std::ostringstream o;
-    o << "// generated from layouts/" << layout.name << ".toml by gbufferlab -- do not edit\n";
-    o << "// " << layout.title << " (" << pipelineName(layout.pipeline) << ")\n";
+    o << "// generated from layouts/" << commentText(layout.name) << ".toml by gbufferlab -- do not edit\n";
+    o << "// " << commentText(layout.title) << " (" << pipelineName(layout.pipeline) << ")\n";
     o << "// Integer-only wiring: every code is placed with shifts and masks; src/codec/cpu_codec.cpp mirrors it.\n";
     if (!layout.depth.stencil.empty())
         o << "// Stencil extras are constants written by the renderer's stencil reference, not here.\n";
@@ -382,7 +394,7 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         if (!options.nativeFormats) continue;
         const std::string why = nativeFormatObstacle(tg);
         native[t] = why.empty();
-        if (!why.empty()) o << "// --native-formats: target " << t << " '" << tg.name << "' stays UINT: " << why << "\n";
+        if (!why.empty()) o << "// --native-formats: target " << t << " '" << commentText(tg.name) << "' stays UINT: " << why << "\n";
     }
     const bool materialPass = materialTargetCount(layout) > 0;
     const int materialTargets = materialTargetCount(layout);
@@ -406,20 +418,20 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         for (int i = 0; i < materialTargets; ++i) o << "    materialTarget" << i << " = m" << i << ";\n";
         o << "}\n";
     } else {
-        o << "#error \"layout " << layout.name << " has no material pass\"\n";
+        o << "#error \"layout " << commentText(layout.name) << " has no material pass\"\n";
     }
     o << "#elif defined(GBUFFER_WRITE)\n";
     for (size_t t = 0; t < layout.targets.size(); ++t) {
         const Target& tg = layout.targets[t];
         o << "layout(location = " << t << ") out "
           << (native[t] ? "vec4" : outTypeOf(wordsPerPixel(tg), tg.bits())) << " gbufferTarget" << t << ";  // "
-          << tg.name << ", " << tg.format << (native[t] ? " (native)" : "") << "\n";
+          << commentText(tg.name) << ", " << tg.format << (native[t] ? " (native)" : "") << "\n";
     }
     o << "void writeGBuffer(Surface s, ivec2 pixel) {\n";
     for (size_t t = 0; t < layout.targets.size(); ++t) {
         const Target& tg = layout.targets[t];
         const std::string ts = std::to_string(t);
-        o << "    // target " << t << " '" << tg.name << "'\n";
+        o << "    // target " << t << " '" << commentText(tg.name) << "'\n";
         if (native[t]) {
             o << "    vec4 v" << ts << " = vec4(0.0);\n";
         } else {
@@ -459,7 +471,7 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
     o << "\n#ifdef GBUFFER_READ\n";
     for (size_t t = 0; t < layout.targets.size(); ++t)
         o << "layout(set = 1, binding = " << t << ") uniform " << (native[t] ? "sampler2D" : "usampler2D")
-          << " gbufferTarget" << t << ";  // " << layout.targets[t].name << "\n";
+          << " gbufferTarget" << t << ";  // " << commentText(layout.targets[t].name) << "\n";
     for (int i = 0; i < materialTargets; ++i)
         o << "layout(set = 2, binding = " << i << ") uniform usampler2D materialTarget" << i
           << ";  // material pass, float32 bits\n";

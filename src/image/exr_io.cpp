@@ -85,6 +85,7 @@ Image readViaRgba(const std::string& path) {
 
 Image readExr(const std::string& path) {
     return guardedRead(path, [&]() -> Image {
+        requireRegularFile(path);  // OpenEXR would block on a FIFO
         {
             Imf::InputFile file(path.c_str());
             const auto& channels = file.header().channels();
@@ -107,6 +108,7 @@ Image readExr(const std::string& path) {
 
 Image readExrChannels(const std::string& path, const std::vector<std::string>& channelNames) {
     return guardedRead(path, [&]() -> Image {
+        requireRegularFile(path);
         Imf::InputFile file(path.c_str());
         const auto& channels = file.header().channels();
         for (const auto& name : channelNames)

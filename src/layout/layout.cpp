@@ -460,7 +460,7 @@ std::string parseCodePlace(std::string_view text, const std::vector<Channel>& ch
 
 // ---- diagnostics ------------------------------------------------------------------------------
 
-std::string LayoutDiagnostic::text() const { return formatPlace(file, place.line, place.column) + ": " + message; }
+std::string LayoutDiagnostic::text() const { return formatPlace(escapeText(file), place.line, place.column) + ": " + message; }
 
 namespace {
 std::string joinDiagnostics(const std::vector<LayoutDiagnostic>& list) {

@@ -44,7 +44,8 @@ fs::path findLayoutFile(const std::string& nameOrPath) {
                         (nameOrPath.size() > 5 && nameOrPath.compare(nameOrPath.size() - 5, 5, ".toml") == 0);
     std::error_code ec;
     if (isPath) {
-        if (!fs::is_regular_file(nameOrPath, ec)) throwUserError(nameOrPath + ": no such layout file");
+        // Anything that exists is returned: reading it refuses directories and FIFOs by name.
+        if (!fs::exists(nameOrPath, ec)) throwUserError(escapeText(nameOrPath) + ": no such layout file");
         return nameOrPath;
     }
     const fs::path dir = layoutDirectory();

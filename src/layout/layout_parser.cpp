@@ -21,7 +21,7 @@ Layout Parser::parse(std::string_view text) {
     try {
         root = toml::parse(text, file_);
     } catch (const toml::parse_error& e) {
-        error(placeOf(e.source()), "TOML syntax error: " + std::string(e.description()));
+        error(placeOf(e.source()), "TOML syntax error: " + escapeText(e.description()));
         return layout;
     }
     const FilePlace top{1, 1};
@@ -247,7 +247,10 @@ std::vector<LayoutDiagnostic> checkLayoutFile(const std::filesystem::path& path)
     try {
         text = readTextFile(path);
     } catch (const UserError& e) {
-        return {{path.string(), {}, e.what()}};
+        std::string message = e.what();  // "path: why"; the diagnostic adds the path itself
+        const std::string prefix = escapeText(path.string()) + ": ";
+        if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
+        return {{path.string(), {}, message}};
     }
     std::vector<LayoutDiagnostic> out;
     readAndCheck(text, path.string(), &path, out);

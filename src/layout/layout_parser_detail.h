@@ -5,12 +5,16 @@
 // (fallbacks and light buffers). Not part of the layout library's interface.
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "error.h"
 #include "layout.h"
 
 namespace gbl::layout_parser {
@@ -40,7 +44,24 @@ inline const char* typeName(const toml::node& n) {
     }
 }
 
-inline std::string squote(std::string_view s) { return "'" + std::string(s) + "'"; }
+// Names come from the file: quoted escaped, so a message stays one line of plain text.
+inline std::string squote(std::string_view s) { return quoteName(s); }
+
+// Titles and target / light-buffer names are shown on one line (layouts list, reports); a control
+// character in one would break that line. (They never reach GLSL unescaped either: see
+// wiring_codegen.cpp's commentText.)
+inline bool isOneLine(std::string_view s) {
+    return std::none_of(s.begin(), s.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+}
+
+// Values are ids (at most 32 bits) or floats; 2^32 bounds both comfortably below float's 3.4e38.
+constexpr double kMaxLayoutNumber = 4294967296.0;
+
+inline std::string formatNumber(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+}
 
 class Parser {
 public:
@@ -74,7 +95,13 @@ public:
             error(placeOf(*n), "'" + std::string(key) + "' must be a string, not " + typeName(*n));
             return std::nullopt;
         }
-        return n->as_string()->get();
+        const std::string& text = n->as_string()->get();
+        if (!isOneLine(text)) {
+            error(placeOf(*n), "'" + std::string(key) + "' " + squote(text) +
+                                   " holds a control character (newline, tab...): write it on one line");
+            return std::nullopt;
+        }
+        return text;
     }
 
     std::optional<int64_t> getInteger(const toml::node& n, const std::string& what) {
@@ -85,9 +112,23 @@ public:
         return n.as_integer()->get();
     }
 
+    // Every number ends up as a 32-bit float (in GLSL and the CPU mirror): nan, inf and values
+    // beyond float range would not survive that, so they are refused here, where the place is known.
     std::optional<double> getNumber(const toml::node& n, const std::string& what) {
-        if (n.is_integer()) return static_cast<double>(n.as_integer()->get());
-        if (n.is_floating_point()) return n.as_floating_point()->get();
+        double x = 0;
+        if (n.is_integer() || n.is_floating_point()) {
+            x = n.is_integer() ? static_cast<double>(n.as_integer()->get()) : n.as_floating_point()->get();
+            if (!std::isfinite(x)) {
+                error(placeOf(n), what + " must be a finite number, not " + std::to_string(x));
+                return std::nullopt;
+            }
+            if (std::fabs(x) > kMaxLayoutNumber) {
+                error(placeOf(n), what + " " + formatNumber(x) + " is out of range (at most " +
+                                      formatNumber(kMaxLayoutNumber) + " in magnitude)");
+                return std::nullopt;
+            }
+            return x;
+        }
         error(placeOf(n), what + " must be a number, not " + typeName(n));
         return std::nullopt;
     }

@@ -342,8 +342,10 @@ ReportModel readReportJson(const std::filesystem::path& path) {
     Json json;
     try {
         json = Json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        throwUserError(jsonParseErrorMessage(path.string(), text, e.byte, e.what()));
     } catch (const nlohmann::json::exception& e) {
-        throwUserError(path.string() + ": not valid JSON: " + e.what());
+        throwUserError(escapeText(path.string()) + ": not valid JSON: " + escapeText(e.what()));
     }
     try {
         return reportFromJson(json);

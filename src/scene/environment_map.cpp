@@ -68,10 +68,12 @@ void validateEnvironmentImage(const Image& image, const std::string& source) {
     // A NaN, Inf or clearly negative texel poisons every integral taken over the map (irradiance,
     // prefilter), so it is refused, not clamped: the user should know their map is broken. Tiny
     // negatives (lossy-compression ringing, see kEnvironmentRingingTolerance) pass, to be clamped.
+    // Finite but huge values (3.4e38, an RGBE exponent of 255) overflow those integrals to Inf and
+    // the renders to NaN, so values above kEnvironmentMaxValue are refused the same way.
     size_t bad = 0, first = 0;
     for (size_t i = 0; i < image.pixels.size(); ++i) {
         const float value = image.pixels[i];
-        if (std::isfinite(value) && value >= -kEnvironmentRingingTolerance) continue;
+        if (std::isfinite(value) && value >= -kEnvironmentRingingTolerance && value <= kEnvironmentMaxValue) continue;
         if (bad++ == 0) first = i;
     }
     if (bad == 0) return;
@@ -84,9 +86,9 @@ void validateEnvironmentImage(const Image& image, const std::string& source) {
     char valueText[32];
     std::snprintf(valueText, sizeof valueText, "%.9g", double(image.pixels[first]));
     throwUserError(source + ": environment map has " + std::to_string(bad) +
-                   " invalid values (NaN, Inf or below -1/64); the first is at x=" + std::to_string(pixel % size_t(image.width)) +
+                   " invalid values (NaN, Inf, below -1/64 or above 1e9); the first is at x=" + std::to_string(pixel % size_t(image.width)) +
                    ", y=" + std::to_string(pixel / size_t(image.width)) + ", channel " + channelName + ", value " +
-                   std::string(valueText) + "; fix the map (e.g. clamp negatives to 0) and export it again");
+                   std::string(valueText) + "; fix the map (e.g. clamp to [0, 1e9]) and export it again");
 }
 
 size_t clampEnvironmentRinging(Image& image) {

@@ -23,6 +23,9 @@ struct EnvironmentMap {
 // are codec noise, not a broken map, so they are clamped to 0 (and counted) rather than refused.
 // 1/64 is ~4x the worst ringing seen and far below any deliberate (e.g. sign-flipped) value.
 constexpr float kEnvironmentRingingTolerance = 1.0f / 64.0f;  // 0.015625
+// The brightest texel accepted: about the sun's disc in cd/m^2 (1.6e9), far above any captured
+// sky, and low enough that sums over a whole map stay far from float overflow.
+constexpr float kEnvironmentMaxValue = 1e9f;
 
 // Loads .hdr or .exr and validates it: width must be 2 x height and at least 8x4; NaN, Inf and
 // texels below -kEnvironmentRingingTolerance are a UserError naming the file, the first bad

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
+#include <string_view>
 #include <map>
 #include <tuple>
 
+#include "file_io.h"
 #include "scene.h"
+#include "scene_gltf_files.h"
+#include "scene_gltf_json_check.h"
 #include "scene_gltf_camera_lights.h"
 #include "scene_gltf_context.h"
 #include "scene_gltf_geometry.h"
@@ -23,20 +25,16 @@ namespace {
 constexpr std::array kSupportedRequiredExtensions = {"KHR_materials_specular", "KHR_lights_punctual",
                                                      "KHR_mesh_quantization"};
 
-bool startsWithGlbMagic(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    char magic[4] = {};
-    file.read(magic, 4);
-    return file.gcount() == 4 && std::equal(magic, magic + 4, "glTF");
+bool startsWithGlbMagic(const std::vector<unsigned char>& bytes) {
+    return bytes.size() >= 4 && std::equal(bytes.begin(), bytes.begin() + 4, "glTF");
 }
 
 // Draco-compressed primitives have accessors without bufferViews, which tinygltf (built without
 // Draco) rejects before we can look at extensionsRequired; a failed load of a file naming the
 // extension is reported as the Draco problem it almost certainly is.
-bool mentionsDraco(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-    return text.find("KHR_draco_mesh_compression") != std::string::npos;
+bool mentionsDraco(const std::vector<unsigned char>& bytes) {
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    return text.find("KHR_draco_mesh_compression") != std::string_view::npos;
 }
 
 // tinygltf's messages are multi-line; the error policy wants one line.
@@ -50,29 +48,37 @@ std::string oneLine(std::string text) {
     return out;
 }
 
-tinygltf::Model parseFile(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throwUserError(formatPlace(path) + ": file not found; check the path");
+// The file is read once, as a regular file (a directory or FIFO is refused, never read); its JSON
+// is checked against the specification (scene_gltf_json_check.h); the files it names are read
+// through GltfFileAccess (regular files inside the scene's folder).
+tinygltf::Model parseFile(const std::string& path, const GltfLoadOptions& options) {
+    const std::vector<unsigned char> bytes = readBinaryFile(path);
+    const bool glb = startsWithGlbMagic(bytes);
+    checkGltfJson(path, bytes);
+    GltfFileAccess files(path, options.allowOutsideScene);
     tinygltf::TinyGLTF parser;
+    parser.SetFsCallbacks(files.callbacks());
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
     try {
         // By content, not extension: .glb files renamed to .gltf still load.
-        ok = startsWithGlbMagic(path) ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
-                                      : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+        ok = glb ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), files.baseDir())
+                 : parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                              unsigned(bytes.size()), files.baseDir());
     } catch (const std::exception& e) {  // its JSON parser may throw on malformed input
         err = e.what();
         ok = false;
     }
-    if (!ok && mentionsDraco(path))  // tinygltf fails on Draco's missing bufferViews first
-        throwUserError(formatPlace(path) +
+    // A refused URI fails the load even where tinygltf would carry on without the file (images).
+    if (!files.refusal().empty()) throwUserError(files.refusal());
+    if (!ok && mentionsDraco(bytes))  // tinygltf fails on Draco's missing bufferViews first
+        throwUserError(formatPlace(escapeText(path)) +
                        ": extensionsRequired: uses Draco compression, which gbufferlab does not support; "
                        "re-export without Draco");
     if (!ok)
-        throwUserError(formatPlace(path) + ": not a loadable glTF 2.0 file: " +
-                       oneLine(err.empty() ? warn : err) + "; check the file and its .bin/image files");
+        throwUserError(formatPlace(escapeText(path)) + ": not a loadable glTF 2.0 file: " +
+                       escapeText(oneLine(err.empty() ? warn : err)) + "; check the file and its .bin/image files");
     return model;
 }
 
@@ -189,8 +195,8 @@ private:
 
 }  // namespace
 
-Scene loadGltfScene(const std::string& path) {
-    const tinygltf::Model model = parseFile(path);
+Scene loadGltfScene(const std::string& path, const GltfLoadOptions& options) {
+    const tinygltf::Model model = parseFile(path, options);
     const GltfContext ctx{path, model};
     checkRequiredExtensions(ctx);
 

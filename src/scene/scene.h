@@ -102,7 +102,12 @@ struct Scene {
 // primitive has a normal map but no TANGENT. Non-indexed primitives get sequential indices.
 // Adds a default sun when the file has no KHR_lights_punctual lights, and a camera that frames
 // the bounds when it has none.
-Scene loadGltfScene(const std::string& path);
+// Buffer and image URIs must resolve to regular files inside the scene's folder unless
+// `allowOutsideScene` (the --allow-outside-scene flag).
+struct GltfLoadOptions {
+    bool allowOutsideScene = false;
+};
+Scene loadGltfScene(const std::string& path, const GltfLoadOptions& options = {});
 
 // The built-in scene: a sphere grid over roughness x metallic, coloured-specular spheres
 // (gold, copper, a coloured dielectric) and a normal-mapped ground plane with fine detail.

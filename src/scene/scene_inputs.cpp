@@ -4,11 +4,12 @@
 
 namespace gbl {
 
-SceneInputs loadSceneInputs(const std::string& scenePath, const std::string& environmentPath, float aspect) {
+SceneInputs loadSceneInputs(const std::string& scenePath, const std::string& environmentPath, float aspect,
+                            const GltfLoadOptions& gltf) {
     SceneInputs in;
     // A file the user named is read before anything is built in code, so bad input fails fast.
     if (!environmentPath.empty()) in.environment = loadEnvironmentMap(environmentPath);
-    in.scene = scenePath.empty() ? makeDefaultScene() : loadGltfScene(scenePath);
+    in.scene = scenePath.empty() ? makeDefaultScene() : loadGltfScene(scenePath, gltf);
     if (!in.scene.camera.fromFile && !scenePath.empty()) in.scene.camera = frameBounds(in.scene.bounds, aspect);
     if (environmentPath.empty()) in.environment = makeProceduralSky();
     return in;

@@ -15,6 +15,8 @@ struct SceneInputs {
 };
 
 // Empty paths pick the built-in scene / sky. A scene without a camera is framed for `aspect`.
-SceneInputs loadSceneInputs(const std::string& scenePath, const std::string& environmentPath, float aspect);
+// `gltf` says where the scene's buffers and images may come from (--allow-outside-scene).
+SceneInputs loadSceneInputs(const std::string& scenePath, const std::string& environmentPath, float aspect,
+                            const GltfLoadOptions& gltf = {});
 
 }  // namespace gbl

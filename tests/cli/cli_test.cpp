@@ -2,8 +2,15 @@
 // exit, no output directory or partial file, never a crash. Runs the real executable.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <thread>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
 
@@ -164,9 +171,183 @@ TEST(Cli, UnknownFlagsAndCommandsAreExplained) {
     r = run("rendr");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("unknown command 'rendr'"), std::string::npos);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
     r = run("render --help");
     EXPECT_EQ(r.exitCode, 0);
     EXPECT_NE(r.out.find("--scene"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Failures are loud (issue 13): exit codes, special files, strict flags, interruption, locking.
+
+// gbufferlab started in the background in scratch(), stdout/stderr to <name>.out/.err.
+struct Background {
+    pid_t pid = -1;
+    std::string name;
+    Background(const std::string& runName, const std::vector<std::string>& args) : name(runName) {
+        pid = ::fork();
+        if (pid == 0) {
+            if (::chdir(scratch().c_str()) != 0) ::_exit(120);
+            const int out = ::open((name + ".out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            const int err = ::open((name + ".err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            ::dup2(out, 1);
+            ::dup2(err, 2);
+            std::vector<char*> argv{const_cast<char*>(GBL_BINARY)};
+            for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+            argv.push_back(nullptr);
+            ::execv(GBL_BINARY, argv.data());
+            ::_exit(121);
+        }
+    }
+    int wait() {
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    }
+    std::string err() const { return slurp(scratch() / (name + ".err")); }
+};
+
+// Waits up to `seconds` for `pred`; false on time-out.
+template <class Pred>
+bool waitFor(Pred&& pred, double seconds) {
+    for (int i = 0; i < int(seconds * 50); ++i) {
+        if (pred()) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+}
+
+std::vector<std::string> temporariesUnder(const fs::path& dir) {
+    std::vector<std::string> found;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        if (e.path().filename().string().find(".tmp") != std::string::npos) found.push_back(e.path().string());
+    return found;
+}
+
+TEST(Cli, CompareExitsNonZeroWhenARunFailsAndStillReportsIt) {
+    // A file named "runs" where compare makes its runs/ folder: every layout's images fail to write.
+    fs::create_directories(scratch() / "cmp-fail");
+    { std::ofstream(scratch() / "cmp-fail" / "runs") << "in the way"; }
+    const RunResult r = run("compare --out cmp-fail --force --size 64x32 --layouts crysis3-thin,ue4");
+    EXPECT_EQ(r.exitCode, 4) << r.err;
+    EXPECT_NE(r.err.find("2 of 2 runs failed"), std::string::npos) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "cmp-fail" / "report.json"));
+    ASSERT_EQ(report["runs"].size(), 2u);
+    for (const auto& run : report["runs"]) {
+        EXPECT_EQ(run["status"], "failed");
+        EXPECT_NE(run["error"].get<std::string>().find("runs"), std::string::npos) << run["error"];
+    }
+    EXPECT_FALSE(fs::exists(scratch() / "cmp-fail" / "INCOMPLETE"));
+}
+
+TEST(Cli, DirectoriesAndFifosWhereFilesBelongAreOneLine) {
+    fs::create_directories(scratch() / "adir.toml");
+    RunResult r = run("layouts check adir.toml");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE((r.out + r.err).find("adir.toml: is a directory, not a file; give the path of a file\n"),
+              std::string::npos) << r.out << r.err;
+    EXPECT_EQ((r.out + r.err).find("bad_alloc"), std::string::npos);
+    fs::remove(scratch() / "fifo.toml");
+    ASSERT_EQ(::mkfifo((scratch() / "fifo.toml").c_str(), 0600), 0);
+    r = run("layouts check fifo.toml", "timeout 60");  // a read would block forever
+    EXPECT_NE(r.exitCode, 124) << "hung on a FIFO";
+    EXPECT_NE((r.out + r.err).find("is not a regular file"), std::string::npos) << r.out << r.err;
+    r = run("compare --out fifo-out --size 32x32 --layouts ./fifo.toml", "timeout 60");
+    expectOneLineError(r, {"fifo.toml", "is not a regular file"});
+    fs::remove(scratch() / "fifo.hdr");
+    ASSERT_EQ(::mkfifo((scratch() / "fifo.hdr").c_str(), 0600), 0);
+    r = run("render --out fifo-env --size 32x32 --env fifo.hdr", "timeout 60");
+    expectOneLineError(r, {"fifo.hdr", "is not a regular file"});
+    fs::create_directories(scratch() / "scene-dir.gltf");
+    r = run("render --out dir-scene --size 32x32 --scene scene-dir.gltf");
+    expectOneLineError(r, {"scene-dir.gltf", "is a directory"});
+    EXPECT_FALSE(fs::exists(scratch() / "fifo-out"));
+    EXPECT_FALSE(fs::exists(scratch() / "fifo-env"));
+}
+
+TEST(Cli, FlagsAreStrict) {
+    RunResult r = run("render --out --force --size 32x32");
+    expectOneLineError(r, {"--out needs a value", "followed by the flag --force"});
+    EXPECT_FALSE(fs::exists(scratch() / "--force"));
+    r = run("render --size 64x64 --size 32x32 --out twice");
+    expectOneLineError(r, {"--size is given twice"});
+    for (const std::string bad : {"--layouts ,", "--layouts ''", "--layouts all,ue4", "--layouts ue4,,ryse",
+                                  "--ibl ,split-sum"}) {
+        r = run("compare --out strict --size 32x32 " + bad);
+        expectOneLineError(r, {bad.substr(0, bad.find(' '))});
+        EXPECT_FALSE(fs::exists(scratch() / "strict")) << bad;
+    }
+    r = run("\"$(printf 'bad\\ncommand')\"");  // a newline in the command name
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("unknown command 'bad\\ncommand'"), std::string::npos) << r.err;
+}
+
+// SIGINT / SIGTERM mid-compare: exit 130 / 143, no temporary left, the folder marked INCOMPLETE
+// with a report of the runs that finished.
+TEST(Cli, InterruptedCompareLeavesAMarkedFolderWithAReportOfFinishedRuns) {
+    for (const int signal : {SIGINT, SIGTERM}) {
+        const std::string name = signal == SIGINT ? "int" : "term";
+        const fs::path out = scratch() / ("interrupted-" + name);
+        Background b(name, {"compare", "--out", out.string(), "--size", "192x96", "--layouts", "all"});
+        // Wait for the second layout's run folder: at least one run has finished by then.
+        size_t started = 0;
+        waitFor([&] {
+            std::error_code ec;
+            started = 0;
+            if (fs::exists(out / "runs", ec))
+                for ([[maybe_unused]] const auto& e : fs::directory_iterator(out / "runs", ec)) ++started;
+            return started >= 2;
+        }, 120);
+        ASSERT_GE(started, 2u) << b.err();
+        ::kill(b.pid, signal);
+        const int code = b.wait();
+        EXPECT_EQ(code, 128 + signal) << b.err();
+        EXPECT_TRUE(temporariesUnder(out).empty()) << temporariesUnder(out)[0];
+        const std::string marker = slurp(out / "INCOMPLETE");
+        EXPECT_NE(marker.find(std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM")),
+                  std::string::npos) << marker;
+        const nlohmann::json report = nlohmann::json::parse(slurp(out / "report.json"));
+        EXPECT_GE(report["runs"].size(), 1u);
+        EXPECT_LT(report["runs"].size(), 6u);
+        EXPECT_NE(report["run"]["notes"].dump().find("INCOMPLETE"), std::string::npos);
+        EXPECT_TRUE(fs::exists(out / "report.html"));
+    }
+}
+
+// Two runs into one --out: the second is refused (even with --force) while the first runs, and
+// the first's report is its own.
+TEST(Cli, SecondRunIntoTheSameOutputIsRefused) {
+    const fs::path out = scratch() / "locked";
+    Background first("first", {"compare", "--out", out.string(), "--size", "96x48", "--layouts", "ue4,ryse"});
+    ASSERT_TRUE(waitFor([&] { return fs::exists(out / "INCOMPLETE"); }, 120)) << first.err();
+    const RunResult second = run("compare --out locked --force --size 64x32 --layouts crysis3-thin");
+    expectOneLineError(second, {"--out", "another gbufferlab run is writing into this directory"});
+    const RunResult render = run("render --out locked --force --size 32x32");
+    expectOneLineError(render, {"another gbufferlab run"});
+    EXPECT_EQ(first.wait(), 0) << first.err();
+    const nlohmann::json report = nlohmann::json::parse(slurp(out / "report.json"));
+    ASSERT_EQ(report["runs"].size(), 2u);
+    EXPECT_EQ(report["runs"][0]["layout"], "ue4");
+    EXPECT_FALSE(fs::exists(out / "reference.exr")) << "the refused render wrote into the folder";
+}
+
+// glTF URIs outside the scene's folder are refused unless --allow-outside-scene.
+TEST(Cli, SceneUrisOutsideTheSceneFolderNeedAFlag) {
+    const fs::path box = "/usr/share/assimp/models/glTF2/BoxTextured-glTF";
+    if (!fs::exists(box / "BoxTextured.gltf")) GTEST_SKIP() << "assimp-testmodels not installed";
+    fs::create_directories(scratch() / "scene");
+    fs::copy_file(box / "BoxTextured0.bin", scratch() / "outside.bin", fs::copy_options::overwrite_existing);
+    fs::copy_file(box / "CesiumLogoFlat.png", scratch() / "scene" / "CesiumLogoFlat.png",
+                  fs::copy_options::overwrite_existing);
+    std::string text = slurp(box / "BoxTextured.gltf");
+    text.replace(text.find("BoxTextured0.bin"), 16, "../outside.bin");
+    { std::ofstream(scratch() / "scene" / "box.gltf") << text; }
+    RunResult r = run("render --out outside1 --size 32x32 --scene scene/box.gltf");
+    expectOneLineError(r, {"box.gltf", "../outside.bin'", "outside the scene's folder", "--allow-outside-scene"});
+    EXPECT_FALSE(fs::exists(scratch() / "outside1"));
+    r = run("render --out outside2 --size 32x32 --scene scene/box.gltf --allow-outside-scene");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "environment_map.h"
@@ -191,6 +192,43 @@ TEST(LoadEnvironmentMap, ValidatesFilesAndNamesThem) {
     const EnvironmentMap map = loadEnvironmentMap(good.string());
     EXPECT_EQ(map.source, good.string());
     EXPECT_EQ(map.image.width, 1024);
+}
+
+// Finite but huge texels overflow the IBL integrals to Inf (and the renders to NaN): refused by
+// value, in memory and in an RGBE file whose exponent byte is 255 (~8.5e37).
+TEST(Validate, HugeFiniteValuesAreRefused) {
+    Image image(16, 8, 3, 1.0f);
+    image.at(5, 2, 0) = 3.4e38f;
+    const std::string message = userErrorOf([&] { validateEnvironmentImage(image, "huge.exr"); });
+    EXPECT_NE(message.find("x=5, y=2, channel R, value 3.39999995e+38"), std::string::npos) << message;
+    EXPECT_NE(message.find("above 1e9"), std::string::npos) << message;
+    Image bright(16, 8, 3, 1.0f);
+    bright.at(0, 0, 0) = kEnvironmentMaxValue;  // the limit itself passes (a sun-bright texel)
+    EXPECT_NO_THROW(validateEnvironmentImage(bright, "bright.exr"));
+
+    TempDir dir;
+    std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 16\n";
+    for (int i = 0; i < 16 * 8; ++i) hdr += i == 37 ? std::string("\x80\x80\x80\xff") : std::string("\x80\x80\x80\x81");
+    const fs::path path = dir.path / "rgbe255.hdr";
+    writeFileAtomic(path, hdr);
+    const std::string fileMessage = userErrorOf([&] { loadEnvironmentMap(path.string()); });
+    EXPECT_EQ(fileMessage.rfind(path.string() + ": environment map has 3 invalid values", 0), 0u) << fileMessage;
+    EXPECT_NE(fileMessage.find("x=5, y=2, channel R"), std::string::npos) << fileMessage;
+}
+
+// A directory or a FIFO named as the environment: one line, never a read (a FIFO would block).
+TEST(LoadEnvironmentMap, DirectoriesAndFifosAreRefusedWithoutReading) {
+    TempDir dir;
+    fs::create_directories(dir.path / "dir.hdr");
+    const std::string asDir = userErrorOf([&] { loadEnvironmentMap((dir.path / "dir.hdr").string()); });
+    EXPECT_NE(asDir.find("is a directory, not a file"), std::string::npos) << asDir;
+    for (const char* name : {"sky.hdr", "sky.exr"}) {
+        const fs::path fifo = dir.path / name;
+        ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+        const std::string message = userErrorOf([&] { loadEnvironmentMap(fifo.string()); });
+        EXPECT_NE(message.find("is not a regular file"), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
 }
 
 // Lossy-compression ringing: negatives within 1/64 are clamped to 0 and counted; anything

@@ -2,6 +2,7 @@
 // READMEs give, the assimp test files (well-formed and broken), and small generated glTF files
 // that pin down one rule each (types, bounds, transforms, materials, cameras, lights).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 
@@ -275,19 +277,24 @@ struct BrokenFile {
 };
 
 const BrokenFile kBrokenFiles[] = {
-    {"wrongTypes/badArray.gltf", "no triangles", "primitives is an object: tinygltf drops it, nothing to draw"},
-    {"wrongTypes/badExtension.gltf", nullptr, "malformed optional KHR_texture_transform is ignored"},
-    {"wrongTypes/badNumber.gltf", nullptr, "non-numeric normalTexture.scale falls back to 1"},
-    {"wrongTypes/badObject.gltf", nullptr, "pbrMetallicRoughness as array falls back to defaults"},
-    {"wrongTypes/badString.gltf", nullptr, "scene name 42 is only a name"},
-    {"wrongTypes/badUint.gltf", nullptr, "texture index -1 means no texture"},
+    // Wrong JSON types violate the specification; tinygltf drops or defaults them silently, so
+    // they are refused, naming the JSON path (scene_gltf_json_check.h).
+    {"wrongTypes/badArray.gltf", "meshes[0].primitives: must be an array, not an object", "primitives is an object"},
+    {"wrongTypes/badExtension.gltf", "extensions.KHR_texture_transform: must be an object, not a string",
+     "an extension that is a string"},
+    {"wrongTypes/badNumber.gltf", "normalTexture.scale: must be a number, not a string", "scale \"not a number\""},
+    {"wrongTypes/badObject.gltf", "materials[0].pbrMetallicRoughness: must be an object, not an array",
+     "pbrMetallicRoughness as array"},
+    {"wrongTypes/badString.gltf", "scenes[0].name: must be a string, not an integer", "scene name 42"},
+    {"wrongTypes/badUint.gltf", "baseColorTexture.index: must be an index (a whole number >= 0), not an integer",
+     "texture index -1"},
     {"IndexOutOfRange/IndexOutOfRange.gltf", "out of range", "index 255 of 24 vertices"},
     {"IndexOutOfRange/AllIndicesOutOfRange.gltf", "out of range", "every index out of range"},
     {"BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "non-finite", "Inf positions"},
     {"MissingBin/BoxTextured.gltf", "BoxTextured0.bin", ".bin file absent"},
     {"TestNoRootNode/NoScene.gltf", "no scenes", "no scenes array"},
     {"TestNoRootNode/SceneWithoutNodes.gltf", "no nodes", "empty scene"},
-    {"SchemaFailures/sceneWrongType.gltf", "BoxTextured0.bin", "its .bin is not shipped beside it"},
+    {"SchemaFailures/sceneWrongType.gltf", "scene: must be an index", "scene is the string \"hello\""},
     {"IncorrectVertexArrays/Cube.gltf", "whole triangles", "35 non-indexed vertices in TRIANGLES mode"},
     {"RecursiveNodes/RecursiveNodes.gltf", "cycle", "node 0 -> 1 -> 0"},
     {"draco/2CylinderEngine.gltf", "uses Draco compression, which gbufferlab does not support; re-export without Draco",
@@ -423,6 +430,117 @@ void expectErrorNames(const fs::path& path, std::initializer_list<const char*> p
     const std::string message = loadError(path);
     EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
     for (const char* part : parts) EXPECT_NE(message.find(part), std::string::npos) << "want '" << part << "' in: " << message;
+}
+
+// Spec violations tinygltf accepts (issue 13): each is refused with the JSON path and a fix.
+TEST(GltfSpec, ViolationsTinygltfAcceptsAreRefused) {
+    struct Case {
+        const char* name;
+        std::function<void(GltfBuilder&)> breakIt;
+        const char* expected;
+    };
+    const std::vector<Case> cases = {
+        {"texcoord1.gltf",
+         [](GltfBuilder& b) {
+             b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"texCoord", 1}}}}}}});
+             b.doc["textures"] = json::array({{{"source", 0}}});
+             b.doc["images"] = json::array({{{"uri", "missing.png"}}});
+             b.primitive()["material"] = 0;
+         },
+         "materials[0].pbrMetallicRoughness.baseColorTexture.texCoord: 1 names TEXCOORD_1, which meshes[0].primitives[0]"},
+        {"metallic15.gltf",
+         [](GltfBuilder& b) { b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"metallicFactor", 1.5}}}}}); },
+         "materials[0].pbrMetallicRoughness.metallicFactor: 1.5 is outside [0, 1]"},
+        {"basecolor.gltf",
+         [](GltfBuilder& b) {
+             b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {1, -0.5, 1, 1}}}}}});
+         },
+         "baseColorFactor[1]: -0.5 is outside [0, 1]"},
+        {"emissive.gltf", [](GltfBuilder& b) { b.doc["materials"] = json::array({{{"emissiveFactor", {2, 0, 0}}}}); },
+         "materials[0].emissiveFactor[0]: 2 is outside [0, 1]"},
+        {"zero_quat.gltf", [](GltfBuilder& b) { b.doc["nodes"][0]["rotation"] = {0, 0, 0, 0}; },
+         "nodes[0].rotation: is a zero quaternion"},
+        {"ortho0.gltf",
+         [](GltfBuilder& b) {
+             b.doc["cameras"] = json::array(
+                 {{{"type", "orthographic"}, {"orthographic", {{"xmag", 0}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}}});
+             b.doc["nodes"][0]["camera"] = 0;
+         },
+         "cameras[0].orthographic.xmag: is 0"},
+        {"version1.gltf", [](GltfBuilder& b) { b.doc["asset"]["version"] = "1.0"; },
+         "asset.version: '1.0': gbufferlab reads glTF 2.x only"},
+        {"matrix15.gltf", [](GltfBuilder& b) { b.doc["nodes"][0]["matrix"] = std::vector<double>(15, 1.0); },
+         "nodes[0].matrix: has 15 elements, the specification says 16"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        GltfBuilder b = quad();
+        c.breakIt(b);
+        const std::string message = loadError(b.write(c.name));
+        EXPECT_NE(message.find(c.name), std::string::npos) << message;
+        EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    // The edges of the ranges are legal.
+    GltfBuilder edge = quad();
+    edge.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 0.0}}}}});
+    edge.primitive()["material"] = 0;
+    EXPECT_NO_THROW(loadGltfScene(edge.write("edges.gltf").string()));
+}
+
+TEST(GltfSpec, BrokenJsonIsRephrasedWithLineAndColumn) {
+    const fs::path path = scratchDir() / "broken.gltf";
+    std::ofstream(path) << "{\n  \"asset\": {\"version\": \"2.0\"},\n  \"scenes\": [ oops ]\n}\n";
+    const std::string message = loadError(path);
+    EXPECT_EQ(message.rfind(path.string() + ":3:", 0), 0u) << message;
+    EXPECT_NE(message.find("not valid JSON"), std::string::npos) << message;
+    EXPECT_EQ(message.find("json.exception"), std::string::npos) << message;
+}
+
+// Buffer and image URIs: only regular files, only inside the scene's folder unless allowed.
+TEST(GltfFiles, UrisOutsideTheSceneFolderAreRefusedUnlessAllowed) {
+    const fs::path root = scratchDir() / "confined";
+    fs::create_directories(root / "scene");
+    GltfBuilder b = quad();
+    const fs::path inside = b.write("unused.gltf");  // fills b.bin and the buffer entry
+    std::ofstream(root / "outside.bin", std::ios::binary).write(reinterpret_cast<const char*>(b.bin.data()),
+                                                                  std::streamsize(b.bin.size()));
+    std::ofstream(root / "scene" / "inside.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(b.bin.data()), std::streamsize(b.bin.size()));
+    auto sceneWithUri = [&](const std::string& name, const std::string& uri) {
+        json doc = b.doc;
+        doc["buffers"][0]["uri"] = uri;
+        const fs::path path = root / "scene" / name;
+        std::ofstream(path) << doc.dump(1);
+        return path.string();
+    };
+    EXPECT_NO_THROW(loadGltfScene(sceneWithUri("inside.gltf", "inside.bin")));
+    for (const std::string& uri : {std::string("../outside.bin"), (root / "outside.bin").string(),
+                                   std::string("./../scene/../outside.bin")}) {
+        SCOPED_TRACE(uri);
+        const std::string path = sceneWithUri("outside.gltf", uri);
+        std::string message;
+        try {
+            loadGltfScene(path);
+        } catch (const UserError& e) {
+            message = e.what();
+        }
+        EXPECT_NE(message.find("outside the scene's folder"), std::string::npos) << message;
+        EXPECT_NE(message.find("--allow-outside-scene"), std::string::npos) << message;
+        const Scene s = loadGltfScene(path, GltfLoadOptions{true});
+        EXPECT_EQ(s.vertices.size(), 4u);
+    }
+    // A FIFO as the buffer: refused without reading (a read would block forever).
+    ASSERT_EQ(::mkfifo((root / "scene" / "fifo.bin").c_str(), 0600), 0);
+    const std::string fifo = sceneWithUri("fifo.gltf", "fifo.bin");
+    std::string message;
+    try {
+        loadGltfScene(fifo);
+    } catch (const UserError& e) {
+        message = e.what();
+    }
+    EXPECT_NE(message.find("is not a regular file"), std::string::npos) << message;
+    fs::remove_all(root);
 }
 
 TEST(GltfValidation, QuadLoadsWithExpectedData) {

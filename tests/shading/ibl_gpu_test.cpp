@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <fstream>
 
@@ -332,6 +334,58 @@ TEST_F(IblGpuTest, CacheHitsAndRebuildsACorruptFile) {
         EXPECT_TRUE(st.hit) << "the rebuilt file is valid again: " << st.note;
     }
     ::unsetenv("GBL_CACHE_DIR");
+    fs::remove_all(dir);
+}
+
+// Concurrent writers of one cache file (two processes computing the same IBL): each writes a
+// temporary of its own and renames it, so a reader sees the file missing or whole, never torn.
+// A FIFO or directory where the cache file should be is a miss with a reason, never a hang.
+TEST_F(IblGpuTest, CacheToleratesConcurrentWritersAndSpecialFiles) {
+    const fs::path dir = fs::temp_directory_path() / ("gbl-ibl-cache-race-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const EnvironmentMap env = constantEnvironment(0.25f);
+    IblSettings s;
+    s.sourceFaceSize = 32;
+    s.prefilteredFaceSize = 16;
+    s.lutSize = 16;
+    ::setenv("GBL_CACHE_DIR", dir.c_str(), 1);
+    const IblMaps maps = loadOrComputeIbl(ctx(), env, s);
+    ::unsetenv("GBL_CACHE_DIR");
+    const IblSettings resolved = resolveIblSettings(s, env);
+    const uint64_t key = iblCacheKey(env, resolved);
+    const fs::path file = dir / "race.bin";
+    std::vector<pid_t> writers;
+    for (int w = 0; w < 2; ++w) {
+        const pid_t pid = ::fork();
+        ASSERT_GE(pid, 0);
+        if (pid == 0) {
+            for (int i = 0; i < 40; ++i) writeIblCacheFile(file, key, maps);
+            ::_exit(0);
+        }
+        writers.push_back(pid);
+    }
+    int reads = 0, torn = 0;
+    for (bool running = true; running;) {
+        std::string why;
+        if (!readIblCacheFile(file, key, resolved, &why) && !why.empty()) ++torn;
+        ++reads;
+        running = false;
+        for (pid_t pid : writers) running = running || ::waitpid(pid, nullptr, WNOHANG) == 0;
+    }
+    EXPECT_EQ(torn, 0) << "of " << reads << " reads";
+    EXPECT_TRUE(readIblCacheFile(file, key, resolved, nullptr));
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+
+    const fs::path fifo = dir / "fifo.bin";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::string why;
+    EXPECT_FALSE(readIblCacheFile(fifo, key, resolved, &why));
+    EXPECT_NE(why.find("not a regular file"), std::string::npos) << why;
+    fs::create_directories(dir / "dir.bin");
+    EXPECT_FALSE(readIblCacheFile(dir / "dir.bin", key, resolved, &why));
+    EXPECT_NE(why.find("is a directory"), std::string::npos) << why;
     fs::remove_all(dir);
 }
 

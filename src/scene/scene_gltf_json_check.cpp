@@ -1,0 +1,308 @@
+#include "scene_gltf_json_check.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "error.h"
+
+namespace gbl {
+namespace {
+
+using nlohmann::json;
+
+// What a property must hold. `Index` is a glTF integer >= 0; `Unit` a number in [0, 1].
+enum class Kind { Object, ObjectArray, IndexArray, NumberArray, StringArray, Index, Number, Unit, NonNegative, String, Boolean };
+
+struct Schema;
+struct Property {
+    const char* name;
+    Kind kind;
+    const Schema* object = nullptr;  // for Object / ObjectArray
+    size_t length = 0;               // for NumberArray: exact length (0: any)
+    bool unitElements = false;       // for NumberArray: each element in [0, 1]
+};
+struct Schema {
+    std::vector<Property> properties;
+};
+
+const Schema kTextureInfo{{{"index", Kind::Index}, {"texCoord", Kind::Index}}};
+const Schema kNormalTextureInfo{{{"index", Kind::Index}, {"texCoord", Kind::Index}, {"scale", Kind::Number}}};
+const Schema kOcclusionTextureInfo{{{"index", Kind::Index}, {"texCoord", Kind::Index}, {"strength", Kind::Unit}}};
+const Schema kPbr{{{"baseColorFactor", Kind::NumberArray, nullptr, 4, true},
+                   {"baseColorTexture", Kind::Object, &kTextureInfo},
+                   {"metallicFactor", Kind::Unit},
+                   {"roughnessFactor", Kind::Unit},
+                   {"metallicRoughnessTexture", Kind::Object, &kTextureInfo}}};
+const Schema kMaterial{{{"name", Kind::String},
+                        {"pbrMetallicRoughness", Kind::Object, &kPbr},
+                        {"normalTexture", Kind::Object, &kNormalTextureInfo},
+                        {"occlusionTexture", Kind::Object, &kOcclusionTextureInfo},
+                        {"emissiveTexture", Kind::Object, &kTextureInfo},
+                        {"emissiveFactor", Kind::NumberArray, nullptr, 3, true},
+                        {"alphaMode", Kind::String},
+                        {"alphaCutoff", Kind::NonNegative},
+                        {"doubleSided", Kind::Boolean}}};
+const Schema kAttributes{};  // values checked in checkObject: every attribute is an accessor index
+const Schema kPrimitive{{{"attributes", Kind::Object, &kAttributes},
+                         {"indices", Kind::Index},
+                         {"material", Kind::Index},
+                         {"mode", Kind::Index},
+                         {"targets", Kind::ObjectArray, &kAttributes}}};
+const Schema kMesh{{{"name", Kind::String}, {"primitives", Kind::ObjectArray, &kPrimitive}, {"weights", Kind::NumberArray}}};
+const Schema kNode{{{"name", Kind::String},
+                    {"children", Kind::IndexArray},
+                    {"mesh", Kind::Index},
+                    {"camera", Kind::Index},
+                    {"skin", Kind::Index},
+                    {"matrix", Kind::NumberArray, nullptr, 16},
+                    {"rotation", Kind::NumberArray, nullptr, 4},
+                    {"scale", Kind::NumberArray, nullptr, 3},
+                    {"translation", Kind::NumberArray, nullptr, 3},
+                    {"weights", Kind::NumberArray}}};
+const Schema kScene{{{"name", Kind::String}, {"nodes", Kind::IndexArray}}};
+const Schema kAccessor{{{"name", Kind::String},
+                        {"bufferView", Kind::Index},
+                        {"byteOffset", Kind::Index},
+                        {"componentType", Kind::Index},
+                        {"normalized", Kind::Boolean},
+                        {"count", Kind::Index},
+                        {"type", Kind::String},
+                        {"max", Kind::NumberArray},
+                        {"min", Kind::NumberArray}}};
+const Schema kBufferView{{{"name", Kind::String},
+                          {"buffer", Kind::Index},
+                          {"byteOffset", Kind::Index},
+                          {"byteLength", Kind::Index},
+                          {"byteStride", Kind::Index},
+                          {"target", Kind::Index}}};
+const Schema kBuffer{{{"name", Kind::String}, {"uri", Kind::String}, {"byteLength", Kind::Index}}};
+const Schema kImage{{{"name", Kind::String}, {"uri", Kind::String}, {"mimeType", Kind::String}, {"bufferView", Kind::Index}}};
+const Schema kTexture{{{"name", Kind::String}, {"sampler", Kind::Index}, {"source", Kind::Index}}};
+const Schema kSampler{{{"name", Kind::String},
+                       {"magFilter", Kind::Index},
+                       {"minFilter", Kind::Index},
+                       {"wrapS", Kind::Index},
+                       {"wrapT", Kind::Index}}};
+const Schema kPerspective{{{"aspectRatio", Kind::Number}, {"yfov", Kind::Number}, {"zfar", Kind::Number}, {"znear", Kind::Number}}};
+const Schema kOrthographic{{{"xmag", Kind::Number}, {"ymag", Kind::Number}, {"zfar", Kind::Number}, {"znear", Kind::Number}}};
+const Schema kCamera{{{"name", Kind::String},
+                      {"type", Kind::String},
+                      {"perspective", Kind::Object, &kPerspective},
+                      {"orthographic", Kind::Object, &kOrthographic}}};
+const Schema kAsset{{{"version", Kind::String}, {"minVersion", Kind::String}, {"generator", Kind::String}, {"copyright", Kind::String}}};
+const Schema kRoot{{{"asset", Kind::Object, &kAsset},
+                    {"scene", Kind::Index},
+                    {"scenes", Kind::ObjectArray, &kScene},
+                    {"nodes", Kind::ObjectArray, &kNode},
+                    {"meshes", Kind::ObjectArray, &kMesh},
+                    {"materials", Kind::ObjectArray, &kMaterial},
+                    {"accessors", Kind::ObjectArray, &kAccessor},
+                    {"bufferViews", Kind::ObjectArray, &kBufferView},
+                    {"buffers", Kind::ObjectArray, &kBuffer},
+                    {"images", Kind::ObjectArray, &kImage},
+                    {"textures", Kind::ObjectArray, &kTexture},
+                    {"samplers", Kind::ObjectArray, &kSampler},
+                    {"cameras", Kind::ObjectArray, &kCamera},
+                    {"extensionsUsed", Kind::StringArray},
+                    {"extensionsRequired", Kind::StringArray}}};
+
+const char* jsonTypeName(const json& v) {
+    switch (v.type()) {
+        case json::value_t::object: return "an object";
+        case json::value_t::array: return "an array";
+        case json::value_t::string: return "a string";
+        case json::value_t::boolean: return "a boolean";
+        case json::value_t::null: return "null";
+        default: return v.is_number_integer() || v.is_number_unsigned() ? "an integer" : "a number";
+    }
+}
+
+bool isIndex(const json& v) {
+    if (v.is_number_unsigned()) return true;
+    if (v.is_number_integer()) return v.get<int64_t>() >= 0;
+    return false;
+}
+
+std::string numberText(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+}
+
+class Checker {
+public:
+    explicit Checker(std::string path) : path_(std::move(path)) {}
+
+    [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
+        throwUserError(formatPlace(escapeText(path_)) + ": " + where + ": " + problem +
+                       "; fix the file (glTF 2.0 specification) or re-export it");
+    }
+
+    void expectType(const json& v, Kind kind, const std::string& where) const {
+        auto need = [&](bool ok, const char* what) {
+            if (!ok) fail(where, std::string("must be ") + what + ", not " + jsonTypeName(v));
+        };
+        switch (kind) {
+            case Kind::Object: need(v.is_object(), "an object"); break;
+            case Kind::ObjectArray:
+            case Kind::IndexArray:
+            case Kind::NumberArray:
+            case Kind::StringArray: need(v.is_array(), "an array"); break;
+            case Kind::Index: need(isIndex(v), "an index (a whole number >= 0)"); break;
+            case Kind::Number: need(v.is_number(), "a number"); break;
+            case Kind::Unit:
+                need(v.is_number(), "a number");
+                if (!(v.get<double>() >= 0.0 && v.get<double>() <= 1.0))
+                    fail(where, numberText(v.get<double>()) + " is outside [0, 1]");
+                break;
+            case Kind::NonNegative:
+                need(v.is_number(), "a number");
+                if (!(v.get<double>() >= 0.0)) fail(where, numberText(v.get<double>()) + " is negative");
+                break;
+            case Kind::String: need(v.is_string(), "a string"); break;
+            case Kind::Boolean: need(v.is_boolean(), "true or false"); break;
+        }
+    }
+
+    void checkObject(const json& object, const Schema& schema, const std::string& where) const {
+        if (&schema == &kAttributes) {
+            for (const auto& [name, value] : object.items())
+                if (!isIndex(value))
+                    fail(where + "." + escapeText(name), std::string("must be an accessor index, not ") + jsonTypeName(value));
+            return;
+        }
+        if (const auto ext = object.find("extensions"); ext != object.end()) {
+            const std::string at = where.empty() ? "extensions" : where + ".extensions";
+            expectType(*ext, Kind::Object, at);
+            for (const auto& [name, value] : ext->items()) expectType(value, Kind::Object, at + "." + escapeText(name));
+        }
+        for (const Property& p : schema.properties) {
+            const auto it = object.find(p.name);
+            if (it == object.end()) continue;
+            const std::string at = (where.empty() ? "" : where + ".") + p.name;
+            expectType(*it, p.kind, at);
+            if (p.kind == Kind::Object) checkObject(*it, *p.object, at);
+            if (!it->is_array()) continue;
+            if (p.length && it->size() != p.length)
+                fail(at, "has " + std::to_string(it->size()) + " elements, the specification says " +
+                             std::to_string(p.length));
+            for (size_t i = 0; i < it->size(); ++i) {
+                const std::string item = at + "[" + std::to_string(i) + "]";
+                const json& e = (*it)[i];
+                switch (p.kind) {
+                    case Kind::ObjectArray:
+                        expectType(e, Kind::Object, item);
+                        checkObject(e, *p.object, item);
+                        break;
+                    case Kind::IndexArray: expectType(e, Kind::Index, item); break;
+                    case Kind::NumberArray: expectType(e, p.unitElements ? Kind::Unit : Kind::Number, item); break;
+                    case Kind::StringArray: expectType(e, Kind::String, item); break;
+                    default: break;
+                }
+            }
+        }
+    }
+
+    // Rules across objects, on a document whose types are now known to be right.
+    void checkRules(const json& root) const {
+        const auto asset = root.find("asset");
+        if (asset == root.end()) fail("asset", "missing; every glTF file states its version");
+        const std::string version = asset->value("version", "");
+        if (version.rfind("2.", 0) != 0)
+            fail("asset.version", quoteName(version) + ": gbufferlab reads glTF 2.x only; convert the file to glTF 2.0");
+        const json empty = json::array();
+        const json& cameras = root.contains("cameras") ? root["cameras"] : empty;
+        for (size_t i = 0; i < cameras.size(); ++i) {
+            const auto ortho = cameras[i].find("orthographic");
+            if (ortho == cameras[i].end()) continue;
+            for (const char* key : {"xmag", "ymag"})
+                if (ortho->contains(key) && (*ortho)[key].get<double>() == 0.0)
+                    fail("cameras[" + std::to_string(i) + "].orthographic." + key, "is 0 (the view would be empty)");
+        }
+        const json& nodes = root.contains("nodes") ? root["nodes"] : empty;
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            const auto r = nodes[i].find("rotation");
+            if (r == nodes[i].end()) continue;
+            double norm = 0;
+            for (const json& c : *r) norm += c.get<double>() * c.get<double>();
+            if (!(norm > 0.0)) fail("nodes[" + std::to_string(i) + "].rotation", "is a zero quaternion");
+        }
+        checkTexCoords(root);
+    }
+
+    // A texture asking for TEXCOORD_n needs every primitive drawn with its material to have it.
+    void checkTexCoords(const json& root) const {
+        if (!root.contains("materials") || !root.contains("meshes")) return;
+        const json& materials = root["materials"];
+        const json& meshes = root["meshes"];
+        for (size_t m = 0; m < meshes.size(); ++m) {
+            if (!meshes[m].contains("primitives")) continue;
+            const json& prims = meshes[m]["primitives"];
+            for (size_t p = 0; p < prims.size(); ++p) {
+                const json& prim = prims[p];
+                if (!prim.contains("material") || prim["material"].get<uint64_t>() >= materials.size()) continue;
+                const size_t mat = prim["material"].get<size_t>();
+                forEachTexCoord(materials[mat], "materials[" + std::to_string(mat) + "]", [&](const std::string& at, uint64_t set) {
+                    const std::string attribute = "TEXCOORD_" + std::to_string(set);
+                    if (!prim.contains("attributes") || !prim["attributes"].contains(attribute))
+                        fail(at + ".texCoord", std::to_string(set) + " names " + attribute + ", which meshes[" +
+                                                   std::to_string(m) + "].primitives[" + std::to_string(p) +
+                                                   "] using this material does not have");
+                });
+            }
+        }
+    }
+
+    template <class Fn>
+    static void forEachTexCoord(const json& material, const std::string& where, Fn&& fn) {
+        auto visit = [&](const json& info, const std::string& at) {
+            if (info.is_object() && info.contains("index") && info.contains("texCoord"))
+                fn(at, info["texCoord"].get<uint64_t>());
+        };
+        for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"})
+            if (material.contains(key)) visit(material[key], where + "." + key);
+        if (material.contains("pbrMetallicRoughness"))
+            for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
+                if (material["pbrMetallicRoughness"].contains(key))
+                    visit(material["pbrMetallicRoughness"][key], where + ".pbrMetallicRoughness." + key);
+    }
+
+private:
+    std::string path_;
+};
+
+// The JSON text of a .gltf, or of a .glb's first chunk (which must be JSON).
+std::string jsonText(const std::string& path, const std::vector<unsigned char>& bytes) {
+    if (bytes.size() < 4 || std::memcmp(bytes.data(), "glTF", 4) != 0) return std::string(bytes.begin(), bytes.end());
+    uint32_t length = 0, type = 0;
+    if (bytes.size() >= 20) {
+        std::memcpy(&length, bytes.data() + 12, 4);
+        std::memcpy(&type, bytes.data() + 16, 4);
+    }
+    if (bytes.size() < 20 || type != 0x4E4F534Au || length > bytes.size() - 20)
+        throwUserError(formatPlace(escapeText(path)) +
+                       ": not a valid .glb: the first chunk is missing, truncated or not JSON; re-export the file");
+    return std::string(bytes.begin() + 20, bytes.begin() + 20 + length);
+}
+
+}  // namespace
+
+void checkGltfJson(const std::string& path, const std::vector<unsigned char>& bytes) {
+    const std::string text = jsonText(path, bytes);
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error& e) {
+        throwUserError(jsonParseErrorMessage(path, text, e.byte, e.what()) + "; fix the file or re-export it");
+    }
+    const Checker checker(path);
+    if (!root.is_object()) checker.fail("the top level", std::string("must be an object, not ") + jsonTypeName(root));
+    checker.checkObject(root, kRoot, "");
+    checker.checkRules(root);
+}
+
+}  // namespace gbl

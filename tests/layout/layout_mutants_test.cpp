@@ -1,0 +1,167 @@
+// "Whatever `layouts check` accepts also compiles": every shipped layout is mutated line by line
+// (each number replaced by hostile values, each string by hostile text) and every mutant that
+// checkLayout accepts must generate GLSL that glslang compiles, on the write and the read side.
+// Also: what check refuses, it refuses with file:line:col, and messages stay one line.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "layout.h"
+#include "layout_catalog.h"
+#include "shader_compiler.h"
+#include "wiring_codegen.h"
+
+using namespace gbl;
+
+namespace {
+
+std::string readAll(const std::filesystem::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::stringstream ss(text);
+    for (std::string l; std::getline(ss, l);) lines.push_back(l);
+    return lines;
+}
+
+std::string joinLines(const std::vector<std::string>& lines) {
+    std::string s;
+    for (const std::string& l : lines) s += l + "\n";
+    return s;
+}
+
+// Hostile numbers: non-finite, beyond float range, negative, huge integers, denormals, fractions.
+const char* kNumbers[] = {"nan", "inf", "-inf", "1e39", "-1e39", "3.4e38", "1e300", "4294967297",
+                          "9223372036854775807", "-1", "1e-45", "2.5", "0.999999", "1"};
+// Hostile text (TOML basic-string escapes): newlines with directives, backslashes, quotes, bytes.
+const char* kStrings[] = {"x\\n#error injected", "a\\\\", "\\\\", "*/ #error x", "caf\\u00e9", "q\\\"q",
+                          "tab\\there", "\\u0000"};
+
+// The mutants of one layout text: each number token on a line replaced by each hostile number,
+// the first string on a line replaced by each hostile string.
+std::vector<std::string> mutants(const std::string& text) {
+    const std::vector<std::string> lines = splitLines(text);
+    const std::regex number(R"((=\s*|\[\s*|,\s*)(-?[0-9][0-9.eE+-]*))");
+    const std::regex string(R"("([^"\\]|\\.)*")");
+    std::vector<std::string> out;
+    for (size_t i = 0; i < lines.size(); ++i) {
+        if (lines[i].empty() || lines[i][0] == '#') continue;
+        std::smatch m;
+        if (std::regex_search(lines[i], m, number)) {
+            for (const char* n : kNumbers) {
+                std::vector<std::string> copy = lines;
+                copy[i] = m.prefix().str() + m[1].str() + n + m.suffix().str();
+                out.push_back(joinLines(copy));
+            }
+        }
+        if (std::regex_search(lines[i], m, string)) {
+            for (const char* s : kStrings) {
+                std::vector<std::string> copy = lines;
+                copy[i] = m.prefix().str() + "\"" + s + "\"" + m.suffix().str();
+                out.push_back(joinLines(copy));
+            }
+        }
+    }
+    return out;
+}
+
+void compiles(const std::string& shader, const GBufferWiring& w, const std::string& mutant) {
+    ShaderSource s = loadShaderFile(shader);
+    s.defines.push_back({"TEXTURE_COUNT", "4"});
+    s.virtualFiles["gbuffer_wiring.glsl"] = w.glsl;
+    s.name = shader + " (mutant of layout " + w.layoutName + ")";
+    EXPECT_NO_THROW(compileGlsl(s)) << "layout text accepted by check:\n" << mutant;
+}
+
+}  // namespace
+
+TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    const std::vector<std::string> names = listLayoutNames(dir);
+    ASSERT_GE(names.size(), 7u);
+    size_t total = 0, accepted = 0, compiled = 0;
+    std::set<std::string> seenGlsl;  // identical wiring needs compiling once
+    const std::regex place(R"(^mutant\.toml:[0-9]+:[0-9]+: )");
+    for (const std::string& name : names) {
+        for (const std::string& text : mutants(readAll(dir / (name + ".toml")))) {
+            ++total;
+            const std::vector<LayoutDiagnostic> problems = checkLayout(text, "mutant.toml");
+            for (const LayoutDiagnostic& d : problems) {
+                const std::string line = d.text();
+                EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+                EXPECT_TRUE(std::regex_search(line, place)) << line;
+                for (unsigned char c : line) ASSERT_TRUE(c >= 0x20 && c < 0x7f) << line;
+            }
+            if (!problems.empty()) continue;
+            ++accepted;
+            const Layout layout = parseLayout(text, "mutant.toml");
+            for (bool native : {false, true}) {
+                const GBufferWiring w = generateWiring(layout, WiringOptions{native});
+                if (!seenGlsl.insert(w.glsl).second) continue;
+                ++compiled;
+                compiles("gbuffer_pass.frag.glsl", w, text);
+                compiles("decode_pass.comp.glsl", w, text);
+            }
+        }
+    }
+    // The mutants must exercise both sides: many refused, some accepted (e.g. hostile titles).
+    EXPECT_GT(total, 1000u);
+    EXPECT_GT(accepted, 50u);
+    EXPECT_LT(accepted, total);
+    std::printf("layout mutants: %zu generated, %zu accepted by check, %zu distinct wirings compiled\n", total,
+                accepted, compiled);
+}
+
+TEST(LayoutMutants, NonFiniteAndOutOfRangeNumbersAreRefusedWithPlace) {
+    const std::string thin = readAll(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "crysis3-thin.toml");
+    const std::string constant = "at = \"a\", value = 0.0";
+    const size_t at = thin.find(constant);
+    ASSERT_NE(at, std::string::npos) << "crysis3-thin.toml changed: pick another constant";
+    int line = 1;
+    for (size_t i = 0; i < at; ++i) line += thin[i] == '\n';
+    const size_t column = at - thin.rfind('\n', at) + constant.size() - 3;  // 1-based column of the number
+    for (const char* bad : {"nan", "inf", "-inf", "1e39", "-1e39", "+nan"}) {
+        std::string text = thin;
+        text.replace(at, constant.size(), std::string("at = \"a\", value = ") + bad);
+        const auto problems = checkLayout(text, "crysis3-thin.toml");
+        ASSERT_FALSE(problems.empty()) << bad;
+        const std::string message = problems.front().text();
+        EXPECT_EQ(message.rfind("crysis3-thin.toml:" + std::to_string(line) + ":" + std::to_string(column) + ": ", 0), 0u)
+            << message;
+        EXPECT_TRUE(message.find("finite") != std::string::npos || message.find("out of range") != std::string::npos)
+            << message;
+    }
+}
+
+TEST(LayoutMutants, NamesWithNewlinesAreRefusedAndEscapedInMessages) {
+    const std::string ue4 = readAll(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml");
+    std::string text = ue4;
+    const size_t at = text.find("name = \"", text.find("[[target]]"));
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at + 8, "x\\n#error injected");
+    const auto problems = checkLayout(text, "ue4.toml");
+    ASSERT_FALSE(problems.empty());
+    const std::string line = problems.front().text();
+    EXPECT_NE(line.find("'x\\n#error injected"), std::string::npos) << line;  // escaped, not raw
+    EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+}
+
+TEST(LayoutMutants, GeneratedGlslKeepsLayoutTextInComments) {
+    Layout l = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml");
+    l.title = "t\\\n#error title";  // a Layout not built by the parser: codegen must still be safe
+    l.targets[0].name = "x\n#error injected\\";
+    const GBufferWiring w = generateWiring(l);
+    EXPECT_EQ(w.glsl.find("\n#error title"), std::string::npos) << w.glsl;
+    EXPECT_EQ(w.glsl.find("\n#error injected"), std::string::npos) << w.glsl;
+    EXPECT_EQ(w.glsl.find('\\'), std::string::npos) << w.glsl;
+    compiles("gbuffer_pass.frag.glsl", w, "(hand-built layout)");
+}
