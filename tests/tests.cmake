@@ -2,14 +2,20 @@
 # tests/ mirrors src/: a test lives in the folder of the library it tests.
 # "unit" tests use no Vulkan and also run under the sanitizer build; "gpu" tests need a driver.
 gbl_test(base/stage_clock_test LABELS unit DEPS gbl_base)
+gbl_test(base/parallel_for_test LABELS unit DEPS gbl_base)
 gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads environment maps too
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/color_map_test LABELS unit DEPS gbl_image)
 gbl_test(gpu/shader_compiler_test LABELS unit DEPS gbl_gpu)
 gbl_test(scene/environment_test LABELS unit DEPS gbl_scene)
-gbl_test(scene/scene_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_json)
+gbl_test(scene/scene_models_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_json)
+gbl_test(scene/gltf_loader_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_json)
+gbl_test(scene/scene_geometry_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_json)
 gbl_test(scene/default_scene_test LABELS unit DEPS gbl_scene)
-gbl_test(encoding/encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # checks the stats of each encoding too
+gbl_test(encoding/encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # normals; checks their stats too
+gbl_test(encoding/scalar_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
+gbl_test(encoding/color_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
+gbl_test(encoding/encodings_fast_test LABELS unit DEPS gbl_encoding)
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
@@ -29,3 +35,4 @@ gbl_test(report/report_test LABELS unit DEPS gbl_report)
 gbl_test(report/report_browser_test LABELS unit DEPS gbl_report)
 gbl_test(report/error_images_test LABELS unit DEPS gbl_report)
 gbl_test(cli/cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
+include(tests/layering/layering.cmake)

@@ -289,7 +289,9 @@ TEST(Cli, InterruptedCompareLeavesAMarkedFolderWithAReportOfFinishedRuns) {
     for (const int signal : {SIGINT, SIGTERM}) {
         const std::string name = signal == SIGINT ? "int" : "term";
         const fs::path out = scratch() / ("interrupted-" + name);
-        Background b(name, {"compare", "--out", out.string(), "--size", "192x96", "--layouts", "all"});
+        // 640x360: each run takes long enough (hundreds of ms on lavapipe) that the signal lands
+        // mid-compare even on a loaded machine, not after the last run.
+        Background b(name, {"compare", "--out", out.string(), "--size", "640x360", "--layouts", "all"});
         // Wait for the second layout's run folder: at least one run has finished by then.
         size_t started = 0;
         waitFor([&] {
@@ -319,7 +321,8 @@ TEST(Cli, InterruptedCompareLeavesAMarkedFolderWithAReportOfFinishedRuns) {
 // the first's report is its own.
 TEST(Cli, SecondRunIntoTheSameOutputIsRefused) {
     const fs::path out = scratch() / "locked";
-    Background first("first", {"compare", "--out", out.string(), "--size", "96x48", "--layouts", "ue4,ryse"});
+    // Large enough that the first is still running while the second and the render are tried.
+    Background first("first", {"compare", "--out", out.string(), "--size", "640x360", "--layouts", "ue4,ryse"});
     ASSERT_TRUE(waitFor([&] { return fs::exists(out / "INCOMPLETE"); }, 120)) << first.err();
     const RunResult second = run("compare --out locked --force --size 64x32 --layouts crysis3-thin");
     expectOneLineError(second, {"--out", "another gbufferlab run is writing into this directory"});

@@ -1,0 +1,194 @@
+// Tests for the colour, chroma, roughness and depth encodings (src/encoding/encodings.h, mirror of
+// shaders/encodings.glsl), against references written independently here.
+#include "encodings_test_support.h"
+
+namespace {
+
+using namespace gbl::enc;
+using namespace gbl::enc_test;
+
+// ---------------------------------------------------------------------------------------------
+// Colour
+// ---------------------------------------------------------------------------------------------
+
+TEST(Color, TransformsInvertAndHitKnownValues) {
+    Rng rng(50);
+    double worst = 0.0, worstSqrt = 0.0, worstCoCg = 0.0;
+    for (int i = 0; i < 500000; ++i) {
+        glm::vec3 c(float(rng.u01()), float(rng.u01()), float(rng.u01()));
+        glm::vec3 y = rgbToYCbCr(c);
+        ASSERT_GE(y.x, 0.0f);
+        ASSERT_LE(y.x, 1.0f);
+        ASSERT_GE(std::min(y.y, y.z), -1e-6f);
+        ASSERT_LE(std::max(y.y, y.z), 1.0f + 1e-6f);
+        ASSERT_EQ(y.x, lumaBt601(c));
+        glm::vec3 o = rgbToYCoCg(c);
+        ASSERT_GE(std::min({o.x, o.y, o.z}), 0.0f);
+        ASSERT_LE(std::max({o.x, o.y, o.z}), 1.0f);
+        worst = std::max(worst, double(glm::length(yCbCrToRgb(y) - c)));
+        worstSqrt = std::max(worstSqrt, double(glm::length(yCbCrSqrtToRgb(rgbToYCbCrSqrt(c)) - c)));
+        worstCoCg = std::max(worstCoCg, double(glm::length(yCoCgToRgb(o) - c)));
+    }
+    std::printf("[measured] unquantised round trip: ycbcr %.3g, ycbcr_sqrt %.3g, ycocg %.3g\n", worst, worstSqrt,
+                worstCoCg);
+    EXPECT_LT(worst, 1e-6);
+    EXPECT_LT(worstSqrt, 1e-6);
+    EXPECT_LT(worstCoCg, 1e-6);
+    glm::vec3 white = rgbToYCbCr(glm::vec3(1.0f));
+    EXPECT_NEAR(white.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(white.y, 0.5f, 1e-6f);
+    EXPECT_NEAR(white.z, 0.5f, 1e-6f);
+    glm::vec3 red = rgbToYCbCr(glm::vec3(1, 0, 0));
+    EXPECT_NEAR(red.x, 0.299f, 1e-6f);
+    EXPECT_NEAR(red.y, 0.5f - 0.168736f, 1e-5f);  // JPEG's rounded coefficients
+    EXPECT_NEAR(red.z, 1.0f, 1e-6f);
+    glm::vec3 blue = rgbToYCbCr(glm::vec3(0, 0, 1));
+    EXPECT_NEAR(blue.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(blue.z, 0.5f - 0.081312f, 1e-5f);
+    glm::vec3 g = rgbToYCoCg(glm::vec3(0, 1, 0));
+    EXPECT_EQ(g, glm::vec3(0.5f, 0.5f, 1.0f));
+}
+
+TEST(Color, QuantisedRoundTripsWithinBounds) {
+    Rng rng(51);
+    double ycbcr = 0.0, ycocg = 0.0, sqrtDark = 0.0, plainDark = 0.0;
+    auto q3 = [](glm::vec3 v) {
+        return glm::vec3(dequantizeUnorm(quantizeUnorm(v.x, 8), 8), dequantizeUnorm(quantizeUnorm(v.y, 8), 8),
+                         dequantizeUnorm(quantizeUnorm(v.z, 8), 8));
+    };
+    for (int i = 0; i < 1000000; ++i) {
+        glm::vec3 c(float(rng.u01()), float(rng.u01()), float(rng.u01()));
+        auto maxAbs = [&](glm::vec3 d) { return double(std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)})); };
+        ycbcr = std::max(ycbcr, maxAbs(yCbCrToRgb(q3(rgbToYCbCr(c))) - c));
+        ycocg = std::max(ycocg, maxAbs(yCoCgToRgb(q3(rgbToYCoCg(c))) - c));
+        glm::vec3 dark = c * 0.05f;  // the sqrt pre-transform spends codes on darks
+        sqrtDark = std::max(sqrtDark, maxAbs(yCbCrSqrtToRgb(q3(rgbToYCbCrSqrt(dark))) - dark));
+        plainDark = std::max(plainDark, maxAbs(yCbCrToRgb(q3(rgbToYCbCr(dark))) - dark));
+    }
+    std::printf("[measured] 8-bit max abs: ycbcr %.5f, ycocg %.5f; darks (<0.05): ycbcr %.5f, ycbcr_sqrt %.5f\n",
+                ycbcr, ycocg, plainDark, sqrtDark);
+    EXPECT_LE(ycbcr, 0.0056);
+    EXPECT_LE(ycocg, 0.0060);
+    EXPECT_LT(sqrtDark * 2.0, plainDark);
+}
+
+TEST(Color, SpecularColorUE4) {
+    glm::vec3 base(0.2f, 0.4f, 0.8f);
+    EXPECT_EQ(specularColorUE4(base, 0.0f, 0.5f), glm::vec3(0.04f));
+    EXPECT_EQ(specularColorUE4(base, 1.0f, 0.5f), base);
+    glm::vec3 half = specularColorUE4(base, 0.5f, 1.0f);
+    EXPECT_NEAR(half.x, 0.5f * 0.08f + 0.5f * 0.2f, 1e-7f);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Chroma checkerboard
+// ---------------------------------------------------------------------------------------------
+
+TEST(Chroma, CheckerboardPattern) {
+    EXPECT_FALSE(chromaIsSecond(ivec2(0, 0)));
+    EXPECT_TRUE(chromaIsSecond(ivec2(1, 0)));
+    EXPECT_TRUE(chromaIsSecond(ivec2(0, 1)));
+    EXPECT_FALSE(chromaIsSecond(ivec2(1, 1)));
+    EXPECT_TRUE(chromaIsSecond(ivec2(-1, 0)));
+    EXPECT_FALSE(chromaIsSecond(ivec2(-1, -1)));
+    EXPECT_EQ(chromaForPixel(ivec2(2, 0), glm::vec2(0.25f, 0.75f)), 0.25f);
+    EXPECT_EQ(chromaForPixel(ivec2(2, 1), glm::vec2(0.25f, 0.75f)), 0.75f);
+}
+
+TEST(Chroma, EdgeDirectedFilter) {
+    // All neighbours similar: plain mean of their chroma.
+    glm::vec2 r = reconstructChroma(0.5f, 0.3f, glm::vec4(0.5f), glm::vec4(0.1f, 0.2f, 0.3f, 0.4f));
+    EXPECT_FLOAT_EQ(r.x, 0.3f);
+    EXPECT_FLOAT_EQ(r.y, 0.25f);
+    // Two neighbours across an edge (|dY| >= 30/255) are dropped.
+    r = reconstructChroma(0.5f, 0.3f, glm::vec4(0.5f, 0.9f, 0.52f, 0.1f), glm::vec4(0.1f, 0.9f, 0.3f, 0.9f));
+    EXPECT_FLOAT_EQ(r.y, 0.2f);
+    // Exactly at the threshold: step(t, t) = 1, weight 0.
+    r = reconstructChroma(0.0f, 0.3f, glm::vec4(kChromaEdgeThreshold, 0.0f, 1.0f, 1.0f),
+                          glm::vec4(0.9f, 0.1f, 0.7f, 0.7f));
+    EXPECT_FLOAT_EQ(r.y, 0.1f);
+    // No neighbour within the threshold: the first (+x) alone, as in the paper's listing.
+    r = reconstructChroma(0.0f, 0.3f, glm::vec4(0.5f, 0.6f, 0.7f, 0.8f), glm::vec4(0.11f, 0.2f, 0.3f, 0.4f));
+    EXPECT_FLOAT_EQ(r.y, 0.11f);
+    // With the pixel: (first, second) order.
+    glm::vec2 even = reconstructChroma(ivec2(0, 0), 0.5f, 0.3f, glm::vec4(0.5f), glm::vec4(0.7f));
+    glm::vec2 odd = reconstructChroma(ivec2(1, 0), 0.5f, 0.3f, glm::vec4(0.5f), glm::vec4(0.7f));
+    EXPECT_EQ(even, glm::vec2(0.3f, 0.7f));
+    EXPECT_EQ(odd, glm::vec2(0.7f, 0.3f));
+}
+
+TEST(Chroma, FlatImageReconstructsExactly) {
+    const int w = 9, h = 7;
+    std::vector<glm::vec3> img(size_t(w * h), glm::vec3(0.2f, 0.6f, 0.4f));
+    for (const char* name : {"ycocg_checkerboard", "ycbcr_checkerboard"}) {
+        std::vector<glm::vec3> out = gbl::roundTripChromaCheckerboard(name, 8, img, w, h);
+        for (glm::vec3 c : out) ASSERT_LT(glm::length(c - img[0]), 0.01f) << name;
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Roughness, depth
+// ---------------------------------------------------------------------------------------------
+
+TEST(Roughness, MapsInvertAndCrySmoothnessBound) {
+    Rng rng(60);
+    double worst = 0.0, worstLow = 0.0;
+    for (int i = 0; i < 1000000; ++i) {
+        float r = float(rng.u01());
+        ASSERT_EQ(roughnessFromGloss(glossFromRoughness(r)), 1.0f - (1.0f - r));
+        ASSERT_NEAR(roughnessFromSmoothnessCry(smoothnessFromRoughnessCry(r)), r, 2e-7f);
+        float back = roughnessFromSmoothnessCry(dequantizeUnorm(quantizeUnorm(smoothnessFromRoughnessCry(r), 8), 8));
+        double e = std::fabs(double(back) - double(r));
+        worst = std::max(worst, e);
+        if (r < 0.01f) worstLow = std::max(worstLow, e);
+    }
+    std::printf("[measured] smoothness_cry 8 bits: max roughness error %.6f, below r = 0.01: %.6f\n", worst, worstLow);
+    EXPECT_LE(worst, 1.0 / 255.0 + 1e-6);  // |d(1-s)^2/ds| <= 2, half a step: 1/255
+    EXPECT_LE(worstLow, 0.0008);
+}
+
+TEST(Depth24, EveryCodeRoundTripsAndDepthsRoundExactly) {
+    for (uint c = 0; c < (1u << 24); ++c)
+        if (quantizeDepth24(dequantizeDepth24(c)) != c) FAIL() << "code " << c;
+    const double s = 16777215.0;
+    // Every float in [2^-8, 1]: the exact rounding of d * (2^24 - 1), ties up.
+    for (std::uint32_t b = bitsOf(std::ldexp(1.0f, -8)); b <= bitsOf(1.0f); ++b) {
+        float d = std::bit_cast<float>(b);
+        if (quantizeDepth24(d) != uint(std::floor(double(d) * s + 0.5))) FAIL() << "depth " << d;
+    }
+    Rng rng(24);
+    double worst = 0.0;
+    for (int i = 0; i < 2000000; ++i) {
+        float d = float(std::ldexp(rng.u01(), -int(rng.bits32() % 40u)));  // also tiny depths
+        uint c = quantizeDepth24(d);
+        ASSERT_EQ(c, uint(std::floor(double(d) * s + 0.5))) << d;
+        worst = std::max(worst, std::fabs(double(dequantizeDepth24(c)) - double(d)));
+    }
+    std::printf("[measured] depth24: max |decode - d| %.3g (%.4f steps)\n", worst, worst * s);
+    EXPECT_LE(worst, 0.5 / s + 1e-12);
+    EXPECT_EQ(quantizeDepth24(1.0f), 0xffffffu);
+    EXPECT_EQ(quantizeDepth24(2.0f), 0xffffffu);
+    EXPECT_EQ(quantizeDepth24(-1.0f), 0u);
+    EXPECT_EQ(quantizeDepth24(std::nextafter(1.0f, 0.0f)), 0xfffffeu);
+}
+
+TEST(Depth24, PositionFromDepthInvertsViewProjection) {
+    glm::mat4 proj = glm::perspective(glm::radians(60.0f), 16.0f / 9.0f, 0.1f, 100.0f);
+    glm::mat4 view = glm::lookAt(glm::vec3(3, 2, 5), glm::vec3(0, 0.5f, 0), glm::vec3(0, 1, 0));
+    glm::mat4 viewProj = proj * view;
+    glm::mat4 inv = glm::inverse(viewProj);
+    Rng rng(70);
+    for (int i = 0; i < 10000; ++i) {
+        glm::vec3 p(float(rng.u01() * 4 - 2), float(rng.u01() * 4 - 2), float(rng.u01() * 4 - 2));
+        glm::vec4 clip = viewProj * glm::vec4(p, 1.0f);
+        glm::vec3 ndc = glm::vec3(clip) / clip.w;
+        glm::vec2 uv = glm::vec2(ndc) * 0.5f + 0.5f;
+        glm::vec3 back = positionFromDepth(uv, ndc.z, inv);
+        ASSERT_LT(glm::length(back - p), 1e-3f) << i;
+        // Through 24-bit depth: error grows with distance, stays small at these ranges.
+        glm::vec3 back24 = positionFromDepth(uv, dequantizeDepth24(quantizeDepth24(ndc.z)), inv);
+        ASSERT_LT(glm::length(back24 - p), 0.02f) << i;
+    }
+}
+
+}  // namespace

@@ -1,0 +1,183 @@
+// The fast encoder variants the CPU codec uses (src/encoding/encodings_fast.h: the vectorised
+// best-fit normal search, branch-free sRGB, table small floats) return the reference encoders' codes
+// (src/encoding/encodings.h) for millions of random and adversarial inputs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "encodings.h"
+#include "encodings_fast.h"
+
+namespace gbl {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Best-fit normals: the vectorised search returns the reference's codes.
+
+// Counts normals whose codes differ; reports the first few.
+size_t compareBestFit(const std::vector<glm::vec3>& normals, const char* what) {
+    size_t bad = 0;
+    for (const glm::vec3& n : normals) {
+        const glm::uvec3 fast = enc::encodeNormalBestFitFast(n), ref = enc::encodeNormalBestFit(n);
+        if (fast != ref && bad++ < 5)
+            ADD_FAILURE() << what << ": n = (" << n.x << ", " << n.y << ", " << n.z << "): fast " << fast.x << " "
+                          << fast.y << " " << fast.z << ", reference " << ref.x << " " << ref.y << " " << ref.z;
+    }
+    std::printf("[ bestfit  ] %-44s %8zu normals, %zu differ\n", what, normals.size(), bad);
+    return bad;
+}
+
+TEST(NormalBestFitFast, SameCodesAsTheReferenceOnRandomNormals) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<glm::vec3> normals(2000000);
+    for (glm::vec3& n : normals) {  // uniform on the sphere, as in the renderer
+        const float z = 1.0f - 2.0f * u(rng), phi = 6.2831853f * u(rng);
+        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        n = glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+    }
+    EXPECT_EQ(compareBestFit(normals, "uniform on the sphere"), 0u);
+}
+
+TEST(NormalBestFitFast, SameCodesAsTheReferenceOnAdversarialNormals) {
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<glm::vec3> special;
+    // Axes, face diagonals, body diagonals, in every sign, unit and not, and with -0.
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z) {
+                const glm::vec3 d = glm::vec3(x, y, z);
+                for (float scale : {1.0f, 0.5f, 3.0f, 1e-20f, 1e20f, 1.0f / std::sqrt(glm::dot(d, d) + 1e-30f)})
+                    special.push_back(d * scale);
+            }
+    special.push_back(glm::vec3(-0.0f, -0.0f, 1.0f));
+    special.push_back(glm::vec3(0.0f, -0.0f, -0.0f));  // zero: the reference returns (128, 128, 255)
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float tiny = std::numeric_limits<float>::denorm_min(), big = std::numeric_limits<float>::max();
+    for (const glm::vec3& n : {glm::vec3(inf, 0, 0), glm::vec3(-inf, inf, 1), glm::vec3(nan, 0, 1),
+                               glm::vec3(0, nan, nan), glm::vec3(tiny, tiny, tiny), glm::vec3(tiny, 0, -tiny),
+                               glm::vec3(big, big, -big), glm::vec3(big, 1, 0)})
+        special.push_back(n);
+    EXPECT_EQ(compareBestFit(special, "axes, diagonals, zero, non-finite"), 0u);
+
+    // Directions of integer vectors (lattice rays hit several candidates exactly: near-ties),
+    // and the decoded direction of every 24th code (the search's own fixed points), each with
+    // its float neighbours.
+    std::vector<glm::vec3> lattice;
+    for (int x = -12; x <= 12; ++x)
+        for (int y = -12; y <= 12; ++y)
+            for (int z = -12; z <= 12; ++z) {
+                if (x == 0 && y == 0 && z == 0) continue;
+                const glm::vec3 d = glm::normalize(glm::vec3(x, y, z));
+                lattice.push_back(d);
+                lattice.push_back(glm::vec3(std::nextafter(d.x, 2.0f), d.y, std::nextafter(d.z, -2.0f)));
+                lattice.push_back(glm::vec3(d.x, std::nextafter(d.y, -2.0f), std::nextafter(d.z, 2.0f)));
+            }
+    for (uint32_t c = 0; c < (1u << 24); c += 24) {
+        const glm::vec3 d = enc::decodeNormalBestFit(glm::uvec3(c & 255u, (c >> 8) & 255u, c >> 16));
+        lattice.push_back(d);
+        lattice.push_back(glm::vec3(std::nextafter(d.x, 2.0f), std::nextafter(d.y, -2.0f), d.z));
+    }
+    EXPECT_EQ(compareBestFit(lattice, "lattice rays, decoded codes, +-1 ulp"), 0u);
+
+    // Near-ties by construction: midway between the directions of two neighbouring codes, where
+    // two candidates' errors agree to the last bits; and tiny random offsets from the axes.
+    std::vector<glm::vec3> ties;
+    for (int i = 0; i < 300000; ++i) {
+        const glm::uvec3 c(uint32_t(u(rng) * 255.0f), uint32_t(u(rng) * 255.0f), uint32_t(u(rng) * 255.0f));
+        glm::uvec3 d = c;
+        d[int(u(rng) * 3.0f) % 3] += 1u;
+        const glm::vec3 a = enc::decodeNormalBestFit(c), b = enc::decodeNormalBestFit(glm::min(d, glm::uvec3(255u)));
+        ties.push_back(glm::normalize(a + b));
+        ties.push_back(a + b);  // not unit: the search compares against n itself
+    }
+    for (int i = 0; i < 300000; ++i) {
+        glm::vec3 n(0.0f);
+        n[i % 3] = i % 2 ? 1.0f : -1.0f;
+        n += glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f) * std::ldexp(1.0f, -int(u(rng) * 24.0f));
+        ties.push_back(n);
+    }
+    EXPECT_EQ(compareBestFit(ties, "midpoints of neighbouring codes, near axes"), 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// sRGB and small-float encoders: branch-free / table variants with the reference's codes. Both were
+// compared once on all 2^32 float bit patterns (0 differ); here: every place where the code steps
+// (each sRGB threshold, each bucket edge, each small-float exponent and rounding boundary) with
+// its float neighbours, a sweep over the whole bit range, and the special values.
+
+std::vector<float> floatSweep() {
+    std::vector<float> v;
+    for (uint64_t bits = 0; bits < (uint64_t(1) << 32); bits += 4099) v.push_back(enc::uintBitsToFloat(uint32_t(bits)));
+    const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max(),
+                              65504.0f, 65519.996f, 65520.0f, 65024.0f, 64512.0f};
+    v.insert(v.end(), std::begin(specials), std::end(specials));
+    return v;
+}
+
+// x and its float neighbours, `ulps` each way.
+void addNeighbours(std::vector<float>& v, float x, int ulps) {
+    float lo = x, hi = x;
+    v.push_back(x);
+    for (int i = 0; i < ulps; ++i) {
+        lo = std::nextafter(lo, -std::numeric_limits<float>::infinity());
+        hi = std::nextafter(hi, std::numeric_limits<float>::infinity());
+        v.push_back(lo);
+        v.push_back(hi);
+    }
+}
+
+TEST(Srgb8EncodeFast, SameCodesAsTheReference) {
+    std::vector<float> xs = floatSweep();
+    for (float t : enc::kSrgbEncodeThresholds) addNeighbours(xs, t, 4);
+    const enc::Srgb8EncodeTable& table = enc::srgb8EncodeTable();
+    for (uint32_t b = table.firstBucket; b <= table.lastBucket + 1; ++b)
+        addNeighbours(xs, enc::uintBitsToFloat(b << enc::Srgb8EncodeTable::kShift), 2);
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(-0.1f, 1.1f);
+    for (int i = 0; i < 2000000; ++i) xs.push_back(u(rng));
+    size_t bad = 0;
+    for (float x : xs)
+        if (enc::encodeSrgb8Fast(x, table) != enc::encodeSrgb8(x) && bad++ < 5)
+            ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
+                          << "): fast " << enc::encodeSrgb8Fast(x, table) << ", reference " << enc::encodeSrgb8(x);
+    std::printf("[ srgb8    ] %zu values, %zu differ\n", xs.size(), bad);
+    EXPECT_EQ(bad, 0u);
+}
+
+TEST(SmallFloatEncodeFast, SameCodesAsTheReference) {
+    std::vector<float> xs = floatSweep();
+    // Every exponent, with mantissas at and around the rounding points of 10, 6 and 5 kept bits
+    // (and of the subnormal shifts), in both signs.
+    for (uint32_t sign = 0; sign < 2; ++sign)
+        for (uint32_t e = 0; e < 256; ++e)
+            for (int k = 0; k < 24; ++k)
+                for (uint32_t m : {(1u << k) - 1u, 1u << k, (1u << k) + 1u, (3u << k) >> 1, ((3u << k) >> 1) + 1u,
+                                   ((3u << k) >> 1) - 1u, 0x7fffffu, 0x400000u | (1u << k)}) {
+                    const uint32_t bits = (sign << 31) | (e << 23) | (m & 0x7fffffu);
+                    xs.push_back(enc::uintBitsToFloat(bits));
+                }
+    size_t bad = 0;
+    for (float x : xs) {
+        const uint32_t f[3] = {enc::encodeFloat16Fast(x), enc::encodeFloat11Fast(x), enc::encodeFloat10Fast(x)};
+        const uint32_t r[3] = {enc::encodeFloat16(x), enc::encodeFloat11(x), enc::encodeFloat10(x)};
+        for (int i = 0; i < 3; ++i)
+            if (f[i] != r[i] && bad++ < 5)
+                ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
+                              << "), float" << (i == 0 ? 16 : i == 1 ? 11 : 10) << ": fast " << f[i] << ", reference "
+                              << r[i];
+    }
+    std::printf("[ float16  ] %zu values x 3 encoders, %zu differ\n", xs.size(), bad);
+    EXPECT_EQ(bad, 0u);
+}
+
+}  // namespace
+}  // namespace gbl

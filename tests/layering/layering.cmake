@@ -1,0 +1,29 @@
+# The layering of src/ (docs/ARCHITECTURE.md) is enforced by include paths: a library sees only
+# its own folder and the folders of the libraries it links. These tests prove it: each compiles a
+# file of a lower library that includes a higher folder's header, and passes only when the
+# compiler says the header cannot be found. A positive probe (an allowed include) must compile,
+# so a broken probe set-up cannot pass for the wrong reason.
+function(gbl_layering_probe name library header expect)
+  set(PROBE_LIBRARY ${library})
+  set(PROBE_HEADER ${header})
+  configure_file(${CMAKE_SOURCE_DIR}/tests/layering/include_probe.cpp.in
+                 ${CMAKE_BINARY_DIR}/layering/${name}.cpp @ONLY)
+  add_library(${name} OBJECT EXCLUDE_FROM_ALL ${CMAKE_BINARY_DIR}/layering/${name}.cpp)
+  target_link_libraries(${name} PRIVATE ${library})
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} --build ${CMAKE_BINARY_DIR} --target ${name})
+  if(expect STREQUAL "refused")
+    # GCC and Clang both print "<header>: No such file or directory" / "'<header>' file not found".
+    set_tests_properties(${name} PROPERTIES LABELS unit RESOURCE_LOCK layering_build
+      PASS_REGULAR_EXPRESSION "${header}: No such file or directory|'${header}' file not found")
+  else()
+    set_tests_properties(${name} PROPERTIES LABELS unit RESOURCE_LOCK layering_build)
+  endif()
+endfunction()
+
+gbl_layering_probe(layering_base_cannot_see_image gbl_base image.h refused)
+gbl_layering_probe(layering_image_cannot_see_scene gbl_image scene.h refused)
+gbl_layering_probe(layering_scene_cannot_see_layout gbl_scene layout.h refused)
+gbl_layering_probe(layering_layout_cannot_see_codec gbl_layout wiring_codegen.h refused)
+gbl_layering_probe(layering_measure_cannot_see_render gbl_measure renderer.h refused)
+gbl_layering_probe(layering_report_cannot_see_cli gbl_report cli.h refused)
+gbl_layering_probe(layering_render_sees_codec gbl_render wiring_codegen.h allowed)
