@@ -77,7 +77,8 @@ Json imagesJson(const RunImages& images) {
     for (const ReportCrop& c : images.crops)
         crops.push_back(Json{{"x", c.x}, {"y", c.y}, {"w", c.w}, {"h", c.h},
                              {"reference", c.reference}, {"layout", c.layout}, {"heat", c.heat}});
-    return Json{{"render", images.render},         {"error_heatmap", images.errorHeatmap},
+    return Json{{"render", images.render},         {"render_exr", images.renderExr},
+                {"error_heatmap", images.errorHeatmap},
                 {"flip", images.flip},             {"normal_error", images.normalError},
                 {"difference", images.difference}, {"errors_exr", images.errorsExr},
                 {"crops", std::move(crops)}};
@@ -234,6 +235,7 @@ ImageErrors readImageErrors(const Node& n) {
 RunImages readImages(const Node& n) {
     RunImages images;
     images.render = n["render"].str();
+    if (n.has("render_exr")) images.renderExr = n["render_exr"].str();
     images.errorHeatmap = n["error_heatmap"].str();
     images.flip = n["flip"].str();
     images.normalError = n["normal_error"].str();
@@ -280,7 +282,8 @@ Json reportToJson(const ReportModel& model) {
     const ReportRunInfo& run = model.run;
     Json references = Json::array();
     for (const ReferenceImage& image : model.reference.images)
-        references.push_back(Json{{"ibl_mode", image.iblMode}, {"render", image.render}});
+        references.push_back(
+            Json{{"ibl_mode", image.iblMode}, {"render", image.render}, {"render_exr", image.renderExr}});
     Json runs = Json::array();
     for (const RunReport& r : model.runs) runs.push_back(runJson(r));
     return Json{{"schema", "gbufferlab-report"},
@@ -323,7 +326,8 @@ ReportModel reportFromJson(const Json& json) {
     model.reference.layout = reference["layout"].str();
     const Node images = reference["images"];
     for (size_t i = 0; i < images.array().size(); ++i)
-        model.reference.images.push_back({images.at(i)["ibl_mode"].str(), images.at(i)["render"].str()});
+        model.reference.images.push_back({images.at(i)["ibl_mode"].str(), images.at(i)["render"].str(),
+                                          images.at(i).has("render_exr") ? images.at(i)["render_exr"].str() : ""});
     const Node runs = root["runs"];
     for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
     return model;

@@ -37,6 +37,7 @@ struct ReportRunInfo {
 struct ReferenceImage {
     std::string iblMode;
     std::string render;  // render.png of the reference under this IBL mode
+    std::string renderExr;  // render.exr: its linear HDR render (32-bit float RGBA, A = coverage)
 };
 
 struct ReportReference {
@@ -143,6 +144,7 @@ struct ReportCrop {
 
 struct RunImages {
     std::string render;        // render.png (tone-mapped)
+    std::string renderExr;     // render.exr (linear HDR, 32-bit float RGBA, A = coverage)
     std::string errorHeatmap;  // error_heatmap.png
     std::string flip;          // flip.png
     std::string normalError;   // normal_error.png

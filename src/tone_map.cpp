@@ -64,6 +64,15 @@ Image8 toneMapToSrgb8(const Image& hdr, float exposure) {
     return out;
 }
 
+Image toneMapToSrgb8AsFloat(const Image& hdr, float exposure) {
+    Image out(hdr.width, hdr.height, 3);
+    toneMapEach(hdr, exposure, [&](size_t p, int c, float encoded) {
+        const auto byte = static_cast<unsigned char>(std::floor(encoded * 255.0f + 0.5f));
+        out.pixels[p * 3 + size_t(c)] = float(byte) / 255.0f;
+    });
+    return out;
+}
+
 Image toneMapToSrgbFloat(const Image& hdr, float exposure) {
     Image out(hdr.width, hdr.height, 3);
     toneMapEach(hdr, exposure, [&](size_t p, int c, float encoded) { out.pixels[p * 3 + size_t(c)] = encoded; });

@@ -12,6 +12,10 @@ float srgbToLinear(float encoded);  // exact inverse
 
 // RGB(A) float -> RGB 8-bit, with the tone map above. Alpha is dropped.
 Image8 toneMapToSrgb8(const Image& hdr, float exposure = 1.0f);
+// What toneMapToSrgb8 writes, read back as a PNG reader does: byte / 255.0f (float division).
+// The report's tone-mapped metrics and LDR-FLIP are computed on this, so they equal what
+// `gbufferlab diff` (or any tool) computes from the written PNGs.
+Image toneMapToSrgb8AsFloat(const Image& hdr, float exposure = 1.0f);
 // The same tone map kept in float (display-referred, sRGB-encoded, in [0,1]).
 Image toneMapToSrgbFloat(const Image& hdr, float exposure = 1.0f);
 
