@@ -161,6 +161,8 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
     // The linear HDR render the image metrics (and HDR-FLIP) were computed on, as 32-bit float.
     run.images.renderExr = prefix + "render.exr";
     writeExr((outDir / run.images.renderExr).string(), test.hdr);
+    run.images.hdrPreview = prefix + "render_log.png";
+    writePng((outDir / run.images.hdrPreview).string(), logEncodeForPreview(test.hdr));
     run.images.errorHeatmap = paths.heatmap;
     run.images.flip = paths.flip;
     run.images.normalError = paths.normalError;
@@ -291,6 +293,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     model.run.commandLine = "gbufferlab compare";
     for (const auto& a : args) model.run.commandLine += " " + a;
     model.run.iblModes = modeNames;
+    model.run.exposure = exposure;
     model.reference.layout = kReferenceLayout;
     model.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(iblSettings) + " (--brdf-lut)");
 
@@ -326,7 +329,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
         ScopedStage timed(Stage::Report);
         writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
         writeExr((outDir / renderExr).string(), ref.output.hdr);
-        model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr});
+        const std::string preview = "reference-" + modeNames[m] + "-log.png";
+        writePng((outDir / preview).string(), logEncodeForPreview(ref.output.hdr));
+        model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr, preview});
         progress.end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
                      std::to_string(int(ref.output.timings.lightingMs)) + " ms");
         ReferenceRender& stored = references[modeNames[m]] = std::move(ref);
