@@ -20,6 +20,7 @@
 #include "error.h"
 #include "error_images.h"
 #include "file_io.h"
+#include "ibl_cache.h"
 #include "ibl_precompute.h"
 #include "image_io.h"
 #include "interrupt.h"
@@ -158,6 +159,11 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
     imageOptions.label = run.layout + " / " + run.iblMode;
     const ErrorImagePaths paths = writeErrorImages(outDir, prefix, maps, m, imageOptions);
     run.images.render = paths.render;
+    // The linear HDR render the image metrics (and HDR-FLIP) were computed on, as 32-bit float.
+    run.images.renderExr = prefix + "render.exr";
+    writeExr((outDir / run.images.renderExr).string(), test.hdr);
+    run.images.hdrPreview = prefix + "render_log.png";
+    writePng((outDir / run.images.hdrPreview).string(), logEncodeForPreview(test.hdr));
     run.images.errorHeatmap = paths.heatmap;
     run.images.flip = paths.flip;
     run.images.normalError = paths.normalError;
@@ -222,6 +228,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"ibl", "MODES", "specular IBL modes, comma-separated (default split-sum; known: " +
                              joinList(iblModeNames()) + ")"},
         {"samples", "N", "samples per pixel of the ground-truth IBL mode (default 1024)"},
+        {"brdf-lut", "VARIANT", "split-sum BRDF LUT: converged (visible-normal sampling, 4096 samples; default) or "
+                                "seed (the seed's IntegrateBRDF, 1024 samples)"},
         {"size", "WxH", "image size (default 1920x1080)"},
         {"out", "DIR", "output directory, new or empty (default: out/compare-<time>)"},
         {"force", "", "write into a non-empty --out directory, replacing files of the same name"},
@@ -257,6 +265,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
     std::vector<std::string> modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
     for (const auto& n : modeNames) modes.push_back(parseIblMode(n));
     const int groundTruthSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
+    IblSettings iblSettings;
+    if (parsed.has("brdf-lut")) applyBrdfLutVariant(parsed.get("brdf-lut"), iblSettings);
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("compare");
     const bool force = parsed.has("force");
     if (parsed.has("hdr-flip") && parsed.has("no-hdr-flip"))
@@ -286,7 +296,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
     model.run.commandLine = "gbufferlab compare";
     for (const auto& a : args) model.run.commandLine += " " + a;
     model.run.iblModes = modeNames;
+    model.run.exposure = exposure;
     model.reference.layout = kReferenceLayout;
+    model.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(iblSettings) + " (--brdf-lut)");
 
     const bool compareLighting = modes.size() > 1 &&
                                  std::find(modeNames.begin(), modeNames.end(), kGroundTruth) != modeNames.end();
@@ -315,7 +327,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     timedSetup.reset();
     double gpuPassMs = 0.0;  // timestamps of every frame rendered
 
-    Renderer renderer(ctx, inputs.scene, inputs.environment);
+    Renderer renderer(ctx, inputs.scene, inputs.environment, loadOrComputeIbl(ctx, inputs.environment, iblSettings));
     const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
     // Every run renders the same way but for the IBL mode, and decodes its G-buffer for metrics.
     auto settingsFor = [&](IblMode mode) {
@@ -335,9 +347,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
         ref.output = renderer.render(referenceWiring, settingsFor(modes[m]));
         gpuPassMs += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
         ref.renderPng = "reference-" + modeNames[m] + ".png";
+        const std::string renderExr = "reference-" + modeNames[m] + ".exr";
         ScopedStage timed(Stage::Report);
         writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
-        model.reference.images.push_back({modeNames[m], ref.renderPng});
+        writeExr((outDir / renderExr).string(), ref.output.hdr);
+        const std::string preview = "reference-" + modeNames[m] + "-log.png";
+        writePng((outDir / preview).string(), logEncodeForPreview(ref.output.hdr));
+        model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr, preview});
         progress.end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
                      std::to_string(int(ref.output.timings.lightingMs)) + " ms");
         ReferenceRender& stored = references[modeNames[m]] = std::move(ref);

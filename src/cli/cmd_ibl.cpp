@@ -58,6 +58,8 @@ int runIblCommand(const std::vector<std::string>& args) {
         {"lut-size", "N", "BRDF LUT size (default 128)"},
         {"no-cache", "", "compute even when the disk cache has the result (and do not write it)"},
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
+        {"brdf-lut", "VARIANT", "converged (visible-normal sampling, 4096 samples; default) or seed (the seed's "
+                                "IntegrateBRDF, 1024 samples)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -80,6 +82,7 @@ int runIblCommand(const std::vector<std::string>& args) {
     settings.prefilterSamples = parseCount(parsed, "samples", settings.prefilterSamples, 65536);
     settings.lutSize = parseCount(parsed, "lut-size", settings.lutSize, 1024);
     settings.bruteForce = parsed.has("brute-force");
+    if (parsed.has("brdf-lut")) applyBrdfLutVariant(parsed.get("brdf-lut"), settings);
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("ibl");
     checkOutputDirectory(outDir, parsed.has("force"), "--out");
 
@@ -117,12 +120,12 @@ int runIblCommand(const std::vector<std::string>& args) {
     writeFileAtomic(outDir / "irradiance_sh9.csv", sh.str());
 
     std::printf("IBL of %s on %s\n  source cube %u px, pre-filtered %u px x %u mips (roughness = mip / %u), %s, "
-                "LUT %u px x %u samples\n  %s\n",
+                "LUT %u px (%s)\n  %s\n",
                 env.source.c_str(), ctx.info.name.c_str(), s.sourceFaceSize, s.prefilteredFaceSize, s.prefilteredMips,
                 std::max(s.prefilteredMips, 2u) - 1,
                 s.bruteForce ? ("brute force " + std::to_string(s.bruteForceSamples) + " samples").c_str()
                              : ("filtered importance sampling " + std::to_string(s.prefilterSamples) + " samples").c_str(),
-                s.lutSize, s.lutSamples, status.note.c_str());
+                s.lutSize, brdfLutVariantName(s).c_str(), status.note.c_str());
     if (!status.hit)
         std::printf("  GPU time: cube %.1f ms, pre-filter %.1f ms, LUT %.1f ms\n", maps.cubeMs, maps.prefilterMs,
                     maps.lutMs);

@@ -11,5 +11,6 @@ int runDevicesCommand(const std::vector<std::string>& args);
 int runEncodingsCommand(const std::vector<std::string>& args);
 int runLayoutsCliCommand(const std::vector<std::string>& args);
 int runIblCommand(const std::vector<std::string>& args);
+int runDiffCommand(const std::vector<std::string>& args);
 
 }  // namespace gbl

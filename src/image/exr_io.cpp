@@ -119,6 +119,17 @@ Image readExrChannels(const std::string& path, const std::vector<std::string>& c
     });
 }
 
+std::vector<std::string> readExrChannelNames(const std::string& path) {
+    std::vector<std::string> names;
+    guardedRead(path, [&]() -> Image {
+        Imf::InputFile file(path.c_str());
+        const auto& channels = file.header().channels();
+        for (auto it = channels.begin(); it != channels.end(); ++it) names.push_back(it.name());
+        return Image();
+    });
+    return names;
+}
+
 void writeExr(const std::string& path, const Image& image, const std::vector<std::string>& channelNames) {
     static const std::vector<std::vector<std::string>> kDefaults = {{"Y"}, {"R", "G"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
     if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||

@@ -17,6 +17,8 @@ Image readExr(const std::string& path);
 // Reads the named channels (any pixel type, converted to float) in the order given; a missing
 // channel is a UserError listing the channels the file has. For data EXRs (G-buffer dumps).
 Image readExrChannels(const std::string& path, const std::vector<std::string>& channelNames);
+// The names of the channels an OpenEXR file has (OpenEXR's order: alphabetical).
+std::vector<std::string> readExrChannelNames(const std::string& path);
 // Picks readHdr or readExr by extension (.hdr / .exr); other extensions are a UserError.
 Image readEnvironmentFile(const std::string& path);
 

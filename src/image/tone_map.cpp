@@ -64,6 +64,29 @@ Image8 toneMapToSrgb8(const Image& hdr, float exposure) {
     return out;
 }
 
+Image8 logEncodeForPreview(const Image& hdr) {
+    Image8 out{hdr.width, hdr.height, 3, std::vector<unsigned char>(hdr.pixelCount() * 3)};
+    const int channels = hdr.channels;
+    for (size_t p = 0; p < hdr.pixelCount(); ++p)
+        for (int c = 0; c < 3; ++c) {
+            const float x = hdr.pixels[p * size_t(channels) + size_t(channels >= 3 ? c : 0)];
+            float t = 0.0f;
+            if (std::isfinite(x) && x > 0.0f)
+                t = std::clamp((std::log2(x) - kPreviewLog2Min) / (kPreviewLog2Max - kPreviewLog2Min), 0.0f, 1.0f);
+            out.pixels[p * 3 + size_t(c)] = static_cast<unsigned char>(std::floor(t * 255.0f + 0.5f));
+        }
+    return out;
+}
+
+Image toneMapToSrgb8AsFloat(const Image& hdr, float exposure) {
+    Image out(hdr.width, hdr.height, 3);
+    toneMapEach(hdr, exposure, [&](size_t p, int c, float encoded) {
+        const auto byte = static_cast<unsigned char>(std::floor(encoded * 255.0f + 0.5f));
+        out.pixels[p * 3 + size_t(c)] = float(byte) / 255.0f;
+    });
+    return out;
+}
+
 Image toneMapToSrgbFloat(const Image& hdr, float exposure) {
     Image out(hdr.width, hdr.height, 3);
     toneMapEach(hdr, exposure, [&](size_t p, int c, float encoded) { out.pixels[p * 3 + size_t(c)] = encoded; });

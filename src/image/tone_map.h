@@ -12,6 +12,17 @@ float srgbToLinear(float encoded);  // exact inverse
 
 // RGB(A) float -> RGB 8-bit, with the tone map above. Alpha is dropped.
 Image8 toneMapToSrgb8(const Image& hdr, float exposure = 1.0f);
+// What toneMapToSrgb8 writes, read back as a PNG reader does: byte / 255.0f (float division).
+// The report's tone-mapped metrics and LDR-FLIP are computed on this, so they equal what
+// `gbufferlab diff` (or any tool) computes from the written PNGs.
+Image toneMapToSrgb8AsFloat(const Image& hdr, float exposure = 1.0f);
+// The report viewer's HDR preview (report.html's exposure control): each linear channel as
+// log2, kPreviewLog2Min..kPreviewLog2Max mapped to 0..255 (floor(255 t + 0.5); values at or
+// below 2^kPreviewLog2Min, and non-finite ones, give 0). 28 stops in 8 bits: 0.11-stop steps,
+// a preview only -- render.exr holds the exact values.
+inline constexpr float kPreviewLog2Min = -12.0f;
+inline constexpr float kPreviewLog2Max = 16.0f;
+Image8 logEncodeForPreview(const Image& hdr);
 // The same tone map kept in float (display-referred, sRGB-encoded, in [0,1]).
 Image toneMapToSrgbFloat(const Image& hdr, float exposure = 1.0f);
 

@@ -179,7 +179,7 @@ Image relativeLuminanceError(const Image& ref, const Image& test) {
 PreparedReference::PreparedReference(const Image& referenceHdr, float exposure_)
     : hdr(&referenceHdr),
       exposure(exposure_),
-      srgb(std::make_shared<const Image>(toneMapToSrgbFloat(referenceHdr, exposure_))),
+      srgb(std::make_shared<const Image>(toneMapToSrgb8AsFloat(referenceHdr, exposure_))),
       flip(*srgb) {}
 
 RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
@@ -288,7 +288,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         throw std::invalid_argument("computeRunMetrics: the prepared reference is of another image or exposure");
     std::optional<PreparedReference> local;
     if (!prepared) prepared = &local.emplace(referenceHdr, exposure);
-    Image testSrgb = toneMapToSrgbFloat(testHdr, exposure);
+    Image testSrgb = toneMapToSrgb8AsFloat(testHdr, exposure);
     tasks.push_back([&] {
         const ImageErrorStats tone = imageErrorStats(*prepared->srgb, testSrgb, nullptr, PsnrPeak::One, 3);
         out.image.rmseToneMapped = tone.rmse;

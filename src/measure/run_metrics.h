@@ -20,10 +20,13 @@
 //                            reference viewDepth <= 0 or not finite are skipped.
 //  * Linear HDR PSNR:        peak = the largest reference RGB value over the whole image
 //                            (metrics PsnrPeak::ReferenceMax; 1 if the image is black).
-//  * Tone-mapped:            toneMapToSrgbFloat(exposure) of both, sRGB-encoded [0,1], peak 1.
+//  * Tone-mapped:            toneMapToSrgb8AsFloat(exposure) of both: the 8-bit sRGB values the
+//                            written PNGs hold, as byte / 255, peak 1 (re-computable from the PNGs).
 //  * maxAbs / p99Abs:        of |test - reference| over RGB samples, linear HDR (no exposure).
-//  * LDR-FLIP:               flipLdr on the tone-mapped images (default 67 pixels/degree).
-//  * HDR-FLIP:               flipHdr on the linear images (exposure range from the reference;
+//  * LDR-FLIP:               flipLdr on those 8-bit tone-mapped images (default 67 pixels/degree):
+//                            `gbufferlab diff reference.png render.png` gives the same number.
+//  * HDR-FLIP:               flipHdr on the linear images, as written to render.exr (32-bit float)
+//                            (exposure range from the reference;
 //                            the exposure factor cancels out).
 // The reference against itself gives exactly 0 everywhere and PSNR = +infinity.
 #include <cstddef>

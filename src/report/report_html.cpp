@@ -14,6 +14,7 @@
 #include "report_csv.h"
 #include "report_html_template.h"
 #include "report_json.h"
+#include "tone_map.h"
 
 namespace gbl {
 
@@ -395,6 +396,36 @@ void writeImage(std::string& out, const std::string& path, const std::string& ca
            "</figcaption></figure>\n";
 }
 
+// The A/B viewer (the script's setupViewer): the reference and this run's render stacked, one
+// shown at a time. Without the script it is the reference image alone.
+void writeViewer(std::string& out, const ReportModel& model, const ReferenceImage& reference, const RunReport& r,
+                 const std::string& id) {
+    const bool hdr = !reference.hdrPreview.empty() && !r.images.hdrPreview.empty();
+    char range[96];
+    std::snprintf(range, sizeof(range), " data-log2-min=\"%g\" data-log2-max=\"%g\" data-exposure=\"%.9g\"",
+                  double(kPreviewLog2Min), double(kPreviewLog2Max), model.run.exposure);
+    const auto img = [&](const std::string& png, const std::string& log, const std::string& name, bool hidden) {
+        return "<img src=\"" + urlPathEscape(png) + "\" data-png=\"" + urlPathEscape(png) + "\" data-log=\"" +
+               (hdr ? urlPathEscape(log) : std::string()) + "\" data-name=\"" + htmlEscape(name) + "\" alt=\"" +
+               htmlEscape(name) + "\"" + (hidden ? " hidden" : "") + " onerror=\"this.classList.add('missing')\">";
+    };
+    out += "<div class=\"ab\" tabindex=\"0\" id=\"ab-" + id + "\"" + range +
+           " aria-label=\"A/B viewer: click, Space or F flips; wheel or + - zooms; drag or arrows pan\">\n"
+           "<div class=\"ab-bar\"><button type=\"button\" class=\"ab-flip\" aria-pressed=\"false\">Showing: <b "
+           "class=\"ab-which\">reference</b></button><span class=\"muted\">click / Space / F flips, wheel / + / - "
+           "zooms, drag / arrows pan, 0 fits, 1 = 1:1</span><label>Exposure <input type=\"range\" class=\"ab-ev\" "
+           "min=\"-8\" max=\"8\" step=\"0.5\" value=\"0\"" + (hdr ? "" : " disabled") +
+           "></label><output class=\"ab-ev-out\">+0 EV</output><button type=\"button\" class=\"ab-reset\">Fit"
+           "</button><output class=\"ab-zoom-out\"></output><output class=\"ab-pixel\"></output></div>\n"
+           "<div class=\"ab-view\"><div class=\"ab-stage\">" +
+           img(reference.render, reference.hdrPreview, "reference (" + model.reference.layout + ")", false) +
+           img(r.images.render, r.images.hdrPreview, r.layout, true) +
+           "</div></div>\n<svg width=\"0\" height=\"0\" aria-hidden=\"true\" style=\"position:absolute\"><filter "
+           "id=\"abf-" + id + "\" color-interpolation-filters=\"sRGB\"><feComponentTransfer><feFuncR type=\"table\" "
+           "tableValues=\"0 1\"/><feFuncG type=\"table\" tableValues=\"0 1\"/><feFuncB type=\"table\" "
+           "tableValues=\"0 1\"/></feComponentTransfer></filter></svg>\n</div>\n";
+}
+
 void statRow(std::string& out, const char* name, const std::string& value, const char* unit = "") {
     out += std::string("<tr><th>") + name + "</th><td class=\"num\">" + value + "</td><td class=\"muted\">" + unit +
            "</td></tr>\n";
@@ -466,6 +497,7 @@ void writeRunSection(std::string& out, const ReportModel& model, const RunReport
     const RunImages& im = r.images;
     const ReferenceImage* reference = model.reference.find(r.iblMode);
     if (!reference && model.reference.images.size() == 1) reference = &model.reference.images[0];
+    if (reference && !im.render.empty()) writeViewer(out, model, *reference, r, id);
     std::string gallery;
     if (reference && !im.render.empty())
         writeImage(gallery, reference->render, "Reference (" + model.reference.layout + ")");

@@ -76,6 +76,14 @@ img.missing { min-height: 60px; border: 1px dashed var(--bad); }
 .crop { display: grid; grid-template-columns: repeat(3, minmax(120px, 220px)); gap: 10px; align-items: start; }
 .crop > .where { grid-column: 1 / -1; font-size: 12.5px; color: var(--muted); }
 footer { margin-top: 40px; color: var(--muted); font-size: 12px; }
+.ab { margin: 0.8em 0; border: 1px solid var(--line); background: var(--panel); padding: 0.4em; }
+.ab:focus { outline: 2px solid var(--accent); }
+.ab-bar { display: flex; flex-wrap: wrap; gap: 0.8em; align-items: center; font-size: 0.9em; margin-bottom: 0.4em; }
+.ab-view { position: relative; overflow: hidden; height: 60vh; max-height: 720px; background: #202020;
+           cursor: grab; touch-action: none; }
+.ab-stage { position: absolute; left: 0; top: 0; transform-origin: 0 0; }
+.ab-stage img { display: block; image-rendering: pixelated; max-width: none; }
+.ab-stage img[hidden] { display: none; }
 )CSS";
 
 // Sorting: every sortable <th> has data-key and data-dir (the first click's direction); a
@@ -159,6 +167,127 @@ inline constexpr const char* kScript = R"JS(
       showPlot(value);
     }
   });
+  /* The A/B viewer (one per run with a reference): flip layout / reference with a click, Space
+     or F; zoom (wheel, + / -, 0 = fit, 1 = 1:1) and pan (drag, arrow keys) one transform shared
+     by both images, so they stay in sync, down to 64 screen pixels per image pixel; exposure in
+     EV re-tone-maps the log-encoded HDR preview through an SVG table filter with the report's
+     tone map: x * exposure * 2^EV, ACES fit (Narkowicz 2016), sRGB (src/tone_map.cpp). */
+  function acesSrgb(x) {
+    var y = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+    y = Math.min(Math.max(y, 0), 1);
+    return y <= 0.0031308 ? 12.92 * y : 1.055 * Math.pow(y, 1 / 2.4) - 0.055;
+  }
+  function setupViewer(ab) {
+    var view = ab.querySelector('.ab-view'), stage = ab.querySelector('.ab-stage');
+    var imgs = ab.querySelectorAll('.ab-stage img'), flipButton = ab.querySelector('.ab-flip');
+    var which = ab.querySelector('.ab-which'), evInput = ab.querySelector('.ab-ev');
+    var evOut = ab.querySelector('.ab-ev-out'), zoomOut = ab.querySelector('.ab-zoom-out');
+    var pixelOut = ab.querySelector('.ab-pixel'), filter = ab.querySelector('filter');
+    var lo = Number(ab.getAttribute('data-log2-min')), hi = Number(ab.getAttribute('data-log2-max'));
+    var exposure = Number(ab.getAttribute('data-exposure')) || 1;
+    var state = { side: 0, scale: 0, tx: 0, ty: 0, ev: 0 };
+    function natural() { return { w: imgs[0].naturalWidth || 1, h: imgs[0].naturalHeight || 1 }; }
+    function fitScale() { var n = natural(); return Math.min(view.clientWidth / n.w, view.clientHeight / n.h) || 1; }
+    function apply() {
+      stage.style.transform = 'translate(' + state.tx + 'px,' + state.ty + 'px) scale(' + state.scale + ')';
+      zoomOut.textContent = (state.scale >= 1 ? state.scale.toFixed(state.scale < 10 ? 2 : 0)
+                                               : state.scale.toFixed(3)) + 'x';
+      ab.setAttribute('data-zoom', String(state.scale));
+      ab.setAttribute('data-pan', state.tx.toFixed(1) + ',' + state.ty.toFixed(1));
+    }
+    function zoomAt(factor, cx, cy) {
+      var s = Math.min(Math.max(state.scale * factor, fitScale() / 4), 64);
+      state.tx = cx - (cx - state.tx) * (s / state.scale);
+      state.ty = cy - (cy - state.ty) * (s / state.scale);
+      state.scale = s;
+      apply();
+    }
+    function fit() {
+      var n = natural();
+      state.scale = fitScale();
+      state.tx = (view.clientWidth - n.w * state.scale) / 2;
+      state.ty = (view.clientHeight - n.h * state.scale) / 2;
+      apply();
+    }
+    function show(side) {
+      state.side = side;
+      imgs[0].hidden = side !== 0;
+      imgs[1].hidden = side !== 1;
+      which.textContent = imgs[side].getAttribute('data-name');
+      flipButton.setAttribute('aria-pressed', side === 1 ? 'true' : 'false');
+      ab.setAttribute('data-showing', side === 0 ? 'reference' : 'layout');
+    }
+    function setExposure(ev) {
+      state.ev = ev;
+      evOut.textContent = (ev >= 0 ? '+' : '') + ev + ' EV';
+      var hdr = ev !== 0 && imgs[0].getAttribute('data-log') && imgs[1].getAttribute('data-log');
+      if (hdr) {
+        var table = [], i, scale = exposure * Math.pow(2, ev);
+        for (i = 0; i < 256; i++) table.push(acesSrgb(Math.pow(2, lo + (hi - lo) * i / 255) * scale).toFixed(5));
+        table[0] = acesSrgb(0).toFixed(5);
+        Array.prototype.forEach.call(filter.querySelectorAll('feFuncR,feFuncG,feFuncB'), function (f) {
+          f.setAttribute('tableValues', table.join(' '));
+        });
+      }
+      Array.prototype.forEach.call(imgs, function (img) {
+        var src = hdr ? img.getAttribute('data-log') : img.getAttribute('data-png');
+        if (img.getAttribute('src') !== src) img.setAttribute('src', src);
+        img.style.filter = hdr ? 'url(#' + filter.id + ')' : '';
+      });
+      ab.setAttribute('data-ev', String(ev));
+      ab.setAttribute('data-hdr', hdr ? 'log-preview' : 'png');
+    }
+    var drag = null;
+    view.addEventListener('pointerdown', function (e) {
+      drag = { x: e.clientX, y: e.clientY, tx: state.tx, ty: state.ty, moved: false };
+      if (view.setPointerCapture && e.pointerId !== undefined) { try { view.setPointerCapture(e.pointerId); } catch (x) {} }
+    });
+    view.addEventListener('pointermove', function (e) {
+      var r = view.getBoundingClientRect();
+      var px = Math.floor((e.clientX - r.left - state.tx) / state.scale);
+      var py = Math.floor((e.clientY - r.top - state.ty) / state.scale);
+      var n = natural();
+      pixelOut.textContent = px >= 0 && py >= 0 && px < n.w && py < n.h ? 'pixel ' + px + ', ' + py : '';
+      if (!drag) return;
+      var dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+      if (Math.abs(dx) + Math.abs(dy) > 3) drag.moved = true;
+      state.tx = drag.tx + dx;
+      state.ty = drag.ty + dy;
+      apply();
+    });
+    view.addEventListener('pointerup', function () {
+      if (drag && !drag.moved) show(1 - state.side);  /* a click flips */
+      drag = null;
+    });
+    view.addEventListener('wheel', function (e) {
+      e.preventDefault();
+      var r = view.getBoundingClientRect();
+      zoomAt(Math.pow(2, -e.deltaY / 240), e.clientX - r.left, e.clientY - r.top);
+    }, { passive: false });
+    flipButton.addEventListener('click', function () { show(1 - state.side); });
+    evInput.addEventListener('input', function () { setExposure(Number(evInput.value)); });
+    ab.addEventListener('keydown', function (e) {
+      if (e.target === evInput) return;
+      var cx = view.clientWidth / 2, cy = view.clientHeight / 2, handled = true;
+      if (e.key === ' ' || e.key === 'f' || e.key === 'F') show(1 - state.side);
+      else if (e.key === '+' || e.key === '=') zoomAt(2, cx, cy);
+      else if (e.key === '-') zoomAt(0.5, cx, cy);
+      else if (e.key === '0') fit();
+      else if (e.key === '1') zoomAt(1 / state.scale, cx, cy);
+      else if (e.key === 'ArrowLeft') { state.tx += 32; apply(); }
+      else if (e.key === 'ArrowRight') { state.tx -= 32; apply(); }
+      else if (e.key === 'ArrowUp') { state.ty += 32; apply(); }
+      else if (e.key === 'ArrowDown') { state.ty -= 32; apply(); }
+      else handled = false;
+      if (handled) e.preventDefault();
+    });
+    ab.querySelector('.ab-reset').addEventListener('click', fit);
+    if (imgs[0].complete && imgs[0].naturalWidth) fit(); else imgs[0].addEventListener('load', fit, { once: true });
+    show(0);
+    setExposure(0);
+    ab.setAttribute('data-viewer', 'ready');
+  }
+  Array.prototype.forEach.call(document.querySelectorAll('.ab'), setupViewer);
   document.documentElement.setAttribute('data-script', 'ready');
 })();
 )JS";

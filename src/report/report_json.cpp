@@ -77,7 +77,8 @@ Json imagesJson(const RunImages& images) {
     for (const ReportCrop& c : images.crops)
         crops.push_back(Json{{"x", c.x}, {"y", c.y}, {"w", c.w}, {"h", c.h},
                              {"reference", c.reference}, {"layout", c.layout}, {"heat", c.heat}});
-    return Json{{"render", images.render},         {"error_heatmap", images.errorHeatmap},
+    return Json{{"render", images.render},         {"render_exr", images.renderExr},
+                {"hdr_preview", images.hdrPreview},         {"error_heatmap", images.errorHeatmap},
                 {"flip", images.flip},             {"normal_error", images.normalError},
                 {"difference", images.difference}, {"errors_exr", images.errorsExr},
                 {"crops", std::move(crops)}};
@@ -234,6 +235,8 @@ ImageErrors readImageErrors(const Node& n) {
 RunImages readImages(const Node& n) {
     RunImages images;
     images.render = n["render"].str();
+    if (n.has("render_exr")) images.renderExr = n["render_exr"].str();
+    if (n.has("hdr_preview")) images.hdrPreview = n["hdr_preview"].str();
     images.errorHeatmap = n["error_heatmap"].str();
     images.flip = n["flip"].str();
     images.normalError = n["normal_error"].str();
@@ -280,7 +283,9 @@ Json reportToJson(const ReportModel& model) {
     const ReportRunInfo& run = model.run;
     Json references = Json::array();
     for (const ReferenceImage& image : model.reference.images)
-        references.push_back(Json{{"ibl_mode", image.iblMode}, {"render", image.render}});
+        references.push_back(
+            Json{{"ibl_mode", image.iblMode}, {"render", image.render}, {"render_exr", image.renderExr},
+                 {"hdr_preview", image.hdrPreview}});
     Json runs = Json::array();
     for (const RunReport& r : model.runs) runs.push_back(runJson(r));
     return Json{{"schema", "gbufferlab-report"},
@@ -295,6 +300,7 @@ Json reportToJson(const ReportModel& model) {
                              {"date", run.date},
                              {"command_line", run.commandLine},
                              {"ibl_modes", run.iblModes},
+                             {"exposure", run.exposure},
                              {"notes", run.notes}}},
                 {"reference", Json{{"layout", model.reference.layout}, {"images", std::move(references)}}},
                 {"runs", std::move(runs)}};
@@ -319,11 +325,14 @@ ReportModel reportFromJson(const Json& json) {
     model.run.commandLine = run["command_line"].str();
     model.run.iblModes = run["ibl_modes"].strings();
     model.run.notes = run["notes"].strings();
+    if (run.has("exposure")) model.run.exposure = run["exposure"].num();
     const Node reference = root["reference"];
     model.reference.layout = reference["layout"].str();
     const Node images = reference["images"];
     for (size_t i = 0; i < images.array().size(); ++i)
-        model.reference.images.push_back({images.at(i)["ibl_mode"].str(), images.at(i)["render"].str()});
+        model.reference.images.push_back({images.at(i)["ibl_mode"].str(), images.at(i)["render"].str(),
+                                          images.at(i).has("render_exr") ? images.at(i)["render_exr"].str() : "",
+                                          images.at(i).has("hdr_preview") ? images.at(i)["hdr_preview"].str() : ""});
     const Node runs = root["runs"];
     for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
     return model;

@@ -31,12 +31,15 @@ struct ReportRunInfo {
     std::string date;         // when the comparison ran, ISO 8601 (e.g. 2024-05-01T12:00:00Z)
     std::string commandLine;  // the gbufferlab command line, as typed
     std::vector<std::string> iblModes;
+    double exposure = 1.0;    // the tone map's exposure (compare --exposure)
     std::vector<std::string> notes;  // free-form remarks (e.g. "12 ringing texels clamped to 0")
 };
 
 struct ReferenceImage {
     std::string iblMode;
     std::string render;  // render.png of the reference under this IBL mode
+    std::string renderExr;  // render.exr: its linear HDR render (32-bit float RGBA, A = coverage)
+    std::string hdrPreview;  // the viewer's log-encoded 8-bit preview (tone_map.h logEncodeForPreview)
 };
 
 struct ReportReference {
@@ -143,6 +146,8 @@ struct ReportCrop {
 
 struct RunImages {
     std::string render;        // render.png (tone-mapped)
+    std::string renderExr;     // render.exr (linear HDR, 32-bit float RGBA, A = coverage)
+    std::string hdrPreview;    // render_log.png: the viewer's HDR preview (tone_map.h logEncodeForPreview)
     std::string errorHeatmap;  // error_heatmap.png
     std::string flip;          // flip.png
     std::string normalError;   // normal_error.png

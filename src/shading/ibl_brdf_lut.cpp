@@ -9,7 +9,7 @@
 
 namespace gbl::shading {
 
-Image computeBrdfLutCpu(int size, int samples) {
+Image computeBrdfLutCpu(int size, int samples, BrdfLutEstimator estimator) {
     if (size < 1 || samples < 1)
         throw std::invalid_argument("computeBrdfLutCpu: size and samples must be >= 1 (got size " +
                                     std::to_string(size) + ", samples " + std::to_string(samples) + ")");
@@ -18,7 +18,9 @@ Image computeBrdfLutCpu(int size, int samples) {
         float roughness = (float(y) + 0.5f) / float(size);
         for (int x = 0; x < size; ++x) {
             float NoV = (float(x) + 0.5f) / float(size);
-            glm::vec2 AB = integrateBRDF(roughness, NoV, uint32_t(samples));
+            glm::vec2 AB = estimator == BrdfLutEstimator::VisibleNormals
+                               ? integrateBRDFVisible(roughness, NoV, uint32_t(samples))
+                               : integrateBRDF(roughness, NoV, uint32_t(samples));
             lut.at(x, y, 0) = AB.x;
             lut.at(x, y, 1) = AB.y;
         }

@@ -67,7 +67,7 @@ uint64_t iblCacheKey(const EnvironmentMap& environment, const IblSettings& s) {
     f.bytes(img.pixels.data(), img.pixels.size() * sizeof(float));
     const uint32_t fields[] = {s.sourceFaceSize, s.prefilteredFaceSize, s.prefilteredMips,
                                s.bruteForce ? s.bruteForceSamples : s.prefilterSamples,
-                               s.bruteForce ? 1u : 0u, s.lutSize, s.lutSamples};
+                               s.bruteForce ? 1u : 0u, s.lutSize, s.lutSamples, uint32_t(s.lutEstimator)};
     f.bytes(fields, sizeof(fields));
     // The shaders that produce the data: an edited shader must not reuse old results.
     for (const char* name : {"ibl_equirect_to_cube.comp.glsl", "ibl_downsample.comp.glsl", "ibl_prefilter.comp.glsl",

@@ -2,6 +2,8 @@
 //   [Karis13]   B. Karis, "Real Shading in Unreal Engine 4", SIGGRAPH 2013 course notes.
 //   [Karis14]   B. Karis, "Physically Based Shading on Mobile", 2014.
 //   [Lazarov13] D. Lazarov, "Getting More Physical in Call of Duty: Black Ops II", SIGGRAPH 2013.
+//   [Heitz18]   E. Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4), 2018.
+//   [Walter07]  B. Walter et al., "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007.
 //   [KC08]      J. Krivanek, M. Colbert, "Real-time Shading with Filtered Importance Sampling", 2008.
 //   [HH64]      J. Hammersley, D. Handscomb, "Monte Carlo Methods", 1964; bit reversal as in
 //               H. Warren, "Hacker's Delight", ch. 7.
@@ -131,6 +133,51 @@ glm::dvec2 integrateBRDFDouble(double roughness, double NoV, uint32_t numSamples
         }
     }
     return glm::dvec2(A, B) / double(numSamples);
+}
+
+// [Walter07 eq. 34]: exact Smith G1 of GGX (the visible-normal distribution's normalisation).
+float g1SmithGgxExact(float NoV, float roughness) {
+    float a = roughness * roughness;
+    float a2 = a * a;
+    return 2.0f * NoV / (NoV + std::sqrt(a2 + (1.0f - a2) * NoV * NoV));
+}
+
+// [Heitz18, listing 1], isotropic, tangent frame N = +z, V in the xz plane (T1 = +y).
+glm::vec3 importanceSampleVisibleGGX(glm::vec2 Xi, float roughness, glm::vec3 V) {
+    float a = roughness * roughness;
+    glm::vec3 Vh = glm::normalize(glm::vec3(a * V.x, 0.0f, V.z));
+    glm::vec3 T1(0.0f, 1.0f, 0.0f);
+    glm::vec3 T2 = glm::cross(Vh, T1);
+    float r = std::sqrt(Xi.x);
+    float phi = 2.0f * kPi * Xi.y;
+    float t1 = r * std::cos(phi);
+    float t2 = r * std::sin(phi);
+    float s = 0.5f * (1.0f + Vh.z);
+    t2 = (1.0f - s) * std::sqrt(std::max(1.0f - t1 * t1, 0.0f)) + s * t2;
+    glm::vec3 Nh = t1 * T1 + t2 * T2 + std::sqrt(std::max(1.0f - t1 * t1 - t2 * t2, 0.0f)) * Vh;
+    return glm::normalize(glm::vec3(a * Nh.x, a * Nh.y, std::max(Nh.z, 0.0f)));
+}
+
+// [Heitz18]: integrateBRDF's integral with visible-normal sampling; weight F G / G1_exact(V).
+glm::vec2 integrateBRDFVisible(float roughness, float NoV, uint32_t numSamples) {
+    NoV = std::max(NoV, kMinIblNoV);
+    glm::vec3 V(std::sqrt(1.0f - NoV * NoV), 0.0f, NoV);
+    float g1V = g1SmithGgxExact(NoV, roughness);
+    float A = 0.0f;
+    float B = 0.0f;
+    for (uint32_t i = 0; i < numSamples; i++) {
+        glm::vec2 Xi((float(i) + 0.5f) / float(numSamples), radicalInverseVdC(i));
+        glm::vec3 H = importanceSampleVisibleGGX(Xi, roughness, V);
+        float VoH = saturate(glm::dot(V, H));
+        float NoL = 2.0f * VoH * H.z - NoV;
+        if (NoL > 0.0f) {
+            float w = gSmithSchlickIbl(roughness, NoV, std::min(NoL, 1.0f)) / g1V;
+            float Fc = fresnelWeightSchlick(VoH);
+            A += (1.0f - Fc) * w;
+            B += Fc * w;
+        }
+    }
+    return glm::vec2(A, B) / float(numSamples);
 }
 
 // [Karis13 / Seed EnvBRDF]: the 2% rule.

@@ -79,6 +79,14 @@ glm::vec2 integrateBRDF(float roughness, float NoV, uint32_t numSamples = kIblDe
 // The same estimator in double precision throughout (double Hammersley, sampling, G, Fresnel).
 glm::dvec2 integrateBRDFDouble(double roughness, double NoV, uint32_t numSamples = kIblDefaultSamples);
 
+// Exact Smith G1 of GGX: 2 NoV / (NoV + sqrt(a^2 + (1 - a^2) NoV^2)), a = roughness^2.
+float g1SmithGgxExact(float NoV, float roughness);
+// GGX visible-normal sample [Heitz18] in the frame N = +z, V in the xz plane with V.x >= 0.
+glm::vec3 importanceSampleVisibleGGX(glm::vec2 Xi, float roughness, glm::vec3 V);
+// integrateBRDF's (A, B) estimated with visible-normal sampling (bounded weights F G / G1(V));
+// the default BRDF LUT's estimator (brdf_lut.h).
+glm::vec2 integrateBRDFVisible(float roughness, float NoV, uint32_t numSamples);
+
 // UE4: f0 AB.x + saturate(50 f0.g) AB.y (the 2% rule).
 glm::vec3 envBRDF(glm::vec3 specularColor, glm::vec2 AB);
 // UE4 mobile fits.

@@ -26,6 +26,32 @@ IblMode parseIblMode(const std::string& text) {
     throwUserError("--ibl " + text + ": unknown IBL mode; known modes: " + known);
 }
 
+std::vector<std::string> brdfLutVariantNames() { return {"converged", "seed"}; }
+
+void applyBrdfLutVariant(const std::string& text, IblSettings& settings) {
+    if (text == "converged") {
+        settings.lutEstimator = shading::BrdfLutEstimator::VisibleNormals;
+        settings.lutSamples = shading::kBrdfLutConvergedSamples;
+    } else if (text == "seed") {
+        settings.lutEstimator = shading::BrdfLutEstimator::Seed;
+        settings.lutSamples = shading::kBrdfLutSeedSamples;
+    } else {
+        throwUserError("--brdf-lut " + text + ": unknown BRDF LUT; known: converged (visible-normal sampling, " +
+                       std::to_string(shading::kBrdfLutConvergedSamples) + " samples, the default), seed (the " +
+                       "seed's IntegrateBRDF, " + std::to_string(shading::kBrdfLutSeedSamples) + " samples)");
+    }
+}
+
+std::string brdfLutVariantName(const IblSettings& settings) {
+    if (settings.lutEstimator == shading::BrdfLutEstimator::VisibleNormals &&
+        settings.lutSamples == shading::kBrdfLutConvergedSamples)
+        return "converged";
+    if (settings.lutEstimator == shading::BrdfLutEstimator::Seed && settings.lutSamples == shading::kBrdfLutSeedSamples)
+        return "seed";
+    return std::string(settings.lutEstimator == shading::BrdfLutEstimator::Seed ? "seed" : "visible-normals") + ", " +
+           std::to_string(settings.lutSamples) + " samples";
+}
+
 namespace {
 
 uint32_t floorPow2(uint32_t v) {
@@ -234,7 +260,8 @@ GpuImage prefilterEnvironment(const VulkanContext& ctx, const GpuImage& sourceCu
     return out;
 }
 
-GpuImage computeBrdfLutGpu(const VulkanContext& ctx, uint32_t size, uint32_t samples, double* gpuMs) {
+GpuImage computeBrdfLutGpu(const VulkanContext& ctx, uint32_t size, uint32_t samples,
+                           shading::BrdfLutEstimator estimator, double* gpuMs) {
     if (size == 0 || samples == 0) throw std::invalid_argument("computeBrdfLutGpu: size and samples must be >= 1");
     ImageDesc d;
     d.format = VK_FORMAT_R32G32_SFLOAT;
@@ -242,11 +269,11 @@ GpuImage computeBrdfLutGpu(const VulkanContext& ctx, uint32_t size, uint32_t sam
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     GpuImage lut = createImage(ctx, d);
     const std::vector<Binding> b = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
-    Kernel k = createKernel(ctx, "ibl_brdf_lut.comp.glsl", b, 8, 1);
+    Kernel k = createKernel(ctx, "ibl_brdf_lut.comp.glsl", b, 12, 1);
     VkDescriptorSet s = allocateSet(ctx.device, k.pool, k.setLayout);
     DescriptorWriter w;
     w.image(s, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, lut.view, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL).flush(ctx.device);
-    const uint32_t push[2] = {size, samples};
+    const uint32_t push[3] = {size, samples, uint32_t(estimator)};
     const double ms = submitTimed(ctx, [&](VkCommandBuffer cmd) {
         transitionImage(cmd, lut, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.pipeline);
@@ -342,7 +369,7 @@ IblMaps computeIblMaps(const VulkanContext& ctx, const EnvironmentMap& environme
     p.samples = s.bruteForce ? s.bruteForceSamples : s.prefilterSamples;
     p.filtered = !s.bruteForce;
     GpuImage pre = prefilterEnvironment(ctx, cube, p, &maps.prefilterMs);
-    GpuImage lut = computeBrdfLutGpu(ctx, s.lutSize, s.lutSamples, &maps.lutMs);
+    GpuImage lut = computeBrdfLutGpu(ctx, s.lutSize, s.lutSamples, s.lutEstimator, &maps.lutMs);
     maps.prefiltered = downloadCube(ctx, pre);
     maps.brdfLut = downloadBrdfLut(ctx, lut);
     // SH from a cube mip of at most 32 texels a side (box-filtered: the irradiance is smooth).

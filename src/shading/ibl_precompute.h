@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "ibl_brdf_lut.h"
 #include "environment_map.h"
 #include "image.h"
 #include "vk_resources.h"
@@ -39,12 +40,21 @@ struct IblSettings {
     uint32_t prefilterSamples = 64;     // per texel, filtered importance sampling
     bool bruteForce = false;            // the seed's PrefilterEnvMap: bruteForceSamples, source mip 0 only
     uint32_t bruteForceSamples = 1024;
-    uint32_t lutSize = 128;
-    uint32_t lutSamples = 1024;
+    // The converged LUT by default (brdf_lut.h); {Seed, 1024} is the seed's estimator.
+    uint32_t lutSize = uint32_t(shading::BrdfLutDefaults{}.size);
+    shading::BrdfLutEstimator lutEstimator = shading::BrdfLutDefaults{}.estimator;
+    uint32_t lutSamples = shading::BrdfLutDefaults{}.samples;
 };
 
 // Fills in the automatic sizes and clamps (what is actually computed, and what the cache keys).
 IblSettings resolveIblSettings(const IblSettings& settings, const EnvironmentMap& environment);
+
+// The BRDF LUT variants a command can pick (--brdf-lut): "converged" (visible-normal sampling,
+// 4096 samples, the default) and "seed" (the seed's IntegrateBRDF, 1024 samples).
+std::vector<std::string> brdfLutVariantNames();
+// Sets settings.lutEstimator and lutSamples; throws UserError naming `text` otherwise.
+void applyBrdfLutVariant(const std::string& text, IblSettings& settings);
+std::string brdfLutVariantName(const IblSettings& settings);
 
 // One mip of a cube: 6 faces of size x size RGBA float, face after face, rows top to bottom.
 struct CubeMip {
@@ -92,7 +102,9 @@ struct PrefilterParams {
 };
 GpuImage prefilterEnvironment(const VulkanContext& ctx, const GpuImage& sourceCube, const PrefilterParams& params,
                               double* gpuMs = nullptr);
-GpuImage computeBrdfLutGpu(const VulkanContext& ctx, uint32_t size, uint32_t samples, double* gpuMs = nullptr);
+GpuImage computeBrdfLutGpu(const VulkanContext& ctx, uint32_t size, uint32_t samples,
+                           shading::BrdfLutEstimator estimator = shading::BrdfLutEstimator::Seed,
+                           double* gpuMs = nullptr);
 
 // Reads back every mip of a cube image in SHADER_READ_ONLY_OPTIMAL.
 std::vector<CubeMip> downloadCube(const VulkanContext& ctx, const GpuImage& cube);

@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <map>
 #include <cstdlib>
 #include <set>
 #include <sys/wait.h>
@@ -23,6 +25,7 @@
 #include "image_io.h"
 #include "report_html.h"
 #include "report_sample.h"
+#include "tone_map.h"
 
 namespace gbl {
 namespace {
@@ -236,6 +239,134 @@ TEST(ReportBrowser, ScriptSortsTheTableAndSwitchesThePlot) {
     ASSERT_EQ(byFlip.size(), 7u);
     EXPECT_EQ(byFlip[0], "fat-naive/split-sum");
     EXPECT_EQ(byFlip[6], "broken&lt;layout&gt;/split-sum");
+}
+
+// The A/B viewer driven by real DOM events (dispatched by a script appended to a copy of the
+// page, run on load; its findings are written into the DOM that --dump-dom returns): Space, the
+// button and a click on the image flip; the wheel zooms to 64 screen pixels per image pixel,
+// with the pixel read-out under the pointer right; a drag pans without flipping; arrow keys pan;
+// the exposure slider switches both images to the log preview through the filter whose table is
+// the report's tone map at that exposure.
+const char* kViewerDriver = R"JS(
+<script>
+window.addEventListener('load', function () {
+  var out = [];
+  function note(k, v) { out.push(k + '=' + v); }
+  try {
+    var ab = document.querySelector('.ab'), view = ab.querySelector('.ab-view');
+    var imgs = ab.querySelectorAll('.ab-stage img'), stage = ab.querySelector('.ab-stage');
+    function key(k) { ab.dispatchEvent(new KeyboardEvent('keydown', { key: k, bubbles: true, cancelable: true })); }
+    function ptr(type, x, y) {
+      var r = view.getBoundingClientRect();
+      view.dispatchEvent(new PointerEvent(type, { clientX: r.left + x, clientY: r.top + y, bubbles: true, pointerId: 1 }));
+    }
+    note('ready', ab.getAttribute('data-viewer'));
+    note('start', ab.getAttribute('data-showing'));
+    note('both_in_stage', imgs.length === 2 && imgs[0].parentNode === stage && imgs[1].parentNode === stage);
+    key(' ');
+    note('space', ab.getAttribute('data-showing') + '/' + imgs[0].hidden + '/' + imgs[1].hidden);
+    ab.querySelector('.ab-flip').click();
+    note('button', ab.getAttribute('data-showing'));
+    ptr('pointerdown', 40, 40); ptr('pointerup', 40, 40);
+    note('imageclick', ab.getAttribute('data-showing'));
+    key('F');
+    note('fkey', ab.getAttribute('data-showing'));
+    key('0');
+    note('fit', ab.getAttribute('data-zoom'));
+    for (var i = 0; i < 12; i++) {
+      var r = view.getBoundingClientRect();
+      view.dispatchEvent(new WheelEvent('wheel', { deltaY: -240, clientX: r.left + 10, clientY: r.top + 10,
+                                                   bubbles: true, cancelable: true }));
+    }
+    note('zoom', ab.getAttribute('data-zoom'));
+    var pan = ab.getAttribute('data-pan').split(',').map(Number);
+    ptr('pointermove', pan[0] + 64 * 3 + 5, pan[1] + 64 * 2 + 5);
+    note('pixel', ab.querySelector('.ab-pixel').textContent);
+    note('pan0', pan.join(','));
+    ptr('pointerdown', 300, 200); ptr('pointermove', 360, 230); ptr('pointerup', 360, 230);
+    note('pan1', ab.getAttribute('data-pan'));
+    note('afterdrag', ab.getAttribute('data-showing'));
+    key('ArrowLeft');
+    note('pan2', ab.getAttribute('data-pan'));
+    note('same_transform', stage.style.transform.indexOf('scale(64)') >= 0);
+    var ev = ab.querySelector('.ab-ev');
+    ev.value = '2'; ev.dispatchEvent(new Event('input', { bubbles: true }));
+    note('ev', ab.getAttribute('data-ev') + '/' + ab.getAttribute('data-hdr'));
+    note('src', imgs[0].getAttribute('src') + '|' + imgs[1].getAttribute('src'));
+    note('filter', imgs[1].style.filter.indexOf('abf-') >= 0);
+    note('table', ab.querySelector('feFuncG').getAttribute('tableValues').split(' ').length + ':' +
+                  ab.querySelector('feFuncG').getAttribute('tableValues').split(' ')[64]);
+    ev.value = '0'; ev.dispatchEvent(new Event('input', { bubbles: true }));
+    note('ev0', ab.getAttribute('data-hdr') + '/' + imgs[0].getAttribute('src'));
+  } catch (e) { note('exception', e.message); }
+  document.body.setAttribute('data-abtest', out.join(';'));
+});
+</script>
+)JS";
+
+std::map<std::string, std::string> viewerFindings(const std::string& dom) {
+    std::map<std::string, std::string> found;
+    const size_t at = dom.find("data-abtest=\"");
+    if (at == std::string::npos) return found;
+    const size_t begin = at + 13, end = dom.find('"', begin);
+    std::string text = dom.substr(begin, end - begin);
+    size_t pos = 0;
+    while (pos < text.size()) {
+        size_t semi = text.find(';', pos);
+        if (semi == std::string::npos) semi = text.size();
+        const std::string item = text.substr(pos, semi - pos);
+        const size_t eq = item.find('=');
+        if (eq != std::string::npos) found[item.substr(0, eq)] = item.substr(eq + 1);
+        pos = semi + 1;
+    }
+    return found;
+}
+
+TEST(ReportBrowser, AbViewerFlipsZoomsPansAndExposes) {
+    GBL_REQUIRE_CHROMIUM();
+    TempDir dir("ab");
+    const fs::path html = writeSampleReport(dir.path / "report");
+    std::string page = readTextFile(html);
+    const size_t body = page.rfind("</body>");
+    ASSERT_NE(body, std::string::npos);
+    page.insert(body, kViewerDriver);
+    const fs::path driven = dir.path / "report" / "driven.html";
+    writeFileAtomic(driven, page);
+    const BrowserRun run = runChromium(dir.path, fileUrl(driven), "--dump-dom");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    EXPECT_TRUE(consoleProblems(run.stderrText).empty()) << joined(consoleProblems(run.stderrText));
+    auto f = viewerFindings(run.stdoutText);
+    ASSERT_FALSE(f.empty()) << "the driver did not run";
+    EXPECT_EQ(f.count("exception"), 0u) << f["exception"];
+    EXPECT_EQ(f["ready"], "ready");
+    EXPECT_EQ(f["start"], "reference");
+    EXPECT_EQ(f["both_in_stage"], "true");
+    EXPECT_EQ(f["space"], "layout/true/false");
+    EXPECT_EQ(f["button"], "reference");
+    EXPECT_EQ(f["imageclick"], "layout");
+    EXPECT_EQ(f["fkey"], "reference");
+    EXPECT_GT(std::stod(f["fit"]), 1.0);  // 64x36 sample images fill the view
+    EXPECT_EQ(f["zoom"], "64");           // clamped at 64 screen pixels per image pixel
+    // The read-out names the image pixel under the pointer (5 screen pixels into image pixel 3, 2).
+    const double tx = std::stod(f["pan0"]), ty = std::stod(f["pan0"].substr(f["pan0"].find(',') + 1));
+    EXPECT_EQ(f["pixel"], "pixel 3, 2") << "pan " << f["pan0"];
+    const double tx1 = std::stod(f["pan1"]), ty1 = std::stod(f["pan1"].substr(f["pan1"].find(',') + 1));
+    EXPECT_NEAR(tx1 - tx, 60.0, 0.11);
+    EXPECT_NEAR(ty1 - ty, 30.0, 0.11);
+    EXPECT_EQ(f["afterdrag"], "reference") << "a drag must not flip";
+    EXPECT_NEAR(std::stod(f["pan2"]) - tx1, 32.0, 0.11);
+    EXPECT_EQ(f["same_transform"], "true");
+    EXPECT_EQ(f["ev"], "2/log-preview");
+    EXPECT_EQ(f["src"], "reference/split-sum/log.png|runs/ue4-split-sum/render_log.png");
+    EXPECT_EQ(f["filter"], "true");
+    // Entry 64 of the table: log2 x = lo + (hi - lo) 64 / 255, times exposure 1 x 2^2, through
+    // the report's tone map (C++, tone_map.h).
+    const double x = std::exp2(kPreviewLog2Min + (kPreviewLog2Max - kPreviewLog2Min) * 64.0 / 255.0) * 4.0;
+    const double expected = linearToSrgb(acesFilmNarkowicz(float(x)));
+    const std::string table = f["table"];
+    ASSERT_EQ(table.substr(0, 4), "256:");
+    EXPECT_NEAR(std::stod(table.substr(4)), expected, 2e-5);
+    EXPECT_EQ(f["ev0"], "png/reference/split-sum/render.png");
 }
 
 TEST(ReportBrowser, MissingImageIsReported) {

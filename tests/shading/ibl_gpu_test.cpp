@@ -85,6 +85,33 @@ Prefiltered prefilter(const VulkanContext& ctx, const GpuImage& source, uint32_t
 
 class IblGpuTest : public test::VulkanTest {};
 
+// The default (converged, visible-normal) LUT estimator: GPU == CPU mirror texel by texel (its
+// convergence against an independent quadrature is brdf_lut_test's), and the GPU LUT of the
+// default settings is the visible-normal one, not the seed's.
+TEST_F(IblGpuTest, ConvergedBrdfLutMatchesCpu) {
+    const int size = 16, samples = 1024;
+    GpuImage lut = computeBrdfLutGpu(ctx(), size, samples, shading::BrdfLutEstimator::VisibleNormals);
+    const Image gpu = downloadBrdfLut(ctx(), lut);
+    destroyImage(ctx(), lut);
+    const Image cpu = shading::computeBrdfLutCpu(size, samples, shading::BrdfLutEstimator::VisibleNormals);
+    const Image seed = shading::computeBrdfLutCpu(size, samples, shading::BrdfLutEstimator::Seed);
+    double maxDiff = 0.0, maxSeedDiff = 0.0;
+    for (size_t i = 0; i < gpu.pixels.size(); ++i) {
+        maxDiff = std::max(maxDiff, double(std::abs(gpu.pixels[i] - cpu.pixels[i])));
+        maxSeedDiff = std::max(maxSeedDiff, double(std::abs(gpu.pixels[i] - seed.pixels[i])));
+    }
+    EXPECT_LT(maxDiff, 2e-4) << "GPU vs CPU visible-normal LUT";
+    EXPECT_GT(maxSeedDiff, 1e-2) << "the two estimators must differ at grazing NoV";
+    const IblSettings defaults;
+    EXPECT_EQ(defaults.lutEstimator, shading::BrdfLutEstimator::VisibleNormals);
+    EXPECT_EQ(brdfLutVariantName(defaults), "converged");
+    IblSettings seedSettings;
+    applyBrdfLutVariant("seed", seedSettings);
+    EXPECT_EQ(seedSettings.lutSamples, 1024u);
+    EXPECT_EQ(seedSettings.lutEstimator, shading::BrdfLutEstimator::Seed);
+    EXPECT_THROW(applyBrdfLutVariant("exact", seedSettings), UserError);
+}
+
 // GPU LUT == CPU computeBrdfLutCpu (same float estimator: only the drivers' transcendentals
 // differ), and both == an independent double-precision integration within its MC error.
 TEST_F(IblGpuTest, BrdfLutMatchesCpuAndDoubleIntegration) {

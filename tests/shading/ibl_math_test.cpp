@@ -1,5 +1,5 @@
 // Tests of the IBL maths (src/shading/ibl_math.h, mirror of shaders/ibl_math.glsl) and the CPU BRDF LUT
-// (src/brdf_lut.h). Every tolerance is stated next to its assertion, with why it is that size;
+// (src/shading/ibl_brdf_lut.h). Every tolerance is stated next to its assertion, with why it is that size;
 // the measured figures quoted here are the ones documented in src/shading/ibl_math.h.
 #include <gtest/gtest.h>
 

@@ -63,7 +63,7 @@ inline RunReport sampleRun(const std::string& name, const std::string& ibl, int 
     r.image = ImageErrors{flip * 2, psnr + 3, flip, psnr, flip * 40, flip * 6, flip, flip / 2};
     r.times = PassTimes{0.5 + bytes / 100.0, 1.25, "llvmpipe (LLVM 15.0.6, 256 bits)"};
     const std::string dir = "runs/" + name + "-" + ibl + "/";
-    r.images = {dir + "render.png", dir + "error_heatmap.png", dir + "flip.png", dir + "normal_error.png",
+    r.images = {dir + "render.png", dir + "render.exr", dir + "render_log.png", dir + "error_heatmap.png", dir + "flip.png", dir + "normal_error.png",
                 dir + "difference.png", dir + "errors.exr",
                 {ReportCrop{8, 4, 16, 12, dir + "crop0_reference.png", dir + "crop0_layout.png", dir + "crop0_heat.png"}}};
     return r;
@@ -81,7 +81,9 @@ inline ReportModel sampleReport() {
     m.run.iblModes = {"split-sum", "none"};
     m.run.notes = {"3 ringing texels clamped to 0 in the environment map"};
     m.reference.layout = "reference-float";
-    m.reference.images = {{"split-sum", "reference/split-sum/render.png"}, {"none", "reference/none/render.png"}};
+    m.reference.images = {
+        {"split-sum", "reference/split-sum/render.png", "reference/split-sum/render.exr", "reference/split-sum/log.png"},
+        {"none", "reference/none/render.png", "reference/none/render.exr", "reference/none/log.png"}};
     m.runs.push_back(sampleRun("ue4", "split-sum", 20, 0.0213, 41.5));
     m.runs.push_back(sampleRun("compact-octahedral", "split-sum", 12, 0.0561, 33.25));
     m.runs.push_back(sampleRun("fat-naive", "split-sum", 44, 0.0, INFINITY));  // identical to the reference
@@ -104,9 +106,9 @@ inline ReportModel sampleReport() {
 // Writes a small PNG for every PNG path the model names (distinct colours per file).
 inline void writeSampleImages(const std::filesystem::path& dir, const ReportModel& m) {
     std::set<std::string> paths;
-    for (const ReferenceImage& r : m.reference.images) paths.insert(r.render);
+    for (const ReferenceImage& r : m.reference.images) paths.insert({r.render, r.hdrPreview});
     for (const RunReport& r : m.runs) {
-        for (const std::string* p : {&r.images.render, &r.images.errorHeatmap, &r.images.flip, &r.images.normalError,
+        for (const std::string* p : {&r.images.render, &r.images.hdrPreview, &r.images.errorHeatmap, &r.images.flip, &r.images.normalError,
                                      &r.images.difference})
             if (!p->empty()) paths.insert(*p);
         for (const ReportCrop& c : r.images.crops)

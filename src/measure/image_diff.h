@@ -1,0 +1,59 @@
+#pragma once
+// `gbufferlab diff`: one test image against one reference image, the way pbrt-v4's `imgtool diff`
+// and NVIDIA's FLIP tool compare files.
+//
+// Inputs are read by extension and keep their kind:
+//   .png / .jpg / .jpeg  LDR: 8-bit, sRGB-encoded; values v / 255 in [0, 1].
+//   .exr / .hdr          HDR: linear RGB float (EXR: R,G,B or Y; A is not compared).
+// Reference and test must be the same kind, width, height and channel count (else UserError
+// naming the test file).
+//
+// Metrics, over every pixel and the colour channels (RGB; a grey image its one channel; alpha
+// never):
+//   rmse, max_abs        of test - reference, in the file's values (LDR: encoded / 255; HDR: linear).
+//   psnr_db              10 log10(peak^2 / MSE); peak 1 for LDR, the reference's largest colour
+//                        value for HDR (as report.json's psnr_linear_db); +inf when identical.
+//   flip_*               LDR: LDR-FLIP of the two sRGB images [Andersson et al. 2020].
+//                        HDR: HDR-FLIP [Andersson et al. 2021] over exposures start..stop (from the
+//                        reference unless given), as NVIDIA's tool: --start-exposure,
+//                        --stop-exposure, --num-exposures.
+// The error map is the FLIP map.
+#include <optional>
+#include <string>
+
+#include "flip.h"
+#include "image.h"
+
+namespace gbl {
+
+enum class DiffKind { Ldr, Hdr };
+
+struct DiffInput {
+    DiffKind kind = DiffKind::Ldr;
+    Image image;        // LDR: sRGB-encoded [0,1]; HDR: linear. Colour channels only (1 or 3).
+    int fileChannels = 0;  // channels in the file (alpha included), for the like-for-like check
+};
+
+// Reads one input; bad files (unreadable, unknown extension) are a UserError naming the file.
+DiffInput readDiffInput(const std::string& path);
+
+struct DiffOptions {
+    double pixelsPerDegree = flipPixelsPerDegree();
+    std::optional<float> startExposure, stopExposure;  // HDR only
+    std::optional<int> numExposures;                    // HDR only
+};
+
+struct DiffResult {
+    DiffKind kind = DiffKind::Ldr;
+    int width = 0, height = 0, channels = 0;
+    double rmse = 0.0, psnrDb = 0.0, peak = 1.0, maxAbs = 0.0;
+    FlipStats flip;
+    FlipExposureRange exposures;  // HDR only
+    Image flipMap;                // 1 channel [0, 1]
+};
+
+// Throws UserError (naming testPath) when the two differ in kind, size or channel count.
+DiffResult diffImages(const DiffInput& reference, const DiffInput& test, const std::string& referencePath,
+                      const std::string& testPath, const DiffOptions& options = {});
+
+}  // namespace gbl

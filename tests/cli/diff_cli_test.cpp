@@ -1,0 +1,183 @@
+// `gbufferlab diff` (src/measure/image_diff.h, src/cli/cmd_diff.cpp) on files, run as the real executable:
+// its RMSE / PSNR / max against an independent computation here, its FLIP against the library's,
+// bad input as one clear line naming the file, and -- the point of it -- the numbers in
+// report.json recomputed from the files `compare` writes (render.png, render.exr).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "flip.h"
+#include "image_io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+    int exitCode;
+    std::string out;
+    std::string err;
+};
+
+fs::path scratch() {
+    static fs::path dir = [] {
+        fs::path d = fs::temp_directory_path() / ("gbl_diff_test_" + std::to_string(::getpid()));
+        fs::remove_all(d);
+        fs::create_directories(d);
+        return d;
+    }();
+    return dir;
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+RunResult run(const std::string& args) {
+    const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
+    const std::string cmd = "cd " + scratch().string() + " && " + GBL_BINARY + " " + args + " >" + out.string() +
+                            " 2>" + err.string();
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), slurp(out), slurp(err)};
+}
+
+void expectOneLineError(const RunResult& r, std::initializer_list<std::string> needles) {
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "missing '" << n << "' in: " << r.err;
+}
+
+gbl::Image8 pattern8(int w, int h, int channels, int seed) {
+    gbl::Image8 img{w, h, channels, std::vector<unsigned char>(size_t(w) * h * channels)};
+    for (size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = (unsigned char)((i * 37 + seed * (i % 7)) % 256);
+    return img;
+}
+
+gbl::Image patternHdr(int w, int h, int seed) {
+    gbl::Image img(w, h, 3);
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        img.pixels[i] = float(std::exp2(double((i * 13 + seed * (i % 5)) % 40) / 4.0 - 4.0));
+    return img;
+}
+
+double num(const nlohmann::json& j) { return j.is_string() ? INFINITY : j.get<double>(); }
+
+}  // namespace
+
+// LDR: RMSE, PSNR (peak 1) and max over the RGB values / 255, computed here; FLIP = flipLdr.
+TEST(Diff, LdrNumbersAreIndependentlyRight) {
+    const gbl::Image8 a = pattern8(40, 30, 3, 1), b = pattern8(40, 30, 3, 3);
+    gbl::writePng((scratch() / "a.png").string(), a);
+    gbl::writePng((scratch() / "b.png").string(), b);
+    const RunResult r = run("diff a.png b.png --json --out map.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    double se = 0.0, mx = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const double d = (double(b.pixels[i]) - double(a.pixels[i])) / 255.0;
+        se += d * d;
+        mx = std::max(mx, std::abs(d));
+    }
+    const double rmse = std::sqrt(se / double(a.pixels.size()));
+    EXPECT_NEAR(j["rmse"].get<double>(), rmse, 1e-6 * rmse);
+    EXPECT_NEAR(j["psnr_db"].get<double>(), -20.0 * std::log10(rmse), 1e-5);
+    EXPECT_NEAR(j["max_abs"].get<double>(), mx, 1e-6);
+    gbl::Image fa(40, 30, 3), fb(40, 30, 3);
+    for (size_t i = 0; i < a.pixels.size(); ++i) fa.pixels[i] = float(a.pixels[i]) / 255.0f, fb.pixels[i] = float(b.pixels[i]) / 255.0f;
+    EXPECT_DOUBLE_EQ(j["flip_mean"].get<double>(), gbl::flipStats(gbl::flipLdr(fa, fb)).mean);
+    EXPECT_EQ(j["kind"], "ldr");
+    const gbl::Image8 map = gbl::readImage8((scratch() / "map.png").string());
+    EXPECT_EQ(map.width, 40);
+    EXPECT_EQ(map.height, 30);
+    // Identical images: PSNR "inf", FLIP 0.
+    const RunResult same = run("diff a.png a.png --json");
+    ASSERT_EQ(same.exitCode, 0) << same.err;
+    const auto js = nlohmann::json::parse(same.out);
+    EXPECT_EQ(js["psnr_db"], "inf");
+    EXPECT_EQ(js["flip_mean"].get<double>(), 0.0);
+}
+
+// HDR: PSNR with the reference's maximum as peak; HDR-FLIP with the given exposures equals
+// flipHdr with that range; the map as a 1-channel float EXR.
+TEST(Diff, HdrNumbersAndExposureFlags) {
+    const gbl::Image a = patternHdr(32, 24, 1), b = patternHdr(32, 24, 2);
+    gbl::writeExr((scratch() / "a.exr").string(), a);
+    gbl::writeExr((scratch() / "b.exr").string(), b);
+    const RunResult r = run("diff a.exr b.exr --json --start-exposure -2.5 --stop-exposure 1.5 --out map.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    double se = 0.0, peak = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        se += double(b.pixels[i] - a.pixels[i]) * double(b.pixels[i] - a.pixels[i]);
+        peak = std::max(peak, double(a.pixels[i]));
+    }
+    const double mse = se / double(a.pixels.size());
+    EXPECT_NEAR(j["psnr_db"].get<double>(), 10.0 * std::log10(peak * peak / mse), 1e-6);
+    EXPECT_NEAR(j["rmse"].get<double>(), std::sqrt(mse), 1e-6 * std::sqrt(mse));
+    EXPECT_EQ(j["num_exposures"].get<int>(), 4);  // max(2, ceil(1.5 - -2.5)), as NVIDIA's tool
+    const gbl::HdrFlipResult h = gbl::flipHdr(a, b, gbl::flipPixelsPerDegree(), {-2.5f, 1.5f, 4});
+    EXPECT_DOUBLE_EQ(j["flip_mean"].get<double>(), gbl::flipStats(h.flip).mean);
+    const gbl::Image map = gbl::readExrChannels((scratch() / "map.exr").string(), {"Y"});
+    EXPECT_EQ(map.pixels, h.flip.pixels);
+}
+
+TEST(Diff, BadInputIsOneLineNamingTheFile) {
+    gbl::writePng((scratch() / "rgb.png").string(), pattern8(16, 16, 3, 1));
+    gbl::writePng((scratch() / "rgba.png").string(), pattern8(16, 16, 4, 1));
+    gbl::writePng((scratch() / "small.png").string(), pattern8(8, 16, 3, 1));
+    gbl::writeExr((scratch() / "rgb.exr").string(), patternHdr(16, 16, 1));
+    { std::ofstream(scratch() / "garbage.png") << "not a png"; }
+    { std::ofstream(scratch() / "existing.png") << "user data"; }
+    expectOneLineError(run("diff rgb.png small.png"), {"small.png", "8x16", "16x16"});
+    expectOneLineError(run("diff rgb.png rgba.png"), {"rgba.png", "channels"});
+    expectOneLineError(run("diff rgb.png rgb.exr"), {"rgb.exr", "like with like"});
+    expectOneLineError(run("diff rgb.png garbage.png"), {"garbage.png"});
+    expectOneLineError(run("diff rgb.png missing.png"), {"missing.png"});
+    expectOneLineError(run("diff rgb.png rgb.tiff"), {"rgb.tiff"});
+    expectOneLineError(run("diff rgb.png"), {"two images"});
+    expectOneLineError(run("diff rgb.png rgb.png --start-exposure 1 --stop-exposure 2"), {"exposure"});
+    expectOneLineError(run("diff rgb.exr rgb.exr --start-exposure 1"), {"--stop-exposure"});
+    // Never overwrite the user's file without --force; no map from a failed diff.
+    expectOneLineError(run("diff rgb.png rgb.png --out existing.png"), {"existing.png", "--force"});
+    EXPECT_EQ(slurp(scratch() / "existing.png"), "user data");
+    expectOneLineError(run("diff rgb.png small.png --out nomap.png"), {"small.png"});
+    EXPECT_FALSE(fs::exists(scratch() / "nomap.png"));
+}
+
+// report.json's image errors are what `gbufferlab diff` computes from the files compare wrote:
+// LDR-FLIP, tone-mapped PSNR and RMSE from the PNGs; HDR-FLIP, linear PSNR and RMSE from the EXRs.
+TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
+    const RunResult c = run("compare --size 96x54 --layouts crysis2-slim,ue4 --hdr-flip --out rep");
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    const auto report = nlohmann::json::parse(slurp(scratch() / "rep" / "report.json"));
+    const auto& refImage = report["reference"]["images"][0];
+    ASSERT_FALSE(refImage["render_exr"].get<std::string>().empty());
+    for (const auto& runJson : report["runs"]) {
+        const auto& e = runJson["image_errors"];
+        const std::string dir = "rep/";
+        RunResult d = run("diff " + dir + refImage["render"].get<std::string>() + " " + dir +
+                          runJson["images"]["render"].get<std::string>() + " --json");
+        ASSERT_EQ(d.exitCode, 0) << d.err;
+        auto j = nlohmann::json::parse(d.out);
+        EXPECT_DOUBLE_EQ(num(j["flip_mean"]), num(e["flip_mean"])) << runJson["layout"];
+        EXPECT_DOUBLE_EQ(num(j["psnr_db"]), num(e["psnr_tonemapped_db"]));
+        EXPECT_NEAR(num(j["rmse"]), num(e["rmse_tonemapped"]), 1e-12);
+        d = run("diff " + dir + refImage["render_exr"].get<std::string>() + " " + dir +
+                runJson["images"]["render_exr"].get<std::string>() + " --json");
+        ASSERT_EQ(d.exitCode, 0) << d.err;
+        j = nlohmann::json::parse(d.out);
+        EXPECT_DOUBLE_EQ(num(j["flip_mean"]), num(e["hdr_flip_mean"])) << runJson["layout"];
+        EXPECT_EQ(j["num_exposures"].get<int>(), e["hdr_flip_exposures"].get<int>());
+        EXPECT_DOUBLE_EQ(num(j["psnr_db"]), num(e["psnr_linear_db"]));
+        EXPECT_NEAR(num(j["rmse"]), num(e["rmse_linear"]), 1e-9 * num(e["rmse_linear"]));
+    }
+}
