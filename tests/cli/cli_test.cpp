@@ -16,53 +16,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-    int exitCode;
-    std::string out;
-    std::string err;
-};
+using namespace gbl::test;
 
 fs::path scratch() {
-    static fs::path dir = [] {
-        fs::path d = fs::temp_directory_path() / ("gbl_cli_test_" + std::to_string(::getpid()));
-        fs::remove_all(d);
-        fs::create_directories(d);
-        return d;
-    }();
+    static const fs::path dir = scratchFolder("gbl_cli_test_");
     return dir;
 }
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-RunResult run(const std::string& args, const std::string& envPrefix = "") {
-    const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
-    const std::string cmd = "cd " + scratch().string() + " && " + envPrefix + " " + GBL_BINARY + " " + args + " >" +
-                            out.string() + " 2>" + err.string();
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), slurp(out), slurp(err)};
-}
-
-size_t lineCount(const std::string& s) {
-    size_t n = 0;
-    for (char c : s) n += c == '\n';
-    return n;
-}
-
-// A user error: exit 1, exactly one line on stderr containing every `needle`.
-void expectOneLineError(const RunResult& r, std::initializer_list<std::string> needles) {
-    EXPECT_EQ(r.exitCode, 1) << r.err;
-    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
-    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "missing '" << n << "' in: " << r.err;
-}
+RunResult run(const std::string& args, const std::string& envPrefix = "") { return runGbufferlab(scratch(), args, envPrefix); }
 
 TEST(Cli, MissingVulkanDriverIsOneClearLine) {
     const RunResult r = run("render --out nodriver --size 64x64",

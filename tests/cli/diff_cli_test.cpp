@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
+
 #include "flip.h"
 #include "image_io.h"
 
@@ -19,42 +21,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-    int exitCode;
-    std::string out;
-    std::string err;
-};
+using namespace gbl::test;
 
 fs::path scratch() {
-    static fs::path dir = [] {
-        fs::path d = fs::temp_directory_path() / ("gbl_diff_test_" + std::to_string(::getpid()));
-        fs::remove_all(d);
-        fs::create_directories(d);
-        return d;
-    }();
+    static const fs::path dir = scratchFolder("gbl_diff_test_");
     return dir;
 }
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-RunResult run(const std::string& args) {
-    const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
-    const std::string cmd = "cd " + scratch().string() + " && " + GBL_BINARY + " " + args + " >" + out.string() +
-                            " 2>" + err.string();
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), slurp(out), slurp(err)};
-}
-
-void expectOneLineError(const RunResult& r, std::initializer_list<std::string> needles) {
-    EXPECT_EQ(r.exitCode, 1) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "missing '" << n << "' in: " << r.err;
-}
+RunResult run(const std::string& args, const std::string& envPrefix = "") { return runGbufferlab(scratch(), args, envPrefix); }
 
 gbl::Image8 pattern8(int w, int h, int channels, int seed) {
     gbl::Image8 img{w, h, channels, std::vector<unsigned char>(size_t(w) * h * channels)};
