@@ -14,6 +14,7 @@ layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv;
 
 void main() {
+    if (alphaTestDiscards(inUv)) discard;
     Surface s = evaluateMaterial(inWorldPosition, inNormal, inTangent, inUv, gl_FrontFacing);
     writeGBuffer(s, ivec2(gl_FragCoord.xy));
 }

@@ -11,6 +11,14 @@ vec4 sampleTexture(int index, vec2 uv, vec4 fallback) {
     return index == GBL_NO_TEXTURE ? fallback : texture(textures[index], uv);
 }
 
+// glTF alphaMode MASK (glTF 2.0, 3.9.4): true where the fragment is cut out.
+bool alphaTestDiscards(vec2 uv) {
+    GpuMaterial m = materials[draw.material.x];
+    if (m.alphaMaskCutoff.x == 0.0) return false;
+    float alpha = m.baseColorFactor.a * sampleTexture(m.textures0.x, uv, vec4(1.0)).a;
+    return alpha < m.alphaMaskCutoff.y;
+}
+
 // Textures flagged sRGB use *_SRGB formats, so the sampler returns linear values already.
 Surface evaluateMaterial(vec3 worldPosition, vec3 normal, vec4 tangent, vec2 uv, bool frontFacing) {
     GpuMaterial m = materials[draw.material.x];

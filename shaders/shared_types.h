@@ -43,6 +43,7 @@ struct GpuMaterial {
     vec4 metallicRoughnessOcclusion;  // x metallic, y roughness, z occlusion strength, w double sided
     ivec4 textures0;              // base colour, metallic-roughness, normal, occlusion
     ivec4 textures1;              // emissive, specular, specular colour, unused
+    vec4 alphaMaskCutoff;         // x 1 = alphaMode MASK, y alpha cutoff
 };
 
 struct DrawConstants {

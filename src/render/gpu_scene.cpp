@@ -15,6 +15,7 @@ std::vector<gpu::GpuMaterial> packMaterials(const Scene& scene) {
             glm::vec4(m.metallicFactor, m.roughnessFactor, m.occlusionStrength, m.doubleSided ? 1.0f : 0.0f);
         g.textures0 = glm::ivec4(m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.occlusionTexture);
         g.textures1 = glm::ivec4(m.emissiveTexture, m.specularTexture, m.specularColorTexture, kNoTexture);
+        g.alphaMaskCutoff = glm::vec4(m.alphaMask ? 1.0f : 0.0f, m.alphaCutoff, 0.0f, 0.0f);
         out.push_back(g);
     }
     if (out.empty()) {

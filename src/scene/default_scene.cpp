@@ -1,10 +1,15 @@
 // The built-in scene: needs no file, and covers what a G-buffer layout can get wrong —
 // roughness from mirror to fully rough, dielectric vs metal, coloured F0 (metals and a
-// KHR_materials_specular dielectric) and a ground with texel-scale normal detail.
+// KHR_materials_specular dielectric) and a ground with texel-scale normal detail (the sphere
+// grid, makeSphereGridScene); around it, filling the frame: textured albedo with saturated
+// chroma detail, a tiled metal/dielectric panel with sharp boundaries, a large sphere with fine
+// normal detail facing every axis, an emissive sign, an alpha-tested wire fence, and buildings
+// from 100 m to 400 m away on a ground that reaches the horizon (depth precision).
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene.h"
 #include "scene_detail_normal_map.h"
+#include "procedural_textures.h"
 #include "scene_shapes.h"
 
 namespace gbl {
@@ -100,6 +105,97 @@ void addGround(Scene& scene) {
     scene.draws.push_back(draw);
 }
 
+int addTexture(Scene& scene, Texture t) {
+    scene.textures.push_back(std::move(t));
+    return static_cast<int>(scene.textures.size()) - 1;
+}
+
+// A rectangle w x h centred at `centre`, facing `facing` (+Z, -X, +X or +Y), from the ground-plane
+// mesh (its uv spans the rectangle once; `uvRepeat` scales it through the texture's tiling).
+void addPanel(Scene& scene, const Draw& plane, int material, glm::vec3 centre, glm::vec2 size, glm::vec3 facing) {
+    Draw d = plane;
+    d.material = material;
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), centre);
+    if (facing.z > 0.5f)
+        m = glm::rotate(m, glm::radians(90.0f), glm::vec3(1, 0, 0));  // +Y -> +Z
+    else if (facing.x < -0.5f)
+        m = glm::rotate(m, glm::radians(90.0f), glm::vec3(0, 0, 1));  // +Y -> -X
+    else if (facing.x > 0.5f)
+        m = glm::rotate(m, glm::radians(-90.0f), glm::vec3(0, 0, 1));  // +Y -> +X
+    d.model = glm::scale(m, glm::vec3(size.x, 1.0f, size.y));  // the plane mesh is 1 x 1
+    scene.draws.push_back(d);
+}
+
+// Everything around the sphere grid; positions are for the grid camera (makeGridCamera), whose
+// frame spans about x in [-5.8, 5.8] and y in [-0.9, 5.7] at z = 0 at 16:9.
+void addSurroundings(Scene& scene, const Draw& sphere) {
+    const Draw plane = appendMesh(scene, makeGroundPlane(1.0f, 1));
+    auto material = [&](Material m) {
+        scene.materials.push_back(std::move(m));
+        return static_cast<int>(scene.materials.size()) - 1;
+    };
+
+    // Left: a mosaic wall (chroma changing every few pixels).
+    Material mosaic = makeMaterial("mosaic wall", glm::vec3(1.0f), 0.0f, 0.5f);
+    mosaic.baseColorTexture = addTexture(scene, makeMosaicAlbedo(128));
+    addPanel(scene, plane, material(mosaic), {-4.6f, 1.9f, -0.6f}, {2.8f, 3.8f}, {0, 0, 1});
+
+    // Right: tiles of metal (gold, copper, silver) and paint, each with its own roughness.
+    Material tiles = makeMaterial("metal and paint tiles", glm::vec3(1.0f), 1.0f, 1.0f);
+    tiles.baseColorTexture = addTexture(scene, makeTileBaseColor(256));
+    tiles.metallicRoughnessTexture = addTexture(scene, makeTileMetalRoughness(256));
+    addPanel(scene, plane, material(tiles), {4.6f, 1.9f, -0.6f}, {2.8f, 3.8f}, {0, 0, 1});
+
+    // An emissive sign above the tiles, and a small glowing sphere in front of the grid.
+    Material sign = makeMaterial("emissive sign", glm::vec3(0.02f), 0.0f, 0.9f);
+    sign.emissiveFactor = glm::vec3(1.0f);
+    sign.emissiveTexture = addTexture(scene, makeEmissiveStripes(256));
+    addPanel(scene, plane, material(sign), {4.6f, 4.3f, -0.6f}, {2.8f, 0.9f}, {0, 0, 1});
+    Material glow = makeMaterial("emissive sphere", glm::vec3(0.9f, 0.5f, 0.2f), 0.0f, 0.5f);
+    glow.emissiveFactor = glm::vec3(1.0f, 0.55f, 0.2f);
+    Draw glowDraw = sphere;
+    glowDraw.material = material(glow);
+    glowDraw.model = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(2.2f, 0.25f, 2.2f)), glm::vec3(0.6f));
+    scene.draws.push_back(glowDraw);
+
+    // Front left: a large sphere with the ground's fine normal detail, facing every axis.
+    Material detailed = makeMaterial("detail-normal sphere", glm::vec3(0.55f, 0.6f, 0.62f), 0.0f, 0.35f);
+    for (const Material& m : scene.materials)  // the ground's detail normal map (addGround)
+        if (m.normalTexture != kNoTexture) detailed.normalTexture = m.normalTexture;
+    Draw big = sphere;
+    big.material = material(detailed);
+    big.model = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(-2.6f, 0.8f, 2.0f)), glm::vec3(2.0f));
+    scene.draws.push_back(big);
+
+    // An alpha-tested wire fence in front of the mosaic wall.
+    Material fence = makeMaterial("wire fence (alpha mask)", glm::vec3(1.0f), 1.0f, 0.45f);
+    fence.baseColorTexture = addTexture(scene, makeFenceAlbedo(256));
+    fence.alphaMask = true;
+    fence.alphaCutoff = 0.5f;
+    fence.doubleSided = true;
+    addPanel(scene, plane, material(fence), {-4.6f, 0.75f, 0.6f}, {2.8f, 1.5f}, {0, 0, 1});
+
+    // Far away: a ground to the horizon just under the near one, and buildings at 100-400 m,
+    // each a front, a side and a roof.
+    Material far = makeMaterial("far ground", glm::vec3(0.3f, 0.32f, 0.28f), 0.0f, 0.8f);
+    addPanel(scene, plane, material(far), {0.0f, -0.02f, -900.0f}, {4000.0f, 1800.0f}, {0, 1, 0});
+    Material concrete = makeMaterial("far buildings", glm::vec3(0.6f, 0.58f, 0.55f), 0.0f, 0.7f);
+    Material glass = makeMaterial("far buildings, metal cladding", glm::vec3(0.7f, 0.75f, 0.8f), 1.0f, 0.25f);
+    const int concreteId = material(concrete), glassId = material(glass);
+    struct Building { float x, z, width, height; };
+    const Building buildings[] = {{-60.0f, -110.0f, 30.0f, 45.0f}, {-15.0f, -160.0f, 25.0f, 70.0f},
+                                  {25.0f, -120.0f, 20.0f, 55.0f},  {70.0f, -250.0f, 40.0f, 110.0f},
+                                  {-120.0f, -400.0f, 60.0f, 160.0f}, {150.0f, -380.0f, 50.0f, 130.0f}};
+    int i = 0;
+    for (const Building& b : buildings) {
+        const int id = (i++ % 2) ? glassId : concreteId;
+        addPanel(scene, plane, id, {b.x, b.height * 0.5f, b.z + b.width * 0.5f}, {b.width, b.height}, {0, 0, 1});
+        addPanel(scene, plane, id, {b.x + (b.x < 0 ? 0.5f : -0.5f) * b.width, b.height * 0.5f, b.z},
+                 {b.width, b.height}, {b.x < 0 ? 1.0f : -1.0f, 0, 0});
+        addPanel(scene, plane, id, {b.x, b.height, b.z}, {b.width, b.width}, {0, 1, 0});
+    }
+}
+
 Camera makeGridCamera() {
     Camera camera;
     // In front of the grid and a little above it, looking slightly down at its middle; the
@@ -124,15 +220,25 @@ Light bluePointLight() {
 
 }  // namespace
 
-Scene makeDefaultScene() {
+Scene makeSphereGridScene() {
     Scene scene;
-    scene.source = "built-in default scene";
+    scene.source = "built-in sphere grid";
     SceneParts parts{scene, appendMesh(scene, makeUvSphere(kSphereRadius, 64, 32))};
     addRoughnessMetallicGrid(parts);
     addColouredSpecularRow(parts);
     addGround(scene);
     scene.camera = makeGridCamera();
     scene.lights = {defaultSun(), bluePointLight()};
+    scene.bounds = worldBounds(scene);
+    return scene;
+}
+
+Scene makeDefaultScene() {
+    Scene scene = makeSphereGridScene();
+    scene.source = "built-in default scene";
+    const Draw sphere = scene.draws.front();  // the grid's shared sphere mesh
+    addSurroundings(scene, sphere);
+    scene.camera.zFar = 2000.0f;  // the far ground and buildings (100-400 m) stay inside
     scene.bounds = worldBounds(scene);
     return scene;
 }

@@ -47,6 +47,10 @@ struct Material {
     int specularTexture = kNoTexture;           // A = specular
     int specularColorTexture = kNoTexture;      // RGB = specular colour (sRGB)
     bool doubleSided = false;
+    // glTF alphaMode MASK: fragments whose alpha (base colour factor x texture) is below
+    // alphaCutoff are discarded (glTF 2.0, 3.9.4). OPAQUE and BLEND render opaque.
+    bool alphaMask = false;
+    float alphaCutoff = 0.5f;
 };
 
 struct Draw {
@@ -112,6 +116,9 @@ Scene loadGltfScene(const std::string& path, const GltfLoadOptions& options = {}
 // The built-in scene: a sphere grid over roughness x metallic, coloured-specular spheres
 // (gold, copper, a coloured dielectric) and a normal-mapped ground plane with fine detail.
 Scene makeDefaultScene();
+// The default scene's sphere grid alone (metals and dielectrics across roughness, coloured F0,
+// a ground with detail normals): the material balls of the IBL comparison.
+Scene makeSphereGridScene();
 
 // A camera looking at the bounds from the front (+Z), framing them for the given aspect.
 Camera frameBounds(const Bounds& bounds, float aspect);

@@ -64,6 +64,10 @@ Material convertMaterial(const GltfContext& ctx, size_t index, TextureTable& tex
     m.normalScale = finiteOr(src.normalTexture.scale, 1.0f);
     m.occlusionStrength = unitInterval(src.occlusionTexture.strength, 1.0f);
     m.doubleSided = src.doubleSided;
+    // alphaMode MASK cuts out; BLEND has no place in a G-buffer (engines draw it forward after
+    // lighting), so it renders opaque here, as OPAQUE does.
+    m.alphaMask = src.alphaMode == "MASK";
+    m.alphaCutoff = finiteOr(src.alphaCutoff, 0.5f);
 
     // Colour data is sRGB-encoded per the glTF spec; everything else is linear.
     m.baseColorTexture = textures.get(pbr.baseColorTexture.index, true, where + " baseColorTexture");

@@ -22,7 +22,7 @@ struct Rendered {
 const Rendered& defaultRender() {
     static Rendered r = [] {
         Rendered x;
-        x.scene = makeDefaultScene();
+        x.scene = makeSphereGridScene();
         const EnvironmentMap sky = makeProceduralSky(256);
         Renderer renderer(test::sharedContext(), x.scene, sky);
         RenderSettings s;
@@ -130,7 +130,7 @@ TEST_F(RenderTest, BackgroundShowsTheEnvironmentAndDepthIsCleared) {
 
 TEST_F(RenderTest, DecodeInBandsEqualsDecodeInOnePass) {
     // 270 rows in bands of 16: 17 bands, the last one partial.
-    Scene scene = makeDefaultScene();
+    Scene scene = makeSphereGridScene();
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(test::sharedContext(), scene, sky);
     RenderSettings s;
@@ -179,6 +179,50 @@ TEST_F(RenderTest, ReversedZMatchesForwardZ) {
     }
     EXPECT_LT(differentCoverage, out.hdr.pixelCount() / 1000);
     EXPECT_LT(bigDifferences, out.hdr.pixelCount() / 100);
+}
+
+// The default scene (the grid and its surroundings) fills the frame, alpha-tested wires cut holes,
+// and the emissive sign glows: what makes it separate layouts (issue 11 item 6).
+TEST_F(RenderTest, DefaultSceneFillsTheFrameWithCutOutsAndEmissive) {
+    Scene scene = makeDefaultScene();
+    const EnvironmentMap sky = makeProceduralSky(256);
+    Renderer renderer(test::sharedContext(), scene, sky);
+    RenderSettings s;
+    s.width = kWidth;
+    s.height = kHeight;
+    s.decodeSurfaces = true;
+    const RenderOutput out = renderer.render(makeReferenceWiring(), s);
+    const Image& hdr = out.hdr;
+    size_t covered = 0;
+    for (int y = 0; y < int(kHeight); ++y)
+        for (int x = 0; x < int(kWidth); ++x) covered += hdr.at(x, y, 3) > 0.5f;
+    const double coverage = double(covered) / double(kWidth * kHeight);
+    std::printf("[ scene    ] default scene covers %.1f%% of the frame\n", 100.0 * coverage);
+    EXPECT_GT(coverage, 0.85);
+
+    // The fence (alpha mask, a metal) stands in front of the mosaic wall (a dielectric): along a
+    // row through it, metallic alternates between wire and wall, so the cut-outs are holes.
+    const Draw& fence = drawWithMaterial(scene, "wire fence");
+    const glm::ivec2 c = project(scene, glm::vec3(fence.model[3]));
+    const Draw& sign = drawWithMaterial(scene, "emissive sign");
+    const glm::ivec2 sc = project(scene, glm::vec3(sign.model[3]));
+    ASSERT_TRUE(sc.x > 0 && sc.x < int(kWidth) && sc.y > 0 && sc.y < int(kHeight));
+    ASSERT_TRUE(c.x > 0 && c.x < int(kWidth) && c.y > 0 && c.y < int(kHeight));
+    // Emissive: the sign's stripes are emissive (decoded surface), and the lit image holds at
+    // least that much light there (emissive is added to the reflected light).
+    float signMax = 0.0f;
+    int brightest = sc.x;
+    for (int x = sc.x - 20; x <= sc.x + 20; ++x) {
+        const glm::vec3 e(out.surfaces.emissive.at(x, sc.y, 0), out.surfaces.emissive.at(x, sc.y, 1),
+                          out.surfaces.emissive.at(x, sc.y, 2));
+        if (luminance(e) > signMax) signMax = luminance(e), brightest = x;
+    }
+    EXPECT_GT(signMax, 0.1f);
+    EXPECT_GE(luminance(pixel(hdr, {brightest, sc.y})), 0.99f * signMax);
+    int transitions = 0;
+    for (int x = c.x - 30; x < c.x + 30; ++x)
+        transitions += (out.surfaces.metallic.at(x, c.y, 0) > 0.5f) != (out.surfaces.metallic.at(x + 1, c.y, 0) > 0.5f);
+    EXPECT_GE(transitions, 4) << "the alpha-tested fence shows no holes";
 }
 
 }  // namespace

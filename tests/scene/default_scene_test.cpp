@@ -16,7 +16,7 @@ namespace gbl {
 namespace {
 
 const Scene& defaultScene() {
-    static const Scene scene = makeDefaultScene();
+    static const Scene scene = makeSphereGridScene();
     return scene;
 }
 
@@ -168,7 +168,8 @@ TEST(DefaultScene, CameraSeesEverySphereWhole) {
 TEST(DefaultScene, IsModestInSizeWithBoundsLightsAndSource) {
     const Scene& s = defaultScene();
     EXPECT_LT(s.vertices.size(), 10000u);  // one shared sphere mesh + the ground
-    EXPECT_EQ(s.source, "built-in default scene");
+    EXPECT_EQ(s.source, "built-in sphere grid");
+    EXPECT_EQ(makeDefaultScene().source, "built-in default scene");
     EXPECT_LE(s.bounds.min.y, 0.0f);        // ground at y = 0
     EXPECT_GE(s.bounds.max.y, 2.8f);        // top row of spheres
     EXPECT_GE(s.bounds.max.x - s.bounds.min.x, 6.0f);
@@ -179,6 +180,54 @@ TEST(DefaultScene, IsModestInSizeWithBoundsLightsAndSource) {
         ASSERT_LE(size_t(d.firstIndex) + d.indexCount, s.indices.size());
         ASSERT_LT(size_t(d.material), s.materials.size());
     }
+}
+
+// The default scene = the grid + what fills the frame around it (issue 11 item 6). Each property
+// below is one a layout can lose.
+TEST(DefaultScene, SurroundingsStressChromaMetalEdgesEmissiveCutOutsAndDepth) {
+    const Scene s = makeDefaultScene();
+    const Scene grid = makeSphereGridScene();
+    EXPECT_GT(s.draws.size(), grid.draws.size() + 10);
+    auto texel = [](const Texture& t, int x, int y, int c) { return int(t.rgba[(size_t(y) * t.width + x) * 4 + c]); };
+    bool chroma = false, metalEdges = false, emissive = false, cutOut = false;
+    for (const Material& m : s.materials) {
+        if (m.baseColorTexture != kNoTexture && !m.alphaMask && m.metallicRoughnessTexture == kNoTexture) {
+            // Saturated: max - min channel over 100 on most texels, and the hue changes within 8 texels.
+            const Texture& t = s.textures[size_t(m.baseColorTexture)];
+            size_t saturated = 0, changes = 0;
+            for (int y = 0; y < t.height; ++y)
+                for (int x = 0; x + 1 < t.width; ++x) {
+                    const int r = texel(t, x, y, 0), g = texel(t, x, y, 1), b = texel(t, x, y, 2);
+                    saturated += std::max({r, g, b}) - std::min({r, g, b}) > 100;
+                    changes += std::abs(r - texel(t, x + 1, y, 0)) + std::abs(g - texel(t, x + 1, y, 1)) > 100;
+                }
+            const double n = double(t.width) * t.height;
+            chroma = chroma || (saturated > 0.5 * n && changes > n / 8.0);
+        }
+        if (m.metallicRoughnessTexture != kNoTexture) {
+            // Sharp: a texel that is fully metal beside one fully dielectric (B = 255 vs 0).
+            const Texture& t = s.textures[size_t(m.metallicRoughnessTexture)];
+            for (int y = 0; y < t.height && !metalEdges; ++y)
+                for (int x = 0; x + 1 < t.width; ++x)
+                    if (std::abs(texel(t, x, y, 2) - texel(t, x + 1, y, 2)) == 255) metalEdges = true;
+        }
+        if (m.emissiveTexture != kNoTexture && glm::length(m.emissiveFactor) > 0.0f) emissive = true;
+        if (m.alphaMask && m.baseColorTexture != kNoTexture) {
+            const Texture& t = s.textures[size_t(m.baseColorTexture)];
+            size_t holes = 0;
+            for (size_t i = 3; i < t.rgba.size(); i += 4) holes += t.rgba[i] < 255.0f * m.alphaCutoff;
+            cutOut = holes > t.rgba.size() / 8 && holes < t.rgba.size() / 4;  // most of it, not all
+        }
+    }
+    EXPECT_TRUE(chroma);
+    EXPECT_TRUE(metalEdges);
+    EXPECT_TRUE(emissive);
+    EXPECT_TRUE(cutOut);
+    // Depth precision: geometry 100 m and more from the camera, inside its far plane.
+    float farthest = 0.0f;
+    for (const Draw& d : s.draws) farthest = std::max(farthest, glm::length(glm::vec3(d.model[3]) - s.camera.position));
+    EXPECT_GE(farthest, 100.0f);
+    EXPECT_LT(farthest, s.camera.zFar);
 }
 
 }  // namespace

@@ -219,7 +219,7 @@ TEST_F(IblGpuTest, WhiteFurnace) {
         maxAB = std::max(maxAB, maps.brdfLut.pixels[i * 2] + maps.brdfLut.pixels[i * 2 + 1]);
     EXPECT_LE(maxAB, 1.0f + 2e-3f);
 
-    Scene scene = makeDefaultScene();
+    Scene scene = makeSphereGridScene();
     scene.lights.clear();
     for (Material& m : scene.materials) {
         m.baseColorFactor = glm::vec4(1.0f);
@@ -253,7 +253,7 @@ TEST_F(IblGpuTest, GroundTruthConvergesToSplitSumOnAConstantEnvironment) {
     s.sourceFaceSize = 32;
     s.prefilteredFaceSize = 32;
     const IblMaps maps = computeIblMaps(ctx(), white, s);
-    Scene scene = makeDefaultScene();
+    Scene scene = makeSphereGridScene();
     scene.lights.clear();
     Renderer renderer(ctx(), scene, white, maps);
     RenderSettings rs;
@@ -290,7 +290,7 @@ TEST_F(IblGpuTest, EveryModeRendersFiniteNonNegativeImages) {
     s.sourceFaceSize = 64;
     s.prefilteredFaceSize = 32;
     const IblMaps maps = computeIblMaps(ctx(), env, s);
-    const Scene scene = makeDefaultScene();
+    const Scene scene = makeSphereGridScene();
     Renderer renderer(ctx(), scene, env, maps);
     RenderSettings rs;
     rs.width = 96;
