@@ -9,6 +9,10 @@
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
 #   e2e      `gbufferlab compare` of all layouts at 1080p, run twice (the second, warm, is timed by
 #            stage: its timings.json), then once at 3840x2160 with one layout for peak memory
+#   coldwarm `gbufferlab compare` of all layouts at GBL_BENCH_COLD_SIZE (default 480x270) on fresh
+#            caches (an empty GBL_CACHE_DIR: SPIR-V, pipeline and IBL caches), then again (warm),
+#            both with MESA_SHADER_CACHE_DISABLE=true so Mesa's own disk cache hides no driver cost;
+#            wall times and both timings.json in results/coldwarm_*
 # environment:
 #   GBL_BENCH_REPETITIONS (default 3; medians are reported), GBL_BENCH_BUILD_DIR (default build-bench),
 #   GBL_BENCH_FILTER (a --benchmark_filter regex), GBL_BENCH_4K, GBL_BENCH_LAYOUTS, GBL_BENCH_DEVICE
@@ -22,7 +26,7 @@ what=("$@")
 [ ${#what[@]} -eq 0 ] && what=(codec gpu compare)
 
 targets=(codec_bench gpu_pass_bench compare_bench)
-for w in "${what[@]}"; do [ "$w" = e2e ] && targets+=(gbufferlab); done
+for w in "${what[@]}"; do [ "$w" = e2e ] || [ "$w" = coldwarm ] && targets+=(gbufferlab); done
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGBL_BUILD_BENCH=ON >/dev/null
 cmake --build "$build" --target "${targets[@]}" -j2
@@ -52,7 +56,19 @@ for w in "${what[@]}"; do
             /usr/bin/time -f '%M' -o "$results/compare_4k_rss_kib.txt" "$build/gbufferlab" compare \
                 --device "${GBL_BENCH_DEVICE:-cpu}" --size 3840x2160 --layouts "${GBL_BENCH_4K_LAYOUT:-ue4}" --out "$results/compare-4k" --force >/dev/null
             ;;
-        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e)" >&2; exit 2 ;;
+        coldwarm)
+            cache=$(mktemp -d)
+            for run in cold warm; do
+                echo "== gbufferlab compare ($run caches, ${GBL_BENCH_COLD_SIZE:-480x270}, MESA_SHADER_CACHE_DISABLE=true)"
+                GBL_CACHE_DIR="$cache" MESA_SHADER_CACHE_DISABLE=true /usr/bin/time -f '%e' -o "$results/coldwarm_${run}_wall_s.txt" \
+                    "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --size "${GBL_BENCH_COLD_SIZE:-480x270}" \
+                    --out "$results/compare-$run" --force >/dev/null
+                cp "$results/compare-$run/timings.json" "$results/coldwarm_${run}.json"
+            done
+            rm -rf "$cache"
+            echo "first run / warm run (wall): $(python3 -c "print(round($(cat "$results/coldwarm_cold_wall_s.txt") / $(cat "$results/coldwarm_warm_wall_s.txt"), 3))")x"
+            ;;
+        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, coldwarm)" >&2; exit 2 ;;
     esac
 done
 

@@ -7,6 +7,7 @@ gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads envi
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/color_map_test LABELS unit DEPS gbl_image)
 gbl_test(gpu/shader_compiler_test LABELS unit DEPS gbl_gpu)
+gbl_test(gpu/shader_cache_test LABELS unit DEPS gbl_gpu)
 gbl_test(scene/environment_test LABELS unit DEPS gbl_scene)
 gbl_test(scene/scene_models_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_json)
 gbl_test(scene/gltf_loader_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_json)

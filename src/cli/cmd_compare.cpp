@@ -31,6 +31,7 @@
 #include "report_model.h"
 #include "run_metrics.h"
 #include "scene_inputs.h"
+#include "shader_cache.h"
 #include "stage_clock.h"
 #include "tone_map.h"
 #include "vk_context.h"
@@ -209,6 +210,24 @@ void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPas
         std::printf("%s %s %.2f s", s ? "," : "", stageName(Stage(s)), t.ms[s] / 1000.0);
     }
     j["stages_ms"] = stages;
+    // What "shader compile" paid for: glslang runs and driver pipeline compiles, or cache hits
+    // (src/gpu/shader_cache.h). A second run on the same machine shows 0 glslang compiles.
+    const ShaderCacheCounters& c = shaderCacheCounters();
+    nlohmann::ordered_json cache;
+    cache["enabled"] = shaderCacheEnabled();
+    cache["glslang_compiles"] = c.glslangCompiles.load();
+    cache["spirv_cache_hits"] = c.spirvCacheHits.load();
+    cache["spirv_cache_invalid"] = c.spirvCacheInvalid.load();
+    cache["pipelines"] = c.pipelines.load();
+    cache["pipeline_cache_hits"] = c.pipelineCacheHits.load();
+    j["shader_cache"] = cache;
+    std::printf("\nshaders: %d compiled by glslang, %d from the SPIR-V cache%s; pipelines: %d created, %d found in "
+                "the pipeline cache (driver's report)",
+                c.glslangCompiles.load(), c.spirvCacheHits.load(),
+                c.spirvCacheInvalid.load() ? (", " + std::to_string(c.spirvCacheInvalid.load()) +
+                                              " invalid cache files ignored").c_str()
+                                           : "",
+                c.pipelines.load(), c.pipelineCacheHits.load());
     j["total_ms"] = t.totalMs;
     j["gpu_pass_ms"] = gpuPassMs;
     j["total_over_gpu_passes"] = gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0;

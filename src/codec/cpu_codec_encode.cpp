@@ -240,9 +240,11 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
         case Codec::NormalXyz:
             map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyz(v, bits); });
             return;
-        case Codec::NormalBestFit:
-            map3to3(n, x, yv, z, c0, c1, c2, [](vec3 v) { return encodeNormalBestFitFast(v); });
+        case Codec::NormalBestFit: {
+            const uint32_t* table = bestFitNormalTable().data();  // a look-up, as on the GPU
+            map3to3(n, x, yv, z, c0, c1, c2, [table](vec3 v) { return encodeNormalBestFit(v, table); });
             return;
+        }
         case Codec::NormalXyZSign:
             map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyZSign(v, bits); });
             return;

@@ -59,7 +59,7 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"normal_xyz", K::Normal, 3, 8, 2, 16, 0, false, "unit vector",
                  "unorm of n*0.5+0.5 per component, normalised on decode", "common practice"});
     v.push_back({"normal_bestfit", K::Normal, 3, 8, 8, 8, 0, false, "unit vector",
-                 "best-fit normals: the 8-bit unorm vector whose direction best matches n, scale searched in code",
+                 "best-fit normals: n scaled to the 8-bit unorm vector of best direction, length from a 1024x1024 table",
                  "Kaplanyan, 'CryENGINE 3: Reaching the Speed of Light', SIGGRAPH 2010"});
     v.push_back({"normal_xy_zsign", K::Normal, 2, 8, 2, 16, 1, false, "unit vector",
                  "unorm x, y + 1 z-sign bit; z = sign*sqrt(max(0, 1-x^2-y^2))",

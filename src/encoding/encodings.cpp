@@ -88,9 +88,10 @@ const float kSrgbEncodeThresholds[255] = {
 // 4. Unit normals (the rest of this section is inline in encodings.h).
 // ---------------------------------------------------------------------------------------------
 
-// encodeNormalBestFit: CryEngine 3 best-fit normals, 3 x 8 bits. Source: Kaplanyan,
-// "CryENGINE 3: Reaching the Speed of Light", SIGGRAPH 2010 Advances course. The original looks
-// the best length up in a 1024x1024 texture; here the same search runs in code: a decoded
+// encodeNormalBestFitSearch: the exhaustive search behind the best-fit table (encodeNormalBestFit,
+// encodings.h, looks the length up instead; best_fit_normals.h). Kept as the reference that
+// generates the table and that tests measure the table against. Source: Kaplanyan,
+// "CryENGINE 3: Reaching the Speed of Light", SIGGRAPH 2010 Advances course. A decoded
 // vector is d = 2*code - 255 (odd integers in [-255,255]); for each odd value k = 255, 253, ..1
 // of the largest component we round the others to the nearest odd integer along the ray
 // (t = k * n / max|n|) and keep the d whose direction is closest to n, measured as
@@ -99,7 +100,7 @@ const float kSrgbEncodeThresholds[255] = {
 // Error: mean 0.028 deg, p99 0.11, max 0.31 (6x better mean than 8-bit xyz: 0.17 / 0.39). The max
 // is structural: 0 is not an odd code, so +z is best met by (1, 1, 255). Checked optimal against a
 // wider search (+-2 odd steps on every component at every k) in tests/encoding/encodings_test.cpp.
-uvec3 encodeNormalBestFit(vec3 n) {
+uvec3 encodeNormalBestFitSearch(vec3 n) {
     float m = max(abs(n.x), max(abs(n.y), abs(n.z)));
     if (!(m > 0.0f)) return uvec3(128u, 128u, 255u);
     vec3 q = vec3(n.x / m, n.y / m, n.z / m);

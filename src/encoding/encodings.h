@@ -4,7 +4,11 @@
 // definition in both files. GPU-written codes and these functions' codes agree to the bit for
 // every encoder (quantise with floor(x * s + 0.5), only IEEE-exact operations); decoders are
 // compared with a tolerance. The layout-language names live in encoding_registry.h.
+#include <cmath>
+
 #include <glm/glm.hpp>
+
+#include "best_fit_normals.h"
 
 namespace gbl::enc {
 
@@ -34,7 +38,7 @@ using glm::uintBitsToFloat;
 // that the CPU codec's per-pixel loops (src/cpu_codec*.cpp) inline and vectorise them.
 extern const float kSrgbDecode[256];
 extern const float kSrgbEncodeThresholds[255];
-uvec3 encodeNormalBestFit(vec3 n);
+uvec3 encodeNormalBestFitSearch(vec3 n);  // the reference search behind the best-fit table
 uvec2 encodeNormalSpheremap(vec3 n, uint bits);
 vec3 decodeNormalSpheremap(uvec2 code, uint bits);
 uvec2 encodeNormalStereographic(vec3 n, uint bits);
@@ -199,7 +203,30 @@ inline vec3 decodeNormalXyz(uvec3 code, uint bits) {
     return normalize(v * 2.0f - 1.0f);
 }
 
-// decodeNormalBestFit (the encoder, a search, stays in encodings.cpp).
+// encodeNormalBestFit: CryEngine 3 best-fit normals by table look-up (Kaplanyan 2010); the
+// statement-for-statement mirror of shaders/encodings.glsl, which explains it. `table` is
+// bestFitNormalTable().data() (best_fit_normals.h), the words the GPU reads.
+inline uvec3 encodeNormalBestFit(vec3 n, const uint32_t* table) {
+    float m = max(abs(n.x), max(abs(n.y), abs(n.z)));
+    if (!(m > 0.0f) || std::isinf(m) || std::isnan(n.x) || std::isnan(n.y) || std::isnan(n.z))
+        return uvec3(128u, 128u, 255u);
+    vec3 q = vec3(n.x / m, n.y / m, n.z / m);
+    vec3 a = abs(q);
+    float lo = min(a.x, min(a.y, a.z));
+    float mid = max(min(a.x, a.y), min(max(a.x, a.y), a.z));
+    uint i = min(uint(mid * float(kBestFitTableSize)), kBestFitTableSize - 1u);
+    uint j = min(uint(lo * float(kBestFitTableSize)), kBestFitTableSize - 1u);
+    uint t = i * (i + 1u) / 2u + j;
+    uint entry = (table[t >> 2u] >> ((t & 3u) * 8u)) & 0xffu;
+    float k = float(255u - 2u * entry);
+    float dx = 2.0f * floor(q.x * k * 0.5f) + 1.0f;
+    float dy = 2.0f * floor(q.y * k * 0.5f) + 1.0f;
+    float dz = 2.0f * floor(q.z * k * 0.5f) + 1.0f;
+    return uvec3(uint(dx + 255.0f) >> 1u, uint(dy + 255.0f) >> 1u, uint(dz + 255.0f) >> 1u);
+}
+inline uvec3 encodeNormalBestFit(vec3 n) { return encodeNormalBestFit(n, bestFitNormalTable().data()); }
+
+// decodeNormalBestFit.
 inline vec3 decodeNormalBestFit(uvec3 code) {
     return normalize(vec3(code) / 255.0f * 2.0f - 1.0f);
 }

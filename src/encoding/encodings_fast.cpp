@@ -1,4 +1,4 @@
-// encodeNormalBestFitFast. Why the codes equal encodeNormalBestFit's for every input:
+// encodeNormalBestFitFast. Why the codes equal encodeNormalBestFitSearch's for every input:
 // - The reference evaluates 128 candidates i = 0..127 in order, each with the same float
 //   expressions (k = 255 - 2i; d = 2 floor(q k / 2) + 1 per component; err = |d / |d| - n|^2) and
 //   keeps the first one whose err is strictly below the best so far, starting from 8 and
@@ -68,7 +68,7 @@ GBL_SIMD_CLONES int bestCandidate(vec3 n, vec3 q) {
 }  // namespace
 
 uvec3 encodeNormalBestFitFast(vec3 n) {
-    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) return encodeNormalBestFit(n);
+    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) return encodeNormalBestFitSearch(n);
     // From here on, the reference's own statements.
     float m = max(abs(n.x), max(abs(n.y), abs(n.z)));
     if (!(m > 0.0f)) return uvec3(128u, 128u, 255u);

@@ -10,7 +10,8 @@
 
 namespace gbl::enc {
 
-// encodeNormalBestFit's codes: the same 128-candidate search, vectorised over the candidates.
+// encodeNormalBestFitSearch's codes: the same 128-candidate search, vectorised over the candidates
+// (it generates the best-fit table, best_fit_normals.h, and stays the reference tests measure it by).
 uvec3 encodeNormalBestFitFast(vec3 n);
 
 // encodeSrgb8's codes (the number of kSrgbEncodeThresholds <= x) from one table look-up instead

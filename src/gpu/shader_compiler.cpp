@@ -12,6 +12,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "shader_cache.h"
 #include "stage_clock.h"
 #include "vk_context.h"
 
@@ -52,18 +53,9 @@ public:
 
 private:
     IncludeResult* resolve(const std::string& name) {
-        auto* text = new std::string;
-        auto v = virtualFiles_.find(name);
-        if (v != virtualFiles_.end()) {
-            *text = v->second;
-        } else {
-            const fs::path path = fs::path(shaderDirectory()) / name;
-            if (!fs::exists(path)) {
-                delete text;
-                return nullptr;  // glslang reports "cannot find include file" with the line
-            }
-            *text = readTextFile(path);
-        }
+        std::optional<std::string> found = resolveShaderInclude(name, virtualFiles_);
+        if (!found) return nullptr;  // glslang reports "cannot find include file" with the line
+        auto* text = new std::string(std::move(*found));
         seen_[name] = *text;
         return new IncludeResult(name, text->data(), text->size(), text);
     }
@@ -107,6 +99,14 @@ std::string shaderDirectory() {
     return GBL_SOURCE_SHADER_DIR;
 }
 
+std::optional<std::string> resolveShaderInclude(const std::string& name,
+                                                const std::map<std::string, std::string>& virtualFiles) {
+    if (auto v = virtualFiles.find(name); v != virtualFiles.end()) return v->second;
+    const fs::path path = fs::path(shaderDirectory()) / name;
+    if (!fs::exists(path)) return std::nullopt;
+    return readTextFile(path);
+}
+
 ShaderSource loadShaderFile(const std::string& fileName) {
     ShaderSource s;
     s.name = fileName;
@@ -122,6 +122,34 @@ ShaderSource loadShaderFile(const std::string& fileName) {
 
 std::vector<uint32_t> compileGlsl(const ShaderSource& src) {
     ScopedStage timed(Stage::ShaderCompile);
+    ShaderCacheCounters& counters = shaderCacheCounters();
+    const bool cached = shaderCacheEnabled();
+    uint64_t key = 0;
+    fs::path cacheFile;
+    if (cached) {
+        key = spirvCacheKey(src);
+        cacheFile = spirvCacheFile(key);
+        std::string why;
+        if (auto spirv = readSpirvCache(cacheFile, key, &why)) {
+            ++counters.spirvCacheHits;
+            return std::move(*spirv);
+        }
+        if (!why.empty()) ++counters.spirvCacheInvalid;  // corrupt or truncated: compiled and rewritten
+    }
+    std::vector<uint32_t> spirv = compileGlslUncached(src);
+    if (cached) {
+        try {
+            writeSpirvCache(cacheFile, key, spirv);
+        } catch (const std::exception&) {
+            // A read-only or full cache directory costs the next run a compile, nothing else.
+        }
+    }
+    return spirv;
+}
+
+std::vector<uint32_t> compileGlslUncached(const ShaderSource& src) {
+    ScopedStage timed(Stage::ShaderCompile);
+    ++shaderCacheCounters().glslangCompiles;
     initGlslang();
     const EShLanguage stage = toGlslangStage(src.stage);
     glslang::TShader shader(stage);

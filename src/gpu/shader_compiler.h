@@ -4,6 +4,7 @@
 // wiring). A compile error throws ShaderCompileError whose message names the shader, prints the
 // offending source lines with line numbers, and glslang's log.
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -30,7 +31,16 @@ std::string shaderDirectory();
 // (*.vert.glsl, *.frag.glsl, *.comp.glsl).
 ShaderSource loadShaderFile(const std::string& fileName);
 
+// What `#include "name"` reads: the virtual file of that name, else shaders/<name>; nullopt when
+// neither exists. The SPIR-V cache key (shader_cache.h) resolves includes through this too.
+std::optional<std::string> resolveShaderInclude(const std::string& name,
+                                                const std::map<std::string, std::string>& virtualFiles);
+
+// SPIR-V from the disk cache (shader_cache.h) when it holds this exact input, else glslang (and
+// the result is stored). Both are timed as Stage::ShaderCompile.
 std::vector<uint32_t> compileGlsl(const ShaderSource& source);
+// glslang, always (tests, and the cache's miss path).
+std::vector<uint32_t> compileGlslUncached(const ShaderSource& source);
 
 VkShaderModule createShaderModule(VkDevice device, const std::vector<uint32_t>& spirv);
 

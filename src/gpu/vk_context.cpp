@@ -247,6 +247,7 @@ VulkanContext::VulkanContext(const DeviceOptions& options) {
         pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         pool.queueFamilyIndex = queueFamily;
         VK_CHECK(vkCreateCommandPool(device, &pool, nullptr, &commandPool));
+        pipelineCache_.open(device, properties);
     } catch (...) {
         release();
         throw;
@@ -258,6 +259,8 @@ VulkanContext::~VulkanContext() { release(); }
 void VulkanContext::release() noexcept {
     if (device) {
         vkDeviceWaitIdle(device);
+        pipelineCache_.save();
+        pipelineCache_.destroy();
         if (commandPool) vkDestroyCommandPool(device, commandPool, nullptr);
         vkDestroyDevice(device, nullptr);
         device = VK_NULL_HANDLE;

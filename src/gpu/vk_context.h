@@ -10,6 +10,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "shader_cache.h"
+
 namespace gbl {
 
 // Throws std::runtime_error naming the call and the VkResult: a failed Vulkan call on a working
@@ -57,6 +59,11 @@ public:
     PhysicalDeviceInfo info;
     bool validationEnabled = false;
 
+    // The persistent pipeline cache (shader_cache.h): loaded from disk when the device is made,
+    // written back when the context is destroyed.
+    VkPipelineCache pipelineCache() const { return pipelineCache_.handle(); }
+    const std::string& pipelineCacheNote() const { return pipelineCache_.note(); }
+
     // Records `record` into a one-time command buffer, submits it and waits.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
@@ -71,6 +78,7 @@ public:
 private:
     void release() noexcept;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    PersistentPipelineCache pipelineCache_;
     std::atomic<int> validationErrors_{0};
     mutable std::mutex messageMutex_;
     std::string firstValidationError_;

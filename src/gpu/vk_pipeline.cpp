@@ -1,5 +1,6 @@
 #include "vk_pipeline.h"
 
+#include "shader_cache.h"
 #include "stage_clock.h"
 
 #include <map>
@@ -93,16 +94,48 @@ void DescriptorWriter::flush(VkDevice device) {
     buffers_.clear();
 }
 
-VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, VkShaderModule module) {
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+namespace {
+
+// Counts the pipeline, and whether the driver found it in the pipeline cache (Vulkan 1.3 core,
+// VkPipelineCreationFeedback: VK_PIPELINE_CREATION_FEEDBACK_APPLICATION_PIPELINE_CACHE_HIT_BIT;
+// a driver that does not report it leaves the VALID bit clear and counts as no hit).
+void countPipeline(const VkPipelineCreationFeedback& feedback) {
+    ShaderCacheCounters& c = shaderCacheCounters();
+    ++c.pipelines;
+    if ((feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_VALID_BIT) &&
+        (feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_APPLICATION_PIPELINE_CACHE_HIT_BIT))
+        ++c.pipelineCacheHits;
+}
+
+}  // namespace
+
+VkPipeline createComputePipeline(const VulkanContext& ctx, VkPipelineLayout layout, VkShaderModule module) {
+    VkPipelineCreationFeedback feedback{};
+    VkPipelineCreationFeedbackCreateInfo feedbackInfo{VK_STRUCTURE_TYPE_PIPELINE_CREATION_FEEDBACK_CREATE_INFO};
+    feedbackInfo.pPipelineCreationFeedback = &feedback;
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO, &feedbackInfo};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
     info.layout = layout;
     VkPipeline pipeline;
-    ScopedStage timed(Stage::ShaderCompile);  // the driver compiles the shader here
-    VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    ScopedStage timed(Stage::ShaderCompile);  // the driver compiles the shader here (or finds it in the cache)
+    VK_CHECK(vkCreateComputePipelines(ctx.device, ctx.pipelineCache(), 1, &info, nullptr, &pipeline));
+    countPipeline(feedback);
+    return pipeline;
+}
+
+VkPipeline createGraphicsPipeline(const VulkanContext& ctx, VkGraphicsPipelineCreateInfo info) {
+    VkPipelineCreationFeedback feedback{};
+    VkPipelineCreationFeedbackCreateInfo feedbackInfo{VK_STRUCTURE_TYPE_PIPELINE_CREATION_FEEDBACK_CREATE_INFO};
+    feedbackInfo.pPipelineCreationFeedback = &feedback;
+    feedbackInfo.pNext = info.pNext;
+    info.pNext = &feedbackInfo;
+    VkPipeline pipeline;
+    ScopedStage timed(Stage::ShaderCompile);  // the driver compiles the shaders here (or finds them in the cache)
+    VK_CHECK(vkCreateGraphicsPipelines(ctx.device, ctx.pipelineCache(), 1, &info, nullptr, &pipeline));
+    countPipeline(feedback);
     return pipeline;
 }
 

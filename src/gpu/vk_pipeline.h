@@ -38,6 +38,9 @@ private:
     std::vector<Pending> pending_;
 };
 
-VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, VkShaderModule module);
+// Both go through the context's persistent VkPipelineCache (shader_cache.h) and count the
+// pipeline and its cache hit in shaderCacheCounters().
+VkPipeline createComputePipeline(const VulkanContext& ctx, VkPipelineLayout layout, VkShaderModule module);
+VkPipeline createGraphicsPipeline(const VulkanContext& ctx, VkGraphicsPipelineCreateInfo info);
 
 }  // namespace gbl

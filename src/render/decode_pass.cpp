@@ -65,7 +65,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
     cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ")";
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
-    VkPipeline pipeline = createComputePipeline(ctx.device, pipelineLayout, module);
+    VkPipeline pipeline = createComputePipeline(ctx, pipelineLayout, module);
     vkDestroyShaderModule(ctx.device, module, nullptr);
 
     SurfaceImages s;

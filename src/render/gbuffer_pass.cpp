@@ -1,5 +1,6 @@
 #include "renderer_passes.h"
 
+#include "best_fit_normals.h"
 #include "shader_compiler.h"
 #include "stage_clock.h"
 #include "vk_pipeline.h"
@@ -88,9 +89,7 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
     info.pColorBlendState = &colorBlend;
     info.pDynamicState = &dynamic;
     info.layout = layout;
-    VkPipeline pipeline;
-    ScopedStage timed(Stage::ShaderCompile);  // the driver compiles the shaders here
-    VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    VkPipeline pipeline = createGraphicsPipeline(ctx, info);
     vkDestroyShaderModule(ctx.device, vsModule, nullptr);
     vkDestroyShaderModule(ctx.device, fsModule, nullptr);
     return pipeline;
@@ -134,15 +133,18 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount},
+        {enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     };
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     pass.setLayout = createSetLayout(ctx.device, bindings, stages);
     pass.pipelineLayout = createPipelineLayout(ctx.device, {pass.setLayout}, sizeof(gpu::DrawConstants), stages);
     pass.pool = createPoolFor(ctx.device, {bindings});
     pass.set = allocateSet(ctx.device, pass.pool, pass.setLayout);
+    pass.bestFitTable = createBestFitTableBuffer(ctx);
     DescriptorWriter writer;
     writer.buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
-        .buffer(pass.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materials.buffer);
+        .buffer(pass.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materials.buffer)
+        .buffer(pass.set, enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.bestFitTable.buffer);
     for (uint32_t i = 0; i < textureCount; ++i)
         writer.image(pass.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene.textures[i].view,
                      scene.textureSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
@@ -218,7 +220,13 @@ void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuSc
     endGBufferPass(cmd, pass);
 }
 
+Buffer createBestFitTableBuffer(const VulkanContext& ctx) {
+    const std::vector<uint32_t>& table = enc::bestFitNormalTable();
+    return createBufferWithData(ctx, table.data(), table.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+
 void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {
+    if (pass.bestFitTable.buffer) destroyBuffer(ctx, pass.bestFitTable);
     for (auto& t : pass.targets) destroyImage(ctx, t);
     pass.targets.clear();
     destroyImage(ctx, pass.depth);

@@ -72,7 +72,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
     cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
-    pass.pipeline = createComputePipeline(ctx.device, pass.pipelineLayout, module);
+    pass.pipeline = createComputePipeline(ctx, pass.pipelineLayout, module);
     vkDestroyShaderModule(ctx.device, module, nullptr);
     return pass;
 }

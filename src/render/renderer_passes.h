@@ -19,7 +19,13 @@ struct GBufferPass {
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet set = VK_NULL_HANDLE;
     float clearDepth = 1.0f;
+    // The best-fit normal table (src/encoding/best_fit_normals.h) that encodeNormalBestFit reads:
+    // set 0, binding kBestFitTableBinding of every pipeline that writes a G-buffer.
+    Buffer bestFitTable;
 };
+
+// Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).
+Buffer createBestFitTableBuffer(const VulkanContext& ctx);
 
 GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
                               const Buffer& frameConstants, uint32_t width, uint32_t height);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "disk_cache.h"
 #include "error.h"
 #include "file_io.h"
 #include "shader_compiler.h"
@@ -50,12 +51,7 @@ size_t payloadBytesFor(const IblSettings& s) {
 
 }  // namespace
 
-fs::path iblCacheDirectory() {
-    if (const char* d = std::getenv("GBL_CACHE_DIR"); d && *d) return fs::path(d);
-    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "gbufferlab";
-    if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "gbufferlab";
-    return fs::temp_directory_path() / "gbufferlab-cache";
-}
+fs::path iblCacheDirectory() { return cacheDirectory(); }
 
 uint64_t iblCacheKey(const EnvironmentMap& environment, const IblSettings& s) {
     Fnv f;

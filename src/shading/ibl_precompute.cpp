@@ -75,7 +75,7 @@ Kernel createKernel(const VulkanContext& ctx, const std::string& shaderFile, con
     k.layout = createPipelineLayout(ctx.device, {k.setLayout}, pushBytes, VK_SHADER_STAGE_COMPUTE_BIT);
     k.pool = createPoolFor(ctx.device, std::vector<std::vector<Binding>>(maxSets, bindings));
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(loadShaderFile(shaderFile)));
-    k.pipeline = createComputePipeline(ctx.device, k.layout, module);
+    k.pipeline = createComputePipeline(ctx, k.layout, module);
     vkDestroyShaderModule(ctx.device, module, nullptr);
     return k;
 }

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <random>
 
+#include "best_fit_normals.h"
 #include "cpu_codec.h"
 #include "layout_catalog.h"
 #include "renderer_passes.h"
@@ -147,12 +148,17 @@ std::vector<Surface> randomSurfaces(uint32_t seed) {
 GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, const Buffer& surfaces) {
     GBufferPass pass;
     createGBufferImages(ctx, w, kSize, kSize, pass);
-    const std::vector<Binding> set0 = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    const std::vector<Binding> set0 = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                       {enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     pass.setLayout = createSetLayout(ctx.device, set0, VK_SHADER_STAGE_FRAGMENT_BIT);
     pass.pipelineLayout = createPipelineLayout(ctx.device, {pass.setLayout}, 0, 0);
     pass.pool = createPoolFor(ctx.device, {set0});
     pass.set = allocateSet(ctx.device, pass.pool, pass.setLayout);
-    DescriptorWriter().buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, surfaces.buffer).flush(ctx.device);
+    pass.bestFitTable = createBestFitTableBuffer(ctx);  // the renderer's table, as createGBufferPass binds it
+    DescriptorWriter()
+        .buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, surfaces.buffer)
+        .buffer(pass.set, enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.bestFitTable.buffer)
+        .flush(ctx.device);
     const ShaderSource vs{"fullscreen.vert (test)", kVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}};
     const ShaderSource fs{"gpu_cpu_bits.frag (layout " + w.layoutName + ")", fragmentSource(),
                           VK_SHADER_STAGE_FRAGMENT_BIT, {{"SIZE", std::to_string(kSize)}}, {}};
@@ -200,7 +206,7 @@ std::vector<Surface> gpuDecode(const VulkanContext& ctx, const GBufferWiring& w,
     ShaderSource cs{"gpu_cpu_bits.comp (layout " + w.layoutName + ")", decodeSource(), VK_SHADER_STAGE_COMPUTE_BIT,
                     {{"SIZE", std::to_string(kSize)}}, {{"gbuffer_wiring.glsl", w.glsl}}};
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
-    VkPipeline pipeline = createComputePipeline(ctx.device, pipelineLayout, module);
+    VkPipeline pipeline = createComputePipeline(ctx, pipelineLayout, module);
     vkDestroyShaderModule(ctx.device, module, nullptr);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);

@@ -23,7 +23,7 @@ namespace {
 size_t compareBestFit(const std::vector<glm::vec3>& normals, const char* what) {
     size_t bad = 0;
     for (const glm::vec3& n : normals) {
-        const glm::uvec3 fast = enc::encodeNormalBestFitFast(n), ref = enc::encodeNormalBestFit(n);
+        const glm::uvec3 fast = enc::encodeNormalBestFitFast(n), ref = enc::encodeNormalBestFitSearch(n);
         if (fast != ref && bad++ < 5)
             ADD_FAILURE() << what << ": n = (" << n.x << ", " << n.y << ", " << n.z << "): fast " << fast.x << " "
                           << fast.y << " " << fast.z << ", reference " << ref.x << " " << ref.y << " " << ref.z;

@@ -19,6 +19,7 @@ struct NormalCodec {
 
 glm::vec3 rtXyz(glm::vec3 n, uint b) { return decodeNormalXyz(encodeNormalXyz(n, b), b); }
 glm::vec3 rtBestFit(glm::vec3 n, uint) { return decodeNormalBestFit(encodeNormalBestFit(n)); }
+glm::vec3 rtBestFitSearch(glm::vec3 n, uint) { return decodeNormalBestFit(encodeNormalBestFitSearch(n)); }
 glm::vec3 rtXyZSign(glm::vec3 n, uint b) { return decodeNormalXyZSign(encodeNormalXyZSign(n, b), b); }
 glm::vec3 rtSpheremap(glm::vec3 n, uint b) { return decodeNormalSpheremap(encodeNormalSpheremap(n, b), b); }
 glm::vec3 rtStereo(glm::vec3 n, uint b) { return decodeNormalStereographic(encodeNormalStereographic(n, b), b); }
@@ -62,7 +63,8 @@ TEST(Normals, RandomDirectionsWithinDocumentedBounds) {
         {"normal_xyz", rtXyz, 8, 0.40, 0.18, -2.0},
         {"normal_xyz", rtXyz, 10, 0.10, 0.045, -2.0},
         {"normal_xyz", rtXyz, 16, 0.0016, 0.0007, -2.0},
-        {"normal_bestfit", rtBestFit, 8, 0.32, 0.029, -2.0},
+        {"normal_bestfit", rtBestFit, 8, 0.32, 0.034, -2.0},
+        {"normal_bestfit (search)", rtBestFitSearch, 8, 0.32, 0.029, -2.0},
         {"normal_xy_zsign", rtXyZSign, 8, 6.0, 0.48, -2.0},
         {"normal_xy_zsign", rtXyZSign, 16, 0.36, 0.0031, -2.0},
         {"normal_spheremap", rtSpheremap, 8, 12.0, 0.50, -2.0},
@@ -149,7 +151,7 @@ TEST(Normals, BestFitReencodesToSameDirection) {
     for (int i = 0; i < 30000; ++i) {
         uvec3 c(rng.bits32() & 255u, rng.bits32() & 255u, rng.bits32() & 255u);
         glm::vec3 d = decodeNormalBestFit(c);
-        glm::vec3 again = decodeNormalBestFit(encodeNormalBestFit(d));
+        glm::vec3 again = decodeNormalBestFit(encodeNormalBestFitSearch(d));
         ASSERT_LT(angleDeg(glm::dvec3(d), glm::dvec3(again)), 1e-3) << c.x << " " << c.y << " " << c.z;
     }
 }
@@ -162,13 +164,79 @@ TEST(Normals, BestFitBeatsPlainXyzByALargeFactor) {
     EXPECT_LT(bf.mean * 5.0, xyz.mean);
 }
 
+// The table (CryEngine's look-up, best_fit_normals.h) against the search it is generated from:
+// the error it adds, stated in shaders/encodings.glsl and layouts/README.md.
+TEST(Normals, BestFitTableErrorAgainstSearch) {
+    Rng rng(7);
+    const int n = 200000;
+    std::vector<double> table(n), search(n);
+    int same = 0;
+    for (int i = 0; i < n; ++i) {
+        glm::dvec3 v = randomUnit(rng);
+        const uvec3 t = encodeNormalBestFit(glm::vec3(v)), s = encodeNormalBestFitSearch(glm::vec3(v));
+        same += t == s;
+        table[i] = angleDeg(v, glm::dvec3(decodeNormalBestFit(t)));
+        search[i] = angleDeg(v, glm::dvec3(decodeNormalBestFit(s)));
+        // The search is optimal (next test): the table can only lose.
+        ASSERT_GE(table[i], search[i] - 1e-4) << v.x << " " << v.y << " " << v.z;
+    }
+    auto stats = [](std::vector<double> e) {
+        std::sort(e.begin(), e.end());
+        double sum = 0.0;
+        for (double x : e) sum += x;
+        return glm::dvec3(sum / double(e.size()), e[e.size() * 99 / 100], e.back());
+    };
+    const glm::dvec3 t = stats(table), s = stats(search);
+    std::printf("[measured] bestfit table  mean %.4f p99 %.4f max %.4f deg\n", t.x, t.y, t.z);
+    std::printf("[measured] bestfit search mean %.4f p99 %.4f max %.4f deg; same code %.1f %%\n", s.x, s.y, s.z,
+                100.0 * same / n);
+    EXPECT_LE(t.x, s.x * 1.25);  // 1024^2 texels: 0.032 vs 0.028
+    EXPECT_LE(t.y, s.y * 1.10);
+    EXPECT_LE(t.z, s.z + 0.01);
+    EXPECT_GT(same, n / 2);  // 61 % measured
+}
+
+// Each texel holds the search's choice for its centre direction, whatever the thread count.
+TEST(Normals, BestFitTableHoldsTheSearchAtTexelCentres) {
+    const std::vector<uint32_t>& table = bestFitNormalTable();
+    ASSERT_EQ(table.size(), (kBestFitTableEntries + 3) / 4);
+    EXPECT_EQ(generateBestFitNormalTable(1), table);
+    Rng rng(8);
+    for (int s = 0; s < 20000; ++s) {
+        const uint32_t i = rng.bits32() % kBestFitTableSize, j = rng.bits32() % (i + 1);
+        const glm::vec3 centre = glm::normalize(glm::vec3((float(i) + 0.5f) / float(kBestFitTableSize),
+                                                          (float(j) + 0.5f) / float(kBestFitTableSize), 1.0f));
+        ASSERT_EQ(encodeNormalBestFit(centre), encodeNormalBestFitSearch(centre)) << "texel " << i << " " << j;
+        // Any sign and order of the components: the table covers the sphere by symmetry. The code
+        // may differ where two lengths give the same direction (d = (247, 57, -57) and (169, 39, -39) are 19 x and 13 x (13, 3, -3)),
+        // which float's rounding of the error breaks either way; the direction may not.
+        const glm::vec3 v = rng.bits32() & 1u ? glm::vec3(-centre.y, centre.z, centre.x)
+                                              : glm::vec3(centre.z, centre.x, -centre.y);
+        const double t = angleDeg(glm::dvec3(v), glm::dvec3(decodeNormalBestFit(encodeNormalBestFit(v))));
+        const double r = angleDeg(glm::dvec3(v), glm::dvec3(decodeNormalBestFit(encodeNormalBestFitSearch(v))));
+        ASSERT_NEAR(t, r, 1e-4) << "texel " << i << " " << j;
+    }
+}
+
+// GLSL and C++ read the table at the same place and size.
+TEST(Normals, BestFitTableConstantsMatchTheShader) {
+    std::ifstream file(std::string(GBL_SOURCE_SHADER_DIR) + "/encodings.glsl");
+    ASSERT_TRUE(file);
+    std::stringstream text;
+    text << file.rdbuf();
+    EXPECT_NE(text.str().find("#define GBL_BEST_FIT_TABLE_SIZE " + std::to_string(kBestFitTableSize) + "u\n"),
+              std::string::npos);
+    EXPECT_NE(text.str().find("#define GBL_BEST_FIT_TABLE_BINDING " + std::to_string(kBestFitTableBinding) + "\n"),
+              std::string::npos);
+}
+
 // The in-code search is as good as a wider one: every odd max-component k, and +-2 odd steps on
 // every component around the ray, scored in double.
 TEST(Normals, BestFitSearchIsOptimalInItsNeighbourhood) {
     Rng rng(6);
     for (int i = 0; i < 1500; ++i) {
         glm::dvec3 n = randomUnit(rng);
-        uvec3 c = encodeNormalBestFit(glm::vec3(n));
+        uvec3 c = encodeNormalBestFitSearch(glm::vec3(n));
         double ours = angleDeg(n, glm::dvec3(glm::ivec3(c) * 2 - 255));
         double m = std::max(std::fabs(n.x), std::max(std::fabs(n.y), std::fabs(n.z)));
         double best = 1e9;

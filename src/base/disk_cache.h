@@ -1,0 +1,55 @@
+#pragma once
+// What gbufferlab's on-disk caches share (the IBL maps, src/shading/ibl_cache.h; SPIR-V and the
+// driver's pipeline cache, src/gpu/shader_cache.h): where they live, the hash that keys them, and
+// one envelope format that makes a truncated, corrupt or foreign file a miss, never a wrong result.
+//
+// Directory: $GBL_CACHE_DIR, else $XDG_CACHE_HOME/gbufferlab, else ~/.cache/gbufferlab.
+// Envelope (little-endian): magic (8 bytes), u32 format version, u32 0, u64 key, u64 payload
+// bytes, u64 FNV-1a 64 of the payload, then the payload. Writes are atomic (temporary + rename,
+// src/base/file_io.h), so concurrent writers cannot leave half a file: the last rename wins.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gbl {
+
+std::filesystem::path cacheDirectory();
+
+// FNV-1a 64.
+struct Fnv64 {
+    uint64_t h = 1469598103934665603ull;
+    void bytes(const void* p, size_t n) {
+        const auto* b = static_cast<const unsigned char*>(p);
+        for (size_t i = 0; i < n; ++i) {
+            h ^= b[i];
+            h *= 1099511628211ull;
+        }
+    }
+    template <class T> void value(const T& v) { bytes(&v, sizeof(v)); }
+    // Length-prefixed, so that ("ab", "c") and ("a", "bc") differ.
+    void text(const std::string& s) {
+        value(uint64_t(s.size()));
+        bytes(s.data(), s.size());
+    }
+};
+
+inline uint64_t fnv64(const void* p, size_t n) {
+    Fnv64 f;
+    f.bytes(p, n);
+    return f.h;
+}
+
+inline constexpr size_t kCacheEnvelopeHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
+
+// The payload of a valid file; nullopt when it is missing (why empty) or invalid (why says which:
+// unreadable, truncated, bad magic, version, key, size, hash).
+std::optional<std::vector<unsigned char>> readCacheEnvelope(const std::filesystem::path& file, const char magic[8],
+                                                            uint32_t version, uint64_t key, std::string* why);
+// Creates the directory; throws (UserError) when the file cannot be written.
+void writeCacheEnvelope(const std::filesystem::path& file, const char magic[8], uint32_t version, uint64_t key,
+                        const void* payload, size_t payloadBytes);
+
+}  // namespace gbl

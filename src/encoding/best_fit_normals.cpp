@@ -1,0 +1,36 @@
+#include "best_fit_normals.h"
+
+#include <stdexcept>
+
+#include "encodings.h"
+#include "encodings_fast.h"
+#include "parallel_for.h"
+
+namespace gbl::enc {
+
+std::vector<uint32_t> generateBestFitNormalTable(int threads) {
+    std::vector<uint32_t> words((kBestFitTableEntries + 3) / 4, 0u);
+    std::vector<uint8_t> entries(kBestFitTableEntries);
+    parallelFor(kBestFitTableSize, threads > 0 ? threads : hardwareThreads(), [&](int64_t begin, int64_t end) {
+        for (uint32_t i = uint32_t(begin); i < uint32_t(end); ++i)
+            for (uint32_t j = 0; j <= i; ++j) {
+                const float mid = (float(i) + 0.5f) / float(kBestFitTableSize);
+                const float lo = (float(j) + 0.5f) / float(kBestFitTableSize);
+                const vec3 n = normalize(vec3(mid, lo, 1.0f));
+                // The search's winner has d.z = k (q.z = 1 exactly): code.z = (k + 255) / 2.
+                const uvec3 code = encodeNormalBestFitFast(n);
+                const uint k = 2u * code.z - 255u;
+                if (code.z < 128u || (k & 1u) == 0u) throw std::logic_error("best-fit table: unexpected search result");
+                entries[i * (i + 1) / 2 + j] = uint8_t((255u - k) / 2u);
+            }
+    });
+    for (uint32_t t = 0; t < kBestFitTableEntries; ++t) words[t >> 2] |= uint32_t(entries[t]) << ((t & 3u) * 8u);
+    return words;
+}
+
+const std::vector<uint32_t>& bestFitNormalTable() {
+    static const std::vector<uint32_t> table = generateBestFitNormalTable();
+    return table;
+}
+
+}  // namespace gbl::enc

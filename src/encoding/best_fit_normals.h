@@ -1,0 +1,30 @@
+#pragma once
+// The best-fit normal table: CryEngine 3's pre-baked look-up (Kaplanyan, "CryENGINE 3: Reaching
+// the Speed of Light", SIGGRAPH 2010 Advances course), generated here by one function and read
+// by both encoders, encodeNormalBestFit in shaders/encodings.glsl (uploaded as an SSBO, set 0,
+// binding kBestFitTableBinding of every G-buffer pass) and its mirror in encodings.h.
+//
+// Texel (i, j), j <= i < 1024, of the triangle of q = n / max|n|'s middle and smallest |component|
+// (mid in [i, i+1) / 1024, lo in [j, j+1) / 1024) holds (255 - k) / 2, k being the odd length of
+// the major component that encodeNormalBestFitSearch (the 128-candidate search) picks for the
+// texel's centre direction (mid, lo, 1) normalised. Signs and the order of the components do
+// not change the best length (the rounding 2 floor(x / 2) + 1 is odd-symmetric), so the triangle
+// covers the sphere. 525 312 entries, one byte each, 4 per uint32 (entry t in bits 8 (t % 4) of
+// word t / 4): 513 KiB.
+#include <cstdint>
+#include <vector>
+
+namespace gbl::enc {
+
+inline constexpr uint32_t kBestFitTableSize = 1024;  // CryEngine's 1024 x 1024
+inline constexpr uint32_t kBestFitTableEntries = kBestFitTableSize * (kBestFitTableSize + 1) / 2;
+inline constexpr uint32_t kBestFitTableBinding = 15;  // GBL_BEST_FIT_TABLE_BINDING in encodings.glsl
+
+// Generated on first use (tests/encoding BestFitTableHoldsTheSearchAtTexelCentres generates it
+// twice, on 2 threads and on 1: 0.4-0.9 s measured on the loaded 2-core machine), deterministic: the same words on
+// every machine (IEEE single precision, no FMA contraction).
+const std::vector<uint32_t>& bestFitNormalTable();
+// The generator itself (bestFitNormalTable() caches its result); `threads` 0 = all.
+std::vector<uint32_t> generateBestFitNormalTable(int threads = 0);
+
+}  // namespace gbl::enc
