@@ -13,12 +13,14 @@ namespace gbl {
 struct GBufferPass {
     std::vector<GpuImage> targets;
     GpuImage depth;
+    GpuImage emissive;  // emissive = forward: RGBA32F scene colour written by the G-buffer pass (else empty)
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet set = VK_NULL_HANDLE;
     float clearDepth = 1.0f;
+    std::vector<std::array<uint32_t, 4>> clearWords;  // per target (GBufferWiring::targetClearWords)
 };
 
 GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
