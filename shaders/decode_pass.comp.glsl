@@ -6,12 +6,15 @@
 #include "shared_types.h"
 #include "surface.glsl"
 #define GBUFFER_READ 1
+#define GBL_GEOMETRY_MASK 1  // checkerboard chroma skips neighbours without geometry (as the lighting pass)
 #include "gbuffer_wiring.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform Frame { FrameConstants frame; };
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
+
+bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
 
 struct DecodedPixel {
     vec4 normalRoughness;      // xyz normal, w roughness

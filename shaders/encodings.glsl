@@ -37,6 +37,26 @@ float dequantizeUnorm(uint code, uint bits) {
     return float(code) / s;
 }
 
+// quantizeChroma: an offset chroma x in [0,1] (Cb + 0.5, Cr + 0.5; 0.5 = neutral) -> code in
+// [0, 2^bits - 2]; bits 2..16. The codes are spread over 2^bits - 2 steps, so that the neutral
+// chroma 0.5 has a code of its own, the midpoint 2^(bits-1) - 1 (127 at 8 bits), and decodes to
+// exactly 0.5: grey (and every metal's diffuse colour, 0) reads back without a tint. The top code
+// 2^bits - 1 is unused (it decodes to just above 1). This is CryEngine's MIDPOINT_8_BIT =
+// 127/255 (its DecodeColorYCC: chroma = code / MIDPOINT_8_BIT - 1, i.e. 2 Cb in [-1, 1]).
+// quantizeUnorm's 0.5 falls between codes 127 and 128 and rounds to 128: +0.002 of chroma.
+// Error: |dequantizeChroma(code) - x| <= (0.5 + 2^(bits-24)) / (2^bits - 2).
+uint quantizeChroma(float x, uint bits) {
+    precise float s = float((1u << bits) - 2u);
+    precise float q = floor(clamp(x, 0.0, 1.0) * s + 0.5);
+    return uint(q);
+}
+
+// dequantizeChroma: code in [0, 2^bits - 2] -> [0,1]; the midpoint decodes to exactly 0.5.
+float dequantizeChroma(uint code, uint bits) {
+    float s = float((1u << bits) - 2u);
+    return float(code) / s;
+}
+
 // quantizeSnorm: x in [-1,1] (clamped) -> two's complement code in the low `bits` bits,
 // symmetric: -1 -> -(2^(bits-1)-1), +1 -> 2^(bits-1)-1; bits 2..24.
 // Error: |dequantizeSnorm(code) - x| <= (0.5 + 2^(bits-24)) / (2^(bits-1) - 1).
@@ -414,7 +434,8 @@ uvec2 encodeNormalOctahedralPrecise(vec3 n, uint bits) {
 vec3 decodeNormalOctahedralPrecise(uvec2 code, uint bits) { return decodeNormalOctahedral(code, bits); }
 
 // ---------------------------------------------------------------------------------------------
-// 5. Colour transforms (float -> float; quantise the results with quantizeUnorm).
+// 5. Colour transforms (float -> float; quantise Y with quantizeUnorm, the chroma of the YCbCr
+//    family with quantizeChroma, YCoCg's with quantizeUnorm as the paper does).
 // ---------------------------------------------------------------------------------------------
 
 // rgbToYCbCr: ITU-R BT.601 full range (JPEG/JFIF), rgb in [0,1]^3 -> (Y, Cb+0.5, Cr+0.5) in
@@ -490,16 +511,25 @@ float chromaForPixel(ivec2 pixel, vec2 chroma) { return chromaIsSecond(pixel) ? 
 
 // reconstructChroma: the paper's edge-directed filter. The 4 direct neighbours (order: +x, -x,
 // +y, -y) hold the other chroma; each gets weight 1 - step(30/255, |Yn - Yc|) (1 when its luma
-// is within the threshold). Their weighted mean is the missing chroma; when all 4 weights are 0
-// the first neighbour (+x) is used alone, as in the paper's listing. Returns (centre's own
-// chroma, reconstructed other chroma). At image borders fetch the missing neighbour mirrored
-// (x = -1 reads x = 1): a replicated (clamped) fetch would read the centre's own chroma kind.
-vec2 reconstructChroma(float lumaCentre, float chromaCentre, vec4 lumaNeighbours, vec4 chromaNeighbours) {
-    vec4 w = vec4(1.0) - step(vec4(kChromaEdgeThreshold), abs(lumaNeighbours - vec4(lumaCentre)));
+// is within the threshold), times `covered` (1 where the neighbour has geometry, 0 where it holds
+// only the clear value: a silhouette never takes its chroma from the background). Their weighted
+// mean is the missing chroma; when all 4 weights are 0 the first covered neighbour in that order
+// is used alone (the paper's listing takes +x alone), and when no neighbour is covered the
+// chroma is neutral (0.5). Returns (centre's own chroma, reconstructed other chroma). At image
+// borders fetch the missing neighbour mirrored (x = -1 reads x = 1): a replicated (clamped)
+// fetch would read the centre's own chroma kind.
+// CryEngine 3 reconstructs the same way, edge-directed on luminance (Sousa et al., "The
+// Rendering Technologies of Crysis 3", GDC 2013, after Mavridis & Papaioannou 2012); the sky and
+// other pixels without G-buffer data are excluded as here.
+vec2 reconstructChroma(float lumaCentre, float chromaCentre, vec4 lumaNeighbours, vec4 chromaNeighbours,
+                       vec4 covered) {
+    vec4 w = covered * (vec4(1.0) - step(vec4(kChromaEdgeThreshold), abs(lumaNeighbours - vec4(lumaCentre))));
     float total = w.x + w.y + w.z + w.w;
     if (total == 0.0) {
-        w.x = 1.0;
-        total = 1.0;
+        float nx = 1.0 - covered.x, ny = 1.0 - covered.y, nz = 1.0 - covered.z;
+        w = covered * vec4(1.0, nx, nx * ny, nx * ny * nz);
+        total = w.x + w.y + w.z + w.w;
+        if (total == 0.0) return vec2(chromaCentre, 0.5);
     }
     float other = (w.x * chromaNeighbours.x + w.y * chromaNeighbours.y + w.z * chromaNeighbours.z +
                    w.w * chromaNeighbours.w) / total;
@@ -510,8 +540,8 @@ vec2 reconstructChroma(float lumaCentre, float chromaCentre, vec4 lumaNeighbours
 // Error, 8 bits per code, on a synthetic image of 16x16 random flat blocks (3:1 with a ramp):
 // CIEDE2000 mean 0.6, p99 9, max 42 (block corners, where no neighbour shares the centre's hue).
 vec2 reconstructChroma(ivec2 pixel, float lumaCentre, float chromaCentre, vec4 lumaNeighbours,
-                       vec4 chromaNeighbours) {
-    vec2 c = reconstructChroma(lumaCentre, chromaCentre, lumaNeighbours, chromaNeighbours);
+                       vec4 chromaNeighbours, vec4 covered) {
+    vec2 c = reconstructChroma(lumaCentre, chromaCentre, lumaNeighbours, chromaNeighbours, covered);
     return chromaIsSecond(pixel) ? vec2(c.y, c.x) : c;
 }
 

@@ -8,6 +8,7 @@
 #include "brdf.glsl"
 #include "environment_map.glsl"
 #define GBUFFER_READ 1
+#define GBL_GEOMETRY_MASK 1  // checkerboard chroma skips neighbours without geometry
 #include "gbuffer_wiring.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -20,6 +21,11 @@ layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D hdrOutput;
 layout(set = 0, binding = 5) uniform samplerCube environmentCube;  // box-filtered mips (ground truth: mip 0)
 layout(set = 0, binding = 6) uniform samplerCube prefilteredCube;  // roughness = mip / (mips - 1)
 layout(set = 0, binding = 7) uniform sampler2D brdfLut;            // (A, B) at uv = (NoV, roughness)
+// emissive = "forward": the emissive the G-buffer pass wrote into scene colour, unquantised, as
+// UE4's base pass does (without EMISSIVE_FORWARD the depth is bound here, unread).
+layout(set = 0, binding = 8) uniform sampler2D sceneColorEmissive;
+
+bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
 
 vec3 sampleEnvironment(vec3 direction) {
     return textureLod(environmentEquirect, directionToEquirectUv(direction), 0.0).rgb * frame.environment.x;
@@ -75,5 +81,8 @@ void main() {
     }
     color += evaluateImageBasedLight(s, N, V) * s.occlusion;
     color += s.emissive;
+#ifdef EMISSIVE_FORWARD
+    color += texelFetch(sceneColorEmissive, pixel, 0).rgb;
+#endif
     imageStore(hdrOutput, pixel, vec4(color, 1.0));
 }

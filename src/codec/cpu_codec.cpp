@@ -69,15 +69,38 @@ void CpuCodec::decode(const CpuGBuffer& g, std::vector<Surface>& out) const {
     for (size_t t = 0; fits && t < plan.targets.size(); ++t)
         fits = g.targetWords[t].size() == pixels * size_t(plan.targets[t].words);
     for (size_t m = 0; fits && m < g.materialWords.size(); ++m) fits = g.materialWords[m].size() == pixels * 4;
+    fits = fits && (g.covered.empty() || g.covered.size() == pixels);
     if (!fits) throw std::invalid_argument("decodeGBuffer: the G-buffer's words do not match its layout and size");
     out.resize(pixels);
     std::vector<const uint32_t*> targets, material;
     for (const std::vector<uint32_t>& w : g.targetWords) targets.push_back(w.data());
     for (const std::vector<uint32_t>& w : g.materialWords) material.push_back(w.data());
-    const codec::ConstWordViews views{targets.data(), material.data()};
+    const codec::ConstWordViews views{targets.data(), material.data(), g.covered.empty() ? nullptr : g.covered.data()};
     parallelFor(g.height, bandCount(threads_, g.width, g.height), [&](int64_t y0, int64_t y1) {
         codec::decodeRows(plan, views, g.width, g.height, int(y0), int(y1), out.data());
     });
+}
+
+Surface clearSurface(const Layout& layout) {
+    Surface s;
+    float* f = reinterpret_cast<float*>(&s);
+    for (int k = 0; k < int(sizeof(Surface) / sizeof(float)); ++k) f[k] = 0.0f;
+    for (const ClearValue& c : layout.clears) {
+        if (attributeInfo(c.attribute).cls == AttributeClass::Extra) continue;
+        const int at = codec::surfaceOffset(c.attribute);
+        for (size_t i = 0; i < c.value.size(); ++i) f[at + int(i)] = float(c.value[i]);
+    }
+    return s;
+}
+
+std::vector<std::array<uint32_t, 4>> clearWords(const Layout& layout) {
+    const CpuGBuffer g = CpuCodec(layout, {1}).encode(std::vector<Surface>(2, clearSurface(layout)), 2, 1);
+    std::vector<std::array<uint32_t, 4>> out(layout.targets.size(), std::array<uint32_t, 4>{0, 0, 0, 0});
+    for (size_t t = 0; t < layout.targets.size(); ++t) {
+        const size_t words = g.targetWords[t].size() / 2;
+        for (size_t i = 0; i < words && i < 4; ++i) out[t][i] = g.targetWords[t][i];
+    }
+    return out;
 }
 
 CpuGBuffer encodeGBuffer(const Layout& layout, const std::vector<Surface>& surfaces, int width, int height) {

@@ -8,6 +8,7 @@
 // CpuCodec compiles the layout once (cpu_codec_plan.h: encodings resolved to enums, bit places
 // to shifts and masks) and runs it over bands of rows on several threads; the result does not
 // depend on the thread count. encodeGBuffer / decodeGBuffer are the one-shot forms.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -28,6 +29,10 @@ struct CpuGBuffer {
     std::vector<std::vector<uint32_t>> targetWords;
     // Material pass (deferred lighting): per material target, 4 words (float32 bits) per pixel.
     std::vector<std::vector<uint32_t>> materialWords;
+    // Which pixels hold geometry (1) and which only the clear values (0), row-major; empty: every
+    // pixel has geometry. Checkerboard chroma never takes a neighbour without geometry (the GPU's
+    // gblHasGeometry: depth != clear depth). encode leaves it as it is.
+    std::vector<uint8_t> covered;
 };
 
 struct CpuCodecOptions {
@@ -54,6 +59,12 @@ private:
     std::shared_ptr<const codec::CodecPlan> plan_;
     int threads_ = 1;
 };
+
+// What a pixel without geometry holds: a Surface of zeros with the layout's [clear] values.
+Surface clearSurface(const Layout& layout);
+// The words each target is cleared with: clearSurface through the layout's own encoders (the
+// words of pixel (0, 0); a checkerboard field's chroma there is Cb / Co), 4 per target (unused 0).
+std::vector<std::array<uint32_t, 4>> clearWords(const Layout& layout);
 
 // One-shot forms: CpuCodec(layout).encode / .decode with the default thread count.
 CpuGBuffer encodeGBuffer(const Layout& layout, const std::vector<Surface>& surfaces, int width, int height);

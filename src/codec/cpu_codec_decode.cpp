@@ -32,6 +32,7 @@ struct DecodeBlock {
     // Checkerboard: luma and chroma of the centre row (x0 - 1 .. x0 + n), the row above, below.
     alignas(32) float luma[3][kBlock + 2];
     alignas(32) float chroma[3][kBlock + 2];
+    alignas(32) float cover[3][kBlock + 2];  // gblCovered of the same pixels
     alignas(32) float pixels[kSurfaceFloats * kBlock];  // the block's Surfaces, interleaved
 };
 
@@ -91,12 +92,13 @@ GBL_SIMD_CLONES void srgb8Row(int n, const uint32_t* c, float* out) {
     std::copy(values, values + n, out);
 }
 
-// Mirror of the colour decoders: the inverse transform of the 3 dequantised codes.
-template <vec3 (*Inv)(vec3)>
+// Mirror of the colour decoders: the inverse transform of the 3 dequantised codes (chroma by D:
+// dequantizeChroma for the YCbCr family, dequantizeUnorm for YCoCg).
+template <vec3 (*Inv)(vec3), float (*D)(uint, uint)>
 GBL_CLONE_INLINE void transformedRow(int n, const uint32_t* c0, const uint32_t* c1, const uint32_t* c2, float* x,
                                      float* y, float* z, uint bits) {
     map3(n, c0, c1, c2, x, y, z, [bits](uint a, uint b1, uint b2) {
-        return Inv(vec3(dequantizeUnorm(a, bits), dequantizeUnorm(b1, bits), dequantizeUnorm(b2, bits)));
+        return Inv(vec3(dequantizeUnorm(a, bits), D(b1, bits), D(b2, bits)));
     });
 }
 
@@ -156,9 +158,11 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
             std::copy(x, x + n, y);
             std::copy(x, x + n, z);
             return;
-        case Codec::YCbCr: transformedRow<yCbCrToRgb>(n, c0, c1, c2, x, y, z, bits); return;
-        case Codec::YCbCrSqrt: transformedRow<yCbCrSqrtToRgb>(n, c0, c1, c2, x, y, z, bits); return;
-        case Codec::YCoCg: transformedRow<yCoCgToRgb>(n, c0, c1, c2, x, y, z, bits); return;
+        case Codec::YCbCr: transformedRow<yCbCrToRgb, dequantizeChroma>(n, c0, c1, c2, x, y, z, bits); return;
+        case Codec::YCbCrSqrt:
+            transformedRow<yCbCrSqrtToRgb, dequantizeChroma>(n, c0, c1, c2, x, y, z, bits);
+            return;
+        case Codec::YCoCg: transformedRow<yCoCgToRgb, dequantizeUnorm>(n, c0, c1, c2, x, y, z, bits); return;
         case Codec::NormalXyz:
             map3(n, c0, c1, c2, x, y, z,
                  [bits](uint a, uint b1, uint b2) { return decodeNormalXyz(uvec3(a, b1, b2), bits); });
@@ -195,8 +199,9 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
 // image's left and right edges: the inside of the image in contiguous loops, the (at most two)
 // pixels beyond its edges one by one.
 template <int Words>
-GBL_CLONE_INLINE void lumaChromaRow(const FieldPlan& f, const uint32_t* image, int width, int row, int xFrom,
-                                    int count, float* __restrict luma, float* __restrict chroma, DecodeBlock& b) {
+GBL_CLONE_INLINE void lumaChromaRow(const FieldPlan& f, const uint32_t* image, const uint8_t* covered, int width,
+                                    int row, int xFrom, int count, float* __restrict luma, float* __restrict chroma,
+                                    float* __restrict cover, DecodeBlock& b) {
     const uint bits = f.codes[0].bits;
     const int lo = std::max(xFrom, 0), hi = std::min(xFrom + count, width);
     const uint32_t* rowWords = image + size_t(row) * size_t(width) * Words;
@@ -210,10 +215,24 @@ GBL_CLONE_INLINE void lumaChromaRow(const FieldPlan& f, const uint32_t* image, i
         lumaCode[k] = extractOne(f.codes[0], w);
         chromaCode[k] = extractOne(f.codes[1], w);
     }
-    for (int k = 0; k < count; ++k) {
-        luma[k] = dequantizeUnorm(lumaCode[k], bits);
-        chroma[k] = dequantizeUnorm(chromaCode[k], bits);
+    if (f.codec == Codec::YCbCrCheckerboard) {
+        for (int k = 0; k < count; ++k) {
+            luma[k] = dequantizeUnorm(lumaCode[k], bits);
+            chroma[k] = dequantizeChroma(chromaCode[k], bits);
+        }
+    } else {
+        for (int k = 0; k < count; ++k) {
+            luma[k] = dequantizeUnorm(lumaCode[k], bits);
+            chroma[k] = dequantizeUnorm(chromaCode[k], bits);
+        }
     }
+    // gblCovered: 1 where the pixel has geometry (all pixels when no mask is given).
+    if (!covered) {
+        std::fill(cover, cover + count, 1.0f);
+        return;
+    }
+    const uint8_t* rowCovered = covered + size_t(row) * size_t(width);
+    for (int k = 0; k < count; ++k) cover[k] = rowCovered[mirror(xFrom + k, width)] ? 1.0f : 0.0f;
 }
 
 // The reconstruction over a block (restrict views of the rows: centre luma / chroma l0 / k0 at
@@ -221,8 +240,10 @@ GBL_CLONE_INLINE void lumaChromaRow(const FieldPlan& f, const uint32_t* image, i
 template <vec3 (*Inv)(vec3)>
 GBL_CLONE_INLINE void reconstructRow(int n, int x0, int y, const float* __restrict l0, const float* __restrict k0,
                                      const float* __restrict l1, const float* __restrict k1,
-                                     const float* __restrict l2, const float* __restrict k2, float* __restrict x,
-                                     float* __restrict yv, float* __restrict z) {
+                                     const float* __restrict l2, const float* __restrict k2,
+                                     const float* __restrict v0, const float* __restrict v1,
+                                     const float* __restrict v2, float* __restrict x, float* __restrict yv,
+                                     float* __restrict z) {
     for (int j = 0; j < n; ++j) {
         const vec2 c = vec2(l0[j + 1], k0[j + 1]);
         const vec2 n0 = vec2(l0[j + 2], k0[j + 2]);
@@ -232,7 +253,8 @@ GBL_CLONE_INLINE void reconstructRow(int n, int x0, int y, const float* __restri
         // reconstructChroma(ivec2(x0 + j, y), ...) is this call plus the swap below where
         // chromaIsSecond; written out with an int parity because GCC 12 does not vectorise the
         // loop through chromaIsSecond's bool.
-        const vec2 r = reconstructChroma(c.x, c.y, vec4(n0.x, n1.x, n2.x, n3.x), vec4(n0.y, n1.y, n2.y, n3.y));
+        const vec2 r = reconstructChroma(c.x, c.y, vec4(n0.x, n1.x, n2.x, n3.x), vec4(n0.y, n1.y, n2.y, n3.y),
+                                         vec4(v0[j + 2], v0[j], v2[j], v1[j]));
         const int second = (x0 + j + y) & 1;
         const vec2 ch = vec2(second ? r.y : r.x, second ? r.x : r.y);
         const vec3 v = Inv(vec3(c.x, ch.x, ch.y));
@@ -246,26 +268,28 @@ GBL_CLONE_INLINE void reconstructRow(int n, int x0, int y, const float* __restri
 // centre's luma and chroma, the other chroma rebuilt from the 4 neighbours (+x, -x, +y, -y),
 // mirrored at the borders, then the inverse colour transform.
 template <int Words, vec3 (*Inv)(vec3)>
-GBL_CLONE_INLINE void decodeCheckerboard(const FieldPlan& f, const uint32_t* image, int width, int height, int x0,
-                                         int y, int n, DecodeBlock& b) {
-    lumaChromaRow<Words>(f, image, width, y, x0 - 1, n + 2, b.luma[0], b.chroma[0], b);
-    lumaChromaRow<Words>(f, image, width, mirror(y - 1, height), x0, n, b.luma[1], b.chroma[1], b);
-    lumaChromaRow<Words>(f, image, width, mirror(y + 1, height), x0, n, b.luma[2], b.chroma[2], b);
+GBL_CLONE_INLINE void decodeCheckerboard(const FieldPlan& f, const uint32_t* image, const uint8_t* covered, int width,
+                                         int height, int x0, int y, int n, DecodeBlock& b) {
+    lumaChromaRow<Words>(f, image, covered, width, y, x0 - 1, n + 2, b.luma[0], b.chroma[0], b.cover[0], b);
+    lumaChromaRow<Words>(f, image, covered, width, mirror(y - 1, height), x0, n, b.luma[1], b.chroma[1], b.cover[1],
+                         b);
+    lumaChromaRow<Words>(f, image, covered, width, mirror(y + 1, height), x0, n, b.luma[2], b.chroma[2], b.cover[2],
+                         b);
     const Outputs o = outputsFor(b, f.source, f.components);
-    reconstructRow<Inv>(n, x0, y, b.luma[0], b.chroma[0], b.luma[1], b.chroma[1], b.luma[2], b.chroma[2], o.c[0],
-                        o.c[1], o.c[2]);
+    reconstructRow<Inv>(n, x0, y, b.luma[0], b.chroma[0], b.luma[1], b.chroma[1], b.luma[2], b.chroma[2], b.cover[0],
+                        b.cover[1], b.cover[2], o.c[0], o.c[1], o.c[2]);
 }
 
 template <int Words>
-GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, int width, int height, int x0, int y,
-                                   int n, DecodeBlock& b) {
+GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, const uint8_t* covered, int width,
+                                   int height, int x0, int y, int n, DecodeBlock& b) {
     const uint32_t* words = image + (size_t(y) * size_t(width) + size_t(x0)) * Words;
     prefetchAhead(words, size_t(n) * Words * sizeof(uint32_t));
     for (const FieldPlan& f : t.decodeFields) {
         if (f.codec == Codec::YCbCrCheckerboard) {
-            decodeCheckerboard<Words, yCbCrToRgb>(f, image, width, height, x0, y, n, b);
+            decodeCheckerboard<Words, yCbCrToRgb>(f, image, covered, width, height, x0, y, n, b);
         } else if (f.codec == Codec::YCoCgCheckerboard) {
-            decodeCheckerboard<Words, yCoCgToRgb>(f, image, width, height, x0, y, n, b);
+            decodeCheckerboard<Words, yCoCgToRgb>(f, image, covered, width, height, x0, y, n, b);
         } else {
             for (size_t k = 0; k < f.codes.size(); ++k) extractCode<Words>(f.codes[k], n, words, b.code[k]);
             decodeValues(f, n, b, outputsFor(b, f.source, f.components));
@@ -273,12 +297,12 @@ GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, i
     }
 }
 
-GBL_SIMD_CLONES void decodeTargetBlock(const TargetPlan& t, const uint32_t* image, int width, int height, int x0,
-                                       int y, int n, DecodeBlock& b) {
+GBL_SIMD_CLONES void decodeTargetBlock(const TargetPlan& t, const uint32_t* image, const uint8_t* covered, int width,
+                                       int height, int x0, int y, int n, DecodeBlock& b) {
     switch (t.words) {
-        case 1: decodeTarget<1>(t, image, width, height, x0, y, n, b); return;
-        case 2: decodeTarget<2>(t, image, width, height, x0, y, n, b); return;
-        default: decodeTarget<4>(t, image, width, height, x0, y, n, b); return;
+        case 1: decodeTarget<1>(t, image, covered, width, height, x0, y, n, b); return;
+        case 2: decodeTarget<2>(t, image, covered, width, height, x0, y, n, b); return;
+        default: decodeTarget<4>(t, image, covered, width, height, x0, y, n, b); return;
     }
 }
 
@@ -386,7 +410,7 @@ void decodeRows(const CodecPlan& plan, const ConstWordViews& in, int width, int 
             // Surface(0), readGBuffer's start: only the floats nothing below sets need it.
             for (const int k : plan.unwritten) std::fill(b.s[k], b.s[k] + kBlock, 0.0f);
             for (size_t t = 0; t < plan.targets.size(); ++t)
-                decodeTargetBlock(plan.targets[t], in.targets[t], width, height, x0, y, n, b);
+                decodeTargetBlock(plan.targets[t], in.targets[t], in.covered, width, height, x0, y, n, b);
             decodeMaterial(plan, in.material, first, n, b);
             applyFallbacks(plan, n, b);
             writeSurfaces(b, n, out + first);

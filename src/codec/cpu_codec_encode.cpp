@@ -62,22 +62,24 @@ GBL_CLONE_INLINE void map3to3(int n, const float* __restrict x, const float* __r
 }
 
 // Mirror of the generated writeGBuffer for colour transforms: 3 unorm codes of fwd(rgb).
-template <vec3 (*Fwd)(vec3)>
+// Chroma is quantised by Q: quantizeChroma (the YCbCr family, midpoint code exactly neutral) or
+// quantizeUnorm (YCoCg), as chromaQuantize in wiring_codegen.
+template <vec3 (*Fwd)(vec3), uint (*Q)(float, uint)>
 GBL_CLONE_INLINE void transformed3(int n, EncodeBlock& b, uint bits) {
     map3to3(n, b.in[0], b.in[1], b.in[2], b.code[0], b.code[1], b.code[2], [bits](vec3 v) {
         const vec3 t = Fwd(v);
-        return uvec3(quantizeUnorm(t.x, bits), quantizeUnorm(t.y, bits), quantizeUnorm(t.z, bits));
+        return uvec3(quantizeUnorm(t.x, bits), Q(t.y, bits), Q(t.z, bits));
     });
 }
 
 // Luma and the chroma this pixel's parity stores. chromaForPixel(ivec2(x0 + j, y), (t.y, t.z)) is
 // written out with an int parity: GCC 12 does not vectorise the loop through chromaIsSecond's bool.
-template <vec3 (*Fwd)(vec3)>
+template <vec3 (*Fwd)(vec3), uint (*Q)(float, uint)>
 GBL_CLONE_INLINE void checkerboard(int n, int x0, int y, EncodeBlock& b, uint bits) {
     map3to2(n, b.in[0], b.in[1], b.in[2], b.code[0], b.code[1], [bits, x0, y](vec3 v, int j) {
         const vec3 t = Fwd(v);
         const int second = (x0 + j + y) & 1;
-        return uvec2(quantizeUnorm(t.x, bits), quantizeUnorm(second ? t.z : t.y, bits));
+        return uvec2(quantizeUnorm(t.x, bits), Q(second ? t.z : t.y, bits));
     });
 }
 
@@ -232,11 +234,11 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
         case Codec::Luma:
             map3to1(n, x, yv, z, c0, [bits](vec3 v) { return quantizeUnorm(lumaBt601(v), bits); });
             return;
-        case Codec::YCbCr: transformed3<rgbToYCbCr>(n, b, bits); return;
-        case Codec::YCbCrSqrt: transformed3<rgbToYCbCrSqrt>(n, b, bits); return;
-        case Codec::YCoCg: transformed3<rgbToYCoCg>(n, b, bits); return;
-        case Codec::YCbCrCheckerboard: checkerboard<rgbToYCbCr>(n, x0, y, b, bits); return;
-        case Codec::YCoCgCheckerboard: checkerboard<rgbToYCoCg>(n, x0, y, b, bits); return;
+        case Codec::YCbCr: transformed3<rgbToYCbCr, quantizeChroma>(n, b, bits); return;
+        case Codec::YCbCrSqrt: transformed3<rgbToYCbCrSqrt, quantizeChroma>(n, b, bits); return;
+        case Codec::YCoCg: transformed3<rgbToYCoCg, quantizeUnorm>(n, b, bits); return;
+        case Codec::YCbCrCheckerboard: checkerboard<rgbToYCbCr, quantizeChroma>(n, x0, y, b, bits); return;
+        case Codec::YCoCgCheckerboard: checkerboard<rgbToYCoCg, quantizeUnorm>(n, x0, y, b, bits); return;
         case Codec::NormalXyz:
             map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyz(v, bits); });
             return;

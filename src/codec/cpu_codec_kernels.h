@@ -31,6 +31,7 @@ struct WordViews {
 struct ConstWordViews {
     const uint32_t* const* targets = nullptr;
     const uint32_t* const* material = nullptr;
+    const uint8_t* covered = nullptr;  // width * height, 1 = geometry (CpuGBuffer::covered); nullptr: all
 };
 
 // Encodes rows [y0, y1) of the width x height image `surfaces` (row-major) into `out`.

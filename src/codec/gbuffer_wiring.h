@@ -4,6 +4,8 @@
 // writes and reads them. The GLSL defines, under GBUFFER_WRITE, the fragment outputs and
 // `void writeGBuffer(Surface s, ivec2 pixel)`; under GBUFFER_READ, `usampler2D`s at set 1,
 // binding i (one per target) and `Surface readGBuffer(ivec2 pixel)`.
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,8 +20,14 @@ struct GBufferWiring {
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
     bool reversedZ = false;
     std::string glsl;
-    // emissive = "forward": the G-buffer does not store emissive and readGBuffer returns 0; the
-    // renderer must add the surface's emissive in a forward pass.
+    // Per target, the 4 uint words it is cleared with (clearWords in cpu_codec.h: the layout's
+    // [clear] values through its own encoders); all 0 for a target rendered in its native format.
+    std::vector<std::array<uint32_t, 4>> targetClearWords;
+    // emissive = "forward": the G-buffer does not store emissive and readGBuffer returns 0. As
+    // UE4's base pass writes emissive into SceneColor, the G-buffer pass also writes the surface's
+    // emissive, unquantised (RGBA32F), into one more colour attachment after the layout's targets
+    // (GLSL: `gblSceneColorEmissive` at location targetFormats.size()); the lighting pass adds it.
+    // It is scene colour, not G-buffer: it is not in the layout's bytes per pixel.
     bool emissiveForward = false;
     // Deferred lighting's material pass: the renderer runs a second geometry pass compiled with
     // MATERIAL_PASS_WRITE into these targets (float32 bits, see wiring_codegen.h) and binds them

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cpu_codec.h"
 #include "encoding_registry.h"
 
 namespace gbl {
@@ -119,6 +120,16 @@ bool colorTransform(const std::string& enc, std::string& fwd, std::string& inv) 
     return true;
 }
 
+// The YCbCr family (CryEngine's) quantises its chroma with quantizeChroma, whose midpoint code is
+// exactly neutral; YCoCg keeps the paper's quantizeUnorm of chroma + 0.5.
+bool midpointChroma(const std::string& enc) {
+    return enc == "ycbcr" || enc == "ycbcr_sqrt" || enc == "ycbcr_checkerboard";
+}
+std::string chromaQuantize(const std::string& enc) { return midpointChroma(enc) ? "quantizeChroma" : "quantizeUnorm"; }
+std::string chromaDequantize(const std::string& enc) {
+    return midpointChroma(enc) ? "dequantizeChroma" : "dequantizeUnorm";
+}
+
 // Emits the encoder of a field: setup lines, returns one uint expression per code.
 std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind, const Field& f, const std::string& id) {
     std::vector<std::string> codes;
@@ -139,10 +150,11 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
         colorTransform(e, fwd, inv);
         o << ind << "vec3 " << id << " = " << fwd << "(" << v << ");\n";
         codes.push_back("quantizeUnorm(" + id + ".x, " + b + ")");
-        codes.push_back("quantizeUnorm(chromaForPixel(pixel, vec2(" + id + ".y, " + id + ".z)), " + b + ")");
+        codes.push_back(chromaQuantize(e) + "(chromaForPixel(pixel, vec2(" + id + ".y, " + id + ".z)), " + b + ")");
     } else if (colorTransform(e, fwd, inv)) {
         o << ind << "vec3 " << id << " = " << fwd << "(" << v << ");\n";
-        for (int i = 0; i < 3; ++i) codes.push_back("quantizeUnorm(" + id + "." + kComp[i] + ", " + b + ")");
+        for (int i = 0; i < 3; ++i)
+            codes.push_back((i ? chromaQuantize(e) : std::string("quantizeUnorm")) + "(" + id + "." + kComp[i] + ", " + b + ")");
     } else if (e == "normal_xyz" || e == "normal_bestfit" || e == "normal_xy_zsign") {
         const std::string call = e == "normal_xyz"       ? "encodeNormalXyz(" + v + ", " + b + ")"
                                  : e == "normal_bestfit" ? "encodeNormalBestFit(" + v + ")"
@@ -180,8 +192,8 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
     if (e == "srgb8") return "vec3(decodeSrgb8(" + c[0] + "), decodeSrgb8(" + c[1] + "), decodeSrgb8(" + c[2] + "))";
     if (e == "luma") return "vec3(dequantizeUnorm(" + c[0] + ", " + b + "))";
     if (colorTransform(e, fwd, inv))
-        return inv + "(vec3(dequantizeUnorm(" + c[0] + ", " + b + "), dequantizeUnorm(" + c[1] + ", " + b +
-               "), dequantizeUnorm(" + c[2] + ", " + b + ")))";
+        return inv + "(vec3(dequantizeUnorm(" + c[0] + ", " + b + "), " + chromaDequantize(e) + "(" + c[1] + ", " + b +
+               "), " + chromaDequantize(e) + "(" + c[2] + ", " + b + ")))";
     if (e == "normal_xyz") return "decodeNormalXyz(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "), " + b + ")";
     if (e == "normal_bestfit") return "decodeNormalBestFit(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "))";
     if (e == "normal_xy_zsign") return "decodeNormalXyZSign(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "), " + b + ")";
@@ -238,7 +250,12 @@ std::vector<std::string> emitNativeEncode(std::ostream& o, const std::string& in
         for (int i = 0; i < 3; ++i) v.push_back(id + "." + kComp[i]);
     } else if (colorTransform(e, fwd, inv)) {
         o << ind << "vec3 " << id << " = " << fwd << "(" << wholeExpr(f) << ");\n";
-        for (int i = 0; i < 3; ++i) v.push_back(id + "." + kComp[i]);
+        // The hardware rounds x * (2^bits - 1); scaling by (2^bits - 2) / (2^bits - 1) gives
+        // quantizeChroma's codes (up to the hardware's rounding of ties).
+        const double s1 = double((uint64_t(1) << f.bitsOfCode(0)) - 1);
+        for (int i = 0; i < 3; ++i)
+            v.push_back(i && midpointChroma(e) ? "(" + id + "." + kComp[i] + " * " + lit((s1 - 1.0) / s1) + ")"
+                                               : id + "." + kComp[i]);
     }
     return v;
 }
@@ -261,6 +278,11 @@ std::string nativeDecodeExpr(const Field& f, const std::vector<std::string>& u) 
     if (e == "luma") return "vec3(" + u[0] + ")";
     if (e == "normal_xyz") return "normalize(vec3(" + u[0] + ", " + u[1] + ", " + u[2] + ") * 2.0 - 1.0)";
     colorTransform(e, fwd, inv);
+    if (midpointChroma(e)) {
+        const double s1 = double((uint64_t(1) << f.bitsOfCode(0)) - 1);
+        const std::string k = lit(s1 / (s1 - 1.0));
+        return inv + "(vec3(" + u[0] + ", " + u[1] + " * " + k + ", " + u[2] + " * " + k + "))";
+    }
     return inv + "(vec3(" + u[0] + ", " + u[1] + ", " + u[2] + "))";
 }
 
@@ -427,7 +449,15 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
           << (native[t] ? "vec4" : outTypeOf(wordsPerPixel(tg), tg.bits())) << " gbufferTarget" << t << ";  // "
           << commentText(tg.name) << ", " << tg.format << (native[t] ? " (native)" : "") << "\n";
     }
+    const Fallback* emissiveFb = layout.findFallback(Attribute::Emissive);
+    const bool emissiveForward = emissiveFb && emissiveFb->kind == FallbackKind::Forward;
+    if (emissiveForward)
+        o << "layout(location = " << layout.targets.size()
+          << ") out vec4 gblSceneColorEmissive;  // emissive = forward: scene colour, RGBA32F, unquantised\n";
     o << "void writeGBuffer(Surface s, ivec2 pixel) {\n";
+    if (emissiveForward)
+        o << "    // emissive = forward: into scene colour, as UE4's base pass does; the lighting pass adds it\n"
+             "    gblSceneColorEmissive = vec4(s.emissive, 0.0);\n";
     for (size_t t = 0; t < layout.targets.size(); ++t) {
         const Target& tg = layout.targets[t];
         const std::string ts = std::to_string(t);
@@ -486,10 +516,20 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
             const std::string b = ulit(uint64_t(f.bitsOfCode(0)));
             o << "vec2 gblLumaChroma" << t << "_" << fi << "(ivec2 p) {\n";
             o << "    uvec4 w = texelFetch(gbufferTarget" << t << ", p, 0);\n";
-            o << "    return vec2(dequantizeUnorm(" << extractCode(tg, f.codes[0], "w") << ", " << b
-              << "), dequantizeUnorm(" << extractCode(tg, f.codes[1], "w") << ", " << b << "));\n}\n";
+            o << "    return vec2(dequantizeUnorm(" << extractCode(tg, f.codes[0], "w") << ", " << b << "), "
+              << chromaDequantize(f.encoding) << "(" << extractCode(tg, f.codes[1], "w") << ", " << b << "));\n}\n";
         }
     }
+    if (anyCheckerboard)
+        o << "// Which neighbours hold geometry: a shader that defines GBL_GEOMETRY_MASK defines\n"
+             "// bool gblHasGeometry(ivec2 p) (the lighting and decode passes: depth != clear depth);\n"
+             "// without it every pixel counts as covered.\n"
+             "#ifdef GBL_GEOMETRY_MASK\n"
+             "bool gblHasGeometry(ivec2 p);\n"
+             "float gblCovered(ivec2 p) { return gblHasGeometry(p) ? 1.0 : 0.0; }\n"
+             "#else\n"
+             "float gblCovered(ivec2 p) { return 1.0; }\n"
+             "#endif\n";
     if (anyCheckerboard)
         o << "// Mirrored at borders (x = -1 reads x = 1), so a neighbour always holds the other chroma.\n"
              "ivec2 gblMirror(ivec2 p, ivec2 size) {\n"
@@ -525,10 +565,13 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
                 o << "    {\n        ivec2 size = textureSize(gbufferTarget" << ts << ", 0);\n";
                 o << "        vec2 c = " << fn << "(pixel);\n";
                 const char* off[4] = {"ivec2(1, 0)", "ivec2(-1, 0)", "ivec2(0, 1)", "ivec2(0, -1)"};
-                for (int k = 0; k < 4; ++k)
-                    o << "        vec2 n" << k << " = " << fn << "(gblMirror(pixel + " << off[k] << ", size));\n";
+                for (int k = 0; k < 4; ++k) {
+                    o << "        ivec2 p" << k << " = gblMirror(pixel + " << off[k] << ", size);\n";
+                    o << "        vec2 n" << k << " = " << fn << "(p" << k << ");\n";
+                }
                 o << "        vec2 ch = reconstructChroma(pixel, c.x, c.y, vec4(n0.x, n1.x, n2.x, n3.x), "
-                     "vec4(n0.y, n1.y, n2.y, n3.y));\n";
+                     "vec4(n0.y, n1.y, n2.y, n3.y), vec4(gblCovered(p0), gblCovered(p1), gblCovered(p2), "
+                     "gblCovered(p3)));\n";
                 o << "    " << lhs << inv << "(vec3(c.x, ch.x, ch.y));\n    }\n";
                 continue;
             }
@@ -556,6 +599,11 @@ GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options)
         w.targetNames.push_back(t.name);
         const bool native = options.nativeFormats && nativeFormatObstacle(t).empty();
         w.targetFormats.push_back(native ? vkFormatFromName(t.format) : uintFormatOf(t));
+    }
+    const std::vector<std::array<uint32_t, 4>> clear = clearWords(layout);
+    for (size_t t = 0; t < layout.targets.size(); ++t) {
+        const bool native = options.nativeFormats && nativeFormatObstacle(layout.targets[t]).empty();
+        w.targetClearWords.push_back(native ? std::array<uint32_t, 4>{0, 0, 0, 0} : clear[t]);
     }
     w.depthFormat = vkFormatFromName(layout.depth.format);
     w.reversedZ = layout.depth.reversedZ;

@@ -316,6 +316,12 @@ const Fallback* Layout::findFallback(Attribute a) const {
     return nullptr;
 }
 
+const ClearValue* Layout::findClear(Attribute a) const {
+    for (const ClearValue& c : clears)
+        if (c.attribute == a) return &c;
+    return nullptr;
+}
+
 int bytesPerPixel(const Layout& layout) {
     int bytes = layout.depth.bytes;
     for (const Target& t : layout.targets) bytes += t.bytes();

@@ -206,6 +206,14 @@ struct Fallback {
     bool incomplete = false;  // a parse error was reported for it (never in a returned Layout)
 };
 
+// What a pixel without geometry holds: one declared value per stored attribute ([clear]). The
+// renderer clears each target with the words the layout's own encoders make of these values.
+struct ClearValue {
+    Attribute attribute = Attribute::Normal;
+    std::vector<double> value;  // one per component
+    FilePlace place;
+};
+
 enum class LightQuantity : uint8_t { DiffuseRgb, SpecularRgb, SpecularLuminance };
 const char* lightQuantityName(LightQuantity q);
 
@@ -238,9 +246,13 @@ struct Layout {
     std::string sourceFile;  // the file it was read from (or the name given to parseLayout)
     FilePlace namePlace;
     FilePlace fallbackPlace;  // the [fallback] table (1:1 when absent)
+    std::vector<ClearValue> clears;  // [clear], in file order
+    bool clearDeclared = false;      // the layout has a [clear] table
+    FilePlace clearPlace;            // the [clear] table (1:1 when absent)
 
     const Field* findField(Attribute a) const;  // in targets or stencil; nullptr when not stored
     const Fallback* findFallback(Attribute a) const;
+    const ClearValue* findClear(Attribute a) const;  // nullptr when [clear] does not list it
     bool stores(Attribute a) const { return findField(a) != nullptr; }
 };
 

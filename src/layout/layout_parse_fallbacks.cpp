@@ -130,6 +130,59 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
     });
 }
 
+// [clear]: attribute = value (a number, or one per component). Which attributes must be listed is
+// checked by validation (every attribute stored in a colour target).
+void Parser::parseClear(const toml::table& root, Layout& layout) {
+    const toml::node* n = root.get("clear");
+    layout.clearPlace = {1, 1};
+    if (!n) return;
+    layout.clearPlace = placeOf(*n);
+    layout.clearDeclared = true;
+    const toml::table* t = n->as_table();
+    if (!t) {
+        error(placeOf(*n), "'clear' must be a table ([clear]), not " + std::string(typeName(*n)));
+        return;
+    }
+    for (auto&& [key, value] : *t) {
+        const FilePlace keyPlace = placeOf(key.source());
+        const AttributeInfo* attr = findAttribute(key.str());
+        if (!attr) {
+            error(keyPlace, "unknown attribute " + squote(key.str()) + " in [clear] (known: " + knownAttributeNames() + ")");
+            continue;
+        }
+        auto values = getNumbers(value, "clear value of " + squote(attr->name));
+        if (!values) continue;
+        if (values->size() == 1 && attr->components > 1) values->assign(size_t(attr->components), values->front());
+        if (static_cast<int>(values->size()) != attr->components) {
+            error(placeOf(value), "clear value of " + squote(attr->name) + " has " + std::to_string(values->size()) +
+                                      " components, " + squote(attr->name) + " has " + std::to_string(attr->components));
+            continue;
+        }
+        bool ok = true;
+        for (double x : *values) {
+            const bool inRange = attr->domain == ValueDomain::Unit          ? x >= 0 && x <= 1
+                                 : attr->domain == ValueDomain::Signed      ? x >= -1 && x <= 1
+                                 : attr->domain == ValueDomain::NonNegative ? x >= 0
+                                 : attr->domain == ValueDomain::Id          ? x >= 0 && x == std::floor(x)
+                                                                            : true;
+            if (ok && !inRange) {
+                error(placeOf(value), "clear value of " + squote(attr->name) + ": " + formatNumber(x) +
+                                          " is outside what it can hold");
+                ok = false;
+            }
+        }
+        (void)ok;  // recorded even when out of range: one error, not also "no value for ..."
+        ClearValue c;
+        c.attribute = attr->id;
+        c.value = *values;
+        c.place = placeOf(value);
+        layout.clears.push_back(std::move(c));
+    }
+    std::stable_sort(layout.clears.begin(), layout.clears.end(), [](const ClearValue& a, const ClearValue& b) {
+        return a.place.line != b.place.line ? a.place.line < b.place.line : a.place.column < b.place.column;
+    });
+}
+
 void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
     const toml::node* n = root.get("light_buffer");
     if (!n) return;

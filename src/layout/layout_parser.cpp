@@ -25,7 +25,7 @@ Layout Parser::parse(std::string_view text) {
         return layout;
     }
     const FilePlace top{1, 1};
-    checkKeys(root, {"name", "title", "source", "pipeline", "depth", "target", "fallback", "light_buffer"},
+    checkKeys(root, {"name", "title", "source", "pipeline", "depth", "target", "fallback", "clear", "light_buffer"},
               "the layout");
 
     if (auto name = getString(root, "name", true, top, "the layout")) {
@@ -66,6 +66,7 @@ Layout Parser::parse(std::string_view text) {
     }
 
     parseFallbacks(root, layout);
+    parseClear(root, layout);
     parseLightBuffers(root, layout);
     return layout;
 }

@@ -32,6 +32,7 @@ public:
         checkRequired();
         checkFallbacks();
         checkPipeline();
+        checkClear();
     }
 
 private:
@@ -365,6 +366,39 @@ private:
         };
         for (const Fallback& f : layout_.fallbacks)
             if (fb.at(f.attribute) == &f && state[f.attribute] == 0) visit(f.attribute);
+    }
+
+    // [clear]: declared, listing every shading or geometry attribute stored in a colour target and
+    // only those (extras hold their declared `value` in every pixel, cleared ones included): what a
+    // pixel without geometry holds is part of the layout, never a default.
+    void checkClear() {
+        if (!layout_.clearDeclared) {
+            error({1, 1}, "the layout declares no [clear] table: say what a pixel without geometry holds, one value "
+                          "per attribute stored in a target (e.g. normal = [0, 0, 1], roughness = 1.0); the "
+                          "renderer clears each target with the layout's own encoding of these values");
+            return;
+        }
+        std::map<Attribute, const ClearValue*> seen;
+        for (const ClearValue& c : layout_.clears) {
+            seen.emplace(c.attribute, &c);
+            if (attributeInfo(c.attribute).cls == AttributeClass::Extra) {
+                error(c.place, "extra " + squote(attributeName(c.attribute)) +
+                                   " takes no clear value: it holds its declared value in every pixel");
+                continue;
+            }
+            bool inTarget = false;
+            for (const Target& t : layout_.targets)
+                for (const Field& f : t.fields) inTarget = inTarget || f.attribute == c.attribute;
+            if (!inTarget)
+                error(c.place, "clear value for " + squote(attributeName(c.attribute)) +
+                                   ", which no target stores (stencil extras are cleared to 0 with the depth)");
+        }
+        for (const Target& t : layout_.targets)
+            for (const Field& f : t.fields)
+                if (attributeInfo(f.attribute).cls != AttributeClass::Extra && !seen.count(f.attribute))
+                    error(layout_.clearPlace, "[clear] has no value for " + squote(attributeName(f.attribute)) +
+                                                  ", which target " + squote(t.name) + " stores (" +
+                                                  lineText(f.place) + ")");
     }
 
     void checkPipeline() {

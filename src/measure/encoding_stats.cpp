@@ -126,14 +126,21 @@ glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n) {
     throwUserError("encoding '" + info.name + "' has no normal round trip");
 }
 
+// Y through quantizeUnorm, chroma through quantizeChroma (the YCbCr family's midpoint quantiser).
+glm::vec3 chromaRoundTrip3(glm::vec3 t, unsigned b) {
+    return glm::vec3(enc::dequantizeUnorm(enc::quantizeUnorm(t.x, b), b),
+                     enc::dequantizeChroma(enc::quantizeChroma(t.y, b), b),
+                     enc::dequantizeChroma(enc::quantizeChroma(t.z, b), b));
+}
+
 glm::vec3 roundTripColor(std::string_view name, int bits, glm::vec3 c) {
     const EncodingInfo& info = requireEncoding(name, bits, AttributeKind::Color);
     unsigned b = unsigned(bits);
     if (info.name == "srgb8")
         return vec3(enc::decodeSrgb8(enc::encodeSrgb8(c.x)), enc::decodeSrgb8(enc::encodeSrgb8(c.y)),
                     enc::decodeSrgb8(enc::encodeSrgb8(c.z)));
-    if (info.name == "ycbcr") return enc::yCbCrToRgb(unormRoundTrip3(enc::rgbToYCbCr(c), b));
-    if (info.name == "ycbcr_sqrt") return enc::yCbCrSqrtToRgb(unormRoundTrip3(enc::rgbToYCbCrSqrt(c), b));
+    if (info.name == "ycbcr") return enc::yCbCrToRgb(chromaRoundTrip3(enc::rgbToYCbCr(c), b));
+    if (info.name == "ycbcr_sqrt") return enc::yCbCrSqrtToRgb(chromaRoundTrip3(enc::rgbToYCbCrSqrt(c), b));
     if (info.name == "ycocg") return enc::yCoCgToRgb(unormRoundTrip3(enc::rgbToYCoCg(c), b));
     if (info.name == "luma") return vec3(enc::dequantizeUnorm(enc::quantizeUnorm(enc::lumaBt601(c), b), b));
     throwUserError("encoding '" + info.name + "' has no single-value colour round trip (it reads neighbours)");
@@ -174,7 +181,8 @@ std::vector<glm::vec3> roundTripChromaCheckerboard(std::string_view name, int bi
             vec3 t = ycocg ? enc::rgbToYCoCg(rgb[i]) : enc::rgbToYCbCr(rgb[i]);
             float chroma = enc::chromaForPixel(glm::ivec2(x, y), glm::vec2(t.y, t.z));
             stored[i] = glm::vec2(enc::dequantizeUnorm(enc::quantizeUnorm(t.x, b), b),
-                                  enc::dequantizeUnorm(enc::quantizeUnorm(chroma, b), b));
+                                  ycocg ? enc::dequantizeUnorm(enc::quantizeUnorm(chroma, b), b)
+                                        : enc::dequantizeChroma(enc::quantizeChroma(chroma, b), b));
         }
     // Mirrored borders (-1 -> 1, n -> n-2) keep the checkerboard parity of the missing neighbour.
     auto mirror = [](int i, int n) { return n == 1 ? 0 : i < 0 ? -i : i >= n ? 2 * n - 2 - i : i; };

@@ -9,6 +9,8 @@ namespace gbl {
 
 namespace {
 
+constexpr VkFormat kEmissiveFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
 bool isStencilFormat(VkFormat f) {
     return f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D16_UNORM_S8_UINT;
 }
@@ -61,7 +63,10 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
     depth.depthTestEnable = VK_TRUE;
     depth.depthWriteEnable = VK_TRUE;
     depth.depthCompareOp = wiring.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
-    std::vector<VkPipelineColorBlendAttachmentState> blend(wiring.targetFormats.size());
+    // The layout's targets, then (emissive = forward) the RGBA32F scene-colour emissive.
+    std::vector<VkFormat> colorFormats = wiring.targetFormats;
+    if (wiring.emissiveForward && !wiring.materialPass) colorFormats.push_back(kEmissiveFormat);
+    std::vector<VkPipelineColorBlendAttachmentState> blend(colorFormats.size());
     for (auto& b : blend) b.colorWriteMask = 0xF;  // UINT targets: no blending
     VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     colorBlend.attachmentCount = uint32_t(blend.size());
@@ -72,8 +77,8 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
     dynamic.pDynamicStates = dynamicStates;
 
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = uint32_t(wiring.targetFormats.size());
-    rendering.pColorAttachmentFormats = wiring.targetFormats.data();
+    rendering.colorAttachmentCount = uint32_t(colorFormats.size());
+    rendering.pColorAttachmentFormats = colorFormats.data();
     rendering.depthAttachmentFormat = wiring.depthFormat;
     rendering.stencilAttachmentFormat = isStencilFormat(wiring.depthFormat) ? wiring.depthFormat : VK_FORMAT_UNDEFINED;
 
@@ -98,6 +103,8 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
 void createGBufferImages(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t width, uint32_t height,
                          GBufferPass& pass) {
     pass.clearDepth = wiring.reversedZ ? 0.0f : 1.0f;
+    pass.clearWords = wiring.targetClearWords;
+    pass.clearWords.resize(wiring.targetFormats.size(), std::array<uint32_t, 4>{0, 0, 0, 0});
     for (VkFormat format : wiring.targetFormats) {
         ImageDesc d;
         d.format = format;
@@ -105,6 +112,14 @@ void createGBufferImages(const VulkanContext& ctx, const GBufferWiring& wiring, 
         d.height = height;
         d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         pass.targets.push_back(createImage(ctx, d));
+    }
+    if (wiring.emissiveForward && !wiring.materialPass) {
+        ImageDesc e;
+        e.format = kEmissiveFormat;
+        e.width = width;
+        e.height = height;
+        e.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        pass.emissive = createImage(ctx, e);
     }
     ImageDesc dd;
     dd.format = wiring.depthFormat;
@@ -120,6 +135,7 @@ GBufferWiring materialPassWiring(const GBufferWiring& wiring) {
     GBufferWiring material = wiring;
     material.layoutName = wiring.layoutName + " material pass";
     material.targetFormats = wiring.materialTargetFormats;
+    material.targetClearWords.assign(wiring.materialTargetFormats.size(), std::array<uint32_t, 4>{0, 0, 0, 0});
     material.glsl = "#define MATERIAL_PASS_WRITE 1\n" + wiring.glsl;
     return material;
 }
@@ -164,14 +180,25 @@ void beginGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass) {
     transitionImage(cmd, pass.depth, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
 
     std::vector<VkRenderingAttachmentInfo> colors;
-    for (const GpuImage& t : pass.targets) {
+    for (size_t i = 0; i < pass.targets.size(); ++i) {
         VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        a.imageView = t.view;
+        a.imageView = pass.targets[i].view;
         a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
         a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        a.clearValue.color.uint32[0] = a.clearValue.color.uint32[1] = 0;
-        a.clearValue.color.uint32[2] = a.clearValue.color.uint32[3] = 0;
+        // The layout's [clear] values, encoded as written values are (UINT targets: the words
+        // themselves; material and native targets: 0).
+        for (int k = 0; k < 4; ++k)
+            a.clearValue.color.uint32[k] = i < pass.clearWords.size() ? pass.clearWords[i][size_t(k)] : 0u;
+        colors.push_back(a);
+    }
+    if (pass.emissive.image) {
+        transitionImage(cmd, pass.emissive, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = pass.emissive.view;
+        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // no geometry: no emission
+        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         colors.push_back(a);
     }
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -202,6 +229,9 @@ void endGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass) {
     vkCmdEndRendering(cmd);
     for (const GpuImage& t : pass.targets)
         transitionImage(cmd, t, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    if (pass.emissive.image)
+        transitionImage(cmd, pass.emissive, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     transitionImage(cmd, pass.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
 }
@@ -229,6 +259,7 @@ void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {
     if (pass.bestFitTable.buffer) destroyBuffer(ctx, pass.bestFitTable);
     for (auto& t : pass.targets) destroyImage(ctx, t);
     pass.targets.clear();
+    if (pass.emissive.image) destroyImage(ctx, pass.emissive);
     destroyImage(ctx, pass.depth);
     if (pass.pipeline) vkDestroyPipeline(ctx.device, pass.pipeline, nullptr);
     if (pass.pipelineLayout) vkDestroyPipelineLayout(ctx.device, pass.pipelineLayout, nullptr);

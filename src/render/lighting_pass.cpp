@@ -32,6 +32,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // emissive = forward: scene-colour emissive (else depth)
     };
     const std::vector<Binding> set1 = targetReadBindings(*in.gbuffer);
     const std::vector<Binding> set2 = in.materialPass ? targetReadBindings(*in.materialPass) : std::vector<Binding>{};
@@ -59,6 +60,10 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
                in.ibl->cubeSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
         .image(pass.sets[0], 7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.ibl->brdfLut.view, in.ibl->lutSampler,
                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const bool emissive = in.gbuffer->emissive.image != VK_NULL_HANDLE;
+    writer.image(pass.sets[0], 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                 emissive ? in.gbuffer->emissive.view : in.gbuffer->depth.view, in.nearestSampler,
+                 emissive ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
     for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
         writer.image(pass.sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.gbuffer->targets[i].view,
                      in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -71,6 +76,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
     cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
+    if (emissive) cs.defines.push_back({"EMISSIVE_FORWARD", "1"});
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
     pass.pipeline = createComputePipeline(ctx, pass.pipelineLayout, module);
     vkDestroyShaderModule(ctx.device, module, nullptr);

@@ -13,6 +13,7 @@ namespace gbl {
 struct GBufferPass {
     std::vector<GpuImage> targets;
     GpuImage depth;
+    GpuImage emissive;  // emissive = forward: RGBA32F scene colour written by the G-buffer pass (else empty)
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
@@ -22,6 +23,7 @@ struct GBufferPass {
     // The best-fit normal table (src/encoding/best_fit_normals.h) that encodeNormalBestFit reads:
     // set 0, binding kBestFitTableBinding of every pipeline that writes a G-buffer.
     Buffer bestFitTable;
+    std::vector<std::array<uint32_t, 4>> clearWords;  // per target (GBufferWiring::targetClearWords)
 };
 
 // Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).

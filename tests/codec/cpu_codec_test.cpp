@@ -115,6 +115,13 @@ bool colorTransform(const std::string& e, ColorFn& fwd, ColorFn& inv) {
     return true;
 }
 
+// The YCbCr family's chroma uses the midpoint quantiser (neutral = code 2^(bits-1) - 1).
+bool midpoint(const std::string& e) { return e == "ycbcr" || e == "ycbcr_sqrt" || e == "ycbcr_checkerboard"; }
+uint quantizeC(const std::string& e, float x, uint b) { return midpoint(e) ? quantizeChroma(x, b) : quantizeUnorm(x, b); }
+float dequantizeC(const std::string& e, uint c, uint b) {
+    return midpoint(e) ? dequantizeChroma(c, b) : dequantizeUnorm(c, b);
+}
+
 std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
     std::vector<uint> c;
     if (isScalar(f)) {
@@ -132,10 +139,10 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
     } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
         colorTransform(e, fwd, inv);
         const vec3 t = fwd(v);
-        c = {quantizeUnorm(t.x, b), quantizeUnorm(chromaForPixel(pixel, vec2(t.y, t.z)), b)};
+        c = {quantizeUnorm(t.x, b), quantizeC(e, chromaForPixel(pixel, vec2(t.y, t.z)), b)};
     } else if (colorTransform(e, fwd, inv)) {
         const vec3 t = fwd(v);
-        c = {quantizeUnorm(t.x, b), quantizeUnorm(t.y, b), quantizeUnorm(t.z, b)};
+        c = {quantizeUnorm(t.x, b), quantizeC(e, t.y, b), quantizeC(e, t.z, b)};
     } else if (e == "normal_xyz" || e == "normal_bestfit" || e == "normal_xy_zsign") {
         const uvec3 u = e == "normal_xyz"       ? encodeNormalXyz(v, b)
                         : e == "normal_bestfit" ? encodeNormalBestFit(v)
@@ -164,7 +171,7 @@ vec3 decodeField(const Field& f, const std::vector<uint>& c) {
     if (e == "srgb8") return vec3(decodeSrgb8(c[0]), decodeSrgb8(c[1]), decodeSrgb8(c[2]));
     if (e == "luma") return vec3(dequantizeUnorm(c[0], b));
     if (colorTransform(e, fwd, inv))
-        return inv(vec3(dequantizeUnorm(c[0], b), dequantizeUnorm(c[1], b), dequantizeUnorm(c[2], b)));
+        return inv(vec3(dequantizeUnorm(c[0], b), dequantizeC(e, c[1], b), dequantizeC(e, c[2], b)));
     if (e == "normal_xyz") return decodeNormalXyz(uvec3(c[0], c[1], c[2]), b);
     if (e == "normal_bestfit") return decodeNormalBestFit(uvec3(c[0], c[1], c[2]));
     if (e == "normal_xy_zsign") return decodeNormalXyZSign(uvec3(c[0], c[1], c[2]), b);
@@ -303,15 +310,23 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                         auto lumaChroma = [&](int px, int py) {
                             const uint32_t* nw = wordsAt(px, py);
                             return vec2(dequantizeUnorm(extractCode(tg, f.codes[0], nw), b),
-                                        dequantizeUnorm(extractCode(tg, f.codes[1], nw), b));
+                                        dequantizeC(f.encoding, extractCode(tg, f.codes[1], nw), b));
+                        };
+                        auto cover = [&](int px, int py) {
+                            return g.covered.empty() || g.covered[size_t(py) * size_t(width) + size_t(px)] ? 1.0f
+                                                                                                             : 0.0f;
                         };
                         const vec2 c = lumaChroma(x, y);
                         const vec2 n0 = lumaChroma(mirror(x + 1, width), mirror(y, height));
                         const vec2 n1 = lumaChroma(mirror(x - 1, width), mirror(y, height));
                         const vec2 n2 = lumaChroma(mirror(x, width), mirror(y + 1, height));
                         const vec2 n3 = lumaChroma(mirror(x, width), mirror(y - 1, height));
+                        const vec4 covered(cover(mirror(x + 1, width), mirror(y, height)),
+                                           cover(mirror(x - 1, width), mirror(y, height)),
+                                           cover(mirror(x, width), mirror(y + 1, height)),
+                                           cover(mirror(x, width), mirror(y - 1, height)));
                         const vec2 ch = reconstructChroma(ivec2(x, y), c.x, c.y, vec4(n0.x, n1.x, n2.x, n3.x),
-                                                          vec4(n0.y, n1.y, n2.y, n3.y));
+                                                          vec4(n0.y, n1.y, n2.y, n3.y), covered);
                         setMember(s, f.attribute, inv(vec3(c.x, ch.x, ch.y)));
                         continue;
                     }
@@ -472,6 +487,66 @@ TEST(CpuCodec, LargeImageIsTheSameAtOneAndTwoThreads) {
         const CpuGBuffer a = one.encode(in, w, h), b = two.encode(in, w, h);
         EXPECT_EQ(compareWords(a, b, layout.name), 0u);
         EXPECT_EQ(compareSurfaces(one.decode(a), two.decode(b), layout.name), 0u);
+    }
+}
+
+// Checkerboard chroma with a geometry mask: the optimised decode equals the per-pixel reference,
+// and a silhouette pixel never takes chroma from a neighbour without geometry.
+TEST(CpuCodec, CheckerboardChromaSkipsPixelsWithoutGeometry) {
+    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "crysis3-thin.toml");
+    const CpuCodec codec(layout);
+    for (const auto& [w, h] : {std::pair<int, int>{131, 67}, {2, 2}, {1, 9}}) {
+        CpuGBuffer g = codec.encode(makeSurfaces(w, h, 7u), w, h);
+        g.covered.resize(size_t(w) * size_t(h));
+        for (size_t i = 0; i < g.covered.size(); ++i) g.covered[i] = (i * 7 % 5) != 0;
+        EXPECT_EQ(compareSurfaces(codec.decode(g), reference::decodeGBuffer(layout, g), "covered"), 0u);
+    }
+    // 3x3: the centre and its +x neighbour are red surfaces; the other pixels hold a blue-violet
+    // whose luma is within the edge threshold of red's (0.231 vs 0.299), so without the mask the
+    // filter would average their chroma in.
+    std::vector<Surface> in(9);
+    for (Surface& s : in) s.diffuseColor = glm::vec3(0.0f, 0.2f, 1.0f);
+    in[4].diffuseColor = in[5].diffuseColor = glm::vec3(1.0f, 0.0f, 0.0f);
+    CpuGBuffer g = codec.encode(in, 3, 3);
+    const glm::vec3 unmasked = codec.decode(g)[4].diffuseColor;
+    g.covered.assign(9, 0);
+    g.covered[4] = g.covered[5] = 1;
+    const glm::vec3 masked = codec.decode(g)[4].diffuseColor;
+    EXPECT_GT(glm::length(unmasked - glm::vec3(1, 0, 0)), 0.1f) << "the 3x3 case no longer exercises the mask";
+    EXPECT_LT(glm::length(masked - glm::vec3(1, 0, 0)), 0.02f) << masked.x << " " << masked.y << " " << masked.z;
+    // No covered neighbour at all: the missing chroma is neutral.
+    g.covered.assign(9, 0);
+    g.covered[4] = 1;
+    in.assign(9, Surface{});
+    for (Surface& s : in) s.diffuseColor = glm::vec3(0.5f);
+    g = codec.encode(in, 3, 3);
+    g.covered.assign(9, 0);
+    g.covered[4] = 1;
+    const glm::vec3 grey = codec.decode(g)[4].diffuseColor;
+    EXPECT_NEAR(grey.x, grey.z, 1e-6f);
+}
+
+// The YCbCr family's neutral chroma has a code of its own (CryEngine's 127/255 midpoint): black
+// and grey, a metal's diffuse colour among them, decode without a tint.
+TEST(CpuCodec, NeutralChromaDecodesWithoutTint) {
+    EXPECT_EQ(enc::quantizeChroma(0.5f, 8), 127u);
+    EXPECT_EQ(enc::dequantizeChroma(127u, 8), 0.5f);
+    for (const char* name : {"crysis3-thin", "ryse"}) {
+        SCOPED_TRACE(name);
+        const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / (std::string(name) + ".toml"));
+        std::vector<Surface> in(16);
+        for (Surface& s : in) {
+            s.normal = glm::vec3(0, 0, 1);
+            s.roughness = 0.3f;
+            s.diffuseColor = glm::vec3(0.0f);  // a metal
+            s.specularColor = glm::vec3(0.5f);  // grey F0
+        }
+        const std::vector<Surface> out = decodeGBuffer(layout, encodeGBuffer(layout, in, 4, 4));
+        for (const Surface& s : out) {
+            EXPECT_LT(glm::length(s.diffuseColor), 1e-6f);
+            EXPECT_LT(std::abs(s.specularColor.x - s.specularColor.z), 1e-6f);
+            EXPECT_LT(std::abs(s.specularColor.y - s.specularColor.z), 1e-6f);
+        }
     }
 }
 

@@ -60,7 +60,10 @@ std::string decodeSource() {
 #extension GL_GOOGLE_include_directive : require
 #include "surface.glsl"
 #define GBUFFER_READ 1
+#define GBL_GEOMETRY_MASK 1
 #include "gbuffer_wiring.glsl"
+// Pixels "without geometry" (a fixed pattern, mirrored by coveredMask): checkerboard chroma skips them.
+bool gblHasGeometry(ivec2 p) { return ((p.x * 7 + p.y * 3) % 5) != 0; }
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0, std430) writeonly buffer Out { vec4 decoded[]; };
 void main() {
@@ -145,7 +148,7 @@ std::vector<Surface> randomSurfaces(uint32_t seed) {
 // clears and transitions); only the shaders are the test's: a full-screen triangle whose fragment
 // shader fetches its Surface from the buffer instead of evaluating a material. Returns the pass
 // with its targets in SHADER_READ_ONLY_OPTIMAL.
-GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, const Buffer& surfaces) {
+GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, const Buffer& surfaces, bool draw = true) {
     GBufferPass pass;
     createGBufferImages(ctx, w, kSize, kSize, pass);
     const std::vector<Binding> set0 = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -165,7 +168,7 @@ GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, cons
     pass.pipeline = createGBufferPipeline(ctx, w, pass.pipelineLayout, vs, fs, false);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         beginGBufferPass(cmd, pass);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
+        if (draw) vkCmdDraw(cmd, 3, 1, 0, 0);
         endGBufferPass(cmd, pass);
     });
     return pass;
@@ -225,6 +228,13 @@ std::vector<Surface> gpuDecode(const VulkanContext& ctx, const GBufferWiring& w,
     return result;
 }
 
+std::vector<uint8_t> coveredMask() {
+    std::vector<uint8_t> m(size_t(kSize) * kSize);
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) m[size_t(y) * kSize + x] = ((x * 7 + y * 3) % 5) != 0;
+    return m;
+}
+
 bool near(float a, float b) {
     if (a == b) return true;
     return std::abs(a - b) <= 4.0f * std::numeric_limits<float>::epsilon() * std::max(1.0f, std::abs(b));
@@ -243,7 +253,8 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
         const Layout layout = loadLayoutFile(dir / (name + ".toml"));
         const GBufferWiring w = generateWiring(layout);
         const std::vector<Surface> surfaces = randomSurfaces(seed++);
-        const CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
+        CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
+        cpu.covered = coveredMask();  // decode: as gblHasGeometry in decodeSource
         const std::vector<float> packed = packSurfaces(surfaces);
         Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -307,6 +318,44 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
     }
 }
 
+// Issue 11 item 3: a pixel without geometry holds the layout's [clear] values through its own
+// encoders. Nothing is drawn: every word of every target must equal the CPU mirror's clearWords,
+// and (crysis3-thin) those words decode to a black albedo without tint, not chroma -0.5.
+TEST_F(GpuCpuBits, ClearedPixelsHoldTheEncodedClearValues) {
+    VulkanContext& c = ctx();
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    for (const std::string& name : listLayoutNames(dir)) {
+        SCOPED_TRACE(name);
+        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
+        const GBufferWiring w = generateWiring(layout);
+        const std::vector<float> packed = packSurfaces(std::vector<Surface>(size_t(kSize) * kSize));
+        Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        GBufferPass gbuffer = renderTargets(c, w, ssbo, false);
+        const std::vector<std::array<uint32_t, 4>> clear = clearWords(layout);
+        CpuGBuffer cleared;
+        cleared.width = cleared.height = int(kSize);
+        size_t mismatches = 0;
+        for (size_t t = 0; t < gbuffer.targets.size(); ++t) {
+            const std::vector<uint32_t> gpu = readWords(c, gbuffer.targets[t]);
+            const size_t words = gpu.size() / (size_t(kSize) * kSize);
+            for (size_t i = 0; i < gpu.size(); ++i)
+                if (gpu[i] != clear[t][i % words] && mismatches++ < 3)
+                    ADD_FAILURE() << "target " << t << " word " << i << ": 0x" << std::hex << gpu[i] << " expected 0x"
+                                  << clear[t][i % words] << std::dec;
+            cleared.targetWords.push_back(gpu);
+        }
+        EXPECT_EQ(mismatches, 0u);
+        if (name == "crysis3-thin") {
+            const std::vector<Surface> s = decodeGBuffer(layout, cleared);
+            EXPECT_LT(glm::length(s[0].diffuseColor), 1e-6f);
+            EXPECT_LT(glm::length(s[1].diffuseColor), 1e-6f);
+        }
+        destroyGBufferPass(c, gbuffer);
+        destroyBuffer(c, ssbo);
+    }
+}
+
 // --native-formats: targets in their real formats (the hardware quantises), decoded on the GPU and
 // compared with the CPU's bit-exact decode within a quantisation step (lavapipe's SFLOAT
 // conversion truncates, its SRGB one is off by a step on ~6% of values: STACK-FACTS.md).
@@ -319,7 +368,8 @@ TEST_F(GpuCpuBits, NativeFormatsRenderAndDecodeNearTheBitExactPath) {
         const Layout layout = loadLayoutFile(dir / (name + ".toml"));
         const GBufferWiring w = generateWiring(layout, WiringOptions{true});
         const std::vector<Surface> surfaces = randomSurfaces(seed++);
-        const CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
+        CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
+        cpu.covered = coveredMask();  // decode: as gblHasGeometry in decodeSource
         const std::vector<float> packed = packSurfaces(surfaces);
         Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);

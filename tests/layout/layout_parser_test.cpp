@@ -43,6 +43,11 @@ metallic = 0.0
 specular = 0.5
 occlusion = 1.0
 emissive = 0.0
+
+[clear]
+normal = [0.0, 0.0, 1.0]
+roughness = 1.0
+base_color = 0.0
 )";
 
 // `text` with the first `from` replaced by `to` (which must exist).
@@ -170,7 +175,8 @@ transform = "gloss"
 at = "a"
 )");
     const std::string withColor =
-        edit(text, "diffuse_color = \"from_base_color\"", "diffuse_color = 0.5\nbase_color = [0.5, 0.5, 0.5]");
+        edit(edit(text, "diffuse_color = \"from_base_color\"", "diffuse_color = 0.5\nbase_color = [0.5, 0.5, 0.5]"),
+             "base_color = 0.0\n", "");
     const auto diags = checkLayout(withColor, kFile);
     ASSERT_TRUE(diags.empty()) << joined(diags);
     const Layout l = parseLayout(withColor, kFile);
@@ -333,7 +339,8 @@ TEST(LayoutParser, EncodingMustSuitTheAttribute) {
 
 TEST(LayoutParser, MissingRequiredAttributeNamesIt) {
     const std::string text = edit(
-        kValid, "  { attribute = \"normal\", encoding = \"normal_xy_zsign\", at = [\"r\", \"g\", \"b[7]\"] },\n", "");
+        edit(kValid, "normal = [0.0, 0.0, 1.0]\n", ""),
+        "  { attribute = \"normal\", encoding = \"normal_xy_zsign\", at = [\"r\", \"g\", \"b[7]\"] },\n", "");
     expectOnlyError(text, std::string(kFile) + ":1:1",
                     {"the layout stores no 'normal'", "must store normal and roughness"});
 }
@@ -392,6 +399,19 @@ TEST(LayoutParser, TooManyTargets) {
             "value = 0.0 } ]\n";
     text = edit(text, "[fallback]", extra + "[fallback]");
     expectError(text, placeOf(text, "[[target]]", 8), {"more than 8 render targets"});  // the 9th
+}
+
+// ---- clear values (issue 11 item 3) -------------------------------------------------------------
+
+TEST(LayoutParser, ClearIsDeclaredForEveryStoredAttribute) {
+    const std::string noTable = kValid.substr(0, kValid.find("[clear]"));
+    expectOnlyError(noTable, std::string(kFile) + ":1:1", {"declares no [clear] table"});
+    const std::string missing = edit(kValid, "base_color = 0.0\n", "");
+    expectOnlyError(missing, placeOf(missing, "[clear]"), {"no value for 'base_color'", "line 16"});
+    const std::string unstored = edit(kValid, "base_color = 0.0\n", "base_color = 0.0\nspecular = 0.5\n");
+    expectOnlyError(unstored, placeOf(unstored, "0.5\n", 1), {"clear value for 'specular'", "no target stores"});
+    const std::string outside = edit(kValid, "roughness = 1.0\n", "roughness = 2.0\n");
+    expectOnlyError(outside, placeOf(outside, "2.0"), {"clear value of 'roughness'", "outside"});
 }
 
 // ---- fallbacks ----------------------------------------------------------------------------------

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstring>
 
+#include "layout_catalog.h"
 #include "procedural_sky.h"
 #include "renderer.h"
+#include "wiring_codegen.h"
 #include "vk_test_support.h"
 
 namespace gbl {
@@ -223,6 +225,45 @@ TEST_F(RenderTest, DefaultSceneFillsTheFrameWithCutOutsAndEmissive) {
     for (int x = c.x - 30; x < c.x + 30; ++x)
         transitions += (out.surfaces.metallic.at(x, c.y, 0) > 0.5f) != (out.surfaces.metallic.at(x + 1, c.y, 0) > 0.5f);
     EXPECT_GE(transitions, 4) << "the alpha-tested fence shows no holes";
+}
+
+// emissive = "forward" (issue 11 item 2): the G-buffer pass writes the emissive, unquantised, into
+// scene colour and the lighting pass adds it, so making an object emissive changes a forward
+// layout's error against the reference (which stores emissive as float32) by nothing more than
+// float rounding. Before, the emissive was dropped: the error grew by the whole emission.
+TEST_F(RenderTest, ForwardEmissiveAddsNoError) {
+    Scene plain = makeDefaultScene();
+    Scene glowing = plain;
+    int lit = 0;
+    for (Material& m : glowing.materials)
+        if (m.name.rfind("ground", 0) != 0 && lit++ < 3) m.emissiveFactor = glm::vec3(2.0f, 1.0f, 0.25f);
+    ASSERT_GT(lit, 0);
+    const EnvironmentMap sky = makeProceduralSky(64);
+    RenderSettings rs;
+    rs.width = 160;
+    rs.height = 90;
+    const GBufferWiring ue4 = generateWiring(loadLayout("ue4"));
+    ASSERT_TRUE(ue4.emissiveForward);
+    auto meanError = [&](const Scene& scene, double& emitted) {
+        Renderer renderer(test::sharedContext(), scene, sky);
+        const RenderOutput ref = renderer.render(makeReferenceWiring(), rs);
+        const RenderOutput out = renderer.render(ue4, rs);
+        double sum = 0.0, total = 0.0;
+        for (size_t i = 0; i < ref.hdr.pixelCount(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                sum += std::abs(double(out.hdr.pixels[i * 4 + c]) - double(ref.hdr.pixels[i * 4 + c]));
+                total += double(ref.hdr.pixels[i * 4 + c]);
+            }
+        emitted = total;
+        return sum / double(ref.hdr.pixelCount() * 3);
+    };
+    double plainTotal = 0.0, glowingTotal = 0.0;
+    const double without = meanError(plain, plainTotal);
+    const double with = meanError(glowing, glowingTotal);
+    // The emission is there (in the reference) ...
+    EXPECT_GT(glowingTotal - plainTotal, 0.01 * plainTotal);
+    // ... and costs the forward layout nothing: the same error with and without it.
+    EXPECT_NEAR(with, without, 1e-4 * without + 1e-7) << "without " << without << ", with " << with;
 }
 
 }  // namespace
