@@ -166,6 +166,7 @@ private:
                     CodePlace& out);
     void parseFallbacks(const toml::table& root, Layout& layout);
     void parseLightBuffers(const toml::table& root, Layout& layout);
+    void parseMaterialPass(const toml::table& root, Layout& layout);
 
     std::string file_;
     std::vector<LayoutDiagnostic>& out_;

@@ -23,7 +23,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     pass.hdr = createImage(ctx, d);
 
-    const std::vector<Binding> set0 = {
+    std::vector<Binding> set0 = {
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -33,6 +33,8 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
     };
+    const bool lightPrePass = !wiring.lightBufferGlsl.empty();
+    if (lightPrePass) set0.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     const std::vector<Binding> set1 = targetReadBindings(*in.gbuffer);
     const std::vector<Binding> set2 = in.materialPass ? targetReadBindings(*in.materialPass) : std::vector<Binding>{};
     pass.setCount = in.materialPass ? 3 : 2;
@@ -59,6 +61,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
                in.ibl->cubeSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
         .image(pass.sets[0], 7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.ibl->brdfLut.view, in.ibl->lutSampler,
                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    if (lightPrePass) writer.buffer(pass.sets[0], 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.lightBufferWords->buffer);
     for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
         writer.image(pass.sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.gbuffer->targets[i].view,
                      in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -70,6 +73,10 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
 
     ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    if (lightPrePass) {
+        cs.virtualFiles["light_buffers.glsl"] = wiring.lightBufferGlsl;
+        cs.defines.push_back({"LIGHT_PRE_PASS", "1"});
+    }
     cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
     pass.pipeline = createComputePipeline(ctx.device, pass.pipelineLayout, module);
