@@ -74,7 +74,9 @@ TEST(Rgbk, MultiplierIsTheSmallestThatFits) {
     for (float m : {1e-6f, 0.1f, 0.5f, 1.0f, 3.3f, 31.9f}) {
         const uint k = rgbkMultiplier(m, unit);
         EXPECT_GE(float(255u * k) * unit, m);
-        if (k > 1u) EXPECT_LT(float(255u * (k - 1u)) * unit, m);
+        if (k > 1u) {
+            EXPECT_LT(float(255u * (k - 1u)) * unit, m);
+        }
     }
 }
 
