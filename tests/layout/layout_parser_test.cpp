@@ -512,7 +512,7 @@ TEST(LayoutParser, MaterialPassTableIsDeclaredForDeferredLighting) {
     const std::string c2 = lightingLayoutText("crysis2-slim");
     std::string t = edit(c2, "[material_pass]\nfresnel = \"none\"\n", "");
     expectOnlyError(t, std::string(kFile) + ":1:1", {"[material_pass]", "schlick_nv"});
-    t = edit(c2, "fresnel = \"none\"", "fresnel = \"per_light\"");
+    t = edit(c2, "[material_pass]\nfresnel = \"none\"", "[material_pass]\nfresnel = \"per_light\"");
     expectOnlyError(t, placeOf(t, "\"per_light\""), {"unknown fresnel 'per_light'"});
     t = kValid + "\n[material_pass]\nfresnel = \"none\"\n";
     expectOnlyError(t, placeOf(t, "[material_pass]"), {"[material_pass] belongs to pipeline = \"deferred-lighting\""});
