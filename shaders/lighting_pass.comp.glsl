@@ -59,6 +59,11 @@ vec3 lightRadianceAndDirection(GpuLight light, vec3 position, out vec3 L) {
     return radiance * falloff;
 }
 
+#ifdef LIGHT_PRE_PASS
+#include "light_buffers.glsl"    // generated: the layout's light buffers (light_buffer_wiring.h)
+#include "light_pre_pass.glsl"   // deferred lighting: light buffers, then the material pass
+#endif
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, ivec2(frame.extent.xy)))) return;
@@ -66,12 +71,18 @@ void main() {
     if (depth == frame.shading.y) {  // cleared: no geometry here
         vec3 viewDir = normalize(worldPositionFromDepth(pixel, 0.5) - frame.cameraPosition.xyz);
         imageStore(hdrOutput, pixel, vec4(sampleEnvironment(viewDir), 0.0));
+#ifdef LIGHT_PRE_PASS
+        clearLightBufferWords(pixel);
+#endif
         return;
     }
     Surface s = readGBuffer(pixel);
     vec3 position = worldPositionFromDepth(pixel, depth);
     vec3 V = normalize(frame.cameraPosition.xyz - position);
     vec3 N = normalize(s.normal);
+#ifdef LIGHT_PRE_PASS
+    vec3 color = shadeLightPrePass(pixel, s, N, V, position);
+#else
     vec3 color = vec3(0.0);
     for (uint i = 0u; i < frame.extent.z; ++i) {
         vec3 L;
@@ -80,6 +91,7 @@ void main() {
                                          int(frame.shading.x));
     }
     color += evaluateImageBasedLight(s, N, V) * s.occlusion;
+#endif
     color += s.emissive;
 #ifdef EMISSIVE_FORWARD
     color += texelFetch(sceneColorEmissive, pixel, 0).rgb;

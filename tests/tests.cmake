@@ -17,12 +17,14 @@ gbl_test(encoding/encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # n
 gbl_test(encoding/scalar_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
 gbl_test(encoding/color_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
 gbl_test(encoding/encodings_fast_test LABELS unit DEPS gbl_encoding)
+gbl_test(encoding/light_buffer_encodings_test LABELS unit DEPS gbl_encoding)
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
 gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec)
 gbl_test(codec/gpu_cpu_bits_test LABELS gpu DEPS gbl_codec gbl_render)
+gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render)
 gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ibl_math_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/brdf_lut_test LABELS unit DEPS gbl_shading gbl_base)

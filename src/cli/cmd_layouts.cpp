@@ -140,9 +140,17 @@ std::string describeLayout(const Layout& layout) {
         for (const LightBuffer& b : layout.lightBuffers) {
             std::string holds;
             for (LightQuantity q : b.holds) holds += (holds.empty() ? "" : " + ") + std::string(lightQuantityName(q));
-            o << "  " << pad(b.name, 16) << pad(b.format, 26) << pad(std::to_string(b.bytes) + " bytes", 10) << holds
-              << "\n";
+            std::string encoding = lightBufferEncodingName(b.encoding);
+            if (b.encoding == LightBufferEncoding::Rgbk) {
+                char range[32];
+                std::snprintf(range, sizeof range, "%g", b.range);
+                encoding += std::string(" (range ") + range + ")";
+            }
+            o << "  " << pad(b.name, 16) << pad(b.format, 26) << pad(std::to_string(b.bytes) + " bytes", 10)
+              << pad(encoding, 20) << holds << "\n";
         }
+        o << "  material pass: fresnel "
+          << (layout.materialPass.fresnel == MaterialFresnel::SchlickNv ? "schlick_nv" : "none") << "\n";
     }
     o << "\nbytes per pixel: " << bytesPerPixel(layout) << " (targets " << targetBytes << " + depth-stencil " << d.bytes
       << ")";

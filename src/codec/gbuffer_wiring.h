@@ -34,6 +34,11 @@ struct GBufferWiring {
     // for readGBuffer at set 2, binding i.
     bool materialPass = false;
     std::vector<VkFormat> materialTargetFormats;
+    // Deferred lighting's light buffers (light_buffer_wiring.h): the generated GLSL, included by
+    // the lighting pass as "light_buffers.glsl" with LIGHT_PRE_PASS defined, and the 32-bit words
+    // per pixel of all buffers, stored at set 0, binding 8. Empty / 0 for deferred shading.
+    std::string lightBufferGlsl;
+    int lightBufferWordsPerPixel = 0;
 };
 
 // The float reference: layouts/reference.toml (every attribute as 32-bit float bits in RGBA32_UINT

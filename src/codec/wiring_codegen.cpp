@@ -8,6 +8,7 @@
 
 #include "cpu_codec.h"
 #include "encoding_registry.h"
+#include "light_buffer_wiring.h"
 
 namespace gbl {
 
@@ -612,6 +613,8 @@ GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options)
     w.materialPass = materialTargetCount(layout) > 0;
     w.materialTargetFormats.assign(size_t(materialTargetCount(layout)), VK_FORMAT_R32G32B32A32_UINT);
     w.glsl = generateWiringGlsl(layout, options);
+    w.lightBufferGlsl = generateLightBufferGlsl(layout);
+    if (!w.lightBufferGlsl.empty()) w.lightBufferWordsPerPixel = lightBufferWordsPerPixel(layout);
     return w;
 }
 

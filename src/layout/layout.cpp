@@ -248,6 +248,22 @@ const char* fallbackKindName(FallbackKind k) {
     return "?";
 }
 
+const char* lightBufferEncodingName(LightBufferEncoding e) {
+    switch (e) {
+        case LightBufferEncoding::Float16:
+            return "float16";
+        case LightBufferEncoding::Float111110:
+            return "float11_11_10";
+        case LightBufferEncoding::Float7e3:
+            return "float7e3";
+        case LightBufferEncoding::Rgbk:
+            return "rgbk";
+    }
+    return "?";
+}
+
+int lightBufferEncodingChannels(LightBufferEncoding e) { return e == LightBufferEncoding::Float16 ? 4 : 3; }
+
 const char* lightQuantityName(LightQuantity q) {
     switch (q) {
         case LightQuantity::DiffuseRgb:

@@ -217,12 +217,40 @@ struct ClearValue {
 enum class LightQuantity : uint8_t { DiffuseRgb, SpecularRgb, SpecularLuminance };
 const char* lightQuantityName(LightQuantity q);
 
+// How a light buffer's channels are quantised (layouts/README.md, "[[light_buffer]]"; the GLSL is
+// shaders/light_buffer_encodings.glsl, the CPU mirror src/encoding/light_buffer_encodings.h).
+enum class LightBufferEncoding : uint8_t {
+    Float16,      // "float16": RGBA16F, IEEE binary16 per channel (PC)
+    Float111110,  // "float11_11_10": R11G11B10F, unsigned 5e6 / 5e6 / 5e5 floats, no alpha
+    Float7e3,     // "float7e3": the Xbox 360's A2B10G10R10F (7e3: 3-bit exponent, 7-bit mantissa) + 2-bit alpha
+    Rgbk,         // "rgbk": the PS3's RGBK (RGBM) in RGBA8: rgb * k * range / 255^2, k in alpha
+};
+const char* lightBufferEncodingName(LightBufferEncoding e);
+// Light quantities a buffer in this encoding can hold: channels it has (7e3's 2-bit alpha and
+// RGBK's multiplier hold none).
+int lightBufferEncodingChannels(LightBufferEncoding e);
+
 struct LightBuffer {
     std::string name;
     std::string format;
     std::vector<LightQuantity> holds;  // assigned to the format's channels in order (rgb = 3, luminance = 1)
+    LightBufferEncoding encoding = LightBufferEncoding::Float16;
+    double range = 0.0;  // rgbk: the largest value a channel holds (the multiplier's range); else 0
     FilePlace place;
+    FilePlace encodingPlace;
     int bytes = 0;
+};
+
+// Deferred lighting's material pass: how the light buffers are combined with the material.
+enum class MaterialFresnel : uint8_t {
+    None,       // "none": specular light * specular colour (F0)
+    SchlickNv,  // "schlick_nv": specular light * Schlick(F0, n.v), the only angle the material pass has
+};
+
+struct MaterialPassOptions {
+    MaterialFresnel fresnel = MaterialFresnel::None;
+    FilePlace place;
+    bool declared = false;
 };
 
 struct Source {
@@ -243,6 +271,7 @@ struct Layout {
     std::vector<Target> targets;
     std::vector<Fallback> fallbacks;
     std::vector<LightBuffer> lightBuffers;
+    MaterialPassOptions materialPass;  // [material_pass] (deferred lighting)
     std::string sourceFile;  // the file it was read from (or the name given to parseLayout)
     FilePlace namePlace;
     FilePlace fallbackPlace;  // the [fallback] table (1:1 when absent)

@@ -183,6 +183,72 @@ void Parser::parseClear(const toml::table& root, Layout& layout) {
     });
 }
 
+namespace {
+
+// Whether `info` is a format the light-buffer encoding `e` fits: every channel the encoding writes
+// exists with the bits it needs. Returns "" when it fits, else the formats it needs.
+std::string lightBufferFormatNeed(LightBufferEncoding e, const TargetFormatInfo& info) {
+    auto channel = [&](const char* name) -> const Channel* {
+        for (const Channel& c : info.channels)
+            if (c.name == name) return &c;
+        return nullptr;
+    };
+    auto has = [&](const char* name, int bits, std::initializer_list<ChannelType> types) {
+        const Channel* c = channel(name);
+        if (!c || c->bits != bits) return false;
+        for (ChannelType t : types)
+            if (c->type == t) return true;
+        return false;
+    };
+    const bool rgba = info.channels.size() == 4;
+    switch (e) {
+        case LightBufferEncoding::Float16:
+            if (rgba && has("r", 16, {ChannelType::Sfloat}) && has("g", 16, {ChannelType::Sfloat}) &&
+                has("b", 16, {ChannelType::Sfloat}) && has("a", 16, {ChannelType::Sfloat}))
+                return "";
+            return "four 16-bit float channels (R16G16B16A16_SFLOAT)";
+        case LightBufferEncoding::Float111110:
+            if (info.channels.size() == 3 && has("r", 11, {ChannelType::Ufloat}) && has("g", 11, {ChannelType::Ufloat}) &&
+                has("b", 10, {ChannelType::Ufloat}))
+                return "";
+            return "unsigned 11:11:10-bit float channels (B10G11R11_UFLOAT_PACK32)";
+        case LightBufferEncoding::Float7e3: {
+            const std::initializer_list<ChannelType> t = {ChannelType::Unorm, ChannelType::Uint};
+            if (rgba && has("r", 10, t) && has("g", 10, t) && has("b", 10, t) && has("a", 2, t)) return "";
+            return "a 32-bit 10:10:10:2 format (A2B10G10R10_UNORM_PACK32, the Xbox 360's A2B10G10R10F container)";
+        }
+        case LightBufferEncoding::Rgbk: {
+            const std::initializer_list<ChannelType> t = {ChannelType::Unorm};
+            if (rgba && has("r", 8, t) && has("g", 8, t) && has("b", 8, t) && has("a", 8, t)) return "";
+            return "four linear 8-bit UNORM channels (R8G8B8A8_UNORM, A8B8G8R8_UNORM_PACK32, B8G8R8A8_UNORM)";
+        }
+    }
+    return "?";
+}
+
+}  // namespace
+
+void Parser::parseMaterialPass(const toml::table& root, Layout& layout) {
+    const toml::node* n = root.get("material_pass");
+    if (!n) return;
+    const toml::table* t = n->as_table();
+    if (!t) {
+        error(placeOf(*n), "'material_pass' must be a table ([material_pass]), not " + std::string(typeName(*n)));
+        return;
+    }
+    layout.materialPass.place = placeOf(*n);
+    layout.materialPass.declared = true;
+    checkKeys(*t, {"fresnel"}, "[material_pass]");
+    if (auto f = getString(*t, "fresnel", true, layout.materialPass.place, "[material_pass]")) {
+        if (*f == "none")
+            layout.materialPass.fresnel = MaterialFresnel::None;
+        else if (*f == "schlick_nv")
+            layout.materialPass.fresnel = MaterialFresnel::SchlickNv;
+        else
+            error(placeOf(*t->get("fresnel")), "unknown fresnel " + squote(*f) + " (known: none, schlick_nv)");
+    }
+}
+
 void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
     const toml::node* n = root.get("light_buffer");
     if (!n) return;
@@ -200,7 +266,7 @@ void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
         }
         LightBuffer lb;
         lb.place = placeOf(node);
-        checkKeys(*t, {"name", "format", "holds"}, "[[light_buffer]]");
+        checkKeys(*t, {"name", "format", "encoding", "range", "holds"}, "[[light_buffer]]");
         lb.name = getString(*t, "name", true, lb.place, "[[light_buffer]]").value_or("");
         const TargetFormatInfo* info = nullptr;
         if (auto format = getString(*t, "format", true, lb.place, "[[light_buffer]]")) {
@@ -212,6 +278,44 @@ void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
                 lb.format = info->name;
                 lb.bytes = info->bits / 8;
             }
+        }
+        bool encodingKnown = false;
+        if (auto encoding = getString(*t, "encoding", true, lb.place, "[[light_buffer]]")) {
+            lb.encodingPlace = placeOf(*t->get("encoding"));
+            encodingKnown = true;
+            if (*encoding == "float16")
+                lb.encoding = LightBufferEncoding::Float16;
+            else if (*encoding == "float11_11_10")
+                lb.encoding = LightBufferEncoding::Float111110;
+            else if (*encoding == "float7e3")
+                lb.encoding = LightBufferEncoding::Float7e3;
+            else if (*encoding == "rgbk")
+                lb.encoding = LightBufferEncoding::Rgbk;
+            else {
+                encodingKnown = false;
+                error(lb.encodingPlace, "unknown light-buffer encoding " + squote(*encoding) +
+                                            " (known: float16, float11_11_10, float7e3, rgbk)");
+            }
+            if (encodingKnown && info) {
+                const std::string need = lightBufferFormatNeed(lb.encoding, *info);
+                if (!need.empty())
+                    error(lb.encodingPlace, "light buffer " + squote(lb.name) + ": encoding " + squote(*encoding) +
+                                                " does not fit " + info->name + ": it needs " + need);
+            }
+        }
+        if (const toml::node* range = t->get("range")) {
+            if (encodingKnown && lb.encoding != LightBufferEncoding::Rgbk) {
+                error(placeOf(*range), "'range' is for encoding = \"rgbk\" (the multiplier's range); " +
+                                           std::string(lightBufferEncodingName(lb.encoding)) + " has a fixed range");
+            } else if (auto x = getNumber(*range, "'range'")) {
+                if (*x < 1.0 || *x > 65025.0)
+                    error(placeOf(*range), "'range' " + formatNumber(*x) + " must lie in [1, 65025]");
+                else
+                    lb.range = *x;
+            }
+        } else if (encodingKnown && lb.encoding == LightBufferEncoding::Rgbk) {
+            error(lb.encodingPlace, "light buffer " + squote(lb.name) +
+                                        ": encoding 'rgbk' needs 'range', the largest value it holds (e.g. range = 32)");
         }
         const toml::node* holds = t->get("holds");
         if (!holds) {
@@ -243,6 +347,11 @@ void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
                 error(placeOf(*holds), "light buffer " + squote(lb.name) + " holds " + std::to_string(channelsNeeded) +
                                            " channels but " + info->name + " has " +
                                            std::to_string(info->channels.size()));
+            else if (encodingKnown && channelsNeeded > lightBufferEncodingChannels(lb.encoding))
+                error(placeOf(*holds), "light buffer " + squote(lb.name) + " holds " + std::to_string(channelsNeeded) +
+                                           " channels but encoding " + squote(lightBufferEncodingName(lb.encoding)) +
+                                           " stores " + std::to_string(lightBufferEncodingChannels(lb.encoding)) +
+                                           " (float7e3's 2-bit alpha and rgbk's multiplier hold no light)");
         }
         layout.lightBuffers.push_back(std::move(lb));
     }

@@ -25,7 +25,8 @@ Layout Parser::parse(std::string_view text) {
         return layout;
     }
     const FilePlace top{1, 1};
-    checkKeys(root, {"name", "title", "source", "pipeline", "depth", "target", "fallback", "clear", "light_buffer"},
+    checkKeys(root, {"name", "title", "source", "pipeline", "depth", "target", "fallback", "clear", "light_buffer",
+                     "material_pass"},
               "the layout");
 
     if (auto name = getString(root, "name", true, top, "the layout")) {
@@ -68,6 +69,7 @@ Layout Parser::parse(std::string_view text) {
     parseFallbacks(root, layout);
     parseClear(root, layout);
     parseLightBuffers(root, layout);
+    parseMaterialPass(root, layout);
     return layout;
 }
 

@@ -167,6 +167,7 @@ private:
     void parseFallbacks(const toml::table& root, Layout& layout);
     void parseLightBuffers(const toml::table& root, Layout& layout);
     void parseClear(const toml::table& root, Layout& layout);
+    void parseMaterialPass(const toml::table& root, Layout& layout);
 
     std::string file_;
     std::vector<LayoutDiagnostic>& out_;

@@ -435,11 +435,19 @@ private:
                 error(layout_.lightBuffers.front().place,
                       std::string("the light buffers hold no ") + (diffuse ? "specular" : "diffuse") +
                           " light (holds: diffuse_rgb, and specular_rgb or specular_luminance)");
+            if (!layout_.materialPass.declared)
+                error({1, 1},
+                      "a deferred-lighting layout declares how its material pass combines the light buffers: add "
+                      "[material_pass] with fresnel = \"none\" or \"schlick_nv\"");
         } else if (!layout_.lightBuffers.empty()) {
             error(layout_.lightBuffers.front().place,
                   "light buffers belong to pipeline = \"deferred-lighting\"; a deferred-shading layout lights "
                   "from the G-buffer directly");
         }
+        if (!lighting && layout_.materialPass.declared)
+            error(layout_.materialPass.place,
+                  "[material_pass] belongs to pipeline = \"deferred-lighting\" (a deferred-shading layout has no "
+                  "material pass)");
     }
 
     const Layout& layout_;

@@ -23,7 +23,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     pass.hdr = createImage(ctx, d);
 
-    const std::vector<Binding> set0 = {
+    std::vector<Binding> set0 = {
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -34,6 +34,8 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // emissive = forward: scene-colour emissive (else depth)
     };
+    const bool lightPrePass = !wiring.lightBufferGlsl.empty();
+    if (lightPrePass) set0.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});  // the light buffers' words
     const std::vector<Binding> set1 = targetReadBindings(*in.gbuffer);
     const std::vector<Binding> set2 = in.materialPass ? targetReadBindings(*in.materialPass) : std::vector<Binding>{};
     pass.setCount = in.materialPass ? 3 : 2;
@@ -64,6 +66,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     writer.image(pass.sets[0], 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                  emissive ? in.gbuffer->emissive.view : in.gbuffer->depth.view, in.nearestSampler,
                  emissive ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+    if (lightPrePass) writer.buffer(pass.sets[0], 9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.lightBufferWords->buffer);
     for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
         writer.image(pass.sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.gbuffer->targets[i].view,
                      in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -75,6 +78,10 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
 
     ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    if (lightPrePass) {
+        cs.virtualFiles["light_buffers.glsl"] = wiring.lightBufferGlsl;
+        cs.defines.push_back({"LIGHT_PRE_PASS", "1"});
+    }
     cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
     if (emissive) cs.defines.push_back({"EMISSIVE_FORWARD", "1"});
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));

@@ -117,8 +117,13 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     if (wiring.materialPass)
         materialPass = createGBufferPass(ctx_, materialPassWiring(wiring), gpuScene_, frameBuffer, w, h);
     const GBufferPass* material = wiring.materialPass ? &materialPass : nullptr;
+    // Deferred lighting: the light buffers, as the words their formats hold.
+    Buffer lightBuffers;
+    if (wiring.lightBufferWordsPerPixel > 0)
+        lightBuffers = createBuffer(ctx_, VkDeviceSize(w) * h * uint32_t(wiring.lightBufferWordsPerPixel) * 4,
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, settings.readTargetWords);
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
-                          nearestSampler_, &ibl_, material};
+                          nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr};
     LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h);
 
     const std::vector<double> passMs = submitTimedSegments(
@@ -139,6 +144,13 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     }
     // Free what the decode does not read before it allocates (peak memory at 4K).
     destroyLightingPass(ctx_, lighting);
+    if (lightBuffers.buffer) {
+        if (settings.readTargetWords) {
+            out.lightBufferWords.resize(size_t(w) * h * size_t(wiring.lightBufferWordsPerPixel));
+            std::memcpy(out.lightBufferWords.data(), lightBuffers.mapped, out.lightBufferWords.size() * 4);
+        }
+        destroyBuffer(ctx_, lightBuffers);
+    }
     for (const GpuImage& t : gbuffer.targets) {
         if (!settings.readTargetWords) break;
         auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

@@ -46,6 +46,9 @@ struct RenderOutput {
     std::vector<std::vector<uint32_t>> targetWords;  // per target, row-major, texel size / 4 words per pixel
                                                      // (empty unless RenderSettings::readTargetWords)
     std::vector<float> depth;                        // row-major depth-buffer values
+    // Deferred lighting: the light buffers' words, row-major, GBufferWiring::lightBufferWordsPerPixel
+    // per pixel, buffers in layout order (empty unless RenderSettings::readTargetWords).
+    std::vector<uint32_t> lightBufferWords;
     PassTimings timings;
     SurfaceImages surfaces;  // filled when RenderSettings::decodeSurfaces
 };

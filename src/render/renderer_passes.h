@@ -76,6 +76,7 @@ struct LightingInputs {
     VkSampler nearestSampler;
     const IblGpu* ibl;  // environment cube, pre-filtered cube, BRDF LUT (bindings 5, 6, 7)
     const GBufferPass* materialPass = nullptr;  // deferred lighting's second geometry pass (set 2)
+    const Buffer* lightBufferWords = nullptr;  // deferred lighting's light buffers (set 0, binding 8)
 };
 
 // The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2).

@@ -64,8 +64,12 @@ TEST(LayoutFiles, BytesPerPixel) {
         {"compact-octahedral", 3 * 4 + 4}  // 3x RGBA8 + D32
     };
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
-    // crysis2's light buffers: two RGBA16F
+    // crysis2's light buffers: two RGBA16F on PC, two 32-bit A2B10G10R10F on the Xbox 360, two RGBA8 on the PS3
     EXPECT_EQ(lightBufferBytesPerPixel(load("crysis2-slim")), 16);
+    EXPECT_EQ(lightBufferBytesPerPixel(load("crysis2-slim-x360")), 8);
+    EXPECT_EQ(lightBufferBytesPerPixel(load("crysis2-slim-ps3")), 8);
+    EXPECT_EQ(bytesPerPixel(load("crysis2-slim-x360")), 8);
+    EXPECT_EQ(bytesPerPixel(load("crysis2-slim-ps3")), 8);
 }
 
 TEST(LayoutFiles, BitsPerAttribute) {
@@ -161,6 +165,11 @@ TEST(LayoutFiles, Crysis2IsDeferredLighting) {
     EXPECT_FALSE(l.stores(Attribute::SpecularColor));
     EXPECT_EQ(l.findFallback(Attribute::BaseColor)->kind, FallbackKind::MaterialPass);
     ASSERT_EQ(l.lightBuffers.size(), 2u);
+    EXPECT_EQ(l.lightBuffers[0].encoding, LightBufferEncoding::Float16);
+    EXPECT_EQ(l.materialPass.fresnel, MaterialFresnel::None);
+    EXPECT_EQ(load("crysis2-slim-x360").lightBuffers[1].encoding, LightBufferEncoding::Float7e3);
+    EXPECT_EQ(load("crysis2-slim-ps3").lightBuffers[1].encoding, LightBufferEncoding::Rgbk);
+    EXPECT_EQ(load("crysis2-slim-ps3").lightBuffers[1].range, 32.0);
     EXPECT_EQ(l.depth.format, "D24_UNORM_S8_UINT");
     ASSERT_EQ(l.depth.stencil.size(), 1u);
     EXPECT_EQ(l.depth.stencil[0].attribute, Attribute::Indoor);

@@ -463,7 +463,8 @@ TEST(LayoutParser, DeferredLightingRules) {
                 {"a deferred-lighting layout does not store 'base_color'", "material_pass"});
     expectError(text, std::string(kFile) + ":1:1", {"declares its light buffers", "[[light_buffer]]"});
     // a light buffer with diffuse only
-    text += "\n[[light_buffer]]\nname = \"diffuse\"\nformat = \"R16G16B16A16_SFLOAT\"\nholds = [\"diffuse_rgb\"]\n";
+    text += "\n[[light_buffer]]\nname = \"diffuse\"\nformat = \"R16G16B16A16_SFLOAT\"\nencoding = \"float16\"\n"
+            "holds = [\"diffuse_rgb\"]\n";
     expectError(text, placeOf(text, "[[light_buffer]]"), {"the light buffers hold no specular light"});
     const std::string bad = edit(text, "[\"diffuse_rgb\"]", "[\"diffuse_rgb\", \"ambient\"]");
     expectError(bad, placeOf(bad, "\"ambient\""), {"unknown light quantity 'ambient'", "specular_luminance"});
@@ -471,9 +472,70 @@ TEST(LayoutParser, DeferredLightingRules) {
 
 TEST(LayoutParser, LightBuffersOnlyForDeferredLighting) {
     const std::string text =
-        kValid + "\n[[light_buffer]]\nname = \"l\"\nformat = \"R16G16B16A16_SFLOAT\"\nholds = [\"diffuse_rgb\"]\n";
+        kValid + "\n[[light_buffer]]\nname = \"l\"\nformat = \"R16G16B16A16_SFLOAT\"\nencoding = \"float16\"\n"
+                 "holds = [\"diffuse_rgb\"]\n";
     expectOnlyError(text, placeOf(text, "[[light_buffer]]"),
                     {"light buffers belong to pipeline = \"deferred-lighting\""});
+}
+
+// A shipped deferred-lighting layout as text, renamed to the test file's name.
+std::string lightingLayoutText(const char* name) {
+    std::ifstream in(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / (std::string(name) + ".toml"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return edit(text, std::string("name = \"") + name + "\"", "name = \"test\"");
+}
+
+TEST(LayoutParser, ShippedLightPrePassLayoutsAreValid) {
+    for (const char* name : {"crysis2-slim", "crysis2-slim-x360", "crysis2-slim-ps3"}) {
+        const auto diags = checkLayout(lightingLayoutText(name), kFile);
+        EXPECT_TRUE(diags.empty()) << name << ":\n" << joined(diags);
+    }
+}
+
+TEST(LayoutParser, LightBufferEncodingMustFitItsFormat) {
+    const std::string x360 = lightingLayoutText("crysis2-slim-x360");
+    // 7e3 in a 16-bit float format
+    std::string t = edit(x360, "A2B10G10R10_UNORM_PACK32", "R16G16B16A16_SFLOAT");
+    expectOnlyError(t, placeOf(t, "\"float7e3\""),
+                    {"light buffer 'diffuse_acc'", "encoding 'float7e3' does not fit R16G16B16A16_SFLOAT", "10:10:10:2"});
+    // float16 in a 32-bit 10:10:10:2 format
+    t = edit(x360, "encoding = \"float7e3\"", "encoding = \"float16\"");
+    expectOnlyError(t, placeOf(t, "\"float16\""), {"encoding 'float16' does not fit A2B10G10R10_UNORM_PACK32"});
+    // R11G11B10F needs B10G11R11_UFLOAT_PACK32
+    t = edit(x360, "encoding = \"float7e3\"", "encoding = \"float11_11_10\"");
+    expectOnlyError(t, placeOf(t, "\"float11_11_10\""), {"does not fit", "B10G11R11_UFLOAT_PACK32"});
+    // the 2-bit alpha of 7e3 holds no light: Engel's luminance does not fit
+    t = edit(x360, "holds = [\"specular_rgb\"]", "holds = [\"specular_rgb\", \"specular_luminance\"]");
+    expectOnlyError(t, placeOf(t, "[\"specular_rgb\", \"specular_luminance\"]"),
+                    {"holds 4 channels but encoding 'float7e3' stores 3"});
+    // unknown encoding
+    t = edit(x360, "\"float7e3\"", "\"float8e2\"");
+    expectOnlyError(t, placeOf(t, "\"float8e2\""), {"unknown light-buffer encoding 'float8e2'", "rgbk"});
+
+    const std::string ps3 = lightingLayoutText("crysis2-slim-ps3");
+    // RGBK in an sRGB format, and in a 16-bit one
+    t = edit(ps3, "format = \"A8B8G8R8_UNORM_PACK32\"\nencoding", "format = \"A8B8G8R8_SRGB_PACK32\"\nencoding");
+    expectOnlyError(t, placeOf(t, "\"rgbk\""), {"encoding 'rgbk' does not fit A8B8G8R8_SRGB_PACK32", "UNORM"});
+    // RGBK needs its range; a float encoding takes none
+    t = edit(ps3, "range = 32\n", "");
+    expectOnlyError(t, placeOf(t, "\"rgbk\""), {"encoding 'rgbk' needs 'range'"});
+    t = edit(ps3, "range = 32", "range = 0.5");
+    expectOnlyError(t, placeOf(t, "0.5"), {"'range' 0.5 must lie in [1, 65025]"});
+    t = edit(lightingLayoutText("crysis2-slim"), "encoding = \"float16\"\n", "encoding = \"float16\"\nrange = 8\n");
+    expectOnlyError(t, placeOf(t, "8\nholds"), {"'range' is for encoding = \"rgbk\""});
+    // the encoding is required
+    t = edit(ps3, "encoding = \"rgbk\"\nrange = 32\n", "");
+    expectOnlyError(t, placeOf(t, "[[light_buffer]]"), {"[[light_buffer]] has no 'encoding'"});
+}
+
+TEST(LayoutParser, MaterialPassTableIsDeclaredForDeferredLighting) {
+    const std::string c2 = lightingLayoutText("crysis2-slim");
+    std::string t = edit(c2, "[material_pass]\nfresnel = \"none\"\n", "");
+    expectOnlyError(t, std::string(kFile) + ":1:1", {"[material_pass]", "schlick_nv"});
+    t = edit(c2, "[material_pass]\nfresnel = \"none\"", "[material_pass]\nfresnel = \"per_light\"");
+    expectOnlyError(t, placeOf(t, "\"per_light\""), {"unknown fresnel 'per_light'"});
+    t = kValid + "\n[material_pass]\nfresnel = \"none\"\n";
+    expectOnlyError(t, placeOf(t, "[material_pass]"), {"[material_pass] belongs to pipeline = \"deferred-lighting\""});
 }
 
 // ---- source citation ----------------------------------------------------------------------------
