@@ -292,7 +292,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"samples", "N", "samples per pixel of the split-sum-shader IBL mode (default 1024)"},
         {"gt-noise", "X", "ground truth: add batches until the mean relative noise (standard error of the "
                           "luminance / luminance) over covered pixels is at most X (default 0.002)"},
-        {"gt-batch-samples", "N", "ground truth: steps per batch, each one GGX + one environment sample (default 256)"},
+        {"gt-batch-samples", "N", "ground truth: steps per batch, each one GGX + one environment sample (default 64)"},
         {"gt-max-batches", "N", "ground truth: stop after N batches even if the noise target is not met (default 256)"},
         {"brdf-lut", "VARIANT", "split-sum BRDF LUT: converged (visible-normal sampling, 4096 samples; default) or "
                                 "seed (the seed's IntegrateBRDF, 1024 samples)"},
@@ -331,7 +331,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     std::vector<std::string> modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
     for (const auto& n : modeNames) modes.push_back(parseIblMode(n));
     const int splitSumShaderSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
-    const int gtBatchSamples = parseIntFlag(parsed, "gt-batch-samples", 256, 1, 65536);
+    const int gtBatchSamples = parseIntFlag(parsed, "gt-batch-samples", 64, 1, 65536);
     const int gtMaxBatches = parseIntFlag(parsed, "gt-max-batches", 256, 8, 65536);
     const double gtNoise = parsePositiveFloatFlag(parsed, "gt-noise", 0.002f);
     IblSettings iblSettings;
@@ -510,7 +510,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
                 figure.rows.push_back(std::move(row));
             }
             writePng((outDir / figure.png).string(),
-                     composeIblFigure(renders, balls, captions, "IBL modes vs ground truth: metals | dielectrics, "
+                     composeIblFigure(renders, balls, captions, "IBL modes vs ground truth: metals, then dielectrics, "
                                                                 "roughness 0.05 to 1"));
             model.iblFigure = std::move(figure);
         }

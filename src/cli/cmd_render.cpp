@@ -44,7 +44,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
         {"exposure", "X", "exposure multiplier for the PNG tone map (default 1)"},
         {"ibl", "MODE", "specular IBL: ground-truth, split-sum-shader, split-sum (default), envbrdf-approx, bo2"},
-        {"ibl-samples", "N", "samples per pixel of split-sum-shader (default 1024), and steps per batch of ground-truth (default 256)"},
+        {"ibl-samples", "N", "samples per pixel of split-sum-shader (default 1024), and steps per batch of ground-truth (default 64)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -76,7 +76,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
     settings.width = width;
     settings.height = height;
     settings.specularIbl = iblMode;
-    if (parsed.has("ibl-samples")) settings.groundTruthSamples = iblSamples;  // per batch (default 256)
+    if (parsed.has("ibl-samples")) settings.groundTruthSamples = iblSamples;  // per batch (default 64)
     settings.splitSumShaderSamples = iblSamples;
     const RenderOutput out = renderer.render(makeReferenceWiring(), settings);
 

@@ -29,7 +29,7 @@ struct RenderSettings {
     // mean relative noise over covered pixels (GroundTruthStats) is at most groundTruthNoiseTarget,
     // with at least groundTruthMinBatches (the noise estimate needs a few) and at most
     // groundTruthMaxBatches.
-    int groundTruthSamples = 256;
+    int groundTruthSamples = 64;
     int splitSumShaderSamples = 1024;  // samples per pixel of split-sum-shader (the seed's NumSamples)
     double groundTruthNoiseTarget = 0.002;
     int groundTruthMinBatches = 8;

@@ -32,7 +32,7 @@ IblFigureLayout iblFigureLayout(const std::vector<FigureBall>& balls, int rows) 
 namespace {
 std::string percent(double v) {
     char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.2f%%", 100.0 * v);
+    std::snprintf(buf, sizeof(buf), "%.3f%%", 100.0 * v);
     return buf;
 }
 std::string upper(std::string s) {

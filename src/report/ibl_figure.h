@@ -49,8 +49,8 @@ struct IblFigureLayout {
 IblFigureLayout iblFigureLayout(const std::vector<FigureBall>& balls, int rows);
 
 // The caption printed under a row (upper case ASCII the bitmap font draws), from its numbers:
-//   "GROUND-TRUTH: NOISE METAL 0.12%, DIELECTRIC 0.08%"
-//   "SPLIT-SUM: ERROR METAL 12.34%, DIELECTRIC 4.56%"
+//   "GROUND-TRUTH: NOISE METAL 0.138%, DIELECTRIC 0.004%"
+//   "SPLIT-SUM: ERROR METAL 27.277%, DIELECTRIC 1.331%"
 std::string iblFigureCaption(const IblFigureRow& row);
 
 // renders[r]: row r's tone-mapped 8-bit render (3 or 4 channels); balls in column order (metals
