@@ -381,4 +381,92 @@ vec3 prefilterEnvMapFiltered(float roughness, vec3 R, uint numSamples, float fac
 
 #endif  // GBL_IBL_HAS_ENVIRONMENT
 
+// ---- the converged ground truth: environment importance sampling + GGX, combined by MIS ----
+// Needs, besides sampleEnvironmentLod, the includer's
+//     vec3 sampleEnvironmentDirection(vec2 u, out float pdf)  // luminance-proportional direction
+//     float environmentDirectionPdf(vec3 dir)                // its solid-angle pdf
+// (shaders/environment_sampling.glsl) and `#define GBL_IBL_HAS_ENVIRONMENT_SAMPLING`.
+#ifdef GBL_IBL_HAS_ENVIRONMENT_SAMPLING
+
+// Below this roughness GGX is (nearly) a delta: environment samples cannot hit its lobe, and
+// D overflows in float; such pixels use the BRDF samples alone (weight 1).
+const float kMinMisRoughness = 0.02;
+
+// PCG hash (M. O'Neill, "PCG: A Family of Simple Fast Space-Efficient Statistically Good
+// Algorithms for Random Number Generation", 2014; the RXS-M-XS output of Jarzynski & Olano,
+// "Hash Functions for GPU Rendering", JCGT 9(3), 2020).
+uint pcgHash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// A random shift in [0,1)^2 from three integers (Cranley-Patterson rotation of the point set).
+vec2 randomShift(uint a, uint b, uint c) {
+    uint h = pcgHash(a ^ pcgHash(b ^ pcgHash(c)));
+    uint h2 = pcgHash(h);
+    return vec2(float(h >> 8u), float(h2 >> 8u)) * 5.9604644775390625e-8;  // 2^-24
+}
+
+// Power heuristic, beta = 2 [Veach97, sec. 9.2.4]: the weight of a sample drawn from the technique
+// with pdf `a` when the other one has pdf `b` (one sample of each per step).
+float powerHeuristic(float a, float b) {
+    float a2 = a * a;
+    float d = a2 + b * b;
+    return d > 0.0 ? a2 / d : 0.0;
+}
+
+// The same integral as specularIBLGroundTruth (L_i f cos over the hemisphere of N; exact Schlick
+// F, Smith-Schlick G with k = alpha/2, environment mip 0), estimated with multiple importance
+// sampling [Veach97, E. Veach, "Robust Monte Carlo Methods for Light Transport Simulation", PhD
+// thesis, Stanford 1997, ch. 9]: each of numSamples steps takes one GGX half-vector sample (pdf
+// D NoH / (4 VoH)) and one environment sample (luminance CDF, environmentDirectionPdf), each
+// weighted by the power heuristic. The point set is Hammersley, Cranley-Patterson rotated by
+// `shiftGgx` / `shiftEnv` (different per pixel and batch: independent batch means, so their
+// spread estimates the noise). Unbiased: every direction the integrand reaches has a non-zero
+// GGX pdf when roughness > 0.
+vec3 specularIBLGroundTruthMis(vec3 specularColor, float roughness, vec3 N, vec3 V, uint numSamples,
+                               vec2 shiftGgx, vec2 shiftEnv) {
+    vec3 sum = vec3(0.0);
+    float NoV = max(clamp(dot(N, V), 0.0, 1.0), kMinIblNoV);
+    bool useEnvironment = roughness >= kMinMisRoughness;
+    for (uint i = 0u; i < numSamples; i++) {
+        vec2 Xi = hammersley(i, numSamples);
+        // BRDF technique.
+        vec3 H = importanceSampleGGX(fract(Xi + shiftGgx), roughness, N);
+        vec3 L = 2.0 * dot(V, H) * H - V;
+        float NoL = clamp(dot(N, L), 0.0, 1.0);
+        float NoH = clamp(dot(N, H), 0.0, 1.0);
+        float VoH = clamp(dot(V, H), 0.0, 1.0);
+        if (NoL > 0.0 && NoH > 0.0 && VoH > 0.0) {
+            float G = gSmithSchlickIbl(roughness, NoV, NoL);
+            float Fc = fresnelWeightSchlick(VoH);
+            vec3 F = (1.0 - Fc) * specularColor + Fc;
+            float w = 1.0;
+            if (useEnvironment) w = powerHeuristic(pdfGgxReflection(NoH, VoH, roughness), environmentDirectionPdf(L));
+            sum += w * sampleEnvironmentLod(L, 0.0) * F * (G * VoH / (NoH * NoV));
+        }
+        if (!useEnvironment) continue;
+        // Environment technique.
+        float pdfEnv;
+        vec3 Le = sampleEnvironmentDirection(fract(Xi + shiftEnv), pdfEnv);
+        float NoLe = dot(N, Le);
+        if (pdfEnv > 0.0 && NoLe > 0.0) {
+            vec3 He = normalize(V + Le);
+            float NoHe = clamp(dot(N, He), 0.0, 1.0);
+            float VoHe = clamp(dot(V, He), 1e-6, 1.0);
+            float D = dGgx(NoHe, roughness);
+            float G = gSmithSchlickIbl(roughness, NoV, min(NoLe, 1.0));
+            float Fc = fresnelWeightSchlick(VoHe);
+            vec3 F = (1.0 - Fc) * specularColor + Fc;
+            float w = powerHeuristic(pdfEnv, D * NoHe / (4.0 * VoHe));
+            // f NoL = D G F / (4 NoV)
+            sum += w * sampleEnvironmentLod(Le, 0.0) * F * (D * G / (4.0 * NoV * pdfEnv));
+        }
+    }
+    return sum / float(numSamples);
+}
+
+#endif  // GBL_IBL_HAS_ENVIRONMENT_SAMPLING
+
 #endif  // GBL_IBL_GLSL

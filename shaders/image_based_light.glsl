@@ -3,8 +3,12 @@
 // where IBL enters the lighting pass. Specular mode = frame.environment.z (IblMode in
 // src/shading/ibl_precompute.h); diffuse (SH9 irradiance, Lambert) for every mode when frame.environment.w.
 //
-//   0 ground-truth      [Karis13 SpecularIBL]: specularIBLGroundTruth, frame.ibl.x samples per
-//                       pixel of environment-cube mip 0 (exact Schlick, Smith-Schlick k = alpha/2).
+//   0 ground-truth      the integral of [Karis13 SpecularIBL] (environment-cube mip 0, exact Schlick,
+//                       Smith-Schlick k = alpha/2), estimated by specularIBLGroundTruthMis: frame.ibl.x
+//                       steps per batch, each one GGX and one environment-CDF sample combined by the
+//                       power heuristic; the lighting pass runs batches until the noise target is met
+//                       (src/render/renderer.cpp), each batch with its own random rotation
+//                       (iblBatchKey).
 //   1 split-sum-shader  both sums in the shader, per pixel with the real N and V (no n = v = r):
 //                       (sum L(l) NoL / sum NoL) * (f0 A + B), A, B = integrateBRDF(roughness, NoV),
 //                       frame.ibl.x samples each -- row (b) of the seed's figure.
@@ -31,7 +35,12 @@ vec3 sampleEnvironmentLod(vec3 dir, float lod) {
     return textureLod(environmentCube, dir, lod).rgb * frame.environment.x;
 }
 #define GBL_IBL_HAS_ENVIRONMENT
+#include "environment_sampling.glsl"
+#define GBL_IBL_HAS_ENVIRONMENT_SAMPLING
 #include "ibl_math.glsl"
+
+// The ground truth's random rotation for this pixel and batch (set by the lighting pass's main).
+uvec3 iblBatchKey = uvec3(0u);
 
 // E(n) from the SH9 coefficients (cosine convolution folded in), clamped at 0 against ringing.
 vec3 irradianceFromSh(vec3 n) {
@@ -79,7 +88,9 @@ vec3 evaluateImageBasedLight(Surface s, vec3 N, vec3 V) {
     vec3 specularColor = s.specularColor;
     vec3 specular = vec3(0.0);
     if (mode == GBL_IBL_GROUND_TRUTH) {
-        specular = specularIBLGroundTruth(specularColor, roughness, N, V, samples);
+        specular = specularIBLGroundTruthMis(specularColor, roughness, N, V, samples,
+                                             randomShift(iblBatchKey.x, iblBatchKey.y, iblBatchKey.z * 2u),
+                                             randomShift(iblBatchKey.x, iblBatchKey.y, iblBatchKey.z * 2u + 1u));
     } else if (mode == GBL_IBL_SPLIT_SUM_SHADER) {
         vec2 AB = integrateBRDF(roughness, NoV, samples);
         specular = prefilteredRadianceInShader(N, V, roughness, samples) * (specularColor * AB.x + AB.y);

@@ -26,6 +26,11 @@ layout(set = 0, binding = 7) uniform sampler2D brdfLut;            // (A, B) at 
 layout(set = 0, binding = 8) uniform sampler2D sceneColorEmissive;
 
 bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
+layout(std430, set = 0, binding = 10) readonly buffer EnvironmentSampling { float environmentSampling[]; };
+// Ground truth's progressive accumulation (Welford): rgb = mean radiance of the batches so far,
+// a = sum of squared deviations of the batch luminances from their mean (M2).
+layout(set = 0, binding = 11, rgba32f) uniform image2D accumulation;
+layout(push_constant) uniform Batch { uint batchIndex; } batch;  // 0, 1, ... (ground truth only)
 
 vec3 sampleEnvironment(vec3 direction) {
     return textureLod(environmentEquirect, directionToEquirectUv(direction), 0.0).rgb * frame.environment.x;
@@ -90,11 +95,23 @@ void main() {
         color += evaluateDirectLightMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, radiance,
                                          int(frame.shading.x));
     }
+    iblBatchKey = uvec3(uint(pixel.x), uint(pixel.y), batch.batchIndex + uint(frame.ibl.z) * 0x10000u);
     color += evaluateImageBasedLight(s, N, V) * s.occlusion;
 #endif
     color += s.emissive;
 #ifdef EMISSIVE_FORWARD
     color += texelFetch(sceneColorEmissive, pixel, 0).rgb;
 #endif
+    if (int(frame.environment.z) == GBL_IBL_GROUND_TRUTH) {
+        // Welford's update over batch means of the luminance (CIE Y of linear sRGB).
+        const vec3 kY = vec3(0.2126, 0.7152, 0.0722);
+        vec4 acc = batch.batchIndex == 0u ? vec4(0.0) : imageLoad(accumulation, pixel);
+        float y = dot(color, kY);
+        float delta = y - dot(acc.rgb, kY);
+        vec3 mean = acc.rgb + (color - acc.rgb) / float(batch.batchIndex + 1u);
+        float m2 = acc.a + delta * (y - dot(mean, kY));
+        imageStore(accumulation, pixel, vec4(mean, m2));
+        color = mean;
+    }
     imageStore(hdrOutput, pixel, vec4(color, 1.0));
 }

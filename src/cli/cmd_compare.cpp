@@ -21,6 +21,7 @@
 #include "error_images.h"
 #include "file_io.h"
 #include "ibl_cache.h"
+#include "ibl_figure.h"
 #include "ibl_precompute.h"
 #include "image_io.h"
 #include "interrupt.h"
@@ -110,6 +111,19 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
     e.p99Abs = m.image.p99Abs;
     e.flipMean = m.image.flipMean;
     e.flipMedian = m.image.flipMedian;
+    auto cls = [](const ClassImageErrors& c) -> std::optional<ImageClassErrors> {
+        if (c.pixels == 0) return std::nullopt;
+        ImageClassErrors k;
+        k.pixels = int64_t(c.pixels);
+        k.relLuminanceMean = c.relLuminanceMean;
+        k.rmseLinear = c.rmseLinear;
+        k.flipMean = c.flipMean;
+        if (c.referenceNoise >= 0.0) k.referenceNoise = c.referenceNoise;
+        return k;
+    };
+    e.covered = cls(m.image.covered);
+    e.metal = cls(m.image.metal);
+    e.dielectric = cls(m.image.dielectric);
     if (m.image.hdrFlipComputed) {
         e.hdrFlipMean = m.image.hdrFlipMean;
         e.hdrFlipExposures = m.image.hdrFlipExposures;
@@ -146,6 +160,12 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
     options.maps = &maps;
     options.hdrFlip = hdrFlip;
     options.prepared = reference.prepared.get();
+    if (!reference.output.noise.empty()) {
+        options.referenceNoise = &reference.output.noise;
+        const GroundTruthStats& g = reference.output.groundTruth;
+        run.groundTruth = GroundTruthConvergence{g.batches, g.samplesPerPixel, g.targetRelativeNoise,
+                                                 g.meanRelativeNoise, g.targetMet, g.lightingMs};
+    }
     std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
     const RunMetrics m =
         releaseTest ? computeRunMetrics(reference.output.surfaces, std::move(test.surfaces), reference.output.hdr,
@@ -178,6 +198,48 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
             run.images.crops.push_back({crops[i].x, crops[i].y, crops[i].size, crops[i].size, files[i].reference,
                                         files[i].test, files[i].heat});
     }
+}
+
+// The material balls of the built-in scene's sphere grid (materials "metal roughness ..." and
+// "dielectric roughness ..."), as square crops of a width x height render: metals, then
+// dielectrics, each left to right. Empty for other scenes.
+std::vector<FigureBall> findFigureBalls(const Scene& scene, uint32_t width, uint32_t height) {
+    std::vector<std::pair<float, FigureBall>> metals, dielectrics;
+    const CameraMatrices cam = computeCameraMatrices(scene.camera, float(width) / float(height), false);
+    for (const Draw& d : scene.draws) {
+        if (d.material < 0 || size_t(d.material) >= scene.materials.size()) continue;
+        const std::string& name = scene.materials[size_t(d.material)].name;
+        const bool metal = name.rfind("metal roughness", 0) == 0;
+        if (!metal && name.rfind("dielectric roughness", 0) != 0) continue;
+        const glm::vec3 centre(d.model[3]);
+        float radius = 0.0f;
+        for (uint32_t k = 0; k < d.indexCount; ++k) {
+            const Vertex& v = scene.vertices[size_t(d.vertexOffset) + scene.indices[d.firstIndex + k]];
+            radius = std::max(radius, glm::length(glm::vec3(d.model * glm::vec4(v.position, 1.0f)) - centre));
+        }
+        const glm::vec4 clip = cam.viewProj * glm::vec4(centre, 1.0f);
+        if (clip.w <= 0.0f) continue;
+        const float px = (clip.x / clip.w * 0.5f + 0.5f) * float(width);
+        const float py = (clip.y / clip.w * 0.5f + 0.5f) * float(height);
+        const float dist = glm::length(centre - scene.camera.position);
+        const float rpx = radius / (dist * std::tan(scene.camera.yFovRadians * 0.5f)) * 0.5f * float(height);
+        FigureBall b;
+        b.size = std::max(4, int(std::ceil(2.2f * rpx)));
+        b.x = int(std::floor(px - 0.5f * float(b.size)));
+        b.y = int(std::floor(py - 0.5f * float(b.size)));
+        b.metal = metal;
+        const float r = scene.materials[size_t(d.material)].roughnessFactor;
+        char label[48];
+        std::snprintf(label, sizeof(label), "%s r=%.2f", metal ? "metal" : "dielectric", double(r));
+        b.label = label;
+        (metal ? metals : dielectrics).push_back({centre.x, b});
+    }
+    std::vector<FigureBall> balls;
+    for (auto* group : {&metals, &dielectrics}) {
+        std::sort(group->begin(), group->end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (const auto& [x, b] : *group) balls.push_back(b);
+    }
+    return balls;
 }
 
 void printTable(const ReportModel& model) {
@@ -246,7 +308,11 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"layouts", "A,B,...", "layouts to compare (names in layouts/ or .toml paths), or all (default)"},
         {"ibl", "MODES", "specular IBL modes, comma-separated (default split-sum; known: " +
                              joinList(iblModeNames()) + ")"},
-        {"samples", "N", "samples per pixel of the ground-truth IBL mode (default 1024)"},
+        {"samples", "N", "samples per pixel of the split-sum-shader IBL mode (default 1024)"},
+        {"gt-noise", "X", "ground truth: add batches until the mean relative noise (standard error of the "
+                          "luminance / luminance) over covered pixels is at most X (default 0.002)"},
+        {"gt-batch-samples", "N", "ground truth: steps per batch, each one GGX + one environment sample (default 64)"},
+        {"gt-max-batches", "N", "ground truth: stop after N batches even if the noise target is not met (default 256)"},
         {"brdf-lut", "VARIANT", "split-sum BRDF LUT: converged (visible-normal sampling, 4096 samples; default) or "
                                 "seed (the seed's IntegrateBRDF, 1024 samples)"},
         {"size", "WxH", "image size (default 1920x1080)"},
@@ -283,7 +349,10 @@ int runCompareCommand(const std::vector<std::string>& args) {
     std::vector<IblMode> modes;
     std::vector<std::string> modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
     for (const auto& n : modeNames) modes.push_back(parseIblMode(n));
-    const int groundTruthSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
+    const int splitSumShaderSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
+    const int gtBatchSamples = parseIntFlag(parsed, "gt-batch-samples", 64, 1, 65536);
+    const int gtMaxBatches = parseIntFlag(parsed, "gt-max-batches", 256, 8, 65536);
+    const double gtNoise = parsePositiveFloatFlag(parsed, "gt-noise", 0.002f);
     IblSettings iblSettings;
     if (parsed.has("brdf-lut")) applyBrdfLutVariant(parsed.get("brdf-lut"), iblSettings);
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("compare");
@@ -354,7 +423,10 @@ int runCompareCommand(const std::vector<std::string>& args) {
         settings.width = width;
         settings.height = height;
         settings.specularIbl = mode;
-        settings.groundTruthSamples = groundTruthSamples;
+        settings.groundTruthSamples = gtBatchSamples;
+        settings.splitSumShaderSamples = splitSumShaderSamples;
+        settings.groundTruthNoiseTarget = gtNoise;
+        settings.groundTruthMaxBatches = gtMaxBatches;
         settings.decodeSurfaces = true;
         settings.readTargetWords = false;
         return settings;
@@ -373,8 +445,21 @@ int runCompareCommand(const std::vector<std::string>& args) {
         const std::string preview = "reference-" + modeNames[m] + "-log.png";
         writePng((outDir / preview).string(), logEncodeForPreview(ref.output.hdr));
         model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr, preview});
+        std::string gtNote;
+        if (modes[m] == IblMode::GroundTruth) {
+            const GroundTruthStats& g = ref.output.groundTruth;
+            char buf[256];
+            std::snprintf(buf, sizeof(buf),
+                          "ground truth: %d batches x %d steps (%d samples per pixel, GGX + environment by MIS), mean "
+                          "relative noise %.5f (target %.5f%s), lighting %.0f ms GPU on %s",
+                          g.batches, gtBatchSamples, g.samplesPerPixel, g.meanRelativeNoise, g.targetRelativeNoise,
+                          g.targetMet ? ", met" : ", NOT met", g.lightingMs, ctx.info.name.c_str());
+            gtNote = buf;
+            model.run.notes.push_back(gtNote);
+        }
         progress.end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
-                     std::to_string(int(ref.output.timings.lightingMs)) + " ms");
+                     std::to_string(int(ref.output.timings.lightingMs)) + " ms" +
+                     (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches"));
         ReferenceRender& stored = references[modeNames[m]] = std::move(ref);
         ScopedStage timedPrepare(Stage::Metrics);
         stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, exposure);
@@ -408,6 +493,45 @@ int runCompareCommand(const std::vector<std::string>& args) {
                          std::to_string(run.image->flipMean).substr(0, 6));
             std::lock_guard lock(modelMutex);
             model.runs.push_back(std::move(run));
+        }
+    }
+
+    // The seed's figure: rows = modes (enum order: ground truth first), columns = the grid's balls.
+    if (compareLighting) {
+        const std::vector<FigureBall> balls = findFigureBalls(inputs.scene, width, height);
+        if (balls.empty()) {
+            model.run.notes.push_back("IBL figure: only for the built-in scene (it crops the sphere grid's balls)");
+        } else {
+            ScopedStage timed(Stage::Report);
+            IblFigure figure;
+            figure.png = "ibl-figure.png";
+            for (const FigureBall& b : balls) figure.columns.push_back(b.label);
+            std::vector<Image8> renders;
+            std::vector<std::string> captions;
+            for (const std::string& name : iblModeNames()) {
+                if (!references.count(name)) continue;
+                IblFigureRow row;
+                row.iblMode = name;
+                for (const RunReport& r : model.runs) {
+                    if (!r.image) continue;
+                    if (name == kGroundTruth) {
+                        if (r.image->metal && r.image->metal->referenceNoise) row.metalNoise = r.image->metal->referenceNoise;
+                        if (r.image->dielectric && r.image->dielectric->referenceNoise)
+                            row.dielectricNoise = r.image->dielectric->referenceNoise;
+                    } else if (r.iblMode == name) {
+                        if (r.image->metal) row.metalError = r.image->metal->relLuminanceMean;
+                        if (r.image->dielectric) row.dielectricError = r.image->dielectric->relLuminanceMean;
+                    }
+                }
+                row.caption = iblFigureCaption(row);
+                captions.push_back(row.caption);
+                renders.push_back(toneMapToSrgb8(references.at(name).output.hdr, exposure));
+                figure.rows.push_back(std::move(row));
+            }
+            writePng((outDir / figure.png).string(),
+                     composeIblFigure(renders, balls, captions, "IBL modes vs ground truth: metals, then dielectrics, "
+                                                                "roughness 0.05 to 1"));
+            model.iblFigure = std::move(figure);
         }
     }
 

@@ -44,7 +44,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
         {"exposure", "X", "exposure multiplier for the PNG tone map (default 1)"},
         {"ibl", "MODE", "specular IBL: ground-truth, split-sum-shader, split-sum (default), envbrdf-approx, bo2"},
-        {"ibl-samples", "N", "samples per pixel of the ground-truth and split-sum-shader modes (default 1024)"},
+        {"ibl-samples", "N", "samples per pixel of split-sum-shader (default 1024), and steps per batch of ground-truth (default 64)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -76,7 +76,8 @@ int runRenderCommand(const std::vector<std::string>& args) {
     settings.width = width;
     settings.height = height;
     settings.specularIbl = iblMode;
-    settings.groundTruthSamples = iblSamples;
+    if (parsed.has("ibl-samples")) settings.groundTruthSamples = iblSamples;  // per batch (default 64)
+    settings.splitSumShaderSamples = iblSamples;
     const RenderOutput out = renderer.render(makeReferenceWiring(), settings);
 
     prepareOutputDirectory(outDir, parsed.has("force"), "--out");
@@ -85,6 +86,10 @@ int runRenderCommand(const std::vector<std::string>& args) {
     std::printf("rendered %s under %s on %s at %ux%u\n  G-buffer pass %.1f ms, lighting pass %.1f ms\n  wrote %s\n",
                 inputs.scene.source.c_str(), inputs.environment.source.c_str(), ctx.info.name.c_str(), width, height,
                 out.timings.gbufferMs, out.timings.lightingMs, outDir.string().c_str());
+    if (iblMode == IblMode::GroundTruth)
+        std::printf("  ground truth: %d batches, %d samples per pixel, mean relative noise %.5f (target %.5f%s)\n",
+                    out.groundTruth.batches, out.groundTruth.samplesPerPixel, out.groundTruth.meanRelativeNoise,
+                    out.groundTruth.targetRelativeNoise, out.groundTruth.targetMet ? ", met" : ", NOT met");
     return 0;
 }
 

@@ -311,6 +311,61 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         out.image.hdrFlipComputed = true;
     }
 
+    // Image errors per material class.
+    {
+        Image rel = relativeLuminanceError(referenceHdr, testHdr);
+        // floor of relativeLuminanceError: 1e-2 x the reference's mean luminance
+        double sum = 0.0;
+        size_t finite = 0;
+        for (size_t i = 0; i < n; ++i) {
+            const double y = luminance(&referenceHdr.pixels[i * size_t(referenceHdr.channels)], referenceHdr.channels);
+            if (std::isfinite(y) && y > 0.0) sum += y;
+            finite += std::isfinite(y) ? 1 : 0;
+        }
+        const double floor = std::max(1e-2 * (finite ? sum / double(finite) : 0.0), 1e-6);
+        const Image* noise = options.referenceNoise;
+        if (noise && (noise->width != w || noise->height != h || noise->channels != 1))
+            throw std::invalid_argument("computeRunMetrics: the reference noise image must be 1 channel, " +
+                                        std::to_string(w) + "x" + std::to_string(h));
+        struct Acc {
+            size_t pixels = 0;
+            double rel = 0.0, sq = 0.0, flip = 0.0, noise = 0.0;
+        } acc[2];  // 0 dielectric, 1 metal
+        const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
+        for (size_t i = 0; i < n; ++i) {
+            if (!measured[i]) continue;
+            Acc& a = acc[metal[i] ? 1 : 0];
+            ++a.pixels;
+            a.rel += std::isfinite(rel.pixels[i]) ? rel.pixels[i] : 0.0;
+            for (size_t c = 0; c < 3; ++c) {
+                const double d = double(testHdr.pixels[i * tc + c]) - double(referenceHdr.pixels[i * rc + c]);
+                a.sq += d * d;
+            }
+            a.flip += flip.pixels[i];
+            if (noise) {
+                const double y = luminance(&referenceHdr.pixels[i * rc], referenceHdr.channels);
+                a.noise += double(noise->pixels[i]) / std::max(std::isfinite(y) ? y : 0.0, floor);
+            }
+        }
+        auto finish = [&](const Acc& a) {
+            ClassImageErrors e;
+            e.pixels = a.pixels;
+            if (a.pixels) {
+                e.relLuminanceMean = a.rel / double(a.pixels);
+                e.rmseLinear = std::sqrt(a.sq / double(3 * a.pixels));
+                e.flipMean = a.flip / double(a.pixels);
+                if (noise) e.referenceNoise = a.noise / double(a.pixels);
+            }
+            return e;
+        };
+        Acc all{acc[0].pixels + acc[1].pixels, acc[0].rel + acc[1].rel, acc[0].sq + acc[1].sq,
+                acc[0].flip + acc[1].flip, acc[0].noise + acc[1].noise};
+        out.image.dielectric = finish(acc[0]);
+        out.image.metal = finish(acc[1]);
+        out.image.covered = finish(all);
+        if (maps) maps->relLuminance = std::move(rel);
+    }
+
     if (maps) {
         maps->referenceSrgb = prepared->srgb;  // shared: outlives `local`
         maps->testSrgb = std::move(testSrgb);
@@ -321,7 +376,6 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         for (size_t i = 0; i < n; ++i)
             for (size_t c = 0; c < 3; ++c)
                 maps->absLinear.pixels[i * 3 + c] = std::abs(testHdr.pixels[i * tc + c] - referenceHdr.pixels[i * rc + c]);
-        maps->relLuminance = relativeLuminanceError(referenceHdr, testHdr);
         maps->measured = std::move(measured);
     }
     return out;

@@ -61,6 +61,18 @@ struct CoverageCounts {
     size_t dielectric = 0;     // of `both`
 };
 
+// Image errors over the pixels of one material class (covered in both, as the attributes; see
+// "Which pixels count"): what the lit image loses on metals vs dielectrics.
+struct ClassImageErrors {
+    size_t pixels = 0;
+    double relLuminanceMean = 0.0;  // mean of relativeLuminanceError over the class
+    double rmseLinear = 0.0;        // linear HDR, pooled over RGB
+    double flipMean = 0.0;          // LDR-FLIP
+    // With RunMetricsOptions::referenceNoise: the reference's own noise over the class, in the
+    // same unit as relLuminanceMean (mean of noise / max(Y_ref, floor)); -1 when not given.
+    double referenceNoise = -1.0;
+};
+
 struct ShadedErrors {
     double rmseLinear = 0.0;
     double psnrLinear = std::numeric_limits<double>::infinity();  // dB
@@ -75,6 +87,7 @@ struct ShadedErrors {
     double hdrFlipMean = 0.0; // HDR-FLIP (0 when not computed)
     bool hdrFlipComputed = false;
     int hdrFlipExposures = 0;  // how many exposures HDR-FLIP evaluated (its cost is ~ this x LDR-FLIP)
+    ClassImageErrors covered, metal, dielectric;  // covered = metal + dielectric pixels
 };
 
 struct RunMetrics {
@@ -121,6 +134,9 @@ struct RunMetricsOptions {
     // When set, must be prepared from the same referenceHdr object and exposure (else
     // std::invalid_argument); the results are identical to a run without it.
     const PreparedReference* prepared = nullptr;
+    // The reference's per-pixel noise: standard error of its luminance (1 channel, absolute), e.g.
+    // a progressive ground truth's (render/renderer.h RenderOutput::noise). Reported per class.
+    const Image* referenceNoise = nullptr;
 };
 
 // Throws UserError when sizes disagree or an attribute image has too few channels. An attribute

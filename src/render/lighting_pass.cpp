@@ -22,6 +22,10 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     d.height = height;
     d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     pass.hdr = createImage(ctx, d);
+    ImageDesc a = d;
+    if (!in.accumulate) a.width = a.height = 1;
+    a.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    pass.accumulation = createImage(ctx, a);
 
     std::vector<Binding> set0 = {
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
@@ -33,6 +37,8 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
         {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // emissive = forward: scene-colour emissive (else depth)
+        {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},  // ground truth: the environment's sampling table
+        {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},   // ground truth: the progressive accumulation
     };
     const bool lightPrePass = !wiring.lightBufferGlsl.empty();
     if (lightPrePass) set0.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});  // the light buffers' words
@@ -43,7 +49,8 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     pass.setLayouts[1] = createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT);
     if (in.materialPass) pass.setLayouts[2] = createSetLayout(ctx.device, set2, VK_SHADER_STAGE_COMPUTE_BIT);
     pass.pipelineLayout = createPipelineLayout(
-        ctx.device, std::vector<VkDescriptorSetLayout>(pass.setLayouts, pass.setLayouts + pass.setCount), 0, 0);
+        ctx.device, std::vector<VkDescriptorSetLayout>(pass.setLayouts, pass.setLayouts + pass.setCount), sizeof(uint32_t),
+        VK_SHADER_STAGE_COMPUTE_BIT);
     pass.pool = createPoolFor(ctx.device, {set0, set1, set2});
     for (uint32_t i = 0; i < pass.setCount; ++i) pass.sets[i] = allocateSet(ctx.device, pass.pool, pass.setLayouts[i]);
 
@@ -61,7 +68,10 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         .image(pass.sets[0], 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.ibl->prefiltered.view,
                in.ibl->cubeSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
         .image(pass.sets[0], 7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.ibl->brdfLut.view, in.ibl->lutSampler,
-               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+        .buffer(pass.sets[0], 10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.ibl->environmentSampling.buffer)
+        .image(pass.sets[0], 11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pass.accumulation.view, VK_NULL_HANDLE,
+               VK_IMAGE_LAYOUT_GENERAL);
     const bool emissive = in.gbuffer->emissive.image != VK_NULL_HANDLE;
     writer.image(pass.sets[0], 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                  emissive ? in.gbuffer->emissive.view : in.gbuffer->depth.view, in.nearestSampler,
@@ -90,17 +100,22 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     return pass;
 }
 
-void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass) {
-    transitionImage(cmd, pass.hdr, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass, uint32_t batch) {
+    if (batch == 0) {
+        transitionImage(cmd, pass.hdr, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+        transitionImage(cmd, pass.accumulation, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipelineLayout, 0, pass.setCount, pass.sets, 0,
                             nullptr);
+    vkCmdPushConstants(cmd, pass.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
     vkCmdDispatch(cmd, (pass.width + 7) / 8, (pass.height + 7) / 8, 1);
     fullBarrier(cmd);
 }
 
 void destroyLightingPass(const VulkanContext& ctx, LightingPass& pass) {
     destroyImage(ctx, pass.hdr);
+    destroyImage(ctx, pass.accumulation);
     if (pass.pipeline) vkDestroyPipeline(ctx.device, pass.pipeline, nullptr);
     if (pass.pipelineLayout) vkDestroyPipelineLayout(ctx.device, pass.pipelineLayout, nullptr);
     for (auto& l : pass.setLayouts)

@@ -2,8 +2,10 @@
 
 #include "decode_pass.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -101,11 +103,14 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     frame.invViewProj = cam.invViewProj;
     frame.cameraPosition = glm::vec4(scene_.camera.position, 1.0f);
     frame.extent = glm::uvec4(w, h, gpuScene_.lightCount, wiring.reversedZ ? 1u : 0u);
-    if (settings.groundTruthSamples < 1)
-        throwUserError("--ibl-samples " + std::to_string(settings.groundTruthSamples) + ": must be at least 1");
+    if (settings.groundTruthSamples < 1 || settings.splitSumShaderSamples < 1)
+        throwUserError("--ibl-samples " + std::to_string(std::min(settings.groundTruthSamples, settings.splitSumShaderSamples)) +
+                       ": must be at least 1");
     frame.environment = glm::vec4(settings.environmentIntensity, float(ibl_.prefilteredMips),
                                   float(int(settings.specularIbl)), settings.diffuseIbl ? 1.0f : 0.0f);
-    frame.ibl = glm::vec4(float(settings.groundTruthSamples), float(ibl_.sourceFaceSize), 0.0f, 0.0f);
+    const int iblSamples = settings.specularIbl == IblMode::GroundTruth ? settings.groundTruthSamples
+                                                                         : settings.splitSumShaderSamples;
+    frame.ibl = glm::vec4(float(iblSamples), float(ibl_.sourceFaceSize), float(settings.groundTruthSeed), 0.0f);
     for (int k = 0; k < 9; ++k) frame.irradianceSh[k] = glm::vec4(ibl_.irradianceSh[k], 0.0f);
     frame.shading = glm::vec4(float(settings.fresnelMode), wiring.reversedZ ? 0.0f : 1.0f, 0.0f, 0.0f);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
@@ -122,8 +127,9 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     if (wiring.lightBufferWordsPerPixel > 0)
         lightBuffers = createBuffer(ctx_, VkDeviceSize(w) * h * uint32_t(wiring.lightBufferWordsPerPixel) * 4,
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, settings.readTargetWords);
+    const bool groundTruth = settings.specularIbl == IblMode::GroundTruth;
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
-                          nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr};
+                          nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth};
     LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h);
 
     const std::vector<double> passMs = submitTimedSegments(
@@ -131,17 +137,58 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
                    recordGBufferPass(cmd, gbuffer, gpuScene_);
                    if (material) recordGBufferPass(cmd, *material, gpuScene_);  // timed with the geometry passes
                },
-               [&](VkCommandBuffer cmd) { recordLightingPass(cmd, lighting); }});
+               [&](VkCommandBuffer cmd) { recordLightingPass(cmd, lighting, 0); }});
     RenderOutput out;
     out.timings.gbufferMs = passMs[0];
     out.timings.lightingMs = passMs[1];
-
-    ScopedStage timedReadback(Stage::Readback);
-    {
+    auto readHdr = [&] {
         const std::vector<uint8_t> hdrBytes = downloadImage(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL);
         out.hdr = Image(int(w), int(h), 4);
         std::memcpy(out.hdr.pixels.data(), hdrBytes.data(), hdrBytes.size());
+    };
+    if (groundTruth) {
+        // Progressive: more batches until the noise target is met (or the batch limit is reached).
+        if (settings.groundTruthMinBatches < 2 || settings.groundTruthMaxBatches < settings.groundTruthMinBatches ||
+            !(settings.groundTruthNoiseTarget > 0.0))
+            throwUserError("ground truth: needs at least 2 batches, max >= min, and a noise target > 0");
+        GroundTruthStats& gt = out.groundTruth;
+        gt.targetRelativeNoise = settings.groundTruthNoiseTarget;
+        gt.lightingMs = passMs[1];
+        int done = 1;
+        int next = settings.groundTruthMinBatches;
+        for (;;) {
+            if (next > done) {
+                std::vector<std::function<void(VkCommandBuffer)>> segment = {[&, from = done, to = next](VkCommandBuffer cmd) {
+                    for (int b = from; b < to; ++b) recordLightingPass(cmd, lighting, uint32_t(b));
+                }};
+                gt.lightingMs += submitTimedSegments(ctx_, segment)[0];
+                done = next;
+            }
+            ScopedStage timedReadback(Stage::Readback);
+            readHdr();
+            const std::vector<uint8_t> accBytes = downloadImage(ctx_, lighting.accumulation, VK_IMAGE_LAYOUT_GENERAL);
+            const float* acc = reinterpret_cast<const float*>(accBytes.data());
+            out.noise = Image(int(w), int(h), 1);
+            for (size_t i = 0; i < out.noise.pixelCount(); ++i) {
+                if (out.hdr.pixels[i * 4 + 3] < 0.5f) continue;
+                const double m2 = std::max(0.0, double(acc[i * 4 + 3]));
+                out.noise.pixels[i] = float(std::sqrt(m2 / (double(done) * double(done - 1))));
+            }
+            gt.batches = done;
+            gt.meanRelativeNoise = meanRelativeNoise(out.hdr, out.noise);
+            gt.targetMet = gt.meanRelativeNoise <= settings.groundTruthNoiseTarget;
+            if (gt.targetMet || done >= settings.groundTruthMaxBatches) break;
+            // Noise ~ 1 / sqrt(batches): aim 10% past the batches the target needs.
+            const double ratio = gt.meanRelativeNoise / settings.groundTruthNoiseTarget;
+            const double needed = std::ceil(double(done) * ratio * ratio * 1.1);
+            next = int(std::clamp(needed, double(done + 1), double(settings.groundTruthMaxBatches)));
+        }
+        gt.samplesPerPixel = gt.batches * settings.groundTruthSamples * 2;
+        out.timings.lightingMs = gt.lightingMs;
     }
+
+    ScopedStage timedReadback(Stage::Readback);
+    if (!groundTruth) readHdr();
     // Free what the decode does not read before it allocates (peak memory at 4K).
     destroyLightingPass(ctx_, lighting);
     if (lightBuffers.buffer) {
@@ -184,6 +231,29 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     destroyGBufferPass(ctx_, gbuffer);
     destroyBuffer(ctx_, frameBuffer);
     return out;
+}
+
+double meanRelativeNoise(const Image& hdr, const Image& noise) {
+    if (noise.empty() || hdr.pixelCount() != noise.pixelCount() || hdr.channels < 4) return 0.0;
+    double sum = 0.0;
+    size_t finite = 0;
+    for (size_t i = 0; i < hdr.pixelCount(); ++i) {
+        const float* p = &hdr.pixels[i * size_t(hdr.channels)];
+        const double y = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        if (std::isfinite(y) && y > 0.0) sum += y;
+        finite += std::isfinite(y) ? 1 : 0;
+    }
+    const double floor = std::max(1e-2 * (finite ? sum / double(finite) : 0.0), 1e-6);
+    double total = 0.0;
+    size_t covered = 0;
+    for (size_t i = 0; i < hdr.pixelCount(); ++i) {
+        const float* p = &hdr.pixels[i * size_t(hdr.channels)];
+        if (p[3] < 0.5f) continue;
+        const double y = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        total += double(noise.pixels[i]) / std::max(std::isfinite(y) ? y : 0.0, floor);
+        ++covered;
+    }
+    return covered ? total / double(covered) : 0.0;
 }
 
 }  // namespace gbl

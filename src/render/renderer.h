@@ -24,7 +24,17 @@ struct RenderSettings {
     // of the two in-shader modes (ground-truth, split-sum-shader). Diffuse IBL (SH9 irradiance)
     // applies to every mode unless diffuseIbl is off.
     IblMode specularIbl = IblMode::SplitSum;
-    int groundTruthSamples = 1024;  // the seed's NumSamples
+    // Ground truth: batches of groundTruthSamples steps per pixel (each step one GGX and one
+    // environment sample, combined by MIS: ibl_math.glsl specularIBLGroundTruthMis), run until the
+    // mean relative noise over covered pixels (GroundTruthStats) is at most groundTruthNoiseTarget,
+    // with at least groundTruthMinBatches (the noise estimate needs a few) and at most
+    // groundTruthMaxBatches.
+    int groundTruthSamples = 64;
+    int splitSumShaderSamples = 1024;  // samples per pixel of split-sum-shader (the seed's NumSamples)
+    double groundTruthNoiseTarget = 0.002;
+    int groundTruthMinBatches = 8;
+    int groundTruthMaxBatches = 256;
+    int groundTruthSeed = 0;  // another seed, other random rotations (an independent estimate); < 256
     bool diffuseIbl = true;
     // Also run the layout's readGBuffer() over every pixel and return the Surface as floats
     // (RenderOutput::surfaces): what attribute errors are measured on.
@@ -41,6 +51,19 @@ struct PassTimings {
     double lightingMs = 0.0;
 };
 
+// The ground truth's convergence (RenderSettings::groundTruth*). Noise: the standard error of a
+// pixel's luminance (CIE Y of linear sRGB), sqrt(s^2 / K) with s^2 the sample variance of its K
+// batch means; relative: divided by max(Y, floor), floor = 1e-2 x the image's mean luminance (the
+// denominator of measure/run_metrics.h relativeLuminanceError, so noise and errors share a unit).
+struct GroundTruthStats {
+    int batches = 0;
+    int samplesPerPixel = 0;         // batches x steps x 2 (one GGX + one environment sample per step)
+    double meanRelativeNoise = 0.0;  // over pixels with geometry
+    double targetRelativeNoise = 0.0;
+    bool targetMet = false;
+    double lightingMs = 0.0;         // GPU time of all batches (timestamps)
+};
+
 struct RenderOutput {
     Image hdr;  // RGBA float: linear radiance, alpha 1 where geometry covers the pixel
     std::vector<std::vector<uint32_t>> targetWords;  // per target, row-major, texel size / 4 words per pixel
@@ -51,7 +74,14 @@ struct RenderOutput {
     std::vector<uint32_t> lightBufferWords;
     PassTimings timings;
     SurfaceImages surfaces;  // filled when RenderSettings::decodeSurfaces
+    // Ground truth only: per-pixel standard error of the luminance (1 channel, absolute, 0 where no
+    // geometry), and how it converged.
+    Image noise;
+    GroundTruthStats groundTruth;
 };
+
+// Mean of noise / max(Y(hdr), floor) over the pixels where hdr's alpha >= 0.5 (GroundTruthStats).
+double meanRelativeNoise(const Image& hdr, const Image& noise);
 
 // Checks a requested resolution against the device's limits; throws UserError naming `flag`.
 void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag);

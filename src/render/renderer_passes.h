@@ -56,6 +56,9 @@ GBufferWiring materialPassWiring(const GBufferWiring& wiring);
 
 struct LightingPass {
     GpuImage hdr;  // RGBA32F storage image, left in GENERAL
+    // Ground truth's running batch statistics (binding 9, RGBA32F, GENERAL): rgb mean radiance,
+    // a = M2 of the batch luminances. Full size with LightingInputs::accumulate, else 1 x 1.
+    GpuImage accumulation;
     // Set 0: frame, lights, depth, environment, output, IBL; set 1: the G-buffer targets;
     // set 2 (deferred lighting only): the material pass's targets.
     VkDescriptorSetLayout setLayouts[3] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
@@ -76,7 +79,8 @@ struct LightingInputs {
     VkSampler nearestSampler;
     const IblGpu* ibl;  // environment cube, pre-filtered cube, BRDF LUT (bindings 5, 6, 7)
     const GBufferPass* materialPass = nullptr;  // deferred lighting's second geometry pass (set 2)
-    const Buffer* lightBufferWords = nullptr;  // deferred lighting's light buffers (set 0, binding 8)
+    const Buffer* lightBufferWords = nullptr;  // deferred lighting's light buffers (set 0, binding 9)
+    bool accumulate = false;  // ground truth: batches accumulate into LightingPass::accumulation
 };
 
 // The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2).
@@ -84,7 +88,9 @@ std::vector<Binding> targetReadBindings(const GBufferPass& pass);
 
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
                                 uint32_t width, uint32_t height);
-void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass);
+// Records one dispatch; `batch` is the ground truth's batch index (push constant): batch 0
+// starts the accumulation afresh, later ones add to it.
+void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass, uint32_t batch = 0);
 void destroyLightingPass(const VulkanContext& ctx, LightingPass& pass);
 
 }  // namespace gbl

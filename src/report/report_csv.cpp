@@ -70,6 +70,38 @@ std::vector<Column> columns() {
     c.push_back({"hdr_flip_mean", [](const RunReport& r) {
                      return r.image && r.image->hdrFlipMean ? numberText(*r.image->hdrFlipMean) : std::string();
                  }});
+    using ImageClassMember = std::optional<ImageClassErrors> ImageErrors::*;
+    const std::pair<const char*, ImageClassMember> imageClasses[] = {{"covered", &ImageErrors::covered},
+                                                                     {"metal", &ImageErrors::metal},
+                                                                     {"dielectric", &ImageErrors::dielectric}};
+    for (const auto& [className, member] : imageClasses) {
+        const std::string prefix = std::string("image_") + className + "_";
+        const std::pair<const char*, double ImageClassErrors::*> fields[] = {
+            {"rel_luminance_mean", &ImageClassErrors::relLuminanceMean},
+            {"rmse_linear", &ImageClassErrors::rmseLinear},
+            {"flip_mean", &ImageClassErrors::flipMean}};
+        for (const auto& [fieldName, field] : fields)
+            c.push_back({prefix + fieldName, [member, field](const RunReport& r) {
+                             if (!r.image || !(*r.image.*member)) return std::string();
+                             return numberText(*(*r.image.*member).*field);
+                         }});
+        c.push_back({prefix + "reference_noise", [member](const RunReport& r) {
+                         if (!r.image || !(*r.image.*member) || !(*r.image.*member)->referenceNoise) return std::string();
+                         return numberText(*(*r.image.*member)->referenceNoise);
+                     }});
+    }
+    c.push_back({"ground_truth_batches", [](const RunReport& r) {
+                     return r.groundTruth ? std::to_string(r.groundTruth->batches) : std::string();
+                 }});
+    c.push_back({"ground_truth_samples_per_pixel", [](const RunReport& r) {
+                     return r.groundTruth ? std::to_string(r.groundTruth->samplesPerPixel) : std::string();
+                 }});
+    c.push_back({"ground_truth_mean_relative_noise", [](const RunReport& r) {
+                     return r.groundTruth ? numberText(r.groundTruth->meanRelativeNoise) : std::string();
+                 }});
+    c.push_back({"ground_truth_gpu_ms", [](const RunReport& r) {
+                     return r.groundTruth ? numberText(r.groundTruth->gpuMs) : std::string();
+                 }});
     c.push_back({"gbuffer_ms", [](const RunReport& r) {
                      return r.times ? numberText(r.times->gbufferMs) : std::string();
                  }});

@@ -490,7 +490,23 @@ void writeRunSection(std::string& out, const ReportModel& model, const RunReport
         if (e.hdrFlipMean)
             statRow(out, "HDR-FLIP mean", formatFixed(*e.hdrFlipMean, 4),
                     (std::to_string(e.hdrFlipExposures) + " exposures").c_str());
+        for (const auto& [name, c] : {std::pair{"metal", &e.metal}, std::pair{"dielectric", &e.dielectric}}) {
+            if (!*c) continue;
+            const std::string label = std::string("Rel. luminance error, ") + name;
+            statRow(out, label.c_str(), formatSignificant((*c)->relLuminanceMean, 3),
+                    ("mean; FLIP " + formatFixed((*c)->flipMean, 4)).c_str());
+            if ((*c)->referenceNoise)
+                statRow(out, (std::string("Ground-truth noise, ") + name).c_str(),
+                        formatSignificant(*(*c)->referenceNoise, 3), "mean relative");
+        }
         out += "</tbody></table>\n";
+    }
+    if (r.groundTruth) {
+        const GroundTruthConvergence& g = *r.groundTruth;
+        out += "<p class=\"small\">Ground truth: " + std::to_string(g.batches) + " batches, " +
+               std::to_string(g.samplesPerPixel) + " samples per pixel, mean relative noise " +
+               formatSignificant(g.meanRelativeNoise, 3) + " (target " + formatSignificant(g.noiseTarget, 3) +
+               (g.targetMet ? ", met" : ", NOT met") + "), " + formatSignificant(g.gpuMs, 3) + " ms GPU</p>\n";
     }
     writeAttributeTable(out, r.attributes);
     out += "</div>\n";
@@ -572,6 +588,17 @@ std::string reportHtml(const ReportModel& model) {
     Ids idMaker;
     std::vector<std::string> ids;
     for (const RunReport& r : model.runs) ids.push_back(idMaker.make(r.layout + "-" + r.iblMode));
+
+    if (model.iblFigure) {
+        const IblFigure& f = *model.iblFigure;
+        out += "<section id=\"ibl-figure\">\n<h2>IBL modes against ground truth</h2>\n<figure><img src=\"" +
+               urlPathEscape(f.png) + "\" alt=\"IBL comparison figure\" style=\"max-width:100%;image-rendering:pixelated\">"
+               "<figcaption>Rows: IBL modes (the seed's figure); columns: metal, then dielectric balls, roughness rising "
+               "left to right. Under each row: mean relative luminance error against ground truth over each class's "
+               "pixels, and for ground truth its own estimated noise.<ul>";
+        for (const IblFigureRow& r : f.rows) out += "<li>" + htmlEscape(r.caption) + "</li>";
+        out += "</ul></figcaption></figure>\n</section>\n";
+    }
 
     out += "<section id=\"summary\">\n<h2>Layouts</h2>\n";
     writeTable(out, model, ids);

@@ -69,7 +69,43 @@ Json imageErrorsJson(const ImageErrors& e) {
         j["hdr_flip_mean"] = number(*e.hdrFlipMean);
         j["hdr_flip_exposures"] = e.hdrFlipExposures;
     }
+    Json classes = Json::object();
+    auto put = [&](const char* key, const std::optional<ImageClassErrors>& c) {
+        if (!c) return;
+        Json k{{"pixels", c->pixels},
+               {"rel_luminance_mean", number(c->relLuminanceMean)},
+               {"rmse_linear", number(c->rmseLinear)},
+               {"flip_mean", number(c->flipMean)}};
+        if (c->referenceNoise) k["reference_noise"] = number(*c->referenceNoise);
+        classes[key] = std::move(k);
+    };
+    put("covered", e.covered);
+    put("metal", e.metal);
+    put("dielectric", e.dielectric);
+    if (!classes.empty()) j["by_class"] = std::move(classes);
     return j;
+}
+
+Json groundTruthJson(const GroundTruthConvergence& g) {
+    return Json{{"batches", g.batches},
+                {"samples_per_pixel", g.samplesPerPixel},
+                {"noise_target", number(g.noiseTarget)},
+                {"mean_relative_noise", number(g.meanRelativeNoise)},
+                {"target_met", g.targetMet},
+                {"gpu_ms", number(g.gpuMs)}};
+}
+
+Json iblFigureJson(const IblFigure& f) {
+    Json rows = Json::array();
+    for (const IblFigureRow& r : f.rows) {
+        Json row{{"ibl_mode", r.iblMode}, {"caption", r.caption}};
+        if (r.metalError) row["metal_error"] = number(*r.metalError);
+        if (r.dielectricError) row["dielectric_error"] = number(*r.dielectricError);
+        if (r.metalNoise) row["metal_noise"] = number(*r.metalNoise);
+        if (r.dielectricNoise) row["dielectric_noise"] = number(*r.dielectricNoise);
+        rows.push_back(std::move(row));
+    }
+    return Json{{"png", f.png}, {"columns", f.columns}, {"rows", std::move(rows)}};
 }
 
 Json imagesJson(const RunImages& images) {
@@ -101,6 +137,7 @@ Json runJson(const RunReport& r) {
     j["bandwidth"] = std::move(frames);
     j["attribute_errors"] = attributesJson(r.attributes);
     if (r.image) j["image_errors"] = imageErrorsJson(*r.image);
+    if (r.groundTruth) j["ground_truth"] = groundTruthJson(*r.groundTruth);
     if (r.times)
         j["pass_times_ms"] = Json{{"gbuffer", number(r.times->gbufferMs)},
                                   {"lighting", number(r.times->lightingMs)},
@@ -229,6 +266,23 @@ ImageErrors readImageErrors(const Node& n) {
         e.hdrFlipMean = n["hdr_flip_mean"].num();
         e.hdrFlipExposures = int(n["hdr_flip_exposures"].num());
     }
+    if (n.has("by_class")) {
+        const Node classes = n["by_class"];
+        auto get = [&](const char* key, std::optional<ImageClassErrors>& out) {
+            if (!classes.has(key)) return;
+            const Node c = classes[key];
+            ImageClassErrors k;
+            k.pixels = int64_t(c["pixels"].num());
+            k.relLuminanceMean = c["rel_luminance_mean"].num();
+            k.rmseLinear = c["rmse_linear"].num();
+            k.flipMean = c["flip_mean"].num();
+            if (c.has("reference_noise")) k.referenceNoise = c["reference_noise"].num();
+            out = k;
+        };
+        get("covered", e.covered);
+        get("metal", e.metal);
+        get("dielectric", e.dielectric);
+    }
     return e;
 }
 
@@ -269,6 +323,18 @@ RunReport readRun(const Node& n) {
     for (size_t i = 0; i < frames.array().size(); ++i) r.bandwidth.push_back(readFrame(frames.at(i)));
     r.attributes = readAttributes(n["attribute_errors"]);
     if (n.has("image_errors")) r.image = readImageErrors(n["image_errors"]);
+    if (n.has("ground_truth")) {
+        const Node g = n["ground_truth"];
+        GroundTruthConvergence c;
+        c.batches = g["batches"].i32();
+        c.samplesPerPixel = g["samples_per_pixel"].i32();
+        c.noiseTarget = g["noise_target"].num();
+        c.meanRelativeNoise = g["mean_relative_noise"].num();
+        if (!g["target_met"].j.is_boolean()) g["target_met"].fail("expected true or false");
+        c.targetMet = g["target_met"].j.get<bool>();
+        c.gpuMs = g["gpu_ms"].num();
+        r.groundTruth = c;
+    }
     if (n.has("pass_times_ms")) {
         const Node t = n["pass_times_ms"];
         r.times = PassTimes{t["gbuffer"].num(), t["lighting"].num(), t["device"].str()};
@@ -288,7 +354,7 @@ Json reportToJson(const ReportModel& model) {
                  {"hdr_preview", image.hdrPreview}});
     Json runs = Json::array();
     for (const RunReport& r : model.runs) runs.push_back(runJson(r));
-    return Json{{"schema", "gbufferlab-report"},
+    Json j{{"schema", "gbufferlab-report"},
                 {"schema_version", kReportSchemaVersion},
                 {"run", Json{{"scene", run.scene},
                              {"environment", run.environment},
@@ -304,6 +370,8 @@ Json reportToJson(const ReportModel& model) {
                              {"notes", run.notes}}},
                 {"reference", Json{{"layout", model.reference.layout}, {"images", std::move(references)}}},
                 {"runs", std::move(runs)}};
+    if (model.iblFigure) j["ibl_figure"] = iblFigureJson(*model.iblFigure);
+    return j;
 }
 
 ReportModel reportFromJson(const Json& json) {
@@ -335,6 +403,25 @@ ReportModel reportFromJson(const Json& json) {
                                           images.at(i).has("hdr_preview") ? images.at(i)["hdr_preview"].str() : ""});
     const Node runs = root["runs"];
     for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
+    if (root.has("ibl_figure")) {
+        const Node f = root["ibl_figure"];
+        IblFigure fig;
+        fig.png = f["png"].str();
+        fig.columns = f["columns"].strings();
+        const Node rows = f["rows"];
+        for (size_t i = 0; i < rows.array().size(); ++i) {
+            const Node r = rows.at(i);
+            IblFigureRow row;
+            row.iblMode = r["ibl_mode"].str();
+            row.caption = r["caption"].str();
+            if (r.has("metal_error")) row.metalError = r["metal_error"].num();
+            if (r.has("dielectric_error")) row.dielectricError = r["dielectric_error"].num();
+            if (r.has("metal_noise")) row.metalNoise = r["metal_noise"].num();
+            if (r.has("dielectric_noise")) row.dielectricNoise = r["dielectric_noise"].num();
+            fig.rows.push_back(std::move(row));
+        }
+        model.iblFigure = std::move(fig);
+    }
     return model;
 }
 

@@ -118,6 +118,27 @@ struct AttributeErrorTable {
     const AttributeErrors& operator[](ErrorAttribute a) const { return byAttribute[size_t(a)]; }
 };
 
+// Errors of the lit image over the pixels of one material class (covered in both renders).
+struct ImageClassErrors {
+    int64_t pixels = 0;
+    double relLuminanceMean = 0.0;  // mean |Y_t - Y_r| / max(Y_r, floor) (run_metrics.h relativeLuminanceError)
+    double rmseLinear = 0.0;        // linear HDR, pooled over RGB
+    double flipMean = 0.0;          // LDR-FLIP
+    // The reference's own estimated noise over the same pixels, in the unit of relLuminanceMean
+    // (present when the reference is a progressive ground truth).
+    std::optional<double> referenceNoise;
+};
+
+// How the ground-truth reference converged (render/renderer.h GroundTruthStats).
+struct GroundTruthConvergence {
+    int batches = 0;
+    int samplesPerPixel = 0;
+    double noiseTarget = 0.0;        // mean relative noise asked for
+    double meanRelativeNoise = 0.0;  // reached, over covered pixels
+    bool targetMet = false;
+    double gpuMs = 0.0;              // lighting pass, all batches (timestamps)
+};
+
 // Errors of the lit image against the reference render.
 struct ImageErrors {
     double rmseLinear = 0.0;      // linear HDR radiance, pooled over RGB
@@ -131,6 +152,8 @@ struct ImageErrors {
     // HDR-FLIP over the linear images (absent with --no-hdr-flip) and the exposures it took.
     std::optional<double> hdrFlipMean;
     int hdrFlipExposures = 0;
+    // Per material class (absent in reports written before they existed).
+    std::optional<ImageClassErrors> covered, metal, dielectric;
 };
 
 struct PassTimes {
@@ -170,6 +193,8 @@ struct RunReport {
     AttributeErrorTable attributes;
     std::optional<ImageErrors> image;  // absent when the run failed before measuring
     std::optional<PassTimes> times;    // absent when not measured
+    // The reference it was measured against is a progressive ground truth: how far it converged.
+    std::optional<GroundTruthConvergence> groundTruth;
     RunImages images;
 
     // The 1920x1080, 1-sample frame's traffic at 60 fps in GB/s; nullopt when not in `bandwidth`.
@@ -180,10 +205,26 @@ struct RunReport {
     }
 };
 
+// The seed's comparison figure (ibl_figure.h): rows = IBL modes, columns = material balls.
+struct IblFigureRow {
+    std::string iblMode;
+    std::string caption;                   // the text printed under the row in the PNG
+    std::optional<double> metalError;      // mean relative luminance error vs ground truth, metal balls
+    std::optional<double> dielectricError;
+    std::optional<double> metalNoise;      // ground truth row: its own noise, same unit
+    std::optional<double> dielectricNoise;
+};
+struct IblFigure {
+    std::string png;                       // relative to the report directory
+    std::vector<std::string> columns;      // e.g. "metal r=0.05"
+    std::vector<IblFigureRow> rows;
+};
+
 struct ReportModel {
     ReportRunInfo run;
     ReportReference reference;
     std::vector<RunReport> runs;
+    std::optional<IblFigure> iblFigure;
 };
 
 }  // namespace gbl

@@ -386,8 +386,77 @@ IblMaps computeIblMaps(const VulkanContext& ctx, const EnvironmentMap& environme
     return maps;
 }
 
+std::vector<float> buildEnvironmentSampling(const Image& env) {
+    const int W = env.width, H = env.height;
+    if (W < 1 || H < 1 || env.channels < 3) throw std::invalid_argument("buildEnvironmentSampling: need an RGB image");
+    std::vector<double> lum(size_t(W) * H);
+    double mean = 0.0;
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < W; ++i) {
+            const float* p = &env.pixels[(size_t(j) * W + i) * env.channels];
+            const double y = std::max(0.0, 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]);
+            lum[size_t(j) * W + i] = std::isfinite(y) ? y : 0.0;
+            mean += lum[size_t(j) * W + i];
+        }
+    mean /= double(lum.size());
+    const double eps = mean > 0.0 ? 1e-3 * mean : 1.0;
+    std::vector<double> weight(lum.size());
+    for (int j = 0; j < H; ++j) {
+        const double sinTheta = std::sin(M_PI * (j + 0.5) / H);
+        for (int i = 0; i < W; ++i) {
+            double m = 0.0;
+            for (int dj = -1; dj <= 1; ++dj)
+                for (int di = -1; di <= 1; ++di) {
+                    const int jj = std::clamp(j + dj, 0, H - 1), ii = (i + di + W) % W;  // wraps in u
+                    m = std::max(m, lum[size_t(jj) * W + ii]);
+                }
+            weight[size_t(j) * W + i] = (m + eps) * sinTheta;
+        }
+    }
+    const size_t marginal = 4, conditional = marginal + H + 1, pdfs = conditional + size_t(H) * (W + 1);
+    std::vector<float> t(pdfs + size_t(W) * H, 0.0f);
+    t[0] = float(W);
+    t[1] = float(H);
+    std::vector<double> rowSum(H, 0.0);
+    double total = 0.0;
+    for (int j = 0; j < H; ++j) {
+        for (int i = 0; i < W; ++i) rowSum[j] += weight[size_t(j) * W + i];
+        total += rowSum[j];
+    }
+    double acc = 0.0;
+    for (int j = 0; j < H; ++j) {
+        t[marginal + j] = float(acc / total);
+        acc += rowSum[j];
+        double rowAcc = 0.0;
+        const size_t row = conditional + size_t(j) * (W + 1);
+        for (int i = 0; i < W; ++i) {
+            t[row + i] = float(rowAcc / rowSum[j]);
+            rowAcc += weight[size_t(j) * W + i];
+            t[pdfs + size_t(j) * W + i] = float(weight[size_t(j) * W + i] / total * double(W) * double(H));
+        }
+        t[row + W] = 1.0f;
+    }
+    t[marginal + H] = 1.0f;
+    return t;
+}
+
+double environmentSamplingPdf(const std::vector<float>& t, glm::vec3 d) {
+    const int W = int(t.at(0)), H = int(t.at(1));
+    const glm::vec2 uv = directionToEquirectUv(glm::normalize(d));
+    const int i = std::min(int(uv.x * W), W - 1), j = std::min(int(uv.y * H), H - 1);
+    const glm::vec3 n = glm::normalize(d);
+    const double sinTheta = std::sqrt(std::max(0.0, 1.0 - double(n.y) * n.y));
+    const double pUv = t.at(4 + size_t(H) + 1 + size_t(H) * (W + 1) + size_t(j) * W + i);
+    return sinTheta > 0.0 ? pUv / (2.0 * M_PI * M_PI * sinTheta) : 0.0;
+}
+
 IblGpu createIblGpu(const VulkanContext& ctx, const EnvironmentMap& environment, const IblMaps& maps) {
     IblGpu g;
+    {
+        const std::vector<float> table = buildEnvironmentSampling(environment.image);
+        g.environmentSampling = createBufferWithData(ctx, table.data(), table.size() * sizeof(float),
+                                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    }
     g.sourceFaceSize = maps.settings.sourceFaceSize;
     g.prefilteredMips = uint32_t(maps.prefiltered.size());
     g.irradianceSh = maps.irradianceSh;
@@ -439,6 +508,7 @@ void destroyIblGpu(const VulkanContext& ctx, IblGpu& g) {
     destroyImage(ctx, g.environmentCube);
     destroyImage(ctx, g.prefiltered);
     destroyImage(ctx, g.brdfLut);
+    destroyBuffer(ctx, g.environmentSampling);
     if (g.cubeSampler) vkDestroySampler(ctx.device, g.cubeSampler, nullptr);
     if (g.lutSampler) vkDestroySampler(ctx.device, g.lutSampler, nullptr);
     g = IblGpu{};

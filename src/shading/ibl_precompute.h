@@ -77,12 +77,23 @@ struct IblGpu {
     GpuImage environmentCube;  // source cube, full box-filtered mip chain
     GpuImage prefiltered;
     GpuImage brdfLut;          // RG32F
+    Buffer environmentSampling;  // buildEnvironmentSampling's table (storage buffer)
     std::array<glm::vec3, 9> irradianceSh{};
     uint32_t sourceFaceSize = 0;
     uint32_t prefilteredMips = 0;
     VkSampler cubeSampler = VK_NULL_HANDLE;  // trilinear, clamp
     VkSampler lutSampler = VK_NULL_HANDLE;   // bilinear, clamp
 };
+
+// The ground truth's environment importance sampling (shaders/environment_sampling.glsl reads it):
+// a piecewise-constant 2D distribution over the equirect texels, p(i, j) ~ (Y_max(i, j) + eps) sin(theta_j),
+// Y_max the largest luminance of the 3x3 texels around (i, j) (so the bilinear spread of a bright
+// texel into the cube map stays inside the distribution), eps = 1e-3 x the mean luminance (so no
+// lit texel has pdf 0). Layout, floats: W, H, 0, 0; the marginal CDF over rows (H + 1); each
+// row's conditional CDF (W + 1 per row); the texel pdfs with respect to uv area, p(i, j) W H.
+std::vector<float> buildEnvironmentSampling(const Image& equirect);
+// Solid-angle pdf of `direction` under that table (the CPU twin of environmentDirectionPdf).
+double environmentSamplingPdf(const std::vector<float>& table, glm::vec3 direction);
 
 // Direction (not normalised) of texel (x, y) of `face` in a cube of face width `size`.
 glm::vec3 cubeTexelDirection(uint32_t face, float x, float y, uint32_t size);

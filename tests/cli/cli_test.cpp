@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <map>
 #include <cstdlib>
 #include <filesystem>
 #include <thread>
@@ -17,6 +18,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
+#include "color_map.h"
+#include "ibl_figure.h"
+#include "image_io.h"
 
 namespace fs = std::filesystem;
 
@@ -130,6 +134,90 @@ TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
     r = run("compare --out cmp-both --size 96x64 --hdr-flip --no-hdr-flip");
     expectOneLineError(r, {"--hdr-flip", "--no-hdr-flip"});
     EXPECT_FALSE(fs::exists(scratch() / "cmp-both"));
+}
+
+// The seed's figure: one row per IBL mode (ground truth first), one column per ball of the grid,
+// and under each row the numbers report.json holds, drawn in the bitmap font; per-class image
+// errors add up to the covered pixels' and the ground truth reports its noise beside each run.
+TEST(Cli, CompareDrawsTheSeedsIblFigureWithTheReportsNumbers) {
+    const RunResult r = run("compare --out fig --size 160x90 --layouts ue4 --ibl bo2,ground-truth,split-sum "
+                            "--gt-noise 0.05 --gt-batch-samples 16");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "fig" / "report.json"));
+    ASSERT_TRUE(report.contains("ibl_figure"));
+    const auto& fig = report["ibl_figure"];
+    ASSERT_EQ(fig["rows"].size(), 3u);
+    EXPECT_EQ(fig["rows"][0]["ibl_mode"], "ground-truth");
+    EXPECT_EQ(fig["rows"][1]["ibl_mode"], "split-sum");
+    EXPECT_EQ(fig["rows"][2]["ibl_mode"], "bo2");
+    ASSERT_EQ(fig["columns"].size(), 12u);
+    for (size_t c = 0; c < 12; ++c)
+        EXPECT_EQ(fig["columns"][c].get<std::string>().rfind(c < 6 ? "metal r=" : "dielectric r=", 0), 0u) << c;
+
+    // Numbers: each row's equal its lighting run's per-class errors (ground truth: its noise).
+    std::map<std::string, nlohmann::json> lighting;
+    for (const auto& run : report["runs"]) {
+        const auto& classes = run["image_errors"]["by_class"];
+        const double n = classes["covered"]["pixels"].get<double>();
+        const double nm = classes["metal"]["pixels"].get<double>(), nd = classes["dielectric"]["pixels"].get<double>();
+        EXPECT_EQ(n, nm + nd);
+        const double sum = classes["metal"]["rel_luminance_mean"].get<double>() * nm +
+                           classes["dielectric"]["rel_luminance_mean"].get<double>() * nd;
+        EXPECT_NEAR(classes["covered"]["rel_luminance_mean"].get<double>() * n, sum, 1e-9 * std::max(sum, 1.0));
+        if (run["layout"].get<std::string>().rfind("reference (", 0) == 0) {
+            lighting[run["ibl_mode"].get<std::string>()] = run;
+            ASSERT_TRUE(run.contains("ground_truth"));  // the reference's convergence, beside the comparison
+            EXPECT_TRUE(classes["metal"].contains("reference_noise"));
+        }
+    }
+    ASSERT_EQ(lighting.size(), 2u);
+    const auto& noiseSource = lighting.at("split-sum")["image_errors"]["by_class"];
+    EXPECT_EQ(fig["rows"][0]["metal_noise"], noiseSource["metal"]["reference_noise"]);
+    EXPECT_EQ(fig["rows"][0]["dielectric_noise"], noiseSource["dielectric"]["reference_noise"]);
+    for (size_t i = 1; i < 3; ++i) {
+        const auto& row = fig["rows"][i];
+        const auto& classes = lighting.at(row["ibl_mode"].get<std::string>())["image_errors"]["by_class"];
+        EXPECT_EQ(row["metal_error"], classes["metal"]["rel_luminance_mean"]);
+        EXPECT_EQ(row["dielectric_error"], classes["dielectric"]["rel_luminance_mean"]);
+    }
+
+    // The PNG: its size is that of 3 rows x 12 tiles, and each caption band holds exactly the
+    // caption made from the row's JSON numbers.
+    const gbl::Image8 png = gbl::readImage8((scratch() / "fig" / fig["png"].get<std::string>()).string());
+    const int band = gbl::iblFigureCaptionBandHeight();
+    const int rowsHeight = png.height - gbl::kIblFigureTitleHeight - gbl::kIblFigureMargin;
+    ASSERT_EQ(rowsHeight % 3, 0);
+    const int tile = rowsHeight / 3 - band;
+    ASSERT_GE(tile, 64);
+    EXPECT_EQ(png.width, 2 * gbl::kIblFigureMargin + 12 * tile + 11 * gbl::kIblFigureTileGap + gbl::kIblFigureGroupGap);
+    for (int i = 0; i < 3; ++i) {
+        const auto& row = fig["rows"][size_t(i)];
+        gbl::IblFigureRow fromJson;
+        fromJson.iblMode = row["ibl_mode"];
+        if (row.contains("metal_error")) fromJson.metalError = row["metal_error"].get<double>();
+        if (row.contains("dielectric_error")) fromJson.dielectricError = row["dielectric_error"].get<double>();
+        if (row.contains("metal_noise")) fromJson.metalNoise = row["metal_noise"].get<double>();
+        if (row.contains("dielectric_noise")) fromJson.dielectricNoise = row["dielectric_noise"].get<double>();
+        const std::string caption = gbl::iblFigureCaption(fromJson);
+        EXPECT_EQ(row["caption"], caption);
+        gbl::Image8 expected;
+        expected.width = png.width;
+        expected.height = band;
+        expected.channels = 3;
+        expected.pixels.assign(size_t(png.width) * band * 3, 0);
+        gbl::fillRect(expected, 0, 0, png.width, band, gbl::kIblFigureBackground);
+        gbl::drawText(expected, gbl::kIblFigureMargin, gbl::kIblFigureCaptionPad, caption, gbl::kIblFigureText,
+                      gbl::kIblFigureTextScale);
+        const int top = gbl::kIblFigureTitleHeight + i * (tile + band) + tile;
+        size_t differing = 0;
+        for (int y = 0; y < band; ++y)
+            for (int x = 0; x < png.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    differing += png.pixels[(size_t(top + y) * png.width + x) * size_t(png.channels) + c] !=
+                                 expected.pixels[(size_t(y) * png.width + x) * 3 + c];
+        EXPECT_EQ(differing, 0u) << "caption of row " << i << ": " << caption;
+    }
+    EXPECT_NE(slurp(scratch() / "fig" / "report.html").find(fig["png"].get<std::string>()), std::string::npos);
 }
 
 TEST(Cli, UnknownFlagsAndCommandsAreExplained) {

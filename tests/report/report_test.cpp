@@ -278,11 +278,18 @@ TEST(ReportCsv, HeaderAndOneRowPerRun) {
                                               "gb_per_s_1080p60"};
     EXPECT_TRUE(std::equal(leading.begin(), leading.end(), header.begin()));
     // Every attribute x class x statistic, with its unit; RMSE for colours only.
-    size_t attributeColumns = 0;
-    for (const std::string& name : header) attributeColumns += name.find("_all_") != std::string::npos ||
-                                                               name.find("_metal_") != std::string::npos ||
-                                                               name.find("_dielectric_") != std::string::npos;
+    // Image errors per class (covered, metal, dielectric) x 4 statistics are counted apart.
+    size_t attributeColumns = 0, imageClassColumns = 0;
+    for (const std::string& name : header) {
+        if (name.rfind("image_", 0) == 0) {
+            imageClassColumns += 1;
+            continue;
+        }
+        attributeColumns += name.find("_all_") != std::string::npos || name.find("_metal_") != std::string::npos ||
+                            name.find("_dielectric_") != std::string::npos;
+    }
     EXPECT_EQ(attributeColumns, 7u * 3u * 3u + 3u * 3u);
+    EXPECT_EQ(imageClassColumns, 3u * 4u);
     const auto column = [&](const std::string& name) {
         const auto it = std::find(header.begin(), header.end(), name);
         EXPECT_NE(it, header.end()) << name;
