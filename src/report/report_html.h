@@ -22,6 +22,8 @@ void writeReport(const std::filesystem::path& dir, const ReportModel& model);
 // ---- Pieces, exposed for tests ------------------------------------------------------------------
 
 std::string htmlEscape(const std::string& text);  // & < > " '
+// How the page writes an infinite value (a PSNR of identical images): U+221E in UTF-8.
+inline constexpr const char* kInfinity = "\xE2\x88\x9E";
 // A relative path for src= / href=: each byte outside [A-Za-z0-9-._~/] percent-encoded.
 std::string urlPathEscape(const std::string& path);
 // `digits` significant digits, plain decimal for 1e-4 <= |v| < 1e6 ("0.0123", "38.1", "1250"),
