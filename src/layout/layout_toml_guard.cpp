@@ -1,0 +1,171 @@
+// A guard in front of toml::parse for a bug in toml++ 3.3.0 (the Debian 12 package; upstream issue
+// marzer/tomlplusplus#294, fixed upstream by pull request #301).
+//
+// parse_table_header() skips '[' (and a second '[' for an array of tables) and the spaces after
+// it, then calls parse_key() without checking that the next character can start a key. parse_key()
+// states that as a precondition: TOML_ASSERT_ASSUME(is_bare_key_character(*cp) ||
+// is_string_delimiter(*cp)). So "[#", "[&", "[ +", "[[[1]]]" or a '[' at the end of a line
+//   - abort the process in a build with assertions (found by scripts/fuzz.sh within seconds);
+//   - are undefined behaviour with NDEBUG where TOML_ASSUME is __builtin_assume (clang, MSVC):
+//     the compiler may drop parse_key()'s own "expected bare key starting character" branch.
+// Debian's libtomlplusplus.so is built by g++ with NDEBUG, where TOML_ASSUME is a no-op, so the
+// Release build happens to reach that branch and report a TOML error; nothing guarantees it.
+//
+// findUnsafeTableHeader scans the text the way toml++'s root loop walks it (statements, strings,
+// comments, brackets) and finds the first table header that would hit the bug, so the parser can
+// report it with its place and never hand such a text to toml++. It is conservative in one
+// direction only: where the text is broken in some other way before such a header, toml++ stops
+// there first, so the scan stops too and lets toml++ report it.
+#include "layout_parser_detail.h"
+
+namespace gbl::layout_parser {
+
+namespace {
+
+bool isBareKeyChar(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
+}
+bool isSpace(char c) { return c == ' ' || c == '\t'; }
+
+class Scanner {
+public:
+    explicit Scanner(std::string_view text) : text_(text) {
+        if (text_.substr(0, 3) == "\xEF\xBB\xBF") bom_ = pos_ = 3;  // toml++ skips a UTF-8 BOM
+    }
+
+    std::optional<std::pair<FilePlace, std::string>> run() {
+        while (true) {
+            while (pos_ < text_.size() && isSpace(text_[pos_])) ++pos_;
+            if (pos_ >= text_.size()) return std::nullopt;
+            const char c = text_[pos_];
+            if (c == '\n') {
+                ++pos_;
+            } else if (c == '\r' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n') {
+                pos_ += 2;
+            } else if (c == '#') {
+                skipComment();
+            } else if (c == '[') {
+                if (auto bad = checkHeader()) return bad;
+                if (!skipStatement()) return std::nullopt;
+            } else if (isBareKeyChar(c) || c == '"' || c == '\'') {
+                if (!skipStatement()) return std::nullopt;
+            } else {
+                return std::nullopt;  // toml++ refuses this statement itself, before any later header
+            }
+        }
+    }
+
+private:
+    // At a '[' that starts a statement: what toml++'s parse_table_header does before parse_key().
+    std::optional<std::pair<FilePlace, std::string>> checkHeader() {
+        size_t p = pos_ + 1;
+        const size_t afterBracket = p;
+        while (p < text_.size() && isSpace(text_[p])) ++p;
+        if (p >= text_.size()) return std::nullopt;          // toml++: unexpected end of file
+        if (text_[p] == '[') {
+            if (p != afterBracket) return std::nullopt;      // toml++: "[ [" is refused
+            ++p;
+            while (p < text_.size() && isSpace(text_[p])) ++p;
+            if (p >= text_.size()) return std::nullopt;
+        }
+        const char c = text_[p];
+        if (c == ']' || isBareKeyChar(c) || c == '"' || c == '\'') return std::nullopt;
+        std::string saw;
+        if (c == '\n' || c == '\r') {
+            saw = "the end of the line";
+        } else {
+            size_t end = p + 1;  // the whole UTF-8 sequence, escaped by quoteName
+            while (end < text_.size() && (static_cast<unsigned char>(text_[end]) & 0xC0) == 0x80 && end - p < 4) ++end;
+            saw = quoteName(text_.substr(p, end - p));
+        }
+        return std::make_pair(placeAt(p), "TOML syntax error: a table header must start with a key (a bare name or a "
+                                          "quoted string) after '[', saw " +
+                                              saw);
+    }
+
+    // From the start of a statement (a key = value pair or a table header) to the line break that
+    // ends it, past strings, comments and the line breaks inside arrays and inline tables.
+    // False where the text ends inside a string (toml++ reports that).
+    bool skipStatement() {
+        int depth = 0;
+        while (pos_ < text_.size()) {
+            const char c = text_[pos_];
+            if (c == '"' || c == '\'') {
+                if (!skipString()) return false;
+            } else if (c == '#') {
+                skipComment();
+            } else if (c == '[' || c == '{') {
+                ++depth;
+                ++pos_;
+            } else if (c == ']' || c == '}') {
+                if (depth > 0) --depth;
+                ++pos_;
+            } else if (c == '\n' && depth == 0) {
+                return true;
+            } else {
+                ++pos_;
+            }
+        }
+        return true;
+    }
+
+    void skipComment() {
+        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+    }
+
+    // At a quote: past the string ("...", '...', """...""" or '''...'''). False if it does not
+    // end, or a one-line string meets a line break (toml++ reports both).
+    bool skipString() {
+        const char q = text_[pos_];
+        const bool basic = q == '"';
+        const bool multi = text_.substr(pos_, 3) == std::string(3, q);
+        pos_ += multi ? 3 : 1;
+        while (pos_ < text_.size()) {
+            const char c = text_[pos_];
+            if (basic && c == '\\') {
+                pos_ += 2;
+                continue;
+            }
+            if (c == q) {
+                if (!multi) {
+                    ++pos_;
+                    return true;
+                }
+                if (text_.substr(pos_, 3) == std::string(3, q)) {
+                    pos_ += 3;
+                    for (int extra = 0; extra < 2 && pos_ < text_.size() && text_[pos_] == q; ++extra) ++pos_;
+                    return true;
+                }
+            }
+            if (c == '\n' && !multi) return false;
+            ++pos_;
+        }
+        return false;
+    }
+
+    // Line and column as toml++ counts them: columns in code points, a BOM not counted.
+    FilePlace placeAt(size_t at) const {
+        int line = 1, column = 1;
+        for (size_t i = bom_; i < at; ++i) {
+            if (text_[i] == '\n') {
+                ++line;
+                column = 1;
+            } else if ((static_cast<unsigned char>(text_[i]) & 0xC0) != 0x80) {
+                ++column;
+            }
+        }
+        return {line, column};
+    }
+
+    std::string_view text_;
+    size_t pos_ = 0;
+    size_t bom_ = 0;
+};
+
+}  // namespace
+
+std::optional<std::pair<FilePlace, std::string>> findUnsafeTableHeader(std::string_view text) {
+    return Scanner(text).run();
+}
+
+}  // namespace gbl::layout_parser
