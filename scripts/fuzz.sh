@@ -99,7 +99,7 @@ status=0
 stamp="$out/.run-started"
 touch "$stamp"
 run() {  # run NAME CORPUS CI-RUNS: libFuzzer's exit status is non-zero when it found anything
-  local name=$1 corpus=$2 runs=$3 rc=0
+  local name=$1 corpus=$2 runs=${3:-0} rc=0
   mkdir -p "$out/findings-$name"
   echo "fuzz: $name on $corpus ($(find "$corpus" -type f | wc -l) inputs)"
   if [ "$mode" = ci ]; then
