@@ -18,7 +18,7 @@ Layout Parser::parse(std::string_view text) {
     Layout layout;
     layout.sourceFile = file_;
     toml::table root;
-    if (auto unsafe = findUnsafeTableHeader(text)) {  // never handed to toml++: see layout_toml_guard.cpp
+    if (auto unsafe = findTomlPlusPlusHazard(text)) {  // never handed to toml++: see layout_toml_guard.cpp
         error(unsafe->first, std::move(unsafe->second));
         return layout;
     }

@@ -1,21 +1,21 @@
-// A guard in front of toml::parse for a bug in toml++ 3.3.0 (the Debian 12 package; upstream issue
-// marzer/tomlplusplus#294, fixed upstream by pull request #301).
-//
-// parse_table_header() skips '[' (and a second '[' for an array of tables) and the spaces after
-// it, then calls parse_key() without checking that the next character can start a key. parse_key()
-// states that as a precondition: TOML_ASSERT_ASSUME(is_bare_key_character(*cp) ||
-// is_string_delimiter(*cp)). So "[#", "[&", "[ +", "[[[1]]]" or a '[' at the end of a line
-//   - abort the process in a build with assertions (found by scripts/fuzz.sh within seconds);
-//   - are undefined behaviour with NDEBUG where TOML_ASSUME is __builtin_assume (clang, MSVC):
-//     the compiler may drop parse_key()'s own "expected bare key starting character" branch.
+// A guard in front of toml::parse for two bugs of toml++ 3.3.0 (the Debian 12 package), both
+// found by scripts/fuzz.sh within seconds. toml++ states preconditions with TOML_ASSERT_ASSUME:
+// an assert() in a build with assertions, and with NDEBUG a hint to the optimiser (TOML_ASSUME is
+// __builtin_assume on clang and MSVC), so breaking one is an abort or undefined behaviour.
+//   1. A table header whose first character after '[' (or "[[") and spaces cannot start a key:
+//      "[#", "[&", "[[[1]]]", '[' at the end of a line. parse_table_header() calls parse_key()
+//      without checking, which assumes is_bare_key_character(*cp) || is_string_delimiter(*cp).
+//      (Upstream issue marzer/tomlplusplus#294, fixed upstream by pull request #301.)
+//   2. In an array, '}' or a Unicode line break (U+0085, U+2028, U+2029) where a value may start:
+//      "l=[}". parse_array() handles spaces, line breaks, comments, ',' and ']', then calls
+//      parse_value(), which assumes !is_value_terminator(*cp).
 // Debian's libtomlplusplus.so is built by g++ with NDEBUG, where TOML_ASSUME is a no-op, so the
-// Release build happens to reach that branch and report a TOML error; nothing guarantees it.
+// Release build happens to reach toml++'s own error branches; nothing guarantees that.
 //
-// findUnsafeTableHeader scans the text the way toml++'s root loop walks it (statements, strings,
-// comments, brackets) and finds the first table header that would hit the bug, so the parser can
-// report it with its place and never hand such a text to toml++. It is conservative in one
-// direction only: where the text is broken in some other way before such a header, toml++ stops
-// there first, so the scan stops too and lets toml++ report it.
+// findTomlPlusPlusHazard scans the text the way toml++'s root loop walks it (statements, strings,
+// comments, brackets) and finds the first such place, so the parser reports it with its place and
+// never hands such a text to toml++. Where the text is broken in some other way before it,
+// toml++ stops there first, so the scan stops too and lets toml++ report it.
 #include "layout_parser_detail.h"
 
 namespace gbl::layout_parser {
@@ -46,9 +46,9 @@ public:
                 skipComment();
             } else if (c == '[') {
                 if (auto bad = checkHeader()) return bad;
-                if (!skipStatement()) return std::nullopt;
+                if (!skipStatement()) return found_;
             } else if (isBareKeyChar(c) || c == '"' || c == '\'') {
-                if (!skipStatement()) return std::nullopt;
+                if (!skipStatement()) return found_;
             } else {
                 return std::nullopt;  // toml++ refuses this statement itself, before any later header
             }
@@ -85,28 +85,49 @@ private:
 
     // From the start of a statement (a key = value pair or a table header) to the line break that
     // ends it, past strings, comments and the line breaks inside arrays and inline tables.
-    // False where the text ends inside a string (toml++ reports that).
+    // False where the scan stops: the text ends inside a string (toml++ reports that), or an array
+    // holds what toml++ would hand to parse_value() unchecked (found_).
     bool skipStatement() {
-        int depth = 0;
+        const bool header = text_[pos_] == '[';
+        std::string open;  // the '[' and '{' not yet closed, innermost last
         while (pos_ < text_.size()) {
             const char c = text_[pos_];
+            const bool inArray = !header && !open.empty() && open.back() == '[';
             if (c == '"' || c == '\'') {
                 if (!skipString()) return false;
-            } else if (c == '#') {
-                skipComment();
-            } else if (c == '[' || c == '{') {
-                ++depth;
-                ++pos_;
-            } else if (c == ']' || c == '}') {
-                if (depth > 0) --depth;
-                ++pos_;
-            } else if (c == '\n' && depth == 0) {
-                return true;
-            } else {
-                ++pos_;
+                continue;
             }
+            if (c == '#') {
+                skipComment();
+                continue;
+            }
+            if (c == '\n' && open.empty()) return true;
+            // parse_array() skips spaces, line breaks and comments and handles ',' and ']', then
+            // calls parse_value(), which assumes (TOML_ASSERT_ASSUME) that no value terminator
+            // follows: '}' ("l=[}") and the Unicode line breaks U+0085, U+2028, U+2029 do.
+            if (inArray && c == '}') return refuse(pos_, "'}' in an array (expected a value, ',' or ']')");
+            if (inArray && isUnicodeLineBreak(pos_))
+                return refuse(pos_, quoteName(text_.substr(pos_, text_[pos_] == '\xC2' ? 2 : 3)) +
+                                        " (a Unicode line break) in an array: TOML allows only spaces, tabs and "
+                                        "\\n or \\r\\n between values");
+            if (c == '[' || c == '{') {
+                open += c;
+            } else if ((c == ']' || c == '}') && !open.empty()) {
+                open.pop_back();
+            }
+            ++pos_;
         }
         return true;
+    }
+
+    bool isUnicodeLineBreak(size_t at) const {  // U+0085 (C2 85), U+2028 and U+2029 (E2 80 A8/A9)
+        const std::string_view s = text_.substr(at, 3);
+        return s.substr(0, 2) == "\xC2\x85" || s == "\xE2\x80\xA8" || s == "\xE2\x80\xA9";
+    }
+
+    bool refuse(size_t at, const std::string& what) {
+        found_ = std::make_pair(placeAt(at), "TOML syntax error: " + what);
+        return false;
     }
 
     void skipComment() {
@@ -158,13 +179,14 @@ private:
     }
 
     std::string_view text_;
+    std::optional<std::pair<FilePlace, std::string>> found_;
     size_t pos_ = 0;
     size_t bom_ = 0;
 };
 
 }  // namespace
 
-std::optional<std::pair<FilePlace, std::string>> findUnsafeTableHeader(std::string_view text) {
+std::optional<std::pair<FilePlace, std::string>> findTomlPlusPlusHazard(std::string_view text) {
     return Scanner(text).run();
 }
 

@@ -248,6 +248,32 @@ TEST(LayoutParser, TableHeaderWithoutAKeyIsRefusedBeforeTomlPlusPlusSeesIt) {
     }
 }
 
+// The second toml++ 3.3.0 precondition the fuzzer broke: parse_array() hands '}' (or a Unicode
+// line break) to parse_value(), which assumes no value terminator follows. "l=[}" (4 bytes) is
+// the minimised input that tripped its assertion.
+TEST(LayoutParser, ValueTerminatorInAnArrayIsRefusedBeforeTomlPlusPlusSeesIt) {
+    const std::string file(kFile);
+    struct Case {
+        std::string text, place, words;
+    };
+    const std::vector<Case> cases = {
+        {"l=[}", file + ":1:4", "'}' in an array"},  // the fuzzer's minimised input
+        {"l = [ 1,\n  # }\n  }", file + ":3:3", "'}' in an array"},
+        {"l = [[{a = [1]}], }]", file + ":1:19", "'}' in an array"},
+        {"l = [1,\n\xe2\x80\xa8]", file + ":2:1", "'\\xe2\\x80\\xa8' (a Unicode line break) in an array"},
+        {"l = [\xc2\x85]", file + ":1:6", "'\\xc2\\x85' (a Unicode line break) in an array"},
+        {edit(kValid, "stencil = [ {", "stencil = [ } {"), placeOf(kValid, "{ attribute = \"ambient_id\""), "'}' in an array"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(escapeText(c.text));
+        const auto diags = checkLayout(c.text, kFile);
+        ASSERT_EQ(diags.size(), 1u) << joined(diags);
+        const std::string t = diags[0].text();
+        EXPECT_EQ(t.rfind(c.place + ": TOML syntax error: " + c.words, 0), 0u) << t;
+        EXPECT_EQ(t.find('\n'), std::string::npos) << t;
+    }
+}
+
 // The guard refuses nothing that toml++ reads: brackets and '#' in strings, multi-line strings,
 // comments, arrays of arrays and inline tables; valid headers with spaces or quoted keys.
 TEST(LayoutParser, TableHeaderGuardLeavesValidTomlAlone) {
