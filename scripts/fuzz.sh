@@ -81,7 +81,10 @@ link fuzz_gltf_loader tests/fuzz/fuzz_gltf_loader.cpp "${base[@]}" "${scene_sour
 seed() {  # seed LAYOUT-DIR GLTF-DIR
   mkdir -p "$1" "$2"
   cp layouts/*.toml "$1/"
-  find /usr/share/assimp/models/glTF2 ../shared/assets -size -1024k \( -name '*.gltf' -o -name '*.glb' \) 2>/dev/null |
+  local dirs=() d
+  for d in /usr/share/assimp/models/glTF2 ../shared/assets; do [ -d "$d" ] && dirs+=("$d"); done
+  ((${#dirs[@]})) || return 0
+  find "${dirs[@]}" -size -1024k \( -name '*.gltf' -o -name '*.glb' \) |
     while read -r f; do cp "$f" "$2/$(echo "$f" | md5sum | cut -c1-16).${f##*.}"; done
 }
 if [ "$mode" = ci ]; then
