@@ -9,6 +9,9 @@
 //   2. In an array, '}' or a Unicode line break (U+0085, U+2028, U+2029) where a value may start:
 //      "l=[}". parse_array() handles spaces, line breaks, comments, ',' and ']', then calls
 //      parse_value(), which assumes !is_value_terminator(*cp).
+//   3. Any of U+00A1..U+0499 ('é', Greek, Cyrillic) outside a string or comment, or right after a
+//      line-ending backslash in a multi-line string: is_non_ascii_horizontal_whitespace() reaches
+//      TOML_UNREACHABLE for them (UBSan: "execution reached an unreachable program point").
 // Debian's libtomlplusplus.so is built by g++ with NDEBUG, where TOML_ASSUME is a no-op, so the
 // Release build happens to reach toml++'s own error branches; nothing guarantees that.
 //
@@ -49,6 +52,9 @@ public:
                 if (!skipStatement()) return found_;
             } else if (isBareKeyChar(c) || c == '"' || c == '\'') {
                 if (!skipStatement()) return found_;
+            } else if (static_cast<unsigned char>(c) >= 0x80) {
+                refuse(pos_, nonAsciiOutsideStrings(pos_));
+                return found_;
             } else {
                 return std::nullopt;  // toml++ refuses this statement itself, before any later header
             }
@@ -110,6 +116,7 @@ private:
                 return refuse(pos_, quoteName(text_.substr(pos_, text_[pos_] == '\xC2' ? 2 : 3)) +
                                         " (a Unicode line break) in an array: TOML allows only spaces, tabs and "
                                         "\\n or \\r\\n between values");
+            if (static_cast<unsigned char>(c) >= 0x80) return refuse(pos_, nonAsciiOutsideStrings(pos_));
             if (c == '[' || c == '{') {
                 open += c;
             } else if ((c == ']' || c == '}') && !open.empty()) {
@@ -118,6 +125,28 @@ private:
             ++pos_;
         }
         return true;
+    }
+
+    // Bug 3: toml++'s is_non_ascii_horizontal_whitespace() reaches TOML_UNREACHABLE (undefined
+    // behaviour) for U+00A1 to U+0499 (Latin-1 letters such as 'é', Greek, Cyrillic). toml++ asks
+    // it of every character outside strings and comments that it skips or ends a value at, and in
+    // a multi-line basic string of the first character after a line-ending backslash. Outside
+    // strings and comments TOML is ASCII anyway, so every non-ASCII character there is refused.
+    std::string nonAsciiOutsideStrings(size_t at) const {
+        return "non-ASCII character " + quoteName(codepointText(at)) +
+               " outside a string or comment (TOML keys and non-string values are ASCII)";
+    }
+    std::string_view codepointText(size_t at) const {
+        size_t end = at + 1;
+        while (end < text_.size() && (static_cast<unsigned char>(text_[end]) & 0xC0) == 0x80 && end - at < 4) ++end;
+        return text_.substr(at, end - at);
+    }
+    bool isInUnreachableRange(size_t at) const {  // U+00A1..U+0499: two UTF-8 bytes C2 A1 .. D2 99
+        if (at + 1 >= text_.size()) return false;
+        const auto b0 = static_cast<unsigned char>(text_[at]), b1 = static_cast<unsigned char>(text_[at + 1]);
+        if (b0 < 0xC2 || b0 > 0xDF || (b1 & 0xC0) != 0x80) return false;
+        const unsigned cp = ((b0 & 0x1Fu) << 6) | (b1 & 0x3Fu);
+        return cp >= 0xA1 && cp <= 0x499;
     }
 
     bool isUnicodeLineBreak(size_t at) const {  // U+0085 (C2 85), U+2028 and U+2029 (E2 80 A8/A9)
@@ -144,6 +173,16 @@ private:
         while (pos_ < text_.size()) {
             const char c = text_[pos_];
             if (basic && c == '\\') {
+                if (multi) {
+                    size_t p = pos_ + 1;
+                    while (p < text_.size() && (isSpace(text_[p]) || text_[p] == '\n' || text_[p] == '\r')) ++p;
+                    if (p < text_.size() && isInUnreachableRange(p)) {
+                        const std::string ch = quoteName(codepointText(p));
+                        refuse(p, ch + " right after a line-ending backslash in a multi-line string: toml++ 3.3.0 "
+                                       "cannot read it there; write it as a \\u escape");
+                        return false;
+                    }
+                }
                 pos_ += 2;
                 continue;
             }

@@ -224,7 +224,8 @@ TEST(LayoutParser, TableHeaderWithoutAKeyIsRefusedBeforeTomlPlusPlusSeesIt) {
         {"[\xc3\xa9]", file + ":1:2", "saw '\\xc3\\xa9'"},
         {"\xEF\xBB\xBF[#", file + ":1:2", "saw '#'"},  // a BOM is not a column
         {edit(kValid, "[depth]", "[#depth]"), placeOf(kValid, "depth]"), "saw '#'"},
-        {edit(kValid, "[[target]]", "[[\t=target]]"), placeOf(kValid, "target]]"), "saw '='"},
+        {edit(kValid, "[[target]]", "[[=target]]"), placeOf(kValid, "target]]"), "saw '='"},
+        {"[[\t=x]]", file + ":1:4", "saw '='"},
         // after a multi-line string, a multi-line array, an inline table and comments holding brackets
         {"a = \"\"\"\n[x\n\"\"\"\nb = [\n  [1],\n  '[', # [\n]\n# [#\nc = { d = \"]\" }\n[.e]\n", file + ":10:2",
          "saw '.'"},
@@ -272,6 +273,36 @@ TEST(LayoutParser, ValueTerminatorInAnArrayIsRefusedBeforeTomlPlusPlusSeesIt) {
         EXPECT_EQ(t.rfind(c.place + ": TOML syntax error: " + c.words, 0), 0u) << t;
         EXPECT_EQ(t.find('\n'), std::string::npos) << t;
     }
+}
+
+// The third: toml++ 3.3.0's is_non_ascii_horizontal_whitespace() reaches TOML_UNREACHABLE for
+// U+00A1..U+0499 ('é', Greek, Cyrillic), asked of characters outside strings (UBSan, on the
+// fuzzer's " \xcf\x9al+f%%%%=h...") and after a line-ending backslash in a multi-line string.
+TEST(LayoutParser, NonAsciiOutsideStringsIsRefusedBeforeTomlPlusPlusSeesIt) {
+    const std::string file(kFile);
+    struct Case {
+        std::string text, place, words;
+    };
+    const std::vector<Case> cases = {
+        {" \xcf\x9al+f%%%%=h", file + ":1:2", "non-ASCII character '\\xcf\\x9a' outside a string"},
+        {"\xc3\xa9 = 1", file + ":1:1", "non-ASCII character '\\xc3\\xa9'"},
+        {"a = 1 \xc3\xa9", file + ":1:7", "non-ASCII character"},
+        {"a = [1, \xd0\x96]", file + ":1:9", "non-ASCII character"},
+        {"[a \xc3\xa9]", file + ":1:4", "non-ASCII character"},
+        {"a = \"\"\"x\\\n   \xc3\xa9\"\"\"", file + ":2:4", "'\\xc3\\xa9' right after a line-ending backslash"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(escapeText(c.text));
+        const auto diags = checkLayout(c.text, kFile);
+        ASSERT_EQ(diags.size(), 1u) << joined(diags);
+        const std::string t = diags[0].text();
+        EXPECT_EQ(t.rfind(c.place + ": TOML syntax error: ", 0), 0u) << t;
+        EXPECT_NE(t.find(c.words), std::string::npos) << t;
+    }
+    // Strings and comments may hold any of them.
+    for (const std::string text : {"a = \"caf\xc3\xa9\" # \xc3\xa9\n", "\"\xc3\xa9\" = 1\n", "a = '''\n\xd0\x96'''\n"})
+        for (const auto& d : checkLayout(text, kFile))
+            EXPECT_EQ(d.message.find("TOML syntax error"), std::string::npos) << d.text();
 }
 
 // The guard refuses nothing that toml++ reads: brackets and '#' in strings, multi-line strings,
