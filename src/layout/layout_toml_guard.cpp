@@ -95,14 +95,25 @@ private:
     // holds what toml++ would hand to parse_value() unchecked (found_).
     bool skipStatement() {
         const bool header = text_[pos_] == '[';
-        std::string open;  // the '[' and '{' not yet closed, innermost last
+        const size_t start = pos_;
+        std::string open;    // the '[' and '{' not yet closed, innermost last
+        bool inKey = true;   // reading a key (before '=', or after '{' or ',' in an inline table)
         while (pos_ < text_.size()) {
             const char c = text_[pos_];
             const bool inArray = !header && !open.empty() && open.back() == '[';
-            if (c == '"' || c == '\'') {
+            // A quote starts a string only where a value or key can start: right after a bare
+            // character ('0"...') toml++ scans it as part of the bare value instead.
+            const char before = pos_ == start ? ' ' : text_[pos_ - 1];
+            const bool canStart = before == ' ' || before == '\t' || before == '=' || before == '[' ||
+                                  before == '{' || before == ',' || before == '\n' || before == '\r' ||
+                                  (before == '.' && inKey) || pos_ == start;
+            if ((c == '"' || c == '\'') && canStart) {
                 if (!skipString()) return false;
                 continue;
             }
+            if (c == '=') inKey = false;
+            if (c == '{' || (c == ',' && !open.empty() && open.back() == '{')) inKey = true;
+            if (c == '[' && !header) inKey = false;
             if (c == '#') {
                 skipComment();
                 continue;

@@ -289,6 +289,9 @@ TEST(LayoutParser, NonAsciiOutsideStringsIsRefusedBeforeTomlPlusPlusSeesIt) {
         {"a = 1 \xc3\xa9", file + ":1:7", "non-ASCII character"},
         {"a = [1, \xd0\x96]", file + ":1:9", "non-ASCII character"},
         {"[a \xc3\xa9]", file + ":1:4", "non-ASCII character"},
+        // a quote inside a bare value does not start a string: toml++ scans on (fuzzer, minimised)
+        {"t=0\"\xc8\xb8", file + ":1:5", "non-ASCII character '\\xc8\\xb8'"},
+        {"t = true'\xc3\xa9'", file + ":1:10", "non-ASCII character"},
         {"a = \"\"\"x\\\n   \xc3\xa9\"\"\"", file + ":2:4", "'\\xc3\\xa9' right after a line-ending backslash"},
     };
     for (const Case& c : cases) {
@@ -300,7 +303,9 @@ TEST(LayoutParser, NonAsciiOutsideStringsIsRefusedBeforeTomlPlusPlusSeesIt) {
         EXPECT_NE(t.find(c.words), std::string::npos) << t;
     }
     // Strings and comments may hold any of them.
-    for (const std::string text : {"a = \"caf\xc3\xa9\" # \xc3\xa9\n", "\"\xc3\xa9\" = 1\n", "a = '''\n\xd0\x96'''\n"})
+    for (const std::string text : {"a = \"caf\xc3\xa9\" # \xc3\xa9\n", "\"\xc3\xa9\" = 1\n",
+                                   "a.\"\xc3\xa9\" = [\"\xc3\xa9\",'\xc3\xa9']\n",
+                                   "a = {b.\"\xc3\xa9\" = \"\xc3\xa9\", \"\xc3\xa9\" = 1}\n", "a = '''\n\xd0\x96'''\n"})
         for (const auto& d : checkLayout(text, kFile))
             EXPECT_EQ(d.message.find("TOML syntax error"), std::string::npos) << d.text();
 }
