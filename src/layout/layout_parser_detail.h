@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "error.h"
@@ -56,6 +57,11 @@ inline bool isOneLine(std::string_view s) {
 
 // Values are ids (at most 32 bits) or floats; 2^32 bounds both comfortably below float's 3.4e38.
 constexpr double kMaxLayoutNumber = 4294967296.0;
+
+// The first place in `text` that would break a precondition toml++ 3.3.0 does not check ("[#",
+// "l=[}": see layout_toml_guard.cpp), with a "TOML syntax error: ..." message; nullopt when
+// toml::parse can be given the text.
+std::optional<std::pair<FilePlace, std::string>> findTomlPlusPlusHazard(std::string_view text);
 
 inline std::string formatNumber(double x) {
     char buf[32];

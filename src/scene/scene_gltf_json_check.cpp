@@ -1,5 +1,6 @@
 #include "scene_gltf_json_check.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -289,6 +290,32 @@ std::string jsonText(const std::string& path, const std::vector<unsigned char>& 
     return std::string(bytes.begin() + 20, bytes.begin() + 20 + length);
 }
 
+// The library's message for an error it gives no byte for, such as "[json.exception.
+// out_of_range.406] number overflow parsing '9e390'": placed at the quoted text's first occurrence
+// as a whole token, not inside a string (the start of the file if it is not found).
+std::string jsonErrorWithoutPlace(const std::string& path, const std::string& text, const std::string& what) {
+    std::string reason = what;
+    if (const size_t bracket = reason.find("] "); reason.rfind("[json.exception", 0) == 0 && bracket != std::string::npos)
+        reason = reason.substr(bracket + 2);
+    size_t byte = 0;
+    const size_t open = what.find(" '"), close = what.rfind('\'');
+    if (open != std::string::npos && close != std::string::npos && close > open + 2) {
+        const std::string token = what.substr(open + 2, close - open - 2);
+        const auto partOfNumber = [](char c) {  // or of a string: '"'
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-' || c == '"';
+        };
+        for (size_t at = text.find(token); at != std::string::npos; at = text.find(token, at + 1)) {
+            const size_t end = at + token.size();
+            if ((at == 0 || !partOfNumber(text[at - 1])) && (end >= text.size() || !partOfNumber(text[end]))) {
+                byte = at + 1;
+                break;
+            }
+        }
+    }
+    if (reason.rfind("number overflow", 0) == 0) reason += " (beyond a double's range)";
+    return jsonParseErrorMessage(path, text, byte, "parse error: " + reason);
+}
+
 }  // namespace
 
 void checkGltfJson(const std::string& path, const std::vector<unsigned char>& bytes) {
@@ -298,6 +325,10 @@ void checkGltfJson(const std::string& path, const std::vector<unsigned char>& by
         root = json::parse(text);
     } catch (const json::parse_error& e) {
         throwUserError(jsonParseErrorMessage(path, text, e.byte, e.what()) + "; fix the file or re-export it");
+    } catch (const json::exception& e) {
+        // out_of_range 406, a number beyond a double ("9e390", found by scripts/fuzz.sh), comes
+        // with no place: the number's own text is looked up instead.
+        throwUserError(jsonErrorWithoutPlace(path, text, e.what()) + "; fix the file or re-export it");
     }
     const Checker checker(path);
     if (!root.is_object()) checker.fail("the top level", std::string("must be an object, not ") + jsonTypeName(root));
