@@ -3,7 +3,8 @@
 // includer declares, before including it,
 //     layout(std430, ...) readonly buffer EnvironmentSampling { float environmentSampling[]; };
 // and includes environment_map.glsl. The table is built on the CPU by
-// src/shading/ibl_precompute.cpp buildEnvironmentSampling (same layout, documented there):
+// src/shading/ibl_precompute.cpp buildEnvironmentSampling (same layout, documented there); the C++
+// twin of these functions (same names) is src/shading/environment_sampling.cpp:
 //   [0] W, [1] H (as floats), [2], [3] unused,
 //   [4 .. 4+H]                     marginal CDF over rows (H + 1 values, 0 .. 1),
 //   [5+H .. 5+H+H(W+1))            per row j, the conditional CDF over columns (W + 1 values),

@@ -227,6 +227,24 @@ std::vector<FigureBall> findFigureBalls(const Scene& scene, uint32_t width, uint
         b.size = std::max(4, int(std::ceil(2.2f * rpx)));
         b.x = int(std::floor(px - 0.5f * float(b.size)));
         b.y = int(std::floor(py - 0.5f * float(b.size)));
+        // The ball's pixels: the camera ray through each crop pixel's centre hits the sphere.
+        // radius is the farthest vertex; the tessellated silhouette lies up to ~1.5% inside it.
+        const float inscribed = 0.985f * radius;
+        const glm::mat4 inverseViewProj = glm::inverse(cam.viewProj);
+        b.mask.assign(size_t(b.size) * size_t(b.size), 0);
+        for (int my = 0; my < b.size; ++my)
+            for (int mx = 0; mx < b.size; ++mx) {
+                const float nx = (float(b.x + mx) + 0.5f) / float(width) * 2.0f - 1.0f;
+                const float ny = (float(b.y + my) + 0.5f) / float(height) * 2.0f - 1.0f;
+                const glm::vec4 a = inverseViewProj * glm::vec4(nx, ny, 0.0f, 1.0f);
+                const glm::vec4 e = inverseViewProj * glm::vec4(nx, ny, 1.0f, 1.0f);
+                const glm::vec3 origin = glm::vec3(a) / a.w;
+                const glm::vec3 dir = glm::normalize(glm::vec3(e) / e.w - origin);
+                const glm::vec3 oc = centre - origin;
+                const float along = glm::dot(oc, dir);
+                b.mask[size_t(my) * size_t(b.size) + size_t(mx)] =
+                    along > 0.0f && glm::dot(oc, oc) - along * along <= inscribed * inscribed ? 1 : 0;
+            }
         b.metal = metal;
         const float r = scene.materials[size_t(d.material)].roughnessFactor;
         char label[48];
@@ -243,16 +261,19 @@ std::vector<FigureBall> findFigureBalls(const Scene& scene, uint32_t width, uint
 }
 
 void printTable(const ReportModel& model) {
-    std::printf("\n%-20s %-16s %6s %9s %9s %9s %10s %8s\n", "layout", "ibl", "B/px", "GB/s@1080", "normal°",
+    // The layout column is as wide as its longest name ("reference (split-sum-shader vs ground-truth)").
+    int w = 20;
+    for (const RunReport& r : model.runs) w = std::max(w, int(r.layout.size()));
+    std::printf("\n%-*s %-16s %6s %9s %9s %9s %10s %8s\n", w, "layout", "ibl", "B/px", "GB/s@1080", "normal°",
                 "albedoΔE", "PSNR(tm)", "FLIP");
     for (const RunReport& r : model.runs) {
         if (r.status == RunStatus::Failed) {
-            std::printf("%-20s %-16s FAILED: %s\n", r.layout.c_str(), r.iblMode.c_str(), r.error.c_str());
+            std::printf("%-*s %-16s FAILED: %s\n", w, r.layout.c_str(), r.iblMode.c_str(), r.error.c_str());
             continue;
         }
         const auto& n = r.attributes[ErrorAttribute::Normal].all;
         const auto& a = r.attributes[ErrorAttribute::DiffuseColor].all;
-        std::printf("%-20s %-16s %6d %9.2f %9.3f %9.3f %10s %8.4f\n", r.layout.c_str(), r.iblMode.c_str(),
+        std::printf("%-*s %-16s %6d %9.2f %9.3f %9.3f %10s %8.4f\n", w, r.layout.c_str(), r.iblMode.c_str(),
                     r.bytesPerPixel.total, r.gigabytesPerSecond1080p60().value_or(0.0), n ? n->error.mean : 0.0,
                     a ? a->error.mean : 0.0, formatPsnr(r.image ? r.image->psnrToneMapped : 0.0).c_str(),
                     r.image ? r.image->flipMean : 0.0);
@@ -302,7 +323,7 @@ void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPas
 
 int runCompareCommand(const std::vector<std::string>& args) {
     const std::vector<FlagSpec> specs = {
-        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in sphere grid"},
+        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in scene (the sphere grid and its surroundings)"},
         {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
         {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
         {"layouts", "A,B,...", "layouts to compare (names in layouts/ or .toml paths), or all (default)"},

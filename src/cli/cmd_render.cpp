@@ -35,7 +35,7 @@ int runDevicesCommand(const std::vector<std::string>& args) {
 
 int runRenderCommand(const std::vector<std::string>& args) {
     const std::vector<FlagSpec> specs = {
-        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in sphere grid"},
+        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in scene (the sphere grid and its surroundings)"},
         {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
         {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
         {"size", "WxH", "image size (default 1280x720)"},

@@ -1,5 +1,7 @@
 #include "ibl_figure.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -73,8 +75,15 @@ Image8 composeIblFigure(const std::vector<Image8>& renders, const std::vector<Fi
                     // Nearest: tile pixel -> crop pixel (the crop is centred in the tile).
                     const int sx = b.x + tx * b.size / l.tileSize, sy = b.y + ty * b.size / l.tileSize;
                     if (sx < 0 || sy < 0 || sx >= src.width || sy >= src.height) continue;
-                    const unsigned char* p = &src.pixels[(size_t(sy) * src.width + sx) * size_t(src.channels)];
                     unsigned char* q = &out.pixels[(size_t(top + ty) * out.width + x0 + tx) * 3];
+                    const int mx = sx - b.x, my = sy - b.y;
+                    if (b.mask.size() == size_t(b.size) * size_t(b.size) && !b.mask[size_t(my) * size_t(b.size) + size_t(mx)]) {
+                        q[0] = kIblFigureTileBackdrop.r;
+                        q[1] = kIblFigureTileBackdrop.g;
+                        q[2] = kIblFigureTileBackdrop.b;
+                        continue;
+                    }
+                    const unsigned char* p = &src.pixels[(size_t(sy) * src.width + sx) * size_t(src.channels)];
                     q[0] = p[0];
                     q[1] = p[1];
                     q[2] = p[2];

@@ -28,11 +28,17 @@ constexpr int kIblFigureCaptionPad = 4;
 constexpr int kIblFigureTitleHeight = 7 * kIblFigureTextScale + 2 * kIblFigureCaptionPad;
 constexpr Rgb8 kIblFigureBackground{24, 24, 24};
 constexpr Rgb8 kIblFigureText{235, 235, 235};
+// What a tile shows outside its ball (the scene around the grid is masked out, as in the seed's figure).
+constexpr Rgb8 kIblFigureTileBackdrop{56, 56, 56};
 inline int iblFigureCaptionBandHeight() { return 7 * kIblFigureTextScale + 2 * kIblFigureCaptionPad; }
 
 // A material ball in the renders: a square crop, top-left (x, y), side `size` pixels.
 struct FigureBall {
     int x = 0, y = 0, size = 0;
+    // size x size, row-major over the crop: 1 where the ball covers the crop pixel's centre (the
+    // camera ray through it hits the sphere); tile pixels from a 0 show kIblFigureTileBackdrop.
+    // Empty: no mask.
+    std::vector<unsigned char> mask;
     bool metal = false;
     std::string label;  // "metal r=0.05"
 };

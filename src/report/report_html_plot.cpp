@@ -63,8 +63,15 @@ void writePlot(std::string& out, const ReportModel& model, const PlotSpec& spec,
     std::vector<std::vector<Point>> series(modes.size());
     double xMax = 0, yMin = INFINITY, yMax = -INFINITY;
     bool anyInfinite = false;
+    bool skippedLighting = false;
     for (const RunReport& r : model.runs) {
         if (r.status != RunStatus::Ok || !r.image) continue;
+        // Errors against ground truth, not against the float reference: not a point of this plot
+        // (and never on a layout's Pareto front). The IBL figure and the table show them.
+        if (r.isLightingComparison()) {
+            skippedLighting = true;
+            continue;
+        }
         const double y = *r.image.*spec.field;
         if (std::isnan(y)) continue;
         const size_t s = size_t(std::find(modes.begin(), modes.end(), r.iblMode) - modes.begin());
@@ -185,6 +192,9 @@ void writePlot(std::string& out, const ReportModel& model, const PlotSpec& spec,
                        "both smaller and ") +
            (spec.higherIsBetter ? "higher" : "lower") + ")</span>";
     if (anyInfinite) out += std::string("<span>") + kInfinity + ": identical to the reference</span>";
+    if (skippedLighting)
+        out += "<span>the lighting comparisons (reference (&lt;mode&gt; vs ground-truth)) are not plotted: their "
+               "errors are against ground truth</span>";
     out += "</div>\n</figure>\n";
 }
 

@@ -197,6 +197,13 @@ struct RunReport {
     std::optional<GroundTruthConvergence> groundTruth;
     RunImages images;
 
+    // A lighting comparison of `compare` (the reference layout under one IBL mode against the same
+    // layout under ground truth, named "reference (<mode> vs ground-truth)"): its errors are the
+    // lighting approximation's, not a layout's against the float reference.
+    bool isLightingComparison() const {
+        return layout.rfind("reference (", 0) == 0 && layout.find(" vs ") != std::string::npos;
+    }
+
     // The 1920x1080, 1-sample frame's traffic at 60 fps in GB/s; nullopt when not in `bandwidth`.
     std::optional<double> gigabytesPerSecond1080p60() const {
         for (const FrameTraffic& frame : bandwidth)

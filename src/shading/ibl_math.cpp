@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "brdf.h"
+#include "environment_sampling.h"
 
 namespace gbl::shading {
 
@@ -329,6 +330,75 @@ glm::vec3 prefilterEnvMapFiltered(const EnvironmentLodFn& sampleEnvironmentLod, 
         }
     }
     return totalWeight > 0.0f ? prefilteredColor / totalWeight : glm::vec3(0.0f);
+}
+
+// PCG hash [O'Neill 2014; Jarzynski & Olano, JCGT 9(3), 2020], RXS-M-XS: uint32 wrap-around as in GLSL.
+uint32_t pcgHash(uint32_t v) {
+    uint32_t state = v * 747796405u + 2891336453u;
+    uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+glm::vec2 randomShift(uint32_t a, uint32_t b, uint32_t c) {
+    uint32_t h = pcgHash(a ^ pcgHash(b ^ pcgHash(c)));
+    uint32_t h2 = pcgHash(h);
+    return glm::vec2(float(h >> 8u), float(h2 >> 8u)) * 5.9604644775390625e-8f;  // 2^-24
+}
+
+// [Veach97, sec. 9.2.4], beta = 2.
+float powerHeuristic(float a, float b) {
+    float a2 = a * a;
+    float d = a2 + b * b;
+    return d > 0.0f ? a2 / d : 0.0f;
+}
+
+// GLSL fract: x - floor(x), per component.
+static glm::vec2 fractGlsl(glm::vec2 x) { return x - glm::floor(x); }
+
+// [Veach97 ch. 9]: one GGX and one environment sample per step, power heuristic (ibl_math.glsl).
+glm::vec3 specularIBLGroundTruthMis(const EnvironmentLodFn& sampleEnvironmentLod,
+                                    const std::vector<float>& environmentSampling, glm::vec3 specularColor,
+                                    float roughness, glm::vec3 N, glm::vec3 V, uint32_t numSamples,
+                                    glm::vec2 shiftGgx, glm::vec2 shiftEnv) {
+    glm::vec3 sum(0.0f);
+    float NoV = std::max(saturate(glm::dot(N, V)), kMinIblNoV);
+    bool useEnvironment = roughness >= kMinMisRoughness;
+    for (uint32_t i = 0; i < numSamples; i++) {
+        glm::vec2 Xi = hammersley(i, numSamples);
+        // BRDF technique.
+        glm::vec3 H = importanceSampleGGX(fractGlsl(Xi + shiftGgx), roughness, N);
+        glm::vec3 L = 2.0f * glm::dot(V, H) * H - V;
+        float NoL = saturate(glm::dot(N, L));
+        float NoH = saturate(glm::dot(N, H));
+        float VoH = saturate(glm::dot(V, H));
+        if (NoL > 0.0f && NoH > 0.0f && VoH > 0.0f) {
+            float G = gSmithSchlickIbl(roughness, NoV, NoL);
+            float Fc = fresnelWeightSchlick(VoH);
+            glm::vec3 F = (1.0f - Fc) * specularColor + Fc;
+            float w = 1.0f;
+            if (useEnvironment)
+                w = powerHeuristic(pdfGgxReflection(NoH, VoH, roughness), environmentDirectionPdf(environmentSampling, L));
+            sum += w * sampleEnvironmentLod(L, 0.0f) * F * (G * VoH / (NoH * NoV));
+        }
+        if (!useEnvironment) continue;
+        // Environment technique.
+        float pdfEnv;
+        glm::vec3 Le = sampleEnvironmentDirection(environmentSampling, fractGlsl(Xi + shiftEnv), pdfEnv);
+        float NoLe = glm::dot(N, Le);
+        if (pdfEnv > 0.0f && NoLe > 0.0f) {
+            glm::vec3 He = glm::normalize(V + Le);
+            float NoHe = saturate(glm::dot(N, He));
+            float VoHe = std::clamp(glm::dot(V, He), 1e-6f, 1.0f);
+            float D = dGgx(NoHe, roughness);
+            float G = gSmithSchlickIbl(roughness, NoV, std::min(NoLe, 1.0f));
+            float Fc = fresnelWeightSchlick(VoHe);
+            glm::vec3 F = (1.0f - Fc) * specularColor + Fc;
+            float w = powerHeuristic(pdfEnv, D * NoHe / (4.0f * VoHe));
+            // f NoL = D G F / (4 NoV)
+            sum += w * sampleEnvironmentLod(Le, 0.0f) * F * (D * G / (4.0f * NoV * pdfEnv));
+        }
+    }
+    return sum / float(numSamples);
 }
 
 }  // namespace gbl::shading

@@ -42,6 +42,7 @@
 // y = k/N also biases A by +5e-4 at NoV = 1).
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -122,5 +123,24 @@ glm::vec3 prefilterEnvMap(const EnvironmentLodFn& sampleEnvironmentLod, float ro
 // The same, each sample at filteredSampleLod(D/4, numSamples, faceSize).
 glm::vec3 prefilterEnvMapFiltered(const EnvironmentLodFn& sampleEnvironmentLod, float roughness, glm::vec3 R,
                                   uint32_t numSamples, float faceSize);
+
+
+// ---- the converged ground truth (environment importance sampling + GGX, combined by MIS) ----
+// Below this roughness the MIS estimator uses the GGX samples alone (weight 1).
+inline constexpr float kMinMisRoughness = 0.02f;
+// PCG hash (RXS-M-XS output), as in the GLSL.
+uint32_t pcgHash(uint32_t v);
+// Cranley-Patterson shift in [0,1)^2 from three integers: pcgHash(a ^ pcgHash(b ^ pcgHash(c))), 24 bits each.
+glm::vec2 randomShift(uint32_t a, uint32_t b, uint32_t c);
+// Power heuristic, beta = 2: a^2 / (a^2 + b^2) (0 when both are 0).
+float powerHeuristic(float a, float b);
+// specularIBLGroundTruthMis of shaders/ibl_math.glsl: the integral of specularIBLGroundTruth
+// estimated by MIS of one GGX and one environment sample per step (power heuristic), Hammersley
+// points shifted by shiftGgx / shiftEnv. `environmentSampling` is the GLSL's storage buffer of the
+// same name (buildEnvironmentSampling's table, read through environment_sampling.h).
+glm::vec3 specularIBLGroundTruthMis(const EnvironmentLodFn& sampleEnvironmentLod,
+                                    const std::vector<float>& environmentSampling, glm::vec3 specularColor,
+                                    float roughness, glm::vec3 N, glm::vec3 V, uint32_t numSamples,
+                                    glm::vec2 shiftGgx, glm::vec2 shiftEnv);
 
 }  // namespace gbl::shading

@@ -92,7 +92,8 @@ struct IblGpu {
 // lit texel has pdf 0). Layout, floats: W, H, 0, 0; the marginal CDF over rows (H + 1); each
 // row's conditional CDF (W + 1 per row); the texel pdfs with respect to uv area, p(i, j) W H.
 std::vector<float> buildEnvironmentSampling(const Image& equirect);
-// Solid-angle pdf of `direction` under that table (the CPU twin of environmentDirectionPdf).
+// Solid-angle pdf of `direction` under that table, in double (the float twin of the GLSL's
+// environmentDirectionPdf, same name, is in environment_sampling.h).
 double environmentSamplingPdf(const std::vector<float>& table, glm::vec3 direction);
 
 // Direction (not normalised) of texel (x, y) of `face` in a cube of face width `size`.

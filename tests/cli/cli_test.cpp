@@ -217,6 +217,20 @@ TEST(Cli, CompareDrawsTheSeedsIblFigureWithTheReportsNumbers) {
                                  expected.pixels[(size_t(y) * png.width + x) * 3 + c];
         EXPECT_EQ(differing, 0u) << "caption of row " << i << ": " << caption;
     }
+    // Each tile shows its ball only: the corners (outside the ball, where the default scene's
+    // surroundings would show) are the backdrop, the centre is not.
+    auto pixelIs = [&](int x, int y, gbl::Rgb8 c) {
+        const unsigned char* p = &png.pixels[(size_t(y) * png.width + x) * size_t(png.channels)];
+        return p[0] == c.r && p[1] == c.g && p[2] == c.b;
+    };
+    for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 12; ++c) {
+            const int x0 = gbl::kIblFigureMargin + c * (tile + gbl::kIblFigureTileGap) + (c >= 6 ? gbl::kIblFigureGroupGap : 0);
+            const int y0 = gbl::kIblFigureTitleHeight + i * (tile + band);
+            for (auto [dx, dy] : {std::pair{1, 1}, std::pair{tile - 2, 1}, std::pair{1, tile - 2}, std::pair{tile - 2, tile - 2}})
+                EXPECT_TRUE(pixelIs(x0 + dx, y0 + dy, gbl::kIblFigureTileBackdrop)) << "row " << i << " column " << c;
+            EXPECT_FALSE(pixelIs(x0 + tile / 2, y0 + tile / 2, gbl::kIblFigureTileBackdrop)) << "row " << i << " column " << c;
+        }
     EXPECT_NE(slurp(scratch() / "fig" / "report.html").find(fig["png"].get<std::string>()), std::string::npos);
 }
 

@@ -298,7 +298,7 @@ TEST(DirectLight, WhiteFurnaceAnalyticK) {
 }
 
 // The FRESNEL_* / NDF_* / ... int constants, kPi, kMinDirectRoughness (shaders/brdf.glsl vs
-// src/shading/brdf.h) and kIblDefaultSamples, kMinIblNoV (shaders/ibl_math.glsl vs src/shading/ibl_math.h) are written
+// src/shading/brdf.h) and kIblDefaultSamples, kMinIblNoV, kMinMisRoughness (shaders/ibl_math.glsl vs src/shading/ibl_math.h) are written
 // twice; they must agree exactly.
 TEST(Shared, GlslConstantsMatchCpp) {
     std::string glsl = readText(std::filesystem::path(GBL_SOURCE_SHADER_DIR) / "brdf.glsl");
@@ -348,11 +348,15 @@ TEST(Shared, GlslConstantsMatchCpp) {
             if (name == "kMinIblNoV") {
                 EXPECT_EQ(std::stof(value), kMinIblNoV);
             }
+            if (name == "kMinMisRoughness") {
+                EXPECT_EQ(std::stof(value), kMinMisRoughness);
+            }
             found[name] = value;
         }
     }
     EXPECT_TRUE(found.count("kIblDefaultSamples"));
     EXPECT_TRUE(found.count("kMinIblNoV"));
+    EXPECT_TRUE(found.count("kMinMisRoughness"));
 }
 
 // shaders/brdf.glsl + shaders/ibl_math.glsl compile for Vulkan 1.2, with and without the environment
