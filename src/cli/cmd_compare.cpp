@@ -205,7 +205,9 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
 }
 
 // compare --views: the cameras. View 0 is the scene's camera; then orbit views about the scene's
-// centre (the centre of its bounds) at the scene camera's distance, 35 degrees above the horizontal,
+// centre (the point the scene camera looks at; for a camera read from a glTF file, whose target is
+// only a direction, the centre of the scene's bounds) at the scene camera's distance from it, 35
+// degrees above the horizontal,
 // azimuths +40, +160, +280, ... degrees from the scene camera's; with 3 or more views the last is a
 // grazing view of the ground: 6 degrees above the plane through the bounds' lowest point, at the
 // same distance, azimuth -30 degrees, looking at the centre's foot on that plane. Same field of
@@ -221,7 +223,7 @@ std::vector<CompareView> compareViews(const Scene& scene, int count) {
     views.push_back({base, "scene camera"});
     if (count <= 1) return views;
     const glm::vec3 up = glm::normalize(base.up);
-    const glm::vec3 centre = 0.5f * (scene.bounds.min + scene.bounds.max);
+    const glm::vec3 centre = base.fromFile ? 0.5f * (scene.bounds.min + scene.bounds.max) : base.target;
     float distance = glm::length(base.position - centre);
     if (!(distance > 0.0f) || !std::isfinite(distance)) distance = 1.0f;
     // The scene camera's horizontal direction from the centre (any horizontal one when it looks straight down).
