@@ -10,6 +10,8 @@
 #include <mutex>
 #include <optional>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -35,6 +37,7 @@
 #include "shader_cache.h"
 #include "stage_clock.h"
 #include "tone_map.h"
+#include "view_stats.h"
 #include "vk_context.h"
 #include "wiring_codegen.h"
 #include "worst_regions.h"
@@ -154,10 +157,10 @@ std::string formatPsnr(double db) {
 // The comparison of one rendered run against its reference: metrics, images, crops. `test` is
 // moved from when `releaseTest` (its surfaces are freed once measured: peak memory at 4K).
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
-                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest) {
+                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages = true) {
     RunErrorMaps maps;
     RunMetricsOptions options;
-    options.maps = &maps;
+    options.maps = writeImages ? &maps : nullptr;
     options.hdrFlip = hdrFlip;
     options.prepared = reference.prepared.get();
     if (!reference.output.noise.empty()) {
@@ -173,6 +176,7 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
                     : computeRunMetrics(reference.output.surfaces, test.surfaces, reference.output.hdr, test.hdr,
                                         exposure, options);
     fillMetrics(run, m);
+    if (!writeImages) return;  // views after the first: metrics only
     const int cropSize = std::max(32, std::min(test.hdr.width, test.hdr.height) / 12);
     const std::vector<Crop> crops = findWorstRegions(maps.relLuminance, cropSize, 3);
     timed.emplace(Stage::Report);
@@ -198,6 +202,72 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
             run.images.crops.push_back({crops[i].x, crops[i].y, crops[i].size, crops[i].size, files[i].reference,
                                         files[i].test, files[i].heat});
     }
+}
+
+// compare --views: the cameras. View 0 is the scene's camera; then orbit views about the scene's
+// centre (the point the scene camera looks at; for a camera read from a glTF file, whose target is
+// only a direction, the centre of the scene's bounds) at the scene camera's distance from it, 35
+// degrees above the horizontal,
+// azimuths +40, +160, +280, ... degrees from the scene camera's; with 3 or more views the last is a
+// grazing view of the ground: 6 degrees above the plane through the bounds' lowest point, at the
+// same distance, azimuth -30 degrees, looking at the centre's foot on that plane. Same field of
+// view, near and far planes as the scene camera. Up is the scene camera's up.
+struct CompareView {
+    Camera camera;
+    std::string description;
+};
+
+std::vector<CompareView> compareViews(const Scene& scene, int count) {
+    std::vector<CompareView> views;
+    const Camera& base = scene.camera;
+    views.push_back({base, "scene camera"});
+    if (count <= 1) return views;
+    const glm::vec3 up = glm::normalize(base.up);
+    const glm::vec3 centre = base.fromFile ? 0.5f * (scene.bounds.min + scene.bounds.max) : base.target;
+    float distance = glm::length(base.position - centre);
+    if (!(distance > 0.0f) || !std::isfinite(distance)) distance = 1.0f;
+    // The scene camera's horizontal direction from the centre (any horizontal one when it looks straight down).
+    glm::vec3 from = base.position - centre;
+    from -= up * glm::dot(from, up);
+    if (glm::length(from) < 1e-6f * distance) from = std::abs(up.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+    from = glm::normalize(from - up * glm::dot(from, up));
+    auto place = [&](float azimuthDeg, float elevationDeg, glm::vec3 target) {
+        const glm::vec3 h = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(azimuthDeg), up) * glm::vec4(from, 0.0f));
+        const float e = glm::radians(elevationDeg);
+        Camera c = base;
+        c.position = target + distance * (std::cos(e) * h + std::sin(e) * up);
+        c.target = target;
+        c.up = up;
+        c.fromFile = false;
+        return c;
+    };
+    const bool grazing = count >= 3;
+    const int orbits = count - 1 - (grazing ? 1 : 0);
+    char buf[160];
+    for (int k = 0; k < orbits; ++k) {
+        const float azimuth = 40.0f + 120.0f * float(k);
+        std::snprintf(buf, sizeof(buf), "orbit about the scene's centre: azimuth %+.0f deg, elevation 35 deg",
+                      double(azimuth));
+        views.push_back({place(azimuth, 35.0f, centre), buf});
+    }
+    if (grazing) {
+        // The ground: the plane through the bounds' lowest point along up.
+        const glm::vec3 corners[2] = {scene.bounds.min, scene.bounds.max};
+        float low = std::numeric_limits<float>::max();
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 p(corners[i & 1].x, corners[(i >> 1) & 1].y, corners[(i >> 2) & 1].z);
+            low = std::min(low, glm::dot(p, up));
+        }
+        const glm::vec3 foot = centre - up * (glm::dot(centre, up) - low);
+        views.push_back({place(-30.0f, 6.0f, foot), "grazing view of the ground: 6 deg above it, azimuth -30 deg"});
+    }
+    return views;
+}
+
+// After the last view: a run's metrics become the mean over its views; one view: as before.
+void finishViews(RunReport& run) {
+    if (run.views.size() > 1) averageViews(run);
+    else run.views.clear();
 }
 
 // The material balls of the built-in scene's sphere grid (materials "metal roughness ..." and
@@ -264,6 +334,11 @@ void printTable(const ReportModel& model) {
     // The layout column is as wide as its longest name ("reference (split-sum-shader vs ground-truth)").
     int w = 20;
     for (const RunReport& r : model.runs) w = std::max(w, int(r.layout.size()));
+    const size_t views = model.run.views.size();
+    if (views > 1)
+        std::printf("\nEvery metric is the mean over %d views; the row under each run gives its spread over them:\n"
+                    "± standard deviation, PSNR as min..max dB.",
+                    int(views));
     std::printf("\n%-*s %-16s %6s %9s %9s %9s %10s %8s\n", w, "layout", "ibl", "B/px", "GB/s@1080", "normal°",
                 "albedoΔE", "PSNR(tm)", "FLIP");
     for (const RunReport& r : model.runs) {
@@ -277,6 +352,29 @@ void printTable(const ReportModel& model) {
                     r.bytesPerPixel.total, r.gigabytesPerSecond1080p60().value_or(0.0), n ? n->error.mean : 0.0,
                     a ? a->error.mean : 0.0, formatPsnr(r.image ? r.image->psnrToneMapped : 0.0).c_str(),
                     r.image ? r.image->flipMean : 0.0);
+        if (views > 1 && r.views.size() > 1) {
+            auto attr = [](ErrorAttribute which) {
+                return [which](const RunReport& v) -> std::optional<double> {
+                    const auto& s = v.attributes[which].all;
+                    if (!s) return std::nullopt;
+                    return s->error.mean;
+                };
+            };
+            const ViewSpread ns = viewSpread(r, attr(ErrorAttribute::Normal));
+            const ViewSpread as = viewSpread(r, attr(ErrorAttribute::DiffuseColor));
+            const ViewSpread p = viewSpread(r, [](const RunReport& v) -> std::optional<double> {
+                if (!v.image) return std::nullopt;
+                return v.image->psnrToneMapped;
+            });
+            const ViewSpread f = viewSpread(r, [](const RunReport& v) -> std::optional<double> {
+                if (!v.image) return std::nullopt;
+                return v.image->flipMean;
+            });
+            char psnr[32];
+            std::snprintf(psnr, sizeof(psnr), "%.1f..%.1f", p.min, p.max);
+            std::printf("%-*s %-16s %6s %9s   ±%6.3f   ±%6.3f %10s  ±%6.4f\n", w, "", "  spread", "", "", ns.stddev,
+                        as.stddev, psnr, f.stddev);
+        }
     }
 }
 
@@ -337,6 +435,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"brdf-lut", "VARIANT", "split-sum BRDF LUT: converged (visible-normal sampling, 4096 samples; default) or "
                                 "seed (the seed's IntegrateBRDF, 1024 samples)"},
         {"size", "WxH", "image size (default 1920x1080)"},
+        {"views", "N", "cameras measured (default 3: the scene camera, an orbit about the scene's centre, a grazing "
+                       "view of the ground; more add orbit views); every metric is the mean over them with its "
+                       "spread; per-pixel images are the first view's"},
         {"out", "DIR", "output directory, new or empty (default: out/compare-<time>)"},
         {"force", "", "write into a non-empty --out directory, replacing files of the same name"},
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
@@ -367,6 +468,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     std::optional<ScopedStage> timedSetup(std::in_place, Stage::Setup);
     const auto [width, height] = parseSize(parsed.get("size", "1920x1080"), "--size");
     const float exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
+    const int viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
     std::vector<IblMode> modes;
     std::vector<std::string> modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
     for (const auto& n : modeNames) modes.push_back(parseIblMode(n));
@@ -411,7 +513,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
 
     const bool compareLighting = modes.size() > 1 &&
                                  std::find(modeNames.begin(), modeNames.end(), kGroundTruth) != modeNames.end();
-    const int steps = int(modes.size()) * (1 + int(layouts.size())) + (compareLighting ? int(modes.size()) - 1 : 0);
+    const std::vector<CompareView> views = compareViews(inputs.scene, viewCount);
+    for (const CompareView& v : views) model.run.views.push_back(v.description);
+    if (viewCount > 1)
+        model.run.notes.push_back("every metric is the mean over " + std::to_string(viewCount) +
+                                  " views (--views); images and crops are the first view's (the scene camera)");
+    const int steps =
+        viewCount * (int(modes.size()) * (1 + int(layouts.size())) + (compareLighting ? int(modes.size()) - 1 : 0));
     Progress progress(steps, stderr);
     prepareOutputDirectory(outDir, force, "--out");
     // Until the report is complete the folder says so: an interruption (SIGINT, SIGTERM) writes
@@ -426,6 +534,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         std::lock_guard lock(modelMutex);
         if (reportComplete) return;
         ReportModel partial = model;
+        for (RunReport& r : partial.runs) finishViews(r);
         const std::string what = std::string("INCOMPLETE: interrupted by ") + signalName(signal) + " after " +
                                  std::to_string(partial.runs.size()) + " of " + std::to_string(steps - int(modes.size())) +
                                  " runs; this report lists only the runs that finished";
@@ -439,8 +548,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
     Renderer renderer(ctx, inputs.scene, inputs.environment, loadOrComputeIbl(ctx, inputs.environment, iblSettings));
     const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
     // Every run renders the same way but for the IBL mode, and decodes its G-buffer for metrics.
-    auto settingsFor = [&](IblMode mode) {
+    auto settingsFor = [&](IblMode mode, int view) {
         RenderSettings settings;
+        settings.camera = views[size_t(view)].camera;
         settings.width = width;
         settings.height = height;
         settings.specularIbl = mode;
@@ -452,132 +562,168 @@ int runCompareCommand(const std::vector<std::string>& args) {
         settings.readTargetWords = false;
         return settings;
     };
-    std::map<std::string, ReferenceRender> references;
-    for (size_t m = 0; m < modes.size(); ++m) {
-        progress.begin("reference / " + modeNames[m]);
-        ReferenceRender ref;
-        ref.output = renderer.render(referenceWiring, settingsFor(modes[m]));
-        gpuPassMs += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
-        ref.renderPng = "reference-" + modeNames[m] + ".png";
-        const std::string renderExr = "reference-" + modeNames[m] + ".exr";
-        ScopedStage timed(Stage::Report);
-        writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
-        writeExr((outDir / renderExr).string(), ref.output.hdr);
-        const std::string preview = "reference-" + modeNames[m] + "-log.png";
-        writePng((outDir / preview).string(), logEncodeForPreview(ref.output.hdr));
-        model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr, preview});
-        std::string gtNote;
-        if (modes[m] == IblMode::GroundTruth) {
-            const GroundTruthStats& g = ref.output.groundTruth;
-            char buf[256];
-            std::snprintf(buf, sizeof(buf),
-                          "ground truth: %d batches x %d steps (%d samples per pixel, GGX + environment by MIS), mean "
-                          "relative noise %.5f (target %.5f%s), lighting %.0f ms GPU on %s",
-                          g.batches, gtBatchSamples, g.samplesPerPixel, g.meanRelativeNoise, g.targetRelativeNoise,
-                          g.targetMet ? ", met" : ", NOT met", g.lightingMs, ctx.info.name.c_str());
-            gtNote = buf;
-            model.run.notes.push_back(gtNote);
-        }
-        progress.end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
-                     std::to_string(int(ref.output.timings.lightingMs)) + " ms" +
-                     (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches"));
-        ReferenceRender& stored = references[modeNames[m]] = std::move(ref);
-        ScopedStage timedPrepare(Stage::Metrics);
-        stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, exposure);
-    }
-
-    auto makeRun = [&](const Layout& layout, const std::string& mode) {
-        RunReport run;
-        run.layout = layout.name;
-        run.title = layout.title;
-        run.source = layout.source.text();
-        run.pipeline = pipelineName(layout.pipeline);
-        run.iblMode = mode;
-        const BandwidthReport bw = computeBandwidth(layout, width, height);
-        run.bytesPerPixel = bytesPerPixelOf(bw);
-        run.bandwidth = bw.frames;
-        return run;
-    };
-
-    // The lighting approximations: the reference layout under each mode vs under ground truth.
-    if (compareLighting) {
-        const ReferenceRender& truth = references.at(kGroundTruth);
-        for (const auto& mode : modeNames) {
-            if (mode == kGroundTruth) continue;
-            progress.begin("lighting " + mode + " vs " + kGroundTruth);
-            RunReport run = makeRun(referenceLayout, mode);
-            run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
-            ReferenceRender& approx = references.at(mode);
-            run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx.info.name};
-            measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip, false);
-            progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
-                         std::to_string(run.image->flipMean).substr(0, 6));
+    // compare --views: every view renders the references and every run again; the runs of views
+    // after the first add their metrics to the first view's run (RunReport::views), in the same order.
+    for (int view = 0; view < viewCount; ++view) {
+        const bool firstView = view == 0;
+        const std::string viewLabel = viewCount > 1 ? " [view " + std::to_string(view) + "]" : "";
+        size_t runIndex = 0;
+        auto record = [&](RunReport&& run) {
             std::lock_guard lock(modelMutex);
-            model.runs.push_back(std::move(run));
-        }
-    }
-
-    // The seed's figure: rows = modes (enum order: ground truth first), columns = the grid's balls.
-    if (compareLighting) {
-        const std::vector<FigureBall> balls = findFigureBalls(inputs.scene, width, height);
-        if (balls.empty()) {
-            model.run.notes.push_back("IBL figure: only for the built-in scene (it crops the sphere grid's balls)");
-        } else {
-            ScopedStage timed(Stage::Report);
-            IblFigure figure;
-            figure.png = "ibl-figure.png";
-            for (const FigureBall& b : balls) figure.columns.push_back(b.label);
-            std::vector<Image8> renders;
-            std::vector<std::string> captions;
-            for (const std::string& name : iblModeNames()) {
-                if (!references.count(name)) continue;
-                IblFigureRow row;
-                row.iblMode = name;
-                for (const RunReport& r : model.runs) {
-                    if (!r.image) continue;
-                    if (name == kGroundTruth) {
-                        if (r.image->metal && r.image->metal->referenceNoise) row.metalNoise = r.image->metal->referenceNoise;
-                        if (r.image->dielectric && r.image->dielectric->referenceNoise)
-                            row.dielectricNoise = r.image->dielectric->referenceNoise;
-                    } else if (r.iblMode == name) {
-                        if (r.image->metal) row.metalError = r.image->metal->relLuminanceMean;
-                        if (r.image->dielectric) row.dielectricError = r.image->dielectric->relLuminanceMean;
+            if (firstView) {
+                    if (run.status == RunStatus::Ok) run.views.push_back({run.attributes, run.image});
+                    model.runs.push_back(std::move(run));
+                } else {
+                    RunReport& first = model.runs.at(runIndex);
+                    if (first.status == RunStatus::Ok) {
+                        if (run.status == RunStatus::Ok) {
+                            first.views.push_back({run.attributes, run.image});
+                        } else {
+                            first.status = RunStatus::Failed;
+                            first.error = "view " + std::to_string(view) + ": " + run.error;
+                        }
                     }
-                }
-                row.caption = iblFigureCaption(row);
-                captions.push_back(row.caption);
-                renders.push_back(toneMapToSrgb8(references.at(name).output.hdr, exposure));
-                figure.rows.push_back(std::move(row));
             }
-            writePng((outDir / figure.png).string(),
-                     composeIblFigure(renders, balls, captions, "IBL modes vs ground truth: metals, then dielectrics, "
-                                                                "roughness 0.05 to 1"));
-            model.iblFigure = std::move(figure);
+            ++runIndex;
+        };
+        std::map<std::string, ReferenceRender> references;
+        for (size_t m = 0; m < modes.size(); ++m) {
+            progress.begin("reference / " + modeNames[m] + viewLabel);
+            ReferenceRender ref;
+            ref.output = renderer.render(referenceWiring, settingsFor(modes[m], view));
+            gpuPassMs += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
+            if (firstView) {
+            ref.renderPng = "reference-" + modeNames[m] + ".png";
+            const std::string renderExr = "reference-" + modeNames[m] + ".exr";
+            ScopedStage timed(Stage::Report);
+            writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
+            writeExr((outDir / renderExr).string(), ref.output.hdr);
+            const std::string preview = "reference-" + modeNames[m] + "-log.png";
+            writePng((outDir / preview).string(), logEncodeForPreview(ref.output.hdr));
+            model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr, preview});
+            }
+            std::string gtNote;
+            if (modes[m] == IblMode::GroundTruth) {
+                const GroundTruthStats& g = ref.output.groundTruth;
+                char buf[256];
+                std::snprintf(buf, sizeof(buf),
+                              "ground truth: %d batches x %d steps (%d samples per pixel, GGX + environment by MIS), mean "
+                              "relative noise %.5f (target %.5f%s), lighting %.0f ms GPU on %s",
+                              g.batches, gtBatchSamples, g.samplesPerPixel, g.meanRelativeNoise, g.targetRelativeNoise,
+                              g.targetMet ? ", met" : ", NOT met", g.lightingMs, ctx.info.name.c_str());
+                gtNote = buf;
+                std::lock_guard lock(modelMutex);
+                model.run.notes.push_back(gtNote + viewLabel);
+            }
+            progress.end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
+                         std::to_string(int(ref.output.timings.lightingMs)) + " ms" +
+                         (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches"));
+            ReferenceRender& stored = references[modeNames[m]] = std::move(ref);
+            ScopedStage timedPrepare(Stage::Metrics);
+            stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, exposure);
         }
-    }
 
-    for (size_t m = 0; m < modes.size(); ++m) {
-        const ReferenceRender& ref = references.at(modeNames[m]);
-        for (const Layout& layout : layouts) {
-            progress.begin(layout.name + " / " + modeNames[m]);
-            RunReport run = makeRun(layout, modeNames[m]);
-            try {
-                RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settingsFor(modes[m]));
-                gpuPassMs += out.timings.gbufferMs + out.timings.lightingMs;
-                run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
-                measureRun(run, out, ref, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure, hdrFlip, true);
+        auto makeRun = [&](const Layout& layout, const std::string& mode) {
+            RunReport run;
+            run.layout = layout.name;
+            run.title = layout.title;
+            run.source = layout.source.text();
+            run.pipeline = pipelineName(layout.pipeline);
+            run.iblMode = mode;
+            const BandwidthReport bw = computeBandwidth(layout, width, height);
+            run.bytesPerPixel = bytesPerPixelOf(bw);
+            run.bandwidth = bw.frames;
+            return run;
+        };
+
+        // The lighting approximations: the reference layout under each mode vs under ground truth.
+        if (compareLighting) {
+            const ReferenceRender& truth = references.at(kGroundTruth);
+            for (const auto& mode : modeNames) {
+                if (mode == kGroundTruth) continue;
+                progress.begin("lighting " + mode + " vs " + kGroundTruth + viewLabel);
+                RunReport run = makeRun(referenceLayout, mode);
+                run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
+                ReferenceRender& approx = references.at(mode);
+                run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx.info.name};
+                measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip, false, firstView);
                 progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                              std::to_string(run.image->flipMean).substr(0, 6));
-            } catch (const std::exception& e) {
-                // One layout that cannot be rendered must not sink the others: report it as failed.
-                run.status = RunStatus::Failed;
-                run.error = e.what();
-                run.image.reset();
-                progress.end("FAILED: " + std::string(e.what()).substr(0, 200));
+                record(std::move(run));
             }
-            std::lock_guard lock(modelMutex);
-            model.runs.push_back(std::move(run));
         }
+
+        // The seed's figure: rows = modes (enum order: ground truth first), columns = the grid's balls.
+        if (compareLighting && firstView) {
+            const std::vector<FigureBall> balls = findFigureBalls(inputs.scene, width, height);
+            if (balls.empty()) {
+                model.run.notes.push_back("IBL figure: only for the built-in scene (it crops the sphere grid's balls)");
+            } else {
+                ScopedStage timed(Stage::Report);
+                IblFigure figure;
+                figure.png = "ibl-figure.png";
+                for (const FigureBall& b : balls) figure.columns.push_back(b.label);
+                std::vector<Image8> renders;
+                std::vector<std::string> captions;
+                for (const std::string& name : iblModeNames()) {
+                    if (!references.count(name)) continue;
+                    IblFigureRow row;
+                    row.iblMode = name;
+                    for (const RunReport& r : model.runs) {
+                        if (!r.image) continue;
+                        if (name == kGroundTruth) {
+                            if (r.image->metal && r.image->metal->referenceNoise) row.metalNoise = r.image->metal->referenceNoise;
+                            if (r.image->dielectric && r.image->dielectric->referenceNoise)
+                                row.dielectricNoise = r.image->dielectric->referenceNoise;
+                        } else if (r.iblMode == name) {
+                            if (r.image->metal) row.metalError = r.image->metal->relLuminanceMean;
+                            if (r.image->dielectric) row.dielectricError = r.image->dielectric->relLuminanceMean;
+                        }
+                    }
+                    row.caption = iblFigureCaption(row);
+                    captions.push_back(row.caption);
+                    renders.push_back(toneMapToSrgb8(references.at(name).output.hdr, exposure));
+                    figure.rows.push_back(std::move(row));
+                }
+                writePng((outDir / figure.png).string(),
+                         composeIblFigure(renders, balls, captions, "IBL modes vs ground truth: metals, then dielectrics, "
+                                                                    "roughness 0.05 to 1"));
+                model.iblFigure = std::move(figure);
+            }
+        }
+
+        for (size_t m = 0; m < modes.size(); ++m) {
+            const ReferenceRender& ref = references.at(modeNames[m]);
+            for (const Layout& layout : layouts) {
+                progress.begin(layout.name + " / " + modeNames[m] + viewLabel);
+                if (!firstView && model.runs.at(runIndex).status == RunStatus::Failed) {
+                    progress.end("skipped: failed in view 0");
+                    ++runIndex;
+                    continue;
+                }
+                RunReport run = makeRun(layout, modeNames[m]);
+                try {
+                    RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settingsFor(modes[m], view));
+                    gpuPassMs += out.timings.gbufferMs + out.timings.lightingMs;
+                    run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
+                    measureRun(run, out, ref, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure, hdrFlip, true,
+                               firstView);
+                    progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
+                                 std::to_string(run.image->flipMean).substr(0, 6));
+                } catch (const std::exception& e) {
+                    // One layout that cannot be rendered must not sink the others: report it as failed.
+                    run.status = RunStatus::Failed;
+                    run.error = e.what();
+                    run.image.reset();
+                    progress.end("FAILED: " + std::string(e.what()).substr(0, 200));
+                }
+                record(std::move(run));
+            }
+        }
+    }  // views
+    {
+        std::lock_guard lock(modelMutex);
+        for (RunReport& r : model.runs) finishViews(r);
     }
 
     {

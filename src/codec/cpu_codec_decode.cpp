@@ -139,6 +139,7 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
                 case Codec::SmoothnessCry:
                     map1(n, c, out, [bk](uint x) { return roughnessFromSmoothnessCry(dequantizeUnorm(x, bk)); });
                     break;
+                case Codec::CryGlossPower: map1(n, c, out, [](uint x) { return decodeCryGlossPower(x); }); break;
                 default: break;  // Id: CpuCodec::decode throws before (plan.decodeError)
             }
         }

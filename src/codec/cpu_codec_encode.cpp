@@ -218,6 +218,7 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
                 case Codec::SmoothnessCry:
                     map1(n, in, out, [bk](float x) { return quantizeUnorm(smoothnessFromRoughnessCry(x), bk); });
                     break;
+                case Codec::CryGlossPower: map1(n, in, out, [](float x) { return encodeCryGlossPower(x); }); break;
                 default: break;  // Id: folded into the target's constant words by compilePlan
             }
         }

@@ -27,6 +27,7 @@ Codec resolveCodec(const std::string& e) {
         {"depth24", Codec::Depth24},
         {"gloss", Codec::Gloss},
         {"smoothness_cry", Codec::SmoothnessCry},
+        {"cry_gloss_power", Codec::CryGlossPower},
         {"srgb8", Codec::Srgb8},
         {"luma", Codec::Luma},
         {"ycbcr", Codec::YCbCr},
@@ -107,7 +108,7 @@ FieldPlan planField(const Target& t, const Field& f, int words) {
 
 }  // namespace
 
-bool isScalar(Codec c) { return c <= Codec::SmoothnessCry; }
+bool isScalar(Codec c) { return c <= Codec::CryGlossPower; }
 
 bool isCheckerboard(Codec c) { return c == Codec::YCbCrCheckerboard || c == Codec::YCoCgCheckerboard; }
 

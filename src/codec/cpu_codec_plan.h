@@ -34,6 +34,7 @@ enum class Codec : uint8_t {
     Depth24,
     Gloss,
     SmoothnessCry,
+    CryGlossPower,
     Srgb8,
     Luma,
     YCbCr,

@@ -87,6 +87,7 @@ std::string scalarEncode(const std::string& enc, const std::string& x, int bits)
     if (enc == "depth24") return "quantizeDepth24(" + x + ")";
     if (enc == "gloss") return "quantizeUnorm(glossFromRoughness(" + x + "), " + b + ")";
     if (enc == "smoothness_cry") return "quantizeUnorm(smoothnessFromRoughnessCry(" + x + "), " + b + ")";
+    if (enc == "cry_gloss_power") return "encodeCryGlossPower(" + x + ")";
     throw std::logic_error("wiring: no scalar encoder for " + enc);
 }
 
@@ -101,6 +102,7 @@ std::string scalarDecode(const std::string& enc, const std::string& c, int bits)
     if (enc == "depth24") return "dequantizeDepth24(" + c + ")";
     if (enc == "gloss") return "roughnessFromGloss(dequantizeUnorm(" + c + ", " + b + "))";
     if (enc == "smoothness_cry") return "roughnessFromSmoothnessCry(dequantizeUnorm(" + c + ", " + b + "))";
+    if (enc == "cry_gloss_power") return "decodeCryGlossPower(" + c + ")";
     throw std::logic_error("wiring: no scalar decoder for " + enc);
 }
 
@@ -218,7 +220,7 @@ bool nativeField(const Target& t, const Field& f) {
         bool ok = false;
         switch (ch.type) {
             case ChannelType::Unorm:
-                ok = e == "unorm" || e == "gloss" || e == "smoothness_cry" || e == "normal_xyz" || e == "ycbcr" ||
+                ok = e == "unorm" || e == "gloss" || e == "smoothness_cry" || e == "cry_gloss_power" || e == "normal_xyz" || e == "ycbcr" ||
                      e == "ycbcr_sqrt" || e == "ycocg" || e == "luma";
                 break;
             case ChannelType::Srgb: ok = e == "srgb8"; break;
@@ -240,6 +242,8 @@ std::vector<std::string> emitNativeEncode(std::ostream& o, const std::string& in
             const std::string x = componentExpr(f, int(i));
             v.push_back(e == "gloss" ? "glossFromRoughness(" + x + ")"
                         : e == "smoothness_cry" ? "smoothnessFromRoughnessCry(" + x + ")"
+                        // The code's own float: the hardware's round(x * 255) gives the code back.
+                        : e == "cry_gloss_power" ? "dequantizeUnorm(encodeCryGlossPower(" + x + "), 8u)"
                                                 : x);
         }
     } else if (e == "srgb8") {
@@ -269,6 +273,7 @@ std::string nativeDecodeExpr(const Field& f, const std::vector<std::string>& u) 
         for (const std::string& x : u)
             parts.push_back(e == "gloss" ? "roughnessFromGloss(" + x + ")"
                             : e == "smoothness_cry" ? "roughnessFromSmoothnessCry(" + x + ")"
+                            : e == "cry_gloss_power" ? "decodeCryGlossPower(quantizeUnorm(" + x + ", 8u))"
                                                     : x);
         if (parts.size() == 1) return parts[0];
         std::string s = "vec" + std::to_string(parts.size()) + "(";

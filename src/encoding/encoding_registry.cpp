@@ -33,6 +33,12 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"smoothness_cry", K::Scalar, 1, 8, 1, 16, 0, false, "roughness in [0,1]",
                  "stores smoothness = 1 - sqrt(roughness) as unorm; roughness = (1 - s)^2",
                  "Schulz, 'Moving to the Next Generation - The Rendering Technology of Ryse', GDC 2014"});
+    v.push_back({"cry_gloss_power", K::Scalar, 1, 8, 8, 8, 0, false, "roughness in [0.1767, 0.8409] (clamps)",
+                 "8-bit gloss g read as a Blinn-Phong power n = exp2(10 g + 1) (2..2048), to GGX roughness = "
+                 "(2 / (n + 2))^(1/4); table exact; round-trip error <= 0.0018 inside the range",
+                 "Sousa, Kasyan, Schulz, 'Secrets of CryENGINE 3 Graphics Technology', SIGGRAPH 2011 (gloss "
+                 "in RT1.a); power mapping assumed (CryENGINE 3-era shaders); Walter et al., EGSR 2007 "
+                 "(n = 2/alpha^2 - 2)"});
 
     v.push_back({"srgb8", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
                  "exact sRGB 8-bit per channel via 255 linear thresholds (no pow)",

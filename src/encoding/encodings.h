@@ -439,6 +439,39 @@ inline float smoothnessFromRoughnessCry(float r) {
 }
 inline float roughnessFromSmoothnessCry(float s) { return (1.0f - s) * (1.0f - s); }
 
+// cry_gloss_power: CryENGINE 3's gloss, read as the engine used it (Crysis 2's slim G-buffer,
+// RT1.a). The engine turns the 8-bit gloss g into a normalised Blinn-Phong power
+//     n = exp2(10 g + 1)                 (2 .. 2048)
+// -- the mapping used in CryENGINE 3-era deferred-lighting shaders; the seed (DIGEST.md) gives no
+// gloss-to-power formula and Sousa et al. 2011 name gloss without one, so this is an assumption
+// stated here and in layouts/crysis2-slim*.toml. gbufferlab's BRDF is GGX with alpha =
+// roughness^2 (UE4), so the power is converted with the Phong / Beckmann equivalence of Walter
+// et al. 2007 ("Microfacet Models for Refraction through Rough Surfaces", EGSR: n = 2/alpha^2 - 2),
+// taking Beckmann's alpha as GGX's (the usual approximation; the lobes differ in their tails):
+//     alpha = sqrt(2 / (n + 2)),  roughness = sqrt(alpha),
+// and encoding inverts it: g = (log2(2 / roughness^4 - 2) - 1) / 10, rounded to 8 bits.
+// Range: code 255 (g = 1, n = 2048) decodes to roughness 0.17673357, code 0 (g = 0, n = 2) to
+// 0.84089643; roughness outside [0.1767, 0.8409] clamps to those ends (the engine's range: a
+// mirror or a fully rough surface cannot be stored). Inside it the round trip's error is at most
+// 0.0018 in roughness (half a gloss step; measured over 200001 roughnesses). Table based and
+// exact, like sRGB: kCryGlossRoughness[k] = float(roughness(k / 255)); kCryGlossEncodeThresholds[i]
+// = the largest float <= the roughness whose gloss is (i + 0.5) / 255 (both in double; they
+// decrease with i). The code = the number of thresholds >= roughness = round(255 g) with ties up,
+// exactly, for every float. Tables in encodings.cpp; tests/encoding/color_encodings_test.cpp
+// (CryGlossPower.TablesMatchTheMapping) recomputes every entry. 8 bits only.
+extern const float kCryGlossRoughness[256];
+extern const float kCryGlossEncodeThresholds[255];
+inline uint encodeCryGlossPower(float r) {
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kCryGlossEncodeThresholds[mid] >= r) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+inline float decodeCryGlossPower(uint code) { return kCryGlossRoughness[code & 255u]; }
+
 // ---------------------------------------------------------------------------------------------
 // 8. UE4 specular colour and depth.
 // ---------------------------------------------------------------------------------------------

@@ -22,11 +22,12 @@ struct Variant {
 constexpr Variant kVariants[] = {
     {"unorm", "gloss", nullptr, "gloss"},
     {"unorm", "cry_smoothness", nullptr, "smoothness_cry"},
+    {"unorm", "cry_gloss_power", nullptr, "cry_gloss_power"},
     {"ycbcr", "sqrt", nullptr, "ycbcr_sqrt"},
     {"ycbcr", nullptr, "checkerboard", "ycbcr_checkerboard"},
     {"ycocg", nullptr, "checkerboard", "ycocg_checkerboard"},
 };
-constexpr const char* kTransforms[] = {"gloss", "cry_smoothness", "sqrt"};
+constexpr const char* kTransforms[] = {"gloss", "cry_smoothness", "cry_gloss_power", "sqrt"};
 constexpr const char* kInterleaves[] = {"checkerboard"};
 
 }  // namespace
@@ -87,7 +88,7 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
             if (transform && std::find_if(std::begin(kTransforms), std::end(kTransforms),
                                           [&](const char* k) { return *transform == k; }) == std::end(kTransforms)) {
                 error(placeOf(*trNode),
-                      "unknown transform " + squote(*transform) + " (known: gloss, cry_smoothness, sqrt)");
+                      "unknown transform " + squote(*transform) + " (known: gloss, cry_smoothness, cry_gloss_power, sqrt)");
                 field.incomplete = true;
             }
         }

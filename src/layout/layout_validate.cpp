@@ -62,7 +62,7 @@ private:
             case AttributeKind::Scalar:
                 break;
         }
-        if ((enc.name == "gloss" || enc.name == "smoothness_cry") && attr.id != Attribute::Roughness)
+        if ((enc.name == "gloss" || enc.name == "smoothness_cry" || enc.name == "cry_gloss_power") && attr.id != Attribute::Roughness)
             return e + " stores roughness only, not " + a;
         if (attr.domain == ValueDomain::Signed && enc.name != "snorm" && enc.name != "float16" && enc.name != "float32")
             return a + " has components in [-1,1] but " + e + " takes " + enc.inputRange +

@@ -161,6 +161,7 @@ float roundTripScalar(std::string_view name, int bits, float x) {
     if (info.name == "smoothness_cry")
         return enc::roughnessFromSmoothnessCry(
             enc::dequantizeUnorm(enc::quantizeUnorm(enc::smoothnessFromRoughnessCry(x), b), b));
+    if (info.name == "cry_gloss_power") return enc::decodeCryGlossPower(enc::encodeCryGlossPower(x));
     throwUserError("encoding '" + info.name + "' has no scalar round trip");
 }
 

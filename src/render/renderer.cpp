@@ -95,13 +95,14 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     ScopedStage timedRender(Stage::Render);  // pass set-up and the frame; compiles and read-back nest
     validateResolution(ctx_, settings.width, settings.height, "--size");
     const uint32_t w = settings.width, h = settings.height;
-    const CameraMatrices cam = computeCameraMatrices(scene_.camera, float(w) / float(h), wiring.reversedZ);
+    const Camera& camera = settings.camera ? *settings.camera : scene_.camera;
+    const CameraMatrices cam = computeCameraMatrices(camera, float(w) / float(h), wiring.reversedZ);
     gpu::FrameConstants frame{};
     frame.view = cam.view;
     frame.proj = cam.proj;
     frame.viewProj = cam.viewProj;
     frame.invViewProj = cam.invViewProj;
-    frame.cameraPosition = glm::vec4(scene_.camera.position, 1.0f);
+    frame.cameraPosition = glm::vec4(camera.position, 1.0f);
     frame.extent = glm::uvec4(w, h, gpuScene_.lightCount, wiring.reversedZ ? 1u : 0u);
     if (settings.groundTruthSamples < 1 || settings.splitSumShaderSamples < 1)
         throwUserError("--ibl-samples " + std::to_string(std::min(settings.groundTruthSamples, settings.splitSumShaderSamples)) +

@@ -2,6 +2,7 @@
 // Renders one scene, under one environment, through any G-buffer wiring: the G-buffer raster
 // pass, then the lighting compute pass, timed with timestamp queries, then read back.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,8 @@ struct RenderSettings {
     bool readTargetWords = true;
     // Rows per read-back band of the decode pass (a multiple of 8); 0: as many as fit in 64 MiB.
     uint32_t decodeBandRows = 0;
+    // The camera to render from; unset: the scene's (compare --views renders several).
+    std::optional<Camera> camera;
 };
 
 struct PassTimings {

@@ -1,11 +1,13 @@
 #include "report_csv.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <functional>
 #include <optional>
 
 #include "file_io.h"
+#include "view_stats.h"
 
 namespace gbl {
 namespace {
@@ -19,10 +21,17 @@ std::string numberText(double v) {
 }
 std::string numberText(std::optional<double> v) { return v ? numberText(*v) : std::string(); }
 
+using Metric = std::function<std::optional<double>(const RunReport&)>;
 struct Column {
     std::string name;
     std::function<std::string(const RunReport&)> value;
+    Metric metric;  // set for metrics: they also get _view_min, _view_max, _view_std columns
 };
+
+// A metric column: its text is the number's.
+Column metricColumn(std::string name, Metric metric) {
+    return {std::move(name), [metric](const RunReport& r) { return numberText(metric(r)); }, metric};
+}
 
 const char* unitSuffix(ErrorAttribute a) {
     switch (a) {
@@ -41,9 +50,10 @@ std::vector<Column> columns() {
         c.push_back({std::move(name), [field](const RunReport& r) { return r.*field; }});
     };
     const auto image = [&](std::string name, double ImageErrors::*field) {
-        c.push_back({std::move(name), [field](const RunReport& r) {
-                         return r.image ? numberText(*r.image.*field) : std::string();
-                     }});
+        c.push_back(metricColumn(std::move(name), [field](const RunReport& r) -> std::optional<double> {
+            if (!r.image) return std::nullopt;
+            return *r.image.*field;
+        }));
     };
     const auto bytes = [&](std::string name, int BytesPerPixel::*field) {
         c.push_back({std::move(name), [field](const RunReport& r) { return std::to_string(r.bytesPerPixel.*field); }});
@@ -67,9 +77,10 @@ std::vector<Column> columns() {
     image("p99_abs", &ImageErrors::p99Abs);
     image("flip_mean", &ImageErrors::flipMean);
     image("flip_median", &ImageErrors::flipMedian);
-    c.push_back({"hdr_flip_mean", [](const RunReport& r) {
-                     return r.image && r.image->hdrFlipMean ? numberText(*r.image->hdrFlipMean) : std::string();
-                 }});
+    c.push_back(metricColumn("hdr_flip_mean", [](const RunReport& r) -> std::optional<double> {
+        if (!r.image) return std::nullopt;
+        return r.image->hdrFlipMean;
+    }));
     using ImageClassMember = std::optional<ImageClassErrors> ImageErrors::*;
     const std::pair<const char*, ImageClassMember> imageClasses[] = {{"covered", &ImageErrors::covered},
                                                                      {"metal", &ImageErrors::metal},
@@ -81,14 +92,14 @@ std::vector<Column> columns() {
             {"rmse_linear", &ImageClassErrors::rmseLinear},
             {"flip_mean", &ImageClassErrors::flipMean}};
         for (const auto& [fieldName, field] : fields)
-            c.push_back({prefix + fieldName, [member, field](const RunReport& r) {
-                             if (!r.image || !(*r.image.*member)) return std::string();
-                             return numberText(*(*r.image.*member).*field);
-                         }});
-        c.push_back({prefix + "reference_noise", [member](const RunReport& r) {
-                         if (!r.image || !(*r.image.*member) || !(*r.image.*member)->referenceNoise) return std::string();
-                         return numberText(*(*r.image.*member)->referenceNoise);
-                     }});
+            c.push_back(metricColumn(prefix + fieldName, [member, field](const RunReport& r) -> std::optional<double> {
+                if (!r.image || !(*r.image.*member)) return std::nullopt;
+                return *(*r.image.*member).*field;
+            }));
+        c.push_back(metricColumn(prefix + "reference_noise", [member](const RunReport& r) -> std::optional<double> {
+            if (!r.image || !(*r.image.*member)) return std::nullopt;
+            return (*r.image.*member)->referenceNoise;
+        }));
     }
     c.push_back({"ground_truth_batches", [](const RunReport& r) {
                      return r.groundTruth ? std::to_string(r.groundTruth->batches) : std::string();
@@ -117,16 +128,35 @@ std::vector<Column> columns() {
         for (const auto& [className, member] : classes) {
             const std::string prefix = std::string(errorAttributeName(a)) + "_" + className + "_";
             for (const auto& [statName, stat] : stats)
-                c.push_back({prefix + statName + "_" + unitSuffix(a), [a, member, stat](const RunReport& r) {
-                                 const auto& s = r.attributes[a].*member;
-                                 return s ? numberText(s->error.*stat) : std::string();
-                             }});
+                c.push_back(metricColumn(prefix + statName + "_" + unitSuffix(a),
+                                         [a, member, stat](const RunReport& r) -> std::optional<double> {
+                                             const auto& s = r.attributes[a].*member;
+                                             if (!s) return std::nullopt;
+                                             return s->error.*stat;
+                                         }));
             if (errorAttributeIsColor(a))
-                c.push_back({prefix + "rmse_linear", [a, member](const RunReport& r) {
-                                 const auto& s = r.attributes[a].*member;
-                                 return s && s->rmse ? numberText(*s->rmse) : std::string();
-                             }});
+                c.push_back(metricColumn(prefix + "rmse_linear", [a, member](const RunReport& r) -> std::optional<double> {
+                    const auto& s = r.attributes[a].*member;
+                    if (!s) return std::nullopt;
+                    return s->rmse;
+                }));
         }
+    // Several views (compare --views): the metrics above are means over the views; each one's
+    // spread follows, at the end so that the columns above keep their places.
+    c.push_back({"views", [](const RunReport& r) { return std::to_string(std::max<size_t>(1, r.views.size())); }, {}});
+    const size_t metrics = c.size();
+    for (size_t i = 0; i < metrics; ++i) {
+        if (!c[i].metric) continue;
+        const Metric m = c[i].metric;
+        const std::string name = c[i].name;
+        auto spread = [m](const RunReport& r, double ViewSpread::*f) -> std::string {
+            const ViewSpread s = viewSpread(r, m);
+            return s.n ? numberText(s.*f) : std::string();
+        };
+        c.push_back({name + "_view_min", [spread](const RunReport& r) { return spread(r, &ViewSpread::min); }, {}});
+        c.push_back({name + "_view_max", [spread](const RunReport& r) { return spread(r, &ViewSpread::max); }, {}});
+        c.push_back({name + "_view_std", [spread](const RunReport& r) { return spread(r, &ViewSpread::stddev); }, {}});
+    }
     return c;
 }
 

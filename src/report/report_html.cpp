@@ -14,6 +14,7 @@
 #include "report_csv.h"
 #include "report_html_plot.h"
 #include "report_html_template.h"
+#include "view_stats.h"
 #include "report_json.h"
 #include "tone_map.h"
 
@@ -193,7 +194,16 @@ void writeTable(std::string& out, const ReportModel& model, const std::vector<st
                "</a></td><td>" + htmlEscape(r.iblMode) + "</td>";
         for (const TableColumn& c : columns) {
             const std::optional<double> v = c.value(r);
-            if (v) out += "<td class=\"num\" data-v=\"" + dataNumber(*v) + "\">" + c.format(*v) + "</td>";
+            if (v && r.views.size() > 1 && std::string(c.key) != "bpp" && std::string(c.key) != "gbps") {
+                // compare --views: the mean over the views, and under it their range and deviation.
+                const ViewSpread sp = viewSpread(r, c.value);
+                out += "<td class=\"num\" data-v=\"" + dataNumber(*v) + "\">" + c.format(*v) +
+                       "<br><small class=\"spread\" title=\"over " + std::to_string(sp.n) +
+                       " views: min .. max, standard deviation\">" + c.format(sp.min) + "&ndash;" + c.format(sp.max) +
+                       " &sigma;" + formatSignificant(sp.stddev, 2) + "</small></td>";
+            } else if (v) {
+                out += "<td class=\"num\" data-v=\"" + dataNumber(*v) + "\">" + c.format(*v) + "</td>";
+            }
             else out += "<td class=\"num\"></td>";
         }
         if (failed) out += "<td>failed<div class=\"errtext\">" + htmlEscape(r.error) + "</div></td>";
@@ -419,6 +429,13 @@ std::string reportHtml(const ReportModel& model) {
     }
 
     out += "<section id=\"summary\">\n<h2>Layouts</h2>\n";
+    if (model.run.views.size() > 1) {
+        out += "<p class=\"views\">Every metric is the mean over " + std::to_string(model.run.views.size()) +
+               " views; under each, its range (min&ndash;max) and standard deviation &sigma; over them. Views: ";
+        for (size_t i = 0; i < model.run.views.size(); ++i)
+            out += (i ? "; " : "") + std::to_string(i) + ": " + htmlEscape(model.run.views[i]);
+        out += ". Images and crops are the first view's.</p>\n";
+    }
     writeTable(out, model, ids);
     out += "<p class=\"hint\">Click a column header to sort (again to reverse). Errors are against the float "
            "reference; means are over covered pixels. Also in <a href=\"report.csv\">report.csv</a> and "

@@ -1,10 +1,13 @@
 #include "report_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "error.h"
 #include "file_io.h"
+#include "view_stats.h"
 
 namespace gbl {
 namespace {
@@ -120,6 +123,47 @@ Json imagesJson(const RunImages& images) {
                 {"crops", std::move(crops)}};
 }
 
+// Every number under `views[0]` (attribute_errors, image_errors), as a spread over all views:
+// {mean, min, max, std} at the same path. A leaf missing from some views is taken over the others.
+void collectLeaves(const Json& j, const std::string& path, std::vector<std::string>& paths) {
+    if (j.is_object()) {
+        for (const auto& [k, v] : j.items()) collectLeaves(v, path + "/" + k, paths);
+    } else if (j.is_number() || (j.is_string() && (j == "inf" || j == "-inf"))) {
+        paths.push_back(path);
+    }
+}
+
+Json viewSpreadJson(const Json& views) {
+    std::vector<std::string> paths;
+    for (const Json& v : views) {
+        std::vector<std::string> p;
+        collectLeaves(v, "", p);
+        for (const std::string& s : p)
+            if (std::find(paths.begin(), paths.end(), s) == paths.end()) paths.push_back(s);
+    }
+    Json out = Json::object();
+    for (const std::string& path : paths) {
+        auto endsWith = [&](const std::string& tail) {
+            return path.size() >= tail.size() && path.compare(path.size() - tail.size(), tail.size(), tail) == 0;
+        };
+        // Counts are not metrics (their sum over views is the run's).
+        if (path == "/view" || endsWith("/count") || endsWith("/pixels") || endsWith("/hdr_flip_exposures")) continue;
+        std::vector<double> values;
+        const Json::json_pointer ptr(path);
+        for (const Json& v : views) {
+            if (!v.contains(ptr)) continue;
+            const Json& x = v.at(ptr);
+            if (x.is_number()) values.push_back(x.get<double>());
+            else if (x == "inf") values.push_back(std::numeric_limits<double>::infinity());
+            else if (x == "-inf") values.push_back(-std::numeric_limits<double>::infinity());
+        }
+        const ViewSpread s = spreadOf(values);
+        out[ptr] = Json{{"mean", number(s.mean)}, {"min", number(s.min)}, {"max", number(s.max)},
+                        {"std", number(s.stddev)}, {"views", s.n}};
+    }
+    return out;
+}
+
 Json runJson(const RunReport& r) {
     Json j{{"layout", r.layout},
            {"title", r.title},
@@ -143,6 +187,16 @@ Json runJson(const RunReport& r) {
                                   {"lighting", number(r.times->lightingMs)},
                                   {"device", r.times->device}};
     j["images"] = imagesJson(r.images);
+    if (!r.views.empty()) {
+        Json views = Json::array();
+        for (size_t i = 0; i < r.views.size(); ++i) {
+            Json v{{"view", int(i)}, {"attribute_errors", attributesJson(r.views[i].attributes)}};
+            if (r.views[i].image) v["image_errors"] = imageErrorsJson(*r.views[i].image);
+            views.push_back(std::move(v));
+        }
+        j["view_spread"] = viewSpreadJson(views);
+        j["views"] = std::move(views);
+    }
     return j;
 }
 
@@ -340,6 +394,16 @@ RunReport readRun(const Node& n) {
         r.times = PassTimes{t["gbuffer"].num(), t["lighting"].num(), t["device"].str()};
     }
     r.images = readImages(n["images"]);
+    if (n.has("views")) {
+        const Node views = n["views"];
+        for (size_t i = 0; i < views.array().size(); ++i) {
+            const Node v = views.at(i);
+            ViewMetrics m;
+            m.attributes = readAttributes(v["attribute_errors"]);
+            if (v.has("image_errors")) m.image = readImageErrors(v["image_errors"]);
+            r.views.push_back(std::move(m));
+        }
+    }
     return r;
 }
 
@@ -367,7 +431,8 @@ Json reportToJson(const ReportModel& model) {
                              {"command_line", run.commandLine},
                              {"ibl_modes", run.iblModes},
                              {"exposure", run.exposure},
-                             {"notes", run.notes}}},
+                             {"notes", run.notes},
+                             {"views", run.views}}},
                 {"reference", Json{{"layout", model.reference.layout}, {"images", std::move(references)}}},
                 {"runs", std::move(runs)}};
     if (model.iblFigure) j["ibl_figure"] = iblFigureJson(*model.iblFigure);
@@ -394,6 +459,7 @@ ReportModel reportFromJson(const Json& json) {
     model.run.iblModes = run["ibl_modes"].strings();
     model.run.notes = run["notes"].strings();
     if (run.has("exposure")) model.run.exposure = run["exposure"].num();
+    if (run.has("views")) model.run.views = run["views"].strings();
     const Node reference = root["reference"];
     model.reference.layout = reference["layout"].str();
     const Node images = reference["images"];

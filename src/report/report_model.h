@@ -33,6 +33,7 @@ struct ReportRunInfo {
     std::vector<std::string> iblModes;
     double exposure = 1.0;    // the tone map's exposure (compare --exposure)
     std::vector<std::string> notes;  // free-form remarks (e.g. "12 ringing texels clamped to 0")
+    std::vector<std::string> views;  // compare --views: how each camera was placed ("scene camera", ...)
 };
 
 struct ReferenceImage {
@@ -180,6 +181,12 @@ struct RunImages {
 };
 
 // One layout rendered under one IBL mode.
+// One camera of a run (compare --views): the run's metrics measured from that view alone.
+struct ViewMetrics {
+    AttributeErrorTable attributes;
+    std::optional<ImageErrors> image;
+};
+
 struct RunReport {
     std::string layout;    // name
     std::string title;
@@ -195,7 +202,11 @@ struct RunReport {
     std::optional<PassTimes> times;    // absent when not measured
     // The reference it was measured against is a progressive ground truth: how far it converged.
     std::optional<GroundTruthConvergence> groundTruth;
-    RunImages images;
+    RunImages images;     // the first view's (compare writes per-pixel images for view 0 only)
+    // compare --views N: each view's metrics, in the order of ReportRunInfo::views. When present,
+    // `attributes` and `image` above hold their mean over the views (view_stats.h averageViews),
+    // and every writer reports each metric's spread over them. Empty: a single view.
+    std::vector<ViewMetrics> views;
 
     // A lighting comparison of `compare` (the reference layout under one IBL mode against the same
     // layout under ground truth, named "reference (<mode> vs ground-truth)"): its errors are the

@@ -2,6 +2,8 @@
 // exit, no output directory or partial file, never a crash. Runs the real executable.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <map>
 #include <cstdlib>
@@ -139,6 +141,60 @@ TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
 // The seed's figure: one row per IBL mode (ground truth first), one column per ball of the grid,
 // and under each row the numbers report.json holds, drawn in the bitmap font; per-class image
 // errors add up to the covered pixels' and the ground truth reports its noise beside each run.
+// compare --views N: every metric is the mean of its per-view values, with a spread >= 0; the
+// views are different cameras, so their errors differ. Bad counts are one line naming the flag.
+TEST(Cli, CompareViewsReportTheMeanOverViewsAndItsSpread) {
+    for (const std::string bad : {"0", "abc", "-1", "2x", "17"}) {
+        const RunResult b = run("compare --out badviews --size 32x32 --layouts ue4 --views " + bad);
+        expectOneLineError(b, {"--views"});
+        EXPECT_FALSE(fs::exists(scratch() / "badviews")) << bad;
+    }
+    const RunResult r = run("compare --out views2 --size 96x64 --layouts ue4,crysis3-thin --views 2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "views2" / "report.json"));
+    ASSERT_EQ(report["run"]["views"].size(), 2u);
+    ASSERT_EQ(report["runs"].size(), 2u);
+    const auto num = [](const nlohmann::json& j) {
+        return j.is_string() ? (j == "inf" ? INFINITY : -INFINITY) : j.get<double>();
+    };
+    for (const auto& run : report["runs"]) {
+        SCOPED_TRACE(run["layout"].get<std::string>());
+        ASSERT_EQ(run["views"].size(), 2u);
+        const nlohmann::json& v0 = run["views"][0];
+        const nlohmann::json& v1 = run["views"][1];
+        const std::vector<nlohmann::json::json_pointer> metrics = {
+            nlohmann::json::json_pointer("/image_errors/psnr_tonemapped_db"),
+            nlohmann::json::json_pointer("/image_errors/flip_mean"),
+            nlohmann::json::json_pointer("/image_errors/rmse_linear"),
+            nlohmann::json::json_pointer("/attribute_errors/normal/all/mean")};
+        for (const auto& m : metrics) {
+            SCOPED_TRACE(m.to_string());
+            const double a = num(v0.at(m)), b = num(v1.at(m)), mean = num(run.at(m));
+            EXPECT_NEAR(mean, 0.5 * (a + b), 1e-9 * std::max(1.0, std::abs(mean)));
+            const nlohmann::json& spread = run["view_spread"].at(m);
+            EXPECT_GE(num(spread["std"]), 0.0);
+            EXPECT_NEAR(num(spread["std"]), 0.5 * std::abs(a - b), 1e-9 * std::max(1.0, std::abs(a - b)));
+            EXPECT_EQ(num(spread["min"]), std::min(a, b));
+            EXPECT_EQ(num(spread["max"]), std::max(a, b));
+            EXPECT_EQ(spread["views"], 2);
+        }
+        // Different cameras, different errors.
+        EXPECT_NE(v0["image_errors"]["flip_mean"], v1["image_errors"]["flip_mean"]);
+        EXPECT_NE(v0["image_errors"]["rmse_linear"], v1["image_errors"]["rmse_linear"]);
+    }
+    // The CSV has each metric's spread, the console table its rows.
+    const std::string csv = slurp(scratch() / "views2" / "report.csv");
+    const std::string header = csv.substr(0, csv.find('\n'));
+    for (const char* column : {",views,", ",psnr_tonemapped_db_view_min,", ",psnr_tonemapped_db_view_max,",
+                               ",flip_mean_view_std,", ",normal_all_mean_deg_view_std,"})
+        EXPECT_NE(header.find(column), std::string::npos) << column;
+    EXPECT_NE(r.out.find("mean over 2 views"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("spread"), std::string::npos) << r.out;
+    const std::string html = slurp(scratch() / "views2" / "report.html");
+    EXPECT_NE(html.find("mean over 2 views"), std::string::npos);
+    EXPECT_NE(html.find("class=\"spread\""), std::string::npos);
+}
+
 TEST(Cli, CompareDrawsTheSeedsIblFigureWithTheReportsNumbers) {
     const RunResult r = run("compare --out fig --size 160x90 --layouts ue4 --ibl bo2,ground-truth,split-sum "
                             "--gt-noise 0.05 --gt-batch-samples 16");
@@ -154,18 +210,24 @@ TEST(Cli, CompareDrawsTheSeedsIblFigureWithTheReportsNumbers) {
     for (size_t c = 0; c < 12; ++c)
         EXPECT_EQ(fig["columns"][c].get<std::string>().rfind(c < 6 ? "metal r=" : "dielectric r=", 0), 0u) << c;
 
-    // Numbers: each row's equal its lighting run's per-class errors (ground truth: its noise).
+    // Numbers: each row's equal its lighting run's per-class errors (ground truth: its noise), of
+    // the first view (the figure is drawn from it; the run's own numbers are means over views).
     std::map<std::string, nlohmann::json> lighting;
     for (const auto& run : report["runs"]) {
-        const auto& classes = run["image_errors"]["by_class"];
-        const double n = classes["covered"]["pixels"].get<double>();
-        const double nm = classes["metal"]["pixels"].get<double>(), nd = classes["dielectric"]["pixels"].get<double>();
-        EXPECT_EQ(n, nm + nd);
-        const double sum = classes["metal"]["rel_luminance_mean"].get<double>() * nm +
-                           classes["dielectric"]["rel_luminance_mean"].get<double>() * nd;
-        EXPECT_NEAR(classes["covered"]["rel_luminance_mean"].get<double>() * n, sum, 1e-9 * std::max(sum, 1.0));
+        ASSERT_TRUE(run.contains("views"));
+        for (const auto& view : run["views"]) {
+            const auto& classes = view["image_errors"]["by_class"];
+            if (!classes.contains("metal") || !classes.contains("dielectric")) continue;  // not in sight
+            const double n = classes["covered"]["pixels"].get<double>();
+            const double nm = classes["metal"]["pixels"].get<double>(), nd = classes["dielectric"]["pixels"].get<double>();
+            EXPECT_EQ(n, nm + nd);
+            const double sum = classes["metal"]["rel_luminance_mean"].get<double>() * nm +
+                               classes["dielectric"]["rel_luminance_mean"].get<double>() * nd;
+            EXPECT_NEAR(classes["covered"]["rel_luminance_mean"].get<double>() * n, sum, 1e-9 * std::max(sum, 1.0));
+        }
+        const auto& classes = run["views"][0]["image_errors"]["by_class"];
         if (run["layout"].get<std::string>().rfind("reference (", 0) == 0) {
-            lighting[run["ibl_mode"].get<std::string>()] = run;
+            lighting[run["ibl_mode"].get<std::string>()] = run["views"][0];
             ASSERT_TRUE(run.contains("ground_truth"));  // the reference's convergence, beside the comparison
             EXPECT_TRUE(classes["metal"].contains("reference_noise"));
         }

@@ -128,7 +128,8 @@ TEST(Diff, BadInputIsOneLineNamingTheFile) {
 }
 
 // report.json's image errors are what `gbufferlab diff` computes from the files compare wrote:
-// LDR-FLIP, tone-mapped PSNR and RMSE from the PNGs; HDR-FLIP, linear PSNR and RMSE from the EXRs.
+// LDR-FLIP, tone-mapped PSNR and RMSE from the PNGs; HDR-FLIP, linear PSNR and RMSE from the EXRs
+// (with several views, the default: the first view's numbers, whose files compare writes).
 TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
     const RunResult c = run("compare --size 96x54 --layouts crysis2-slim,ue4 --hdr-flip --out rep");
     ASSERT_EQ(c.exitCode, 0) << c.err;
@@ -136,7 +137,10 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
     const auto& refImage = report["reference"]["images"][0];
     ASSERT_FALSE(refImage["render_exr"].get<std::string>().empty());
     for (const auto& runJson : report["runs"]) {
-        const auto& e = runJson["image_errors"];
+        // Several views (the default): the files are the first view's, so are these numbers; the
+        // run's own image_errors are the mean over the views.
+        ASSERT_TRUE(runJson.contains("views")) << runJson["layout"];
+        const auto& e = runJson["views"][0]["image_errors"];
         const std::string dir = "rep/";
         RunResult d = run("diff " + dir + refImage["render"].get<std::string>() + " " + dir +
                           runJson["images"]["render"].get<std::string>() + " --json");

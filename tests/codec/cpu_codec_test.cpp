@@ -80,6 +80,7 @@ uint scalarEncode(const Field& f, float x, size_t i) {
     if (e == "depth24") return quantizeDepth24(x);
     if (e == "gloss") return quantizeUnorm(glossFromRoughness(x), b);
     if (e == "smoothness_cry") return quantizeUnorm(smoothnessFromRoughnessCry(x), b);
+    if (e == "cry_gloss_power") return encodeCryGlossPower(x);
     throw std::logic_error("cpu codec: no scalar encoder for " + e);
 }
 
@@ -95,6 +96,7 @@ float scalarDecode(const Field& f, uint c, size_t i) {
     if (e == "depth24") return dequantizeDepth24(c);
     if (e == "gloss") return roughnessFromGloss(dequantizeUnorm(c, b));
     if (e == "smoothness_cry") return roughnessFromSmoothnessCry(dequantizeUnorm(c, b));
+    if (e == "cry_gloss_power") return decodeCryGlossPower(c);
     throw std::logic_error("cpu codec: no scalar decoder for " + e);
 }
 

@@ -147,6 +147,34 @@ TEST(Roughness, MapsInvertAndCrySmoothnessBound) {
     EXPECT_LE(worstLow, 0.0008);
 }
 
+// cry_gloss_power: every table entry is the double-precision mapping rounded as documented, the
+// encoder is exact rounding of g = (log2(2/r^4 - 2) - 1)/10, and the round trip's error is stated.
+TEST(CryGlossPower, TablesMatchTheMapping) {
+    auto roughnessOfGloss = [](double g) { return std::sqrt(std::sqrt(2.0 / (std::exp2(10.0 * g + 1.0) + 2.0))); };
+    for (int k = 0; k < 256; ++k) ASSERT_EQ(kCryGlossRoughness[k], float(roughnessOfGloss(k / 255.0))) << k;
+    for (int i = 0; i < 255; ++i) {
+        const double t = roughnessOfGloss((i + 0.5) / 255.0);
+        const float f = kCryGlossEncodeThresholds[i];
+        ASSERT_LE(double(f), t) << i;
+        ASSERT_GT(double(std::nextafter(f, 1.0f)), t) << i;  // the largest float <= t
+    }
+    EXPECT_EQ(decodeCryGlossPower(encodeCryGlossPower(1.0f)), 0.84089643f);  // g = 0, n = 2
+    EXPECT_EQ(decodeCryGlossPower(encodeCryGlossPower(0.0f)), 0.17673357f);  // g = 1, n = 2048
+    Rng rng(61);
+    double worst = 0.0;
+    for (int i = 0; i < 1000000; ++i) {
+        const float r = float(0.17673357 + (0.84089643 - 0.17673357) * rng.u01());
+        const double g = (std::log2(2.0 / std::pow(double(r), 4.0) - 2.0) - 1.0) / 10.0;
+        const uint code = encodeCryGlossPower(r);
+        ASSERT_NEAR(double(code), std::clamp(std::floor(g * 255.0 + 0.5), 0.0, 255.0), 1.0) << r;
+        if (std::abs(g * 255.0 - std::floor(g * 255.0) - 0.5) > 1e-4)  // away from a tie
+            ASSERT_EQ(double(code), std::clamp(std::floor(g * 255.0 + 0.5), 0.0, 255.0)) << r;
+        worst = std::max(worst, std::fabs(double(decodeCryGlossPower(code)) - double(r)));
+    }
+    std::printf("[measured] cry_gloss_power: max roughness error inside [0.1767, 0.8409] %.6f\n", worst);
+    EXPECT_LE(worst, 0.0019);
+}
+
 TEST(Depth24, EveryCodeRoundTripsAndDepthsRoundExactly) {
     for (uint c = 0; c < (1u << 24); ++c)
         if (quantizeDepth24(dequantizeDepth24(c)) != c) FAIL() << "code " << c;

@@ -3,6 +3,7 @@
 // formatted numbers, and is self-contained.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <unistd.h>
@@ -13,6 +14,7 @@
 #include "report_html.h"
 #include "report_json.h"
 #include "report_sample.h"
+#include "view_stats.h"
 
 namespace gbl {
 namespace {
@@ -237,6 +239,39 @@ TEST(ReportJson, WritesAndReadsFiles) {
             << entry.path();
 }
 
+// ---- Several views (compare --views) --------------------------------------------------------------
+
+// A run's metrics are the mean of its views'; view_spread gives min, max and the population
+// standard deviation of each; the JSON reads back to the same document.
+TEST(ReportViews, MeanOverViewsAndSpreadRoundTrip) {
+    ReportModel model = test::sampleReport();
+    auto it = std::find_if(model.runs.begin(), model.runs.end(), [](const RunReport& r) { return r.image.has_value(); });
+    ASSERT_NE(it, model.runs.end());
+    RunReport& r = *it;
+    ViewMetrics a{r.attributes, r.image}, b = a;
+    b.image->flipMean = a.image->flipMean + 0.02;
+    b.image->rmseLinear = a.image->rmseLinear * 3.0;
+    r.views = {a, b};
+    averageViews(r);
+    EXPECT_NEAR(r.image->flipMean, a.image->flipMean + 0.01, 1e-12);
+    EXPECT_NEAR(r.image->rmseLinear, a.image->rmseLinear * 2.0, 1e-12);
+    model.run.views = {"scene camera", "orbit"};
+    const nlohmann::ordered_json j = reportToJson(model);
+    const auto& run = j["runs"][size_t(it - model.runs.begin())];
+    const auto& s = run["view_spread"]["image_errors"]["flip_mean"];
+    EXPECT_NEAR(s["mean"].get<double>(), r.image->flipMean, 1e-12);
+    EXPECT_NEAR(s["std"].get<double>(), 0.01, 1e-12);
+    EXPECT_EQ(s["min"].get<double>(), a.image->flipMean);
+    EXPECT_EQ(s["max"].get<double>(), b.image->flipMean);
+    EXPECT_EQ(s["views"], 2);
+    EXPECT_FALSE(run["view_spread"]["attribute_errors"]["normal"]["all"].contains("count"));
+    EXPECT_EQ(spreadOf({1.0, 3.0}).stddev, 1.0);
+    EXPECT_EQ(spreadOf({2.0, 2.0, 2.0}).stddev, 0.0);
+    const ReportModel back = reportFromJson(j);
+    EXPECT_EQ(back.run.views, model.run.views);
+    EXPECT_EQ(reportToJson(back), j);
+}
+
 // ---- CSV -----------------------------------------------------------------------------------------
 
 // RFC 4180 reader: rows of fields.
@@ -279,8 +314,16 @@ TEST(ReportCsv, HeaderAndOneRowPerRun) {
     EXPECT_TRUE(std::equal(leading.begin(), leading.end(), header.begin()));
     // Every attribute x class x statistic, with its unit; RMSE for colours only.
     // Image errors per class (covered, metal, dielectric) x 4 statistics are counted apart.
-    size_t attributeColumns = 0, imageClassColumns = 0;
+    // Then each metric's spread over views (compare --views): _view_min, _view_max, _view_std.
+    size_t attributeColumns = 0, imageClassColumns = 0, spreadColumns = 0;
     for (const std::string& name : header) {
+        const auto endsWith = [&](const std::string& tail) {
+            return name.size() > tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+        };
+        if (endsWith("_view_min") || endsWith("_view_max") || endsWith("_view_std")) {
+            spreadColumns += 1;
+            continue;
+        }
         if (name.rfind("image_", 0) == 0) {
             imageClassColumns += 1;
             continue;
@@ -290,6 +333,8 @@ TEST(ReportCsv, HeaderAndOneRowPerRun) {
     }
     EXPECT_EQ(attributeColumns, 7u * 3u * 3u + 3u * 3u);
     EXPECT_EQ(imageClassColumns, 3u * 4u);
+    // 8 image metrics + HDR-FLIP + the class and attribute columns, each with 3 spread columns.
+    EXPECT_EQ(spreadColumns, 3u * (8u + 1u + 3u * 4u + 7u * 3u * 3u + 3u * 3u));
     const auto column = [&](const std::string& name) {
         const auto it = std::find(header.begin(), header.end(), name);
         EXPECT_NE(it, header.end()) << name;
