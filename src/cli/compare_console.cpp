@@ -1,0 +1,110 @@
+#include "compare_console.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "file_io.h"
+#include "shader_cache.h"
+#include "view_stats.h"
+
+namespace gbl::compare {
+
+namespace fs = std::filesystem;
+
+std::string formatPsnr(double db) {
+    if (std::isinf(db)) return "inf";
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.1f dB", db);
+    return buf;
+}
+
+void printTable(const ReportModel& model) {
+    // The layout column is as wide as its longest name ("reference (split-sum-shader vs ground-truth)").
+    int w = 20;
+    for (const RunReport& r : model.runs) w = std::max(w, int(r.layout.size()));
+    const size_t views = model.run.views.size();
+    if (views > 1)
+        std::printf("\nEvery metric is the mean over %d views; the row under each run gives its spread over them:\n"
+                    "± standard deviation, PSNR as min..max dB.",
+                    int(views));
+    std::printf("\n%-*s %-16s %6s %9s %9s %9s %10s %8s\n", w, "layout", "ibl", "B/px", "GB/s@1080", "normal°",
+                "albedoΔE", "PSNR(tm)", "FLIP");
+    for (const RunReport& r : model.runs) {
+        if (r.status == RunStatus::Failed) {
+            std::printf("%-*s %-16s FAILED: %s\n", w, r.layout.c_str(), r.iblMode.c_str(), r.error.c_str());
+            continue;
+        }
+        const auto& n = r.attributes[ErrorAttribute::Normal].all;
+        const auto& a = r.attributes[ErrorAttribute::DiffuseColor].all;
+        std::printf("%-*s %-16s %6d %9.2f %9.3f %9.3f %10s %8.4f\n", w, r.layout.c_str(), r.iblMode.c_str(),
+                    r.bytesPerPixel.total, r.gigabytesPerSecond1080p60().value_or(0.0), n ? n->error.mean : 0.0,
+                    a ? a->error.mean : 0.0, formatPsnr(r.image ? r.image->psnrToneMapped : 0.0).c_str(),
+                    r.image ? r.image->flipMean : 0.0);
+        if (views > 1 && r.views.size() > 1) {
+            auto attr = [](ErrorAttribute which) {
+                return [which](const RunReport& v) -> std::optional<double> {
+                    const auto& s = v.attributes[which].all;
+                    if (!s) return std::nullopt;
+                    return s->error.mean;
+                };
+            };
+            const ViewSpread ns = viewSpread(r, attr(ErrorAttribute::Normal));
+            const ViewSpread as = viewSpread(r, attr(ErrorAttribute::DiffuseColor));
+            const ViewSpread p = viewSpread(r, [](const RunReport& v) -> std::optional<double> {
+                if (!v.image) return std::nullopt;
+                return v.image->psnrToneMapped;
+            });
+            const ViewSpread f = viewSpread(r, [](const RunReport& v) -> std::optional<double> {
+                if (!v.image) return std::nullopt;
+                return v.image->flipMean;
+            });
+            char psnr[32];
+            std::snprintf(psnr, sizeof(psnr), "%.1f..%.1f", p.min, p.max);
+            std::printf("%-*s %-16s %6s %9s   ±%6.3f   ±%6.3f %10s  ±%6.4f\n", w, "", "  spread", "", "", ns.stddev,
+                        as.stddev, psnr, f.stddev);
+        }
+    }
+}
+
+void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPassMs) {
+    nlohmann::ordered_json j;
+    j["schema"] = "gbufferlab-timings";
+    j["schema_version"] = 1;
+    nlohmann::ordered_json stages;
+    std::printf("\ntime by stage (wall):");
+    for (size_t s = 0; s < kStageCount; ++s) {
+        stages[stageName(Stage(s))] = t.ms[s];
+        std::printf("%s %s %.2f s", s ? "," : "", stageName(Stage(s)), t.ms[s] / 1000.0);
+    }
+    j["stages_ms"] = stages;
+    // What "shader compile" paid for: glslang runs and driver pipeline compiles, or cache hits
+    // (src/gpu/shader_cache.h). A second run on the same machine shows 0 glslang compiles.
+    const ShaderCacheCounters& c = shaderCacheCounters();
+    nlohmann::ordered_json cache;
+    cache["enabled"] = shaderCacheEnabled();
+    cache["glslang_compiles"] = c.glslangCompiles.load();
+    cache["spirv_cache_hits"] = c.spirvCacheHits.load();
+    cache["spirv_cache_invalid"] = c.spirvCacheInvalid.load();
+    cache["pipelines"] = c.pipelines.load();
+    cache["pipeline_cache_hits"] = c.pipelineCacheHits.load();
+    j["shader_cache"] = cache;
+    std::printf("\nshaders: %d compiled by glslang, %d from the SPIR-V cache%s; pipelines: %d created, %d found in "
+                "the pipeline cache (driver's report)",
+                c.glslangCompiles.load(), c.spirvCacheHits.load(),
+                c.spirvCacheInvalid.load() ? (", " + std::to_string(c.spirvCacheInvalid.load()) +
+                                              " invalid cache files ignored").c_str()
+                                           : "",
+                c.pipelines.load(), c.pipelineCacheHits.load());
+    j["total_ms"] = t.totalMs;
+    j["gpu_pass_ms"] = gpuPassMs;
+    j["total_over_gpu_passes"] = gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0;
+    std::printf("\ntotal %.2f s = %.2fx the GPU passes' own %.2f s (timestamps)\n", t.totalMs / 1000.0,
+                gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0, gpuPassMs / 1000.0);
+    writeFileAtomic(outDir / "timings.json", j.dump(2) + "\n");
+}
+
+
+}  // namespace gbl::compare

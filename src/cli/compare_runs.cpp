@@ -1,0 +1,120 @@
+#include "compare_runs.h"
+
+#include <algorithm>
+#include <optional>
+
+#include "color_map.h"
+#include "error_images.h"
+#include "image_io.h"
+#include "stage_clock.h"
+#include "tone_map.h"
+#include "worst_regions.h"
+
+namespace gbl::compare {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::optional<AttributeStats> toReport(const ClassStats& c, bool color) {
+    if (c.error.count == 0) return std::nullopt;
+    AttributeStats s;
+    s.error = c.error;
+    if (color) s.rmse = c.rmse;
+    return s;
+}
+
+AttributeErrors toReport(const AttributeMetrics& m, bool color) {
+    return {toReport(m.all, color), toReport(m.metal, color), toReport(m.dielectric, color)};
+}
+
+}  // namespace
+
+void fillMetrics(RunReport& run, const RunMetrics& m) {
+    run.attributes[ErrorAttribute::Normal] = toReport(m.normal, false);
+    run.attributes[ErrorAttribute::BaseColor] = toReport(m.baseColor, true);
+    run.attributes[ErrorAttribute::DiffuseColor] = toReport(m.diffuseColor, true);
+    run.attributes[ErrorAttribute::SpecularColor] = toReport(m.specularColor, true);
+    run.attributes[ErrorAttribute::Roughness] = toReport(m.roughness, false);
+    run.attributes[ErrorAttribute::Metallic] = toReport(m.metallic, false);
+    run.attributes[ErrorAttribute::Depth] = toReport(m.depth, false);
+    ImageErrors e;
+    e.rmseLinear = m.image.rmseLinear;
+    e.psnrLinear = m.image.psnrLinear;
+    e.rmseToneMapped = m.image.rmseToneMapped;
+    e.psnrToneMapped = m.image.psnrToneMapped;
+    e.maxAbs = m.image.maxAbs;
+    e.p99Abs = m.image.p99Abs;
+    e.flipMean = m.image.flipMean;
+    e.flipMedian = m.image.flipMedian;
+    auto cls = [](const ClassImageErrors& c) -> std::optional<ImageClassErrors> {
+        if (c.pixels == 0) return std::nullopt;
+        ImageClassErrors k;
+        k.pixels = int64_t(c.pixels);
+        k.relLuminanceMean = c.relLuminanceMean;
+        k.rmseLinear = c.rmseLinear;
+        k.flipMean = c.flipMean;
+        if (c.referenceNoise >= 0.0) k.referenceNoise = c.referenceNoise;
+        return k;
+    };
+    e.covered = cls(m.image.covered);
+    e.metal = cls(m.image.metal);
+    e.dielectric = cls(m.image.dielectric);
+    if (m.image.hdrFlipComputed) {
+        e.hdrFlipMean = m.image.hdrFlipMean;
+        e.hdrFlipExposures = m.image.hdrFlipExposures;
+    }
+    run.image = e;
+}
+
+
+void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
+                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages) {
+    RunErrorMaps maps;
+    RunMetricsOptions options;
+    options.maps = writeImages ? &maps : nullptr;
+    options.hdrFlip = hdrFlip;
+    options.prepared = reference.prepared.get();
+    if (!reference.output.noise.empty()) {
+        options.referenceNoise = &reference.output.noise;
+        const GroundTruthStats& g = reference.output.groundTruth;
+        run.groundTruth = GroundTruthConvergence{g.batches, g.samplesPerPixel, g.targetRelativeNoise,
+                                                 g.meanRelativeNoise, g.targetMet, g.lightingMs};
+    }
+    std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
+    const RunMetrics m =
+        releaseTest ? computeRunMetrics(reference.output.surfaces, std::move(test.surfaces), reference.output.hdr,
+                                        test.hdr, exposure, options)
+                    : computeRunMetrics(reference.output.surfaces, test.surfaces, reference.output.hdr, test.hdr,
+                                        exposure, options);
+    fillMetrics(run, m);
+    if (!writeImages) return;  // views after the first: metrics only
+    const int cropSize = std::max(32, std::min(test.hdr.width, test.hdr.height) / 12);
+    const std::vector<Crop> crops = findWorstRegions(maps.relLuminance, cropSize, 3);
+    timed.emplace(Stage::Report);
+    ErrorImageOptions imageOptions;
+    imageOptions.label = run.layout + " / " + run.iblMode;
+    const ErrorImagePaths paths = writeErrorImages(outDir, prefix, maps, m, imageOptions);
+    run.images.render = paths.render;
+    // The linear HDR render the image metrics (and HDR-FLIP) were computed on, as 32-bit float.
+    run.images.renderExr = prefix + "render.exr";
+    writeExr((outDir / run.images.renderExr).string(), test.hdr);
+    run.images.hdrPreview = prefix + "render_log.png";
+    writePng((outDir / run.images.hdrPreview).string(), logEncodeForPreview(test.hdr));
+    run.images.errorHeatmap = paths.heatmap;
+    run.images.flip = paths.flip;
+    run.images.normalError = paths.normalError;
+    run.images.difference = paths.difference;
+    run.images.errorsExr = paths.errorsExr;
+    if (!crops.empty()) {
+        const Image8 heat = applyColorMap(maps.relLuminance, 0.0f, imageOptions.heatMax);
+        const auto files = writeCrops(outDir, prefix, crops, srgbFloatTo8(*maps.referenceSrgb),
+                                      srgbFloatTo8(maps.testSrgb), heat);
+        for (size_t i = 0; i < crops.size(); ++i)
+            run.images.crops.push_back({crops[i].x, crops[i].y, crops[i].size, crops[i].size, files[i].reference,
+                                        files[i].test, files[i].heat});
+    }
+}
+
+
+}  // namespace gbl::compare

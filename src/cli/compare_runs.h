@@ -1,0 +1,28 @@
+#pragma once
+// compare, one run: its metrics against the reference into the report model, and its error
+// images, EXR render and worst-region crops (cmd_compare.cpp drives the runs).
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "renderer.h"
+#include "report_model.h"
+#include "run_metrics.h"
+
+namespace gbl::compare {
+
+struct ReferenceRender {
+    RenderOutput output;
+    std::string renderPng;  // relative to the report dir
+    std::unique_ptr<PreparedReference> prepared;  // of output.hdr, shared by the runs measured against it
+};
+
+// Copies a run's metrics (run_metrics.h) into its report row.
+void fillMetrics(RunReport& run, const RunMetrics& m);
+
+// The comparison of one rendered run against its reference: metrics, images, crops. `test` is
+// moved from when `releaseTest` (its surfaces are freed once measured: peak memory at 4K).
+void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const std::filesystem::path& outDir,
+                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages = true);
+
+}  // namespace gbl::compare
