@@ -25,6 +25,8 @@ layout(set = 0, binding = 7) uniform sampler2D brdfLut;            // (A, B) at 
 // UE4's base pass does (without EMISSIVE_FORWARD the depth is bound here, unread).
 layout(set = 0, binding = 8) uniform sampler2D sceneColorEmissive;
 
+#include "normal_space.glsl"
+
 bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
 layout(std430, set = 0, binding = 10) readonly buffer EnvironmentSampling { float environmentSampling[]; };
 // Ground truth's progressive accumulation (Welford): rgb = mean radiance of the batches so far,
@@ -81,7 +83,7 @@ void main() {
 #endif
         return;
     }
-    Surface s = readGBuffer(pixel);
+    Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
     vec3 position = worldPositionFromDepth(pixel, depth);
     vec3 V = normalize(frame.cameraPosition.xyz - position);
     vec3 N = normalize(s.normal);

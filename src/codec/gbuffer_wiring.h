@@ -39,7 +39,14 @@ struct GBufferWiring {
     // per pixel of all buffers, stored at set 0, binding 8. Empty / 0 for deferred shading.
     std::string lightBufferGlsl;
     int lightBufferWordsPerPixel = 0;
+    // The layout's [space] (layout.h StoredSpace, as an int: 0 world Y-up, 1 world Z-up, 2 view):
+    // the passes compile with GBL_NORMAL_SPACE / GBL_POSITION_SPACE set to these, and
+    // shaders/normal_space.glsl transforms around the generated writeGBuffer / readGBuffer.
+    int normalSpace = 0;
+    int positionSpace = 2;
+    bool storesPosition = false;  // the lighting uses the decoded position instead of depth's
 };
+
 
 // The float reference: layouts/reference.toml (every attribute as 32-bit float bits in RGBA32_UINT
 // targets) through generateWiring (wiring_codegen.h).

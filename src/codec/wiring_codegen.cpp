@@ -607,6 +607,9 @@ GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options)
         w.targetClearWords.push_back(native ? std::array<uint32_t, 4>{0, 0, 0, 0} : clear[t]);
     }
     w.depthFormat = vkFormatFromName(layout.depth.format);
+    w.normalSpace = int(layout.space.normal);
+    w.positionSpace = int(layout.space.position);
+    w.storesPosition = layout.stores(Attribute::Position);
     w.reversedZ = layout.depth.reversedZ;
     const Fallback* emissive = layout.findFallback(Attribute::Emissive);
     w.emissiveForward = emissive && emissive->kind == FallbackKind::Forward;

@@ -26,6 +26,14 @@ struct GBufferPass {
     std::vector<std::array<uint32_t, 4>> clearWords;  // per target (GBufferWiring::targetClearWords)
 };
 
+// The layout's [space] as defines for shaders/normal_space.glsl (GBL_NORMAL_SPACE,
+// GBL_POSITION_SPACE) and, where it stores position, GBL_STORES_POSITION.
+inline void addSpaceDefines(ShaderSource& s, const GBufferWiring& w) {
+    s.defines.push_back({"GBL_NORMAL_SPACE", std::to_string(w.normalSpace)});
+    s.defines.push_back({"GBL_POSITION_SPACE", std::to_string(w.positionSpace)});
+    if (w.storesPosition) s.defines.push_back({"GBL_STORES_POSITION", "1"});
+}
+
 // Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).
 Buffer createBestFitTableBuffer(const VulkanContext& ctx);
 

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "layout_catalog.h"
+#include "layout.h"
 #include "procedural_sky.h"
 #include "renderer.h"
 #include "wiring_codegen.h"
@@ -264,6 +266,69 @@ TEST_F(RenderTest, ForwardEmissiveAddsNoError) {
     EXPECT_GT(glowingTotal - plainTotal, 0.01 * plainTotal);
     // ... and costs the forward layout nothing: the same error with and without it.
     EXPECT_NEAR(with, without, 1e-4 * without + 1e-7) << "without " << without << ", with " << with;
+}
+
+// Mean and largest angle (degrees) between a layout's decoded normals and the reference's, over the
+// covered pixels where `select(reference normal)` holds.
+struct AngleStats {
+    double mean = 0.0, max = 0.0;
+    int pixels = 0;
+};
+template <class Select>
+AngleStats normalAngles(const SurfaceImages& ref, const SurfaceImages& out, Select select) {
+    AngleStats a;
+    for (size_t i = 0; i < ref.coverage.size(); ++i) {
+        if (!ref.coverage[i]) continue;
+        const glm::vec3 r(ref.normal.pixels[i * 3], ref.normal.pixels[i * 3 + 1], ref.normal.pixels[i * 3 + 2]);
+        if (!select(r)) continue;
+        const glm::vec3 o(out.normal.pixels[i * 3], out.normal.pixels[i * 3 + 1], out.normal.pixels[i * 3 + 2]);
+        const double c = glm::clamp(double(glm::dot(glm::normalize(r), glm::normalize(o))), -1.0, 1.0);
+        const double deg = std::acos(c) * 180.0 / 3.14159265358979;
+        a.mean += deg;
+        a.max = std::max(a.max, deg);
+        ++a.pixels;
+    }
+    if (a.pixels) a.mean /= a.pixels;
+    return a;
+}
+
+// Issue 11 item 4: the normal space is declared. The same layout (crysis3-thin's x, y + z sign)
+// declared world Y-up stores the ground's normal at z = 0, where the z-sign encoding is worst;
+// declared world Z-up (CryEngine's) the ground's normal is +Z and the error on it drops. Declared
+// view space, the decode pass transforms back, so the decoded normals are gbufferlab's world normals
+// within the encoding's error (a missing or wrong inverse would be tens of degrees off).
+TEST_F(RenderTest, NormalSpaceChangesTheGroundsErrorAndDecodesBackToWorld) {
+    const Scene scene = makeDefaultScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    RenderSettings rs;
+    rs.width = 320;
+    rs.height = 180;
+    rs.decodeSurfaces = true;
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const RenderOutput ref = renderer.render(makeReferenceWiring(), rs);
+    auto render = [&](const char* name, StoredSpace space) {
+        Layout layout = loadLayout(name);
+        layout.space.normal = space;
+        return renderer.render(generateWiring(layout), rs).surfaces;
+    };
+    auto ground = [](glm::vec3 n) { return n.y > 0.999f; };
+    auto all = [](glm::vec3) { return true; };
+    const SurfaceImages yUp = render("crysis3-thin", StoredSpace::WorldYUp);
+    const SurfaceImages zUp = render("crysis3-thin", StoredSpace::WorldZUp);
+    const AngleStats gy = normalAngles(ref.surfaces, yUp, ground), gz = normalAngles(ref.surfaces, zUp, ground);
+    ASSERT_GT(gy.pixels, 1000);
+    std::printf("crysis3-thin ground (%d px): world Y-up mean %.4f max %.4f deg; world Z-up mean %.4f max %.4f deg\n",
+                gy.pixels, gy.mean, gy.max, gz.mean, gz.max);
+    EXPECT_GT(gy.mean, 2.0 * gz.mean);
+
+    for (const char* name : {"compact-octahedral", "fat-naive", "crysis3-thin"}) {
+        const AngleStats world = normalAngles(ref.surfaces, render(name, StoredSpace::WorldYUp), all);
+        const AngleStats view = normalAngles(ref.surfaces, render(name, StoredSpace::View), all);
+        std::printf("%s all covered (%d px): world Y-up mean %.4f max %.4f deg; view mean %.4f max %.4f deg\n", name,
+                    world.pixels, world.mean, world.max, view.mean, view.max);
+        EXPECT_LT(view.mean, 3.0 * world.mean + 0.01) << name;
+        EXPECT_LT(view.max, 3.0 * world.max + 0.05) << name;
+    }
 }
 
 }  // namespace
