@@ -63,6 +63,13 @@ vec3 lightRadianceAndDirection(GpuLight light, vec3 position, out vec3 L) {
         float window = clamp(1.0 - r * r, 0.0, 1.0);
         falloff *= window * window;
     }
+    if (int(light.positionType.w) == GBL_LIGHT_SPOT) {
+        // KHR_lights_punctual: cd = cos(angle to the axis), a = saturate(cd * scale + offset), a^2:
+        // 1 inside the inner cone, 0 outside the outer, smooth between.
+        float cd = dot(light.directionRange.xyz, -L);
+        float a = clamp(cd * light.spotCone.x + light.spotCone.y, 0.0, 1.0);
+        falloff *= a * a;
+    }
     return radiance * falloff;
 }
 

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdio>
+
+#include <glm/gtc/matrix_transform.hpp>
 #include <cstring>
 
 #include "layout_catalog.h"
@@ -329,6 +331,86 @@ TEST_F(RenderTest, NormalSpaceChangesTheGroundsErrorAndDecodesBackToWorld) {
         EXPECT_LT(view.mean, 3.0 * world.mean + 0.01) << name;
         EXPECT_LT(view.max, 3.0 * world.max + 0.05) << name;
     }
+}
+
+// Two ground quads side by side (x in [-2, 0] and [0, 2], z in [-1, 1], y = 0, normal +Y), the
+// left with material 0, the right with material 1, seen from above.
+Scene makeTwoQuadScene() {
+    Scene scene;
+    scene.source = "two quads";
+    for (int q = 0; q < 2; ++q) {
+        const float x0 = q == 0 ? -2.0f : 0.0f;
+        const uint32_t base = uint32_t(scene.vertices.size());
+        for (int c = 0; c < 4; ++c) {
+            Vertex v{};
+            v.position = glm::vec3(x0 + float(c & 1) * 2.0f, 0.0f, (c & 2) ? 1.0f : -1.0f);
+            v.normal = glm::vec3(0.0f, 1.0f, 0.0f);
+            v.tangent = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+            v.uv = glm::vec2(float(c & 1), (c & 2) ? 1.0f : 0.0f);
+            scene.vertices.push_back(v);
+        }
+        Draw d;
+        d.firstIndex = uint32_t(scene.indices.size());
+        for (uint32_t i : {0u, 2u, 1u, 1u, 2u, 3u}) scene.indices.push_back(base + i);
+        d.indexCount = 6;
+        d.material = q;
+        scene.draws.push_back(d);
+        Material m;
+        m.name = q == 0 ? "left" : "right";
+        m.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+        m.metallicFactor = 0.0f;
+        m.roughnessFactor = 0.7f;
+        m.doubleSided = true;
+        scene.materials.push_back(m);
+    }
+    scene.camera.position = glm::vec3(0.0f, 4.0f, 2.5f);
+    scene.camera.target = glm::vec3(0.0f);
+    scene.camera.zFar = 50.0f;
+    scene.bounds = worldBounds(scene);
+    return scene;
+}
+
+// Pixel of a world point under `scene`'s camera at w x h.
+glm::ivec2 projectAt(const Scene& scene, glm::vec3 world, uint32_t w, uint32_t h) {
+    const CameraMatrices m = computeCameraMatrices(scene.camera, float(w) / float(h), false);
+    const glm::vec4 clip = m.viewProj * glm::vec4(world, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return glm::ivec2((ndc * 0.5f + 0.5f) * glm::vec2(w, h));
+}
+
+// Issue 11 item 7: KHR_lights_punctual spot cones are honoured, with the extension's smooth
+// attenuation: full inside the inner cone, zero outside the outer, in between between. Before, a
+// spot light lit like a point light, everywhere.
+TEST_F(RenderTest, SpotLightLightsInsideItsConeOnly) {
+    Scene scene = makeTwoQuadScene();
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = glm::vec3(0.0f, 2.0f, 0.0f);
+    spot.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    spot.intensity = 10.0f;
+    spot.innerConeAngle = glm::radians(10.0f);
+    spot.outerConeAngle = glm::radians(20.0f);
+    scene.lights = {spot};
+    const EnvironmentMap sky = makeProceduralSky(32);
+    RenderSettings rs;
+    rs.width = 240;
+    rs.height = 160;
+    rs.environmentIntensity = 0.0f;
+    rs.diffuseIbl = false;
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const RenderOutput out = renderer.render(makeReferenceWiring(), rs);
+    auto lum = [&](float degrees) {  // the ground point `degrees` off the spot's axis, along +x
+        const glm::vec3 p(2.0f * std::tan(glm::radians(degrees)), 0.0f, 0.0f);
+        return luminance(pixel(out.hdr, projectAt(scene, p, rs.width, rs.height)));
+    };
+    const float centre = lum(0.0f), inner = lum(8.0f), between = lum(15.0f), outside = lum(30.0f);
+    std::printf("spot: luminance at 0 deg %.5f, 8 deg %.5f, 15 deg %.5f, 30 deg %.6f\n", centre, inner, between,
+                outside);
+    EXPECT_GT(centre, 0.01f);
+    EXPECT_GT(inner, 0.5f * centre);   // inside the inner cone: full intensity (inverse square, n.l only)
+    EXPECT_GT(between, 0.0f);          // the smooth edge ...
+    EXPECT_LT(between, 0.8f * inner);  // ... dimmer than inside
+    EXPECT_EQ(outside, 0.0f);          // outside the outer cone: no light at all
 }
 
 }  // namespace
