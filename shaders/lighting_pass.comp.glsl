@@ -91,7 +91,13 @@ void main() {
         return;
     }
     Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
+#ifdef GBL_STORES_POSITION
+    // The layout stores position (fat-naive): light from the decoded, quantised position, not
+    // from the one depth gives.
+    vec3 position = s.position;
+#else
     vec3 position = worldPositionFromDepth(pixel, depth);
+#endif
     vec3 V = normalize(frame.cameraPosition.xyz - position);
     vec3 N = normalize(s.normal);
 #ifdef LIGHT_PRE_PASS

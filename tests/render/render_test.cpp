@@ -413,5 +413,45 @@ TEST_F(RenderTest, SpotLightLightsInsideItsConeOnly) {
     EXPECT_EQ(outside, 0.0f);          // outside the outer cone: no light at all
 }
 
+// Issue 11 item 7: a layout that stores position is lit from the decoded position, transformed
+// back from the space it declares. fat-naive stores float16 view-space position; moved 2 km from
+// the origin, the same scene declared world-space position keeps float16's 1-2 m steps there, and
+// the lighting (V for specular; point-light distances) shows them. Lit from depth instead, both
+// would be the same image.
+TEST_F(RenderTest, StoredPositionIsWhatTheLightingUses) {
+    Scene scene = makeDefaultScene();
+    const glm::vec3 offset(2000.0f, 0.0f, 1500.0f);
+    for (Draw& d : scene.draws) d.model = glm::translate(glm::mat4(1.0f), offset) * d.model;
+    for (Light& l : scene.lights) l.position += offset;
+    scene.camera.position += offset;
+    scene.camera.target += offset;
+    scene.bounds = worldBounds(scene);
+    const EnvironmentMap sky = makeProceduralSky(64);
+    RenderSettings rs;
+    rs.width = 200;
+    rs.height = 120;
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const RenderOutput ref = renderer.render(makeReferenceWiring(), rs);
+    Layout fat = loadLayout("fat-naive");
+    ASSERT_EQ(fat.space.position, StoredSpace::View);
+    const RenderOutput view = renderer.render(generateWiring(fat), rs);
+    fat.space.position = StoredSpace::WorldYUp;
+    const RenderOutput world = renderer.render(generateWiring(fat), rs);
+    auto meanError = [&](const RenderOutput& o) {
+        double sum = 0.0;
+        size_t n = 0;
+        for (size_t i = 0; i < ref.hdr.pixelCount(); ++i) {
+            if (ref.hdr.pixels[i * 4 + 3] < 0.5f) continue;
+            for (int c = 0; c < 3; ++c) sum += std::abs(double(o.hdr.pixels[i * 4 + c]) - ref.hdr.pixels[i * 4 + c]);
+            ++n;
+        }
+        return sum / double(3 * n);
+    };
+    const double eView = meanError(view), eWorld = meanError(world);
+    std::printf("fat-naive 2 km from the origin: mean |error| position in view space %.6g, in world space %.6g\n",
+                eView, eWorld);
+    EXPECT_GT(eWorld, 3.0 * eView);
+}
+
 }  // namespace
 }  // namespace gbl
