@@ -49,6 +49,7 @@ std::vector<gpu::GpuLight> packLights(const Scene& scene) {
 
 GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
     GpuScene g;
+    for (const Material& m : scene.materials) g.materialStencilValues.push_back(m.stencilValues);
     g.vertices = createBufferWithData(ctx, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     g.indices = createBufferWithData(ctx, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),

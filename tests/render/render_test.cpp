@@ -413,6 +413,32 @@ TEST_F(RenderTest, SpotLightLightsInsideItsConeOnly) {
     EXPECT_EQ(outside, 0.0f);          // outside the outer cone: no light at all
 }
 
+// Issue 11 item 7: the stencil extras a layout declares are written: per draw, the reference its
+// material's values (or the declared ones) make, with op REPLACE. crysis3-thin: ambient_id in
+// s[0:3], decals in s[4:7]; crysis2-slim: indoor in s[7].
+TEST_F(RenderTest, StencilExtrasAreWrittenPerMaterial) {
+    Scene scene = makeTwoQuadScene();
+    scene.materials[0].stencilValues = {{"ambient_id", 5}, {"decals", 1}, {"indoor", 1}};
+    scene.materials[1].stencilValues = {{"ambient_id", 9}};
+    const EnvironmentMap sky = makeProceduralSky(32);
+    RenderSettings rs;
+    rs.width = 160;
+    rs.height = 100;
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const glm::ivec2 left = projectAt(scene, glm::vec3(-1.0f, 0.0f, 0.0f), rs.width, rs.height);
+    const glm::ivec2 right = projectAt(scene, glm::vec3(1.0f, 0.0f, 0.0f), rs.width, rs.height);
+    auto at = [&](const RenderOutput& o, glm::ivec2 p) { return int(o.stencil[size_t(p.y) * rs.width + size_t(p.x)]); };
+    const RenderOutput thin = renderer.render(generateWiring(loadLayout("crysis3-thin")), rs);
+    ASSERT_EQ(thin.stencil.size(), size_t(rs.width) * rs.height);
+    EXPECT_EQ(at(thin, left), 5 | (1 << 4));
+    EXPECT_EQ(at(thin, right), 9);  // decals: the declared 0
+    EXPECT_EQ(at(thin, glm::ivec2(0, 0)), 0);  // no geometry: cleared to 0
+    const RenderOutput slim = renderer.render(generateWiring(loadLayout("crysis2-slim")), rs);
+    ASSERT_EQ(slim.stencil.size(), size_t(rs.width) * rs.height);
+    EXPECT_EQ(at(slim, left), 0x80);
+    EXPECT_EQ(at(slim, right), 0);
+}
+
 // Issue 11 item 7: a layout that stores position is lit from the decoded position, transformed
 // back from the space it declares. fat-naive stores float16 view-space position; moved 2 km from
 // the origin, the same scene declared world-space position keeps float16's 1-2 m steps there, and
