@@ -14,6 +14,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform Frame { FrameConstants frame; };
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 
+#include "normal_space.glsl"
+
 bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
 
 struct DecodedPixel {
@@ -43,7 +45,7 @@ void main() {
         decoded[index] = d;
         return;
     }
-    Surface s = readGBuffer(pixel);
+    Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0;
     vec4 world = frame.invViewProj * vec4(ndc, depth, 1.0);
     vec3 position = world.xyz / world.w;

@@ -5,6 +5,7 @@
 #include "shared_types.h"
 #include "surface.glsl"
 #include "material.glsl"
+#include "normal_space.glsl"
 #define GBUFFER_WRITE 1
 #include "gbuffer_wiring.glsl"
 
@@ -16,5 +17,5 @@ layout(location = 3) in vec2 inUv;
 void main() {
     if (alphaTestDiscards(inUv)) discard;
     Surface s = evaluateMaterial(inWorldPosition, inNormal, inTangent, inUv, gl_FrontFacing);
-    writeGBuffer(s, ivec2(gl_FragCoord.xy));
+    writeGBuffer(gblSurfaceToStored(s), ivec2(gl_FragCoord.xy));  // into the layout's [space]
 }

@@ -25,6 +25,8 @@ layout(set = 0, binding = 7) uniform sampler2D brdfLut;            // (A, B) at 
 // UE4's base pass does (without EMISSIVE_FORWARD the depth is bound here, unread).
 layout(set = 0, binding = 8) uniform sampler2D sceneColorEmissive;
 
+#include "normal_space.glsl"
+
 bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
 layout(std430, set = 0, binding = 10) readonly buffer EnvironmentSampling { float environmentSampling[]; };
 // Ground truth's progressive accumulation (Welford): rgb = mean radiance of the batches so far,
@@ -61,6 +63,13 @@ vec3 lightRadianceAndDirection(GpuLight light, vec3 position, out vec3 L) {
         float window = clamp(1.0 - r * r, 0.0, 1.0);
         falloff *= window * window;
     }
+    if (int(light.positionType.w) == GBL_LIGHT_SPOT) {
+        // KHR_lights_punctual: cd = cos(angle to the axis), a = saturate(cd * scale + offset), a^2:
+        // 1 inside the inner cone, 0 outside the outer, smooth between.
+        float cd = dot(light.directionRange.xyz, -L);
+        float a = clamp(cd * light.spotCone.x + light.spotCone.y, 0.0, 1.0);
+        falloff *= a * a;
+    }
     return radiance * falloff;
 }
 
@@ -81,8 +90,14 @@ void main() {
 #endif
         return;
     }
-    Surface s = readGBuffer(pixel);
+    Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
+#ifdef GBL_STORES_POSITION
+    // The layout stores position (fat-naive): light from the decoded, quantised position, not
+    // from the one depth gives.
+    vec3 position = s.position;
+#else
     vec3 position = worldPositionFromDepth(pixel, depth);
+#endif
     vec3 V = normalize(frame.cameraPosition.xyz - position);
     vec3 N = normalize(s.normal);
 #ifdef LIGHT_PRE_PASS

@@ -35,6 +35,7 @@ struct GpuLight {
     vec4 positionType;    // xyz world position, w GBL_LIGHT_*
     vec4 directionRange;  // xyz direction the light travels, w range (0 = infinite)
     vec4 colorIntensity;  // rgb colour, a intensity (lux or candela)
+    vec4 spotCone;        // spot: x lightAngleScale, y lightAngleOffset (KHR_lights_punctual), zw unused
 };
 
 struct GpuMaterial {

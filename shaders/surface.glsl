@@ -3,7 +3,7 @@
 #ifndef GBL_SURFACE_GLSL
 #define GBL_SURFACE_GLSL
 struct Surface {
-    vec3 normal;         // world space, unit
+    vec3 normal;         // world space (Y-up), unit; stored in the layout's [space] (normal_space.glsl)
     vec3 baseColor;      // linear
     float metallic;
     float roughness;     // perceptual; GGX alpha = roughness^2
@@ -12,6 +12,7 @@ struct Surface {
     vec3 diffuseColor;   // Lambert albedo = baseColor * (1 - metallic)
     float occlusion;
     vec3 emissive;       // linear radiance
-    vec3 position;       // world space; read back only where the layout stores `position`
+    vec3 position;       // world space (Y-up) in the passes; stored in the layout's [space] position
+                         // space (normal_space.glsl); read back only where the layout stores it
 };
 #endif

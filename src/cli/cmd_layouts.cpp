@@ -113,6 +113,9 @@ std::string describeLayout(const Layout& layout) {
     o << layout.name << ": " << layout.title << "\n";
     o << "source:   " << layout.source.text() << "\n";
     o << "pipeline: " << pipelineName(layout.pipeline) << "\n";
+    o << "space:    normals " << storedSpaceName(layout.space.normal);
+    if (layout.stores(Attribute::Position)) o << ", position " << storedSpaceName(layout.space.position);
+    o << "\n";
     o << "file:     " << layout.sourceFile << "\n";
     int targetBytes = 0;
     for (const Target& t : layout.targets) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -39,7 +40,39 @@ struct GBufferWiring {
     // per pixel of all buffers, stored at set 0, binding 8. Empty / 0 for deferred shading.
     std::string lightBufferGlsl;
     int lightBufferWordsPerPixel = 0;
+    // The layout's [space] (layout.h StoredSpace, as an int: 0 world Y-up, 1 world Z-up, 2 view):
+    // the passes compile with GBL_NORMAL_SPACE / GBL_POSITION_SPACE set to these, and
+    // shaders/normal_space.glsl transforms around the generated writeGBuffer / readGBuffer.
+    int normalSpace = 0;
+    int positionSpace = 2;
+    bool storesPosition = false;  // the lighting uses the decoded position instead of depth's
+    // Stencil extras (layout [depth] stencil), one per field: the G-buffer pass writes, per draw,
+    // the reference OR over fields of (value & mask) << shift, value = the material's
+    // (Material::stencilValues) or else the declared one, with stencil op REPLACE and write mask
+    // stencilWriteMask (the bits the fields occupy).
+    struct StencilField {
+        std::string attribute;  // layout-language name, e.g. "indoor"
+        uint32_t shift = 0, mask = 0;  // the piece's first stencil bit and its width's mask
+        uint32_t valueShift = 0;       // the value's bits this piece takes start here (low bits first)
+        uint32_t value = 0;            // the declared value (whole, before valueShift)
+    };
+    std::vector<StencilField> stencilFields;
+    uint32_t stencilWriteMask = 0;
 };
+
+// The stencil reference a draw of a material with these per-material values writes (see
+// GBufferWiring::stencilFields).
+inline uint32_t stencilReference(const GBufferWiring& w,
+                                 const std::vector<std::pair<std::string, uint32_t>>& materialValues) {
+    uint32_t ref = 0;
+    for (const GBufferWiring::StencilField& f : w.stencilFields) {
+        uint32_t v = f.value;
+        for (const auto& [name, value] : materialValues)
+            if (name == f.attribute) v = value;
+        ref |= ((v >> f.valueShift) & f.mask) << f.shift;
+    }
+    return ref;
+}
 
 // The float reference: layouts/reference.toml (every attribute as 32-bit float bits in RGBA32_UINT
 // targets) through generateWiring (wiring_codegen.h).

@@ -612,6 +612,25 @@ GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options)
         w.targetClearWords.push_back(native ? std::array<uint32_t, 4>{0, 0, 0, 0} : clear[t]);
     }
     w.depthFormat = vkFormatFromName(layout.depth.format);
+    w.normalSpace = int(layout.space.normal);
+    w.positionSpace = int(layout.space.position);
+    w.storesPosition = layout.stores(Attribute::Position);
+    for (const Field& f : layout.depth.stencil) {
+        // Integer extras, one code; its pieces take the value's bits, low bits first.
+        if (f.codes.empty() || f.value.empty()) continue;
+        int consumed = 0;
+        for (const BitRange& r : f.codes[0].pieces) {
+            GBufferWiring::StencilField sf;
+            sf.attribute = attributeName(f.attribute);
+            sf.shift = uint32_t(r.first);
+            sf.mask = (1u << r.count) - 1u;
+            sf.valueShift = uint32_t(consumed);
+            sf.value = uint32_t(f.value[0]);
+            consumed += r.count;
+            w.stencilWriteMask |= sf.mask << r.first;
+            w.stencilFields.push_back(sf);
+        }
+    }
     w.reversedZ = layout.depth.reversedZ;
     const Fallback* emissive = layout.findFallback(Attribute::Emissive);
     w.emissiveForward = emissive && emissive->kind == FallbackKind::Forward;

@@ -222,6 +222,15 @@ std::string knownDepthFormatNames() { return joinNames(depthFormatTable()); }
 
 // ---- names ------------------------------------------------------------------------------------
 
+const char* storedSpaceName(StoredSpace s) {
+    switch (s) {
+        case StoredSpace::WorldYUp: return "world (Y-up)";
+        case StoredSpace::WorldZUp: return "world (Z-up)";
+        case StoredSpace::View: return "view";
+    }
+    return "?";
+}
+
 const char* pipelineName(Pipeline p) {
     return p == Pipeline::DeferredShading ? "deferred-shading" : "deferred-lighting";
 }

@@ -253,6 +253,28 @@ struct MaterialPassOptions {
     bool declared = false;
 };
 
+// The space a layout stores normals (and position) in ([space], layouts/README.md). gbufferlab's
+// world is Y-up; CryEngine and UE4 are Z-up, so their world-space normals have the ground's normal
+// along +Z. The G-buffer pass transforms into the declared space before encoding and the lighting
+// and decode passes transform back (shaders/normal_space.glsl, mirrored by
+// src/codec/normal_space.h); the generated wiring itself is space-agnostic.
+enum class StoredSpace : uint8_t {
+    WorldYUp,  // "world", up = "y": gbufferlab's own world, no transform
+    WorldZUp,  // "world", up = "z": the fixed right-handed axis swap (x, y, z) -> (x, -z, y)
+    View,      // "view": the camera's view matrix (right-handed, looking down -Z)
+};
+const char* storedSpaceName(StoredSpace s);  // "world (Y-up)", "world (Z-up)", "view"
+
+struct SpaceDecl {
+    bool declared = false;          // the layout has a [space] table
+    bool normalDeclared = false;    // ... with `normal`
+    bool positionDeclared = false;  // ... with `position`
+    StoredSpace normal = StoredSpace::WorldYUp;
+    StoredSpace position = StoredSpace::View;
+    FilePlace place;          // the [space] table (1:1 when absent)
+    FilePlace positionPlace;  // its `position` key
+};
+
 struct Source {
     std::string game;
     std::string engine;
@@ -272,6 +294,7 @@ struct Layout {
     std::vector<Fallback> fallbacks;
     std::vector<LightBuffer> lightBuffers;
     MaterialPassOptions materialPass;  // [material_pass] (deferred lighting)
+    SpaceDecl space;                   // [space]: where normals (and position) are stored
     std::string sourceFile;  // the file it was read from (or the name given to parseLayout)
     FilePlace namePlace;
     FilePlace fallbackPlace;  // the [fallback] table (1:1 when absent)

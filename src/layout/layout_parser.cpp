@@ -30,7 +30,7 @@ Layout Parser::parse(std::string_view text) {
     }
     const FilePlace top{1, 1};
     checkKeys(root, {"name", "title", "source", "pipeline", "depth", "target", "fallback", "clear", "light_buffer",
-                     "material_pass"},
+                     "material_pass", "space"},
               "the layout");
 
     if (auto name = getString(root, "name", true, top, "the layout")) {
@@ -74,7 +74,58 @@ Layout Parser::parse(std::string_view text) {
     parseClear(root, layout);
     parseLightBuffers(root, layout);
     parseMaterialPass(root, layout);
+    parseSpace(root, layout);
     return layout;
+}
+
+// [space]: normal = "world" | "view"; up = "y" | "z" (world only); position = "world" | "view"
+// (only where position is stored). Whether anything is missing is validation's (layout_validate.cpp).
+void Parser::parseSpace(const toml::table& root, Layout& layout) {
+    const toml::node* n = root.get("space");
+    if (!n) return;
+    const toml::table* t = n->as_table();
+    SpaceDecl& sp = layout.space;
+    if (!t) {
+        error(placeOf(*n), "'space' must be a table ([space]), not " + std::string(typeName(*n)));
+        sp.declared = sp.normalDeclared = sp.positionDeclared = true;  // reported: no second message
+        return;
+    }
+    sp.declared = true;
+    sp.place = placeOf(*n);
+    checkKeys(*t, {"normal", "up", "position"}, "[space]");
+    bool zUp = false, upGiven = false;
+    if (const toml::node* u = t->get("up")) {
+        upGiven = true;
+        if (auto up = getString(*t, "up", false, sp.place, "[space]")) {
+            if (*up == "z")
+                zUp = true;
+            else if (*up != "y")
+                error(placeOf(*u), "unknown up axis " + squote(*up) +
+                                       " (known: y, gbufferlab's own; z, CryEngine's and UE4's)");
+        }
+    }
+    auto readSpace = [&](const char* key, bool& declared, StoredSpace& out) {
+        const toml::node* k = t->get(key);
+        if (!k) return;
+        declared = true;
+        auto v = getString(*t, key, false, sp.place, "[space]");
+        if (!v) return;
+        if (*v == "view")
+            out = StoredSpace::View;
+        else if (*v == "world") {
+            if (!upGiven)
+                error(placeOf(*k), std::string("'") + key +
+                                       "' is \"world\": declare the engine's up axis too (up = \"y\" or \"z\")");
+            out = zUp ? StoredSpace::WorldZUp : StoredSpace::WorldYUp;
+        } else
+            error(placeOf(*k), "unknown " + std::string(key) + " space " + squote(*v) + " (known: world, view)");
+    };
+    readSpace("normal", sp.normalDeclared, sp.normal);
+    readSpace("position", sp.positionDeclared, sp.position);
+    if (const toml::node* p = t->get("position")) sp.positionPlace = placeOf(*p);
+    if (upGiven && (!sp.normalDeclared || sp.normal == StoredSpace::View) &&
+        (!sp.positionDeclared || sp.position == StoredSpace::View))
+        error(placeOf(*t->get("up")), "'up' applies to world space only, and nothing here is stored in world space");
 }
 
 void Parser::parseSource(const toml::table& root, Layout& layout) {

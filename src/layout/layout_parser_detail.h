@@ -174,6 +174,7 @@ private:
     void parseLightBuffers(const toml::table& root, Layout& layout);
     void parseClear(const toml::table& root, Layout& layout);
     void parseMaterialPass(const toml::table& root, Layout& layout);
+    void parseSpace(const toml::table& root, Layout& layout);
 
     std::string file_;
     std::vector<LayoutDiagnostic>& out_;

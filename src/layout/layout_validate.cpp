@@ -33,6 +33,7 @@ public:
         checkFallbacks();
         checkPipeline();
         checkClear();
+        checkSpace();
     }
 
 private:
@@ -371,6 +372,25 @@ private:
     // [clear]: declared, listing every shading or geometry attribute stored in a colour target and
     // only those (extras hold their declared `value` in every pixel, cleared ones included): what a
     // pixel without geometry holds is part of the layout, never a default.
+    // [space]: the space normals are stored in is declared, never assumed (issue 11 item 4), and a
+    // stored position's space too; a position space without a stored position is an error.
+    void checkSpace() {
+        const SpaceDecl& sp = layout_.space;
+        if (!sp.declared) {
+            error({1, 1}, "the layout declares no [space] table: say which space its normals are stored in "
+                          "(normal = \"world\" with up = \"y\" or \"z\", or normal = \"view\"); the G-buffer pass "
+                          "transforms into it and the lighting back");
+            return;
+        }
+        if (!sp.normalDeclared)
+            error(sp.place, "[space] has no 'normal': declare the space normals are stored in (\"world\" or \"view\")");
+        const bool position = layout_.stores(Attribute::Position);
+        if (position && !sp.positionDeclared)
+            error(sp.place, "the layout stores 'position' but [space] has no 'position': declare \"view\" or \"world\"");
+        if (!position && sp.positionDeclared)
+            error(sp.positionPlace, "[space] declares a 'position' space but the layout stores no 'position'");
+    }
+
     void checkClear() {
         if (!layout_.clearDeclared) {
             error({1, 1}, "the layout declares no [clear] table: say what a pixel without geometry holds, one value "

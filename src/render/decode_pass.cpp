@@ -63,6 +63,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
 
     ShaderSource cs = loadShaderFile("decode_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    addSpaceDefines(cs, wiring);
     cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ")";
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
     VkPipeline pipeline = createComputePipeline(ctx, pipelineLayout, module);

@@ -17,9 +17,14 @@ bool isStencilFormat(VkFormat f) {
 
 }  // namespace
 
+bool writesStencil(const GBufferWiring& wiring) {
+    return isStencilFormat(wiring.depthFormat) && wiring.stencilWriteMask != 0;
+}
+
 VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, VkPipelineLayout layout,
                                  const ShaderSource& vs, ShaderSource fs, bool sceneVertices) {
     fs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    addSpaceDefines(fs, wiring);
     VkShaderModule vsModule = createShaderModule(ctx.device, compileGlsl(vs));
     VkShaderModule fsModule = createShaderModule(ctx.device, compileGlsl(fs));
 
@@ -71,9 +76,24 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
     VkPipelineColorBlendStateCreateInfo colorBlend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     colorBlend.attachmentCount = uint32_t(blend.size());
     colorBlend.pAttachments = blend.data();
-    VkDynamicState dynamicStates[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    // Stencil extras (scene pipelines only: the bit tests draw without them): every fragment that
+    // passes the depth test replaces the layout's stencil bits with the draw's reference.
+    const bool stencil = sceneVertices && writesStencil(wiring);
+    if (stencil) {
+        depth.stencilTestEnable = VK_TRUE;
+        VkStencilOpState op{};
+        op.failOp = VK_STENCIL_OP_KEEP;
+        op.passOp = VK_STENCIL_OP_REPLACE;
+        op.depthFailOp = VK_STENCIL_OP_KEEP;
+        op.compareOp = VK_COMPARE_OP_ALWAYS;
+        op.compareMask = 0xFF;
+        op.writeMask = wiring.stencilWriteMask;
+        depth.front = depth.back = op;
+    }
+    VkDynamicState dynamicStates[3] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                       VK_DYNAMIC_STATE_STENCIL_REFERENCE};
     VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dynamic.dynamicStateCount = 2;
+    dynamic.dynamicStateCount = stencil ? 3 : 2;
     dynamic.pDynamicStates = dynamicStates;
 
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
@@ -170,6 +190,8 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
     fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
     fs.name = "gbuffer_pass.frag.glsl (layout " + wiring.layoutName + ")";
     pass.pipeline = createGBufferPipeline(ctx, wiring, pass.pipelineLayout, vs, fs, true);
+    pass.writesStencil = writesStencil(wiring);
+    pass.wiring.stencilFields = wiring.stencilFields;
     return pass;
 }
 
@@ -245,6 +267,13 @@ void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuSc
         vkCmdPushConstants(cmd, pass.pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(gpu::DrawConstants), &scene.draws[i]);
         const Draw& d = scene.drawRanges[i];
+        if (pass.writesStencil) {
+            static const std::vector<std::pair<std::string, uint32_t>> none;
+            const auto& values = size_t(d.material) < scene.materialStencilValues.size()
+                                     ? scene.materialStencilValues[size_t(d.material)]
+                                     : none;
+            vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, stencilReference(pass.wiring, values));
+        }
         vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
     }
     endGBufferPass(cmd, pass);

@@ -1,6 +1,7 @@
 #include "gpu_scene.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace gbl {
 
@@ -37,6 +38,10 @@ std::vector<gpu::GpuLight> packLights(const Scene& scene) {
         g.positionType = glm::vec4(l.position, float(int(l.type)));
         g.directionRange = glm::vec4(glm::normalize(l.direction), l.range);
         g.colorIntensity = glm::vec4(l.color, l.intensity);
+        // KHR_lights_punctual's smooth cone attenuation (its README, "Inner and Outer Cone Angles"):
+        // scale = 1 / max(0.001, cos(inner) - cos(outer)), offset = -cos(outer) * scale.
+        const float scale = 1.0f / std::max(0.001f, std::cos(l.innerConeAngle) - std::cos(l.outerConeAngle));
+        g.spotCone = glm::vec4(scale, -std::cos(l.outerConeAngle) * scale, 0.0f, 0.0f);
         out.push_back(g);
     }
     return out;
@@ -44,6 +49,7 @@ std::vector<gpu::GpuLight> packLights(const Scene& scene) {
 
 GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
     GpuScene g;
+    for (const Material& m : scene.materials) g.materialStencilValues.push_back(m.stencilValues);
     g.vertices = createBufferWithData(ctx, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     g.indices = createBufferWithData(ctx, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),

@@ -19,6 +19,7 @@ struct GpuScene {
     VkSampler textureSampler = VK_NULL_HANDLE;
     std::vector<gpu::DrawConstants> draws;
     std::vector<Draw> drawRanges;
+    std::vector<std::vector<std::pair<std::string, uint32_t>>> materialStencilValues;  // Material::stencilValues
 };
 
 GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene);

@@ -88,6 +88,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
 
     ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    addSpaceDefines(cs, wiring);
     if (lightPrePass) {
         cs.virtualFiles["light_buffers.glsl"] = wiring.lightBufferGlsl;
         cs.defines.push_back({"LIGHT_PRE_PASS", "1"});

@@ -225,6 +225,9 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         }
     }
     std::vector<uint8_t>().swap(depthBytes);
+    if (settings.readTargetWords && (gbuffer.depth.aspect & VK_IMAGE_ASPECT_STENCIL_BIT))
+        out.stencil = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
+                                    VK_IMAGE_ASPECT_STENCIL_BIT);
     if (settings.decodeSurfaces)
         out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth, material,
                                       settings.decodeBandRows);

@@ -72,6 +72,9 @@ struct RenderOutput {
     std::vector<std::vector<uint32_t>> targetWords;  // per target, row-major, texel size / 4 words per pixel
                                                      // (empty unless RenderSettings::readTargetWords)
     std::vector<float> depth;                        // row-major depth-buffer values
+    // Row-major stencil values where the depth format has stencil (the per-draw references the
+    // layout's stencil extras make, gbuffer_pass.cpp), else empty.
+    std::vector<uint8_t> stencil;
     // Deferred lighting: the light buffers' words, row-major, GBufferWiring::lightBufferWordsPerPixel
     // per pixel, buffers in layout order (empty unless RenderSettings::readTargetWords).
     std::vector<uint32_t> lightBufferWords;

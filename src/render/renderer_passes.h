@@ -24,7 +24,19 @@ struct GBufferPass {
     // set 0, binding kBestFitTableBinding of every pipeline that writes a G-buffer.
     Buffer bestFitTable;
     std::vector<std::array<uint32_t, 4>> clearWords;  // per target (GBufferWiring::targetClearWords)
+    // The layout declares stencil extras: the pipeline writes the stencil with op REPLACE and a
+    // dynamic reference, set per draw to stencilReference(wiring, material's values).
+    bool writesStencil = false;
+    GBufferWiring wiring;  // for the stencil references (only its stencil fields are read)
 };
+
+// The layout's [space] as defines for shaders/normal_space.glsl (GBL_NORMAL_SPACE,
+// GBL_POSITION_SPACE) and, where it stores position, GBL_STORES_POSITION.
+inline void addSpaceDefines(ShaderSource& s, const GBufferWiring& w) {
+    s.defines.push_back({"GBL_NORMAL_SPACE", std::to_string(w.normalSpace)});
+    s.defines.push_back({"GBL_POSITION_SPACE", std::to_string(w.positionSpace)});
+    if (w.storesPosition) s.defines.push_back({"GBL_STORES_POSITION", "1"});
+}
 
 // Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).
 Buffer createBestFitTableBuffer(const VulkanContext& ctx);
@@ -43,6 +55,8 @@ void createGBufferImages(const VulkanContext& ctx, const GBufferWiring& wiring, 
                          GBufferPass& pass);
 //   the pipeline, compiling `fragment` with the wiring's GLSL as "gbuffer_wiring.glsl"; with
 //   sceneVertices, the vertex input is the GpuScene's Vertex, else none;
+// The layout declares stencil extras and its depth format has stencil.
+bool writesStencil(const GBufferWiring& wiring);
 VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, VkPipelineLayout layout,
                                  const ShaderSource& vertex, ShaderSource fragment, bool sceneVertices);
 //   begin: targets and depth cleared, viewport and scissor set, pass.pipeline and pass.set bound;

@@ -4,6 +4,7 @@
 // decoded to RGBA8, a camera and punctual lights. Loaded from glTF 2.0 or built in code.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -51,6 +52,10 @@ struct Material {
     // alphaCutoff are discarded (glTF 2.0, 3.9.4). OPAQUE and BLEND render opaque.
     bool alphaMask = false;
     float alphaCutoff = 0.5f;
+    // Per-material values of a layout's stencil extras (layouts/README.md [depth] stencil), by
+    // attribute name ("indoor", "ambient_id", ...): the G-buffer pass writes them as this material's
+    // stencil reference; an extra not named here holds the layout's declared `value`.
+    std::vector<std::pair<std::string, uint32_t>> stencilValues;
 };
 
 struct Draw {

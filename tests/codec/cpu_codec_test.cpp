@@ -4,6 +4,7 @@
 // runs and of the reference must be identical, and so must the decoded Surfaces, bit for bit.
 // parallelFor has its own test (tests/base), and so have the fast encoders (tests/encoding).
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -20,6 +21,7 @@
 #include "encoding_registry.h"
 #include "encodings.h"
 #include "layout_catalog.h"
+#include "normal_space.h"
 #include "encodings_fast.h"
 #include "parallel_for.h"
 #include "wiring_codegen.h"
@@ -559,6 +561,32 @@ TEST(CpuCodec, RejectsMismatchedSizes) {
     CpuGBuffer g = codec.encode(std::vector<Surface>(4), 2, 2);
     g.targetWords[0].pop_back();
     EXPECT_THROW(codec.decode(g), std::invalid_argument);
+}
+
+// The CPU mirror of shaders/normal_space.glsl (issue 11 item 4): the world Z-up swap is
+// right-handed, puts the ground's normal (+Y) on +Z and is undone exactly (bit for bit, as the
+// GLSL's component shuffle and negation); view space is undone within float rounding.
+TEST(NormalSpace, TransformsAreUndoneAndZUpIsRightHanded) {
+    EXPECT_EQ(yUpToZUp(glm::vec3(0, 1, 0)), glm::vec3(0, 0, 1));
+    EXPECT_EQ(yUpToZUp(glm::vec3(0, 0, 1)), glm::vec3(0, -1, 0));
+    const glm::vec3 x = yUpToZUp({1, 0, 0}), y = yUpToZUp({0, 1, 0}), z = yUpToZUp({0, 0, 1});
+    EXPECT_EQ(glm::cross(x, y), z);  // right-handed: a rotation, not a reflection
+    const glm::mat4 view = glm::lookAt(glm::vec3(3.0f, 2.0f, 5.0f), glm::vec3(0.0f, 0.5f, 0.0f), glm::vec3(0, 1, 0));
+    std::mt19937 rng(11);
+    std::normal_distribution<float> g;
+    for (int i = 0; i < 10000; ++i) {
+        const glm::vec3 n = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+        const glm::vec3 z2 = directionFromStored(directionToStored(n, StoredSpace::WorldZUp, view), StoredSpace::WorldZUp, view);
+        ASSERT_EQ(std::memcmp(&z2, &n, sizeof n), 0);
+        const glm::vec3 v = directionFromStored(directionToStored(n, StoredSpace::View, view), StoredSpace::View, view);
+        ASSERT_LT(glm::length(v - n), 1e-6f);
+        const glm::vec3 p = n * 40.0f;
+        const glm::vec3 pv = pointFromStored(pointToStored(p, StoredSpace::View, view), StoredSpace::View, view);
+        ASSERT_LT(glm::length(pv - p), 1e-4f);
+    }
+    // View space: the camera looks down -Z, so a normal facing the camera has z > 0.
+    const glm::vec3 toCamera = glm::normalize(glm::vec3(3.0f, 1.5f, 5.0f));
+    EXPECT_GT(directionToStored(toCamera, StoredSpace::View, view).z, 0.999f);
 }
 
 }  // namespace

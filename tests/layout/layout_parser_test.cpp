@@ -45,6 +45,10 @@ specular = 0.5
 occlusion = 1.0
 emissive = 0.0
 
+[space]
+normal = "world"
+up = "z"
+
 [clear]
 normal = [0.0, 0.0, 1.0]
 roughness = 1.0
@@ -540,6 +544,32 @@ TEST(LayoutParser, ClearIsDeclaredForEveryStoredAttribute) {
     expectOnlyError(unstored, placeOf(unstored, "0.5\n", 1), {"clear value for 'specular'", "no target stores"});
     const std::string outside = edit(kValid, "roughness = 1.0\n", "roughness = 2.0\n");
     expectOnlyError(outside, placeOf(outside, "2.0"), {"clear value of 'roughness'", "outside"});
+}
+
+// ---- normal space (issue 11 item 4) -------------------------------------------------------------
+
+TEST(LayoutParser, NormalSpaceIsDeclared) {
+    const Layout ok = parseLayout(kValid, kFile);
+    EXPECT_EQ(ok.space.normal, StoredSpace::WorldZUp);
+    EXPECT_EQ(parseLayout(edit(kValid, "up = \"z\"", "up = \"y\""), kFile).space.normal, StoredSpace::WorldYUp);
+    EXPECT_EQ(parseLayout(edit(kValid, "normal = \"world\"\nup = \"z\"\n", "normal = \"view\"\n"), kFile).space.normal,
+              StoredSpace::View);
+    // No [space] at all: refused at 1:1.
+    const std::string noTable = edit(kValid, "[space]\nnormal = \"world\"\nup = \"z\"\n", "");
+    expectOnlyError(noTable, std::string(kFile) + ":1:1", {"declares no [space] table"});
+    // [space] without `normal`: refused at the table.
+    const std::string noNormal = edit(kValid, "normal = \"world\"\n", "");
+    expectError(noNormal, placeOf(noNormal, "[space]"), {"[space] has no 'normal'"});
+    // World space without an up axis, an unknown space, an unknown axis: at the value.
+    const std::string noUp = edit(kValid, "up = \"z\"\n", "");
+    expectOnlyError(noUp, placeOf(noUp, "\"world\""), {"declare the engine's up axis"});
+    const std::string bad = edit(kValid, "\"world\"", "\"object\"");
+    expectError(bad, placeOf(bad, "\"object\""), {"unknown normal space 'object'", "world, view"});
+    const std::string badUp = edit(kValid, "up = \"z\"", "up = \"x\"");
+    expectOnlyError(badUp, placeOf(badUp, "\"x\""), {"unknown up axis 'x'"});
+    // A position space without a stored position.
+    const std::string pos = edit(kValid, "up = \"z\"\n", "up = \"z\"\nposition = \"view\"\n");
+    expectOnlyError(pos, placeOf(pos, "\"view\""), {"stores no 'position'"});
 }
 
 // ---- fallbacks ----------------------------------------------------------------------------------

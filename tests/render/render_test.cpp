@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+
+#include <glm/gtc/matrix_transform.hpp>
 #include <cstring>
 
 #include "layout_catalog.h"
+#include "layout.h"
 #include "procedural_sky.h"
 #include "renderer.h"
 #include "wiring_codegen.h"
@@ -264,6 +268,215 @@ TEST_F(RenderTest, ForwardEmissiveAddsNoError) {
     EXPECT_GT(glowingTotal - plainTotal, 0.01 * plainTotal);
     // ... and costs the forward layout nothing: the same error with and without it.
     EXPECT_NEAR(with, without, 1e-4 * without + 1e-7) << "without " << without << ", with " << with;
+}
+
+// Mean and largest angle (degrees) between a layout's decoded normals and the reference's, over the
+// covered pixels where `select(reference normal)` holds.
+struct AngleStats {
+    double mean = 0.0, max = 0.0;
+    int pixels = 0;
+};
+template <class Select>
+AngleStats normalAngles(const SurfaceImages& ref, const SurfaceImages& out, Select select) {
+    AngleStats a;
+    for (size_t i = 0; i < ref.coverage.size(); ++i) {
+        if (!ref.coverage[i]) continue;
+        const glm::vec3 r(ref.normal.pixels[i * 3], ref.normal.pixels[i * 3 + 1], ref.normal.pixels[i * 3 + 2]);
+        if (!select(r)) continue;
+        const glm::vec3 o(out.normal.pixels[i * 3], out.normal.pixels[i * 3 + 1], out.normal.pixels[i * 3 + 2]);
+        const double c = glm::clamp(double(glm::dot(glm::normalize(r), glm::normalize(o))), -1.0, 1.0);
+        const double deg = std::acos(c) * 180.0 / 3.14159265358979;
+        a.mean += deg;
+        a.max = std::max(a.max, deg);
+        ++a.pixels;
+    }
+    if (a.pixels) a.mean /= a.pixels;
+    return a;
+}
+
+// Issue 11 item 4: the normal space is declared. The same layout (crysis3-thin's x, y + z sign)
+// declared world Y-up stores the ground's normal at z = 0, where the z-sign encoding is worst;
+// declared world Z-up (CryEngine's) the ground's normal is +Z and the error on it drops. Declared
+// view space, the decode pass transforms back, so the decoded normals are gbufferlab's world normals
+// within the encoding's error (a missing or wrong inverse would be tens of degrees off).
+TEST_F(RenderTest, NormalSpaceChangesTheGroundsErrorAndDecodesBackToWorld) {
+    const Scene scene = makeDefaultScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    RenderSettings rs;
+    rs.width = 320;
+    rs.height = 180;
+    rs.decodeSurfaces = true;
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const RenderOutput ref = renderer.render(makeReferenceWiring(), rs);
+    auto render = [&](const char* name, StoredSpace space) {
+        Layout layout = loadLayout(name);
+        layout.space.normal = space;
+        return renderer.render(generateWiring(layout), rs).surfaces;
+    };
+    auto ground = [](glm::vec3 n) { return n.y > 0.999f; };
+    auto all = [](glm::vec3) { return true; };
+    const SurfaceImages yUp = render("crysis3-thin", StoredSpace::WorldYUp);
+    const SurfaceImages zUp = render("crysis3-thin", StoredSpace::WorldZUp);
+    const AngleStats gy = normalAngles(ref.surfaces, yUp, ground), gz = normalAngles(ref.surfaces, zUp, ground);
+    ASSERT_GT(gy.pixels, 1000);
+    std::printf("crysis3-thin ground (%d px): world Y-up mean %.4f max %.4f deg; world Z-up mean %.4f max %.4f deg\n",
+                gy.pixels, gy.mean, gy.max, gz.mean, gz.max);
+    EXPECT_GT(gy.mean, 2.0 * gz.mean);
+
+    for (const char* name : {"compact-octahedral", "fat-naive", "crysis3-thin"}) {
+        const AngleStats world = normalAngles(ref.surfaces, render(name, StoredSpace::WorldYUp), all);
+        const AngleStats view = normalAngles(ref.surfaces, render(name, StoredSpace::View), all);
+        std::printf("%s all covered (%d px): world Y-up mean %.4f max %.4f deg; view mean %.4f max %.4f deg\n", name,
+                    world.pixels, world.mean, world.max, view.mean, view.max);
+        EXPECT_LT(view.mean, 3.0 * world.mean + 0.01) << name;
+        EXPECT_LT(view.max, 3.0 * world.max + 0.05) << name;
+    }
+}
+
+// Two ground quads side by side (x in [-2, 0] and [0, 2], z in [-1, 1], y = 0, normal +Y), the
+// left with material 0, the right with material 1, seen from above.
+Scene makeTwoQuadScene() {
+    Scene scene;
+    scene.source = "two quads";
+    for (int q = 0; q < 2; ++q) {
+        const float x0 = q == 0 ? -2.0f : 0.0f;
+        const uint32_t base = uint32_t(scene.vertices.size());
+        for (int c = 0; c < 4; ++c) {
+            Vertex v{};
+            v.position = glm::vec3(x0 + float(c & 1) * 2.0f, 0.0f, (c & 2) ? 1.0f : -1.0f);
+            v.normal = glm::vec3(0.0f, 1.0f, 0.0f);
+            v.tangent = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+            v.uv = glm::vec2(float(c & 1), (c & 2) ? 1.0f : 0.0f);
+            scene.vertices.push_back(v);
+        }
+        Draw d;
+        d.firstIndex = uint32_t(scene.indices.size());
+        for (uint32_t i : {0u, 2u, 1u, 1u, 2u, 3u}) scene.indices.push_back(base + i);
+        d.indexCount = 6;
+        d.material = q;
+        scene.draws.push_back(d);
+        Material m;
+        m.name = q == 0 ? "left" : "right";
+        m.baseColorFactor = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+        m.metallicFactor = 0.0f;
+        m.roughnessFactor = 0.7f;
+        m.doubleSided = true;
+        scene.materials.push_back(m);
+    }
+    scene.camera.position = glm::vec3(0.0f, 4.0f, 2.5f);
+    scene.camera.target = glm::vec3(0.0f);
+    scene.camera.zFar = 50.0f;
+    scene.bounds = worldBounds(scene);
+    return scene;
+}
+
+// Pixel of a world point under `scene`'s camera at w x h.
+glm::ivec2 projectAt(const Scene& scene, glm::vec3 world, uint32_t w, uint32_t h) {
+    const CameraMatrices m = computeCameraMatrices(scene.camera, float(w) / float(h), false);
+    const glm::vec4 clip = m.viewProj * glm::vec4(world, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return glm::ivec2((ndc * 0.5f + 0.5f) * glm::vec2(w, h));
+}
+
+// Issue 11 item 7: KHR_lights_punctual spot cones are honoured, with the extension's smooth
+// attenuation: full inside the inner cone, zero outside the outer, in between between. Before, a
+// spot light lit like a point light, everywhere.
+TEST_F(RenderTest, SpotLightLightsInsideItsConeOnly) {
+    Scene scene = makeTwoQuadScene();
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = glm::vec3(0.0f, 2.0f, 0.0f);
+    spot.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    spot.intensity = 10.0f;
+    spot.innerConeAngle = glm::radians(10.0f);
+    spot.outerConeAngle = glm::radians(20.0f);
+    scene.lights = {spot};
+    const EnvironmentMap sky = makeProceduralSky(32);
+    RenderSettings rs;
+    rs.width = 240;
+    rs.height = 160;
+    rs.environmentIntensity = 0.0f;
+    rs.diffuseIbl = false;
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const RenderOutput out = renderer.render(makeReferenceWiring(), rs);
+    auto lum = [&](float degrees) {  // the ground point `degrees` off the spot's axis, along +x
+        const glm::vec3 p(2.0f * std::tan(glm::radians(degrees)), 0.0f, 0.0f);
+        return luminance(pixel(out.hdr, projectAt(scene, p, rs.width, rs.height)));
+    };
+    const float centre = lum(0.0f), inner = lum(8.0f), between = lum(15.0f), outside = lum(30.0f);
+    std::printf("spot: luminance at 0 deg %.5f, 8 deg %.5f, 15 deg %.5f, 30 deg %.6f\n", centre, inner, between,
+                outside);
+    EXPECT_GT(centre, 0.01f);
+    EXPECT_GT(inner, 0.5f * centre);   // inside the inner cone: full intensity (inverse square, n.l only)
+    EXPECT_GT(between, 0.0f);          // the smooth edge ...
+    EXPECT_LT(between, 0.8f * inner);  // ... dimmer than inside
+    EXPECT_EQ(outside, 0.0f);          // outside the outer cone: no light at all
+}
+
+// Issue 11 item 7: the stencil extras a layout declares are written: per draw, the reference its
+// material's values (or the declared ones) make, with op REPLACE. crysis3-thin: ambient_id in
+// s[0:3], decals in s[4:7]; crysis2-slim: indoor in s[7].
+TEST_F(RenderTest, StencilExtrasAreWrittenPerMaterial) {
+    Scene scene = makeTwoQuadScene();
+    scene.materials[0].stencilValues = {{"ambient_id", 5}, {"decals", 1}, {"indoor", 1}};
+    scene.materials[1].stencilValues = {{"ambient_id", 9}};
+    const EnvironmentMap sky = makeProceduralSky(32);
+    RenderSettings rs;
+    rs.width = 160;
+    rs.height = 100;
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const glm::ivec2 left = projectAt(scene, glm::vec3(-1.0f, 0.0f, 0.0f), rs.width, rs.height);
+    const glm::ivec2 right = projectAt(scene, glm::vec3(1.0f, 0.0f, 0.0f), rs.width, rs.height);
+    auto at = [&](const RenderOutput& o, glm::ivec2 p) { return int(o.stencil[size_t(p.y) * rs.width + size_t(p.x)]); };
+    const RenderOutput thin = renderer.render(generateWiring(loadLayout("crysis3-thin")), rs);
+    ASSERT_EQ(thin.stencil.size(), size_t(rs.width) * rs.height);
+    EXPECT_EQ(at(thin, left), 5 | (1 << 4));
+    EXPECT_EQ(at(thin, right), 9);  // decals: the declared 0
+    EXPECT_EQ(at(thin, glm::ivec2(0, 0)), 0);  // no geometry: cleared to 0
+    const RenderOutput slim = renderer.render(generateWiring(loadLayout("crysis2-slim")), rs);
+    ASSERT_EQ(slim.stencil.size(), size_t(rs.width) * rs.height);
+    EXPECT_EQ(at(slim, left), 0x80);
+    EXPECT_EQ(at(slim, right), 0);
+}
+
+// Issue 11 item 7: a layout that stores position is lit from the decoded position, transformed
+// back from the space it declares. fat-naive stores float16 view-space position; moved 2 km from
+// the origin, the same scene declared world-space position keeps float16's 1-2 m steps there, and
+// the lighting (V for specular; point-light distances) shows them. Lit from depth instead, both
+// would be the same image.
+TEST_F(RenderTest, StoredPositionIsWhatTheLightingUses) {
+    Scene scene = makeDefaultScene();
+    const glm::vec3 offset(2000.0f, 0.0f, 1500.0f);
+    for (Draw& d : scene.draws) d.model = glm::translate(glm::mat4(1.0f), offset) * d.model;
+    for (Light& l : scene.lights) l.position += offset;
+    scene.camera.position += offset;
+    scene.camera.target += offset;
+    scene.bounds = worldBounds(scene);
+    const EnvironmentMap sky = makeProceduralSky(64);
+    RenderSettings rs;
+    rs.width = 200;
+    rs.height = 120;
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const RenderOutput ref = renderer.render(makeReferenceWiring(), rs);
+    Layout fat = loadLayout("fat-naive");
+    ASSERT_EQ(fat.space.position, StoredSpace::View);
+    const RenderOutput view = renderer.render(generateWiring(fat), rs);
+    fat.space.position = StoredSpace::WorldYUp;
+    const RenderOutput world = renderer.render(generateWiring(fat), rs);
+    auto meanError = [&](const RenderOutput& o) {
+        double sum = 0.0;
+        size_t n = 0;
+        for (size_t i = 0; i < ref.hdr.pixelCount(); ++i) {
+            if (ref.hdr.pixels[i * 4 + 3] < 0.5f) continue;
+            for (int c = 0; c < 3; ++c) sum += std::abs(double(o.hdr.pixels[i * 4 + c]) - ref.hdr.pixels[i * 4 + c]);
+            ++n;
+        }
+        return sum / double(3 * n);
+    };
+    const double eView = meanError(view), eWorld = meanError(world);
+    std::printf("fat-naive 2 km from the origin: mean |error| position in view space %.6g, in world space %.6g\n",
+                eView, eWorld);
+    EXPECT_GT(eWorld, 3.0 * eView);
 }
 
 }  // namespace
