@@ -3,18 +3,10 @@
 #include <array>
 #include <cstdint>
 
+#include "integer_hash.h"
+
 namespace gbl {
 namespace {
-
-uint32_t hash2(uint32_t x, uint32_t y, uint32_t seed) {
-    uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ seed * 0xcb1ab31fu;
-    h ^= h >> 16;
-    h *= 0x7feb352du;
-    h ^= h >> 15;
-    h *= 0x846ca68bu;
-    h ^= h >> 16;
-    return h;
-}
 
 Texture blank(int size, bool srgb) {
     Texture t;
@@ -38,8 +30,8 @@ constexpr std::array<std::array<uint8_t, 3>, 8> kHues = {{
 constexpr int kTile = 16;
 
 // A tile's kind: 0..2 metals (gold, copper, silver), 3..7 painted dielectrics.
-int tileKind(int tx, int ty) { return int(hash2(uint32_t(tx), uint32_t(ty), 7) % 8u); }
-float tileRoughness(int tx, int ty) { return 0.08f + 0.84f * float(hash2(uint32_t(tx), uint32_t(ty), 11) % 256u) / 255.0f; }
+int tileKind(int tx, int ty) { return int(integerHash(uint32_t(tx), uint32_t(ty), 7) % 8u); }
+float tileRoughness(int tx, int ty) { return 0.08f + 0.84f * float(integerHash(uint32_t(tx), uint32_t(ty), 11) % 256u) / 255.0f; }
 
 }  // namespace
 
@@ -51,7 +43,7 @@ Texture makeMosaicAlbedo(int size) {
                 put(t, x, y, {210, 205, 195, 255});  // grout
                 continue;
             }
-            const auto& h = kHues[hash2(uint32_t(x / 5), uint32_t(y / 5), 3) % kHues.size()];
+            const auto& h = kHues[integerHash(uint32_t(x / 5), uint32_t(y / 5), 3) % kHues.size()];
             put(t, x, y, {h[0], h[1], h[2], 255});
         }
     return t;

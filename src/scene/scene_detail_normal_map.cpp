@@ -5,22 +5,12 @@
 #include <cmath>
 #include <vector>
 
+#include "integer_hash.h"
+
 namespace gbl {
 namespace {
 
-// An integer avalanche hash: every input bit affects every output bit, so lattice values look
-// random yet are identical on every platform and build.
-uint32_t hash(uint32_t x, uint32_t y, uint32_t seed) {
-    uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ seed * 0xcb1ab31fu;
-    h ^= h >> 16;
-    h *= 0x7feb352du;
-    h ^= h >> 15;
-    h *= 0x846ca68bu;
-    h ^= h >> 16;
-    return h;
-}
-
-float hashUnit(uint32_t x, uint32_t y, uint32_t seed) { return float(hash(x, y, seed) >> 8) / float(1u << 24); }
+float hashUnit(uint32_t x, uint32_t y, uint32_t seed) { return float(integerHash(x, y, seed) >> 8) / float(1u << 24); }
 
 float smooth(float t) { return t * t * (3.0f - 2.0f * t); }
 

@@ -21,24 +21,6 @@ constexpr char kMagic[8] = {'G', 'B', 'L', 'I', 'B', 'L', '0', '1'};
 constexpr uint32_t kFormatVersion = 1;
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
 
-struct Fnv {
-    uint64_t h = 1469598103934665603ull;
-    void bytes(const void* p, size_t n) {
-        const auto* b = static_cast<const unsigned char*>(p);
-        for (size_t i = 0; i < n; ++i) {
-            h ^= b[i];
-            h *= 1099511628211ull;
-        }
-    }
-    template <class T> void value(const T& v) { bytes(&v, sizeof(v)); }
-};
-
-uint64_t fnv(const void* p, size_t n) {
-    Fnv f;
-    f.bytes(p, n);
-    return f.h;
-}
-
 size_t payloadBytesFor(const IblSettings& s) {
     size_t floats = 27;
     for (uint32_t m = 0; m < s.prefilteredMips; ++m) {
@@ -54,7 +36,7 @@ size_t payloadBytesFor(const IblSettings& s) {
 fs::path iblCacheDirectory() { return cacheDirectory(); }
 
 uint64_t iblCacheKey(const EnvironmentMap& environment, const IblSettings& s) {
-    Fnv f;
+    Fnv64 f;
     f.value(kFormatVersion);
     const Image& img = environment.image;
     f.value(img.width);
@@ -110,7 +92,7 @@ std::optional<IblMaps> readIblCacheFile(const fs::path& file, uint64_t key, cons
         return fail("size " + std::to_string(bytes.size()) + " bytes, expected " +
                     std::to_string(kHeaderBytes + expected));
     const unsigned char* p = bytes.data() + kHeaderBytes;
-    if (fnv(p, expected) != payloadHash) return fail("payload hash mismatch (corrupt)");
+    if (fnv64(p, expected) != payloadHash) return fail("payload hash mismatch (corrupt)");
     uint32_t dims[4];
     std::memcpy(dims, p, 16);
     if (dims[0] != s.prefilteredFaceSize || dims[1] != s.prefilteredMips || dims[2] != s.lutSize)
@@ -154,7 +136,7 @@ void writeIblCacheFile(const fs::path& file, uint64_t key, const IblMaps& maps) 
     std::memcpy(p, maps.brdfLut.pixels.data(), maps.brdfLut.pixels.size() * 4);
     p += maps.brdfLut.pixels.size() * 4;
     if (size_t(p - out.data()) != out.size()) throw std::logic_error("writeIblCacheFile: size mismatch");
-    const uint64_t hash = fnv(out.data() + kHeaderBytes, payloadBytes);
+    const uint64_t hash = fnv64(out.data() + kHeaderBytes, payloadBytes);
     const uint32_t zero = 0;
     const uint64_t pb = payloadBytes;
     std::memcpy(out.data(), kMagic, 8);
