@@ -19,6 +19,7 @@ gbl_test(encoding/color_encodings_test LABELS unit DEPS gbl_encoding gbl_measure
 gbl_test(encoding/encodings_fast_test LABELS unit DEPS gbl_encoding)
 gbl_test(encoding/light_buffer_encodings_test LABELS unit DEPS gbl_encoding)
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
+gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
 gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli)
