@@ -6,7 +6,7 @@
 //   [Karis13]  B. Karis, "Real Shading in Unreal Engine 4", SIGGRAPH 2013 course notes.
 //   [Walter07] B. Walter et al., "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007.
 //   [Schlick94] C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", 1994.
-//   [Seed]     /work/shared/seed/000_807e17994f774a43.txt (digest: /work/shared/seed/DIGEST.md).
+//   [Seed]     ../shared/seed/000_807e17994f774a43.txt (digest: ../shared/seed/DIGEST.md).
 //
 // Conventions:
 //   roughness is UE4's perceptual roughness in [0,1]; alpha = roughness^2 everywhere.

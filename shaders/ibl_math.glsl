@@ -16,7 +16,7 @@
 //   [Heitz14]   E. Heitz, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs",
 //               JCGT 3(2), 2014 (exact Smith G1 of GGX).
 //   [Walter07]  B. Walter et al., "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007.
-//   [Seed]      /work/shared/seed/000_807e17994f774a43.txt, digest /work/shared/seed/DIGEST.md.
+//   [Seed]      ../shared/seed/000_807e17994f774a43.txt, digest ../shared/seed/DIGEST.md.
 //
 // Environment access: the functions that read an environment (specularIBLGroundTruth,
 // prefilterEnvMap, prefilterEnvMapFiltered) are compiled only when the includer has defined

@@ -2,7 +2,7 @@
 //   [Karis13]   B. Karis, "Real Shading in Unreal Engine 4", SIGGRAPH 2013 course notes.
 //   [Walter07]  B. Walter et al., "Microfacet Models for Refraction through Rough Surfaces", 2007.
 //   [Schlick94] C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", 1994.
-//   [Seed]      /work/shared/seed/000_807e17994f774a43.txt.
+//   [Seed]      ../shared/seed/000_807e17994f774a43.txt.
 #include "brdf.h"
 
 #include <algorithm>

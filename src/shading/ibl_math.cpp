@@ -8,7 +8,7 @@
 //   [HH64]      J. Hammersley, D. Handscomb, "Monte Carlo Methods", 1964; bit reversal as in
 //               H. Warren, "Hacker's Delight", ch. 7.
 //   [Walter07]  B. Walter et al., "Microfacet Models for Refraction through Rough Surfaces", 2007.
-//   [Seed]      /work/shared/seed/000_807e17994f774a43.txt.
+//   [Seed]      ../shared/seed/000_807e17994f774a43.txt.
 #include "ibl_math.h"
 
 #include <algorithm>
