@@ -19,7 +19,7 @@ namespace {
 
 constexpr char kMagic[8] = {'G', 'B', 'L', 'I', 'B', 'L', '0', '1'};
 constexpr uint32_t kFormatVersion = 1;
-constexpr size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
+constexpr size_t kHeaderBytes = kCacheEnvelopeHeaderBytes;  // disk_cache.h's envelope
 
 size_t payloadBytesFor(const IblSettings& s) {
     size_t floats = 27;
@@ -64,35 +64,20 @@ fs::path iblCacheFile(const fs::path& directory, uint64_t key) {
 }
 
 std::optional<IblMaps> readIblCacheFile(const fs::path& file, uint64_t key, const IblSettings& s, std::string* why) {
+    const auto payload = readCacheEnvelope(file, kMagic, kFormatVersion, key, why);
+    if (!payload) return std::nullopt;
+    const size_t expected = payloadBytesFor(s);
+    if (payload->size() != expected) {
+        if (why)
+            *why = "size " + std::to_string(kHeaderBytes + payload->size()) + " bytes, expected " +
+                   std::to_string(kHeaderBytes + expected);
+        return std::nullopt;
+    }
+    const unsigned char* p = payload->data();
     auto fail = [&](const std::string& reason) -> std::optional<IblMaps> {
         if (why) *why = reason;
         return std::nullopt;
     };
-    if (why) why->clear();
-    std::error_code ec;
-    if (!fs::exists(file, ec)) return std::nullopt;
-    std::vector<unsigned char> bytes;
-    try {
-        bytes = readBinaryFile(file);
-    } catch (const std::exception& e) {
-        return fail(std::string("unreadable: ") + e.what());
-    }
-    if (bytes.size() < kHeaderBytes) return fail("truncated header (" + std::to_string(bytes.size()) + " bytes)");
-    if (std::memcmp(bytes.data(), kMagic, 8) != 0) return fail("bad magic");
-    uint32_t version;
-    uint64_t fileKey, payloadBytes, payloadHash;
-    std::memcpy(&version, bytes.data() + 8, 4);
-    std::memcpy(&fileKey, bytes.data() + 16, 8);
-    std::memcpy(&payloadBytes, bytes.data() + 24, 8);
-    std::memcpy(&payloadHash, bytes.data() + 32, 8);
-    if (version != kFormatVersion) return fail("format version " + std::to_string(version));
-    if (fileKey != key) return fail("key mismatch");
-    const size_t expected = payloadBytesFor(s);
-    if (payloadBytes != expected || bytes.size() != kHeaderBytes + expected)
-        return fail("size " + std::to_string(bytes.size()) + " bytes, expected " +
-                    std::to_string(kHeaderBytes + expected));
-    const unsigned char* p = bytes.data() + kHeaderBytes;
-    if (fnv64(p, expected) != payloadHash) return fail("payload hash mismatch (corrupt)");
     uint32_t dims[4];
     std::memcpy(dims, p, 16);
     if (dims[0] != s.prefilteredFaceSize || dims[1] != s.prefilteredMips || dims[2] != s.lutSize)
@@ -120,8 +105,8 @@ std::optional<IblMaps> readIblCacheFile(const fs::path& file, uint64_t key, cons
 void writeIblCacheFile(const fs::path& file, uint64_t key, const IblMaps& maps) {
     const IblSettings& s = maps.settings;
     const size_t payloadBytes = payloadBytesFor(s);
-    std::vector<unsigned char> out(kHeaderBytes + payloadBytes);
-    unsigned char* p = out.data() + kHeaderBytes;
+    std::vector<unsigned char> payload(payloadBytes);
+    unsigned char* p = payload.data();
     const uint32_t dims[4] = {s.prefilteredFaceSize, s.prefilteredMips, s.lutSize, 0};
     std::memcpy(p, dims, 16);
     p += 16;
@@ -135,18 +120,8 @@ void writeIblCacheFile(const fs::path& file, uint64_t key, const IblMaps& maps) 
     }
     std::memcpy(p, maps.brdfLut.pixels.data(), maps.brdfLut.pixels.size() * 4);
     p += maps.brdfLut.pixels.size() * 4;
-    if (size_t(p - out.data()) != out.size()) throw std::logic_error("writeIblCacheFile: size mismatch");
-    const uint64_t hash = fnv64(out.data() + kHeaderBytes, payloadBytes);
-    const uint32_t zero = 0;
-    const uint64_t pb = payloadBytes;
-    std::memcpy(out.data(), kMagic, 8);
-    std::memcpy(out.data() + 8, &kFormatVersion, 4);
-    std::memcpy(out.data() + 12, &zero, 4);
-    std::memcpy(out.data() + 16, &key, 8);
-    std::memcpy(out.data() + 24, &pb, 8);
-    std::memcpy(out.data() + 32, &hash, 8);
-    fs::create_directories(file.parent_path());
-    writeFileAtomic(file, out.data(), out.size());
+    if (size_t(p - payload.data()) != payload.size()) throw std::logic_error("writeIblCacheFile: size mismatch");
+    writeCacheEnvelope(file, kMagic, kFormatVersion, key, payload.data(), payload.size());
 }
 
 IblMaps loadOrComputeIbl(const VulkanContext& ctx, const EnvironmentMap& environment, const IblSettings& settings,
