@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "glsl_text.h"
 #include "light_buffer_encodings.h"
 
 namespace gbl {
@@ -31,22 +32,6 @@ void channelPlace(const TargetFormatInfo& info, int i, int& offset, int& bits) {
 }
 
 uint32_t maskOf(int bits) { return bits >= 32 ? 0xffffffffu : (1u << bits) - 1u; }
-
-std::string floatLit(float v) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%.9g", double(v));
-    std::string s = buf;
-    if (s.find_first_of(".en") == std::string::npos) s += ".0";
-    return s;
-}
-
-std::string commentText(const std::string& text) {
-    std::string out = text;
-    for (char& c : out)
-        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f || c == '\\' || c == '"')
-            c = '?';
-    return out;
-}
 
 bool holdsLuminance(const Layout& layout) {
     for (const LightBuffer& b : layout.lightBuffers)
@@ -144,7 +129,7 @@ void accumulateLight(const Layout& layout, std::vector<glm::vec4>& ch, uint32_t*
 std::string generateLightBufferGlsl(const Layout& layout) {
     if (layout.pipeline != Pipeline::DeferredLighting || layout.lightBuffers.empty()) return "";
     std::ostringstream o;
-    o << "// generated from layouts/" << commentText(layout.name)
+    o << "// generated from layouts/" << glslCommentText(layout.name)
       << ".toml by gbufferlab -- do not edit: the light buffers (src/codec/light_buffer_wiring.h)\n";
     o << "#include \"light_buffer_encodings.glsl\"\n";
     o << "#define LIGHT_BUFFER_COUNT " << layout.lightBuffers.size() << "\n";
@@ -157,11 +142,11 @@ std::string generateLightBufferGlsl(const Layout& layout) {
         const TargetFormatInfo& info = formatOf(lb);
         std::string holds;
         for (LightQuantity q : lb.holds) holds += std::string(holds.empty() ? "" : ", ") + lightQuantityName(q);
-        o << "\n// light buffer " << b << " '" << commentText(lb.name) << "': " << lb.format << ", "
+        o << "\n// light buffer " << b << " '" << glslCommentText(lb.name) << "': " << lb.format << ", "
           << lightBufferEncodingName(lb.encoding);
         if (lb.encoding == LightBufferEncoding::Rgbk) o << " (range " << lb.range << ")";
         o << "; holds " << holds << "\n";
-        const std::string unit = floatLit(rgbkUnit(lb));
+        const std::string unit = glslFloatLiteral(rgbkUnit(lb));
         // encode
         o << "void encodeLightBuffer" << b << "(vec4 v, inout uint w[LIGHT_BUFFER_WORDS]) {\n";
         switch (lb.encoding) {

@@ -8,31 +8,12 @@
 
 #include "cpu_codec.h"
 #include "encoding_registry.h"
+#include "glsl_text.h"
 #include "light_buffer_wiring.h"
 
 namespace gbl {
 
 namespace {
-
-std::string lit(double v) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(static_cast<float>(v)));
-    std::string s = buf;
-    if (s.find_first_of(".en") == std::string::npos) s += ".0";
-    return s;
-}
-
-// Layout text (title, target names) only ever appears in GLSL comments, and only as this: printable
-// ASCII without backslashes or double quotes (a trailing backslash would continue the comment onto
-// the next line; a quote would unbalance the #error line).
-// The parser already refuses control characters; this holds for a Layout built any other way too.
-std::string commentText(const std::string& text) {
-    std::string out = text;
-    for (char& c : out)
-        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f || c == '\\' || c == '"')
-            c = '?';
-    return out;
-}
 
 std::string ulit(uint64_t v) { return std::to_string(v) + "u"; }
 
@@ -58,7 +39,7 @@ std::string componentExpr(const Field& f, int i) {
     }
     const double v = f.value.empty() ? 0.0 : f.value[std::min<size_t>(size_t(i), f.value.size() - 1)];
     if (f.encoding == kIdEncoding) return ulit(uint64_t(v));
-    return lit(v);
+    return glslFloatLiteral(v);
 }
 
 // The whole value (vec3) of a field's attribute.
@@ -259,7 +240,7 @@ std::vector<std::string> emitNativeEncode(std::ostream& o, const std::string& in
         // quantizeChroma's codes (up to the hardware's rounding of ties).
         const double s1 = double((uint64_t(1) << f.bitsOfCode(0)) - 1);
         for (int i = 0; i < 3; ++i)
-            v.push_back(i && midpointChroma(e) ? "(" + id + "." + kComp[i] + " * " + lit((s1 - 1.0) / s1) + ")"
+            v.push_back(i && midpointChroma(e) ? "(" + id + "." + kComp[i] + " * " + glslFloatLiteral((s1 - 1.0) / s1) + ")"
                                                : id + "." + kComp[i]);
     }
     return v;
@@ -286,7 +267,7 @@ std::string nativeDecodeExpr(const Field& f, const std::vector<std::string>& u) 
     colorTransform(e, fwd, inv);
     if (midpointChroma(e)) {
         const double s1 = double((uint64_t(1) << f.bitsOfCode(0)) - 1);
-        const std::string k = lit(s1 / (s1 - 1.0));
+        const std::string k = glslFloatLiteral(s1 / (s1 - 1.0));
         return inv + "(vec3(" + u[0] + ", " + u[1] + " * " + k + ", " + u[2] + " * " + k + "))";
     }
     return inv + "(vec3(" + u[0] + ", " + u[1] + ", " + u[2] + "))";
@@ -348,9 +329,9 @@ void emitFallback(std::ostream& o, const Fallback& fb, const Layout& layout) {
     switch (fb.kind) {
         case FallbackKind::Constant: {
             if (attributeComponents(fb.attribute) == 1) {
-                o << lhs << lit(fb.value.empty() ? 0.0 : fb.value[0]) << ";\n";
+                o << lhs << glslFloatLiteral(fb.value.empty() ? 0.0 : fb.value[0]) << ";\n";
             } else {
-                auto v = [&](size_t i) { return lit(fb.value.empty() ? 0.0 : fb.value[std::min(i, fb.value.size() - 1)]); };
+                auto v = [&](size_t i) { return glslFloatLiteral(fb.value.empty() ? 0.0 : fb.value[std::min(i, fb.value.size() - 1)]); };
                 o << lhs << "vec3(" << v(0) << ", " << v(1) << ", " << v(2) << ");\n";
             }
             return;
@@ -409,8 +390,8 @@ std::string nativeFormatObstacle(const Target& target) {
 
 std::string generateWiringGlsl(const Layout& layout, const WiringOptions& options) {
     std::ostringstream o;
-    o << "// generated from layouts/" << commentText(layout.name) << ".toml by gbufferlab -- do not edit\n";
-    o << "// " << commentText(layout.title) << " (" << pipelineName(layout.pipeline) << ")\n";
+    o << "// generated from layouts/" << glslCommentText(layout.name) << ".toml by gbufferlab -- do not edit\n";
+    o << "// " << glslCommentText(layout.title) << " (" << pipelineName(layout.pipeline) << ")\n";
     o << "// Integer-only wiring: every code is placed with shifts and masks; src/codec/cpu_codec.cpp mirrors it.\n";
     if (!layout.depth.stencil.empty())
         o << "// Stencil extras are constants written by the renderer's stencil reference, not here.\n";
@@ -422,7 +403,7 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         if (!options.nativeFormats) continue;
         const std::string why = nativeFormatObstacle(tg);
         native[t] = why.empty();
-        if (!why.empty()) o << "// --native-formats: target " << t << " '" << commentText(tg.name) << "' stays UINT: " << why << "\n";
+        if (!why.empty()) o << "// --native-formats: target " << t << " '" << glslCommentText(tg.name) << "' stays UINT: " << why << "\n";
     }
     const bool materialPass = materialTargetCount(layout) > 0;
     const int materialTargets = materialTargetCount(layout);
@@ -446,14 +427,14 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         for (int i = 0; i < materialTargets; ++i) o << "    materialTarget" << i << " = m" << i << ";\n";
         o << "}\n";
     } else {
-        o << "#error \"layout " << commentText(layout.name) << " has no material pass\"\n";
+        o << "#error \"layout " << glslCommentText(layout.name) << " has no material pass\"\n";
     }
     o << "#elif defined(GBUFFER_WRITE)\n";
     for (size_t t = 0; t < layout.targets.size(); ++t) {
         const Target& tg = layout.targets[t];
         o << "layout(location = " << t << ") out "
           << (native[t] ? "vec4" : outTypeOf(wordsPerPixel(tg), tg.bits())) << " gbufferTarget" << t << ";  // "
-          << commentText(tg.name) << ", " << tg.format << (native[t] ? " (native)" : "") << "\n";
+          << glslCommentText(tg.name) << ", " << tg.format << (native[t] ? " (native)" : "") << "\n";
     }
     const Fallback* emissiveFb = layout.findFallback(Attribute::Emissive);
     const bool emissiveForward = emissiveFb && emissiveFb->kind == FallbackKind::Forward;
@@ -467,7 +448,7 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
     for (size_t t = 0; t < layout.targets.size(); ++t) {
         const Target& tg = layout.targets[t];
         const std::string ts = std::to_string(t);
-        o << "    // target " << t << " '" << commentText(tg.name) << "'\n";
+        o << "    // target " << t << " '" << glslCommentText(tg.name) << "'\n";
         if (native[t]) {
             o << "    vec4 v" << ts << " = vec4(0.0);\n";
         } else {
@@ -507,7 +488,7 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
     o << "\n#ifdef GBUFFER_READ\n";
     for (size_t t = 0; t < layout.targets.size(); ++t)
         o << "layout(set = 1, binding = " << t << ") uniform " << (native[t] ? "sampler2D" : "usampler2D")
-          << " gbufferTarget" << t << ";  // " << commentText(layout.targets[t].name) << "\n";
+          << " gbufferTarget" << t << ";  // " << glslCommentText(layout.targets[t].name) << "\n";
     for (int i = 0; i < materialTargets; ++i)
         o << "layout(set = 2, binding = " << i << ") uniform usampler2D materialTarget" << i
           << ";  // material pass, float32 bits\n";
