@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : enable  // the visibility buffer's resolve indexes textures per pixel
 // Decodes the layout's G-buffer with its generated readGBuffer() -- exactly what the lighting
 // pass sees -- and writes every Surface attribute as floats, so attribute errors can be measured
 // against the reference layout's decode.
@@ -15,6 +16,9 @@ layout(set = 0, binding = 0) uniform Frame { FrameConstants frame; };
 layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 
 #include "normal_space.glsl"
+#ifdef GBL_VISIBILITY_BUFFER  // defined by a visibility-buffer layout's wiring: readGBuffer rebuilds the Surface
+#include "visibility_resolve.glsl"
+#endif
 
 bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
 

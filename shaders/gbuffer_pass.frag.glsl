@@ -2,6 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // The G-buffer pass: evaluate the glTF material into a Surface, then hand it to the layout's
 // generated writeGBuffer(), the single funnel through which every material writes the G-buffer.
+// A visibility-buffer layout (its wiring defines GBL_VISIBILITY_BUFFER) writes only which
+// triangle of which draw is visible (visibility_buffer.glsl); its lighting pass evaluates the
+// material instead (visibility_resolve.glsl).
 #include "shared_types.h"
 #include "surface.glsl"
 #include "material.glsl"
@@ -16,6 +19,13 @@ layout(location = 3) in vec2 inUv;
 
 void main() {
     if (alphaTestDiscards(inUv)) discard;
+#ifdef GBL_VISIBILITY_BUFFER
+    // gl_PrimitiveID counts the draw's triangles from its firstIndex (Vulkan: vkCmdDrawIndexed);
+    // draw.material.y is the draw's index in GpuScene::draws.
+    writeVisibilityIds(uint(draw.material.y), uint(gl_PrimitiveID),
+                       materials[draw.material.x].alphaMaskCutoff.x != 0.0);
+#else
     Surface s = evaluateMaterial(inWorldPosition, inNormal, inTangent, inUv, gl_FrontFacing);
     writeGBuffer(gblSurfaceToStored(s), ivec2(gl_FragCoord.xy));  // into the layout's [space]
+#endif
 }

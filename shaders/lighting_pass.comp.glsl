@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : enable  // the visibility buffer's resolve indexes textures per pixel
 // The lighting pass: decode the layout's G-buffer with its generated readGBuffer(), rebuild the
 // position from depth, and shade with the UE4 model: direct lights + image-based light.
 // Pixels with no geometry show the environment.
@@ -26,6 +27,9 @@ layout(set = 0, binding = 7) uniform sampler2D brdfLut;            // (A, B) at 
 layout(set = 0, binding = 8) uniform sampler2D sceneColorEmissive;
 
 #include "normal_space.glsl"
+#ifdef GBL_VISIBILITY_BUFFER  // defined by a visibility-buffer layout's wiring: readGBuffer rebuilds the Surface
+#include "visibility_resolve.glsl"
+#endif
 
 bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
 layout(std430, set = 0, binding = 10) readonly buffer EnvironmentSampling { float environmentSampling[]; };
@@ -91,9 +95,9 @@ void main() {
         return;
     }
     Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
-#ifdef GBL_STORES_POSITION
+#if defined(GBL_STORES_POSITION) || defined(GBL_VISIBILITY_BUFFER)
     // The layout stores position (fat-naive): light from the decoded, quantised position, not
-    // from the one depth gives.
+    // from the one depth gives. A visibility buffer: from the camera ray's hit on the triangle.
     vec3 position = s.position;
 #else
     vec3 position = worldPositionFromDepth(pixel, depth);

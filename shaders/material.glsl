@@ -1,4 +1,6 @@
-// glTF 2.0 metallic-roughness material (+ KHR_materials_specular) -> Surface.
+// The G-buffer pass's material bindings: the draw's glTF material evaluated into a Surface by
+// material_eval.glsl (shared with the visibility buffer's resolve), sampled with the
+// rasteriser's implicit derivatives.
 #ifndef GBL_MATERIAL_GLSL
 #define GBL_MATERIAL_GLSL
 
@@ -7,52 +9,12 @@ layout(set = 0, binding = 1) readonly buffer Materials { GpuMaterial materials[]
 layout(set = 0, binding = 2) uniform sampler2D textures[TEXTURE_COUNT];
 layout(push_constant) uniform Draw { DrawConstants draw; };
 
-vec4 sampleTexture(int index, vec2 uv, vec4 fallback) {
-    return index == GBL_NO_TEXTURE ? fallback : texture(textures[index], uv);
-}
+#define GBL_SAMPLE_TEXTURE(index, uv) texture(textures[index], uv)
+#include "material_eval.glsl"
 
-// glTF alphaMode MASK (glTF 2.0, 3.9.4): true where the fragment is cut out.
-bool alphaTestDiscards(vec2 uv) {
-    GpuMaterial m = materials[draw.material.x];
-    if (m.alphaMaskCutoff.x == 0.0) return false;
-    float alpha = m.baseColorFactor.a * sampleTexture(m.textures0.x, uv, vec4(1.0)).a;
-    return alpha < m.alphaMaskCutoff.y;
-}
+bool alphaTestDiscards(vec2 uv) { return materialAlphaTestDiscards(materials[draw.material.x], uv); }
 
-// Textures flagged sRGB use *_SRGB formats, so the sampler returns linear values already.
 Surface evaluateMaterial(vec3 worldPosition, vec3 normal, vec4 tangent, vec2 uv, bool frontFacing) {
-    GpuMaterial m = materials[draw.material.x];
-    Surface s;
-    vec4 base = m.baseColorFactor * sampleTexture(m.textures0.x, uv, vec4(1.0));
-    vec4 mr = sampleTexture(m.textures0.y, uv, vec4(1.0));
-    s.baseColor = base.rgb;
-    s.metallic = clamp(m.metallicRoughnessOcclusion.x * mr.b, 0.0, 1.0);
-    s.roughness = clamp(m.metallicRoughnessOcclusion.y * mr.g, 0.0, 1.0);
-    float occlusionTexel = sampleTexture(m.textures0.w, uv, vec4(1.0)).r;
-    s.occlusion = 1.0 + m.metallicRoughnessOcclusion.z * (occlusionTexel - 1.0);
-    s.emissive = m.emissiveNormalScale.rgb * sampleTexture(m.textures1.x, uv, vec4(1.0)).rgb;
-
-    // KHR_materials_specular: dielectric F0 = min(0.04 * specularColor, 1) * specular.
-    float specularWeight = m.specularColorSpecular.a * sampleTexture(m.textures1.y, uv, vec4(1.0)).a;
-    vec3 specularTint = m.specularColorSpecular.rgb * sampleTexture(m.textures1.z, uv, vec4(1.0)).rgb;
-    vec3 dielectricF0 = min(vec3(0.04) * specularTint, vec3(1.0)) * specularWeight;
-    s.specularColor = mix(dielectricF0, s.baseColor, s.metallic);
-    s.diffuseColor = s.baseColor * (1.0 - s.metallic);
-    // UE4's scalar specular reproduces a grey dielectric F0: F0 = 0.08 * specular.
-    s.specular = clamp(dot(dielectricF0, vec3(1.0 / 3.0)) / 0.08, 0.0, 1.0);
-
-    vec3 n = normalize(normal);
-    bool doubleSided = m.metallicRoughnessOcclusion.w > 0.5;
-    if (doubleSided && !frontFacing) n = -n;
-    if (m.textures0.z != GBL_NO_TEXTURE) {
-        vec3 t = normalize(tangent.xyz - n * dot(n, tangent.xyz));
-        vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
-        vec3 tn = texture(textures[m.textures0.z], uv).xyz * 2.0 - 1.0;
-        tn.xy *= m.emissiveNormalScale.a;
-        n = normalize(t * tn.x + b * tn.y + n * tn.z);
-    }
-    s.normal = n;
-    s.position = worldPosition;
-    return s;
+    return evaluateMaterialOf(materials[draw.material.x], worldPosition, normal, tangent, uv, frontFacing);
 }
 #endif

@@ -51,7 +51,7 @@ struct GpuMaterial {
 struct DrawConstants {
     mat4 model;
     vec4 normalMatrix[3];  // columns of the inverse transpose of model's 3x3 (128 bytes in all: the guaranteed minimum)
-    ivec4 material;     // x material index
+    ivec4 material;     // x material index, y draw index, z firstIndex, w vertexOffset (the last three: visibility buffer)
 };
 
 #ifdef __cplusplus

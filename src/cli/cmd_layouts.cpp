@@ -113,15 +113,25 @@ std::string describeLayout(const Layout& layout) {
     o << layout.name << ": " << layout.title << "\n";
     o << "source:   " << layout.source.text() << "\n";
     o << "pipeline: " << pipelineName(layout.pipeline) << "\n";
-    o << "space:    normals " << storedSpaceName(layout.space.normal);
-    if (layout.stores(Attribute::Position)) o << ", position " << storedSpaceName(layout.space.position);
-    o << "\n";
+    if (layout.pipeline == Pipeline::VisibilityBuffer) {
+        o << "space:    none stored (the resolve rebuilds every attribute in world space)\n";
+    } else {
+        o << "space:    normals " << storedSpaceName(layout.space.normal);
+        if (layout.stores(Attribute::Position)) o << ", position " << storedSpaceName(layout.space.position);
+        o << "\n";
+    }
     o << "file:     " << layout.sourceFile << "\n";
     int targetBytes = 0;
     for (const Target& t : layout.targets) {
         targetBytes += t.bytes();
         o << "\ntarget " << t.name << "  " << t.format << "  " << t.bytes() << " bytes\n";
         describeFields(o, t.fields, t.channels);
+    }
+    if (const VisibilityIds& ids = layout.ids; ids.declared) {
+        targetBytes += ids.bytes();
+        o << "\nids " << ids.format << "  " << ids.bytes() << " bytes  triangle bits 0.." << ids.triangleBits - 1
+          << ", draw bits " << ids.triangleBits << ".." << ids.triangleBits + ids.drawBits - 1
+          << (ids.alphaMaskBit ? ", alpha-mask flag bit " + std::to_string(ids.bits - 1) : std::string()) << "\n";
     }
     const Depth& d = layout.depth;
     o << "\ndepth " << d.format << "  " << d.bytes << " bytes  " << d.depthBits << "-bit "

@@ -9,6 +9,7 @@
 #include "file_io.h"
 #include "shader_cache.h"
 #include "view_stats.h"
+#include "visibility_verdict.h"
 
 namespace gbl::compare {
 
@@ -67,6 +68,7 @@ void printTable(const ReportModel& model) {
                         as.stddev, psnr, f.stddev);
         }
     }
+    if (const auto v = gbufferOrVisibility(model)) std::printf("\nG-buffer or visibility buffer? %s\n", v->answer.c_str());
 }
 
 void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPassMs) {

@@ -58,6 +58,17 @@ struct GBufferWiring {
     };
     std::vector<StencilField> stencilFields;
     uint32_t stencilWriteMask = 0;
+    // A visibility buffer (layout pipeline "visibility-buffer", visibility_wiring.h): the one
+    // target, "ids", holds triangle and draw ids (shaders/visibility_buffer.glsl), not attributes;
+    // the G-buffer pass writes them and readGBuffer rebuilds the Surface from the triangle
+    // (shaders/visibility_resolve.glsl), which needs the scene's geometry, materials and textures
+    // bound in set 1 after the ids (renderer_passes.h).
+    struct VisibilityIds {
+        int triangleBits = 0, drawBits = 0;
+        bool alphaMaskBit = false;
+    };
+    bool visibilityBuffer = false;
+    VisibilityIds visibilityIds;
 };
 
 // The stencil reference a draw of a material with these per-material values writes (see

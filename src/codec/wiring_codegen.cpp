@@ -1,5 +1,7 @@
 #include "wiring_codegen.h"
 
+#include "visibility_wiring.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <set>
@@ -389,6 +391,7 @@ std::string nativeFormatObstacle(const Target& target) {
 }
 
 std::string generateWiringGlsl(const Layout& layout, const WiringOptions& options) {
+    if (layout.pipeline == Pipeline::VisibilityBuffer) return generateVisibilityWiringGlsl(layout);
     std::ostringstream o;
     o << "// generated from layouts/" << glslCommentText(layout.name) << ".toml by gbufferlab -- do not edit\n";
     o << "// " << glslCommentText(layout.title) << " (" << pipelineName(layout.pipeline) << ")\n";
@@ -580,6 +583,7 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
 }
 
 GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options) {
+    if (layout.pipeline == Pipeline::VisibilityBuffer) return generateVisibilityWiring(layout);
     GBufferWiring w;
     w.layoutName = layout.name;
     for (const Target& t : layout.targets) {

@@ -236,6 +236,14 @@ VulkanContext::VulkanContext(const DeviceOptions& options) {
         vkGetPhysicalDeviceFeatures(physicalDevice, &supported);
         features.features.samplerAnisotropy = supported.samplerAnisotropy;
         features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+        // The visibility buffer's (VulkanContext::primitiveIdInFragment, nonUniformSampledImageIndexing).
+        VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        VkPhysicalDeviceFeatures2 supported2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &supported12};
+        vkGetPhysicalDeviceFeatures2(physicalDevice, &supported2);
+        features.features.geometryShader = supported.geometryShader;
+        f12.shaderSampledImageArrayNonUniformIndexing = supported12.shaderSampledImageArrayNonUniformIndexing;
+        primitiveIdInFragment = supported.geometryShader == VK_TRUE;
+        nonUniformSampledImageIndexing = supported12.shaderSampledImageArrayNonUniformIndexing == VK_TRUE;
 
         VkDeviceCreateInfo d{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
         d.queueCreateInfoCount = 1;

@@ -58,6 +58,11 @@ public:
     VkPhysicalDeviceMemoryProperties memoryProperties{};
     PhysicalDeviceInfo info;
     bool validationEnabled = false;
+    // Optional features the visibility buffer needs, enabled where the device has them:
+    // gl_PrimitiveID in a fragment shader (geometryShader) and per-pixel texture indices in its
+    // resolve (Vulkan 1.2 shaderSampledImageArrayNonUniformIndexing).
+    bool primitiveIdInFragment = false;
+    bool nonUniformSampledImageIndexing = false;
 
     // The persistent pipeline cache (shader_cache.h): loaded from disk when the device is made,
     // written back when the context is destroyed.

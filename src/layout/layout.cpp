@@ -232,7 +232,15 @@ const char* storedSpaceName(StoredSpace s) {
 }
 
 const char* pipelineName(Pipeline p) {
-    return p == Pipeline::DeferredShading ? "deferred-shading" : "deferred-lighting";
+    switch (p) {
+        case Pipeline::DeferredShading:
+            return "deferred-shading";
+        case Pipeline::DeferredLighting:
+            return "deferred-lighting";
+        case Pipeline::VisibilityBuffer:
+            return "visibility-buffer";
+    }
+    return "?";
 }
 
 const char* fallbackKindName(FallbackKind k) {
@@ -348,7 +356,7 @@ const ClearValue* Layout::findClear(Attribute a) const {
 }
 
 int bytesPerPixel(const Layout& layout) {
-    int bytes = layout.depth.bytes;
+    int bytes = layout.depth.bytes + layout.ids.bytes();
     for (const Target& t : layout.targets) bytes += t.bytes();
     return bytes;
 }

@@ -182,8 +182,25 @@ struct Depth {
     FilePlace formatPlace;
 };
 
-enum class Pipeline : uint8_t { DeferredShading, DeferredLighting };
-const char* pipelineName(Pipeline p);  // "deferred-shading" / "deferred-lighting"
+enum class Pipeline : uint8_t { DeferredShading, DeferredLighting, VisibilityBuffer };
+const char* pipelineName(Pipeline p);  // "deferred-shading" / "deferred-lighting" / "visibility-buffer"
+
+// A visibility buffer's id target ([ids], pipeline = "visibility-buffer"; Burns & Hunt, JCGT 2013):
+// the geometry pass stores, per pixel, which triangle of which draw is visible, and the lighting
+// pass rebuilds the Surface from the triangle (shaders/visibility_resolve.glsl). The ids fill one
+// little-endian bit string: the triangle id from bit 0, the draw id above it, and, with
+// alphaMaskBit, the top bit flags an alpha-tested draw (The Forge's packVisBufData: 23-bit
+// triangle, 8-bit draw, bit 31 for alpha-tested geometry, in R32_UINT).
+struct VisibilityIds {
+    bool declared = false;
+    std::string format;         // "R32_UINT" or "R32G32_UINT"
+    int bits = 0;               // 32 or 64
+    int triangleBits = 0;       // 1..32
+    int drawBits = 0;           // 1..32
+    bool alphaMaskBit = false;  // the top bit (bits - 1)
+    FilePlace place, formatPlace, triangleBitsPlace, drawBitsPlace;
+    int bytes() const { return bits / 8; }
+};
 
 // How an attribute the layout does not store is obtained. Formulas in layouts/README.md.
 enum class FallbackKind : uint8_t {
@@ -295,6 +312,7 @@ struct Layout {
     std::vector<LightBuffer> lightBuffers;
     MaterialPassOptions materialPass;  // [material_pass] (deferred lighting)
     SpaceDecl space;                   // [space]: where normals (and position) are stored
+    VisibilityIds ids;                 // [ids] (visibility buffer only)
     std::string sourceFile;  // the file it was read from (or the name given to parseLayout)
     FilePlace namePlace;
     FilePlace fallbackPlace;  // the [fallback] table (1:1 when absent)
@@ -308,7 +326,8 @@ struct Layout {
     bool stores(Attribute a) const { return findField(a) != nullptr; }
 };
 
-// G-buffer bytes per pixel: all targets plus the depth-stencil attachment.
+// G-buffer bytes per pixel: all targets plus the depth-stencil attachment (a visibility buffer:
+// its id target plus depth).
 int bytesPerPixel(const Layout& layout);
 // Light-buffer bytes per pixel (deferred lighting; 0 otherwise).
 int lightBufferBytesPerPixel(const Layout& layout);

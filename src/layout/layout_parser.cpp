@@ -30,7 +30,7 @@ Layout Parser::parse(std::string_view text) {
     }
     const FilePlace top{1, 1};
     checkKeys(root, {"name", "title", "source", "pipeline", "depth", "target", "fallback", "clear", "light_buffer",
-                     "material_pass", "space"},
+                     "material_pass", "space", "ids"},
               "the layout");
 
     if (auto name = getString(root, "name", true, top, "the layout")) {
@@ -51,9 +51,11 @@ Layout Parser::parse(std::string_view text) {
             layout.pipeline = Pipeline::DeferredShading;
         else if (*pipeline == "deferred-lighting")
             layout.pipeline = Pipeline::DeferredLighting;
+        else if (*pipeline == "visibility-buffer")
+            layout.pipeline = Pipeline::VisibilityBuffer;
         else
-            error(placeOf(*root.get("pipeline")),
-                  "unknown pipeline " + squote(*pipeline) + " (known: deferred-shading, deferred-lighting)");
+            error(placeOf(*root.get("pipeline")), "unknown pipeline " + squote(*pipeline) +
+                                                      " (known: deferred-shading, deferred-lighting, visibility-buffer)");
     }
 
     parseDepth(root, layout);
@@ -66,7 +68,7 @@ Layout Parser::parse(std::string_view text) {
             error(placeOf(*targets),
                   "'target' must be an array of tables ([[target]]), not " + std::string(typeName(*targets)));
         }
-    } else {
+    } else if (layout.pipeline != Pipeline::VisibilityBuffer) {  // a visibility buffer has only [ids]
         error(top, "the layout has no render target: add a [[target]] table");
     }
 
@@ -75,6 +77,7 @@ Layout Parser::parse(std::string_view text) {
     parseLightBuffers(root, layout);
     parseMaterialPass(root, layout);
     parseSpace(root, layout);
+    parseIds(root, layout);
     return layout;
 }
 

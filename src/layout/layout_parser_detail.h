@@ -175,6 +175,7 @@ private:
     void parseClear(const toml::table& root, Layout& layout);
     void parseMaterialPass(const toml::table& root, Layout& layout);
     void parseSpace(const toml::table& root, Layout& layout);
+    void parseIds(const toml::table& root, Layout& layout);  // layout_visibility.cpp
 
     std::string file_;
     std::vector<LayoutDiagnostic>& out_;

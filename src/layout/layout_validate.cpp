@@ -476,7 +476,12 @@ private:
 
 }  // namespace
 
+// layout_visibility.cpp: [ids] and the visibility buffer's rules.
+void validateVisibilityLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out);
+
 void validateLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out) {
+    validateVisibilityLayout(layout, out);
+    if (layout.pipeline == Pipeline::VisibilityBuffer) return;  // no attributes, so none of the checks below
     Validator v(layout, out);
     v.run();
 }

@@ -10,6 +10,7 @@ FrameTraffic computeFrameTraffic(const Layout& layout, uint32_t width, uint32_t 
     const double pixels = double(width) * double(height);
     double targetBytes = 0;
     for (const Target& t : layout.targets) targetBytes += t.bytes();
+    targetBytes += layout.ids.bytes();  // a visibility buffer's one target
     const double depthBytes = layout.depth.bytes;
     const double perSample = pixels * samples;
     f.geometryWriteBytes = perSample * (targetBytes + depthBytes);
@@ -19,7 +20,11 @@ FrameTraffic computeFrameTraffic(const Layout& layout, uint32_t width, uint32_t 
         // Light pass writes the light buffers; material pass reads them and re-tests depth.
         f.lightBufferBytes = perSample * (lightBytes + lightBytes + depthBytes);
     }
-    f.totalBytes = f.geometryWriteBytes + f.lightingReadBytes + f.lightBufferBytes;
+    if (layout.pipeline == Pipeline::VisibilityBuffer) {
+        f.vertexFetchBytes = pixels * kVisibilityVertexBytes;
+        f.textureFetchBytes = pixels * kVisibilityTextureBytes;
+    }
+    f.totalBytes = f.geometryWriteBytes + f.lightingReadBytes + f.lightBufferBytes + f.vertexFetchBytes;
     f.litOutputBytes = pixels * kLitOutputBytesPerPixel;  // resolved once, whatever the MSAA
     f.onChipExternalBytes = f.litOutputBytes;
     return f;
@@ -30,6 +35,11 @@ BandwidthReport computeBandwidth(const Layout& layout, uint32_t width, uint32_t 
     for (const Target& t : layout.targets) {
         r.targets.push_back({t.name, t.format, t.bytes()});
         r.targetBytesPerPixel += t.bytes();
+    }
+    if (layout.pipeline == Pipeline::VisibilityBuffer) {
+        r.targets.push_back({"ids", layout.ids.format, layout.ids.bytes()});
+        r.targetBytesPerPixel += layout.ids.bytes();
+        r.visibilityBuffer = true;
     }
     r.depthBytesPerPixel = layout.depth.bytes;
     r.lightBufferBytesPerPixel = lightBufferBytesPerPixel(layout);

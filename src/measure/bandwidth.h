@@ -15,6 +15,15 @@
 //   tests depth and reads the light buffers. The second pass's vertex and texture traffic is not
 //   counted (it is scene-dependent), only its render-target traffic.
 // - The lit output (RGBA16F, 8 bytes per pixel) is the same for every layout and reported apart.
+// - Visibility buffer (Burns & Hunt 2013): the geometry pass writes the ids and depth, the
+//   lighting pass reads them (every sample), and its resolve fetches, per pixel (shading once per
+//   pixel), MODELLED: the triangle's 3 indices and 3 vertices (position, normal, tangent, uv:
+//   kVisibilityVertexBytes each) with no reuse between pixels (an upper bound: real caches share
+//   a triangle's vertices among its pixels), counted in the total; and its material's texels,
+//   kVisibilityTextureBytes (5 glTF textures x a trilinear footprint of 8 texels x 4 bytes, an
+//   assumed full material), NOT in the total, because a G-buffer layout's geometry pass fetches
+//   the same texels (not counted for it either): the two pipelines differ by when, not how much.
+//   The per-draw draw and material records (240 bytes) are assumed cached (one per draw).
 #include <string>
 #include <vector>
 
@@ -23,6 +32,10 @@
 namespace gbl {
 
 constexpr int kLitOutputBytesPerPixel = 8;  // RGBA16F, the usual HDR scene colour
+// The visibility buffer's resolve, per pixel (modelled, see above): 3 x (4-byte index + 48-byte
+// vertex: 12 position + 12 normal + 16 tangent + 8 uv, GpuScene's Vertex).
+constexpr int kVisibilityVertexBytes = 3 * (4 + 48);
+constexpr int kVisibilityTextureBytes = 5 * 8 * 4;
 
 struct TargetBytes {
     std::string name;
@@ -36,9 +49,11 @@ struct FrameTraffic {
     double geometryWriteBytes = 0;   // G-buffer targets + depth written by the geometry pass
     double lightingReadBytes = 0;    // G-buffer targets + depth read by the lighting pass
     double lightBufferBytes = 0;     // deferred lighting: light buffers written + read, depth re-tested
-    double totalBytes = 0;           // the three above
+    double totalBytes = 0;           // the three above (+ vertexFetchBytes)
     double litOutputBytes = 0;       // lit colour written (same for all layouts)
     double onChipExternalBytes = 0;  // tile-based, G-buffer kept on chip: only the lit output
+    double vertexFetchBytes = 0;     // visibility buffer: the resolve's index + vertex fetches (modelled, in total)
+    double textureFetchBytes = 0;    // visibility buffer: the resolve's texel fetches (modelled, not in total)
     double gigabytesPerSecond(double fps) const { return totalBytes * fps / 1e9; }
 };
 
@@ -49,6 +64,7 @@ struct BandwidthReport {
     int lightBufferBytesPerPixel = 0;
     int gbufferBytesPerPixel = 0;  // targets + depth-stencil (the usual "bytes per pixel")
     bool deferredLighting = false;
+    bool visibilityBuffer = false;  // targets: the id target
     std::vector<FrameTraffic> frames;  // one per requested (resolution, samples)
 };
 

@@ -52,9 +52,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
         .image(sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
                VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
         .buffer(sets[0], 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output.buffer);
-    for (uint32_t i = 0; i < gbuffer.targets.size(); ++i)
-        writer.image(sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.targets[i].view, nearestSampler,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    writeTargetReadSet(writer, sets[1], gbuffer, nearestSampler);
     if (materialPass)
         for (uint32_t i = 0; i < materialPass->targets.size(); ++i)
             writer.image(sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, materialPass->targets[i].view,
@@ -64,6 +62,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     ShaderSource cs = loadShaderFile("decode_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
     addSpaceDefines(cs, wiring);
+    addTargetReadDefines(cs, gbuffer);
     cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ")";
     VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
     VkPipeline pipeline = createComputePipeline(ctx, pipelineLayout, module);

@@ -1,8 +1,12 @@
 #include "renderer_passes.h"
 
+#include <algorithm>
+
 #include "best_fit_normals.h"
+#include "error.h"
 #include "shader_compiler.h"
 #include "stage_clock.h"
+#include "visibility_wiring.h"
 #include "vk_pipeline.h"
 
 namespace gbl {
@@ -16,6 +20,17 @@ bool isStencilFormat(VkFormat f) {
 }
 
 }  // namespace
+
+void checkVisibilityBufferSupport(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene) {
+    size_t maxTriangles = 0;
+    for (const Draw& d : scene.drawRanges) maxTriangles = std::max<size_t>(maxTriangles, d.indexCount / 3);
+    const std::string problem = visibilityCapacityProblem(wiring, scene.drawRanges.size(), maxTriangles);
+    if (!problem.empty()) throwUserError(problem);
+    if (!ctx.primitiveIdInFragment)
+        throwUserError("layout '" + wiring.layoutName + "': the device '" + ctx.info.name +
+                       "' lacks geometryShader (gl_PrimitiveID in the id pass), which a visibility buffer needs; "
+                       "choose another device (--device) or a G-buffer layout");
+}
 
 bool writesStencil(const GBufferWiring& wiring) {
     return isStencilFormat(wiring.depthFormat) && wiring.stencilWriteMask != 0;
@@ -192,6 +207,10 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
     pass.pipeline = createGBufferPipeline(ctx, wiring, pass.pipelineLayout, vs, fs, true);
     pass.writesStencil = writesStencil(wiring);
     pass.wiring.stencilFields = wiring.stencilFields;
+    if (wiring.visibilityBuffer) {
+        pass.visibilityScene = &scene;
+        pass.nonUniformTextureIndexing = ctx.nonUniformSampledImageIndexing;
+    }
     return pass;
 }
 

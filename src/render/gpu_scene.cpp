@@ -51,9 +51,9 @@ GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
     GpuScene g;
     for (const Material& m : scene.materials) g.materialStencilValues.push_back(m.stencilValues);
     g.vertices = createBufferWithData(ctx, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
-                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     g.indices = createBufferWithData(ctx, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),
-                                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+                                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const auto materials = packMaterials(scene);
     g.materials = createBufferWithData(ctx, materials.data(), materials.size() * sizeof(gpu::GpuMaterial),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -88,10 +88,15 @@ GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
         c.model = d.model;
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
         for (int col = 0; col < 3; ++col) c.normalMatrix[col] = glm::vec4(normalMatrix[col], 0.0f);
-        c.material = glm::ivec4(std::clamp(d.material, 0, int(materials.size()) - 1), 0, 0, 0);
+        c.material = glm::ivec4(std::clamp(d.material, 0, int(materials.size()) - 1), int(g.draws.size()),
+                                int(d.firstIndex), d.vertexOffset);
         g.draws.push_back(c);
         g.drawRanges.push_back(d);
     }
+    if (g.draws.empty()) g.draws.push_back(gpu::DrawConstants{});  // the binding is never empty
+    g.drawTable = createBufferWithData(ctx, g.draws.data(), g.draws.size() * sizeof(gpu::DrawConstants),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (scene.draws.empty()) g.draws.clear();
     return g;
 }
 
@@ -100,6 +105,7 @@ void destroyGpuScene(const VulkanContext& ctx, GpuScene& g) {
     destroyBuffer(ctx, g.indices);
     destroyBuffer(ctx, g.materials);
     destroyBuffer(ctx, g.lights);
+    destroyBuffer(ctx, g.drawTable);
     for (auto& t : g.textures) destroyImage(ctx, t);
     g.textures.clear();
     if (g.textureSampler) vkDestroySampler(ctx.device, g.textureSampler, nullptr);

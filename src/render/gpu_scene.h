@@ -17,7 +17,11 @@ struct GpuScene {
     uint32_t lightCount = 0;
     std::vector<GpuImage> textures;  // at least one (a white 1x1) so the array binding is valid
     VkSampler textureSampler = VK_NULL_HANDLE;
+    // Per draw: model, normal matrix, material = (material index, draw index, firstIndex,
+    // vertexOffset): pushed per draw by the G-buffer pass, and read whole by the visibility
+    // buffer's resolve from drawTable (like vertices and indices, a storage buffer too).
     std::vector<gpu::DrawConstants> draws;
+    Buffer drawTable;
     std::vector<Draw> drawRanges;
     std::vector<std::vector<std::pair<std::string, uint32_t>>> materialStencilValues;  // Material::stencilValues
 };

@@ -8,7 +8,32 @@ namespace gbl {
 std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
     std::vector<Binding> bindings;
     for (uint32_t i = 0; i < pass.targets.size(); ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    if (const GpuScene* scene = pass.visibilityScene) {
+        for (uint32_t b = 1; b <= 4; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+        bindings.push_back({5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(scene->textures.size())});
+    }
     return bindings;
+}
+
+void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler) {
+    for (uint32_t i = 0; i < pass.targets.size(); ++i)
+        writer.image(set, i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pass.targets[i].view, nearestSampler,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const GpuScene* scene = pass.visibilityScene;
+    if (!scene) return;
+    writer.buffer(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene->vertices.buffer)
+        .buffer(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene->indices.buffer)
+        .buffer(set, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene->drawTable.buffer)
+        .buffer(set, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene->materials.buffer);
+    for (uint32_t i = 0; i < scene->textures.size(); ++i)  // sampled as the G-buffer pass samples them
+        writer.image(set, 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene->textures[i].view, scene->textureSampler,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
+}
+
+void addTargetReadDefines(ShaderSource& s, const GBufferPass& pass) {
+    if (!pass.visibilityScene) return;
+    s.defines.push_back({"TEXTURE_COUNT", std::to_string(pass.visibilityScene->textures.size())});
+    if (pass.nonUniformTextureIndexing) s.defines.push_back({"GBL_NONUNIFORM_TEXTURE_INDEXING", "1"});
 }
 
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
@@ -77,9 +102,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
                  emissive ? in.gbuffer->emissive.view : in.gbuffer->depth.view, in.nearestSampler,
                  emissive ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
     if (lightPrePass) writer.buffer(pass.sets[0], 9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.lightBufferWords->buffer);
-    for (uint32_t i = 0; i < in.gbuffer->targets.size(); ++i)
-        writer.image(pass.sets[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.gbuffer->targets[i].view,
-                     in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    writeTargetReadSet(writer, pass.sets[1], *in.gbuffer, in.nearestSampler);
     if (in.materialPass)
         for (uint32_t i = 0; i < in.materialPass->targets.size(); ++i)
             writer.image(pass.sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.materialPass->targets[i].view,
@@ -89,6 +112,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
     addSpaceDefines(cs, wiring);
+    addTargetReadDefines(cs, *in.gbuffer);
     if (lightPrePass) {
         cs.virtualFiles["light_buffers.glsl"] = wiring.lightBufferGlsl;
         cs.defines.push_back({"LIGHT_PRE_PASS", "1"});

@@ -94,6 +94,7 @@ Renderer::~Renderer() {
 RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings& settings) {
     ScopedStage timedRender(Stage::Render);  // pass set-up and the frame; compiles and read-back nest
     validateResolution(ctx_, settings.width, settings.height, "--size");
+    if (wiring.visibilityBuffer) checkVisibilityBufferSupport(ctx_, wiring, gpuScene_);
     const uint32_t w = settings.width, h = settings.height;
     const Camera& camera = settings.camera ? *settings.camera : scene_.camera;
     const CameraMatrices cam = computeCameraMatrices(camera, float(w) / float(h), wiring.reversedZ);

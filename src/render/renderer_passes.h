@@ -28,6 +28,12 @@ struct GBufferPass {
     // dynamic reference, set per draw to stencilReference(wiring, material's values).
     bool writesStencil = false;
     GBufferWiring wiring;  // for the stencil references (only its stencil fields are read)
+    // A visibility buffer (GBufferWiring::visibilityBuffer): the one target holds ids, and the
+    // passes that read it resolve Surfaces from this scene's geometry, materials and textures.
+    const GpuScene* visibilityScene = nullptr;
+    // ... and whether its resolve may index the textures per pixel (VulkanContext::
+    // nonUniformSampledImageIndexing; without it, visibility_resolve.glsl loops over them).
+    bool nonUniformTextureIndexing = false;
 };
 
 // The layout's [space] as defines for shaders/normal_space.glsl (GBL_NORMAL_SPACE,
@@ -40,6 +46,11 @@ inline void addSpaceDefines(ShaderSource& s, const GBufferWiring& w) {
 
 // Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).
 Buffer createBestFitTableBuffer(const VulkanContext& ctx);
+
+// Throws UserError (one line naming the layout, the count and the fix) when the scene has more
+// draws or triangles than a visibility buffer's ids hold, or the device lacks gl_PrimitiveID in
+// fragment shaders. Renderer::render calls it before it allocates anything.
+void checkVisibilityBufferSupport(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene);
 
 GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
                               const Buffer& frameConstants, uint32_t width, uint32_t height);
@@ -97,8 +108,14 @@ struct LightingInputs {
     bool accumulate = false;  // ground truth: batches accumulate into LightingPass::accumulation
 };
 
-// The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2).
+// The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2); for a
+// visibility buffer, also what its resolve reads (shaders/visibility_buffer.glsl, GBUFFER_READ):
+// binding 1 vertices, 2 indices, 3 draws, 4 materials (storage buffers), 5 the textures.
 std::vector<Binding> targetReadBindings(const GBufferPass& pass);
+// Writes those bindings of `set` (targets through `nearestSampler`).
+void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler);
+// What a pass reading `pass` compiles with: TEXTURE_COUNT for a visibility buffer's resolve.
+void addTargetReadDefines(ShaderSource& s, const GBufferPass& pass);
 
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
                                 uint32_t width, uint32_t height);

@@ -15,6 +15,7 @@
 #include "report_html_plot.h"
 #include "report_html_template.h"
 #include "view_stats.h"
+#include "visibility_verdict.h"
 #include "report_json.h"
 #include "tone_map.h"
 
@@ -373,6 +374,31 @@ void infoRow(std::string& out, const char* name, const std::string& valueHtml) {
     out += std::string("<dt>") + name + "</dt><dd>" + valueHtml + "</dd>";
 }
 
+// "G-buffer or visibility buffer?" (visibility_verdict.h), when the runs include both.
+void writeVisibilityVerdict(std::string& out, const ReportModel& model) {
+    const auto v = gbufferOrVisibility(model);
+    if (!v) return;
+    auto opt = [](const std::optional<double>& x, int decimals) { return x ? formatFixed(*x, decimals) : "&ndash;"; };
+    auto row = [&](const std::string& name, const std::string& g, const std::string& s) {
+        out += "<tr><th>" + name + "</th><td>" + g + "</td><td>" + s + "</td></tr>";
+    };
+    out += "<section id=\"gbuffer-or-visibility\">\n<h2>G-buffer or visibility buffer?</h2>\n<p>" +
+           htmlEscape(v->answer) + "</p>\n<table class=\"verdict\"><thead><tr><th></th><th>" +
+           htmlEscape(v->gbufferLayout) + " (best G-buffer)</th><th>" + htmlEscape(v->visibilityLayout) +
+           "</th></tr></thead><tbody>";
+    row("FLIP mean", formatFixed(v->gbufferFlip, 4), formatFixed(v->visibilityFlip, 4));
+    row("PSNR dB (tone-mapped)", formatFixed(v->gbufferPsnr, 2), formatFixed(v->visibilityPsnr, 2));
+    row("Normal angle, mean (&deg;)", opt(v->gbufferNormalDegrees, 3), opt(v->visibilityNormalDegrees, 3));
+    row("Base colour &Delta;E2000, mean", opt(v->gbufferBaseColorDeltaE, 3), opt(v->visibilityBaseColorDeltaE, 3));
+    row("Targets + depth, written and read (B/pixel, 1080p)", formatFixed(v->gbufferBytesPerPixel, 0),
+        formatFixed(v->visibilityIdBytesPerPixel, 0));
+    row("Resolve's vertex fetches (B/pixel, modelled, no cache reuse)", "0",
+        formatFixed(v->visibilityVertexBytesPerPixel, 0));
+    out += "</tbody></table>\n<p class=\"hint\">IBL mode " + htmlEscape(v->iblMode) +
+           ". Traffic from the bandwidth model (src/measure/bandwidth.h): both pipelines fetch the same material "
+           "texels, so they are in neither figure.</p>\n</section>\n";
+}
+
 }  // namespace
 
 std::string reportHtml(const ReportModel& model) {
@@ -440,6 +466,8 @@ std::string reportHtml(const ReportModel& model) {
     out += "<p class=\"hint\">Click a column header to sort (again to reverse). Errors are against the float "
            "reference; means are over covered pixels. Also in <a href=\"report.csv\">report.csv</a> and "
            "<a href=\"report.json\">report.json</a>.</p>\n</section>\n";
+
+    writeVisibilityVerdict(out, model);
 
     out += "<section id=\"plots\">\n<h2>Error against bytes per pixel</h2>\n<div class=\"toggle\" role=\"group\">"
            "<button type=\"button\" data-plot=\"flip\" aria-pressed=\"true\">FLIP mean</button>"

@@ -8,6 +8,7 @@
 #include "error.h"
 #include "file_io.h"
 #include "view_stats.h"
+#include "visibility_verdict.h"
 
 namespace gbl {
 namespace {
@@ -56,7 +57,9 @@ Json frameJson(const FrameTraffic& f) {
                 {"total_bytes", number(f.totalBytes)},
                 {"gb_per_s_at_60fps", number(f.gigabytesPerSecond(60.0))},
                 {"lit_output_bytes", number(f.litOutputBytes)},
-                {"on_chip_external_bytes", number(f.onChipExternalBytes)}};
+                {"on_chip_external_bytes", number(f.onChipExternalBytes)},
+                {"vertex_fetch_bytes", number(f.vertexFetchBytes)},
+                {"texture_fetch_bytes", number(f.textureFetchBytes)}};
 }
 
 Json imageErrorsJson(const ImageErrors& e) {
@@ -303,6 +306,8 @@ FrameTraffic readFrame(const Node& n) {
     f.totalBytes = n["total_bytes"].num();
     f.litOutputBytes = n["lit_output_bytes"].num();
     f.onChipExternalBytes = n["on_chip_external_bytes"].num();
+    if (n.has("vertex_fetch_bytes")) f.vertexFetchBytes = n["vertex_fetch_bytes"].num();  // absent before the visibility buffer
+    if (n.has("texture_fetch_bytes")) f.textureFetchBytes = n["texture_fetch_bytes"].num();
     return f;  // gb_per_s_at_60fps is derived from total_bytes
 }
 
@@ -436,6 +441,25 @@ Json reportToJson(const ReportModel& model) {
                 {"reference", Json{{"layout", model.reference.layout}, {"images", std::move(references)}}},
                 {"runs", std::move(runs)}};
     if (model.iblFigure) j["ibl_figure"] = iblFigureJson(*model.iblFigure);
+    if (const auto v = gbufferOrVisibility(model)) {  // derived from the runs: not read back
+        auto opt = [](const std::optional<double>& x) { return x ? Json(number(*x)) : Json(nullptr); };
+        j["gbuffer_or_visibility"] = Json{
+            {"ibl_mode", v->iblMode},
+            {"gbuffer", Json{{"layout", v->gbufferLayout},
+                             {"flip_mean", number(v->gbufferFlip)},
+                             {"psnr_tonemapped_db", number(v->gbufferPsnr)},
+                             {"normal_degrees_mean", opt(v->gbufferNormalDegrees)},
+                             {"base_color_delta_e_mean", opt(v->gbufferBaseColorDeltaE)},
+                             {"bytes_per_pixel_1080p", number(v->gbufferBytesPerPixel)}}},
+            {"visibility", Json{{"layout", v->visibilityLayout},
+                                {"flip_mean", number(v->visibilityFlip)},
+                                {"psnr_tonemapped_db", number(v->visibilityPsnr)},
+                                {"normal_degrees_mean", opt(v->visibilityNormalDegrees)},
+                                {"base_color_delta_e_mean", opt(v->visibilityBaseColorDeltaE)},
+                                {"bytes_per_pixel_1080p", number(v->visibilityIdBytesPerPixel)},
+                                {"vertex_fetch_bytes_per_pixel_modelled", number(v->visibilityVertexBytesPerPixel)}}},
+            {"answer", v->answer}};
+    }
     return j;
 }
 

@@ -61,7 +61,9 @@ TEST(LayoutFiles, BytesPerPixel) {
         {"ryse", 3 * 4 + 4},               // 3x RGBA8 + D24S8
         {"ue4", 5 * 4 + 5},                // GBufferA..E (4 bytes each) + D32S8
         {"fat-naive", 8 + 8 + 4 + 4},      // 2x RGBA16F + RGBA8 + D24S8
-        {"compact-octahedral", 3 * 4 + 4}  // 3x RGBA8 + D32
+        {"compact-octahedral", 3 * 4 + 4},  // 3x RGBA8 + D32
+        {"visibility-32", 4 + 4},           // R32_UINT ids + D32
+        {"visibility-64", 8 + 4},           // R32G32_UINT ids + D32
     };
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     // crysis2's light buffers: two RGBA16F on PC, two 32-bit A2B10G10R10F on the Xbox 360, two RGBA8 on the PS3

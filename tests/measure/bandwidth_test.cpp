@@ -1,6 +1,8 @@
 // The bandwidth model against sums written out by hand from each seed layout's formats.
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "bandwidth.h"
 #include "layout_catalog.h"
 
@@ -50,6 +52,35 @@ TEST(Bandwidth, FewerBytesNeverCostMoreBandwidth) {
     const BandwidthReport fat = computeBandwidth(loadLayout("fat-naive"), 1920, 1080);
     ASSERT_LT(thin.gbufferBytesPerPixel, fat.gbufferBytesPerPixel);
     for (size_t i = 0; i < thin.frames.size(); ++i) EXPECT_LT(thin.frames[i].totalBytes, fat.frames[i].totalBytes);
+}
+
+// The visibility buffer: ids (R32_UINT 4 B, R32G32_UINT 8 B) and D32 depth written and read per
+// sample, plus its resolve's vertex fetches once per pixel, modelled with no cache reuse: 3 indices
+// (4 B) and 3 vertices (position 12 + normal 12 + tangent 16 + uv 8 = 48 B): 156 B. Its texel
+// fetches (5 textures x 8 trilinear texels x 4 B = 160 B) are stated but in no total.
+TEST(Bandwidth, VisibilityBufferIdsDepthAndModelledFetches) {
+    const double pixels = 1920.0 * 1080.0;
+    const double vertexBytes = 3 * 4 + 3 * (12 + 12 + 16 + 8), texelBytes = 5 * 8 * 4;
+    for (auto [name, ids] : {std::pair{"visibility-32", 4}, std::pair{"visibility-64", 8}}) {
+        const BandwidthReport r = computeBandwidth(loadLayout(name), 1920, 1080);
+        EXPECT_TRUE(r.visibilityBuffer);
+        EXPECT_EQ(r.targetBytesPerPixel, ids) << name;
+        EXPECT_EQ(r.depthBytesPerPixel, kD32) << name;
+        ASSERT_EQ(r.targets.size(), 1u);
+        EXPECT_EQ(r.targets[0].name, "ids");
+        const FrameTraffic& f = r.frames.at(3);
+        EXPECT_DOUBLE_EQ(f.geometryWriteBytes, pixels * (ids + kD32)) << name;
+        EXPECT_DOUBLE_EQ(f.lightingReadBytes, pixels * (ids + kD32)) << name;
+        EXPECT_DOUBLE_EQ(f.vertexFetchBytes, pixels * vertexBytes) << name;
+        EXPECT_DOUBLE_EQ(f.textureFetchBytes, pixels * texelBytes) << name;
+        EXPECT_DOUBLE_EQ(f.totalBytes, pixels * (2.0 * (ids + kD32) + vertexBytes)) << name;
+        // 4x MSAA: ids and depth per sample, the resolve still once per pixel.
+        EXPECT_DOUBLE_EQ(r.frames.at(5).totalBytes, pixels * (4.0 * 2.0 * (ids + kD32) + vertexBytes)) << name;
+    }
+    // A G-buffer layout has none of the visibility buffer's fetches.
+    const FrameTraffic ue4 = computeBandwidth(loadLayout("ue4"), 1920, 1080).frames.at(3);
+    EXPECT_EQ(ue4.vertexFetchBytes, 0.0);
+    EXPECT_EQ(ue4.textureFetchBytes, 0.0);
 }
 
 }  // namespace

@@ -1,0 +1,110 @@
+// The visibility buffer in the layout language: pipeline = "visibility-buffer" and [ids], the two
+// shipped layouts, and the errors a wrong one gets, each at its file:line:col.
+#include <gtest/gtest.h>
+
+#include "layout.h"
+#include "layout_catalog.h"
+#include "layout_test_support.h"
+
+namespace gbl {
+namespace {
+
+using layout_test::edit;
+using layout_test::expectError;
+using layout_test::expectOnlyError;
+using layout_test::joined;
+using layout_test::kFile;
+using layout_test::placeOf;
+
+const std::string kVisibility = R"(name = "vis"
+title = "A visibility buffer"
+pipeline = "visibility-buffer"
+source = { engine = "none", talk = "unit test", year = 2024 }
+
+[depth]
+format = "D32_SFLOAT"
+
+[ids]
+format = "R32_UINT"
+triangle_bits = 23
+draw_bits = 8
+alpha_mask_bit = true
+)";
+
+TEST(VisibilityLayout, TheSmallOneIsValidAndReadsAsWritten) {
+    EXPECT_TRUE(checkLayout(kVisibility, kFile).empty()) << joined(checkLayout(kVisibility, kFile));
+    const Layout l = parseLayout(kVisibility, kFile);
+    EXPECT_EQ(l.pipeline, Pipeline::VisibilityBuffer);
+    EXPECT_STREQ(pipelineName(l.pipeline), "visibility-buffer");
+    EXPECT_TRUE(l.ids.declared);
+    EXPECT_EQ(l.ids.bits, 32);
+    EXPECT_EQ(l.ids.triangleBits, 23);
+    EXPECT_EQ(l.ids.drawBits, 8);
+    EXPECT_TRUE(l.ids.alphaMaskBit);
+    EXPECT_TRUE(l.targets.empty());
+    EXPECT_EQ(bytesPerPixel(l), 4 + 4);  // R32_UINT ids + D32 depth
+}
+
+// The shipped layouts: The Forge's 1 / 8 / 23 split of R32_UINT (packVisBufData:
+// ((drawId << 23) & 0x7F800000) | (triangleId & 0x007FFFFF), bit 31 for alpha-tested geometry) and
+// full 32-bit ids in R32G32_UINT.
+TEST(VisibilityLayout, ShippedLayoutsAreTheForgesAndSixtyFourBit) {
+    const Layout v32 = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-32.toml");
+    EXPECT_EQ(v32.ids.format, "R32_UINT");
+    EXPECT_EQ(v32.ids.triangleBits, 23);  // mask 0x007FFFFF
+    EXPECT_EQ(v32.ids.drawBits, 8);       // mask 0x7F800000 >> 23 = 0xFF
+    EXPECT_TRUE(v32.ids.alphaMaskBit);    // 1 << 31
+    EXPECT_EQ(bytesPerPixel(v32), 8);
+    const Layout v64 = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-64.toml");
+    EXPECT_EQ(v64.ids.format, "R32G32_UINT");
+    EXPECT_EQ(v64.ids.bits, 64);
+    EXPECT_EQ(v64.ids.triangleBits, 32);
+    EXPECT_EQ(v64.ids.drawBits, 32);
+    EXPECT_FALSE(v64.ids.alphaMaskBit);
+    EXPECT_EQ(bytesPerPixel(v64), 12);
+}
+
+TEST(VisibilityLayout, IdsThatDoNotFitAreOneErrorAtTheFormat) {
+    const std::string t = edit(kVisibility, "draw_bits = 8", "draw_bits = 9");
+    expectOnlyError(t, placeOf(t, "\"R32_UINT\""),
+                    {"ids need 33 bits", "23 triangle + 9 draw + 1 alpha-mask flag", "R32_UINT holds 32", "1 over"});
+    // Without the flag the same widths fit.
+    const std::string noFlag = edit(t, "alpha_mask_bit = true", "alpha_mask_bit = false");
+    EXPECT_TRUE(checkLayout(noFlag, kFile).empty()) << joined(checkLayout(noFlag, kFile));
+}
+
+TEST(VisibilityLayout, BadIdsAreErrorsAtTheirPlace) {
+    std::string t = edit(kVisibility, "\"R32_UINT\"", "\"R16_UINT\"");
+    expectOnlyError(t, placeOf(t, "\"R16_UINT\""), {"unknown id format 'R16_UINT'", "R32G32_UINT"});
+    t = edit(kVisibility, "triangle_bits = 23", "triangle_bits = 0");
+    expectOnlyError(t, placeOf(t, "0\n"), {"'triangle_bits' 0 must be 1 to 32 bits"});
+    t = edit(kVisibility, "draw_bits = 8", "draw_bits = \"8\"");
+    expectOnlyError(t, placeOf(t, "\"8\""), {"'draw_bits' must be an integer"});
+    t = edit(kVisibility, "alpha_mask_bit = true", "alpha_mask_bit = 1");
+    expectOnlyError(t, placeOf(t, "1\n"), {"'alpha_mask_bit' must be true or false"});
+    t = edit(kVisibility, "draw_bits = 8\n", "");
+    expectOnlyError(t, placeOf(t, "[ids]"), {"[ids] has no 'draw_bits'"});
+    t = edit(kVisibility, "alpha_mask_bit", "alpha_bit");
+    expectError(t, placeOf(t, "alpha_bit"), {"unknown key 'alpha_bit' in [ids]"});
+}
+
+TEST(VisibilityLayout, PipelineRulesBothWays) {
+    // A visibility buffer stores no attribute.
+    std::string t = kVisibility + "\n[[target]]\nname = \"rt0\"\nformat = \"R8_UNORM\"\n"
+                                  "field = [ { attribute = \"roughness\", encoding = \"unorm\", at = \"r\" } ]\n";
+    expectOnlyError(t, placeOf(t, "[[target]]"), {"remove [[target]]", "rebuilds the Surface"});
+    t = kVisibility + "\n[space]\nnormal = \"view\"\n";
+    expectOnlyError(t, placeOf(t, "[space]"), {"remove [space]"});
+    // ... and needs its ids.
+    const std::string head = kVisibility.substr(0, kVisibility.find("[ids]"));
+    expectOnlyError(head, std::string(kFile) + ":1:1", {"add [ids]", "R32_UINT"});
+    // A G-buffer layout has no [ids].
+    const std::string gbuffer = layout_test::kValid + "\n[ids]\nformat = \"R32_UINT\"\ntriangle_bits = 23\ndraw_bits = 8\n";
+    expectOnlyError(gbuffer, placeOf(gbuffer, "[ids]"), {"[ids] belongs to pipeline = \"visibility-buffer\""});
+    // The pipeline's name is listed when misspelt.
+    t = edit(kVisibility, "\"visibility-buffer\"", "\"visibility\"");
+    expectError(t, placeOf(t, "\"visibility\""), {"unknown pipeline 'visibility'", "visibility-buffer"});
+}
+
+}  // namespace
+}  // namespace gbl

@@ -1,0 +1,249 @@
+// The visibility buffer on lavapipe: the ids its geometry pass writes (against The Forge's packing
+// and a CPU rasterisation written here), the one-line error when a scene overflows them, and the
+// Surface its resolve rebuilds against the float reference's G-buffer on the built-in scene.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "layout.h"
+#include "layout_catalog.h"
+#include "procedural_sky.h"
+#include "renderer.h"
+#include "vk_test_support.h"
+#include "wiring_codegen.h"
+
+namespace gbl {
+namespace {
+
+constexpr uint32_t kTinyW = 96, kTinyH = 64;
+constexpr int kGrid = 4;  // quads per side: 32 triangles per draw
+
+// A square grid of kGrid x kGrid quads in z = 0 spanning [-0.5, 0.5]^2, two triangles per quad.
+Draw appendGrid(Scene& scene) {
+    Draw d;
+    d.firstIndex = uint32_t(scene.indices.size());
+    d.vertexOffset = int32_t(scene.vertices.size());
+    for (int y = 0; y <= kGrid; ++y)
+        for (int x = 0; x <= kGrid; ++x) {
+            Vertex v{};
+            v.position = glm::vec3(float(x) / kGrid - 0.5f, float(y) / kGrid - 0.5f, 0.0f);
+            v.normal = glm::vec3(0, 0, 1);
+            v.tangent = glm::vec4(1, 0, 0, 1);
+            v.uv = glm::vec2(float(x) / kGrid, float(y) / kGrid);
+            scene.vertices.push_back(v);
+        }
+    for (int y = 0; y < kGrid; ++y)
+        for (int x = 0; x < kGrid; ++x) {
+            const uint32_t a = uint32_t(y * (kGrid + 1) + x), b = a + 1, c = a + kGrid + 1, e = c + 1;
+            for (uint32_t i : {a, b, e, a, e, c}) scene.indices.push_back(i);
+        }
+    d.indexCount = uint32_t(scene.indices.size()) - d.firstIndex;
+    return d;
+}
+
+// Two draws of their own grids (so the second has a non-zero firstIndex and vertexOffset), side by
+// side; the second's material is alpha-tested (glTF MASK) but keeps every fragment (alpha 1).
+Scene tinyScene() {
+    Scene s;
+    s.source = "visibility test";
+    Material opaque, masked;
+    opaque.name = "opaque";
+    masked.name = "masked";
+    masked.alphaMask = true;
+    masked.alphaCutoff = 0.5f;
+    s.materials = {opaque, masked};
+    for (int k = 0; k < 2; ++k) {
+        Draw d = appendGrid(s);
+        d.material = k;
+        d.model = glm::translate(glm::mat4(1.0f), glm::vec3(k == 0 ? -0.55f : 0.55f, 0.0f, 0.0f));
+        s.draws.push_back(d);
+    }
+    s.camera.position = glm::vec3(0.0f, 0.0f, 2.0f);
+    s.camera.target = glm::vec3(0.0f);
+    s.camera.yFovRadians = 0.8f;
+    s.bounds = {glm::vec3(-1.1f, -0.5f, 0.0f), glm::vec3(1.1f, 0.5f, 0.0f)};
+    Light sun;
+    s.lights = {sun};
+    return s;
+}
+
+// The Forge's packVisBufData (Examples_3/Visibility_Buffer, visibilityBuffer_pass.frag).
+uint32_t theForgePack(uint32_t drawId, uint32_t triangleId, bool alphaTested) {
+    const uint32_t packed = ((drawId << 23) & 0x7F800000u) | (triangleId & 0x007FFFFFu);
+    return alphaTested ? (1u << 31) | packed : packed;
+}
+
+struct Expected {
+    int draw = -1, triangle = -1;
+};
+
+// Which draw and triangle strictly cover each pixel centre (by a margin, so rasterisation rules
+// at shared edges never matter): the scene's triangles projected here on the CPU. -1: none, or
+// too close to an edge to say.
+std::vector<Expected> rasterise(const Scene& s, uint32_t w, uint32_t h) {
+    const CameraMatrices m = computeCameraMatrices(s.camera, float(w) / float(h), false);
+    std::vector<Expected> out(size_t(w) * h);
+    for (size_t di = 0; di < s.draws.size(); ++di) {
+        const Draw& d = s.draws[di];
+        for (uint32_t t = 0; t < d.indexCount / 3; ++t) {
+            glm::vec2 p[3];
+            for (int k = 0; k < 3; ++k) {
+                const Vertex& v = s.vertices[size_t(d.vertexOffset + int(s.indices[d.firstIndex + 3 * t + uint32_t(k)]))];
+                const glm::vec4 clip = m.viewProj * d.model * glm::vec4(v.position, 1.0f);
+                p[k] = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(w, h);
+            }
+            auto edge = [](glm::vec2 a, glm::vec2 b, glm::vec2 q) {  // signed distance of q from a->b
+                const glm::vec2 e = b - a;
+                return (e.x * (q.y - a.y) - e.y * (q.x - a.x)) / glm::length(e);
+            };
+            for (uint32_t y = 0; y < h; ++y)
+                for (uint32_t x = 0; x < w; ++x) {
+                    const glm::vec2 q(float(x) + 0.5f, float(y) + 0.5f);
+                    const float e0 = edge(p[0], p[1], q), e1 = edge(p[1], p[2], q), e2 = edge(p[2], p[0], q);
+                    const bool inside = (e0 > 0.05f && e1 > 0.05f && e2 > 0.05f) || (e0 < -0.05f && e1 < -0.05f && e2 < -0.05f);
+                    if (inside) out[size_t(y) * w + x] = {int(di), int(t)};
+                }
+        }
+    }
+    return out;
+}
+
+class VisibilityTest : public test::VulkanTest {};
+
+TEST_F(VisibilityTest, IdsRoundTripTheForgesPackingAndSixtyFourBits) {
+    const Scene scene = tinyScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(ctx(), scene, sky);
+    RenderSettings settings;
+    settings.width = kTinyW;
+    settings.height = kTinyH;
+    const std::vector<Expected> expected = rasterise(scene, kTinyW, kTinyH);
+    for (const char* name : {"visibility-32", "visibility-64"}) {
+        const RenderOutput out = renderer.render(generateWiring(loadLayout(name)), settings);
+        ASSERT_EQ(out.targetWords.size(), 1u) << name;
+        const bool wide = std::string(name) == "visibility-64";
+        const std::vector<uint32_t>& words = out.targetWords[0];
+        ASSERT_EQ(words.size(), size_t(kTinyW) * kTinyH * (wide ? 2 : 1)) << name;
+        size_t checked = 0, byDraw[2] = {0, 0}, triangles = 0;
+        std::vector<bool> seen(2 * 32, false);
+        for (size_t i = 0; i < expected.size(); ++i) {
+            const Expected& e = expected[i];
+            if (e.draw < 0) continue;
+            const bool alpha = e.draw == 1;  // the masked material
+            if (wide) {
+                ASSERT_EQ(words[2 * i], uint32_t(e.triangle)) << name << " pixel " << i;
+                ASSERT_EQ(words[2 * i + 1], uint32_t(e.draw)) << name << " pixel " << i;
+            } else {
+                ASSERT_EQ(words[i], theForgePack(uint32_t(e.draw), uint32_t(e.triangle), alpha))
+                    << name << " pixel " << i << std::hex << " word 0x" << words[i];
+            }
+            ++checked;
+            ++byDraw[e.draw];
+            if (!seen[size_t(e.draw * 32 + e.triangle)]) ++triangles;
+            seen[size_t(e.draw * 32 + e.triangle)] = true;
+        }
+        // Both grids, and every one of their 64 triangles, are checked somewhere.
+        EXPECT_GT(byDraw[0], 500u) << name;
+        EXPECT_GT(byDraw[1], 500u) << name;
+        EXPECT_EQ(triangles, 64u) << name;
+        EXPECT_GT(checked, size_t(kTinyW) * kTinyH / 3) << name;
+    }
+}
+
+TEST_F(VisibilityTest, TooManyTrianglesForTheIdsIsOneLineNamingTheFix) {
+    const Scene scene = tinyScene();  // 32 triangles per draw
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(ctx(), scene, sky);
+    const Layout narrow = parseLayout(R"(name = "narrow-ids"
+title = "4-bit triangle ids"
+pipeline = "visibility-buffer"
+source = { engine = "none", talk = "unit test", year = 2024 }
+[depth]
+format = "D32_SFLOAT"
+[ids]
+format = "R32_UINT"
+triangle_bits = 4
+draw_bits = 8
+)",
+                                      "narrow-ids.toml");
+    RenderSettings settings;
+    settings.width = kTinyW;
+    settings.height = kTinyH;
+    try {
+        renderer.render(generateWiring(narrow), settings);
+        FAIL() << "rendered 32 triangles per draw through 4-bit triangle ids";
+    } catch (const UserError& e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        for (const char* w : {"layout 'narrow-ids'", "32 triangles", "4-bit triangle ids hold 16", "visibility-64"})
+            EXPECT_NE(m.find(w), std::string::npos) << "missing [" << w << "] in: " << m;
+    }
+}
+
+// The resolve's Surface against the reference layout's decoded G-buffer (float32 everything) on
+// the built-in scene. Same rasterisation, same depth format: the same pixels are covered. Normals
+// and base colour match closely; texture LOD differs (analytic derivatives against the
+// rasteriser's 2x2-quad differences), most at silhouettes and texture edges.
+TEST_F(VisibilityTest, ResolvedSurfaceMatchesTheReferenceGBuffer) {
+    const Scene scene = makeDefaultScene();
+    const EnvironmentMap sky = makeProceduralSky(256);
+    Renderer renderer(ctx(), scene, sky);
+    RenderSettings settings;
+    settings.width = 480;
+    settings.height = 270;
+    settings.decodeSurfaces = true;
+    settings.readTargetWords = false;
+    const RenderOutput ref = renderer.render(makeReferenceWiring(), settings);
+    const RenderOutput vis = renderer.render(generateWiring(loadLayout("visibility-32")), settings);
+    const SurfaceImages& a = ref.surfaces;
+    const SurfaceImages& b = vis.surfaces;
+    ASSERT_EQ(a.coverage, b.coverage);
+    size_t covered = 0, normalOver1Degree = 0, baseOver002 = 0, baseOverCode = 0;
+    double angleSum = 0, baseSum = 0, lumSum = 0, lumRefSum = 0, angleMax = 0;
+    for (size_t i = 0; i < a.coverage.size(); ++i) {
+        if (!a.coverage[i]) continue;
+        ++covered;
+        const glm::vec3 na(a.normal.pixels[i * 3], a.normal.pixels[i * 3 + 1], a.normal.pixels[i * 3 + 2]);
+        const glm::vec3 nb(b.normal.pixels[i * 3], b.normal.pixels[i * 3 + 1], b.normal.pixels[i * 3 + 2]);
+        const double angle = std::acos(std::clamp(double(glm::dot(glm::normalize(na), glm::normalize(nb))), -1.0, 1.0)) *
+                             180.0 / M_PI;
+        angleSum += angle;
+        angleMax = std::max(angleMax, angle);
+        normalOver1Degree += angle > 1.0;
+        double base = 0;
+        for (int c = 0; c < 3; ++c)
+            base = std::max(base, double(std::fabs(a.baseColor.pixels[i * 3 + c] - b.baseColor.pixels[i * 3 + c])));
+        baseSum += base;
+        baseOver002 += base > 0.02;
+        baseOverCode += base > 1.0 / 255.0;
+        const float* ha = &ref.hdr.pixels[i * 4];
+        const float* hb = &vis.hdr.pixels[i * 4];
+        const double ya = 0.2126 * ha[0] + 0.7152 * ha[1] + 0.0722 * ha[2];
+        const double yb = 0.2126 * hb[0] + 0.7152 * hb[1] + 0.0722 * hb[2];
+        lumSum += std::fabs(ya - yb);
+        lumRefSum += ya;
+    }
+    ASSERT_GT(covered, a.coverage.size() / 2);
+    const double n = double(covered);
+    std::printf("visibility-32 vs reference on %zu covered pixels: normal mean %.4f deg, max %.3f deg, %.3f%% over 1 "
+                "deg; base colour mean max-channel |d| %.3g, %.3f%% over 1/255, %.3f%% over 0.02; luminance mean |d| / "
+                "mean %.5f\n",
+                covered, angleSum / n, angleMax, 100.0 * normalOver1Degree / n, baseSum / n, 100.0 * baseOverCode / n,
+                100.0 * baseOver002 / n, lumSum / lumRefSum);
+    // Measured on lavapipe (480x270, 124627 covered pixels): normal mean 0.016 deg, max 0.76 deg
+    // (the ground's 1024-texel detail normal map at another LOD); base colour mean 4.8e-6, no
+    // pixel off by 1/255; luminance 0.029 %. A wrong triangle, barycentric, uv or facing would
+    // be degrees and whole colour steps.
+    EXPECT_LT(angleSum / n, 0.1);
+    EXPECT_LT(angleMax, 5.0);
+    EXPECT_LT(baseSum / n, 1e-3);
+    EXPECT_LT(double(baseOverCode) / n, 0.01);
+    EXPECT_LT(lumSum / lumRefSum, 0.005);
+}
+
+}  // namespace
+}  // namespace gbl
