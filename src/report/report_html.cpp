@@ -140,7 +140,8 @@ std::vector<TableColumn> numericColumns() {
         {"bpp", "Bytes/px", "G-buffer bytes per pixel: targets + depth-stencil + light buffers", true, "ascending",
          [](const RunReport& r) { return std::optional<double>(r.bytesPerPixel.total); },
          [](double v) { return formatFixed(v, 0); }},
-        {"gbps", "GB/s 1080p60", "Render-target traffic at 1920x1080, 1 sample, 60 frames/s (model: src/measure/bandwidth.h)",
+        {"gbps", "GB/s 1080p60", "Render-target traffic at 1920x1080, 1 sample, 60 frames/s (model: src/measure/bandwidth.h; a "
+                                    "visibility buffer's adds its resolve's vertex fetches, modelled with no cache reuse)",
          true, "ascending", [](const RunReport& r) { return r.gigabytesPerSecond1080p60(); },
          [](double v) { return formatFixed(v, 2); }},
         {"normal_mean", "Normal mean&nbsp;&deg;", "Mean angle between stored and reference normals, degrees", true,
