@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -182,6 +183,58 @@ draw_bits = 8
         for (const char* w : {"layout 'narrow-ids'", "32 triangles", "4-bit triangle ids hold 16", "visibility-64"})
             EXPECT_NE(m.find(w), std::string::npos) << "missing [" << w << "] in: " << m;
     }
+}
+
+// Scenes past The Forge's 32-bit ids: 300 draws (8-bit draw ids hold 256), and a draw of 2^23 + 1
+// triangles (23-bit triangle ids hold 2^23; refused before anything is drawn, so its indices need
+// not exist). visibility-32 refuses both in one line; visibility-64 renders the 300 draws with
+// their ids intact.
+TEST_F(VisibilityTest, TheForgesIdsRefuseWhatTheyCannotHoldAndSixtyFourBitsDoNot) {
+    Scene many = tinyScene();
+    const Draw grid = many.draws[0];
+    many.draws.clear();
+    for (int k = 0; k < 300; ++k) {  // 20 x 15 small grids tiling the view
+        Draw d = grid;
+        d.material = k % 2;
+        d.model = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(-1.3f + 0.135f * float(k % 20),
+                                                                         -0.95f + 0.135f * float(k / 20), 0.0f)),
+                             glm::vec3(0.12f));
+        many.draws.push_back(d);
+    }
+    const EnvironmentMap sky = makeProceduralSky(64);
+    RenderSettings settings;
+    settings.width = kTinyW;
+    settings.height = kTinyH;
+    auto expectOneLine = [](const std::function<void()>& f, std::initializer_list<const char*> words) {
+        try {
+            f();
+            ADD_FAILURE() << "rendered what the ids cannot hold";
+        } catch (const UserError& e) {
+            const std::string m = e.what();
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+            for (const char* w : words) EXPECT_NE(m.find(w), std::string::npos) << "missing [" << w << "] in: " << m;
+        }
+    };
+    {
+        Renderer renderer(ctx(), many, sky);
+        expectOneLine([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
+                      {"layout 'visibility-32'", "300 draws", "8-bit draw ids hold 256", "visibility-64"});
+        const RenderOutput out = renderer.render(generateWiring(loadLayout("visibility-64")), settings);
+        const std::vector<Expected> expected = rasterise(many, kTinyW, kTinyH);
+        int maxDraw = -1;
+        for (size_t i = 0; i < expected.size(); ++i) {
+            if (expected[i].draw < 0) continue;
+            ASSERT_EQ(out.targetWords[0][2 * i], uint32_t(expected[i].triangle)) << "pixel " << i;
+            ASSERT_EQ(out.targetWords[0][2 * i + 1], uint32_t(expected[i].draw)) << "pixel " << i;
+            maxDraw = std::max(maxDraw, expected[i].draw);
+        }
+        EXPECT_GE(maxDraw, 256);  // ids past 8 bits were checked
+    }
+    Scene huge = tinyScene();
+    huge.draws[1].indexCount = 3u * ((1u << 23) + 1u);
+    Renderer renderer(ctx(), huge, sky);
+    expectOneLine([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
+                  {"layout 'visibility-32'", "8388609 triangles", "23-bit triangle ids hold 8388608", "visibility-64"});
 }
 
 // The resolve's Surface against the reference layout's decoded G-buffer (float32 everything) on
