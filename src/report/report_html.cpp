@@ -300,6 +300,12 @@ void writeRunSection(std::string& out, const ReportModel& model, const RunReport
     if (r.bytesPerPixel.lightBuffers) statRow(out, "Light buffers", formatFixed(r.bytesPerPixel.lightBuffers, 0), "B/px");
     statRow(out, "Total", formatFixed(r.bytesPerPixel.total, 0), "B/px");
     if (const auto gbps = r.gigabytesPerSecond1080p60()) statRow(out, "1080p60 traffic", formatFixed(*gbps, 2), "GB/s");
+    for (const FrameTraffic& f : r.bandwidth)  // a visibility buffer's resolve (src/measure/bandwidth.h)
+        if (f.width == 1920 && f.height == 1080 && f.samples == 1 && f.vertexFetchBytes > 0) {
+            const double pixels = 1920.0 * 1080.0;
+            statRow(out, "Vertex fetches (modelled, in the traffic)", formatFixed(f.vertexFetchBytes / pixels, 0), "B/px");
+            statRow(out, "Texel fetches (modelled, not in it)", formatFixed(f.textureFetchBytes / pixels, 0), "B/px");
+        }
     if (r.times) {
         statRow(out, "G-buffer pass", formatSignificant(r.times->gbufferMs, 3), "ms");
         statRow(out, "Lighting pass", formatSignificant(r.times->lightingMs, 3), "ms");

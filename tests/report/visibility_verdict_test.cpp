@@ -91,6 +91,8 @@ TEST(VisibilityVerdict, WrittenIntoJsonAndHtml) {
     EXPECT_DOUBLE_EQ(j["gbuffer_or_visibility"]["visibility"]["vertex_fetch_bytes_per_pixel_modelled"].get<double>(), 156.0);
     const std::string html = reportHtml(m);
     EXPECT_NE(html.find("<section id=\"gbuffer-or-visibility\">"), std::string::npos);
+    // Each visibility run's section states its modelled vertex fetches.
+    EXPECT_NE(html.find("Vertex fetches (modelled, in the traffic)</th><td class=\"num\">156<"), std::string::npos);
     EXPECT_FALSE(reportToJson(test::sampleReport()).contains("gbuffer_or_visibility"));
     EXPECT_EQ(reportHtml(test::sampleReport()).find("gbuffer-or-visibility"), std::string::npos);
 }
