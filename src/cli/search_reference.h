@@ -1,0 +1,21 @@
+#pragma once
+// gbufferlab search, GPU side: the float reference rendered once per view and read back as what
+// the fast evaluation needs (search/fast_eval.h EvalView): decoded Surfaces, depth, coverage,
+// the environment behind, the camera.
+#include <vector>
+
+#include "fast_eval.h"
+#include "renderer.h"
+#include "scene.h"
+
+namespace gbl {
+
+struct SearchReference {
+    std::vector<search::EvalView> views;
+    std::vector<Image> gpuHdr;  // the GPU's render of the reference per view (to validate the CPU re-shade)
+};
+
+SearchReference renderSearchReference(Renderer& renderer, const std::vector<Camera>& cameras, uint32_t width,
+                                      uint32_t height);
+
+}  // namespace gbl
