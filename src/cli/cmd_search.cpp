@@ -108,8 +108,16 @@ int runSearchCommand(const std::vector<std::string>& args) {
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("search");
     const bool resuming = fs::exists(outDir / kJournal);
     checkOutputDirectory(outDir, resuming, "--out");
+    // The command as the front files quote it: without --out, which is where they are written, not
+    // what they are (two runs with one seed write the same bytes wherever they write them).
     std::string commandLine = "gbufferlab search";
-    for (const auto& a : args) commandLine += " " + a;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--out") {
+            ++i;
+            continue;
+        }
+        commandLine += " " + args[i];
+    }
 
     const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
                                                 GltfLoadOptions{parsed.has("allow-outside-scene")});
@@ -169,6 +177,7 @@ int runSearchCommand(const std::vector<std::string>& args) {
     summary.candidates = int(result.evaluated.size());
     summary.resumed = result.resumed;
     summary.perMinute = perMinute;
+    summary.cpuSecondsPerCandidate = evaluatedHere > 0 ? result.cpuSeconds / evaluatedHere : 0.0;
     summary.threads = threads;
     summary.reshadeFlip = reshadeFlip;
     summary.reshadeMaxRelative = reshadeMaxRel;

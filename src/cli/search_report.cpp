@@ -98,7 +98,8 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
     md << "# gbufferlab search\n\n`" << s.commandLine << "`\n\n"
        << "Budget " << s.budget << " B/px (targets + depth), objective " << s.objective << ", seed " << s.seed << ", "
        << s.size << ", " << s.views << " view(s). " << s.candidates << " candidates evaluated (" << s.resumed
-       << " from the journal), " << fixed(s.perMinute, 0) << " per minute on " << s.threads << " thread(s); "
+       << " from the journal), " << fixed(s.perMinute, 0) << " per minute on " << s.threads << " thread(s) ("
+       << fixed(s.cpuSecondsPerCandidate, 3) << " CPU s per candidate); "
        << s.counts << ".\n\n"
        << "Fast evaluation: the GPU-decoded reference Surfaces through each layout's CPU codec, re-lit on the "
           "CPU (split-sum IBL + direct lights), tone-mapped, LDR-FLIP against the CPU re-shade of the reference, "
@@ -129,7 +130,9 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
     else
         note << "  16 B/px: no found layout under 16 B/px, or no published 16 B/px layout measured\n";
     note << "  rate: " << fixed(s.perMinute, 0) << " candidates per minute at " << s.size << ", " << s.views
-         << " view(s), " << s.threads << " thread(s)\n";
+         << " view(s), " << s.threads << " thread(s); " << fixed(s.cpuSecondsPerCandidate, 3)
+         << " CPU s per candidate (" << fixed(s.cpuSecondsPerCandidate > 0 ? 60.0 * s.threads / s.cpuSecondsPerCandidate : 0.0, 0)
+         << " per minute if the " << s.threads << " thread(s) had their cores to themselves)\n";
     if (!std::isnan(rho))
         note << "  ranking: Spearman rank correlation of fast FLIP and full-render FLIP over " << fast.size()
              << " layouts: " << fixed(rho, 3) << "\n";
@@ -146,6 +149,7 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
     j["candidates"] = s.candidates;
     j["resumed"] = s.resumed;
     j["candidates_per_minute"] = s.perMinute;
+    j["cpu_seconds_per_candidate"] = s.cpuSecondsPerCandidate;
     j["threads"] = s.threads;
     j["reshade_flip"] = s.reshadeFlip;
     j["reshade_max_relative"] = s.reshadeMaxRelative;

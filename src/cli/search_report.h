@@ -29,6 +29,7 @@ struct SearchSummary {
     int views = 0;
     int candidates = 0, resumed = 0;
     double perMinute = 0.0;
+    double cpuSecondsPerCandidate = 0.0;
     int threads = 0;
     double reshadeFlip = 0.0;       // CPU re-shade of the reference against its GPU render (mean over views)
     double reshadeMaxRelative = 0.0;

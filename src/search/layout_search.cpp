@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -164,6 +165,7 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
             }
         }
         const auto start = std::chrono::steady_clock::now();
+        const std::clock_t cpuStart = std::clock();
         parallelFor(int64_t(todo.size()), threads, [&](int64_t b, int64_t e) {
             for (int64_t k = b; k < e; ++k) {
                 Candidate& c = batch[todo[size_t(k)]];
@@ -171,6 +173,7 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
             }
         });
         sessionSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        result.cpuSeconds += double(std::clock() - cpuStart) / double(CLOCKS_PER_SEC);
         sessionEvaluated += int(todo.size());
         for (Candidate& c : batch) {
             if (journal && !c.fromJournal) journal->append({c.index, c.hash, c.bytes, c.eval});

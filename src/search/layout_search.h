@@ -59,7 +59,9 @@ struct SearchResult {
     int rejectedByValidation = 0;  // always expected 0: the packer only writes valid layouts
     std::vector<std::string> validationMessages;
     int resumed = 0;
-    double seconds = 0.0;  // this session's evaluation wall time
+    double seconds = 0.0;     // this session's evaluation wall time
+    double cpuSeconds = 0.0;  // ... and the process's CPU time over it (all threads): on a loaded
+                              // machine, what the evaluations cost regardless of the other work
 };
 
 // `evaluate` receives the whole layout text (name "candidate"); it is called concurrently.

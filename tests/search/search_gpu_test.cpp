@@ -80,8 +80,9 @@ TEST_F(SearchGpu, CpuReshadeOfTheReferenceMatchesTheGpuRender) {
         const double meanRel = sumRel / double(covered);
         std::printf("view %zu: CPU re-shade vs GPU render: FLIP %.5f, mean relative luminance error %.5f\n", v, flip,
                     meanRel);
-        // Measured (lavapipe, 192x108, built-in scene): FLIP <= 0.002 and mean relative error
-        // <= 0.002 on both views; the bounds leave room for other drivers' filtering.
+        // Measured (lavapipe, 192x108, built-in scene): FLIP 0.00040 / 0.00141 and mean relative
+        // luminance error 0.00026 / 0.00077 on the two views (the rest is the cube's seamless
+        // filtering and the GPU's filtering precision); the bounds leave room for other drivers.
         EXPECT_LT(flip, 0.01) << "view " << v;
         EXPECT_LT(meanRel, 0.01) << "view " << v;
     }
@@ -118,6 +119,8 @@ TEST_F(SearchGpu, FastEvaluationRanksLayoutsAsFullRendersDo) {
     }
     const double rho = search::spearman(fast, full);
     std::printf("Spearman rank correlation, fast vs full, %zu layouts: %.3f\n", fast.size(), rho);
+    // Measured: 0.964 (the one swap: ue4 0.01078 / 0.01033 against compact-octahedral 0.01072 /
+    // 0.00990, within 0.6 % of each other in the fast evaluation).
     EXPECT_GE(rho, 0.85);
 }
 
