@@ -22,6 +22,7 @@
 #include "scene_inputs.h"
 #include "search_reference.h"
 #include "search_report.h"
+#include "search_space.h"
 #include "tone_map.h"
 #include "vk_context.h"
 
@@ -108,15 +109,15 @@ int runSearchCommand(const std::vector<std::string>& args) {
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("search");
     const bool resuming = fs::exists(outDir / kJournal);
     checkOutputDirectory(outDir, resuming, "--out");
-    // The command as the front files quote it: without --out, which is where they are written, not
-    // what they are (two runs with one seed write the same bytes wherever they write them).
+    // The command as the front files quote it: without what does not change the result (--out,
+    // --threads, --device, --no-confirm), so two runs with one seed write the same bytes.
     std::string commandLine = "gbufferlab search";
     for (size_t i = 0; i < args.size(); ++i) {
-        if (args[i] == "--out") {
+        if (args[i] == "--out" || args[i] == "--threads" || args[i] == "--device") {
             ++i;
             continue;
         }
-        commandLine += " " + args[i];
+        if (args[i] != "--no-confirm") commandLine += " " + args[i];
     }
 
     const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
@@ -131,7 +132,22 @@ int runSearchCommand(const std::vector<std::string>& args) {
     for (const auto& v : compare::compareViews(inputs.scene, viewCount)) cameras.push_back(v.camera);
     std::printf("search: rendering the reference (%d view%s, %ux%u) on %s\n", viewCount, viewCount > 1 ? "s" : "",
                 width, height, ctx.info.name.c_str());
-    SearchReference reference = renderSearchReference(renderer, cameras, width, height);
+    // The depth formats candidates and published layouts use: the reference is rendered under each
+    // (visibility depends on depth precision; fast_eval.h DepthVariant).
+    std::vector<DepthKey> depthKeys;
+    auto addKey = [&](const DepthKey& k) {
+        if (std::find(depthKeys.begin(), depthKeys.end(), k) == depthKeys.end()) depthKeys.push_back(k);
+    };
+    for (const auto& d : search::depthFormats()) addKey({d.format, false});
+    std::vector<Layout> publishedLayouts;
+    for (const std::string& name : listLayoutNames()) {
+        if (name == "reference") continue;
+        Layout l = loadLayout(name);
+        if (l.pipeline != Pipeline::DeferredShading) continue;
+        addKey({l.depth.format, l.depth.reversedZ});
+        publishedLayouts.push_back(std::move(l));
+    }
+    SearchReference reference = renderSearchReference(renderer, cameras, width, height, depthKeys);
     std::vector<search::EvalView> views = reference.views;
     const search::FastEvaluator evaluator(std::move(views), search::shadeLights(inputs.scene.lights), ibl, objective);
     double reshadeFlip = 0.0, reshadeMaxRel = 0.0;
@@ -187,18 +203,13 @@ int runSearchCommand(const std::vector<std::string>& args) {
     summary.rows = writeFront(result, outDir / "front", commandLine, summary.objective, uint64_t(seed));
 
     // The published deferred-shading layouts, beside the found ones (deferred lighting is not modelled).
-    std::vector<std::string> published;
-    for (const std::string& name : listLayoutNames()) {
-        if (name == "reference") continue;
-        const Layout l = loadLayout(name);
-        if (l.pipeline != Pipeline::DeferredShading) continue;
+    for (const Layout& l : publishedLayouts) {
         SearchRow row;
-        row.name = name;
+        row.name = l.name;
         row.bytes = bytesPerPixel(l);
         row.fast = evaluator.evaluate(l, threads);
         row.how = "published";
         summary.rows.push_back(row);
-        published.push_back(name);
     }
 
     if (confirm) {

@@ -155,22 +155,21 @@ glm::vec3 shadePixel(const Surface& s, glm::vec3 position, glm::vec3 cameraPosit
     return color + s.emissive + forwardEmissive;
 }
 
-Image reshade(const ShadeView& view, const std::vector<Surface>& surfaces, const std::vector<ShadeLight>& lights,
-              const CpuIbl& ibl, const std::vector<glm::vec3>& forwardEmissive,
-              const std::vector<glm::vec3>& positions, int threads) {
+Image reshade(const ShadeView& view, const std::vector<uint8_t>& covered, const std::vector<Surface>& surfaces,
+              const std::vector<glm::vec3>& positions, const std::vector<ShadeLight>& lights, const CpuIbl& ibl,
+              const std::vector<Surface>* forwardEmissive, int threads) {
     Image out(view.width, view.height, 4);
     parallelFor(view.height, threads, [&](int64_t y0, int64_t y1) {
         for (int64_t y = y0; y < y1; ++y)
             for (int x = 0; x < view.width; ++x) {
                 const size_t i = size_t(y) * size_t(view.width) + size_t(x);
                 float* o = &out.pixels[i * 4];
-                if (!view.covered[i]) {
+                if (!covered[i]) {
                     for (int c = 0; c < 4; ++c) o[c] = view.background.pixels[i * 4 + c];
                     continue;
                 }
-                const glm::vec3 p = positions.empty() ? view.position[i] : positions[i];
-                const glm::vec3 c = shadePixel(surfaces[i], p, view.cameraPosition, lights, ibl,
-                                               forwardEmissive.empty() ? glm::vec3(0.0f) : forwardEmissive[i]);
+                const glm::vec3 c = shadePixel(surfaces[i], positions[i], view.cameraPosition, lights, ibl,
+                                               forwardEmissive ? (*forwardEmissive)[i].emissive : glm::vec3(0.0f));
                 o[0] = c.r;
                 o[1] = c.g;
                 o[2] = c.b;

@@ -68,11 +68,11 @@ struct ShadeView {
 glm::vec3 shadePixel(const Surface& s, glm::vec3 position, glm::vec3 cameraPosition,
                      const std::vector<ShadeLight>& lights, const CpuIbl& ibl, glm::vec3 forwardEmissive);
 
-// The whole image (RGBA, alpha = coverage), rows in parallel over `threads`. `positions`
-// overrides view.position when non-empty (a layout that stores position is lit from it);
-// `forwardEmissive` may be empty (no emissive = "forward").
-Image reshade(const ShadeView& view, const std::vector<Surface>& surfaces, const std::vector<ShadeLight>& lights,
-              const CpuIbl& ibl, const std::vector<glm::vec3>& forwardEmissive,
-              const std::vector<glm::vec3>& positions, int threads);
+// The whole image (RGBA, alpha = coverage), rows in parallel over `threads`: `surfaces` lit at
+// `positions` where `covered`, view.background elsewhere. `forwardEmissive`, when given, adds
+// each pixel's emissive from those Surfaces (emissive = "forward": unquantised).
+Image reshade(const ShadeView& view, const std::vector<uint8_t>& covered, const std::vector<Surface>& surfaces,
+              const std::vector<glm::vec3>& positions, const std::vector<ShadeLight>& lights, const CpuIbl& ibl,
+              const std::vector<Surface>* forwardEmissive, int threads);
 
 }  // namespace gbl::search

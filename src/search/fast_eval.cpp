@@ -57,7 +57,6 @@ struct FastEvaluator::Prepared {
     Image referenceHdr;
     Image referenceSrgb;
     std::unique_ptr<LdrFlipReference> flip;
-    std::vector<glm::vec3> emissive;  // the reference's, for emissive = "forward"
 };
 
 FastEvaluator::FastEvaluator(std::vector<EvalView> views, std::vector<ShadeLight> lights, const IblMaps& ibl,
@@ -65,10 +64,10 @@ FastEvaluator::FastEvaluator(std::vector<EvalView> views, std::vector<ShadeLight
     : views_(std::move(views)), lights_(std::move(lights)), ibl_(ibl), objective_(objective), exposure_(exposure) {
     for (EvalView& v : views_) {
         v.shade.position = positionsFromDepth(v.depth, v.shade.width, v.shade.height, v.invViewProj);
+        for (DepthVariant& d : v.depthVariants)
+            d.position = positionsFromDepth(d.depth, v.shade.width, v.shade.height, d.invViewProj);
         auto p = std::make_unique<Prepared>();
-        p->emissive.resize(v.reference.size());
-        for (size_t i = 0; i < v.reference.size(); ++i) p->emissive[i] = v.reference[i].emissive;
-        p->referenceHdr = reshade(v.shade, v.reference, lights_, ibl_, {}, {}, 0);
+        p->referenceHdr = reshade(v.shade, v.shade.covered, v.reference, v.shade.position, lights_, ibl_, nullptr, 0);
         p->referenceSrgb = toneMapToSrgb8AsFloat(p->referenceHdr, exposure_);
         if (objective_ == Objective::Flip) p->flip = std::make_unique<LdrFlipReference>(p->referenceSrgb);
         prepared_.push_back(std::move(p));
@@ -83,18 +82,25 @@ Image FastEvaluator::renderLayout(const Layout& layout, size_t vi, int threads) 
     if (layout.pipeline != Pipeline::DeferredShading)
         throwUserError("layout '" + layout.name + "': the fast evaluation models deferred shading only");
     const EvalView& v = views_[vi];
-    const Prepared& p = *prepared_[vi];
     const int w = v.shade.width, h = v.shade.height;
     const size_t n = size_t(w) * size_t(h);
     const StoredSpace normalSpace = layout.space.normal;
     const bool storesPosition = layout.stores(Attribute::Position);
-    // The depth this layout's format would hold, and the positions the lighting rebuilds from it.
-    std::vector<float> depth(n);
-    bool exactDepth = layout.depth.floatDepth && !layout.depth.reversedZ;
-    if (!exactDepth)
+    // What this layout's depth format sees: the reference rendered with it when there is such a
+    // variant; else the D32 depth quantised as the format would hold it.
+    const DepthVariant* variant = nullptr;
+    for (const DepthVariant& d : v.depthVariants)
+        if (d.format == layout.depth.format && d.reversedZ == layout.depth.reversedZ) variant = &d;
+    const std::vector<Surface>& input = variant ? variant->surfaces : v.reference;
+    const std::vector<uint8_t>& covered = variant ? variant->covered : v.shade.covered;
+    std::vector<glm::vec3> quantized;
+    if (!variant && !(layout.depth.floatDepth && !layout.depth.reversedZ)) {
+        std::vector<float> depth(n);
         for (size_t i = 0; i < n; ++i) depth[i] = quantizeDepth(v.depth[i], layout.depth);
-    const std::vector<glm::vec3> positions =
-        exactDepth ? std::vector<glm::vec3>{} : positionsFromDepth(depth, w, h, v.invViewProj);
+        quantized = positionsFromDepth(depth, w, h, v.invViewProj);
+    }
+    const std::vector<glm::vec3>& positions =
+        variant ? variant->position : quantized.empty() ? v.shade.position : quantized;
 
     // Into the stored space (normal_space.h), as the G-buffer pass does before writeGBuffer;
     // pixels without geometry hold the layout's clear values.
@@ -105,17 +111,17 @@ Image FastEvaluator::renderLayout(const Layout& layout, size_t vi, int threads) 
     thread_local CpuGBuffer gbuffer;
     stored.resize(n);
     for (size_t i = 0; i < n; ++i) {
-        if (!v.shade.covered[i]) {
+        if (!covered[i]) {
             stored[i] = clear;
             continue;
         }
-        Surface s = v.reference[i];
+        Surface s = input[i];
         s.normal = directionToStored(s.normal, normalSpace, v.view);
-        if (storesPosition) s.position = pointToStored(v.shade.position[i], layout.space.position, v.view);
+        if (storesPosition) s.position = pointToStored(positions[i], layout.space.position, v.view);
         stored[i] = s;
     }
     CpuCodec codec(layout, CpuCodecOptions{std::max(threads, 1)});
-    gbuffer.covered = v.shade.covered;
+    gbuffer.covered = covered;
     codec.encode(stored, w, h, gbuffer);
     codec.decode(gbuffer, decoded);
     std::vector<glm::vec3> storedPositions;
@@ -126,8 +132,8 @@ Image FastEvaluator::renderLayout(const Layout& layout, size_t vi, int threads) 
     }
     const Fallback* emissive = layout.findFallback(Attribute::Emissive);
     const bool forward = emissive && emissive->kind == FallbackKind::Forward;
-    return reshade(v.shade, decoded, lights_, ibl_, forward ? p.emissive : std::vector<glm::vec3>{},
-                   storesPosition ? storedPositions : positions, std::max(threads, 1));
+    return reshade(v.shade, covered, decoded, storesPosition ? storedPositions : positions, lights_, ibl_,
+                   forward ? &input : nullptr, std::max(threads, 1));
 }
 
 Evaluation FastEvaluator::evaluate(const Layout& layout) const { return evaluate(layout, 1); }

@@ -35,6 +35,19 @@ enum class Objective { Flip, Psnr, Attributes };
 const char* objectiveName(Objective o);            // "flip", "psnr", "attributes"
 Objective parseObjective(const std::string& text);  // throws UserError naming --objective
 
+// The reference rendered with another depth format: what a layout with that format sees. Depth
+// precision decides visibility too (distant coplanar geometry resolves differently in D16), which
+// no quantisation of the D32 depth can model, so the renderer is asked.
+struct DepthVariant {
+    std::string format;  // a [depth] format
+    bool reversedZ = false;
+    std::vector<Surface> surfaces;  // decoded, world (Y-up)
+    std::vector<uint8_t> covered;
+    std::vector<float> depth;
+    glm::mat4 invViewProj{1.0f};      // of this variant's projection (reversed or not)
+    std::vector<glm::vec3> position;  // filled by FastEvaluator
+};
+
 // One view of the reference, as rendered on the GPU and read back.
 struct EvalView {
     ShadeView shade;                 // width, height, camera, coverage, background; position is filled here
@@ -42,6 +55,10 @@ struct EvalView {
     std::vector<float> depth;        // the reference's depth buffer (D32_SFLOAT, not reversed)
     glm::mat4 view{1.0f};            // world -> view (for layouts storing in view space)
     glm::mat4 invViewProj{1.0f};     // of the non-reversed projection
+    // Optional: the reference under other depth formats. A layout whose depth matches one is fed
+    // that variant's Surfaces, coverage and depth; otherwise the D32 depth is quantised
+    // (quantizeDepth) and the D32 visibility kept.
+    std::vector<DepthVariant> depthVariants;
 };
 
 struct Evaluation {
