@@ -60,8 +60,10 @@ std::vector<SearchRow> writeFront(const search::SearchResult& result, const fs::
                 << result.evaluated.size() << ", " << c.how << ", seed " << seed << ".\n"
                 << "Command: " << commandLine << "\n"
                 << "Objective " << objective << "; fast evaluation (CPU codec + CPU re-shade, mean over views): "
-                << (c.eval.flip >= 0 ? "FLIP " + fixed(c.eval.flip, 5) + ", " : "") << "tone-mapped PSNR "
-                << fixed(c.eval.psnr, 2) << " dB, score " << fixed(c.eval.error, 6) << ".\n"
+                << (c.eval.flip >= 0 ? "FLIP " + fixed(c.eval.flip, 5) + ", " : "")
+                << (objective == "attributes" ? "attribute error " + fixed(c.eval.attributes, 5)
+                                              : "tone-mapped PSNR " + fixed(c.eval.psnr, 2) + " dB")
+                << ", score " << fixed(c.eval.error, 6) << ".\n"
                 << c.bytes << " bytes per pixel (targets + depth). On the Pareto front of error against bytes.\n"
                 << search::describeGenome(c.genome) << ".";
         const fs::path file = dir / (row.name + ".toml");
@@ -109,7 +111,7 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
     for (const SearchRow& r : s.rows)
         md << "| " << r.name << " | " << (r.found ? "found" : "published") << " | " << r.bytes << " | "
            << (r.fast.flip >= 0 ? fixed(r.fast.flip, 5) : "-") << " | " << (r.fullFlip ? fixed(*r.fullFlip, 5) : "-")
-           << " | " << fixed(r.fast.psnr, 2) << " | " << r.how << " |\n";
+           << " | " << (s.objective == "attributes" ? "-" : fixed(r.fast.psnr, 2)) << " | " << r.how << " |\n";
 
     std::ostringstream note;
     note << "search: closing note\n";
@@ -120,7 +122,8 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
              << fixed(goalFlip(*thin), 5) << (found12->fullFlip ? " (full renders)" : " (fast evaluation)") << ": "
              << (goalFlip(*found12) < goalFlip(*thin) ? "met" : "NOT met") << "\n";
     else
-        note << "  12 B/px: no found layout at or under 12 B/px, or crysis3-thin not measured\n";
+        note << "  12 B/px: no FLIP of a found layout at or under 12 B/px and of crysis3-thin (none found, or the "
+                "objective is not flip and --no-confirm skipped the full renders)\n";
     const SearchRow* pub16 = best(s.rows, false, 16, 16);
     const SearchRow* found16 = best(s.rows, true, 0, 16);
     if (pub16 && found16)
@@ -128,7 +131,8 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
              << " vs the best published 16 B/px layout, " << pub16->name << " " << fixed(goalFlip(*pub16), 5) << ": "
              << (goalFlip(*found16) <= goalFlip(*pub16) ? "met" : "NOT met") << "\n";
     else
-        note << "  16 B/px: no found layout under 16 B/px, or no published 16 B/px layout measured\n";
+        note << "  16 B/px: no FLIP of a found layout at or under 16 B/px and of a published 16 B/px one (none "
+                "found, or the objective is not flip and --no-confirm skipped the full renders)\n";
     note << "  rate: " << fixed(s.perMinute, 0) << " candidates per minute at " << s.size << ", " << s.views
          << " view(s), " << s.threads << " thread(s); " << fixed(s.cpuSecondsPerCandidate, 3)
          << " CPU s per candidate (" << fixed(s.cpuSecondsPerCandidate > 0 ? 60.0 * s.threads / s.cpuSecondsPerCandidate : 0.0, 0)
