@@ -106,7 +106,7 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
        << "Fast evaluation: the GPU-decoded reference Surfaces through each layout's CPU codec, re-lit on the "
           "CPU (split-sum IBL + direct lights), tone-mapped, LDR-FLIP against the CPU re-shade of the reference, "
           "full resolution, mean over views. The CPU re-shade of the reference against its GPU render: FLIP "
-       << fixed(s.reshadeFlip, 5) << ", max relative error " << fixed(s.reshadeMaxRelative, 4) << ".\n\n"
+       << fixed(s.reshadeFlip, 5) << ", mean relative luminance error " << fixed(s.reshadeMeanRelative, 5) << ".\n\n"
        << "| layout | kind | B/px | fast FLIP | full-render FLIP | fast PSNR dB | how |\n|---|---|---|---|---|---|---|\n";
     for (const SearchRow& r : s.rows)
         md << "| " << r.name << " | " << (r.found ? "found" : "published") << " | " << r.bytes << " | "
@@ -156,7 +156,7 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
     j["cpu_seconds_per_candidate"] = s.cpuSecondsPerCandidate;
     j["threads"] = s.threads;
     j["reshade_flip"] = s.reshadeFlip;
-    j["reshade_max_relative"] = s.reshadeMaxRelative;
+    j["reshade_mean_relative_luminance_error"] = s.reshadeMeanRelative;
     if (!std::isnan(rho)) j["spearman_fast_vs_full"] = rho;
     j["layouts"] = nlohmann::json::array();
     for (const SearchRow& r : s.rows) {

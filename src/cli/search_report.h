@@ -32,7 +32,7 @@ struct SearchSummary {
     double cpuSecondsPerCandidate = 0.0;
     int threads = 0;
     double reshadeFlip = 0.0;       // CPU re-shade of the reference against its GPU render (mean over views)
-    double reshadeMaxRelative = 0.0;
+    double reshadeMeanRelative = 0.0;  // ... and its mean relative luminance error
     std::string counts;             // over budget / duplicates / ...
     std::vector<SearchRow> rows;    // found, then published
 };
