@@ -59,7 +59,7 @@ namespace {
 
 int clampBits(int bits, const EncodingChoice& e) { return std::clamp(bits, e.minBits, e.maxBits); }
 
-// Bits drawn around 8 (the common width), wide enough to reach either end of the range.
+// Bits uniform over the menu's range: the search must see both ends of it.
 int randomBits(SplitMix64& rng, const EncodingChoice& e) { return rng.range(e.minBits, e.maxBits); }
 
 }  // namespace
