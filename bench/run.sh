@@ -9,6 +9,9 @@
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
 #   e2e      `gbufferlab compare` of all layouts at 1080p, run twice (the second, warm, is timed by
 #            stage: its timings.json), then once at 3840x2160 with one layout for peak memory
+#   search   `gbufferlab search --budget 16` at 480x270, 3 views, 600 candidates, confirmed by full
+#            renders: candidates per minute, CPU seconds per candidate and the goals in
+#            results/search-16/search.json and search-report.md (GBL_BENCH_SEARCH_THREADS, default 2)
 #   coldwarm `gbufferlab compare` of all layouts at GBL_BENCH_COLD_SIZE (default 480x270) on fresh
 #            caches (an empty GBL_CACHE_DIR: SPIR-V, pipeline and IBL caches), then again (warm),
 #            both with MESA_SHADER_CACHE_DISABLE=true so Mesa's own disk cache hides no driver cost;
@@ -26,7 +29,7 @@ what=("$@")
 [ ${#what[@]} -eq 0 ] && what=(codec gpu compare)
 
 targets=(codec_bench gpu_pass_bench compare_bench)
-for w in "${what[@]}"; do [ "$w" = e2e ] || [ "$w" = coldwarm ] && targets+=(gbufferlab); done
+for w in "${what[@]}"; do [ "$w" = e2e ] || [ "$w" = coldwarm ] || [ "$w" = search ] && targets+=(gbufferlab); done
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGBL_BUILD_BENCH=ON >/dev/null
 cmake --build "$build" --target "${targets[@]}" -j2
@@ -55,6 +58,14 @@ for w in "${what[@]}"; do
             echo "== gbufferlab compare at 3840x2160, ${GBL_BENCH_4K_LAYOUT:-ue4} (peak memory)"
             /usr/bin/time -f '%M' -o "$results/compare_4k_rss_kib.txt" "$build/gbufferlab" compare \
                 --device "${GBL_BENCH_DEVICE:-cpu}" --size 3840x2160 --layouts "${GBL_BENCH_4K_LAYOUT:-ue4}" --out "$results/compare-4k" --force >/dev/null
+            ;;
+        search)
+            out="$results/search-16"
+            rm -rf "$out"
+            echo "== gbufferlab search --budget 16 (480x270, 3 views, 600 candidates)"
+            "$build/gbufferlab" search --budget 16 --size 480x270 --views 3 --candidates 600 --seed 1 \
+                --threads "${GBL_BENCH_SEARCH_THREADS:-2}" --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out"
+            cp "$out/search.json" "$results/search.json"
             ;;
         coldwarm)
             cache=$(mktemp -d)

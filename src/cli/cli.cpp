@@ -27,6 +27,8 @@ const std::vector<std::pair<std::string, Command>>& commands() {
         {"layouts", {"check, list and show G-buffer layout files (layouts/*.toml)", runLayoutsCliCommand}},
         {"encodings", {"measure what each encoding loses on its own (mean / p99 / max error)", runEncodingsCommand}},
         {"ibl", {"pre-compute the image-based light of an environment (cube mips, BRDF LUT)", runIblCommand}},
+        {"search", {"find layouts under a byte budget: the Pareto front of error against bytes per pixel",
+                    runSearchCommand}},
         {"diff", {"compare two image files: RMSE, PSNR, max, LDR-/HDR-FLIP, an error map", runDiffCommand}},
         {"devices", {"list the Vulkan devices gbufferlab can use (--device)", runDevicesCommand}},
     };

@@ -1,0 +1,245 @@
+// `gbufferlab search`: layouts found under a byte budget. Renders the float reference once per
+// view on the GPU, explores layouts with the fast CPU evaluation (src/search), writes the Pareto
+// front as layout files, and confirms it with full GPU renders through `compare`.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "compare_views.h"
+#include "error.h"
+#include "fast_eval.h"
+#include "file_io.h"
+#include "flip.h"
+#include "ibl_cache.h"
+#include "layout_catalog.h"
+#include "layout_search.h"
+#include "parallel_for.h"
+#include "renderer.h"
+#include "scene_inputs.h"
+#include "search_reference.h"
+#include "search_report.h"
+#include "search_space.h"
+#include "tone_map.h"
+#include "vk_context.h"
+
+namespace gbl {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kJournal = "search-journal.tsv";
+
+std::string duration(double seconds) {
+    const int s = int(std::lround(std::max(seconds, 0.0)));
+    char buf[32];
+    if (s >= 3600) std::snprintf(buf, sizeof(buf), "%dh%02dm", s / 3600, s / 60 % 60);
+    else if (s >= 60) std::snprintf(buf, sizeof(buf), "%dm%02ds", s / 60, s % 60);
+    else std::snprintf(buf, sizeof(buf), "%ds", s);
+    return buf;
+}
+
+// The CPU re-shade of the reference against its GPU render, mean over views: LDR-FLIP, and the
+// mean relative error of covered pixels' luminance (relative to max(Y, 1 % of the image's mean),
+// run_metrics' relative-luminance convention).
+void reshadeAgreement(const search::FastEvaluator& eval, const SearchReference& ref, double& flip, double& meanRel) {
+    flip = 0.0;
+    meanRel = 0.0;
+    for (size_t v = 0; v < ref.views.size(); ++v) {
+        const Image& cpu = eval.referenceHdr(v);
+        const Image& gpu = ref.gpuHdr[v];
+        flip += flipStats(flipLdr(toneMapToSrgb8AsFloat(gpu), toneMapToSrgb8AsFloat(cpu))).mean / double(ref.views.size());
+        auto lum = [](const Image& im, size_t i) {
+            return 0.2126 * im.pixels[i * 4] + 0.7152 * im.pixels[i * 4 + 1] + 0.0722 * im.pixels[i * 4 + 2];
+        };
+        double mean = 0.0, sum = 0.0;
+        size_t covered = 0;
+        for (size_t i = 0; i < gpu.pixelCount(); ++i) mean += lum(gpu, i) / double(gpu.pixelCount());
+        for (size_t i = 0; i < gpu.pixelCount(); ++i)
+            if (ref.views[v].shade.covered[i]) {
+                sum += std::abs(lum(cpu, i) - lum(gpu, i)) / std::max(lum(gpu, i), 0.01 * mean);
+                ++covered;
+            }
+        meanRel += (covered ? sum / double(covered) : 0.0) / double(ref.views.size());
+    }
+}
+
+}  // namespace
+
+int runSearchCommand(const std::vector<std::string>& args) {
+    const std::vector<FlagSpec> specs = {
+        {"budget", "B", "bytes per pixel, render targets and depth-stencil included (required; 4..64)"},
+        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in scene"},
+        {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
+        {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
+        {"size", "WxH", "image size of the evaluation and the confirmation (default 480x270)"},
+        {"views", "N", "cameras, as compare --views (default 3)"},
+        {"objective", "NAME", "flip (default), psnr or attributes: what the front minimises"},
+        {"seed", "S", "seed of the search (default 1); a seed gives the same front every time"},
+        {"candidates", "N", "layouts to evaluate (default 600)"},
+        {"threads", "N", "candidates evaluated at once (default: every core); does not change the result"},
+        {"out", "DIR", "output directory (default out/search-<time>); a directory holding a search journal "
+                       "is resumed"},
+        {"no-confirm", "", "skip the full GPU renders of the front and the published layouts"},
+        {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
+        {"help", "", "show this help"},
+    };
+    const ParsedArgs parsed = parseArgs("search", args, specs);
+    if (parsed.has("help")) {
+        std::printf("%s", formatHelp("gbufferlab search --budget B [--scene F] [--env F] [--size WxH] [--views N] "
+                                     "[--objective flip|psnr|attributes] [--seed S] [--out DIR]",
+                                     "Searches G-buffer layouts within B bytes per pixel (encodings, bits, fallbacks, "
+                                     "packing into real\nformats), writes the Pareto front of error against bytes as "
+                                     "layout files and a report beside\nthe published layouts. Resumable: rerun with "
+                                     "the same arguments and --out.",
+                                     specs)
+                               .c_str());
+        return 0;
+    }
+    if (!parsed.positional.empty())
+        throwUserError("gbufferlab search: unexpected argument '" + parsed.positional[0] + "' (see --help)");
+    if (!parsed.has("budget")) throwUserError("gbufferlab search: --budget B is required (bytes per pixel, e.g. 16)");
+    const int budget = parseIntFlag(parsed, "budget", 16, 4, 64);
+    const auto [width, height] = parseSize(parsed.get("size", "480x270"), "--size");
+    const int viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
+    const search::Objective objective = search::parseObjective(parsed.get("objective", "flip"));
+    const int seed = parseIntFlag(parsed, "seed", 1, 0, 2147483647);
+    const int candidates = parseIntFlag(parsed, "candidates", 600, 1, 1000000);
+    const int threads = parseIntFlag(parsed, "threads", hardwareThreads(), 1, 256);
+    const bool confirm = !parsed.has("no-confirm");
+    const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("search");
+    const bool resuming = fs::exists(outDir / kJournal);
+    checkOutputDirectory(outDir, resuming, "--out");
+    // The command as the front files quote it: without what does not change the result (--out,
+    // --threads, --device, --no-confirm), so two runs with one seed write the same bytes.
+    std::string commandLine = "gbufferlab search";
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--out" || args[i] == "--threads" || args[i] == "--device") {
+            ++i;
+            continue;
+        }
+        if (args[i] != "--no-confirm") commandLine += " " + args[i];
+    }
+
+    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
+                                                GltfLoadOptions{parsed.has("allow-outside-scene")});
+    VulkanContext ctx(DeviceOptions{parsed.get("device"), false});
+    validateResolution(ctx, width, height, "--size");
+    prepareOutputDirectory(outDir, resuming, "--out");
+
+    const IblMaps ibl = loadOrComputeIbl(ctx, inputs.environment, IblSettings{});
+    Renderer renderer(ctx, inputs.scene, inputs.environment, ibl);
+    std::vector<Camera> cameras;
+    for (const auto& v : compare::compareViews(inputs.scene, viewCount)) cameras.push_back(v.camera);
+    std::printf("search: rendering the reference (%d view%s, %ux%u) on %s\n", viewCount, viewCount > 1 ? "s" : "",
+                width, height, ctx.info.name.c_str());
+    // The depth formats candidates and published layouts use: the reference is rendered under each
+    // (visibility depends on depth precision; fast_eval.h DepthVariant).
+    std::vector<DepthKey> depthKeys;
+    auto addKey = [&](const DepthKey& k) {
+        if (std::find(depthKeys.begin(), depthKeys.end(), k) == depthKeys.end()) depthKeys.push_back(k);
+    };
+    for (const auto& d : search::depthFormats()) addKey({d.format, false});
+    std::vector<Layout> publishedLayouts;
+    for (const std::string& name : listLayoutNames()) {
+        if (name == "reference") continue;
+        Layout l = loadLayout(name);
+        if (l.pipeline != Pipeline::DeferredShading) continue;
+        addKey({l.depth.format, l.depth.reversedZ});
+        publishedLayouts.push_back(std::move(l));
+    }
+    SearchReference reference = renderSearchReference(renderer, cameras, width, height, depthKeys);
+    std::vector<search::EvalView> views = reference.views;
+    const search::FastEvaluator evaluator(std::move(views), search::shadeLights(inputs.scene.lights), ibl, objective);
+    double reshadeFlip = 0.0, reshadeMeanRel = 0.0;
+    reshadeAgreement(evaluator, reference, reshadeFlip, reshadeMeanRel);
+    std::printf("search: CPU re-shade of the reference vs its GPU render: FLIP %.5f, mean relative luminance error %.5f\n",
+                reshadeFlip, reshadeMeanRel);
+
+    // Everything the result depends on is in the journal's key; --threads and --no-confirm are not.
+    search::SearchOptions options;
+    options.budgetBytes = budget;
+    options.seed = uint64_t(seed);
+    options.candidates = candidates;
+    options.threads = threads;
+    options.journalPath = (outDir / kJournal).string();
+    options.journalKey = "budget=" + std::to_string(budget) + " scene=" + inputs.scene.source +
+                         " env=" + inputs.environment.source + " size=" + std::to_string(width) + "x" +
+                         std::to_string(height) + " views=" + std::to_string(viewCount) +
+                         " objective=" + search::objectiveName(objective) + " seed=" + std::to_string(seed);
+    options.progress = [&](const search::SearchProgress& p) {
+        std::fprintf(stderr, "search: %d/%d candidates (%d from the journal), %.0f/min, ETA %s", p.evaluated, p.total,
+                     p.resumed, p.perMinute, duration(p.etaSeconds).c_str());
+        if (p.bestAtBudget)
+            std::fprintf(stderr, ", best %d B/px score %.5f", p.bestAtBudget->bytes, p.bestAtBudget->eval.error);
+        std::fprintf(stderr, "\n");
+    };
+    if (resuming) std::printf("search: resuming from %s\n", options.journalPath.c_str());
+    const search::SearchResult result = runSearch(
+        [&](const std::string& text) { return evaluator.evaluate(parseLayout(text, "candidate.toml")); }, options);
+    if (result.rejectedByValidation)
+        throwUserError("search: " + std::to_string(result.rejectedByValidation) +
+                       " packed candidates failed validation (a bug in src/search/layout_packer.cpp): " +
+                       result.validationMessages.front());
+    const double evaluatedHere = double(result.evaluated.size()) - double(result.resumed);
+    const double perMinute = result.seconds > 0 ? 60.0 * evaluatedHere / result.seconds : 0.0;
+
+    SearchSummary summary;
+    summary.commandLine = commandLine;
+    summary.objective = search::objectiveName(objective);
+    summary.seed = uint64_t(seed);
+    summary.budget = budget;
+    summary.size = std::to_string(width) + "x" + std::to_string(height);
+    summary.views = viewCount;
+    summary.candidates = int(result.evaluated.size());
+    summary.resumed = result.resumed;
+    summary.perMinute = perMinute;
+    summary.cpuSecondsPerCandidate = evaluatedHere > 0 ? result.cpuSeconds / evaluatedHere : 0.0;
+    summary.threads = threads;
+    summary.reshadeFlip = reshadeFlip;
+    summary.reshadeMeanRelative = reshadeMeanRel;
+    summary.counts = std::to_string(result.overBudget) + " proposals over budget, " +
+                     std::to_string(result.duplicates) + " duplicates, " + std::to_string(result.unpackable) +
+                     " unpackable, " + std::to_string(result.rejectedByValidation) + " rejected by validation";
+    summary.rows = writeFront(result, outDir / "front", commandLine, summary.objective, uint64_t(seed));
+
+    // The published deferred-shading layouts, beside the found ones (deferred lighting is not modelled).
+    for (const Layout& l : publishedLayouts) {
+        SearchRow row;
+        row.name = l.name;
+        row.bytes = bytesPerPixel(l);
+        row.fast = evaluator.evaluate(l, threads);
+        row.how = "published";
+        summary.rows.push_back(row);
+    }
+
+    if (confirm) {
+        std::vector<std::string> compareArgs = {"--size", summary.size, "--views", std::to_string(viewCount),
+                                                "--out", (outDir / "compare").string(), "--force"};
+        if (parsed.has("scene")) compareArgs.insert(compareArgs.end(), {"--scene", parsed.get("scene")});
+        if (parsed.has("env")) compareArgs.insert(compareArgs.end(), {"--env", parsed.get("env")});
+        if (parsed.has("allow-outside-scene")) compareArgs.push_back("--allow-outside-scene");
+        if (parsed.has("device")) compareArgs.insert(compareArgs.end(), {"--device", parsed.get("device")});
+        std::string list;
+        for (const SearchRow& r : summary.rows) list += (list.empty() ? "" : ",") + (r.found ? r.file : r.name);
+        compareArgs.insert(compareArgs.end(), {"--layouts", list});
+        std::printf("search: confirming with full GPU renders: gbufferlab compare");
+        for (const auto& a : compareArgs) std::printf(" %s", a.c_str());
+        std::printf("\n");
+        std::fflush(stdout);
+        const int rc = runCompareCommand(compareArgs);
+        if (rc != 0 && rc != 4) throwUserError("search: the confirming compare failed with status " + std::to_string(rc));
+        readConfirmation(outDir / "compare" / "report.json", summary.rows);
+    }
+    const std::string note = writeSearchReport(summary, outDir);
+    std::printf("search: %zu layouts on the front written to %s\n%s", result.front.size(),
+                (outDir / "front").string().c_str(), note.c_str());
+    std::printf("search: report %s\n", (outDir / "search-report.md").string().c_str());
+    return 0;
+}
+
+}  // namespace gbl

@@ -1,0 +1,221 @@
+#include "fast_eval.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cpu_codec.h"
+#include "error.h"
+#include "flip.h"
+#include "metrics.h"
+#include "normal_space.h"
+#include "tone_map.h"
+
+namespace gbl::search {
+
+const char* objectiveName(Objective o) {
+    switch (o) {
+        case Objective::Flip: return "flip";
+        case Objective::Psnr: return "psnr";
+        default: return "attributes";
+    }
+}
+
+Objective parseObjective(const std::string& text) {
+    if (text == "flip") return Objective::Flip;
+    if (text == "psnr") return Objective::Psnr;
+    if (text == "attributes") return Objective::Attributes;
+    throwUserError("--objective '" + text + "': unknown objective (known: flip, psnr, attributes)");
+}
+
+std::vector<glm::vec3> positionsFromDepth(const std::vector<float>& depth, int width, int height,
+                                          const glm::mat4& invViewProj) {
+    std::vector<glm::vec3> out(depth.size());
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const size_t i = size_t(y) * size_t(width) + size_t(x);
+            // lighting_pass.comp.glsl worldPositionFromDepth.
+            const glm::vec2 ndc = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(width), float(height)) * 2.0f - 1.0f;
+            const glm::vec4 w = invViewProj * glm::vec4(ndc, depth[i], 1.0f);
+            out[i] = glm::vec3(w) / w.w;
+        }
+    return out;
+}
+
+float quantizeDepth(float d, const Depth& depth) {
+    if (depth.floatDepth) {
+        if (!depth.reversedZ) return d;
+        // Reversed Z stores 1 - d (computeCameraMatrices' z' = w - z) as a float32, read back as 1 - stored.
+        const float stored = float(1.0 - double(d));
+        return float(1.0 - double(stored));
+    }
+    const double steps = std::ldexp(1.0, depth.depthBits) - 1.0;
+    const double stored = std::nearbyint(double(std::clamp(depth.reversedZ ? 1.0f - d : d, 0.0f, 1.0f)) * steps) / steps;
+    return float(depth.reversedZ ? 1.0 - stored : stored);
+}
+
+struct FastEvaluator::Prepared {
+    Image referenceHdr;
+    Image referenceSrgb;
+    std::unique_ptr<LdrFlipReference> flip;
+};
+
+FastEvaluator::FastEvaluator(std::vector<EvalView> views, std::vector<ShadeLight> lights, const IblMaps& ibl,
+                             Objective objective, float exposure)
+    : views_(std::move(views)), lights_(std::move(lights)), ibl_(ibl), objective_(objective), exposure_(exposure) {
+    for (EvalView& v : views_) {
+        v.shade.position = positionsFromDepth(v.depth, v.shade.width, v.shade.height, v.invViewProj);
+        for (DepthVariant& d : v.depthVariants)
+            d.position = positionsFromDepth(d.depth, v.shade.width, v.shade.height, d.invViewProj);
+        auto p = std::make_unique<Prepared>();
+        p->referenceHdr = reshade(v.shade, v.shade.covered, v.reference, v.shade.position, lights_, ibl_, nullptr, 0);
+        p->referenceSrgb = toneMapToSrgb8AsFloat(p->referenceHdr, exposure_);
+        if (objective_ == Objective::Flip) p->flip = std::make_unique<LdrFlipReference>(p->referenceSrgb);
+        prepared_.push_back(std::move(p));
+    }
+}
+
+FastEvaluator::~FastEvaluator() = default;
+
+const Image& FastEvaluator::referenceHdr(size_t v) const { return prepared_[v]->referenceHdr; }
+
+Image FastEvaluator::renderLayout(const Layout& layout, size_t vi, int threads) const {
+    if (layout.pipeline != Pipeline::DeferredShading)
+        throwUserError("layout '" + layout.name + "': the fast evaluation models deferred shading only");
+    const EvalView& v = views_[vi];
+    const int w = v.shade.width, h = v.shade.height;
+    const size_t n = size_t(w) * size_t(h);
+    const StoredSpace normalSpace = layout.space.normal;
+    const bool storesPosition = layout.stores(Attribute::Position);
+    // What this layout's depth format sees: the reference rendered with it when there is such a
+    // variant; else the D32 depth quantised as the format would hold it.
+    const DepthVariant* variant = nullptr;
+    for (const DepthVariant& d : v.depthVariants)
+        if (d.format == layout.depth.format && d.reversedZ == layout.depth.reversedZ) variant = &d;
+    const std::vector<Surface>& input = variant ? variant->surfaces : v.reference;
+    const std::vector<uint8_t>& covered = variant ? variant->covered : v.shade.covered;
+    std::vector<glm::vec3> quantized;
+    if (!variant && !(layout.depth.floatDepth && !layout.depth.reversedZ)) {
+        std::vector<float> depth(n);
+        for (size_t i = 0; i < n; ++i) depth[i] = quantizeDepth(v.depth[i], layout.depth);
+        quantized = positionsFromDepth(depth, w, h, v.invViewProj);
+    }
+    const std::vector<glm::vec3>& positions =
+        variant ? variant->position : quantized.empty() ? v.shade.position : quantized;
+
+    // Into the stored space (normal_space.h), as the G-buffer pass does before writeGBuffer;
+    // pixels without geometry hold the layout's clear values.
+    const Surface clear = clearSurface(layout);
+    // Per-thread scratch: a candidate's 10 MB of Surfaces are not allocated (and page-faulted) anew
+    // every time (perf: 5 % of a search at 480x270 went to fresh pages).
+    thread_local std::vector<Surface> stored, decoded;
+    thread_local CpuGBuffer gbuffer;
+    stored.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        if (!covered[i]) {
+            stored[i] = clear;
+            continue;
+        }
+        Surface s = input[i];
+        s.normal = directionToStored(s.normal, normalSpace, v.view);
+        if (storesPosition) s.position = pointToStored(positions[i], layout.space.position, v.view);
+        stored[i] = s;
+    }
+    CpuCodec codec(layout, CpuCodecOptions{std::max(threads, 1)});
+    gbuffer.covered = covered;
+    codec.encode(stored, w, h, gbuffer);
+    codec.decode(gbuffer, decoded);
+    std::vector<glm::vec3> storedPositions;
+    if (storesPosition) storedPositions.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        decoded[i].normal = directionFromStored(decoded[i].normal, normalSpace, v.view);
+        if (storesPosition) storedPositions[i] = pointFromStored(decoded[i].position, layout.space.position, v.view);
+    }
+    const Fallback* emissive = layout.findFallback(Attribute::Emissive);
+    const bool forward = emissive && emissive->kind == FallbackKind::Forward;
+    return reshade(v.shade, covered, decoded, storesPosition ? storedPositions : positions, lights_, ibl_,
+                   forward ? &input : nullptr, std::max(threads, 1));
+}
+
+Evaluation FastEvaluator::evaluate(const Layout& layout) const { return evaluate(layout, 1); }
+
+namespace {
+
+// Mean attribute error over covered pixels (the weights are fast_eval.h's).
+double attributeError(const std::vector<Surface>& reference, const std::vector<Surface>& decoded,
+                      const std::vector<uint8_t>& covered) {
+    double sum = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < reference.size(); ++i) {
+        if (!covered[i]) continue;
+        const Surface& a = reference[i];
+        const Surface& b = decoded[i];
+        const float c = std::clamp(glm::dot(glm::normalize(a.normal), glm::normalize(b.normal)), -1.0f, 1.0f);
+        const double angle = double(std::acos(c)) * 180.0 / 3.14159265358979323846;
+        const glm::vec3 dd = glm::abs(a.diffuseColor - b.diffuseColor);
+        const glm::vec3 ds = glm::abs(a.specularColor - b.specularColor);
+        sum += angle / 10.0 + double(dd.x + dd.y + dd.z) / 3.0 + 4.0 * double(ds.x + ds.y + ds.z) / 3.0 +
+               double(std::abs(a.roughness - b.roughness));
+        ++count;
+    }
+    return count ? sum / double(count) : 0.0;
+}
+
+// The mean of a FLIP map: flipStats' mean, without the sorts its quantiles need (7 % of a search).
+double meanOf(const Image& map) {
+    double sum = 0.0;
+    for (float v : map.pixels) sum += double(v);
+    return map.pixels.empty() ? 0.0 : sum / double(map.pixels.size());
+}
+
+// imageErrorStats(..., PsnrPeak::One, 3).psnr without its p99 sort: 10 log10(1 / MSE) over the
+// RGB samples; identical images count as 100 dB.
+double psnrOne(const Image& a, const Image& b) {
+    double sum = 0.0;
+    const size_t n = a.pixelCount();
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(b.pixels[i * size_t(b.channels) + size_t(c)]) - double(a.pixels[i * size_t(a.channels) + size_t(c)]);
+            sum += d * d;
+        }
+    const double mse = sum / double(n * 3);
+    return mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : 100.0;
+}
+
+}  // namespace
+
+Evaluation FastEvaluator::evaluate(const Layout& layout, int threads) const {
+    Evaluation e;
+    double flip = 0.0, psnr = 0.0, attributes = 0.0;
+    for (size_t vi = 0; vi < views_.size(); ++vi) {
+        const Prepared& p = *prepared_[vi];
+        if (objective_ == Objective::Attributes) {
+            // The decoded Surfaces only: no lighting needed.
+            const EvalView& v = views_[vi];
+            std::vector<Surface> stored(v.reference.size());
+            for (size_t i = 0; i < stored.size(); ++i) {
+                stored[i] = v.reference[i];
+                stored[i].normal = directionToStored(stored[i].normal, layout.space.normal, v.view);
+            }
+            CpuCodec codec(layout, CpuCodecOptions{std::max(threads, 1)});
+            CpuGBuffer gbuffer;
+            gbuffer.covered = v.shade.covered;
+            codec.encode(stored, v.shade.width, v.shade.height, gbuffer);
+            std::vector<Surface> decoded = codec.decode(gbuffer);
+            for (Surface& s : decoded) s.normal = directionFromStored(s.normal, layout.space.normal, v.view);
+            attributes += attributeError(v.reference, decoded, v.shade.covered);
+            continue;
+        }
+        const Image hdr = renderLayout(layout, vi, threads);
+        const Image srgb = toneMapToSrgb8AsFloat(hdr, exposure_);
+        psnr += psnrOne(p.referenceSrgb, srgb);
+        if (p.flip) flip += meanOf(p.flip->compare(srgb));
+    }
+    const double nv = double(views_.size());
+    e.psnr = psnr / nv;
+    e.attributes = attributes / nv;
+    if (objective_ == Objective::Flip) e.flip = flip / nv;
+    e.error = objective_ == Objective::Flip ? e.flip : objective_ == Objective::Psnr ? -e.psnr : e.attributes;
+    return e;
+}
+
+}  // namespace gbl::search

@@ -1,0 +1,221 @@
+#include "layout_packer.h"
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+
+#include "layout.h"
+
+namespace gbl::search {
+
+int PlannedField::totalBits() const { return std::accumulate(codeBits.begin(), codeBits.end(), 0); }
+
+namespace {
+
+PlannedField encoded(const char* attribute, const EncodingChoice& e, int bits) {
+    PlannedField f{attribute, e.name, std::vector<int>(size_t(e.codes), bits)};
+    if (e.extraBits) f.codeBits.push_back(e.extraBits);  // the z sign, after x and y
+    return f;
+}
+
+PlannedField unorm(const char* attribute, int bits) { return {attribute, "unorm", {bits}}; }
+
+// The real formats a bin may become, smallest first; within one size, the first whose channels
+// hold every code unsplit wins (byte channels first: the usual shape of a hand-made layout).
+const std::vector<std::vector<const char*>>& formatsBySize() {
+    static const std::vector<std::vector<const char*>> v = {
+        {"R8_UNORM"},
+        {"R8G8_UNORM", "R16_UNORM", "R16_UINT"},
+        {"R8G8B8A8_UNORM", "A2B10G10R10_UNORM_PACK32", "R16G16_UNORM", "R32_UINT"},
+        {"R16G16B16A16_UNORM", "R32G32_UINT"},
+    };
+    return v;
+}
+
+struct Placement {
+    const TargetFormatInfo* format = nullptr;
+    // Per field of the bin, per code: the place text.
+    std::vector<std::vector<std::string>> places;
+};
+
+std::string placeText(const Channel& ch, int first, int count) {
+    if (first == 0 && count == ch.bits) return ch.name;
+    if (count == 1) return ch.name + "[" + std::to_string(first) + "]";
+    return ch.name + "[" + std::to_string(first) + ":" + std::to_string(first + count - 1) + "]";
+}
+
+// First-fit decreasing of the bin's codes into the format's channels, no code split.
+bool place(const TargetFormatInfo& format, const std::vector<const PlannedField*>& fields, Placement& out) {
+    struct Code {
+        size_t field, code;
+        int bits;
+    };
+    std::vector<Code> codes;
+    for (size_t f = 0; f < fields.size(); ++f)
+        for (size_t c = 0; c < fields[f]->codeBits.size(); ++c) codes.push_back({f, c, fields[f]->codeBits[c]});
+    std::stable_sort(codes.begin(), codes.end(), [](const Code& a, const Code& b) { return a.bits > b.bits; });
+    std::vector<int> used(format.channels.size(), 0);
+    out.format = &format;
+    out.places.assign(fields.size(), {});
+    for (size_t f = 0; f < fields.size(); ++f) out.places[f].resize(fields[f]->codeBits.size());
+    for (const Code& code : codes) {
+        bool done = false;
+        for (size_t ch = 0; ch < format.channels.size() && !done; ++ch) {
+            if (used[ch] + code.bits > format.channels[ch].bits) continue;
+            out.places[code.field][code.code] = placeText(format.channels[ch], used[ch], code.bits);
+            used[ch] += code.bits;
+            done = true;
+        }
+        if (!done) return false;
+    }
+    return true;
+}
+
+bool placeBin(const std::vector<const PlannedField*>& fields, Placement& out) {
+    int bits = 0;
+    for (const auto* f : fields) bits += f->totalBits();
+    for (const auto& size : formatsBySize())
+        for (const char* name : size) {
+            const TargetFormatInfo* info = findTargetFormat(name);
+            if (!info || info->bits < bits) continue;
+            if (place(*info, fields, out)) return true;
+        }
+    return false;
+}
+
+// What a pixel without geometry holds: UE4 clears its G-buffer to zero; a +z normal, full
+// roughness, black colours, no metal, UE4's default specular 0.5, no occlusion.
+std::string clearValue(const std::string& attribute) {
+    if (attribute == "normal") return "[0.0, 0.0, 1.0]";
+    if (attribute == "roughness") return "1.0";
+    if (attribute == "specular") return "0.5";
+    if (attribute == "occlusion") return "1.0";
+    return "0.0";
+}
+
+}  // namespace
+
+std::vector<PlannedField> plannedFields(const Genome& g) {
+    std::vector<PlannedField> out;
+    out.push_back(encoded("normal", normalEncodings()[size_t(g.normalEncoding)], g.normalBits));
+    out.push_back(encoded("roughness", roughnessEncodings()[size_t(g.roughnessEncoding)], g.roughnessBits));
+    const EncodingChoice& colour = colourEncodings()[size_t(g.colourEncoding)];
+    const EncodingChoice& specColour = colourEncodings()[size_t(g.specularColourEncoding)];
+    if (g.workflow == Workflow::Metallic) {
+        out.push_back(encoded("base_color", colour, g.colourBits));
+        if (g.metallicBits > 0) out.push_back(unorm("metallic", g.metallicBits));
+        if (g.specularMode == SpecularMode::Scalar) out.push_back(unorm("specular", g.specularBits));
+        if (g.specularMode == SpecularMode::Colour)
+            out.push_back(encoded("specular_color", specColour, g.specularColourBits));
+    } else {
+        out.push_back(encoded("diffuse_color", colour, g.colourBits));
+        out.push_back(encoded("specular_color", specColour, g.specularColourBits));
+    }
+    if (g.occlusionBits > 0) out.push_back(unorm("occlusion", g.occlusionBits));
+    return out;
+}
+
+PackResult packGenome(const Genome& g, int budgetBytes) {
+    PackResult r;
+    const std::vector<PlannedField> fields = plannedFields(g);
+    std::vector<size_t> order(fields.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return fields[a].totalBits() > fields[b].totalBits(); });
+    struct Bin {
+        int capacity = 32, used = 0;
+        std::vector<size_t> fields;
+    };
+    std::vector<Bin> bins;
+    for (size_t i : order) {
+        const int bits = fields[i].totalBits();
+        if (bits > 64) {
+            r.why = fields[i].attribute + " needs " + std::to_string(bits) + " bits, more than any one target holds";
+            return r;
+        }
+        bool placed = false;
+        for (Bin& b : bins)
+            if (b.used + bits <= b.capacity) {
+                b.used += bits;
+                b.fields.push_back(i);
+                placed = true;
+                break;
+            }
+        if (!placed) bins.push_back({bits > 32 ? 64 : 32, bits, {i}});
+    }
+    if (bins.size() > 8) {
+        r.why = "needs " + std::to_string(bins.size()) + " targets (at most 8)";
+        return r;
+    }
+    const DepthChoice& depth = depthFormats()[size_t(g.depthFormat)];
+    std::vector<Placement> placements(bins.size());
+    int bytes = depth.bytes;
+    for (size_t b = 0; b < bins.size(); ++b) {
+        std::vector<const PlannedField*> binFields;
+        for (size_t i : bins[b].fields) binFields.push_back(&fields[i]);
+        if (!placeBin(binFields, placements[b])) {
+            r.why = "the codes of target " + std::to_string(b) + " fit no real format unsplit";
+            return r;
+        }
+        bytes += placements[b].format->bits / 8;
+    }
+    r.bytesPerPixel = bytes;
+    if (bytes > budgetBytes) {
+        r.why = "needs " + std::to_string(bytes) + " bytes per pixel, over the budget of " + std::to_string(budgetBytes);
+        return r;
+    }
+
+    std::ostringstream t;
+    t << "title = \"Found by gbufferlab search: " << describeGenome(g) << "\"\n";
+    t << "pipeline = \"deferred-shading\"\n";
+    t << "source = { engine = \"gbufferlab search\", code = \"src/search/layout_packer.cpp\", year = 2026 }\n\n";
+    t << "[depth]\nformat = \"" << depth.format << "\"\nreversed_z = false\n\n";
+    t << "[space]\nnormal = \"world\"\nup = \"" << (g.normalSpace ? "z" : "y") << "\"\n";
+    for (size_t b = 0; b < bins.size(); ++b) {
+        t << "\n[[target]]\nname = \"RT" << b << "\"\nformat = \"" << placements[b].format->name << "\"\nfield = [\n";
+        for (size_t k = 0; k < bins[b].fields.size(); ++k) {
+            const PlannedField& f = fields[bins[b].fields[k]];
+            const auto& places = placements[b].places[k];
+            t << "  { attribute = \"" << f.attribute << "\", encoding = \"" << f.encoding << "\", at = ";
+            if (places.size() == 1) {
+                t << "\"" << places[0] << "\"";
+            } else {
+                t << "[";
+                for (size_t p = 0; p < places.size(); ++p) t << (p ? ", " : "") << "\"" << places[p] << "\"";
+                t << "]";
+            }
+            t << " },\n";
+        }
+        t << "]\n";
+    }
+    auto stores = [&](const std::string& a) {
+        return std::any_of(fields.begin(), fields.end(), [&](const PlannedField& f) { return f.attribute == a; });
+    };
+    t << "\n[fallback]\n";
+    if (g.workflow == Workflow::Metallic) {
+        t << "diffuse_color = \"from_base_color\"\n";
+        if (!stores("specular_color"))
+            t << "specular_color = \"" << (g.specularMode == SpecularMode::Scalar ? "ue4" : "from_metallic") << "\"\n";
+    } else {
+        t << "base_color = \"from_diffuse_specular\"\nmetallic = \"from_specular_color\"\n";
+    }
+    if (!stores("metallic") && g.workflow == Workflow::Metallic) t << "metallic = 0.0\n";
+    if (!stores("specular")) t << "specular = 0.5\n";
+    if (!stores("occlusion")) t << "occlusion = 1.0\n";
+    t << "emissive = \"forward\"\n";
+    t << "\n[clear]\n";
+    for (const PlannedField& f : fields) t << f.attribute << " = " << clearValue(f.attribute) << "\n";
+    r.body = t.str();
+    r.ok = true;
+    return r;
+}
+
+std::string layoutText(const std::string& name, const std::string& comment, const std::string& body) {
+    std::string out;
+    std::istringstream lines(comment);
+    for (std::string line; std::getline(lines, line);) out += line.empty() ? "#\n" : "# " + line + "\n";
+    out += "name = \"" + name + "\"\n" + body;
+    return out;
+}
+
+}  // namespace gbl::search

@@ -1,0 +1,40 @@
+#pragma once
+// Turns a Genome (search_space.h) into layout text: the fields it stores, packed into render
+// targets of real formats (R8, RG8, R16, RGBA8, RGB10A2, RG16, R32UI, RGBA16, RG32UI) under a
+// byte budget that counts every target and the depth-stencil attachment, as bytesPerPixel
+// (layout.h) and measure/bandwidth.h count them. The text is then read by the real parser and
+// validator (parseLayout): a candidate exists only if `gbufferlab layouts check` accepts it.
+#include <string>
+#include <vector>
+
+#include "search_space.h"
+
+namespace gbl::search {
+
+// One field the genome stores: its attribute, encoding and the width of each code, in the
+// encoding's code order.
+struct PlannedField {
+    std::string attribute;
+    std::string encoding;
+    std::vector<int> codeBits;
+    int totalBits() const;
+};
+
+std::vector<PlannedField> plannedFields(const Genome& g);
+
+struct PackResult {
+    bool ok = false;
+    std::string why;   // when !ok: "needs 18 bytes per pixel, over the budget of 16", ...
+    std::string body;  // the layout text after the name line (canonical: equal genomes, equal text)
+    int bytesPerPixel = 0;
+};
+
+// Packs the genome's fields: first-fit decreasing by bits into 32-bit bins (64-bit for a field
+// wider than 32), each bin then given the smallest real format whose channels hold its codes
+// without splitting one across channels. Fails over `budgetBytes` or past 8 targets.
+PackResult packGenome(const Genome& g, int budgetBytes);
+
+// The whole file: `comment` (each line prefixed "# "), then name, then body.
+std::string layoutText(const std::string& name, const std::string& comment, const std::string& body);
+
+}  // namespace gbl::search

@@ -1,0 +1,200 @@
+#include "layout_search.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <unordered_set>
+
+#include "error.h"
+#include "layout.h"
+#include "layout_packer.h"
+#include "parallel_for.h"
+#include "search_journal.h"
+
+namespace gbl::search {
+
+namespace {
+
+constexpr int kRandomRounds = 2;         // rounds of random genomes before mutation starts
+constexpr double kRandomChance = 0.15;   // afterwards, a fresh genome instead of a mutation
+constexpr int kPoolPerBytes = 3;         // parents: the best few at each byte count
+constexpr int kAttemptsPerCandidate = 2000;
+
+bool better(const Candidate& a, const Candidate& b) {
+    if (a.eval.error != b.eval.error) return a.eval.error < b.eval.error;
+    return a.index < b.index;
+}
+
+std::vector<int> parentPool(const std::vector<Candidate>& cands) {
+    std::map<int, std::vector<int>> byBytes;
+    for (const Candidate& c : cands) {
+        auto& v = byBytes[c.bytes];
+        v.push_back(c.index);
+        std::sort(v.begin(), v.end(), [&](int a, int b) { return better(cands[size_t(a)], cands[size_t(b)]); });
+        if (v.size() > size_t(kPoolPerBytes)) v.pop_back();
+    }
+    std::vector<int> pool;
+    for (const auto& [bytes, v] : byBytes) pool.insert(pool.end(), v.begin(), v.end());
+    return pool;
+}
+
+}  // namespace
+
+std::vector<int> paretoFront(const std::vector<Candidate>& cands) {
+    std::vector<int> order(cands.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+        const Candidate &x = cands[size_t(a)], &y = cands[size_t(b)];
+        if (x.bytes != y.bytes) return x.bytes < y.bytes;
+        return better(x, y);
+    });
+    std::vector<int> front;
+    for (int i : order) {
+        const Candidate& c = cands[size_t(i)];
+        // Sorted by bytes: c joins when it beats every cheaper (or equally cheap, earlier) one.
+        if (front.empty() || c.eval.error < cands[size_t(front.back())].eval.error) {
+            if (!front.empty() && cands[size_t(front.back())].bytes == c.bytes) continue;
+            front.push_back(i);
+        }
+    }
+    return front;
+}
+
+double spearman(const std::vector<double>& a, const std::vector<double>& b) {
+    auto ranks = [](const std::vector<double>& v) {
+        std::vector<size_t> o(v.size());
+        std::iota(o.begin(), o.end(), size_t(0));
+        std::stable_sort(o.begin(), o.end(), [&](size_t i, size_t j) { return v[i] < v[j]; });
+        std::vector<double> r(v.size());
+        for (size_t i = 0; i < o.size();) {
+            size_t j = i;
+            while (j + 1 < o.size() && v[o[j + 1]] == v[o[i]]) ++j;
+            for (size_t k = i; k <= j; ++k) r[o[k]] = 0.5 * double(i + j) + 1.0;
+            i = j + 1;
+        }
+        return r;
+    };
+    const std::vector<double> ra = ranks(a), rb = ranks(b);
+    const double n = double(a.size());
+    if (a.size() < 2) return 0.0;
+    double ma = 0, mb = 0;
+    for (size_t i = 0; i < a.size(); ++i) ma += ra[i], mb += rb[i];
+    ma /= n, mb /= n;
+    double sab = 0, saa = 0, sbb = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        sab += (ra[i] - ma) * (rb[i] - mb);
+        saa += (ra[i] - ma) * (ra[i] - ma);
+        sbb += (rb[i] - mb) * (rb[i] - mb);
+    }
+    return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options) {
+    SearchResult result;
+    std::unique_ptr<Journal> journal;
+    if (!options.journalPath.empty()) journal = std::make_unique<Journal>(options.journalPath, options.journalKey);
+    const std::vector<JournalEntry> recorded = journal ? journal->entries() : std::vector<JournalEntry>{};
+
+    SplitMix64 rng(options.seed);
+    std::unordered_set<std::string> seen;
+    std::vector<Candidate>& cands = result.evaluated;
+    const int total = options.candidates;
+    const int threads = options.threads > 0 ? options.threads : hardwareThreads();
+    double sessionSeconds = 0.0;
+    int sessionEvaluated = 0;
+
+    for (int round = 0; int(cands.size()) < total; ++round) {
+        // Propose a batch from the archive as it stood at the end of the last round.
+        const std::vector<int> pool = parentPool(cands);
+        std::vector<Candidate> batch;
+        const int want = std::min(options.batch, total - int(cands.size()));
+        for (int attempt = 0; int(batch.size()) < want && attempt < kAttemptsPerCandidate * want; ++attempt) {
+            Candidate c;
+            if (round < kRandomRounds || pool.empty() || rng.chance(kRandomChance)) {
+                c.genome = randomGenome(rng);
+                c.how = "random";
+            } else {
+                const Candidate& parent = cands[size_t(pool[size_t(rng.below(int(pool.size())))])];
+                c.genome = mutateGenome(parent.genome, rng);
+                c.how = "mutation of #" + std::to_string(parent.index);
+            }
+            const PackResult packed = packGenome(c.genome, options.budgetBytes);
+            if (!packed.ok) {
+                (packed.bytesPerPixel > options.budgetBytes ? result.overBudget : result.unpackable)++;
+                continue;
+            }
+            if (!seen.insert(packed.body).second) {
+                result.duplicates++;
+                continue;
+            }
+            // The real parser and validator: what `gbufferlab layouts check` runs.
+            const std::vector<LayoutDiagnostic> diags =
+                checkLayout(layoutText("candidate", "", packed.body), "candidate.toml");
+            if (!diags.empty()) {
+                result.rejectedByValidation++;
+                if (result.validationMessages.size() < 5) result.validationMessages.push_back(diags.front().text());
+                continue;
+            }
+            c.body = packed.body;
+            c.bytes = packed.bytesPerPixel;
+            c.hash = textHash(c.body);
+            c.index = int(cands.size() + batch.size());
+            batch.push_back(std::move(c));
+        }
+        if (batch.empty()) break;  // the space under this budget is exhausted
+
+        // Journal entries stand in for evaluations; the rest run in parallel.
+        std::vector<size_t> todo;
+        for (size_t i = 0; i < batch.size(); ++i) {
+            Candidate& c = batch[i];
+            if (size_t(c.index) < recorded.size()) {
+                const JournalEntry& e = recorded[size_t(c.index)];
+                if (e.hash != c.hash || e.bytes != c.bytes)
+                    throwUserError(options.journalPath + ":" + std::to_string(c.index + 2) +
+                                   ": the journal's candidate differs from the one this search proposes (another "
+                                   "version of gbufferlab?); remove the journal or give another --out");
+                c.eval = e.eval;
+                c.fromJournal = true;
+                result.resumed++;
+            } else {
+                todo.push_back(i);
+            }
+        }
+        const auto start = std::chrono::steady_clock::now();
+        const std::clock_t cpuStart = std::clock();
+        parallelFor(int64_t(todo.size()), threads, [&](int64_t b, int64_t e) {
+            for (int64_t k = b; k < e; ++k) {
+                Candidate& c = batch[todo[size_t(k)]];
+                c.eval = evaluate(layoutText("candidate", "", c.body));
+            }
+        });
+        sessionSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        result.cpuSeconds += double(std::clock() - cpuStart) / double(CLOCKS_PER_SEC);
+        sessionEvaluated += int(todo.size());
+        for (Candidate& c : batch) {
+            if (journal && !c.fromJournal) journal->append({c.index, c.hash, c.bytes, c.eval});
+            cands.push_back(std::move(c));
+        }
+        if (options.progress) {
+            SearchProgress p;
+            p.evaluated = int(cands.size());
+            p.total = total;
+            p.resumed = result.resumed;
+            p.seconds = sessionSeconds;
+            p.perMinute = sessionSeconds > 0 ? 60.0 * sessionEvaluated / sessionSeconds : 0.0;
+            p.etaSeconds = p.perMinute > 0 ? (total - p.evaluated) * 60.0 / p.perMinute : 0.0;
+            const std::vector<int> front = paretoFront(cands);
+            if (!front.empty()) p.bestAtBudget = &cands[size_t(front.back())];
+            options.progress(p);
+        }
+    }
+    result.front = paretoFront(cands);
+    result.seconds = sessionSeconds;
+    return result;
+}
+
+}  // namespace gbl::search

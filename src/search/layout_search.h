@@ -1,0 +1,77 @@
+#pragma once
+// The layout search: a seeded evolutionary search over Genomes (search_space.h) under a byte
+// budget, keeping a Pareto archive of error against bytes per pixel.
+//
+// Each round proposes a batch of candidates from the current archive (a fresh random genome with
+// probability 0.15 and for the first rounds, else a mutation of a parent drawn from the pool: the
+// 3 best candidates at each byte count), packs each into a layout (layout_packer.h), drops those
+// over the budget or already seen (same canonical text), parses and validates the rest with the
+// real parser, evaluates the batch in parallel, and only then updates the archive in candidate
+// order. Nothing depends on the thread count or timing, so a seed gives the same candidates,
+// scores and front on any machine; the journal (search_journal.h) makes it resumable.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fast_eval.h"
+#include "search_space.h"
+
+namespace gbl::search {
+
+struct Candidate {
+    int index = 0;
+    Genome genome;
+    std::string body;  // layout text after the name line (layout_packer.h)
+    uint64_t hash = 0;
+    int bytes = 0;
+    Evaluation eval;
+    std::string how;   // "random", "mutation of #12"
+    bool fromJournal = false;
+};
+
+struct SearchProgress {
+    int evaluated = 0, total = 0;
+    int resumed = 0;          // of evaluated, read from the journal
+    double seconds = 0.0;     // wall time of this session's evaluations
+    double perMinute = 0.0;   // this session's rate (0 until something was evaluated)
+    double etaSeconds = 0.0;
+    const Candidate* bestAtBudget = nullptr;  // lowest error of the front
+};
+
+using EvaluateFn = std::function<Evaluation(const std::string& layoutText)>;
+
+struct SearchOptions {
+    int budgetBytes = 16;
+    uint64_t seed = 1;
+    int candidates = 600;   // evaluations to run (journal entries included)
+    int batch = 8;          // candidates proposed and evaluated per round (fixed: part of the result)
+    int threads = 0;        // evaluations at once (0: hardwareThreads()); does not change the result
+    std::string journalPath;  // empty: no journal
+    std::string journalKey;
+    std::function<void(const SearchProgress&)> progress;  // after every round
+};
+
+struct SearchResult {
+    std::vector<Candidate> evaluated;  // in index order
+    std::vector<int> front;            // indices into evaluated, by bytes ascending
+    int overBudget = 0, duplicates = 0, unpackable = 0;
+    int rejectedByValidation = 0;  // always expected 0: the packer only writes valid layouts
+    std::vector<std::string> validationMessages;
+    int resumed = 0;
+    double seconds = 0.0;     // this session's evaluation wall time
+    double cpuSeconds = 0.0;  // ... and the process's CPU time over it (all threads): on a loaded
+                              // machine, what the evaluations cost regardless of the other work
+};
+
+// `evaluate` receives the whole layout text (name "candidate"); it is called concurrently.
+SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options);
+
+// The Pareto front of `cands` (error against bytes): indices, by bytes ascending; among equal
+// scores the earlier candidate wins.
+std::vector<int> paretoFront(const std::vector<Candidate>& cands);
+
+// Spearman's rank correlation of two equally long series (average ranks for ties).
+double spearman(const std::vector<double>& a, const std::vector<double>& b);
+
+}  // namespace gbl::search

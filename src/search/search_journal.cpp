@@ -1,0 +1,107 @@
+#include "search_journal.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+#include "error.h"
+#include "file_io.h"
+
+namespace gbl::search {
+
+namespace {
+
+constexpr const char* kMagic = "gbufferlab-search-journal 1";
+
+std::string hexFloat(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%a", v);
+    return buf;
+}
+
+bool parseLine(const std::string& line, JournalEntry& e) {
+    std::vector<std::string> parts;
+    std::string part;
+    std::istringstream in(line);
+    while (std::getline(in, part, '\t')) parts.push_back(part);
+    if (parts.size() != 7) return false;
+    char* end = nullptr;
+    auto number = [&](const std::string& s, double& out) {
+        errno = 0;
+        out = std::strtod(s.c_str(), &end);
+        return !s.empty() && *end == '\0' && errno == 0;
+    };
+    double index, bytes;
+    if (!number(parts[0], index) || !number(parts[2], bytes)) return false;
+    e.index = int(index);
+    e.bytes = int(bytes);
+    errno = 0;
+    e.hash = std::strtoull(parts[1].c_str(), &end, 16);
+    if (parts[1].size() != 16 || *end != '\0') return false;
+    return number(parts[3], e.eval.error) && number(parts[4], e.eval.flip) && number(parts[5], e.eval.psnr) &&
+           number(parts[6], e.eval.attributes);
+}
+
+}  // namespace
+
+uint64_t textHash(const std::string& text) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+Journal::Journal(const std::filesystem::path& path, const std::string& key) : path_(path) {
+    const std::string header = std::string(kMagic) + "\t" + key + "\n";
+    std::string valid = header;
+    if (std::filesystem::exists(path)) {
+        const std::string text = readTextFile(path);
+        if (text.compare(0, header.size(), header) != 0)
+            throwUserError(path.string() + ":1: this journal is of a search with other arguments; resume with the "
+                           "same arguments, or give another --out");
+        size_t pos = header.size();
+        while (pos < text.size()) {
+            const size_t nl = text.find('\n', pos);
+            if (nl == std::string::npos) break;  // torn last line: dropped
+            JournalEntry e;
+            const std::string line = text.substr(pos, nl - pos);
+            if (!parseLine(line, e) || e.index != int(entries_.size()))
+                throwUserError(path.string() + ":" + std::to_string(entries_.size() + 2) +
+                               ": malformed journal line; remove the file to start the search again");
+            entries_.push_back(e);
+            pos = nl + 1;
+        }
+        valid = text.substr(0, pos);
+        if (valid.size() != text.size()) writeFileAtomic(path, valid);  // drop the torn line
+    } else {
+        writeFileAtomic(path, header);
+    }
+    fd_ = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (fd_ < 0) throwUserError(path.string() + ": cannot open the search journal: " + std::strerror(errno));
+}
+
+Journal::~Journal() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+void Journal::append(const JournalEntry& e) {
+    char hash[17];
+    std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(e.hash));
+    const std::string line = std::to_string(e.index) + "\t" + hash + "\t" + std::to_string(e.bytes) + "\t" +
+                             hexFloat(e.eval.error) + "\t" + hexFloat(e.eval.flip) + "\t" + hexFloat(e.eval.psnr) +
+                             "\t" + hexFloat(e.eval.attributes) + "\n";
+    // One write of the whole line (O_APPEND), then fsync: a crash leaves whole lines or a torn last one.
+    const ssize_t n = ::write(fd_, line.data(), line.size());
+    if (n != ssize_t(line.size()) || ::fsync(fd_) != 0)
+        throwUserError(path_.string() + ": cannot append to the search journal: " + std::strerror(errno));
+    entries_.push_back(e);
+}
+
+}  // namespace gbl::search

@@ -1,0 +1,146 @@
+// The packer: every layout it writes is one `layouts check` accepts, within the budget, made of
+// real formats, and stores exactly the bits the genome asked for.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "bandwidth.h"
+#include "layout.h"
+#include "layout_packer.h"
+#include "search_space.h"
+
+namespace gbl::search {
+namespace {
+
+// Bytes per pixel of the formats the packer may use, written here from the Vulkan spec's format
+// table (independent of layout.cpp's table and of the packer's list).
+const std::map<std::string, int>& realFormatBytes() {
+    static const std::map<std::string, int> m = {
+        {"R8_UNORM", 1},           {"R8G8_UNORM", 2},     {"R16_UNORM", 2},
+        {"R16_UINT", 2},           {"R8G8B8A8_UNORM", 4}, {"A2B10G10R10_UNORM_PACK32", 4},
+        {"R16G16_UNORM", 4},       {"R32_UINT", 4},       {"R16G16B16A16_UNORM", 8},
+        {"R32G32_UINT", 8},
+    };
+    return m;
+}
+const std::map<std::string, int>& depthBytes() {
+    static const std::map<std::string, int> m = {{"D16_UNORM", 2}, {"D24_UNORM_S8_UINT", 4}, {"D32_SFLOAT", 4}};
+    return m;
+}
+
+// Bits the genome stores per attribute, counted from the encodings' definitions (layouts/README.md).
+std::map<std::string, int> expectedBits(const Genome& g) {
+    std::map<std::string, int> m;
+    const auto& n = normalEncodings()[size_t(g.normalEncoding)];
+    m["normal"] = n.codes * g.normalBits + n.extraBits;
+    m["roughness"] = g.roughnessBits;
+    const auto& c = colourEncodings()[size_t(g.colourEncoding)];
+    const auto& sc = colourEncodings()[size_t(g.specularColourEncoding)];
+    if (g.workflow == Workflow::Metallic) {
+        m["base_color"] = c.codes * g.colourBits;
+        if (g.metallicBits) m["metallic"] = g.metallicBits;
+        if (g.specularMode == SpecularMode::Scalar) m["specular"] = g.specularBits;
+        if (g.specularMode == SpecularMode::Colour) m["specular_color"] = sc.codes * g.specularColourBits;
+    } else {
+        m["diffuse_color"] = c.codes * g.colourBits;
+        m["specular_color"] = sc.codes * g.specularColourBits;
+    }
+    if (g.occlusionBits) m["occlusion"] = g.occlusionBits;
+    return m;
+}
+
+TEST(LayoutPacker, EveryPackedGenomeIsAValidLayoutWithinBudgetOfRealFormats) {
+    SplitMix64 rng(7);
+    int ok = 0, over = 0;
+    std::set<std::string> formatsSeen;
+    for (int i = 0; i < 3000; ++i) {
+        Genome g = randomGenome(rng);
+        for (int m = 0; m < i % 4; ++m) g = mutateGenome(g, rng);
+        const int budget = 6 + (i % 5) * 4;  // 6, 10, 14, 18, 22
+        const PackResult p = packGenome(g, budget);
+        if (!p.ok) {
+            over += p.bytesPerPixel > budget;
+            continue;
+        }
+        ++ok;
+        const std::string text = layoutText("candidate", "a comment\nof two lines", p.body);
+        const auto diags = checkLayout(text, "candidate.toml");
+        ASSERT_TRUE(diags.empty()) << diags.front().text() << "\n" << text;
+        const Layout l = parseLayout(text, "candidate.toml");
+        // Bytes: the budget, the packer's own count, layout.h's and bandwidth.h's, and the sum of
+        // this test's table all agree.
+        int bytes = depthBytes().at(l.depth.format);
+        for (const Target& t : l.targets) {
+            ASSERT_TRUE(realFormatBytes().count(t.format)) << t.format;
+            bytes += realFormatBytes().at(t.format);
+            formatsSeen.insert(t.format);
+        }
+        EXPECT_LE(bytes, budget);
+        EXPECT_EQ(bytes, p.bytesPerPixel);
+        EXPECT_EQ(bytesPerPixel(l), bytes);
+        EXPECT_EQ(computeBandwidth(l, 480, 270).gbufferBytesPerPixel, bytes);
+        EXPECT_LE(l.targets.size(), 8u);
+        // Exactly the bits asked for, attribute by attribute.
+        std::map<std::string, int> stored;
+        for (const AttributeBits& ab : bitsPerAttribute(l)) stored[attributeName(ab.attribute)] = ab.bits;
+        EXPECT_EQ(stored, expectedBits(g)) << describeGenome(g);
+    }
+    // The space is explored, not just its corner: most genomes fit the larger budgets, many
+    // exceed the small ones, and every size class of format is used.
+    EXPECT_GT(ok, 1000);
+    EXPECT_GT(over, 300);
+    for (const char* f : {"R8_UNORM", "R8G8B8A8_UNORM", "A2B10G10R10_UNORM_PACK32", "R32_UINT"})
+        EXPECT_TRUE(formatsSeen.count(f)) << f;
+}
+
+TEST(LayoutPacker, OverBudgetSaysByHowMuch) {
+    Genome g;
+    g.normalEncoding = 8;  // float16 x 3 = 48 bits
+    g.normalBits = 16;
+    g.colourEncoding = 1;  // unorm 12 x 3
+    g.colourBits = 12;
+    clampGenome(g);
+    const PackResult p = packGenome(g, 8);
+    EXPECT_FALSE(p.ok);
+    EXPECT_GT(p.bytesPerPixel, 8);
+    EXPECT_NE(p.why.find("over the budget of 8"), std::string::npos) << p.why;
+}
+
+TEST(LayoutPacker, Crysis3ThinShapeWithoutItsExtrasFitsTenBytes) {
+    // The thin G-buffer's choices: xy + z sign 8 bits (17), gloss 7, YCbCr checkerboard 8 (16), luma
+    // specular 8: 48 bits. Without Crysis 3's translucency and per-project bytes they fill one RGBA8
+    // (17 + 8 + 7 = 32 bits) and one RG8 (the chroma pair): 4 + 2 + D24S8's 4 = 10 bytes.
+    Genome g;
+    g.normalEncoding = 2;
+    g.normalBits = 8;
+    g.normalSpace = 1;
+    g.roughnessEncoding = 1;
+    g.roughnessBits = 7;
+    g.workflow = Workflow::DiffuseSpecular;
+    g.colourEncoding = 5;
+    g.colourBits = 8;
+    g.specularColourEncoding = 7;
+    g.specularColourBits = 8;
+    g.occlusionBits = 0;
+    g.depthFormat = 1;
+    const PackResult p = packGenome(g, 12);
+    ASSERT_TRUE(p.ok) << p.why;
+    EXPECT_EQ(p.bytesPerPixel, 10);
+    const Layout l = parseLayout(layoutText("candidate", "", p.body), "candidate.toml");
+    EXPECT_EQ(l.findField(Attribute::DiffuseColor)->encoding, "ycbcr_checkerboard");
+    EXPECT_EQ(l.space.normal, StoredSpace::WorldZUp);
+}
+
+TEST(LayoutPacker, EqualGenomesGiveEqualTextAndTheCommentIsComments) {
+    SplitMix64 a(3), b(3);
+    const Genome ga = randomGenome(a), gb = randomGenome(b);
+    EXPECT_EQ(ga, gb);
+    const PackResult pa = packGenome(ga, 64), pb = packGenome(gb, 64);
+    EXPECT_EQ(pa.body, pb.body);
+    const std::string text = layoutText("found-9b", "line one\n\nline three", pa.body);
+    EXPECT_EQ(text.rfind("# line one\n#\n# line three\nname = \"found-9b\"\n", 0), 0u) << text;
+}
+
+}  // namespace
+}  // namespace gbl::search

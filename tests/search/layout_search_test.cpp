@@ -1,0 +1,166 @@
+// The search: deterministic for a seed (whatever the thread count), resumable from its journal to
+// the same result as an uninterrupted run, its front a true Pareto front, its rank correlation right.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "error.h"
+#include "layout.h"
+#include "layout_search.h"
+#include "search_journal.h"
+#include "search_test_scene.h"
+
+namespace gbl::search {
+namespace {
+
+namespace fs = std::filesystem;
+
+const FastEvaluator& evaluator() {
+    static const FastEvaluator e({test::syntheticView(40, 28, 0.0f), test::syntheticView(40, 28, 1.2f)},
+                                 test::syntheticLights(), test::syntheticIbl(), Objective::Flip);
+    return e;
+}
+
+EvaluateFn evaluateFn() {
+    return [](const std::string& text) { return evaluator().evaluate(parseLayout(text, "candidate.toml")); };
+}
+
+fs::path scratch(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("gbl-search-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+SearchOptions options(int candidates, uint64_t seed = 5) {
+    SearchOptions o;
+    o.budgetBytes = 12;
+    o.seed = seed;
+    o.candidates = candidates;
+    o.batch = 4;
+    o.threads = 2;
+    o.journalKey = "test";
+    return o;
+}
+
+void expectSameRun(const SearchResult& a, const SearchResult& b) {
+    ASSERT_EQ(a.evaluated.size(), b.evaluated.size());
+    for (size_t i = 0; i < a.evaluated.size(); ++i) {
+        EXPECT_EQ(a.evaluated[i].body, b.evaluated[i].body) << i;
+        // Bit-identical scores, not merely close.
+        EXPECT_EQ(std::memcmp(&a.evaluated[i].eval.error, &b.evaluated[i].eval.error, sizeof(double)), 0) << i;
+        EXPECT_EQ(a.evaluated[i].eval.psnr, b.evaluated[i].eval.psnr) << i;
+    }
+    EXPECT_EQ(a.front, b.front);
+}
+
+TEST(LayoutSearch, SameSeedSameFrontWhateverTheThreads) {
+    SearchOptions o1 = options(24), o2 = options(24);
+    o1.threads = 1;
+    o2.threads = 2;
+    const SearchResult a = runSearch(evaluateFn(), o1), b = runSearch(evaluateFn(), o2);
+    expectSameRun(a, b);
+    EXPECT_FALSE(a.front.empty());
+    EXPECT_EQ(a.rejectedByValidation, 0);
+    for (const Candidate& c : a.evaluated) EXPECT_LE(c.bytes, 12);
+    // Another seed explores elsewhere.
+    const SearchResult c = runSearch(evaluateFn(), options(24, 6));
+    EXPECT_NE(a.evaluated.front().body, c.evaluated.front().body);
+}
+
+TEST(LayoutSearch, InterruptedThenResumedEqualsUninterrupted) {
+    const fs::path dirA = scratch("a"), dirB = scratch("b");
+    SearchOptions whole = options(20);
+    whole.journalPath = (dirA / "journal.tsv").string();
+    const SearchResult uninterrupted = runSearch(evaluateFn(), whole);
+
+    // Interrupted: the evaluation fails after 9 candidates (mid-batch), as a signal would stop it.
+    SearchOptions part = options(20);
+    part.journalPath = (dirB / "journal.tsv").string();
+    std::atomic<int> calls{0};
+    const EvaluateFn failing = [&](const std::string& text) {
+        if (++calls > 9) throw std::runtime_error("interrupted");
+        return evaluateFn()(text);
+    };
+    EXPECT_THROW(runSearch(failing, part), std::runtime_error);
+    // A torn last line, as a crash mid-write leaves.
+    { std::ofstream(part.journalPath, std::ios::app) << "9\t00ab"; }
+    const size_t journaled = Journal(part.journalPath, "test").entries().size();
+    EXPECT_GE(journaled, 4u);
+    EXPECT_LT(journaled, 20u);
+
+    std::atomic<int> evaluatedAfterResume{0};
+    const EvaluateFn counting = [&](const std::string& text) {
+        ++evaluatedAfterResume;
+        return evaluateFn()(text);
+    };
+    const SearchResult resumed = runSearch(counting, part);
+    EXPECT_EQ(resumed.resumed, int(journaled));
+    EXPECT_EQ(evaluatedAfterResume.load(), 20 - int(journaled));
+    expectSameRun(uninterrupted, resumed);
+    // The journals end byte-identical.
+    std::ifstream a(whole.journalPath), b(part.journalPath);
+    const std::string ja((std::istreambuf_iterator<char>(a)), {}), jb((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_EQ(ja, jb);
+    fs::remove_all(dirA);
+    fs::remove_all(dirB);
+}
+
+TEST(LayoutSearch, AJournalOfOtherArgumentsIsRefusedWithItsFileName) {
+    const fs::path dir = scratch("key");
+    SearchOptions o = options(4);
+    o.journalPath = (dir / "journal.tsv").string();
+    runSearch(evaluateFn(), o);
+    o.journalKey = "other";
+    try {
+        runSearch(evaluateFn(), o);
+        FAIL() << "expected a UserError";
+    } catch (const UserError& e) {
+        EXPECT_NE(std::string(e.what()).find("journal.tsv:1:"), std::string::npos) << e.what();
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(LayoutSearch, ParetoFrontMatchesBruteForceDominance) {
+    SplitMix64 rng(11);
+    std::vector<Candidate> cands(200);
+    for (size_t i = 0; i < cands.size(); ++i) {
+        cands[i].index = int(i);
+        cands[i].bytes = rng.range(4, 16);
+        cands[i].eval.error = double(rng.range(0, 40)) / 40.0;  // ties on purpose
+    }
+    const std::vector<int> front = paretoFront(cands);
+    // Brute force: i is on the front iff no j is at most as costly and as bad, and strictly better
+    // in one (or equal in both and earlier).
+    std::vector<int> expected;
+    for (size_t i = 0; i < cands.size(); ++i) {
+        bool dominated = false;
+        for (size_t j = 0; j < cands.size() && !dominated; ++j) {
+            if (i == j) continue;
+            const Candidate &a = cands[j], &b = cands[i];
+            const bool noWorse = a.bytes <= b.bytes && a.eval.error <= b.eval.error;
+            const bool strictly = a.bytes < b.bytes || a.eval.error < b.eval.error || j < i;
+            dominated = noWorse && strictly;
+        }
+        if (!dominated) expected.push_back(int(i));
+    }
+    std::sort(expected.begin(), expected.end(), [&](int a, int b) { return cands[size_t(a)].bytes < cands[size_t(b)].bytes; });
+    EXPECT_EQ(front, expected);
+}
+
+TEST(LayoutSearch, SpearmanAgainstHandComputedValues) {
+    EXPECT_DOUBLE_EQ(spearman({1, 2, 3, 4}, {10, 20, 30, 40}), 1.0);
+    EXPECT_DOUBLE_EQ(spearman({1, 2, 3, 4}, {4, 3, 2, 1}), -1.0);
+    // Ranks (1,2,3,4,5) vs (2,1,4,3,5): d^2 sum 4, rho = 1 - 6*4/(5*24) = 0.8.
+    EXPECT_NEAR(spearman({1, 2, 3, 4, 5}, {0.2, 0.1, 0.4, 0.3, 0.5}), 0.8, 1e-12);
+}
+
+}  // namespace
+}  // namespace gbl::search
