@@ -243,11 +243,9 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
         case Codec::NormalXyz:
             map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyz(v, bits); });
             return;
-        case Codec::NormalBestFit: {
-            const uint32_t* table = bestFitNormalTable().data();  // a look-up, as on the GPU
-            map3to3(n, x, yv, z, c0, c1, c2, [table](vec3 v) { return encodeNormalBestFit(v, table); });
+        case Codec::NormalBestFit:  // a look-up, as on the GPU; in passes (encodings_fast.h)
+            encodeNormalBestFitRow(n, x, yv, z, bestFitNormalTable().data(), c0, c1, c2);
             return;
-        }
         case Codec::NormalXyZSign:
             map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyZSign(v, bits); });
             return;
