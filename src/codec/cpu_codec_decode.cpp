@@ -284,6 +284,9 @@ GBL_CLONE_INLINE void decodeCheckerboard(const FieldPlan& f, const uint32_t* ima
 template <int Words>
 GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, const uint8_t* covered, int width,
                                    int height, int x0, int y, int n, DecodeBlock& b) {
+    // A target of extras only (ue4's GBufferD and E) decodes to nothing: not even prefetched,
+    // its words are never read (8 of ue4's 20 bytes per pixel).
+    if (t.decodeFields.empty()) return;
     const uint32_t* words = image + (size_t(y) * size_t(width) + size_t(x0)) * Words;
     prefetchAhead(words, size_t(n) * Words * sizeof(uint32_t));
     for (const FieldPlan& f : t.decodeFields) {
