@@ -340,7 +340,8 @@ GBL_SIMD_CLONES void decodeMaterial(const CodecPlan& plan, const uint32_t* const
             for (int ch = 0; ch < 4; ++ch) rows[ch][j] = uintBitsToFloat(w[size_t(j) * 4 + size_t(ch)]);
     }
     for (const MaterialSlotPlan& slot : plan.materialSlots)
-        for (int c = slot.slotComponents; c < slot.components; ++c) std::fill(b.s[slot.dest + c], b.s[slot.dest + c] + n, 0.0f);
+        for (int c = slot.slotComponents; c < slot.components; ++c)
+            std::fill(b.s[slot.dest + c], b.s[slot.dest + c] + n, 0.0f);
 }
 
 // Mirror of applyFallback in the former per-pixel codec (the same vec3 expressions per pixel).

@@ -86,9 +86,10 @@ uvec3 encodeNormalBestFitFast(vec3 n) {
 // encodeNormalBestFitRow. Pass 1 evaluates the reference's statements up to the texel index t
 // for every lane, with the early return's condition kept as a mask; lanes it returns for get
 // t = 0 and q = 0 (so every table read and every float-to-uint conversion stays defined) and have
-// their codes replaced by its (128, 128, 255) in pass 3. Pass 2 reads the table (no gather on
-// the baseline or in GCC 12's generic x86-64-v3 tuning, so this loop is scalar and the others
-// are not held back by it). Pass 3 is the reference's rest. Each lane performs the reference's
+// their codes replaced by its (128, 128, 255) in pass 3. Pass 2 reads the table alone (GCC 12
+// issues no hardware gather for the generic tuning: the AVX2 clone assembles the lanes from
+// scalar loads, the baseline stays scalar), so it holds the other two passes back no more.
+// Pass 3 is the reference's rest. Each lane performs the reference's
 // IEEE-754 operations in its order (no FMA: -ffp-contract=off), so the codes are identical;
 // tests/encoding/encodings_fast_test.cpp compares them on random and adversarial normals.
 // Results go to local arrays first: GCC 12 drops `restrict` in target_clones clones.
