@@ -1,5 +1,6 @@
 // The fast encoder variants the CPU codec uses (src/encoding/encodings_fast.h: the vectorised
-// best-fit normal search, branch-free sRGB, table small floats) return the reference encoders' codes
+// best-fit normal search, the best-fit table look-up a row at a time, branch-free sRGB, table
+// small floats) return the reference encoders' codes
 // (src/encoding/encodings.h) for millions of random and adversarial inputs.
 #include <gtest/gtest.h>
 
