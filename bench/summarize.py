@@ -13,6 +13,7 @@ import re
 import sys
 
 CODEC_GOAL = 0.25
+HALF_BOUND_GOAL = 0.5  # issue 14: each layout's codec >= 0.5x of its own memory-traffic bound
 COMPARE_GOAL = 1.5
 RSS_GOAL_MIB = 2048.0
 
@@ -113,8 +114,12 @@ def codec_layouts(rows):
           "ceiling 2G / (S + G + M))")
     print(f"    {'layout':20s} {'B/px':>4s} {'bound':>6s} | {'enc GB/s':>8s} {'x1':>7s} {'x' + str(t):>7s} "
           f"{'x copy':>7s} | {'dec GB/s':>8s} {'x1':>7s} {'x' + str(t):>7s} {'x copy':>7s} | "
-          f"{'Mpix/s enc':>10s} {'dec':>6s}")
-    misses = []
+          f"{'Mpix/s enc':>10s} {'dec':>6s} | {'enc/bnd':>7s} {'dec/bnd':>7s} {'DRAM bnd':>8s}")
+    # The copy rate of the whole Surface image (memcpy/bytes:<S * pixels>), always from DRAM: the
+    # codec streams its Surfaces at no more than that, whereas memcpy of a small G-buffer runs
+    # partly in L3. "DRAM bnd" = bound * (that rate / the G-buffer's memcpy rate): the ceiling of
+    # "x copy" when the codec's S + G + M bytes move at the DRAM copy rate.
+    misses, half_misses = [], []
     for n in names:
         e, d = rows.get(prefixes[0] + n, {}), rows.get(prefixes[1] + n, {})
         ref = e or d
@@ -127,6 +132,10 @@ def codec_layouts(rows):
         copies = memcpy.get(nbytes, {})
         one, many = copies.get(1), copies.get(t)
         best = max([c for c in (one, many) if c], default=None)
+        pixels = nbytes / g if g else 0
+        surface_copy = max(memcpy.get(int(round(s_ * pixels)), {}).values(), default=None)
+        dram = bound * surface_copy / best if surface_copy and best else None
+        ratios = []
         cells = []
         for x, prefix in ((e, prefixes[0]), (d, prefixes[1])):
             if "GB_per_s" not in x or not best:
@@ -137,14 +146,22 @@ def codec_layouts(rows):
             rt = f"{gbs / many:6.3f}x" if many else f"{'-':>7s}"
             rb = gbs / best
             cells.append(f"{gbs:8.3f} {r1} {rt} {rb:6.3f}x")
+            ratios.append(f"{rb / bound:6.2f}x")
             if rb < CODEC_GOAL:
                 misses.append(f"{prefix}{n} {rb:.3f}x (bound {bound:.2f}x)")
+            if rb < HALF_BOUND_GOAL * bound:
+                half_misses.append(f"{prefix}{n} {rb / bound:.2f}x")
+        ratios += [f"{'-':>7s}"] * (2 - len(ratios))
         pix = [f"{x['pixels_per_s'] / 1e6:10.1f}" if "pixels_per_s" in x else f"{'-':>10s}" for x in (e, d)]
-        print(f"    {n:20s} {g:4.0f} {bound:5.2f}x | {cells[0]} | {cells[1]} | {pix[0]} {pix[1].strip():>6s}")
+        dram_cell = f"{dram:7.3f}x" if dram else f"{'-':>8s}"
+        print(f"    {n:20s} {g:4.0f} {bound:5.2f}x | {cells[0]} | {cells[1]} | {pix[0]} {pix[1].strip():>6s} | "
+              f"{ratios[0]} {ratios[1]} {dram_cell}")
     print("    memcpy of those sizes (GB/s, 1 / " + str(t) + " threads): " +
           ", ".join(f"{b / 1e6:.1f} MB {c.get(1, float('nan')):.1f} / {c.get(t, float('nan')):.1f}"
                     for b, c in sorted(memcpy.items())))
     print(f"    below goal: {', '.join(misses) if misses else 'none'}")
+    print(f"    below {HALF_BOUND_GOAL}x of the bound (x copy / bound, enc/bnd and dec/bnd): "
+          f"{', '.join(half_misses) if half_misses else 'none'}")
 
 
 def codec(results):

@@ -284,6 +284,9 @@ GBL_CLONE_INLINE void decodeCheckerboard(const FieldPlan& f, const uint32_t* ima
 template <int Words>
 GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, const uint8_t* covered, int width,
                                    int height, int x0, int y, int n, DecodeBlock& b) {
+    // A target of extras only (ue4's GBufferD and E) decodes to nothing: not even prefetched,
+    // its words are never read (8 of ue4's 20 bytes per pixel).
+    if (t.decodeFields.empty()) return;
     const uint32_t* words = image + (size_t(y) * size_t(width) + size_t(x0)) * Words;
     prefetchAhead(words, size_t(n) * Words * sizeof(uint32_t));
     for (const FieldPlan& f : t.decodeFields) {
@@ -307,21 +310,38 @@ GBL_SIMD_CLONES void decodeTargetBlock(const TargetPlan& t, const uint32_t* imag
     }
 }
 
-// The material words of the block's pixels into their Surface floats (0 beyond the slot's).
-GBL_CLONE_INLINE void decodeMaterial(const CodecPlan& plan, const uint32_t* const* material, size_t first, int n,
+// The material words of the block's pixels into their Surface floats (0 beyond the slot's): per
+// material target, 4 pixels' words at a time transposed into the 4 channels' Surface rows (bit
+// moves; an unused channel goes to scratch, b.val[0]).
+GBL_SIMD_CLONES void decodeMaterial(const CodecPlan& plan, const uint32_t* const* material, size_t first, int n,
                                     DecodeBlock& b) {
     for (int m = 0; m < plan.materialTargets; ++m) prefetchAhead(material[m] + first * 4, size_t(n) * 16);
-    for (const MaterialSlotPlan& slot : plan.materialSlots)
-        for (int c = 0; c < slot.components; ++c) {
-            float* out = b.s[slot.dest + c];
-            if (c >= slot.slotComponents) {
-                std::fill(out, out + n, 0.0f);
-                continue;
-            }
-            const int k = slot.firstFloat + c;
-            const uint32_t* words = material[k / 4] + first * 4 + size_t(k % 4);
-            for (int j = 0; j < n; ++j) out[j] = uintBitsToFloat(words[size_t(j) * 4]);
+    for (int m = 0; m < plan.materialTargets; ++m) {
+        float* rows[4];
+        for (int ch = 0; ch < 4; ++ch) {
+            const int dest = plan.materialSource[size_t(m * 4 + ch)];
+            rows[ch] = dest < 0 ? b.val[0] : b.s[dest];
         }
+        const float* words = reinterpret_cast<const float*>(material[m] + first * 4);
+        int j = 0;
+#if defined(__SSE2__)
+        for (; j + 4 <= n; j += 4) {
+            __m128 r0 = _mm_loadu_ps(words + (j + 0) * 4), r1 = _mm_loadu_ps(words + (j + 1) * 4);
+            __m128 r2 = _mm_loadu_ps(words + (j + 2) * 4), r3 = _mm_loadu_ps(words + (j + 3) * 4);
+            _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+            _mm_store_ps(rows[0] + j, r0);
+            _mm_store_ps(rows[1] + j, r1);
+            _mm_store_ps(rows[2] + j, r2);
+            _mm_store_ps(rows[3] + j, r3);
+        }
+#endif
+        const uint32_t* w = material[m] + first * 4;
+        for (; j < n; ++j)
+            for (int ch = 0; ch < 4; ++ch) rows[ch][j] = uintBitsToFloat(w[size_t(j) * 4 + size_t(ch)]);
+    }
+    for (const MaterialSlotPlan& slot : plan.materialSlots)
+        for (int c = slot.slotComponents; c < slot.components; ++c)
+            std::fill(b.s[slot.dest + c], b.s[slot.dest + c] + n, 0.0f);
 }
 
 // Mirror of applyFallback in the former per-pixel codec (the same vec3 expressions per pixel).

@@ -6,6 +6,7 @@
 // CMakeLists.txt), which change no value.
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 
 #include "cpu_codec_kernels.h"
 #include "encodings.h"
@@ -96,8 +97,10 @@ GBL_SIMD_CLONES void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8
 // The block's Surfaces member-major (b.s[k][j] = float k of pixel j): 4 x 4 transposes (4 pixels
 // by 4 members at a time, the last 2 members one by one), cheaper than gathering each field's
 // members with strided loads. The Surfaces ahead are prefetched as we go: without it the loads
-// stall on the first touch of each line (about 20 % more time at 1080p).
-GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, EncodeBlock& b) {
+// stall on the first touch of each line (about 20 % more time at 1080p). Only the groups of 4
+// members the layout reads (plan.encodeGroups) are transposed: 4 of the 6 for crysis3-thin and
+// compact-octahedral (the memory traffic is the same: every line is touched either way).
+GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, uint32_t groups, EncodeBlock& b) {
     const float* __restrict in = floats(px);
     int j = 0;
 #if defined(__SSE2__)
@@ -105,6 +108,7 @@ GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, EncodeBlock& b) {
     for (; j + 4 <= n; j += 4) {
         prefetchAhead(in + j * kSurfaceFloats, 4 * sizeof(Surface));
         for (int k = 0; k < 20; k += 4) {
+            if (!(groups & (1u << (k / 4)))) continue;  // no field reads these members
             __m128 r0 = _mm_loadu_ps(in + (j + 0) * kSurfaceFloats + k);
             __m128 r1 = _mm_loadu_ps(in + (j + 1) * kSurfaceFloats + k);
             __m128 r2 = _mm_loadu_ps(in + (j + 2) * kSurfaceFloats + k);
@@ -115,10 +119,11 @@ GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, EncodeBlock& b) {
             _mm_store_ps(&b.s[k + 2][j], r2);
             _mm_store_ps(&b.s[k + 3][j], r3);
         }
-        for (int p = 0; p < 4; ++p) {
-            b.s[20][j + p] = in[(j + p) * kSurfaceFloats + 20];
-            b.s[21][j + p] = in[(j + p) * kSurfaceFloats + 21];
-        }
+        if (groups & (1u << 5))
+            for (int p = 0; p < 4; ++p) {
+                b.s[20][j + p] = in[(j + p) * kSurfaceFloats + 20];
+                b.s[21][j + p] = in[(j + p) * kSurfaceFloats + 21];
+            }
     }
 #endif
     for (; j < n; ++j)
@@ -175,21 +180,40 @@ GBL_SIMD_CLONES void encodeBlock(const TargetPlan& t, int n, int x0, int y, Enco
     }
 }
 
-// Material pass words: the float32 bits of the slots' attributes, 0 in unused channels.
+// Material pass words: the float32 bits of the slots' attributes, 0 in unused channels. The 4
+// channels of a material target are 4 rows of the block's member-major Surfaces (a row of zeros
+// for an unused channel), interleaved by 4 x 4 transposes (bit moves: every word is the float's
+// bits) and streamed to the image, straight from the registers when the image is 16-byte
+// aligned (a std::vector's memory is), else through b.pixels.
 GBL_SIMD_CLONES void encodeMaterial(const CodecPlan& plan, int n, size_t first, uint32_t* const* material,
                                     EncodeBlock& b) {
+    alignas(32) static const float zeros[kBlock] = {};
     for (int m = 0; m < plan.materialTargets; ++m) {
-        uint32_t* __restrict words = b.pixels;
+        const float* rows[4];
         for (int ch = 0; ch < 4; ++ch) {
             const int src = plan.materialSource[size_t(m * 4 + ch)];
-            if (src < 0) {
-                for (int j = 0; j < n; ++j) words[j * 4 + ch] = 0u;
-            } else {
-                const float* __restrict in = b.s[src];
-                for (int j = 0; j < n; ++j) words[j * 4 + ch] = floatBitsToUint(in[j]);
+            rows[ch] = src < 0 ? zeros : b.s[src];
+        }
+        uint32_t* dst = material[m] + first * 4;
+        int j = 0;
+#if defined(__SSE2__)
+        if (reinterpret_cast<uintptr_t>(dst) % 16 == 0) {
+            float* out = reinterpret_cast<float*>(dst);
+            for (; j + 4 <= n; j += 4) {
+                __m128 r0 = _mm_load_ps(rows[0] + j), r1 = _mm_load_ps(rows[1] + j);
+                __m128 r2 = _mm_load_ps(rows[2] + j), r3 = _mm_load_ps(rows[3] + j);
+                _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+                _mm_stream_ps(out + (j + 0) * 4, r0);
+                _mm_stream_ps(out + (j + 1) * 4, r1);
+                _mm_stream_ps(out + (j + 2) * 4, r2);
+                _mm_stream_ps(out + (j + 3) * 4, r3);
             }
         }
-        streamCopy(material[m] + first * 4, words, size_t(n) * 4 * sizeof(uint32_t));
+#endif
+        uint32_t* __restrict words = b.pixels;
+        for (int k = j; k < n; ++k)
+            for (int ch = 0; ch < 4; ++ch) words[(k - j) * 4 + ch] = floatBitsToUint(rows[ch][k]);
+        if (j < n) streamCopy(dst + size_t(j) * 4, words, size_t(n - j) * 4 * sizeof(uint32_t));
     }
 }
 
@@ -243,11 +267,9 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
         case Codec::NormalXyz:
             map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyz(v, bits); });
             return;
-        case Codec::NormalBestFit: {
-            const uint32_t* table = bestFitNormalTable().data();  // a look-up, as on the GPU
-            map3to3(n, x, yv, z, c0, c1, c2, [table](vec3 v) { return encodeNormalBestFit(v, table); });
+        case Codec::NormalBestFit:  // a look-up, as on the GPU; in passes (encodings_fast.h)
+            encodeNormalBestFitRow(n, x, yv, z, bestFitNormalTable().data(), c0, c1, c2);
             return;
-        }
         case Codec::NormalXyZSign:
             map3to3(n, x, yv, z, c0, c1, c2, [bits](vec3 v) { return encodeNormalXyZSign(v, bits); });
             return;
@@ -274,7 +296,7 @@ void encodeRows(const CodecPlan& plan, const Surface* surfaces, int width, int y
             const int n = std::min(kBlock, width - x0);
             const size_t first = size_t(y) * size_t(width) + size_t(x0);
             const Surface* px = surfaces + first;
-            loadSurfaces(px, n, b);
+            loadSurfaces(px, n, plan.encodeGroups, b);
             for (size_t t = 0; t < plan.targets.size(); ++t) {
                 const TargetPlan& tp = plan.targets[t];
                 encodeBlock(tp, n, x0, y, b, out.targets[t] + first * size_t(tp.words));

@@ -198,6 +198,15 @@ CodecPlan compilePlan(const Layout& layout) {
         if (f.kind != FallbackKind::MaterialPass) mark(f.dest, f.components);
     for (int k = 0; k < kSurfaceFloats; ++k)
         if (!written[size_t(k)]) plan.unwritten.push_back(k);
+
+    auto read = [&](int first, int count) {
+        for (int c = 0; c < count; ++c) plan.encodeGroups |= 1u << ((first + c) / 4);
+    };
+    for (const TargetPlan& t : plan.targets)
+        for (const FieldPlan& f : t.encodeFields)
+            if (f.source >= 0) read(f.source, f.inputs);
+    for (const int src : plan.materialSource)
+        if (src >= 0) read(src, 1);
     return plan;
 }
 

@@ -106,6 +106,9 @@ struct CodecPlan {
     std::vector<MaterialSlotPlan> materialSlots;
     std::vector<FallbackPlan> fallbacks;  // in dependency order (orderedFallbacks)
     std::vector<int> unwritten;           // Surface floats no field, slot or fallback sets: decode zeroes them
+    // Surface floats encode reads (fields' inputs, material words), by group of 4 floats (bit k:
+    // floats 4k .. 4k + 3): encode transposes only these groups of each block.
+    uint32_t encodeGroups = 0;
     const char* decodeError = nullptr;    // set when a stored Surface member has no decoder (id)
 };
 

@@ -16,6 +16,7 @@
 //   NaN and infinity behave exactly as in the reference (e.g. inf / inf = NaN in q).
 #include "encodings_fast.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -80,6 +81,61 @@ uvec3 encodeNormalBestFitFast(vec3 n) {
     float dy = 2.0f * floor(q.y * k * 0.5f) + 1.0f;
     float dz = 2.0f * floor(q.z * k * 0.5f) + 1.0f;
     return uvec3(uint(dx + 255.0f) >> 1u, uint(dy + 255.0f) >> 1u, uint(dz + 255.0f) >> 1u);
+}
+
+// encodeNormalBestFitRow. Pass 1 evaluates the reference's statements up to the texel index t
+// for every lane, with the early return's condition kept as a mask; lanes it returns for get
+// t = 0 and q = 0 (so every table read and every float-to-uint conversion stays defined) and have
+// their codes replaced by its (128, 128, 255) in pass 3. Pass 2 reads the table alone (GCC 12
+// issues no hardware gather for the generic tuning: the AVX2 clone assembles the lanes from
+// scalar loads, the baseline stays scalar), so it holds the other two passes back no more.
+// Pass 3 is the reference's rest. Each lane performs the reference's
+// IEEE-754 operations in its order (no FMA: -ffp-contract=off), so the codes are identical;
+// tests/encoding/encodings_fast_test.cpp compares them on random and adversarial normals.
+// Results go to local arrays first: GCC 12 drops `restrict` in target_clones clones.
+GBL_SIMD_CLONES void encodeNormalBestFitRow(int n, const float* x, const float* y, const float* z,
+                                            const uint32_t* table, uint32_t* c0, uint32_t* c1, uint32_t* c2) {
+    constexpr int kChunk = 128;
+    alignas(32) float qx[kChunk], qy[kChunk], qz[kChunk];
+    alignas(32) uint32_t t[kChunk], valid[kChunk], entry[kChunk];
+    alignas(32) uint32_t o0[kChunk], o1[kChunk], o2[kChunk];
+    for (int at = 0; at < n; at += kChunk) {
+        const int count = std::min(kChunk, n - at);
+        const float* __restrict px = x + at;
+        const float* __restrict py = y + at;
+        const float* __restrict pz = z + at;
+        for (int j = 0; j < count; ++j) {
+            const float nx = px[j], ny = py[j], nz = pz[j];
+            const float m = max(abs(nx), max(abs(ny), abs(nz)));
+            const bool ok = !(!(m > 0.0f) || std::isinf(m) || std::isnan(nx) || std::isnan(ny) || std::isnan(nz));
+            const float d = ok ? m : 1.0f;
+            const float vx = ok ? nx / d : 0.0f, vy = ok ? ny / d : 0.0f, vz = ok ? nz / d : 0.0f;
+            const float ax = abs(vx), ay = abs(vy), az = abs(vz);
+            const float lo = min(ax, min(ay, az));
+            const float mid = max(min(ax, ay), min(max(ax, ay), az));
+            const uint i = min(uint(mid * float(kBestFitTableSize)), kBestFitTableSize - 1u);
+            const uint jj = min(uint(lo * float(kBestFitTableSize)), kBestFitTableSize - 1u);
+            qx[j] = vx;
+            qy[j] = vy;
+            qz[j] = vz;
+            t[j] = i * (i + 1u) / 2u + jj;
+            valid[j] = ok ? 1u : 0u;
+        }
+        for (int j = 0; j < count; ++j) entry[j] = (table[t[j] >> 2u] >> ((t[j] & 3u) * 8u)) & 0xffu;
+        for (int j = 0; j < count; ++j) {
+            const float k = float(255u - 2u * entry[j]);
+            const float dx = 2.0f * floor(qx[j] * k * 0.5f) + 1.0f;
+            const float dy = 2.0f * floor(qy[j] * k * 0.5f) + 1.0f;
+            const float dz = 2.0f * floor(qz[j] * k * 0.5f) + 1.0f;
+            const bool ok = valid[j] != 0u;
+            o0[j] = ok ? uint(dx + 255.0f) >> 1u : 128u;
+            o1[j] = ok ? uint(dy + 255.0f) >> 1u : 128u;
+            o2[j] = ok ? uint(dz + 255.0f) >> 1u : 255u;
+        }
+        std::copy(o0, o0 + count, c0 + at);
+        std::copy(o1, o1 + count, c1 + at);
+        std::copy(o2, o2 + count, c2 + at);
+    }
 }
 
 // encodeSrgb8Fast. The reference's binary search returns the number of thresholds <= x (they

@@ -14,6 +14,15 @@ namespace gbl::enc {
 // (it generates the best-fit table, best_fit_normals.h, and stays the reference tests measure it by).
 uvec3 encodeNormalBestFitFast(vec3 n);
 
+// encodeNormalBestFit(vec3(x[j], y[j], z[j]), table)'s codes for j < n, into c0 / c1 / c2. The
+// per-normal function does not vectorise (its early return for zero and non-finite input, and the
+// table read, which GCC 12 will not gather for the generic x86-64 tuning), so a block is done in
+// three passes: the vectorised arithmetic up to the texel index, the table reads alone, then the
+// vectorised rest. The same operations in the same order (identical codes; why: in
+// encodings_fast.cpp); the early return becomes a select of its codes.
+void encodeNormalBestFitRow(int n, const float* x, const float* y, const float* z, const uint32_t* table, uint32_t* c0,
+                            uint32_t* c1, uint32_t* c2);
+
 // encodeSrgb8's codes (the number of kSrgbEncodeThresholds <= x) from one table look-up instead
 // of 8 dependent binary-search steps. The table has an entry per 2^-7 relative step of float
 // (bits >> 16) between the first and the last threshold; no such bucket holds two thresholds

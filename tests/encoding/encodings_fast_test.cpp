@@ -1,5 +1,6 @@
 // The fast encoder variants the CPU codec uses (src/encoding/encodings_fast.h: the vectorised
-// best-fit normal search, branch-free sRGB, table small floats) return the reference encoders' codes
+// best-fit normal search, the best-fit table look-up a row at a time, branch-free sRGB, table
+// small floats) return the reference encoders' codes
 // (src/encoding/encodings.h) for millions of random and adversarial inputs.
 #include <gtest/gtest.h>
 
@@ -104,6 +105,68 @@ TEST(NormalBestFitFast, SameCodesAsTheReferenceOnAdversarialNormals) {
         ties.push_back(n);
     }
     EXPECT_EQ(compareBestFit(ties, "midpoints of neighbouring codes, near axes"), 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Best-fit normals by table, a row at a time (the CPU codec's encodeNormalBestFitRow) against the
+// per-normal mirror of the shader (encodeNormalBestFit(n, table)).
+
+size_t compareBestFitRow(const std::vector<glm::vec3>& normals, const char* what) {
+    const uint32_t* table = enc::bestFitNormalTable().data();
+    std::vector<float> x, y, z;
+    for (const glm::vec3& n : normals) {
+        x.push_back(n.x);
+        y.push_back(n.y);
+        z.push_back(n.z);
+    }
+    const int count = int(normals.size());
+    std::vector<uint32_t> c0(normals.size()), c1(normals.size()), c2(normals.size());
+    enc::encodeNormalBestFitRow(count, x.data(), y.data(), z.data(), table, c0.data(), c1.data(), c2.data());
+    size_t bad = 0;
+    for (size_t i = 0; i < normals.size(); ++i) {
+        const glm::uvec3 ref = enc::encodeNormalBestFit(normals[i], table), row(c0[i], c1[i], c2[i]);
+        if (row != ref && bad++ < 5)
+            ADD_FAILURE() << what << ": n = (" << normals[i].x << ", " << normals[i].y << ", " << normals[i].z
+                          << "): row " << row.x << " " << row.y << " " << row.z << ", reference " << ref.x << " "
+                          << ref.y << " " << ref.z;
+    }
+    std::printf("[ bestfit  ] row: %-39s %8zu normals, %zu differ\n", what, normals.size(), bad);
+    return bad;
+}
+
+TEST(NormalBestFitRow, SameCodesAsThePerNormalLookUp) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    // Uniform on the sphere, an odd count (the last block is partial).
+    std::vector<glm::vec3> normals(1000003);
+    for (glm::vec3& n : normals) {
+        const float zz = 1.0f - 2.0f * u(rng), phi = 6.2831853f * u(rng);
+        const float r = std::sqrt(std::max(0.0f, 1.0f - zz * zz));
+        n = glm::vec3(r * std::cos(phi), r * std::sin(phi), zz);
+    }
+    EXPECT_EQ(compareBestFitRow(normals, "uniform on the sphere"), 0u);
+
+    // Texel edges: mid and lo at and beside i / 1024 (the index's rounding), in every sign and
+    // order of the components, not unit; and the early return's inputs mixed into a block.
+    std::vector<glm::vec3> edges;
+    for (int i = 0; i <= 1024; i += 7)
+        for (int j = 0; j <= i; j += 13) {
+            const float mid = float(i) / 1024.0f, lo = float(j) / 1024.0f;
+            for (float dm : {-1.0f, 0.0f, 1.0f}) {
+                const float m = dm == 0.0f ? mid : std::nextafter(mid, dm * 2.0f);
+                edges.push_back(glm::vec3(m, lo, 1.0f));
+                edges.push_back(glm::vec3(-lo, 2.0f, -m) * 0.75f);
+                edges.push_back(glm::vec3(-3.0f, std::nextafter(lo, 2.0f), m));
+            }
+        }
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float tiny = std::numeric_limits<float>::denorm_min(), big = std::numeric_limits<float>::max();
+    const glm::vec3 specials[] = {glm::vec3(0.0f),         glm::vec3(-0.0f, 0.0f, -0.0f), glm::vec3(inf, 0, 0),
+                                  glm::vec3(-inf, inf, 1), glm::vec3(nan, 0, 1),          glm::vec3(0, nan, nan),
+                                  glm::vec3(0, 0, nan),    glm::vec3(tiny, tiny, tiny),   glm::vec3(tiny, 0, -tiny),
+                                  glm::vec3(big, big, -big), glm::vec3(big, 1, 0),        glm::vec3(0, 0, -1)};
+    for (size_t k = 0; k < edges.size(); k += 37) edges.insert(edges.begin() + long(k), specials[(k / 37) % 12]);
+    EXPECT_EQ(compareBestFitRow(edges, "texel edges, zero, non-finite"), 0u);
 }
 
 // ---------------------------------------------------------------------------------------------
