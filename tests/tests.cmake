@@ -16,6 +16,7 @@ gbl_test(scene/default_scene_test LABELS unit DEPS gbl_scene)
 gbl_test(encoding/encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # normals; checks their stats too
 gbl_test(encoding/scalar_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
 gbl_test(encoding/color_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
+gbl_test(encoding/engine_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # RGB9E5, gamma 2.2, Bevy / Unity / Killzone normals
 gbl_test(encoding/encodings_fast_test LABELS unit DEPS gbl_encoding)
 gbl_test(encoding/light_buffer_encodings_test LABELS unit DEPS gbl_encoding)
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
