@@ -11,6 +11,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "report_atlas.h"
 #include "report_csv.h"
 #include "report_html_plot.h"
 #include "report_html_template.h"
@@ -440,6 +441,8 @@ std::string reportHtml(const ReportModel& model) {
     out += "<p class=\"hint\">Click a column header to sort (again to reverse). Errors are against the float "
            "reference; means are over covered pixels. Also in <a href=\"report.csv\">report.csv</a> and "
            "<a href=\"report.json\">report.json</a>.</p>\n</section>\n";
+
+    writeAtlasHtml(out, model);
 
     out += "<section id=\"plots\">\n<h2>Error against bytes per pixel</h2>\n<div class=\"toggle\" role=\"group\">"
            "<button type=\"button\" data-plot=\"flip\" aria-pressed=\"true\">FLIP mean</button>"

@@ -9,6 +9,7 @@
 
 #include "cmd_layouts.h"
 #include "layout.h"
+#include "layout_atlas.h"
 #include "layout_catalog.h"
 
 using namespace gbl;
@@ -122,6 +123,62 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(bitsOf(load("ue5"), Attribute::Tangent), 24);
     EXPECT_EQ(bitsOf(load("ue5"), Attribute::Velocity), 32);
     EXPECT_EQ(bitsOf(load("ue5-16bit"), Attribute::BaseColor), 48);
+}
+
+// `layouts list` groups as the atlas does: each family once, its layouts under it by year.
+TEST(LayoutFiles, ListGroupsByFamily) {
+    setenv("GBL_LAYOUT_DIR", GBL_SOURCE_LAYOUT_DIR, 1);
+    std::ostringstream out, err;
+    ASSERT_EQ(listLayoutsCommand(out, err), 0) << err.str();
+    unsetenv("GBL_LAYOUT_DIR");
+    std::istringstream lines(out.str());
+    std::string line, family;
+    std::map<std::string, std::string> familyOf;
+    std::map<std::string, int> yearOf;
+    std::vector<std::string> families;
+    int lastYear = 0;
+    std::getline(lines, line);  // header
+    EXPECT_EQ(line.rfind("family / layout", 0), 0u) << line;
+    while (std::getline(lines, line)) {
+        if (line.rfind("  ", 0) != 0) {
+            family = line;
+            EXPECT_EQ(std::count(families.begin(), families.end(), family), 0) << family << " listed twice";
+            families.push_back(family);
+            lastYear = 0;
+            continue;
+        }
+        std::istringstream row(line);
+        std::string name;
+        int year = 0;
+        row >> name >> year;
+        familyOf[name] = family;
+        yearOf[name] = year;
+        EXPECT_GE(year, lastYear) << name << ": layouts of a family are listed by year";
+        lastYear = year;
+        if (name == "killzone2") {
+            EXPECT_NE(line.find(" 20 "), std::string::npos) << line;
+        }
+        if (name == "crysis2-slim") {
+            EXPECT_NE(line.find("8 +16 light"), std::string::npos) << line;
+        }
+    }
+    EXPECT_EQ(familyOf.size(), listLayoutNames(layoutsDir()).size());
+    EXPECT_EQ(familyOf["ue4"], "Unreal Engine");
+    EXPECT_EQ(familyOf["ue5"], "Unreal Engine");
+    EXPECT_EQ(familyOf["hdrp-lit"], "Unity");
+    EXPECT_EQ(familyOf["urp-deferred"], "Unity");
+    EXPECT_EQ(familyOf["crysis3-thin"], "CryENGINE");
+    EXPECT_EQ(yearOf["killzone2"], 2007);
+    // Families by their earliest year: early deferred (2005) before Guerrilla (2007) before CryENGINE (2011).
+    const auto pos = [&](const std::string& f) { return std::find(families.begin(), families.end(), f) - families.begin(); };
+    EXPECT_LT(pos("early deferred"), pos("Guerrilla"));
+    EXPECT_LT(pos("Guerrilla"), pos("CryENGINE"));
+    // The same facts as the atlas entry of each file.
+    const AtlasEntry ue5 = atlasEntryOf(load("ue5"));
+    EXPECT_EQ(ue5.family, "Unreal Engine");
+    EXPECT_EQ(ue5.bytesPerPixel, 33);
+    EXPECT_EQ(ue5.bytesKind, "attributes");
+    EXPECT_EQ(atlasAttributeSummary(atlasEntryOf(load("killzone2"))).find("normal 32 normal_xy_float16"), 0u);
 }
 
 TEST(LayoutFiles, BitsPerAttribute) {
