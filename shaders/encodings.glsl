@@ -837,6 +837,8 @@ float decodeGamma22(uint code) { return kGamma22Decode[code & 255u]; }
 // - Unity (core Packing.hlsl, PackFloat2To888; HDRP's normal buffer, URP's accurate G-buffer
 //   normals): uint(u * 4095.5), s = 2^bits - 0.5.
 // Truncation, not rounding: a code's error is up to one whole step (not half) in each of u, v.
+// Error (angle, mean / max, 12 bits; `gbufferlab encodings`): Bevy 0.042 / 0.118 deg, Unity
+// 0.029 / 0.107 (rounding normal_octahedral: 0.021 / 0.059).
 uvec2 encodeNormalOctahedralTrunc(vec3 n, uint bits, float scaleAdd) {
     vec2 p = octEncode(n);
     precise float s = float((1u << bits) - 1u) + scaleAdd;

@@ -131,10 +131,11 @@ TEST(OctahedralTrunc, BevyAndUnityCodesEqualTheirFormulas) {
         }
     }
     EXPECT_GT(double(exact) / total, 0.999);
-    // Truncation costs up to a whole step in u and v (a step is 2/4095 of the octahedron):
-    // measured 0.093 / 0.089 degrees; rounding (normal_octahedral at 12 bits) has 0.059.
-    EXPECT_LT(worstBevy, 0.12);
-    EXPECT_LT(worstUnity, 0.12);
+    // Truncation costs up to a whole step in u and v (a step is 2/4095 of the octahedron), twice
+    // rounding's half step: `gbufferlab encodings` measures max 0.118 (Bevy) and 0.107 (Unity)
+    // degrees; rounding (normal_octahedral at 12 bits) has 0.059.
+    EXPECT_LT(worstBevy, 0.13);
+    EXPECT_LT(worstUnity, 0.13);
     EXPECT_GT(worstBevy, 0.059);
     // +z: u = v = 0.5: Bevy floor(2047.5) = 2047; Unity floor(2047.75) = 2047, which
     // PackFloat2To888 writes as R = G = 0xFF (low bytes), B = 0x77 (high nibbles 7 | 7 << 4).
