@@ -30,6 +30,7 @@
 #include "ibl_precompute.h"
 #include "image_io.h"
 #include "interrupt.h"
+#include "layout_atlas.h"
 #include "layout_catalog.h"
 #include "progress.h"
 #include "renderer.h"
@@ -188,6 +189,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     model.run.iblModes = modeNames;
     model.run.exposure = exposure;
     model.reference.layout = kReferenceLayout;
+    for (const Layout& l : layouts) model.atlas.push_back(atlasEntryOf(l));
     model.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(iblSettings) + " (--brdf-lut)");
 
     const bool compareLighting = modes.size() > 1 &&

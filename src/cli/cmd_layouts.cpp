@@ -5,6 +5,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "layout_atlas.h"
 #include "layout_catalog.h"
 #include "wiring_codegen.h"
 
@@ -14,7 +15,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: gbufferlab layouts check [FILE...]   validate layout files (default: all in the layouts dir)\n"
-    "       gbufferlab layouts list              name, bytes per pixel and title of each layout\n"
+    "       gbufferlab layouts list              the atlas: layouts by family, with year, bytes per pixel, title\n"
     "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel\n"
     "       gbufferlab layouts glsl NAME|FILE [--native-formats]\n"
     "                                            print the generated GLSL wiring (writeGBuffer / readGBuffer)\n";
@@ -91,7 +92,7 @@ std::string unusedText(const std::vector<Channel>& channels, const std::vector<F
 }
 
 void describeFields(std::ostream& o, const std::vector<Field>& fields, const std::vector<Channel>& channels) {
-    o << "  " << pad("bits", 18) << pad("attribute", 28) << pad("code", 8) << pad("encoding", 22) << "width\n";
+    o << "  " << pad("bits", 18) << pad("attribute", 28) << pad("code", 8) << pad("encoding", 26) << "width\n";
     for (const Field& f : fields) {
         for (size_t i = 0; i < f.codes.size(); ++i) {
             std::string attr = attributeName(f.attribute);
@@ -100,7 +101,7 @@ void describeFields(std::ostream& o, const std::vector<Field>& fields, const std
                 attr += " = " + number(f.value[k]);
             }
             o << "  " << pad(placeText(channels, f.codes[i]), 18) << pad(attr, 28) << pad(codeLabel(f, i), 8)
-              << pad(f.encoding, 22) << f.codes[i].bits() << "\n";
+              << pad(f.encoding, 26) << f.codes[i].bits() << "\n";
         }
     }
     o << "  unused: " << unusedText(channels, fields) << "\n";
@@ -201,6 +202,14 @@ int checkLayoutsCommand(const std::vector<std::string>& files, std::ostream& out
     return bad ? 1 : 0;
 }
 
+// "25", "8 +16 light" (deferred lighting's light buffers), "12 ids" (a pipeline whose targets hold ids).
+std::string atlasBytesText(const AtlasEntry& e) {
+    std::string s = std::to_string(e.bytesPerPixel);
+    if (e.bytesKind != "attributes") s += " " + e.bytesKind;
+    if (e.lightBufferBytesPerPixel > 0) s += " +" + std::to_string(e.lightBufferBytesPerPixel) + " light";
+    return s;
+}
+
 int listLayoutsCommand(std::ostream& out, std::ostream& err) {
     std::filesystem::path dir;
     std::vector<std::string> names;
@@ -211,19 +220,29 @@ int listLayoutsCommand(std::ostream& out, std::ostream& err) {
         err << e.what() << "\n";
         return 1;
     }
-    int bad = 0;
-    out << pad("name", 22) << pad("bytes/px", 10) << "title\n";
+    std::vector<AtlasEntry> entries;
+    std::vector<std::string> invalid;
     for (const std::string& name : names) {
         try {
-            const Layout l = loadLayoutFile(dir / (name + ".toml"));
-            out << pad(name, 22) << pad(std::to_string(bytesPerPixel(l)), 10) << l.title << "\n";
+            entries.push_back(atlasEntryOf(loadLayoutFile(dir / (name + ".toml"))));
         } catch (const UserError& e) {
-            ++bad;
-            out << pad(name, 22) << pad("-", 10) << "(invalid: run `gbufferlab layouts check`)\n";
+            invalid.push_back(name);
             err << e.what() << "\n";
         }
     }
-    return bad ? 1 : 0;
+    // Grouped as the report's atlas table (layout_atlas.h): family, then its layouts by year.
+    out << pad("family / layout", 26) << pad("year", 6) << pad("bytes/px", 16) << "title\n";
+    for (const AtlasGroup& g : groupAtlas(std::move(entries))) {
+        out << g.family << "\n";
+        for (const AtlasEntry& e : g.entries)
+            out << "  " << pad(e.layout, 24) << pad(std::to_string(e.year), 6) << pad(atlasBytesText(e), 16) << e.title
+                << "\n";
+    }
+    if (!invalid.empty()) {
+        out << "(invalid: run `gbufferlab layouts check`)\n";
+        for (const std::string& name : invalid) out << "  " << name << "\n";
+    }
+    return invalid.empty() ? 0 : 1;
 }
 
 int showLayoutCommand(const std::string& nameOrPath, std::ostream& out, std::ostream& err) {

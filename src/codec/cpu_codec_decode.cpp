@@ -140,6 +140,9 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
                     map1(n, c, out, [bk](uint x) { return roughnessFromSmoothnessCry(dequantizeUnorm(x, bk)); });
                     break;
                 case Codec::CryGlossPower: map1(n, c, out, [](uint x) { return decodeCryGlossPower(x); }); break;
+                case Codec::Reflectance:
+                    map1(n, c, out, [bk](uint x) { return specularFromReflectance(dequantizeUnorm(x, bk)); });
+                    break;
                 default: break;  // Id: CpuCodec::decode throws before (plan.decodeError)
             }
         }
@@ -191,6 +194,34 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
         case Codec::NormalOctahedralPrecise:
             map3(n, c0, c1, c1, x, y, z,
                  [bits](uint a, uint b1, uint) { return decodeNormalOctahedralPrecise(uvec2(a, b1), bits); });
+            return;
+        case Codec::Gamma22:
+            map1(n, c0, x, [](uint c) { return decodeGamma22(c); });
+            map1(n, c1, y, [](uint c) { return decodeGamma22(c); });
+            map1(n, c2, z, [](uint c) { return decodeGamma22(c); });
+            return;
+        case Codec::Float111110:
+            map1(n, c0, x, [](uint c) { return decodeFloat11(c); });
+            map1(n, c1, y, [](uint c) { return decodeFloat11(c); });
+            map1(n, c2, z, [](uint c) { return decodeFloat10(c); });
+            return;
+        case Codec::Rgb9e5: {
+            const uint32_t* c3 = b.code[3];
+            for (int j = 0; j < n; ++j) {
+                const vec3 v = decodeRgb9e5(uvec4(c0[j], c1[j], c2[j], c3[j]));
+                x[j] = v.x;
+                y[j] = v.y;
+                z[j] = v.z;
+            }
+            return;
+        }
+        case Codec::NormalOctahedralBevy:
+        case Codec::NormalOctahedralUnity:
+            map3(n, c0, c1, c1, x, y, z,
+                 [bits](uint a, uint b1, uint) { return decodeNormalOctahedralTrunc(uvec2(a, b1), bits); });
+            return;
+        case Codec::NormalXyFloat16:
+            map3(n, c0, c1, c1, x, y, z, [](uint a, uint b1, uint) { return decodeNormalXyFloat16(uvec2(a, b1)); });
             return;
         default: return;  // checkerboard: decodeCheckerboard
     }

@@ -243,6 +243,9 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
                     map1(n, in, out, [bk](float x) { return quantizeUnorm(smoothnessFromRoughnessCry(x), bk); });
                     break;
                 case Codec::CryGlossPower: map1(n, in, out, [](float x) { return encodeCryGlossPower(x); }); break;
+                case Codec::Reflectance:
+                    map1(n, in, out, [bk](float x) { return quantizeUnorm(reflectanceFromSpecular(x), bk); });
+                    break;
                 default: break;  // Id: folded into the target's constant words by compilePlan
             }
         }
@@ -284,6 +287,36 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
             return;
         case Codec::NormalOctahedralPrecise:
             map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralPrecise(v, bits); });
+            return;
+        case Codec::Gamma22:
+            map1(n, x, c0, [](float v) { return encodeGamma22(v); });
+            map1(n, yv, c1, [](float v) { return encodeGamma22(v); });
+            map1(n, z, c2, [](float v) { return encodeGamma22(v); });
+            return;
+        case Codec::Float111110:
+            map1(n, x, c0, [](float v) { return encodeFloat11Fast(v); });
+            map1(n, yv, c1, [](float v) { return encodeFloat11Fast(v); });
+            map1(n, z, c2, [](float v) { return encodeFloat10Fast(v); });
+            return;
+        case Codec::Rgb9e5: {
+            uint32_t* c3 = b.code[3];
+            for (int j = 0; j < n; ++j) {
+                const uvec4 c = encodeRgb9e5(vec3(x[j], yv[j], z[j]));
+                c0[j] = c.x;
+                c1[j] = c.y;
+                c2[j] = c.z;
+                c3[j] = c.w;
+            }
+            return;
+        }
+        case Codec::NormalOctahedralBevy:
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralTrunc(v, bits, 0.0f); });
+            return;
+        case Codec::NormalOctahedralUnity:
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralTrunc(v, bits, 0.5f); });
+            return;
+        case Codec::NormalXyFloat16:
+            map3to2(n, x, yv, z, c0, c1, [](vec3 v, int) { return encodeNormalXyFloat16(v); });
             return;
         default: return;  // scalars: above
     }

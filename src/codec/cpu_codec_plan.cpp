@@ -28,6 +28,7 @@ Codec resolveCodec(const std::string& e) {
         {"gloss", Codec::Gloss},
         {"smoothness_cry", Codec::SmoothnessCry},
         {"cry_gloss_power", Codec::CryGlossPower},
+        {"reflectance", Codec::Reflectance},
         {"srgb8", Codec::Srgb8},
         {"luma", Codec::Luma},
         {"ycbcr", Codec::YCbCr},
@@ -42,6 +43,12 @@ Codec resolveCodec(const std::string& e) {
         {"normal_stereographic", Codec::NormalStereographic},
         {"normal_octahedral", Codec::NormalOctahedral},
         {"normal_octahedral_precise", Codec::NormalOctahedralPrecise},
+        {"gamma22", Codec::Gamma22},
+        {"rgb9e5", Codec::Rgb9e5},
+        {"float11_11_10", Codec::Float111110},
+        {"normal_octahedral_bevy", Codec::NormalOctahedralBevy},
+        {"normal_octahedral_unity", Codec::NormalOctahedralUnity},
+        {"normal_xy_float16", Codec::NormalXyFloat16},
     };
     for (const auto& [name, codec] : names)
         if (e == name) return codec;
@@ -57,14 +64,20 @@ size_t codeCount(Codec c) {
         case Codec::YCoCg:
         case Codec::NormalXyz:
         case Codec::NormalBestFit:
-        case Codec::NormalXyZSign: return 3;
+        case Codec::NormalXyZSign:
+        case Codec::Gamma22:
+        case Codec::Float111110: return 3;
+        case Codec::Rgb9e5: return 4;
         case Codec::Luma: return 1;
         case Codec::YCbCrCheckerboard:
         case Codec::YCoCgCheckerboard:
         case Codec::NormalSpheremap:
         case Codec::NormalStereographic:
         case Codec::NormalOctahedral:
-        case Codec::NormalOctahedralPrecise: return 2;
+        case Codec::NormalOctahedralPrecise:
+        case Codec::NormalOctahedralBevy:
+        case Codec::NormalOctahedralUnity:
+        case Codec::NormalXyFloat16: return 2;
         default: return 0;
     }
 }

@@ -34,7 +34,8 @@ enum class Codec : uint8_t {
     Depth24,
     Gloss,
     SmoothnessCry,
-    CryGlossPower,
+    Reflectance,
+    CryGlossPower,  // the last scalar (isScalar)
     Srgb8,
     Luma,
     YCbCr,
@@ -49,6 +50,12 @@ enum class Codec : uint8_t {
     NormalStereographic,
     NormalOctahedral,
     NormalOctahedralPrecise,
+    Gamma22,
+    Rgb9e5,
+    Float111110,
+    NormalOctahedralBevy,
+    NormalOctahedralUnity,
+    NormalXyFloat16,
 };
 
 // Per component of the attribute (one code each) or the whole vec3 (Color and Normal kinds).

@@ -71,6 +71,7 @@ std::string scalarEncode(const std::string& enc, const std::string& x, int bits)
     if (enc == "gloss") return "quantizeUnorm(glossFromRoughness(" + x + "), " + b + ")";
     if (enc == "smoothness_cry") return "quantizeUnorm(smoothnessFromRoughnessCry(" + x + "), " + b + ")";
     if (enc == "cry_gloss_power") return "encodeCryGlossPower(" + x + ")";
+    if (enc == "reflectance") return "quantizeUnorm(reflectanceFromSpecular(" + x + "), " + b + ")";
     throw std::logic_error("wiring: no scalar encoder for " + enc);
 }
 
@@ -86,6 +87,7 @@ std::string scalarDecode(const std::string& enc, const std::string& c, int bits)
     if (enc == "gloss") return "roughnessFromGloss(dequantizeUnorm(" + c + ", " + b + "))";
     if (enc == "smoothness_cry") return "roughnessFromSmoothnessCry(dequantizeUnorm(" + c + ", " + b + "))";
     if (enc == "cry_gloss_power") return "decodeCryGlossPower(" + c + ")";
+    if (enc == "reflectance") return "specularFromReflectance(dequantizeUnorm(" + c + ", " + b + "))";
     throw std::logic_error("wiring: no scalar decoder for " + enc);
 }
 
@@ -128,8 +130,23 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
     const std::string b = ulit(uint64_t(f.bitsOfCode(0)));
     const std::string v = wholeExpr(f);
     std::string fwd, inv;
-    if (e == "srgb8") {
-        for (int i = 0; i < 3; ++i) codes.push_back("encodeSrgb8(" + v + "." + kComp[i] + ")");
+    if (e == "srgb8" || e == "gamma22") {
+        const std::string fn = e == "srgb8" ? "encodeSrgb8(" : "encodeGamma22(";
+        for (int i = 0; i < 3; ++i) codes.push_back(fn + v + "." + kComp[i] + ")");
+    } else if (e == "float11_11_10") {
+        codes.push_back("encodeFloat11(" + v + ".x)");
+        codes.push_back("encodeFloat11(" + v + ".y)");
+        codes.push_back("encodeFloat10(" + v + ".z)");
+    } else if (e == "rgb9e5") {
+        o << ind << "uvec4 " << id << " = encodeRgb9e5(" << v << ");\n";
+        for (int i = 0; i < 4; ++i) codes.push_back(id + "." + kComp[i]);
+    } else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity") {
+        o << ind << "uvec2 " << id << " = encodeNormalOctahedralTrunc(" << v << ", " << b << ", "
+          << (e == "normal_octahedral_bevy" ? "0.0" : "0.5") << ");\n";
+        for (int i = 0; i < 2; ++i) codes.push_back(id + "." + kComp[i]);
+    } else if (e == "normal_xy_float16") {
+        o << ind << "uvec2 " << id << " = encodeNormalXyFloat16(" << v << ");\n";
+        for (int i = 0; i < 2; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "luma") {
         codes.push_back("quantizeUnorm(lumaBt601(" + v + "), " + b + ")");
     } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
@@ -176,6 +193,14 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
     const std::string b = ulit(uint64_t(f.bitsOfCode(0)));
     std::string fwd, inv;
     if (e == "srgb8") return "vec3(decodeSrgb8(" + c[0] + "), decodeSrgb8(" + c[1] + "), decodeSrgb8(" + c[2] + "))";
+    if (e == "gamma22")
+        return "vec3(decodeGamma22(" + c[0] + "), decodeGamma22(" + c[1] + "), decodeGamma22(" + c[2] + "))";
+    if (e == "float11_11_10")
+        return "vec3(decodeFloat11(" + c[0] + "), decodeFloat11(" + c[1] + "), decodeFloat10(" + c[2] + "))";
+    if (e == "rgb9e5") return "decodeRgb9e5(uvec4(" + c[0] + ", " + c[1] + ", " + c[2] + ", " + c[3] + "))";
+    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity")
+        return "decodeNormalOctahedralTrunc(uvec2(" + c[0] + ", " + c[1] + "), " + b + ")";
+    if (e == "normal_xy_float16") return "decodeNormalXyFloat16(uvec2(" + c[0] + ", " + c[1] + "))";
     if (e == "luma") return "vec3(dequantizeUnorm(" + c[0] + ", " + b + "))";
     if (colorTransform(e, fwd, inv))
         return inv + "(vec3(dequantizeUnorm(" + c[0] + ", " + b + "), " + chromaDequantize(e) + "(" + c[1] + ", " + b +
@@ -194,6 +219,8 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
 // native. Decoding from those floats: nativeDecodeExpr.
 bool nativeField(const Target& t, const Field& f) {
     if (f.encoding == kIdEncoding) return false;
+    // An SNORM target's hardware conversion is not any encoding's: its fields stay packed words.
+    if (t.format.find("SNORM") != std::string::npos) return false;
     const std::string& e = f.encoding;
     for (size_t i = 0; i < f.codes.size(); ++i) {
         const CodePlace& cp = f.codes[i];

@@ -1,5 +1,6 @@
 #include "wiring_plan.h"
 
+#include <cstring>
 #include <set>
 #include <stdexcept>
 
@@ -34,12 +35,29 @@ VkFormat uintFormatOf(const Target& target) {
     return VK_FORMAT_R32G32B32A32_UINT;
 }
 
+std::vector<uint32_t> texelsToWords(const std::vector<uint8_t>& bytes, size_t pixels) {
+    const size_t texel = pixels ? bytes.size() / pixels : 0;
+    if (texel == 0 || bytes.size() != texel * pixels || (texel < 4 && texel != 1 && texel != 2) || (texel >= 4 && texel % 4))
+        throw std::logic_error("texelsToWords: " + std::to_string(bytes.size()) + " bytes for " + std::to_string(pixels) +
+                               " texels");
+    if (texel >= 4) {
+        std::vector<uint32_t> words(bytes.size() / 4);
+        std::memcpy(words.data(), bytes.data(), words.size() * 4);
+        return words;
+    }
+    std::vector<uint32_t> words(pixels);
+    for (size_t i = 0; i < pixels; ++i)
+        words[i] = texel == 1 ? uint32_t(bytes[i]) : uint32_t(bytes[2 * i]) | uint32_t(bytes[2 * i + 1]) << 8;
+    return words;
+}
+
 VkFormat vkFormatFromName(const std::string& name) {
     static const std::vector<std::pair<const char*, VkFormat>> table = {
         {"R8_UNORM", VK_FORMAT_R8_UNORM},
         {"R8G8_UNORM", VK_FORMAT_R8G8_UNORM},
         {"R8G8B8A8_UNORM", VK_FORMAT_R8G8B8A8_UNORM},
         {"R8G8B8A8_SRGB", VK_FORMAT_R8G8B8A8_SRGB},
+        {"R8G8B8A8_SNORM", VK_FORMAT_R8G8B8A8_SNORM},
         {"B8G8R8A8_UNORM", VK_FORMAT_B8G8R8A8_UNORM},
         {"B8G8R8A8_SRGB", VK_FORMAT_B8G8R8A8_SRGB},
         {"A8B8G8R8_UNORM_PACK32", VK_FORMAT_A8B8G8R8_UNORM_PACK32},

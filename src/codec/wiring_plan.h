@@ -2,6 +2,8 @@
 // Facts about a layout that both of its interpreters need, the generated GLSL (wiring_codegen.h)
 // and the CPU mirror (cpu_codec.h): the words each target renders to, the material pass's float
 // slots, the order fallbacks are applied in, and the Surface member each attribute fills.
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,10 @@ namespace gbl {
 // 32-bit words per pixel of a target as rendered (1 for targets of <= 32 bits).
 int wordsPerPixel(const Target& target);
 VkFormat uintFormatOf(const Target& target);
+// A target's texels as downloaded (`pixels` of them) as its words: wordsPerPixel words per pixel.
+// Texels narrower than a word (R8_UINT, R16_UINT: Bevy's pass id, Granite's RG8) are widened, one
+// zero-extended little-endian word each, as the CPU codec holds them.
+std::vector<uint32_t> texelsToWords(const std::vector<uint8_t>& bytes, size_t pixels);
 // The nominal format as a VkFormat (VK_FORMAT_UNDEFINED when unknown).
 VkFormat vkFormatFromName(const std::string& name);
 // Material pass (deferred lighting): the float slots of the attributes whose fallback is

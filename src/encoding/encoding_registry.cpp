@@ -40,6 +40,11 @@ std::vector<EncodingInfo> makeRegistry() {
                  "in RT1.a); power mapping assumed (CryENGINE 3-era shaders); Walter et al., EGSR 2007 "
                  "(n = 2/alpha^2 - 2)"});
 
+    v.push_back({"reflectance", K::Scalar, 1, 8, 1, 16, 0, false, "specular in [0,1]",
+                 "Filament / Bevy reflectance r = sqrt(specular / 2) as unorm (F0 = 0.16 r^2 = 0.08 specular); "
+                 "decodes specular = 2 r^2",
+                 "Filament documentation, 'Reflectance' (F0 = 0.16 reflectance^2); Bevy StandardMaterial::reflectance"});
+
     v.push_back({"srgb8", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
                  "exact sRGB 8-bit per channel via 255 linear thresholds (no pow)",
                  "IEC 61966-2-1 sRGB transfer function"});
@@ -61,6 +66,15 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"ycbcr_checkerboard", K::Color, 2, 8, 2, 16, 0, true, "[0,1]^3",
                  "Y + one chroma per pixel (Cb on even (x+y), Cr on odd), edge-directed reconstruction",
                  "Sousa et al., Crysis 3, GDC 2013; Mavridis & Papaioannou, JCGT 2012"});
+    v.push_back({"gamma22", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
+                 "gamma 2.2 (not sRGB): code = round(255 x^(1/2.2)), exact via 255 thresholds; decodes code^2.2",
+                 "Bevy 0.12+ deferred G-buffer (pbr_deferred_functions.wgsl: pow(base_color, 1/2.2) in pack4x8unorm)"});
+    v.push_back({"float11_11_10", K::Color, 2, 11, 11, 11, 10, false, "[0, 65024]^3 (HDR)",
+                 "B10G11R11's three unsigned floats as one colour: r, g float11 (5e6m), b float10 (5e5m)",
+                 "Vulkan spec, 'Unsigned 11-Bit / 10-Bit Floating-Point Numbers'; HDRP GBuffer3 (Lit.hlsl)"});
+    v.push_back({"rgb9e5", K::Color, 3, 9, 9, 9, 5, false, "[0, 65408]^3 (HDR, e.g. emissive)",
+                 "shared exponent: 9-bit mantissas r, g, b + 5-bit exponent (bias 15); error <= 2^-9 of max(r,g,b)",
+                 "Vulkan spec, 'Shared Exponent' (E5B9G9R9_UFLOAT_PACK32); EXT_texture_shared_exponent; Bevy rgb9e5.wgsl"});
 
     v.push_back({"normal_xyz", K::Normal, 3, 8, 2, 16, 0, false, "unit vector",
                  "unorm of n*0.5+0.5 per component, normalised on decode", "common practice"});
@@ -83,6 +97,15 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"normal_octahedral_precise", K::Normal, 2, 8, 2, 16, 0, false, "unit vector",
                  "octahedral, best of the 4 floor/ceil neighbours by decoded dot product",
                  "Cigolle et al., JCGT 3(2) 2014, 'oct*P' precise variant"});
+    v.push_back({"normal_octahedral_bevy", K::Normal, 2, 12, 2, 16, 0, false, "unit vector",
+                 "octahedral, unorm of p*0.5+0.5 truncated: floor(u * (2^b - 1)) (Bevy's oct24 normal)",
+                 "Bevy pbr_deferred_types.wgsl (pack_24bit_nor_and_flags); Cigolle et al., JCGT 2014"});
+    v.push_back({"normal_octahedral_unity", K::Normal, 2, 12, 2, 16, 0, false, "unit vector",
+                 "octahedral, unorm of p*0.5+0.5 truncated: floor(u * (2^b - 0.5)), decoded code / (2^b - 1)",
+                 "Unity core Packing.hlsl PackFloat2To888 (HDRP normal buffer, URP accurate G-buffer normals)"});
+    v.push_back({"normal_xy_float16", K::Normal, 2, 16, 16, 16, 0, false, "unit vector, view space",
+                 "x, y as IEEE half floats; z = +sqrt(1 - x^2 - y^2) (facing the camera), no sign bit",
+                 "Valient, 'Deferred Rendering in Killzone 2', Develop Conference 2007 (RT1: FP16 normal X, Y)"});
     return v;
 }
 

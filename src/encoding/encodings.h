@@ -18,6 +18,7 @@ using glm::mat4;
 using glm::uint;
 using glm::uvec2;
 using glm::uvec3;
+using glm::uvec4;
 using glm::vec2;
 using glm::vec3;
 using glm::vec4;
@@ -38,6 +39,8 @@ using glm::uintBitsToFloat;
 // that the CPU codec's per-pixel loops (src/cpu_codec*.cpp) inline and vectorise them.
 extern const float kSrgbDecode[256];
 extern const float kSrgbEncodeThresholds[255];
+extern const float kGamma22Decode[256];
+extern const float kGamma22EncodeThresholds[255];
 uvec3 encodeNormalBestFitSearch(vec3 n);  // the reference search behind the best-fit table
 uvec2 encodeNormalSpheremap(vec3 n, uint bits);
 vec3 decodeNormalSpheremap(uvec2 code, uint bits);
@@ -430,6 +433,13 @@ inline float glossFromRoughness(float r) {
 }
 inline float roughnessFromGloss(float g) { return 1.0f - g; }
 
+// reflectanceFromSpecular: Filament / Bevy reflectance r = sqrt(s / 2) (F0 = 0.16 r^2 = 0.08 s).
+inline float reflectanceFromSpecular(float s) {
+    float h = clamp(s, 0.0f, 1.0f) * 0.5f;
+    return sqrt(h);
+}
+inline float specularFromReflectance(float r) { return 2.0f * r * r; }
+
 // smoothnessFromRoughnessCry: s = 1 - sqrt(r); roughnessFromSmoothnessCry: r = (1 - s)^2.
 // Source: Schulz, "Moving to the Next Generation - The Rendering Technology of Ryse", GDC 2014.
 // With 8-bit unorm s: max roughness error 0.0039 (near r = 1), 0.5/255^2 near r = 0.
@@ -500,5 +510,69 @@ inline uint quantizeDepth24(float d) {
     return uint(int(hi) + int(up));
 }
 inline float dequantizeDepth24(uint code) { return dequantizeUnorm(code & 0xffffffu, 24u); }
+
+// ---------------------------------------------------------------------------------------------
+// 8. Packings of shipped engines (the GLSL twin carries the sources and error bounds).
+// ---------------------------------------------------------------------------------------------
+
+// encodeRgb9e5: RGB >= 0 -> (9-bit mantissas r, g, b; 5-bit shared exponent), Vulkan's
+// E5B9G9R9_UFLOAT_PACK32 ("Shared Exponent", N = 9, B = 15), as Bevy stores emissive.
+inline uvec4 encodeRgb9e5(vec3 c) {
+    vec3 rgb = clamp(c, vec3(0.0f), vec3(65408.0f));
+    float m = max(rgb.x, max(rgb.y, rgb.z));
+    int e = max(-16, int((floatBitsToUint(m) >> 23u) & 0xffu) - 127) + 16;
+    float scale = uintBitsToFloat(uint(151 - e) << 23u);  // 2^(B + N - exp)
+    float top = floor(m * scale + 0.5f);
+    if (top >= 512.0f) {
+        e += 1;
+        scale *= 0.5f;
+    }
+    vec3 q = floor(rgb * scale + 0.5f);
+    return uvec4(uint(q.x), uint(q.y), uint(q.z), uint(e));
+}
+
+// decodeRgb9e5: mantissa * 2^(exp - B - N); exact.
+inline vec3 decodeRgb9e5(uvec4 code) {
+    float scale = uintBitsToFloat(uint(int(code.w & 31u) + 103) << 23u);
+    return vec3(float(code.x & 511u), float(code.y & 511u), float(code.z & 511u)) * scale;
+}
+
+// Gamma 2.2 (not sRGB), 8 bits, table based (tables in encodings.cpp): Bevy's base colour.
+inline uint encodeGamma22(float x) {
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kGamma22EncodeThresholds[mid] <= x) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+inline float decodeGamma22(uint code) { return kGamma22Decode[code & 255u]; }
+
+// Octahedral, unorm of p * 0.5 + 0.5 truncated with scale 2^bits - 1 + scaleAdd (Bevy: 0,
+// Unity's PackFloat2To888: 0.5), decoded as code / (2^bits - 1).
+inline uvec2 encodeNormalOctahedralTrunc(vec3 n, uint bits, float scaleAdd) {
+    vec2 p = octEncode(n);
+    float s = float((1u << bits) - 1u) + scaleAdd;
+    vec2 u = clamp(vec2(p.x * 0.5f + 0.5f, p.y * 0.5f + 0.5f), vec2(0.0f), vec2(1.0f));
+    vec2 q = floor(u * s);
+    return min(uvec2(uint(q.x), uint(q.y)), uvec2((1u << bits) - 1u));
+}
+
+inline vec3 decodeNormalOctahedralTrunc(uvec2 code, uint bits) {
+    vec2 u = vec2(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits));
+    return normalize(octDecode(u * 2.0f - 1.0f));
+}
+
+// View-space x, y as half floats, z = +sqrt(1 - x^2 - y^2) (Killzone 2's RT1).
+inline uvec2 encodeNormalXyFloat16(vec3 n) { return uvec2(encodeFloat16(n.x), encodeFloat16(n.y)); }
+
+inline vec3 decodeNormalXyFloat16(uvec2 code) {
+    float x = decodeFloat16(code.x);
+    float y = decodeFloat16(code.y);
+    float z = sqrt(max(0.0f, 1.0f - x * x - y * y));
+    return normalize(vec3(x, y, z));
+}
 
 }  // namespace gbl::enc

@@ -60,6 +60,21 @@ const std::vector<AttributeInfo>& attributeTable() {
          "material classification id for tiled lighting (HDRP-style)"},
         {Attribute::CoatMask, "coat_mask", 1, AC::Extra, VT::Float, VD::Unit, "clear-coat mask (HDRP)"},
         {Attribute::Flags, "flags", 1, AC::Extra, VT::Integer, VD::Id, "per-pixel mesh / material flags (Bevy)"},
+        {Attribute::Velocity, "velocity", 2, AC::Extra, VT::Float, VD::Unit,
+         "screen-space motion as the engine encodes it; a static camera and scene give the engine's zero code "
+         "(UE5 velocity target, Killzone 2 RT2.rg)"},
+        {Attribute::Tangent, "tangent", 3, AC::Extra, VT::Float, VD::Unit,
+         "world tangent as t * 0.5 + 0.5 (UE5 GBufferF.rgb); the scene has no tangents, so a constant"},
+        {Attribute::Anisotropy, "anisotropy", 1, AC::Extra, VT::Float, VD::Unit,
+         "anisotropy as a * 0.5 + 0.5 (UE5 GBufferF.a; 0.5 = isotropic)"},
+        {Attribute::PassId, "pass_id", 1, AC::Extra, VT::Integer, VD::Id,
+         "deferred lighting pass id (Bevy's R8Uint target; 1 = the default PBR lighting pass)"},
+        {Attribute::SunOcclusion, "sun_occlusion", 1, AC::Extra, VT::Float, VD::Unit,
+         "baked sun occlusion, 1 = unoccluded (Killzone 2 RT3.a)"},
+        {Attribute::ShadingModelFloat, "shading_model_float", 1, AC::Extra, VT::Float, VD::Unit,
+         "UE GBufferB.a in a float target: (ShadingModelID | SelectiveOutputMask) / 255 (r.GBufferFormat=5)"},
+        {Attribute::LightIntensity, "light_intensity", 1, AC::Extra, VT::Float, VD::Unit,
+         "intensity channel of a light accumulation target (Killzone 2 RT0.a)"},
     };
     return table;
 }
@@ -121,6 +136,8 @@ const std::vector<TargetFormatInfo>& targetFormatTable() {
         uniform("R8G8_UNORM", "rg", 8, T::Unorm),
         uniform("R8G8B8A8_UNORM", "rgba", 8, T::Unorm),
         srgb("R8G8B8A8_SRGB", "rgba"),
+        // SNORM channels hold bit fields like UNORM ones (the snorm encoding writes two's complement codes).
+        uniform("R8G8B8A8_SNORM", "rgba", 8, T::Unorm),
         uniform("B8G8R8A8_UNORM", "bgra", 8, T::Unorm),
         srgb("B8G8R8A8_SRGB", "bgra"),
         uniform("A8B8G8R8_UNORM_PACK32", "rgba", 8, T::Unorm),
@@ -392,6 +409,9 @@ namespace {
 std::vector<std::string> wholeValueCodeNames(const std::string& encoding) {
     if (encoding == "normal_xyz" || encoding == "normal_bestfit") return {"x", "y", "z"};
     if (encoding == "normal_xy_zsign") return {"x", "y", "z_sign"};
+    if (encoding == "normal_xy_float16") return {"x", "y"};
+    if (encoding == "rgb9e5") return {"r", "g", "b", "e"};
+    if (encoding == "gamma22" || encoding == "float11_11_10") return {"r", "g", "b"};
     if (encoding.rfind("normal_", 0) == 0) return {"u", "v"};
     if (encoding == "srgb8") return {"r", "g", "b"};
     if (encoding == "ycbcr" || encoding == "ycbcr_sqrt") return {"Y", "Cb", "Cr"};

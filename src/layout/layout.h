@@ -52,6 +52,13 @@ enum class Attribute : uint8_t {
     MaterialFeature,
     CoatMask,
     Flags,
+    Velocity,
+    Tangent,
+    Anisotropy,
+    PassId,
+    SunOcclusion,
+    ShadingModelFloat,
+    LightIntensity,
 };
 
 enum class AttributeClass : uint8_t { Shading, Geometry, Extra };
@@ -297,6 +304,7 @@ struct Source {
     std::string engine;
     std::string talk;  // talk / paper / article, with authors and venue
     std::string code;  // source file the layout is read from (e.g. DeferredShadingCommon.ush)
+    std::string family;  // what the atlas groups by (e.g. "Unreal Engine"); empty: engine, else game
     int year = 0;
     std::string text() const;  // one line for `layouts show`
 };

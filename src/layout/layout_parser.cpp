@@ -146,11 +146,12 @@ void Parser::parseSource(const toml::table& root, Layout& layout) {
         return;
     }
     const FilePlace at = placeOf(*n);
-    checkKeys(*t, {"game", "engine", "talk", "code", "year"}, "source");
+    checkKeys(*t, {"game", "engine", "family", "talk", "code", "year"}, "source");
     Source& s = layout.source;
     s.game = getString(*t, "game", false, at, "source").value_or("");
     s.engine = getString(*t, "engine", false, at, "source").value_or("");
     s.talk = getString(*t, "talk", false, at, "source").value_or("");
+    s.family = getString(*t, "family", false, at, "source").value_or("");
     s.code = getString(*t, "code", false, at, "source").value_or("");
     if (const toml::node* y = t->get("year")) {
         if (auto year = getInteger(*y, "'year'")) {

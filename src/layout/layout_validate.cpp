@@ -65,6 +65,7 @@ private:
         }
         if ((enc.name == "gloss" || enc.name == "smoothness_cry" || enc.name == "cry_gloss_power") && attr.id != Attribute::Roughness)
             return e + " stores roughness only, not " + a;
+        if (enc.name == "reflectance" && attr.id != Attribute::Specular) return e + " stores specular only, not " + a;
         if (attr.domain == ValueDomain::Signed && enc.name != "snorm" && enc.name != "float16" && enc.name != "float32")
             return a + " has components in [-1,1] but " + e + " takes " + enc.inputRange +
                    " (use a normal_* encoding, snorm, float16 or float32)";
@@ -163,7 +164,10 @@ private:
                 if (ch.type == ChannelType::Sfloat || ch.type == ChannelType::Ufloat) {
                     const std::string need = ch.type == ChannelType::Sfloat ? (ch.bits == 16 ? "float16" : "float32")
                                                                             : (ch.bits == 11 ? "float11" : "float10");
-                    if (!whole || f.encoding != need)
+                    // float11_11_10 is B10G11R11's three codes as one colour field (r, g: float11; b: float10).
+                    const bool packedUfloat = f.encoding == "float11_11_10" && ch.type == ChannelType::Ufloat &&
+                                              (ch.bits == 11) == (i < 2);
+                    if (!whole || (f.encoding != need && !packedUfloat))
                         error(c.place, "channel " + squote(ch.name) + " of " + format +
                                            " is a float channel: it "
                                            "holds one whole " +

@@ -123,6 +123,12 @@ glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n) {
     if (info.name == "normal_octahedral") return enc::decodeNormalOctahedral(enc::encodeNormalOctahedral(n, b), b);
     if (info.name == "normal_octahedral_precise")
         return enc::decodeNormalOctahedralPrecise(enc::encodeNormalOctahedralPrecise(n, b), b);
+    if (info.name == "normal_octahedral_bevy")
+        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralTrunc(n, b, 0.0f), b);
+    if (info.name == "normal_octahedral_unity")
+        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralTrunc(n, b, 0.5f), b);
+    // No sign bit: over the whole sphere, the half facing away (z < 0) comes back mirrored.
+    if (info.name == "normal_xy_float16") return enc::decodeNormalXyFloat16(enc::encodeNormalXyFloat16(n));
     throwUserError("encoding '" + info.name + "' has no normal round trip");
 }
 
@@ -143,6 +149,13 @@ glm::vec3 roundTripColor(std::string_view name, int bits, glm::vec3 c) {
     if (info.name == "ycbcr_sqrt") return enc::yCbCrSqrtToRgb(chromaRoundTrip3(enc::rgbToYCbCrSqrt(c), b));
     if (info.name == "ycocg") return enc::yCoCgToRgb(unormRoundTrip3(enc::rgbToYCoCg(c), b));
     if (info.name == "luma") return vec3(enc::dequantizeUnorm(enc::quantizeUnorm(enc::lumaBt601(c), b), b));
+    if (info.name == "gamma22")
+        return vec3(enc::decodeGamma22(enc::encodeGamma22(c.x)), enc::decodeGamma22(enc::encodeGamma22(c.y)),
+                    enc::decodeGamma22(enc::encodeGamma22(c.z)));
+    if (info.name == "float11_11_10")
+        return vec3(enc::decodeFloat11(enc::encodeFloat11(c.x)), enc::decodeFloat11(enc::encodeFloat11(c.y)),
+                    enc::decodeFloat10(enc::encodeFloat10(c.z)));
+    if (info.name == "rgb9e5") return enc::decodeRgb9e5(enc::encodeRgb9e5(c));
     throwUserError("encoding '" + info.name + "' has no single-value colour round trip (it reads neighbours)");
 }
 
@@ -162,6 +175,9 @@ float roundTripScalar(std::string_view name, int bits, float x) {
         return enc::roughnessFromSmoothnessCry(
             enc::dequantizeUnorm(enc::quantizeUnorm(enc::smoothnessFromRoughnessCry(x), b), b));
     if (info.name == "cry_gloss_power") return enc::decodeCryGlossPower(enc::encodeCryGlossPower(x));
+    if (info.name == "reflectance")
+        return enc::specularFromReflectance(
+            enc::dequantizeUnorm(enc::quantizeUnorm(enc::reflectanceFromSpecular(x), b), b));
     throwUserError("encoding '" + info.name + "' has no scalar round trip");
 }
 

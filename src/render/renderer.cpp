@@ -13,6 +13,7 @@
 #include "ibl_cache.h"
 #include "renderer_passes.h"
 #include "stage_clock.h"
+#include "wiring_plan.h"
 
 namespace gbl {
 
@@ -202,10 +203,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     }
     for (const GpuImage& t : gbuffer.targets) {
         if (!settings.readTargetWords) break;
-        auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        std::vector<uint32_t> words(bytes.size() / 4);
-        std::memcpy(words.data(), bytes.data(), words.size() * 4);
-        out.targetWords.push_back(std::move(words));
+        const auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        out.targetWords.push_back(texelsToWords(bytes, size_t(w) * h));  // R8 / R16 targets widened
     }
     std::vector<uint8_t> depthBytes = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
                                     VK_IMAGE_ASPECT_DEPTH_BIT);

@@ -11,6 +11,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "report_atlas.h"
 #include "report_csv.h"
 #include "report_html_plot.h"
 #include "report_html_template.h"
@@ -475,6 +476,7 @@ std::string reportHtml(const ReportModel& model) {
            "<a href=\"report.json\">report.json</a>.</p>\n</section>\n";
 
     writeVisibilityVerdict(out, model);
+    writeAtlasHtml(out, model);
 
     out += "<section id=\"plots\">\n<h2>Error against bytes per pixel</h2>\n<div class=\"toggle\" role=\"group\">"
            "<button type=\"button\" data-plot=\"flip\" aria-pressed=\"true\">FLIP mean</button>"

@@ -19,6 +19,12 @@ a:hover { text-decoration: underline; }
 code, .num, .mono { font-family: ui-monospace, "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 12.5px; }
 .num { font-variant-numeric: tabular-nums; text-align: right; white-space: nowrap; }
 .muted { color: var(--muted); }
+table.atlas { border-collapse: collapse; width: 100%; }
+table.atlas th, table.atlas td { border-bottom: 1px solid var(--line); padding: 3px 8px; vertical-align: top; text-align: left; }
+table.atlas tr.family th { background: var(--panel); font-size: 13.5px; }
+table.atlas td.attrs { font-size: 12px; }
+table.atlas .attr { white-space: nowrap; margin-right: 6px; }
+table.atlas .attr.derived { color: var(--muted); }
 header.run { background: var(--panel); border: 1px solid var(--line); border-radius: 6px; padding: 14px 18px; }
 dl.info { display: grid; grid-template-columns: max-content 1fr max-content 1fr; gap: 3px 16px; margin: 10px 0 0; }
 dl.info dt { color: var(--muted); }

@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "report_atlas.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
 
@@ -112,6 +113,32 @@ Json iblFigureJson(const IblFigure& f) {
         rows.push_back(std::move(row));
     }
     return Json{{"png", f.png}, {"columns", f.columns}, {"rows", std::move(rows)}};
+}
+
+// The atlas table (report_atlas.h), flat in its grouped order: one object per layout.
+Json atlasJson(const ReportModel& model) {
+    Json rows = Json::array();
+    for (const AtlasRowGroup& g : atlasRows(model))
+        for (const AtlasRow& r : g.rows) {
+            const AtlasEntry& e = r.entry;
+            Json attributes = Json::array();
+            for (const AtlasAttribute& a : e.attributes)
+                attributes.push_back(Json{{"name", a.name}, {"bits", a.bits}, {"encoding", a.encoding}});
+            Json row{{"family", e.family},
+                     {"layout", e.layout},
+                     {"engine", e.engine},
+                     {"title", e.title},
+                     {"year", e.year},
+                     {"bytes_per_pixel", e.bytesPerPixel},
+                     {"bytes_kind", e.bytesKind},
+                     {"light_buffer_bytes_per_pixel", e.lightBufferBytesPerPixel},
+                     {"attributes", std::move(attributes)}};
+            if (!r.iblMode.empty()) row["ibl_mode"] = r.iblMode;
+            if (r.flipMean) row["flip_mean"] = number(*r.flipMean);
+            if (r.psnrToneMapped) row["psnr_tonemapped_db"] = number(*r.psnrToneMapped);
+            rows.push_back(std::move(row));
+        }
+    return rows;
 }
 
 Json imagesJson(const RunImages& images) {
@@ -460,6 +487,7 @@ Json reportToJson(const ReportModel& model) {
                                 {"vertex_fetch_bytes_per_pixel_modelled", number(v->visibilityVertexBytesPerPixel)}}},
             {"answer", v->answer}};
     }
+    if (!model.atlas.empty()) j["atlas"] = atlasJson(model);
     return j;
 }
 
@@ -493,6 +521,27 @@ ReportModel reportFromJson(const Json& json) {
                                           images.at(i).has("hdr_preview") ? images.at(i)["hdr_preview"].str() : ""});
     const Node runs = root["runs"];
     for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
+    if (root.has("atlas")) {
+        const Node atlas = root["atlas"];
+        for (size_t i = 0; i < atlas.array().size(); ++i) {
+            const Node a = atlas.at(i);
+            AtlasEntry e;
+            e.family = a["family"].str();
+            e.layout = a["layout"].str();
+            e.engine = a["engine"].str();
+            e.title = a["title"].str();
+            e.year = a["year"].i32();
+            e.bytesPerPixel = a["bytes_per_pixel"].i32();
+            e.bytesKind = a["bytes_kind"].str();
+            e.lightBufferBytesPerPixel = a["light_buffer_bytes_per_pixel"].i32();
+            const Node attributes = a["attributes"];
+            for (size_t k = 0; k < attributes.array().size(); ++k) {
+                const Node at = attributes.at(k);
+                e.attributes.push_back({at["name"].str(), at["bits"].i32(), at["encoding"].str()});
+            }
+            model.atlas.push_back(std::move(e));
+        }
+    }
     if (root.has("ibl_figure")) {
         const Node f = root["ibl_figure"];
         IblFigure fig;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bandwidth.h"
+#include "layout_atlas.h"
 #include "metrics.h"
 
 namespace gbl {
@@ -243,6 +244,9 @@ struct ReportModel {
     ReportReference reference;
     std::vector<RunReport> runs;
     std::optional<IblFigure> iblFigure;
+    // The atlas (report_atlas.h): one entry per compared layout, from its file; empty in reports
+    // written before it existed.
+    std::vector<AtlasEntry> atlas;
 };
 
 }  // namespace gbl

@@ -83,6 +83,7 @@ uint scalarEncode(const Field& f, float x, size_t i) {
     if (e == "gloss") return quantizeUnorm(glossFromRoughness(x), b);
     if (e == "smoothness_cry") return quantizeUnorm(smoothnessFromRoughnessCry(x), b);
     if (e == "cry_gloss_power") return encodeCryGlossPower(x);
+    if (e == "reflectance") return quantizeUnorm(reflectanceFromSpecular(x), b);
     throw std::logic_error("cpu codec: no scalar encoder for " + e);
 }
 
@@ -99,6 +100,7 @@ float scalarDecode(const Field& f, uint c, size_t i) {
     if (e == "gloss") return roughnessFromGloss(dequantizeUnorm(c, b));
     if (e == "smoothness_cry") return roughnessFromSmoothnessCry(dequantizeUnorm(c, b));
     if (e == "cry_gloss_power") return decodeCryGlossPower(c);
+    if (e == "reflectance") return specularFromReflectance(dequantizeUnorm(c, b));
     throw std::logic_error("cpu codec: no scalar decoder for " + e);
 }
 
@@ -138,6 +140,19 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
     ColorFn fwd = nullptr, inv = nullptr;
     if (e == "srgb8") {
         c = {encodeSrgb8(v.x), encodeSrgb8(v.y), encodeSrgb8(v.z)};
+    } else if (e == "gamma22") {
+        c = {encodeGamma22(v.x), encodeGamma22(v.y), encodeGamma22(v.z)};
+    } else if (e == "float11_11_10") {
+        c = {encodeFloat11(v.x), encodeFloat11(v.y), encodeFloat10(v.z)};
+    } else if (e == "rgb9e5") {
+        const uvec4 u = encodeRgb9e5(v);
+        c = {u.x, u.y, u.z, u.w};
+    } else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity") {
+        const uvec2 u = encodeNormalOctahedralTrunc(v, b, e == "normal_octahedral_bevy" ? 0.0f : 0.5f);
+        c = {u.x, u.y};
+    } else if (e == "normal_xy_float16") {
+        const uvec2 u = encodeNormalXyFloat16(v);
+        c = {u.x, u.y};
     } else if (e == "luma") {
         c = {quantizeUnorm(lumaBt601(v), b)};
     } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
@@ -173,6 +188,12 @@ vec3 decodeField(const Field& f, const std::vector<uint>& c) {
     const uint b = uint(f.bitsOfCode(0));
     ColorFn fwd = nullptr, inv = nullptr;
     if (e == "srgb8") return vec3(decodeSrgb8(c[0]), decodeSrgb8(c[1]), decodeSrgb8(c[2]));
+    if (e == "gamma22") return vec3(decodeGamma22(c[0]), decodeGamma22(c[1]), decodeGamma22(c[2]));
+    if (e == "float11_11_10") return vec3(decodeFloat11(c[0]), decodeFloat11(c[1]), decodeFloat10(c[2]));
+    if (e == "rgb9e5") return decodeRgb9e5(uvec4(c[0], c[1], c[2], c[3]));
+    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity")
+        return decodeNormalOctahedralTrunc(uvec2(c[0], c[1]), b);
+    if (e == "normal_xy_float16") return decodeNormalXyFloat16(uvec2(c[0], c[1]));
     if (e == "luma") return vec3(dequantizeUnorm(c[0], b));
     if (colorTransform(e, fwd, inv))
         return inv(vec3(dequantizeUnorm(c[0], b), dequantizeC(e, c[1], b), dequantizeC(e, c[2], b)));

@@ -176,9 +176,7 @@ GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, cons
 
 std::vector<uint32_t> readWords(const VulkanContext& ctx, const GpuImage& img) {
     const std::vector<uint8_t> bytes = downloadImage(ctx, img, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    std::vector<uint32_t> words(bytes.size() / 4);
-    std::memcpy(words.data(), bytes.data(), words.size() * 4);
-    return words;
+    return texelsToWords(bytes, size_t(kSize) * kSize);  // one word per texel for R8 / R16 targets
 }
 
 std::vector<Surface> gpuDecode(const VulkanContext& ctx, const GBufferWiring& w, const std::vector<GpuImage>& targets,

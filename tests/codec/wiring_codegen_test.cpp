@@ -187,9 +187,21 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                         if (e == "normal_xyz") bound = 0.39 * s8 * 1.1;
                         else if (e == "normal_bestfit") bound = 0.31 * 1.05;
                         else if (e == "normal_xy_zsign") bound = b >= 16 ? 0.35 : b >= 10 ? 2.9 : 5.8 * 1.05;
+                        else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity")
+                            bound = 2.0 * 0.95 * o8 * 1.1;  // truncation: up to a whole step, not half
                         else if (e.rfind("normal_octahedral", 0) == 0) bound = 0.95 * o8 * 1.1;
                         else if (e == "normal_spheremap") bound = 11.5 * std::sqrt(s8) * 1.1;
+                        else if (e == "normal_xy_float16") {
+                            // No sign bit: z comes back >= 0; near z = 0 sqrt amplifies x, y's 2^-11.
+                            err = angleDeg(glm::vec3(x.x, x.y, std::abs(x.z)), y);
+                            bound = 2.5;
+                        }
                         else bound = 180.0;  // stereographic: not a full-sphere mapping
+                    } else if (e == "snorm" && f.attribute == Attribute::Normal) {
+                        // Per component snorm (URP's SNORM normal): a step of 1/(2^(b-1)-1) in n, as
+                        // normal_xyz's 2/(2^b-1): normal_xyz's 8-bit bound, scaled.
+                        err = angleDeg(x, y);
+                        bound = 0.39 * (127.0 / (std::ldexp(1.0, b - 1) - 1.0)) * 1.1;
                     } else if (e == "float32") {
                         err = glm::length(x - y);
                         bound = 0.0;
@@ -198,7 +210,9 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                             err = std::max(err, double(std::abs(x[c] - y[c])) / std::max(1e-3, double(std::abs(x[c]))));
                         bound = std::ldexp(1.0, -11) * 1.01;
                     } else if (e == "unorm" || e == "gloss") {
-                        for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
+                        // unorm clamps to [0, 1] (killzone2's emissive in an 8-bit target).
+                        for (int c = 0; c < 3; ++c)
+                            err = std::max(err, double(std::abs(std::clamp(x[c], 0.0f, 1.0f) - y[c])));
                         bound = unormBound(b);
                     } else if (e == "cry_gloss_power") {
                         // Clamps to the engine's range, then half a gloss step (encodings.h).
@@ -207,6 +221,25 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                     } else if (e == "smoothness_cry") {
                         err = std::abs(x.x - y.x);
                         bound = 2.0 * unormBound(b);
+                    } else if (e == "reflectance") {
+                        // specular = 2 r^2: half a step of r times d(2 r^2)/dr = 4 r <= 2.83.
+                        err = std::abs(x.x - y.x);
+                        bound = 2.83 * unormBound(b) * 1.01;
+                    } else if (e == "gamma22") {
+                        // Half a code of 255 x^(1/2.2) times the slope 2.2 x^1.2 <= 2.2.
+                        for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
+                        bound = 2.2 * 0.5 / 255.0 * 1.01;
+                    } else if (e == "rgb9e5") {
+                        // Half a step of the shared exponent: <= 2^-9 of the largest channel.
+                        const double brightest = std::max({double(x.x), double(x.y), double(x.z)});
+                        for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
+                        bound = brightest * std::ldexp(1.0, -9) * 1.01 + 1e-30;
+                    } else if (e == "float11_11_10") {
+                        // float11 2^-7 relative (r, g), float10 2^-6 (b), plus the subnormal step.
+                        for (int c = 0; c < 3; ++c)
+                            err = std::max(err, double(std::abs(x[c] - y[c])) -
+                                                    std::ldexp(1.0, c < 2 ? -7 : -6) * std::abs(double(x[c])));
+                        bound = std::ldexp(1.0, -20);
                     } else if (e == "srgb8") {
                         for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
                         bound = 0.0045;

@@ -1,0 +1,93 @@
+#include "report_atlas.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "report_html.h"
+
+namespace gbl {
+
+namespace {
+
+const RunReport* atlasRun(const ReportModel& model, const std::string& layout) {
+    const std::string firstMode = model.run.iblModes.empty() ? std::string() : model.run.iblModes.front();
+    const RunReport* any = nullptr;
+    for (const RunReport& r : model.runs) {
+        if (r.layout != layout) continue;
+        if (r.iblMode == firstMode) return &r;
+        if (!any) any = &r;
+    }
+    return any;
+}
+
+std::string fixed(double v, int decimals) {
+    if (std::isinf(v)) return v > 0 ? "&infin;" : "-&infin;";
+    if (std::isnan(v)) return "&ndash;";
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+}  // namespace
+
+std::vector<AtlasRowGroup> atlasRows(const ReportModel& model) {
+    std::vector<AtlasRowGroup> out;
+    for (AtlasGroup& g : groupAtlas(model.atlas)) {
+        AtlasRowGroup group{g.family, {}};
+        for (AtlasEntry& e : g.entries) {
+            AtlasRow row;
+            if (const RunReport* r = atlasRun(model, e.layout)) {
+                row.iblMode = r->iblMode;
+                if (r->status == RunStatus::Ok && r->image) {
+                    row.flipMean = r->image->flipMean;
+                    row.psnrToneMapped = r->image->psnrToneMapped;
+                }
+            }
+            row.entry = std::move(e);
+            group.rows.push_back(std::move(row));
+        }
+        out.push_back(std::move(group));
+    }
+    return out;
+}
+
+void writeAtlasHtml(std::string& out, const ReportModel& model) {
+    if (model.atlas.empty()) return;
+    const std::vector<AtlasRowGroup> groups = atlasRows(model);
+    std::string mode;
+    for (const AtlasRowGroup& g : groups)
+        for (const AtlasRow& r : g.rows)
+            if (mode.empty()) mode = r.iblMode;
+    out += "<section id=\"atlas\">\n<h2>Atlas of G-buffers</h2>\n"
+           "<p class=\"hint\">Every layout compared, grouped by engine family, oldest first. Bytes per pixel: the "
+           "G-buffer's targets and depth-stencil (light buffers after +); a layout whose targets hold ids, not "
+           "attributes, says so. Bits: what each stored attribute occupies, with its encoding; attributes not "
+           "stored say how they are obtained. Errors: the run under " +
+           htmlEscape(mode.empty() ? std::string("-") : mode) + " against the float reference.</p>\n";
+    out += "<table class=\"atlas\">\n<thead><tr><th>Layout</th><th>Engine</th><th>Year</th><th>Bytes/px</th>"
+           "<th>Attributes: bits, encoding</th><th>FLIP mean</th><th>PSNR dB</th></tr></thead>\n<tbody>\n";
+    for (const AtlasRowGroup& g : groups) {
+        out += "<tr class=\"family\"><th colspan=\"7\">" + htmlEscape(g.family) + "</th></tr>\n";
+        for (const AtlasRow& r : g.rows) {
+            const AtlasEntry& e = r.entry;
+            std::string bytes = std::to_string(e.bytesPerPixel);
+            if (e.bytesKind != "attributes") bytes += " " + htmlEscape(e.bytesKind);
+            if (e.lightBufferBytesPerPixel > 0) bytes += " +" + std::to_string(e.lightBufferBytesPerPixel);
+            std::string attrs;
+            for (const AtlasAttribute& a : e.attributes) {
+                attrs += "<span class=\"attr" + std::string(a.bits ? "" : " derived") + "\">" + htmlEscape(a.name) +
+                         " <b>" + (a.bits ? std::to_string(a.bits) : std::string("&ndash;")) + "</b> " +
+                         htmlEscape(a.encoding) + "</span> ";
+            }
+            out += "<tr><td title=\"" + htmlEscape(e.title) + "\">" + htmlEscape(e.layout) + "</td><td>" +
+                   htmlEscape(e.engine) + "</td><td class=\"num\">" + std::to_string(e.year) +
+                   "</td><td class=\"num\">" + bytes + "</td><td class=\"attrs\">" + attrs +
+                   "</td><td class=\"num\">" + (r.flipMean ? fixed(*r.flipMean, 4) : "&ndash;") +
+                   "</td><td class=\"num\">" + (r.psnrToneMapped ? fixed(*r.psnrToneMapped, 2) : "&ndash;") +
+                   "</td></tr>\n";
+        }
+    }
+    out += "</tbody>\n</table>\n</section>\n";
+}
+
+}  // namespace gbl
