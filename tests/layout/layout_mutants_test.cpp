@@ -48,11 +48,16 @@ const char* kStrings[] = {"x\\n#error injected", "a\\\\", "\\\\", "*/ #error x",
 
 // The mutants of one layout text: each number token on a line replaced by each hostile number,
 // the first string on a line replaced by each hostile string.
-std::vector<std::string> mutants(const std::string& text) {
+struct Mutant {
+    std::string text;
+    int hostileString = -1;  // index in kStrings, or -1 for a number mutant
+};
+
+std::vector<Mutant> mutants(const std::string& text) {
     const std::vector<std::string> lines = splitLines(text);
     const std::regex number(R"((=\s*|\[\s*|,\s*)(-?[0-9][0-9.eE+-]*))");
     const std::regex string(R"("([^"\\]|\\.)*")");
-    std::vector<std::string> out;
+    std::vector<Mutant> out;
     for (size_t i = 0; i < lines.size(); ++i) {
         if (lines[i].empty() || lines[i][0] == '#') continue;
         std::smatch m;
@@ -60,15 +65,36 @@ std::vector<std::string> mutants(const std::string& text) {
             for (const char* n : kNumbers) {
                 std::vector<std::string> copy = lines;
                 copy[i] = m.prefix().str() + m[1].str() + n + m.suffix().str();
-                out.push_back(joinLines(copy));
+                out.push_back({joinLines(copy), -1});
             }
         }
         if (std::regex_search(lines[i], m, string)) {
-            for (const char* s : kStrings) {
+            for (int k = 0; k < int(std::size(kStrings)); ++k) {
                 std::vector<std::string> copy = lines;
-                copy[i] = m.prefix().str() + "\"" + s + "\"" + m.suffix().str();
-                out.push_back(joinLines(copy));
+                copy[i] = m.prefix().str() + "\"" + kStrings[k] + "\"" + m.suffix().str();
+                out.push_back({joinLines(copy), k});
             }
+        }
+    }
+    return out;
+}
+
+// The wiring without its comments' text: two wirings that differ only inside comments compile
+// alike unless a comment was broken out of, and then the escaped text is code, so it shows here.
+std::string withoutCommentText(const std::string& glsl) {
+    std::string out;
+    out.reserve(glsl.size());
+    for (size_t i = 0; i < glsl.size();) {
+        if (glsl.compare(i, 2, "//") == 0) {
+            i = glsl.find('\n', i);
+            if (i == std::string::npos) break;
+        } else if (glsl.compare(i, 2, "/*") == 0) {
+            const size_t end = glsl.find("*/", i + 2);
+            out += "/**/";
+            if (end == std::string::npos) break;
+            i = end + 2;
+        } else {
+            out += glsl[i++];
         }
     }
     return out;
@@ -89,10 +115,15 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
     const std::vector<std::string> names = listLayoutNames(dir);
     ASSERT_GE(names.size(), 7u);
     size_t total = 0, accepted = 0, compiled = 0;
-    std::set<std::string> seenGlsl;  // identical wiring needs compiling once
+    // A wiring is compiled once per distinct code (comments' text left out, see
+    // withoutCommentText) and, for hostile strings, once per hostile string: every hostile text
+    // still reaches glslang inside the comments of every shipped layout's code, but the same code
+    // is not compiled again for each of its comment variants (17 layouts: 1030 compiles -> far fewer).
+    std::set<std::string> seenGlsl;
     const std::regex place(R"(^mutant\.toml:[0-9]+:[0-9]+: )");
     for (const std::string& name : names) {
-        for (const std::string& text : mutants(readAll(dir / (name + ".toml")))) {
+        for (const Mutant& mutant : mutants(readAll(dir / (name + ".toml")))) {
+            const std::string& text = mutant.text;
             ++total;
             const std::vector<LayoutDiagnostic> problems = checkLayout(text, "mutant.toml");
             for (const LayoutDiagnostic& d : problems) {
@@ -106,7 +137,8 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
             const Layout layout = parseLayout(text, "mutant.toml");
             for (bool native : {false, true}) {
                 const GBufferWiring w = generateWiring(layout, WiringOptions{native});
-                if (!seenGlsl.insert(w.glsl).second) continue;
+                const std::string key = withoutCommentText(w.glsl) + "\n#" + std::to_string(mutant.hostileString);
+                if (!seenGlsl.insert(key).second) continue;
                 ++compiled;
                 compiles("gbuffer_pass.frag.glsl", w, text);
                 compiles("decode_pass.comp.glsl", w, text);
