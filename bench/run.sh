@@ -9,10 +9,14 @@
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
 #   e2e      `gbufferlab compare` of all layouts at 1080p, run twice (the second, warm, is timed by
 #            stage: its timings.json), then once at 3840x2160 with one layout for peak memory
-#   coldwarm `gbufferlab compare` of all layouts at GBL_BENCH_COLD_SIZE (default 480x270) on fresh
-#            caches (an empty GBL_CACHE_DIR: SPIR-V, pipeline and IBL caches), then again (warm),
-#            both with MESA_SHADER_CACHE_DISABLE=true so Mesa's own disk cache hides no driver cost;
-#            wall times and both timings.json in results/coldwarm_*
+#   coldwarm[:WxH] `gbufferlab compare` at WxH (default GBL_BENCH_COLD_SIZE, else 480x270) on fresh
+#            caches (an empty GBL_CACHE_DIR: SPIR-V, pipeline and IBL caches), then again (warm).
+#            Mesa's own disk shader cache (the only cache of llvmpipe's JIT-compiled code) per
+#            GBL_BENCH_COLD_MESA: "off" (default: MESA_SHADER_CACHE_DISABLE=true in both runs, so it
+#            hides no driver cost) or "fresh" (an empty MESA_SHADER_CACHE_DIR that the first run
+#            fills: what a user's first and second run see). GBL_BENCH_COLD_ARGS: more compare
+#            flags (e.g. "--layouts ue4,crysis2-slim --views 1"). Wall times and both timings.json
+#            in results/coldwarm_<WxH>_<mesa>_*; e.g. bench/run.sh coldwarm:480x270 coldwarm:1920x1080
 # environment:
 #   GBL_BENCH_REPETITIONS (default 3; medians are reported), GBL_BENCH_BUILD_DIR (default build-bench),
 #   GBL_BENCH_FILTER (a --benchmark_filter regex), GBL_BENCH_4K, GBL_BENCH_LAYOUTS, GBL_BENCH_DEVICE
@@ -25,8 +29,15 @@ results=bench/results
 what=("$@")
 [ ${#what[@]} -eq 0 ] && what=(codec gpu compare)
 
-targets=(codec_bench gpu_pass_bench compare_bench)
-for w in "${what[@]}"; do [ "$w" = e2e ] || [ "$w" = coldwarm ] && targets+=(gbufferlab); done
+targets=()  # only what the parts asked for need be built
+for w in "${what[@]}"; do
+    case "${w%%:*}" in
+        codec) targets+=(codec_bench) ;;
+        gpu) targets+=(gpu_pass_bench) ;;
+        compare) targets+=(compare_bench) ;;
+        e2e | coldwarm) targets+=(gbufferlab) ;;
+    esac
+done
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGBL_BUILD_BENCH=ON >/dev/null
 cmake --build "$build" --target "${targets[@]}" -j2
@@ -56,19 +67,27 @@ for w in "${what[@]}"; do
             /usr/bin/time -f '%M' -o "$results/compare_4k_rss_kib.txt" "$build/gbufferlab" compare \
                 --device "${GBL_BENCH_DEVICE:-cpu}" --size 3840x2160 --layouts "${GBL_BENCH_4K_LAYOUT:-ue4}" --out "$results/compare-4k" --force >/dev/null
             ;;
-        coldwarm)
+        coldwarm|coldwarm:*)
+            size=${w#coldwarm:}
+            [ "$size" = coldwarm ] && size=${GBL_BENCH_COLD_SIZE:-480x270}
+            mesa=${GBL_BENCH_COLD_MESA:-off}
+            tag="coldwarm_${size}_${mesa}"
             cache=$(mktemp -d)
+            mesa_env=(MESA_SHADER_CACHE_DISABLE=true)
+            [ "$mesa" = fresh ] && mesa_env=(MESA_SHADER_CACHE_DISABLE=false MESA_SHADER_CACHE_DIR="$cache/mesa")
+            read -r -a extra <<< "${GBL_BENCH_COLD_ARGS:-}"
             for run in cold warm; do
-                echo "== gbufferlab compare ($run caches, ${GBL_BENCH_COLD_SIZE:-480x270}, MESA_SHADER_CACHE_DISABLE=true)"
-                GBL_CACHE_DIR="$cache" MESA_SHADER_CACHE_DISABLE=true /usr/bin/time -f '%e' -o "$results/coldwarm_${run}_wall_s.txt" \
-                    "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --size "${GBL_BENCH_COLD_SIZE:-480x270}" \
-                    --out "$results/compare-$run" --force >/dev/null
-                cp "$results/compare-$run/timings.json" "$results/coldwarm_${run}.json"
+                echo "== gbufferlab compare ($run caches, $size, Mesa disk cache $mesa) ${extra[*]}"
+                env GBL_CACHE_DIR="$cache/gbl" "${mesa_env[@]}" /usr/bin/time -f '%e' -o "$results/${tag}_${run}_wall_s.txt" \
+                    "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --size "$size" "${extra[@]}" \
+                    --out "$results/compare-$tag-$run" --force >"$results/${tag}_${run}_console.txt"
+                cp "$results/compare-$tag-$run/timings.json" "$results/${tag}_${run}.json"
+                tail -n 4 "$results/${tag}_${run}_console.txt"
             done
             rm -rf "$cache"
-            echo "first run / warm run (wall): $(python3 -c "print(round($(cat "$results/coldwarm_cold_wall_s.txt") / $(cat "$results/coldwarm_warm_wall_s.txt"), 3))")x"
+            echo "first run / warm run (wall, $size, Mesa cache $mesa): $(python3 -c "print(round($(cat "$results/${tag}_cold_wall_s.txt") / $(cat "$results/${tag}_warm_wall_s.txt"), 3))")x"
             ;;
-        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, coldwarm)" >&2; exit 2 ;;
+        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, coldwarm[:WxH])" >&2; exit 2 ;;
     esac
 done
 

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "background_writer.h"
 #include "bandwidth.h"
 #include "cli_args.h"
 #include "color_map.h"
@@ -125,6 +126,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"hdr-flip", "", "also compute HDR-FLIP over the linear images (costs one FLIP per exposure: 14 on the "
                          "built-in sky)"},
         {"no-hdr-flip", "", "skip HDR-FLIP (the default; kept for older scripts)"},
+        {"float32-exr", "", "write the EXR files (renders, errors.exr) as 32-bit float instead of half (16-bit "
+                            "float: half the bytes; values within 2^-11 relative, clamped to +-65504)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -162,6 +165,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     if (parsed.has("hdr-flip") && parsed.has("no-hdr-flip"))
         throwUserError("gbufferlab compare: --hdr-flip and --no-hdr-flip contradict each other; give one");
     const bool hdrFlip = parsed.has("hdr-flip");
+    const ExrPixelType exrType = parsed.has("float32-exr") ? ExrPixelType::Float32 : ExrPixelType::Half;
     checkOutputDirectory(outDir, force, "--out");
 
     // Everything the user gave is read and validated before the first pixel is rendered.
@@ -187,6 +191,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     for (const auto& a : args) model.run.commandLine += " " + a;
     model.run.iblModes = modeNames;
     model.run.exposure = exposure;
+    model.run.exrPrecision = exrPixelTypeName(exrType);
     model.reference.layout = kReferenceLayout;
     model.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(iblSettings) + " (--brdf-lut)");
 
@@ -209,7 +214,14 @@ int runCompareCommand(const std::vector<std::string>& args) {
                                           " and has not finished: this folder is incomplete\n");
     std::mutex modelMutex;  // model.runs, shared with the interrupt action
     bool reportComplete = false;
+    // Image files are written on a worker thread while the next run renders; at most two runs'
+    // images wait (each job owns its images: memory stays bounded).
+    BackgroundWriter imageWriter(1, 2);
+    const ImageOutput imageOutput{&imageWriter, exrType};
     setInterruptAction([&](int signal) {
+        // The runs already in the model have their images queued: write them before the report
+        // that names them (the job in progress writes through temporaries as always).
+        imageWriter.drain();
         std::lock_guard lock(modelMutex);
         if (reportComplete) return;
         ReportModel partial = model;
@@ -226,6 +238,19 @@ int runCompareCommand(const std::vector<std::string>& args) {
 
     Renderer renderer(ctx, inputs.scene, inputs.environment, loadOrComputeIbl(ctx, inputs.environment, iblSettings));
     const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
+    {
+        // Every run's pipelines are built now, side by side on worker threads (timed as shader
+        // compile), and reused by every view and IBL mode; a layout whose wiring or pipeline
+        // fails is left to fail in its own run.
+        std::vector<GBufferWiring> wirings = {referenceWiring};
+        for (const Layout& layout : layouts) {
+            try {
+                wirings.push_back(generateWiring(layout, wiringOptions));
+            } catch (const std::exception&) {
+            }
+        }
+        renderer.preparePipelines(wirings);
+    }
     // Every run renders the same way but for the IBL mode, and decodes its G-buffer for metrics.
     auto settingsFor = [&](IblMode mode, int view) {
         RenderSettings settings;
@@ -275,10 +300,15 @@ int runCompareCommand(const std::vector<std::string>& args) {
             ref.renderPng = "reference-" + modeNames[m] + ".png";
             const std::string renderExr = "reference-" + modeNames[m] + ".exr";
             ScopedStage timed(Stage::Report);
-            writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
-            writeExr((outDir / renderExr).string(), ref.output.hdr);
             const std::string preview = "reference-" + modeNames[m] + "-log.png";
-            writePng((outDir / preview).string(), logEncodeForPreview(ref.output.hdr));
+            imageWriter.enqueue("images of the reference / " + modeNames[m],
+                                [png = (outDir / ref.renderPng).string(), exr = (outDir / renderExr).string(),
+                                 log = (outDir / preview).string(), exposure, exrType,
+                                 hdr = std::make_shared<const Image>(ref.output.hdr)] {
+                                    writePng(png, toneMapToSrgb8(*hdr, exposure));
+                                    writeExr(exr, *hdr, {}, exrType);
+                                    writePng(log, logEncodeForPreview(*hdr));
+                                });
             model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr, preview});
             }
             std::string gtNote;
@@ -325,7 +355,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
                 run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
                 ReferenceRender& approx = references.at(mode);
                 run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx.info.name};
-                measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip, false, firstView);
+                measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip, false, firstView,
+                           imageOutput);
                 progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                              std::to_string(run.image->flipMean).substr(0, 6));
                 record(std::move(run));
@@ -364,9 +395,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
                     renders.push_back(toneMapToSrgb8(references.at(name).output.hdr, exposure));
                     figure.rows.push_back(std::move(row));
                 }
-                writePng((outDir / figure.png).string(),
-                         composeIblFigure(renders, balls, captions, "IBL modes vs ground truth: metals, then dielectrics, "
-                                                                    "roughness 0.05 to 1"));
+                imageWriter.enqueue("the IBL figure",
+                                    [path = (outDir / figure.png).string(),
+                                     picture = std::make_shared<const Image8>(composeIblFigure(
+                                         renders, balls, captions,
+                                         "IBL modes vs ground truth: metals, then dielectrics, roughness 0.05 to 1"))] {
+                                        writePng(path, *picture);
+                                    });
                 model.iblFigure = std::move(figure);
             }
         }
@@ -386,7 +421,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
                     gpuPassMs += out.timings.gbufferMs + out.timings.lightingMs;
                     run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
                     measureRun(run, out, ref, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure, hdrFlip, true,
-                               firstView);
+                               firstView, imageOutput);
                     progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                                  std::to_string(run.image->flipMean).substr(0, 6));
                 } catch (const std::exception& e) {
@@ -405,9 +440,26 @@ int runCompareCommand(const std::vector<std::string>& args) {
         for (RunReport& r : model.runs) finishViews(r);
     }
 
+    std::vector<std::string> writeErrors;  // image files of no run (the references', the figure)
     {
         ScopedStage timed(Stage::Report);
+        // What is still being written is waited for here, so the report names only files that
+        // exist. A run whose images could not be written fails, as it did when they were written
+        // in line; any other file that could not be written is an error of the command.
         std::lock_guard lock(modelMutex);
+        for (const WriteFailure& f : imageWriter.finish()) {
+            bool matched = false;
+            for (RunReport& r : model.runs) {
+                if (r.status != RunStatus::Ok || r.images.render.rfind(f.what, 0) != 0 || f.what.empty()) continue;
+                r.status = RunStatus::Failed;
+                r.error = f.message;
+                r.image.reset();
+                r.images = {};  // named files that do not exist
+                matched = true;
+            }
+            if (!matched) writeErrors.push_back(f.line());
+        }
+        for (const std::string& e : writeErrors) model.run.notes.push_back("not written: " + e);
         writeReport(outDir, model);
         printTable(model);
         reportStageTimes(outDir, StageClock::global().read(), gpuPassMs);
@@ -417,6 +469,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
     }
     setInterruptAction({});
     std::printf("report: %s\n", (outDir / "report.html").string().c_str());
+    // A file that could not be written is an error of the command, one line each, never lost.
+    for (const std::string& e : writeErrors) std::fprintf(stderr, "gbufferlab: error: %s\n", e.c_str());
     // The report lists what failed and why; the exit status says that something did, so that
     // scripts and CI notice (2 runs failed of 7: exit 4).
     const auto failed = std::count_if(model.runs.begin(), model.runs.end(),
@@ -426,7 +480,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
                      int(failed), int(model.runs.size()), escapeText((outDir / "report.html").string()).c_str());
         return kExitRunsFailed;
     }
-    return 0;
+    return writeErrors.empty() ? 0 : 1;
 }
 
 }  // namespace gbl

@@ -1,5 +1,7 @@
 #include "renderer_passes.h"
 
+#include <stdexcept>
+
 #include "shader_compiler.h"
 #include "vk_pipeline.h"
 
@@ -11,8 +13,75 @@ std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
     return bindings;
 }
 
+namespace {
+
+// Set 0's bindings; binding 9 (the light buffers' words) with a light pre-pass only.
+std::vector<Binding> lightingSet0(bool lightPrePass) {
+    std::vector<Binding> set0 = {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+        {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // emissive = forward: scene-colour emissive (else depth)
+        {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},  // ground truth: the environment's sampling table
+        {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},   // ground truth: the progressive accumulation
+    };
+    if (lightPrePass) set0.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    return set0;
+}
+
+std::vector<Binding> samplerBindings(size_t count) {
+    std::vector<Binding> bindings;
+    for (uint32_t i = 0; i < count; ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    return bindings;
+}
+
+}  // namespace
+
+PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, PipelineMemo& memo) {
+    const bool lightPrePass = !wiring.lightBufferGlsl.empty();
+    const bool emissive = wiring.emissiveForward && !wiring.materialPass;  // createGBufferImages' rule
+    const size_t materialTargets = wiring.materialPass ? wiring.materialTargetFormats.size() : 0;
+    const uint32_t setCount = wiring.materialPass ? 3 : 2;
+    ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
+    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    addSpaceDefines(cs, wiring);
+    if (lightPrePass) {
+        cs.virtualFiles["light_buffers.glsl"] = wiring.lightBufferGlsl;
+        cs.defines.push_back({"LIGHT_PRE_PASS", "1"});
+    }
+    cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
+    if (emissive) cs.defines.push_back({"EMISSIVE_FORWARD", "1"});
+    // The shader's input and the set layouts (set 0 follows LIGHT_PRE_PASS, already in the key).
+    const std::string key = "lighting|" + shaderMemoKey(cs) + "|targets " +
+                            std::to_string(wiring.targetFormats.size()) + " " + std::to_string(materialTargets) +
+                            " sets " + std::to_string(setCount);
+    return memo.getOrBuild(ctx.device, key, [&] {
+        const std::vector<uint32_t> spirv = compileGlsl(cs);  // first: a failed compile leaks nothing
+        MemoPipeline p;
+        p.setLayouts = {createSetLayout(ctx.device, lightingSet0(lightPrePass), VK_SHADER_STAGE_COMPUTE_BIT),
+                        createSetLayout(ctx.device, samplerBindings(wiring.targetFormats.size()),
+                                        VK_SHADER_STAGE_COMPUTE_BIT)};
+        if (wiring.materialPass)
+            p.setLayouts.push_back(
+                createSetLayout(ctx.device, samplerBindings(materialTargets), VK_SHADER_STAGE_COMPUTE_BIT));
+        p.layout = createPipelineLayout(ctx.device, p.setLayouts, sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
+        VkShaderModule module = createShaderModule(ctx.device, spirv);
+        p.pipeline = createComputePipeline(ctx, p.layout, module);
+        vkDestroyShaderModule(ctx.device, module, nullptr);
+        return p;
+    });
+}
+
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
-                                uint32_t width, uint32_t height) {
+                                uint32_t width, uint32_t height, PipelineMemo& memo) {
+    if (in.gbuffer->targets.size() != wiring.targetFormats.size() || (in.materialPass != nullptr) != wiring.materialPass ||
+        (in.materialPass && in.materialPass->targets.size() != wiring.materialTargetFormats.size()))
+        throw std::logic_error("createLightingPass: the G-buffer passes given are not the wiring's");
     LightingPass pass;
     pass.width = width;
     pass.height = height;
@@ -27,30 +96,17 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     a.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     pass.accumulation = createImage(ctx, a);
 
-    std::vector<Binding> set0 = {
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-        {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // emissive = forward: scene-colour emissive (else depth)
-        {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},  // ground truth: the environment's sampling table
-        {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},   // ground truth: the progressive accumulation
-    };
     const bool lightPrePass = !wiring.lightBufferGlsl.empty();
-    if (lightPrePass) set0.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});  // the light buffers' words
+    const std::vector<Binding> set0 = lightingSet0(lightPrePass);
     const std::vector<Binding> set1 = targetReadBindings(*in.gbuffer);
     const std::vector<Binding> set2 = in.materialPass ? targetReadBindings(*in.materialPass) : std::vector<Binding>{};
-    pass.setCount = in.materialPass ? 3 : 2;
-    pass.setLayouts[0] = createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT);
-    pass.setLayouts[1] = createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT);
-    if (in.materialPass) pass.setLayouts[2] = createSetLayout(ctx.device, set2, VK_SHADER_STAGE_COMPUTE_BIT);
-    pass.pipelineLayout = createPipelineLayout(
-        ctx.device, std::vector<VkDescriptorSetLayout>(pass.setLayouts, pass.setLayouts + pass.setCount), sizeof(uint32_t),
-        VK_SHADER_STAGE_COMPUTE_BIT);
+    const bool emissive = in.gbuffer->emissive.image != VK_NULL_HANDLE;
+    const PassPipeline pipeline = lightingPassPipeline(ctx, wiring, memo);
+    pass.setCount = uint32_t(pipeline.entry->setLayouts.size());
+    for (uint32_t i = 0; i < pass.setCount; ++i) pass.setLayouts[i] = pipeline.entry->setLayouts[i];
+    pass.pipelineLayout = pipeline.entry->layout;
+    pass.pipeline = pipeline.entry->pipeline;
+    pass.needsWarmUp = memo.firstUse(pipeline.entry);
     pass.pool = createPoolFor(ctx.device, {set0, set1, set2});
     for (uint32_t i = 0; i < pass.setCount; ++i) pass.sets[i] = allocateSet(ctx.device, pass.pool, pass.setLayouts[i]);
 
@@ -72,7 +128,6 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         .buffer(pass.sets[0], 10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.ibl->environmentSampling.buffer)
         .image(pass.sets[0], 11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pass.accumulation.view, VK_NULL_HANDLE,
                VK_IMAGE_LAYOUT_GENERAL);
-    const bool emissive = in.gbuffer->emissive.image != VK_NULL_HANDLE;
     writer.image(pass.sets[0], 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                  emissive ? in.gbuffer->emissive.view : in.gbuffer->depth.view, in.nearestSampler,
                  emissive ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
@@ -86,18 +141,6 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
                          in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     writer.flush(ctx.device);
 
-    ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
-    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
-    addSpaceDefines(cs, wiring);
-    if (lightPrePass) {
-        cs.virtualFiles["light_buffers.glsl"] = wiring.lightBufferGlsl;
-        cs.defines.push_back({"LIGHT_PRE_PASS", "1"});
-    }
-    cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
-    if (emissive) cs.defines.push_back({"EMISSIVE_FORWARD", "1"});
-    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
-    pass.pipeline = createComputePipeline(ctx, pass.pipelineLayout, module);
-    vkDestroyShaderModule(ctx.device, module, nullptr);
     return pass;
 }
 
@@ -114,13 +157,22 @@ void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass, uint32_t 
     fullBarrier(cmd);
 }
 
+void recordLightingWarmUp(VkCommandBuffer cmd, const LightingPass& pass) {
+    transitionImage(cmd, pass.hdr, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    transitionImage(cmd, pass.accumulation, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipelineLayout, 0, pass.setCount, pass.sets, 0,
+                            nullptr);
+    const uint32_t batch = 0;
+    vkCmdPushConstants(cmd, pass.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    fullBarrier(cmd);
+}
+
 void destroyLightingPass(const VulkanContext& ctx, LightingPass& pass) {
     destroyImage(ctx, pass.hdr);
     destroyImage(ctx, pass.accumulation);
-    if (pass.pipeline) vkDestroyPipeline(ctx.device, pass.pipeline, nullptr);
-    if (pass.pipelineLayout) vkDestroyPipelineLayout(ctx.device, pass.pipelineLayout, nullptr);
-    for (auto& l : pass.setLayouts)
-        if (l) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
+    // The pipeline and its layouts belong to the PipelineMemo.
     if (pass.pool) vkDestroyDescriptorPool(ctx.device, pass.pool, nullptr);
     pass = LightingPass{};
 }

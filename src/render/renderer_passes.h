@@ -3,6 +3,7 @@
 #include "gbuffer_wiring.h"
 #include "gpu_scene.h"
 #include "ibl_precompute.h"
+#include "pipeline_memo.h"
 #include "shader_compiler.h"
 #include "shared_types.h"
 #include "vk_pipeline.h"
@@ -28,6 +29,11 @@ struct GBufferPass {
     // dynamic reference, set per draw to stencilReference(wiring, material's values).
     bool writesStencil = false;
     GBufferWiring wiring;  // for the stencil references (only its stencil fields are read)
+    // Built by createGBufferPass: a PipelineMemo owns setLayout, pipelineLayout and pipeline
+    // (destroy leaves them). Passes put together by hand (the bit tests) own theirs.
+    bool pipelineFromMemo = false;
+    // This pass is the pipeline's first user (PipelineMemo::firstUse): the renderer warms it up.
+    bool needsWarmUp = true;
 };
 
 // The layout's [space] as defines for shaders/normal_space.glsl (GBL_NORMAL_SPACE,
@@ -41,10 +47,23 @@ inline void addSpaceDefines(ShaderSource& s, const GBufferWiring& w) {
 // Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).
 Buffer createBestFitTableBuffer(const VulkanContext& ctx);
 
+// The pipeline (and its layouts) is taken from `memo` when this wiring's was built before, else
+// built into it (gbufferPassPipeline).
 GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
-                              const Buffer& frameConstants, uint32_t width, uint32_t height);
+                              const Buffer& frameConstants, uint32_t width, uint32_t height, PipelineMemo& memo);
+// The pipelines of a wiring's passes alone (no images, no submission), from `memo` or built into
+// it: what createGBufferPass and createLightingPass use, callable from several threads at once
+// (Renderer::preparePipelines). `textureCount`: the scene's (GpuScene::textures).
+PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t textureCount,
+                                 PipelineMemo& memo);
+PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, PipelineMemo& memo);
 // Records the pass; leaves targets and depth in SHADER_READ_ONLY_OPTIMAL.
 void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene);
+// The pass's first draw only, clipped to one pixel: makes a driver that compiles shaders at their
+// first use (llvmpipe JIT-compiles its shader variants at the first draw) compile them here, so the
+// compile is timed as such and not as rendering. The targets are left as recordGBufferPass leaves
+// them; the frame's own pass clears them again.
+void recordGBufferWarmUp(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene);
 void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass);
 
 // The parts createGBufferPass is made of, for a G-buffer filled by other shaders (the GPU/CPU bit
@@ -82,6 +101,7 @@ struct LightingPass {
     VkDescriptorSet sets[3] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
     uint32_t setCount = 2;
     uint32_t width = 0, height = 0;
+    bool needsWarmUp = true;  // as GBufferPass's (the memo owns the pipeline and its layouts)
 };
 
 struct LightingInputs {
@@ -100,11 +120,14 @@ struct LightingInputs {
 // The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2).
 std::vector<Binding> targetReadBindings(const GBufferPass& pass);
 
+// in.gbuffer and in.materialPass must be the wiring's (their target counts are the set layouts').
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
-                                uint32_t width, uint32_t height);
+                                uint32_t width, uint32_t height, PipelineMemo& memo);
 // Records one dispatch; `batch` is the ground truth's batch index (push constant): batch 0
 // starts the accumulation afresh, later ones add to it.
 void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass, uint32_t batch = 0);
+// One workgroup of batch 0 (see recordGBufferWarmUp); the frame's dispatch overwrites its pixels.
+void recordLightingWarmUp(VkCommandBuffer cmd, const LightingPass& pass);
 void destroyLightingPass(const VulkanContext& ctx, LightingPass& pass);
 
 }  // namespace gbl
