@@ -78,14 +78,22 @@ for w in "${what[@]}"; do
             read -r -a extra <<< "${GBL_BENCH_COLD_ARGS:-}"
             for run in cold warm; do
                 echo "== gbufferlab compare ($run caches, $size, Mesa disk cache $mesa) ${extra[*]}"
-                env GBL_CACHE_DIR="$cache/gbl" "${mesa_env[@]}" /usr/bin/time -f '%e' -o "$results/${tag}_${run}_wall_s.txt" \
+                # wall, user and system seconds: on a machine shared with other jobs the CPU time
+                # (user + system) is the steadier figure
+                env GBL_CACHE_DIR="$cache/gbl" "${mesa_env[@]}" /usr/bin/time -f '%e %U %S' -o "$results/${tag}_${run}_time.txt" \
                     "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --size "$size" "${extra[@]}" \
                     --out "$results/compare-$tag-$run" --force >"$results/${tag}_${run}_console.txt"
                 cp "$results/compare-$tag-$run/timings.json" "$results/${tag}_${run}.json"
                 tail -n 4 "$results/${tag}_${run}_console.txt"
+                echo "wall, user, system (s): $(cat "$results/${tag}_${run}_time.txt"); load $(cut -d' ' -f1-3 /proc/loadavg)"
             done
             rm -rf "$cache"
-            echo "first run / warm run (wall, $size, Mesa cache $mesa): $(python3 -c "print(round($(cat "$results/${tag}_cold_wall_s.txt") / $(cat "$results/${tag}_warm_wall_s.txt"), 3))")x"
+            python3 - "$results/${tag}_cold_time.txt" "$results/${tag}_warm_time.txt" "$size" "$mesa" <<'PY'
+import sys
+cold, warm = ([float(x) for x in open(f).read().split()] for f in sys.argv[1:3])
+print(f"first run / warm run ({sys.argv[3]}, Mesa cache {sys.argv[4]}): wall {cold[0] / warm[0]:.3f}x, "
+      f"CPU (user + system) {(cold[1] + cold[2]) / (warm[1] + warm[2]):.3f}x")
+PY
             ;;
         *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, coldwarm[:WxH])" >&2; exit 2 ;;
     esac
