@@ -218,6 +218,11 @@ int runCompareCommand(const std::vector<std::string>& args) {
     // images wait (each job owns its images: memory stays bounded).
     BackgroundWriter imageWriter(1, 2);
     const ImageOutput imageOutput{&imageWriter, exrType};
+    // The action below uses this function's locals: it is cleared on every way out (an exception
+    // included), before they are destroyed.
+    struct ClearInterruptAction {
+        ~ClearInterruptAction() { setInterruptAction({}); }
+    } clearInterruptAction;
     setInterruptAction([&](int signal) {
         // The runs already in the model have their images queued: write them before the report
         // that names them (the job in progress writes through temporaries as always).
