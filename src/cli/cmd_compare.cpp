@@ -224,12 +224,17 @@ int runCompareCommand(const std::vector<std::string>& args) {
         ~ClearInterruptAction() { setInterruptAction({}); }
     } clearInterruptAction;
     setInterruptAction([&](int signal) {
-        // The runs already in the model have their images queued: write them before the report
-        // that names them (the job in progress writes through temporaries as always).
+        ReportModel partial;
+        {
+            std::lock_guard lock(modelMutex);
+            if (reportComplete) return;
+            partial = model;
+        }
+        // Every run in `partial` queued its images before it was recorded: they are written
+        // before the report that names them (a job writes through temporaries as always).
         imageWriter.drain();
         std::lock_guard lock(modelMutex);
         if (reportComplete) return;
-        ReportModel partial = model;
         for (RunReport& r : partial.runs) finishViews(r);
         const std::string what = std::string("INCOMPLETE: interrupted by ") + signalName(signal) + " after " +
                                  std::to_string(partial.runs.size()) + " of " + std::to_string(steps - int(modes.size())) +
