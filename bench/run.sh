@@ -12,10 +12,14 @@
 #   search   `gbufferlab search --budget 16` at 480x270, 3 views, 600 candidates, confirmed by full
 #            renders: candidates per minute, CPU seconds per candidate and the goals in
 #            results/search-16/search.json and search-report.md (GBL_BENCH_SEARCH_THREADS, default 2)
-#   coldwarm `gbufferlab compare` of all layouts at GBL_BENCH_COLD_SIZE (default 480x270) on fresh
-#            caches (an empty GBL_CACHE_DIR: SPIR-V, pipeline and IBL caches), then again (warm),
-#            both with MESA_SHADER_CACHE_DISABLE=true so Mesa's own disk cache hides no driver cost;
-#            wall times and both timings.json in results/coldwarm_*
+#   coldwarm[:WxH] `gbufferlab compare` at WxH (default GBL_BENCH_COLD_SIZE, else 480x270) on fresh
+#            caches (an empty GBL_CACHE_DIR: SPIR-V, pipeline and IBL caches), then again (warm).
+#            Mesa's own disk shader cache (the only cache of llvmpipe's JIT-compiled code) per
+#            GBL_BENCH_COLD_MESA: "off" (default: MESA_SHADER_CACHE_DISABLE=true in both runs, so it
+#            hides no driver cost) or "fresh" (an empty MESA_SHADER_CACHE_DIR that the first run
+#            fills: what a user's first and second run see). GBL_BENCH_COLD_ARGS: more compare
+#            flags (e.g. "--layouts ue4,crysis2-slim --views 1"). Wall times and both timings.json
+#            in results/coldwarm_<WxH>_<mesa>_*; e.g. bench/run.sh coldwarm:480x270 coldwarm:1920x1080
 # environment:
 #   GBL_BENCH_REPETITIONS (default 3; medians are reported), GBL_BENCH_BUILD_DIR (default build-bench),
 #   GBL_BENCH_FILTER (a --benchmark_filter regex), GBL_BENCH_4K, GBL_BENCH_LAYOUTS, GBL_BENCH_DEVICE
@@ -28,8 +32,15 @@ results=bench/results
 what=("$@")
 [ ${#what[@]} -eq 0 ] && what=(codec gpu compare)
 
-targets=(codec_bench gpu_pass_bench compare_bench)
-for w in "${what[@]}"; do [ "$w" = e2e ] || [ "$w" = coldwarm ] || [ "$w" = search ] && targets+=(gbufferlab); done
+targets=()  # only what the parts asked for need be built
+for w in "${what[@]}"; do
+    case "${w%%:*}" in
+        codec) targets+=(codec_bench) ;;
+        gpu) targets+=(gpu_pass_bench) ;;
+        compare) targets+=(compare_bench) ;;
+        e2e | coldwarm | search) targets+=(gbufferlab) ;;
+    esac
+done
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGBL_BUILD_BENCH=ON >/dev/null
 cmake --build "$build" --target "${targets[@]}" -j2
@@ -67,19 +78,35 @@ for w in "${what[@]}"; do
                 --threads "${GBL_BENCH_SEARCH_THREADS:-2}" --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out"
             cp "$out/search.json" "$results/search.json"
             ;;
-        coldwarm)
+        coldwarm|coldwarm:*)
+            size=${w#coldwarm:}
+            [ "$size" = coldwarm ] && size=${GBL_BENCH_COLD_SIZE:-480x270}
+            mesa=${GBL_BENCH_COLD_MESA:-off}
+            tag="coldwarm_${size}_${mesa}"
             cache=$(mktemp -d)
+            mesa_env=(MESA_SHADER_CACHE_DISABLE=true)
+            [ "$mesa" = fresh ] && mesa_env=(MESA_SHADER_CACHE_DISABLE=false MESA_SHADER_CACHE_DIR="$cache/mesa")
+            read -r -a extra <<< "${GBL_BENCH_COLD_ARGS:-}"
             for run in cold warm; do
-                echo "== gbufferlab compare ($run caches, ${GBL_BENCH_COLD_SIZE:-480x270}, MESA_SHADER_CACHE_DISABLE=true)"
-                GBL_CACHE_DIR="$cache" MESA_SHADER_CACHE_DISABLE=true /usr/bin/time -f '%e' -o "$results/coldwarm_${run}_wall_s.txt" \
-                    "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --size "${GBL_BENCH_COLD_SIZE:-480x270}" \
-                    --out "$results/compare-$run" --force >/dev/null
-                cp "$results/compare-$run/timings.json" "$results/coldwarm_${run}.json"
+                echo "== gbufferlab compare ($run caches, $size, Mesa disk cache $mesa) ${extra[*]}"
+                # wall, user and system seconds: on a machine shared with other jobs the CPU time
+                # (user + system) is the steadier figure
+                env GBL_CACHE_DIR="$cache/gbl" "${mesa_env[@]}" /usr/bin/time -f '%e %U %S' -o "$results/${tag}_${run}_time.txt" \
+                    "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --size "$size" "${extra[@]}" \
+                    --out "$results/compare-$tag-$run" --force >"$results/${tag}_${run}_console.txt"
+                cp "$results/compare-$tag-$run/timings.json" "$results/${tag}_${run}.json"
+                tail -n 4 "$results/${tag}_${run}_console.txt"
+                echo "wall, user, system (s): $(cat "$results/${tag}_${run}_time.txt"); load $(cut -d' ' -f1-3 /proc/loadavg)"
             done
             rm -rf "$cache"
-            echo "first run / warm run (wall): $(python3 -c "print(round($(cat "$results/coldwarm_cold_wall_s.txt") / $(cat "$results/coldwarm_warm_wall_s.txt"), 3))")x"
+            python3 - "$results/${tag}_cold_time.txt" "$results/${tag}_warm_time.txt" "$size" "$mesa" <<'PY'
+import sys
+cold, warm = ([float(x) for x in open(f).read().split()] for f in sys.argv[1:3])
+print(f"first run / warm run ({sys.argv[3]}, Mesa cache {sys.argv[4]}): wall {cold[0] / warm[0]:.3f}x, "
+      f"CPU (user + system) {(cold[1] + cold[2]) / (warm[1] + warm[2]):.3f}x")
+PY
             ;;
-        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, coldwarm)" >&2; exit 2 ;;
+        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, search, coldwarm[:WxH])" >&2; exit 2 ;;
     esac
 done
 

@@ -3,7 +3,9 @@
 # "unit" tests use no Vulkan and also run under the sanitizer build; "gpu" tests need a driver.
 gbl_test(base/stage_clock_test LABELS unit DEPS gbl_base)
 gbl_test(base/parallel_for_test LABELS unit DEPS gbl_base)
+gbl_test(base/background_writer_test LABELS unit DEPS gbl_base)
 gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads environment maps too
+gbl_test(image/exr_half_test LABELS unit DEPS gbl_image)
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/color_map_test LABELS unit DEPS gbl_image)
 gbl_test(gpu/shader_compiler_test LABELS unit DEPS gbl_gpu)
@@ -35,6 +37,7 @@ gbl_test(shading/brdf_lut_test LABELS unit DEPS gbl_shading gbl_base)
 gbl_test(shading/ibl_gpu_test LABELS gpu DEPS gbl_render gbl_shading)
 gbl_test(render/render_test LABELS gpu DEPS gbl_render)
 gbl_test(render/visibility_test LABELS gpu DEPS gbl_render)
+gbl_test(render/pipeline_reuse_test LABELS gpu DEPS gbl_render gbl_layout)
 gbl_test(measure/metrics_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/flip_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/run_metrics_test LABELS unit DEPS gbl_measure)

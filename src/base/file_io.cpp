@@ -1,5 +1,7 @@
 #include "file_io.h"
 
+#include <atomic>
+#include <cstdint>
 #include <ctime>
 #include <fstream>
 #include <system_error>
@@ -61,7 +63,12 @@ std::string readTextFile(const fs::path& path) {
 }
 
 fs::path temporaryPathFor(const fs::path& path) {
-    return path.parent_path() / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
+    // Unique per call, not only per process: two threads writing the same file (two pipelines
+    // compiling the same shader into the SPIR-V cache, background image writers) each get their
+    // own temporary, and the last rename wins with a whole file.
+    static std::atomic<uint64_t> serial{0};
+    return path.parent_path() / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "-" +
+                                 std::to_string(serial.fetch_add(1)));
 }
 
 void commitTemporary(const fs::path& tmp, const fs::path& path) {

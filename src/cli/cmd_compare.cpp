@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "background_writer.h"
 #include "bandwidth.h"
 #include "cli_args.h"
 #include "color_map.h"
@@ -126,6 +127,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"hdr-flip", "", "also compute HDR-FLIP over the linear images (costs one FLIP per exposure: 14 on the "
                          "built-in sky)"},
         {"no-hdr-flip", "", "skip HDR-FLIP (the default; kept for older scripts)"},
+        {"float32-exr", "", "write the EXR files (renders, errors.exr) as 32-bit float instead of half (16-bit "
+                            "float: half the bytes; values within 2^-11 relative, clamped to +-65504)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -163,6 +166,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     if (parsed.has("hdr-flip") && parsed.has("no-hdr-flip"))
         throwUserError("gbufferlab compare: --hdr-flip and --no-hdr-flip contradict each other; give one");
     const bool hdrFlip = parsed.has("hdr-flip");
+    const ExrPixelType exrType = parsed.has("float32-exr") ? ExrPixelType::Float32 : ExrPixelType::Half;
     checkOutputDirectory(outDir, force, "--out");
 
     // Everything the user gave is read and validated before the first pixel is rendered.
@@ -188,6 +192,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     for (const auto& a : args) model.run.commandLine += " " + a;
     model.run.iblModes = modeNames;
     model.run.exposure = exposure;
+    model.run.exrPrecision = exrPixelTypeName(exrType);
     model.reference.layout = kReferenceLayout;
     for (const Layout& l : layouts) model.atlas.push_back(atlasEntryOf(l));
     model.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(iblSettings) + " (--brdf-lut)");
@@ -211,10 +216,27 @@ int runCompareCommand(const std::vector<std::string>& args) {
                                           " and has not finished: this folder is incomplete\n");
     std::mutex modelMutex;  // model.runs, shared with the interrupt action
     bool reportComplete = false;
+    // Image files are written on a worker thread while the next run renders; at most two runs'
+    // images wait (each job owns its images: memory stays bounded).
+    BackgroundWriter imageWriter(1, 2);
+    const ImageOutput imageOutput{&imageWriter, exrType};
+    // The action below uses this function's locals: it is cleared on every way out (an exception
+    // included), before they are destroyed.
+    struct ClearInterruptAction {
+        ~ClearInterruptAction() { setInterruptAction({}); }
+    } clearInterruptAction;
     setInterruptAction([&](int signal) {
+        ReportModel partial;
+        {
+            std::lock_guard lock(modelMutex);
+            if (reportComplete) return;
+            partial = model;
+        }
+        // Every run in `partial` queued its images before it was recorded: they are written
+        // before the report that names them (a job writes through temporaries as always).
+        imageWriter.drain();
         std::lock_guard lock(modelMutex);
         if (reportComplete) return;
-        ReportModel partial = model;
         for (RunReport& r : partial.runs) finishViews(r);
         const std::string what = std::string("INCOMPLETE: interrupted by ") + signalName(signal) + " after " +
                                  std::to_string(partial.runs.size()) + " of " + std::to_string(steps - int(modes.size())) +
@@ -228,6 +250,19 @@ int runCompareCommand(const std::vector<std::string>& args) {
 
     Renderer renderer(ctx, inputs.scene, inputs.environment, loadOrComputeIbl(ctx, inputs.environment, iblSettings));
     const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
+    {
+        // Every run's pipelines are built now, side by side on worker threads (timed as shader
+        // compile), and reused by every view and IBL mode; a layout whose wiring or pipeline
+        // fails is left to fail in its own run.
+        std::vector<GBufferWiring> wirings = {referenceWiring};
+        for (const Layout& layout : layouts) {
+            try {
+                wirings.push_back(generateWiring(layout, wiringOptions));
+            } catch (const std::exception&) {
+            }
+        }
+        renderer.preparePipelines(wirings);
+    }
     // Every run renders the same way but for the IBL mode, and decodes its G-buffer for metrics.
     auto settingsFor = [&](IblMode mode, int view) {
         RenderSettings settings;
@@ -277,10 +312,15 @@ int runCompareCommand(const std::vector<std::string>& args) {
             ref.renderPng = "reference-" + modeNames[m] + ".png";
             const std::string renderExr = "reference-" + modeNames[m] + ".exr";
             ScopedStage timed(Stage::Report);
-            writePng((outDir / ref.renderPng).string(), toneMapToSrgb8(ref.output.hdr, exposure));
-            writeExr((outDir / renderExr).string(), ref.output.hdr);
             const std::string preview = "reference-" + modeNames[m] + "-log.png";
-            writePng((outDir / preview).string(), logEncodeForPreview(ref.output.hdr));
+            imageWriter.enqueue("images of the reference / " + modeNames[m],
+                                [png = (outDir / ref.renderPng).string(), exr = (outDir / renderExr).string(),
+                                 log = (outDir / preview).string(), exposure, exrType,
+                                 hdr = std::make_shared<const Image>(ref.output.hdr)] {
+                                    writePng(png, toneMapToSrgb8(*hdr, exposure));
+                                    writeExr(exr, *hdr, {}, exrType);
+                                    writePng(log, logEncodeForPreview(*hdr));
+                                });
             model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr, preview});
             }
             std::string gtNote;
@@ -327,7 +367,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
                 run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
                 ReferenceRender& approx = references.at(mode);
                 run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx.info.name};
-                measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip, false, firstView);
+                measureRun(run, approx.output, truth, outDir, "lighting/" + mode + "/", exposure, hdrFlip, false, firstView,
+                           imageOutput);
                 progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                              std::to_string(run.image->flipMean).substr(0, 6));
                 record(std::move(run));
@@ -366,9 +407,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
                     renders.push_back(toneMapToSrgb8(references.at(name).output.hdr, exposure));
                     figure.rows.push_back(std::move(row));
                 }
-                writePng((outDir / figure.png).string(),
-                         composeIblFigure(renders, balls, captions, "IBL modes vs ground truth: metals, then dielectrics, "
-                                                                    "roughness 0.05 to 1"));
+                imageWriter.enqueue("the IBL figure",
+                                    [path = (outDir / figure.png).string(),
+                                     picture = std::make_shared<const Image8>(composeIblFigure(
+                                         renders, balls, captions,
+                                         "IBL modes vs ground truth: metals, then dielectrics, roughness 0.05 to 1"))] {
+                                        writePng(path, *picture);
+                                    });
                 model.iblFigure = std::move(figure);
             }
         }
@@ -388,7 +433,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
                     gpuPassMs += out.timings.gbufferMs + out.timings.lightingMs;
                     run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
                     measureRun(run, out, ref, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure, hdrFlip, true,
-                               firstView);
+                               firstView, imageOutput);
                     progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                                  std::to_string(run.image->flipMean).substr(0, 6));
                 } catch (const std::exception& e) {
@@ -407,9 +452,26 @@ int runCompareCommand(const std::vector<std::string>& args) {
         for (RunReport& r : model.runs) finishViews(r);
     }
 
+    std::vector<std::string> writeErrors;  // image files of no run (the references', the figure)
     {
         ScopedStage timed(Stage::Report);
+        // What is still being written is waited for here, so the report names only files that
+        // exist. A run whose images could not be written fails, as it did when they were written
+        // in line; any other file that could not be written is an error of the command.
         std::lock_guard lock(modelMutex);
+        for (const WriteFailure& f : imageWriter.finish()) {
+            bool matched = false;
+            for (RunReport& r : model.runs) {
+                if (r.status != RunStatus::Ok || r.images.render.rfind(f.what, 0) != 0 || f.what.empty()) continue;
+                r.status = RunStatus::Failed;
+                r.error = f.message;
+                r.image.reset();
+                r.images = {};  // named files that do not exist
+                matched = true;
+            }
+            if (!matched) writeErrors.push_back(f.line());
+        }
+        for (const std::string& e : writeErrors) model.run.notes.push_back("not written: " + e);
         writeReport(outDir, model);
         printTable(model);
         reportStageTimes(outDir, StageClock::global().read(), gpuPassMs);
@@ -419,6 +481,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
     }
     setInterruptAction({});
     std::printf("report: %s\n", (outDir / "report.html").string().c_str());
+    // A file that could not be written is an error of the command, one line each, never lost.
+    for (const std::string& e : writeErrors) std::fprintf(stderr, "gbufferlab: error: %s\n", e.c_str());
     // The report lists what failed and why; the exit status says that something did, so that
     // scripts and CI notice (2 runs failed of 7: exit 4).
     const auto failed = std::count_if(model.runs.begin(), model.runs.end(),
@@ -428,7 +492,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
                      int(failed), int(model.runs.size()), escapeText((outDir / "report.html").string()).c_str());
         return kExitRunsFailed;
     }
-    return 0;
+    return writeErrors.empty() ? 0 : 1;
 }
 
 }  // namespace gbl

@@ -92,14 +92,15 @@ void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPas
     cache["spirv_cache_invalid"] = c.spirvCacheInvalid.load();
     cache["pipelines"] = c.pipelines.load();
     cache["pipeline_cache_hits"] = c.pipelineCacheHits.load();
+    cache["pipelines_reused"] = c.pipelinesReused.load();
     j["shader_cache"] = cache;
     std::printf("\nshaders: %d compiled by glslang, %d from the SPIR-V cache%s; pipelines: %d created, %d found in "
-                "the pipeline cache (driver's report)",
+                "the pipeline cache (driver's report), %d reused across views and modes",
                 c.glslangCompiles.load(), c.spirvCacheHits.load(),
                 c.spirvCacheInvalid.load() ? (", " + std::to_string(c.spirvCacheInvalid.load()) +
                                               " invalid cache files ignored").c_str()
                                            : "",
-                c.pipelines.load(), c.pipelineCacheHits.load());
+                c.pipelines.load(), c.pipelineCacheHits.load(), c.pipelinesReused.load());
     j["total_ms"] = t.totalMs;
     j["gpu_pass_ms"] = gpuPassMs;
     j["total_over_gpu_passes"] = gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0;

@@ -1,6 +1,7 @@
 #include "compare_runs.h"
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 
 #include "color_map.h"
@@ -69,10 +70,12 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
 
 
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
-                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages) {
-    RunErrorMaps maps;
+                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages,
+                const ImageOutput& output) {
+    // The run's maps outlive this call when a writer takes them (the job owns them).
+    auto maps = std::make_shared<RunErrorMaps>();
     RunMetricsOptions options;
-    options.maps = writeImages ? &maps : nullptr;
+    options.maps = writeImages ? maps.get() : nullptr;
     options.hdrFlip = hdrFlip;
     options.prepared = reference.prepared.get();
     if (!reference.output.noise.empty()) {
@@ -90,30 +93,43 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
     fillMetrics(run, m);
     if (!writeImages) return;  // views after the first: metrics only
     const int cropSize = std::max(32, std::min(test.hdr.width, test.hdr.height) / 12);
-    const std::vector<Crop> crops = findWorstRegions(maps.relLuminance, cropSize, 3);
+    const std::vector<Crop> crops = findWorstRegions(maps->relLuminance, cropSize, 3);
     timed.emplace(Stage::Report);
     ErrorImageOptions imageOptions;
     imageOptions.label = run.layout + " / " + run.iblMode;
-    const ErrorImagePaths paths = writeErrorImages(outDir, prefix, maps, m, imageOptions);
+    imageOptions.exrType = output.exrType;
+    // Every path is known before any file is written: the report lists them now.
+    const ErrorImagePaths paths = errorImagePaths(prefix, *maps);
     run.images.render = paths.render;
-    // The linear HDR render the image metrics (and HDR-FLIP) were computed on, as 32-bit float.
+    // The linear HDR render the image metrics (and HDR-FLIP) were computed on (ImageOutput::exrType).
     run.images.renderExr = prefix + "render.exr";
-    writeExr((outDir / run.images.renderExr).string(), test.hdr);
     run.images.hdrPreview = prefix + "render_log.png";
-    writePng((outDir / run.images.hdrPreview).string(), logEncodeForPreview(test.hdr));
     run.images.errorHeatmap = paths.heatmap;
     run.images.flip = paths.flip;
     run.images.normalError = paths.normalError;
     run.images.difference = paths.difference;
     run.images.errorsExr = paths.errorsExr;
-    if (!crops.empty()) {
-        const Image8 heat = applyColorMap(maps.relLuminance, 0.0f, imageOptions.heatMax);
-        const auto files = writeCrops(outDir, prefix, crops, srgbFloatTo8(*maps.referenceSrgb),
-                                      srgbFloatTo8(maps.testSrgb), heat);
-        for (size_t i = 0; i < crops.size(); ++i)
-            run.images.crops.push_back({crops[i].x, crops[i].y, crops[i].size, crops[i].size, files[i].reference,
-                                        files[i].test, files[i].heat});
+    for (size_t i = 0; i < crops.size(); ++i) {
+        const CropFiles f = cropFileNames(prefix, i);
+        run.images.crops.push_back({crops[i].x, crops[i].y, crops[i].size, crops[i].size, f.reference, f.test, f.heat});
     }
+    // The writer's job owns the HDR image (moved when the caller is done with it, else copied);
+    // written here, it is only borrowed.
+    std::shared_ptr<const Image> hdr;
+    if (!output.writer) hdr = std::shared_ptr<const Image>(std::shared_ptr<const Image>(), &test.hdr);
+    else hdr = std::make_shared<const Image>(releaseTest ? std::move(test.hdr) : test.hdr);
+    auto write = [outDir, prefix, maps, m, hdr, crops, imageOptions, exrType = output.exrType] {
+        writeErrorImages(outDir, prefix, *maps, m, imageOptions);
+        writeExr((outDir / (prefix + "render.exr")).string(), *hdr, {}, exrType);
+        writePng((outDir / (prefix + "render_log.png")).string(), logEncodeForPreview(*hdr));
+        if (!crops.empty()) {
+            const Image8 heat = applyColorMap(maps->relLuminance, 0.0f, imageOptions.heatMax);
+            writeCrops(outDir, prefix, crops, srgbFloatTo8(*maps->referenceSrgb), srgbFloatTo8(maps->testSrgb), heat);
+        }
+    };
+    // Named by the run's file prefix: a failure is matched back to its run (cmd_compare.cpp).
+    if (output.writer) output.writer->enqueue(prefix, std::move(write));
+    else write();
 }
 
 

@@ -5,6 +5,8 @@
 #include <memory>
 #include <string>
 
+#include "background_writer.h"
+#include "image_io.h"
 #include "renderer.h"
 #include "report_model.h"
 #include "run_metrics.h"
@@ -20,9 +22,19 @@ struct ReferenceRender {
 // Copies a run's metrics (run_metrics.h) into its report row.
 void fillMetrics(RunReport& run, const RunMetrics& m);
 
+// How a run's image files are written: on `writer`'s threads when set (the paths go into the
+// report at once; the files follow while the next run renders; a failed job's `what` is the run's
+// file prefix), else before measureRun returns; EXR files (render.exr, errors.exr) as `exrType`.
+struct ImageOutput {
+    BackgroundWriter* writer = nullptr;
+    ExrPixelType exrType = ExrPixelType::Float32;
+};
+
 // The comparison of one rendered run against its reference: metrics, images, crops. `test` is
-// moved from when `releaseTest` (its surfaces are freed once measured: peak memory at 4K).
+// moved from when `releaseTest` (its surfaces are freed once measured: peak memory at 4K; with a
+// writer, its HDR image too, handed to the writer).
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const std::filesystem::path& outDir,
-                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages = true);
+                const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages = true,
+                const ImageOutput& output = {});
 
 }  // namespace gbl::compare

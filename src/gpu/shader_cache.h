@@ -37,6 +37,7 @@ struct ShaderCacheCounters {
     std::atomic<int> spirvCacheInvalid{0};  // cache files found but ignored (corrupt, truncated, ...)
     std::atomic<int> pipelines{0};          // pipelines created
     std::atomic<int> pipelineCacheHits{0};  // ... of which the driver reports found in the VkPipelineCache
+    std::atomic<int> pipelinesReused{0};    // pipelines not created: a renderer had built the same before
 };
 ShaderCacheCounters& shaderCacheCounters();
 

@@ -1,6 +1,7 @@
 // OpenEXR in and out. Reads go through the generic FrameBuffer API with FLOAT slices, so float
 // files stay bit exact and half files (DWAA/DWAB, PIZ, ...) are widened by OpenEXR itself.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <exception>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfRgbaFile.h>
+#include <Imath/half.h>
 
 #include "error.h"
 #include "file_io.h"
@@ -130,7 +132,29 @@ std::vector<std::string> readExrChannelNames(const std::string& path) {
     return names;
 }
 
-void writeExr(const std::string& path, const Image& image, const std::vector<std::string>& channelNames) {
+const char* exrPixelTypeName(ExrPixelType type) { return type == ExrPixelType::Half ? "half" : "float32"; }
+
+float clampToHalfRange(float v) { return std::isfinite(v) ? std::clamp(v, -kHalfMax, kHalfMax) : v; }
+
+float roundToHalf(float v) { return float(half(clampToHalfRange(v))); }
+
+ExrPixelType readExrPixelType(const std::string& path) {
+    bool allHalf = true, any = false;
+    guardedRead(path, [&]() -> Image {
+        requireRegularFile(path);
+        Imf::InputFile file(path.c_str());
+        const auto& channels = file.header().channels();
+        for (auto it = channels.begin(); it != channels.end(); ++it) {
+            any = true;
+            allHalf = allHalf && it.channel().type == Imf::HALF;
+        }
+        return Image();
+    });
+    return any && allHalf ? ExrPixelType::Half : ExrPixelType::Float32;
+}
+
+void writeExr(const std::string& path, const Image& image, const std::vector<std::string>& channelNames,
+              ExrPixelType type) {
     static const std::vector<std::vector<std::string>> kDefaults = {{"Y"}, {"R", "G"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
     if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
         image.pixels.size() != image.pixelCount() * size_t(image.channels))
@@ -145,14 +169,24 @@ void writeExr(const std::string& path, const Image& image, const std::vector<std
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
     Imf::FrameBuffer frame;
-    const size_t xStride = sizeof(float) * size_t(image.channels);
+    // Half: converted here (with the clamp roundToHalf documents), not by OpenEXR, whose
+    // float -> half conversion turns values beyond 65504 into infinity.
+    std::vector<half> halves;
+    if (type == ExrPixelType::Half) {
+        halves.resize(image.pixels.size());
+        for (size_t i = 0; i < halves.size(); ++i) halves[i] = half(clampToHalfRange(image.pixels[i]));
+    }
+    const Imf::PixelType pixelType = type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
+    const size_t valueBytes = type == ExrPixelType::Half ? sizeof(half) : sizeof(float);
+    const size_t xStride = valueBytes * size_t(image.channels);
     // OpenEXR's Slice takes char* for reading and writing alike; it only reads here.
-    auto* base = const_cast<float*>(image.pixels.data());
+    char* base = type == ExrPixelType::Half ? reinterpret_cast<char*>(halves.data())
+                                            : reinterpret_cast<char*>(const_cast<float*>(image.pixels.data()));
     for (size_t c = 0; c < names.size(); ++c) {
         if (header.channels().findChannel(names[c]))
             throw std::invalid_argument("writeExr " + path + ": channel name '" + names[c] + "' given twice");
-        header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-        frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(base + c), xStride, xStride * size_t(image.width)));
+        header.channels().insert(names[c], Imf::Channel(pixelType));
+        frame.insert(names[c], Imf::Slice(pixelType, base + c * valueBytes, xStride, xStride * size_t(image.width)));
     }
     writeViaTemporary(path, [&](const std::filesystem::path& tmp) {
         try {

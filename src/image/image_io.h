@@ -22,9 +22,26 @@ std::vector<std::string> readExrChannelNames(const std::string& path);
 // Picks readHdr or readExr by extension (.hdr / .exr); other extensions are a UserError.
 Image readEnvironmentFile(const std::string& path);
 
-// Writes a float image (1..4 channels) as EXR, 32-bit float, ZIP compression.
+// The pixel type an EXR file is written with. Half (OpenEXR's 16-bit float, IEEE 754 binary16):
+// 10 stored mantissa bits, so a value is rounded to within 2^-11 of itself (relative) above
+// 2^-14 and to within 2^-25 (absolute) below; largest finite value 65504. Finite values beyond
+// +-65504 are written as +-65504 (a half file holds no infinity the image did not); NaN and
+// infinities stay what they are. Half takes half the bytes and about half the encode time.
+enum class ExrPixelType { Float32, Half };
+const char* exrPixelTypeName(ExrPixelType type);  // "float32" / "half"
+inline constexpr float kHalfMax = 65504.0f;
+
+// Writes a float image (1..4 channels) as EXR, ZIP compression, every channel `type`.
 // channelNames optional: defaults R,G,B,A / Y for 1 channel.
-void writeExr(const std::string& path, const Image& image, const std::vector<std::string>& channelNames = {});
+void writeExr(const std::string& path, const Image& image, const std::vector<std::string>& channelNames = {},
+              ExrPixelType type = ExrPixelType::Float32);
+// The pixel type of an EXR file's channels: Half when every channel is half, else Float32
+// (32-bit float or uint channels).
+ExrPixelType readExrPixelType(const std::string& path);
+// Finite values clamped to +-kHalfMax (NaN, infinities unchanged): what writeExr(Half) converts.
+float clampToHalfRange(float v);
+// float -> half as writeExr(Half) stores it, back as float.
+float roundToHalf(float v);
 // Writes an 8-bit PNG (1..4 channels).
 void writePng(const std::string& path, const Image8& image);
 // Reads a PNG / JPEG (8-bit) file.

@@ -85,25 +85,27 @@ Image8 cropUpscaled(const Image8& image, const Crop& crop, int scale) {
     return out;
 }
 
+CropFiles cropFileNames(const std::string& prefix, size_t i) {
+    const std::string base = prefix + "crop" + std::to_string(i);
+    return {base + "_reference.png", base + "_test.png", base + "_heat.png"};
+}
+
 std::vector<CropFiles> writeCrops(const std::filesystem::path& dir, const std::string& prefix,
                                   const std::vector<Crop>& crops, const Image8& reference, const Image8& test,
                                   const Image8& heat, int scale) {
     std::vector<CropFiles> out;
     std::error_code ec;
     for (size_t i = 0; i < crops.size(); ++i) {
-        CropFiles files;
-        const std::string base = prefix + "crop" + std::to_string(i);
-        const auto write = [&](const Image8& image, const char* suffix) {
-            const std::string rel = base + suffix;
+        const CropFiles files = cropFileNames(prefix, i);
+        const auto write = [&](const Image8& image, const std::string& rel) {
             const std::filesystem::path full = dir / rel;
             std::filesystem::create_directories(full.parent_path(), ec);
             writePng(full.string(), cropUpscaled(image, crops[i], scale));
-            return rel;
         };
-        files.reference = write(reference, "_reference.png");
-        files.test = write(test, "_test.png");
-        files.heat = write(heat, "_heat.png");
-        out.push_back(std::move(files));
+        write(reference, files.reference);
+        write(test, files.test);
+        write(heat, files.heat);
+        out.push_back(files);
     }
     return out;
 }

@@ -26,6 +26,9 @@ struct CropFiles {
     std::string reference, test, heat;  // paths relative to dir
 };
 
+// The files writeCrops writes for crop i (known before they are written: compare queues them).
+CropFiles cropFileNames(const std::string& prefix, size_t i);
+
 // For each crop, <prefix>crop<i>_reference.png, _test.png and _heat.png: the crop of each picture
 // upscaled `scale` times with nearest-neighbour (sharp pixels). The three images must have the
 // size the crops were found on (heat: the colour-mapped error map, e.g. applyColorMap's).

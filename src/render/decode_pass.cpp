@@ -5,6 +5,7 @@
 
 #include "parallel_for.h"
 #include "shader_compiler.h"
+#include "stage_clock.h"
 #include "vk_pipeline.h"
 
 namespace gbl {
@@ -20,30 +21,65 @@ uint32_t bandRows(uint32_t width, uint32_t height) {
     const uint32_t rows = uint32_t(std::max<size_t>(8, kBandBytes / rowBytes / 8 * 8));
     return std::min(rows, (height + 7) / 8 * 8);
 }
+std::vector<Binding> decodeSet0() {
+    return {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    };
+}
 }  // namespace
+
+PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
+                                PipelineMemo& memo) {
+    const size_t materialTargets = wiring.materialPass ? wiring.materialTargetFormats.size() : 0;
+    const uint32_t setCount = wiring.materialPass ? 3 : 2;
+    ShaderSource cs = loadShaderFile("decode_pass.comp.glsl");
+    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    addSpaceDefines(cs, wiring);
+    addTargetReadDefines(cs, scene);  // a visibility buffer's TEXTURE_COUNT: in the key below
+    cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ")";
+    const std::string key = "decode|" + shaderMemoKey(cs) + "|targets " + std::to_string(wiring.targetFormats.size()) +
+                            " " + std::to_string(materialTargets) + " sets " + std::to_string(setCount);
+    return memo.getOrBuild(ctx.device, key, [&] {
+        auto samplers = [](size_t count) {
+            std::vector<Binding> b;
+            for (uint32_t i = 0; i < count; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+            return b;
+        };
+        const std::vector<uint32_t> spirv = compileGlsl(cs);  // first: a failed compile leaks nothing
+        MemoPipeline p;
+        p.setLayouts = {createSetLayout(ctx.device, decodeSet0(), VK_SHADER_STAGE_COMPUTE_BIT),
+                        createSetLayout(ctx.device, targetReadBindings(wiring.targetFormats.size(), scene),
+                                        VK_SHADER_STAGE_COMPUTE_BIT)};
+        if (wiring.materialPass)
+            p.setLayouts.push_back(createSetLayout(ctx.device, samplers(materialTargets), VK_SHADER_STAGE_COMPUTE_BIT));
+        p.layout = createPipelineLayout(ctx.device, p.setLayouts, 4, VK_SHADER_STAGE_COMPUTE_BIT);
+        VkShaderModule module = createShaderModule(ctx.device, spirv);
+        p.pipeline = createComputePipeline(ctx, p.layout, module);
+        vkDestroyShaderModule(ctx.device, module, nullptr);
+        return p;
+    });
+}
 
 SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
                              const Buffer& frameConstants, VkSampler nearestSampler,
                              const std::vector<float>& depthValues, const GBufferPass* materialPass,
-                             uint32_t bandRowsWanted) {
+                             uint32_t bandRowsWanted, PipelineMemo& memo) {
     const uint32_t w = gbuffer.depth.extent.width, h = gbuffer.depth.extent.height;
     const size_t pixels = size_t(w) * h;
     const uint32_t band = bandRowsWanted ? std::max(8u, bandRowsWanted / 8 * 8) : bandRows(w, h);
     Buffer output =
         createBuffer(ctx, size_t(w) * band * kFloatsPerPixel * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
 
-    const std::vector<Binding> set0 = {
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    };
+    const std::vector<Binding> set0 = decodeSet0();
     const std::vector<Binding> set1 = targetReadBindings(gbuffer);
     const std::vector<Binding> set2 = materialPass ? targetReadBindings(*materialPass) : std::vector<Binding>{};
-    const uint32_t setCount = materialPass ? 3 : 2;
-    std::vector<VkDescriptorSetLayout> layouts = {createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT),
-                                                  createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT)};
-    if (materialPass) layouts.push_back(createSetLayout(ctx.device, set2, VK_SHADER_STAGE_COMPUTE_BIT));
-    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, layouts, 4, VK_SHADER_STAGE_COMPUTE_BIT);
+    const PassPipeline built = decodePassPipeline(ctx, wiring, targetReadScene(gbuffer), memo);
+    const std::vector<VkDescriptorSetLayout>& layouts = built.entry->setLayouts;
+    const uint32_t setCount = uint32_t(layouts.size());
+    const VkPipelineLayout pipelineLayout = built.entry->layout;
+    const VkPipeline pipeline = built.entry->pipeline;
     VkDescriptorPool pool = createPoolFor(ctx.device, {set0, set1, set2});
     std::vector<VkDescriptorSet> sets;
     for (VkDescriptorSetLayout l : layouts) sets.push_back(allocateSet(ctx.device, pool, l));
@@ -59,14 +95,20 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
                          nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     writer.flush(ctx.device);
 
-    ShaderSource cs = loadShaderFile("decode_pass.comp.glsl");
-    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
-    addSpaceDefines(cs, wiring);
-    addTargetReadDefines(cs, gbuffer);
-    cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ")";
-    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
-    VkPipeline pipeline = createComputePipeline(ctx, pipelineLayout, module);
-    vkDestroyShaderModule(ctx.device, module, nullptr);
+    auto record = [&](VkCommandBuffer cmd, uint32_t firstRow, uint32_t groupsX, uint32_t groupsY) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, setCount, sets.data(), 0,
+                                nullptr);
+        vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &firstRow);
+        vkCmdDispatch(cmd, groupsX, groupsY, 1);
+        fullBarrier(cmd);
+    };
+    if (memo.firstUse(built.entry)) {
+        // A driver that compiles at first use (llvmpipe) compiles here, timed as the compile it is
+        // (renderer.cpp's warm-up); the band's dispatch below rewrites the one workgroup's pixels.
+        ScopedStage timed(Stage::ShaderCompile);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, 0, 1, 1); });
+    }
 
     SurfaceImages s;
     const int iw = int(w), ih = int(h);
@@ -84,14 +126,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     const float clearDepth = gbuffer.clearDepth;
     for (uint32_t firstRow = 0; firstRow < h; firstRow += band) {
         const uint32_t rows = std::min(band, h - firstRow);
-        ctx.submitAndWait([&](VkCommandBuffer cmd) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, setCount, sets.data(), 0,
-                                    nullptr);
-            vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &firstRow);
-            vkCmdDispatch(cmd, (w + 7) / 8, (rows + 7) / 8, 1);
-            fullBarrier(cmd);
-        });
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, firstRow, (w + 7) / 8, (rows + 7) / 8); });
         const float* src = static_cast<const float*>(output.mapped);
         const size_t first = size_t(firstRow) * w;
         // Split across threads: much of this loop's time is the kernel faulting in fresh pages.
@@ -116,9 +151,6 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     }
 
     destroyBuffer(ctx, output);
-    vkDestroyPipeline(ctx.device, pipeline, nullptr);
-    vkDestroyPipelineLayout(ctx.device, pipelineLayout, nullptr);
-    for (auto l : layouts) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
     vkDestroyDescriptorPool(ctx.device, pool, nullptr);
     return s;
 }

@@ -14,7 +14,11 @@ namespace gbl {
 // lighting's material targets, bound at set 2 as in the lighting pass.
 SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
                              const Buffer& frameConstants, VkSampler nearestSampler,
-                             const std::vector<float>& depthValues, const GBufferPass* materialPass = nullptr,
-                             uint32_t bandRows = 0);
+                             const std::vector<float>& depthValues, const GBufferPass* materialPass,
+                             uint32_t bandRows, PipelineMemo& memo);
+// The decode pass's pipeline alone, from `memo` or built into it (renderer_passes.h's
+// gbufferPassPipeline says why).
+PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
+                                PipelineMemo& memo);
 
 }  // namespace gbl

@@ -40,8 +40,10 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
                                  const ShaderSource& vs, ShaderSource fs, bool sceneVertices) {
     fs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
     addSpaceDefines(fs, wiring);
-    VkShaderModule vsModule = createShaderModule(ctx.device, compileGlsl(vs));
-    VkShaderModule fsModule = createShaderModule(ctx.device, compileGlsl(fs));
+    // Both compiled before either module exists: a shader that fails to compile leaks nothing.
+    const std::vector<uint32_t> vsSpirv = compileGlsl(vs), fsSpirv = compileGlsl(fs);
+    VkShaderModule vsModule = createShaderModule(ctx.device, vsSpirv);
+    VkShaderModule fsModule = createShaderModule(ctx.device, fsSpirv);
 
     VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
@@ -175,20 +177,63 @@ GBufferWiring materialPassWiring(const GBufferWiring& wiring) {
     return material;
 }
 
-GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
-                              const Buffer& frameConstants, uint32_t width, uint32_t height) {
-    GBufferPass pass;
-    createGBufferImages(ctx, wiring, width, height, pass);
-    const uint32_t textureCount = uint32_t(scene.textures.size());
-    const std::vector<Binding> bindings = {
+namespace {
+
+std::vector<Binding> gbufferBindings(uint32_t textureCount) {
+    return {
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount},
         {enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     };
-    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    pass.setLayout = createSetLayout(ctx.device, bindings, stages);
-    pass.pipelineLayout = createPipelineLayout(ctx.device, {pass.setLayout}, sizeof(gpu::DrawConstants), stages);
+}
+constexpr VkShaderStageFlags kGBufferStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+}  // namespace
+
+PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t textureCount,
+                                 PipelineMemo& memo) {
+    const ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
+    ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
+    fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
+    fs.name = "gbuffer_pass.frag.glsl (layout " + wiring.layoutName + ")";
+    // The key: the shaders' input as createGBufferPipeline compiles them (the wiring's GLSL and
+    // [space] go in as a virtual file and defines) and every piece of fixed-function state it
+    // reads from the wiring.
+    ShaderSource keyed = fs;
+    keyed.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    addSpaceDefines(keyed, wiring);
+    std::string key = "gbuffer|" + shaderMemoKey(vs) + "|" + shaderMemoKey(keyed) + "|formats";
+    for (VkFormat f : wiring.targetFormats) key += " " + std::to_string(int(f));
+    key += "|depth " + std::to_string(int(wiring.depthFormat)) + " reversed " + std::to_string(wiring.reversedZ) +
+           " stencil " + std::to_string(writesStencil(wiring) ? int(wiring.stencilWriteMask) : 0) + " emissive " +
+           std::to_string(wiring.emissiveForward && !wiring.materialPass);
+    return memo.getOrBuild(ctx.device, key, [&] {
+        MemoPipeline p;
+        p.setLayouts = {createSetLayout(ctx.device, gbufferBindings(textureCount), kGBufferStages)};
+        p.layout = createPipelineLayout(ctx.device, p.setLayouts, sizeof(gpu::DrawConstants), kGBufferStages);
+        try {
+            p.pipeline = createGBufferPipeline(ctx, wiring, p.layout, vs, fs, true);
+        } catch (...) {  // a shader that does not compile: leave nothing behind
+            vkDestroyPipelineLayout(ctx.device, p.layout, nullptr);
+            vkDestroyDescriptorSetLayout(ctx.device, p.setLayouts[0], nullptr);
+            throw;
+        }
+        return p;
+    });
+}
+
+GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
+                              const Buffer& frameConstants, uint32_t width, uint32_t height, PipelineMemo& memo) {
+    GBufferPass pass;
+    const uint32_t textureCount = uint32_t(scene.textures.size());
+    const PassPipeline pipeline = gbufferPassPipeline(ctx, wiring, textureCount, memo);
+    pass.setLayout = pipeline.entry->setLayouts.at(0);
+    pass.pipelineLayout = pipeline.entry->layout;
+    pass.pipeline = pipeline.entry->pipeline;
+    pass.needsWarmUp = memo.firstUse(pipeline.entry);
+    createGBufferImages(ctx, wiring, width, height, pass);
+    const std::vector<Binding> bindings = gbufferBindings(textureCount);
     pass.pool = createPoolFor(ctx.device, {bindings});
     pass.set = allocateSet(ctx.device, pass.pool, pass.setLayout);
     pass.bestFitTable = createBestFitTableBuffer(ctx);
@@ -200,11 +245,7 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
         writer.image(pass.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene.textures[i].view,
                      scene.textureSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
     writer.flush(ctx.device);
-    const ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
-    ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
-    fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
-    fs.name = "gbuffer_pass.frag.glsl (layout " + wiring.layoutName + ")";
-    pass.pipeline = createGBufferPipeline(ctx, wiring, pass.pipelineLayout, vs, fs, true);
+    pass.pipelineFromMemo = true;
     pass.writesStencil = writesStencil(wiring);
     pass.wiring.stencilFields = wiring.stencilFields;
     if (wiring.visibilityBuffer) {
@@ -298,6 +339,23 @@ void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuSc
     endGBufferPass(cmd, pass);
 }
 
+void recordGBufferWarmUp(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene) {
+    beginGBufferPass(cmd, pass);
+    const VkRect2D onePixel{{0, 0}, {1, 1}};
+    vkCmdSetScissor(cmd, 0, 1, &onePixel);
+    if (!scene.drawRanges.empty()) {
+        VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &scene.vertices.buffer, &offset);
+        vkCmdBindIndexBuffer(cmd, scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdPushConstants(cmd, pass.pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(gpu::DrawConstants), &scene.draws[0]);
+        if (pass.writesStencil) vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
+        const Draw& d = scene.drawRanges[0];
+        vkCmdDrawIndexed(cmd, d.indexCount, 1, d.firstIndex, d.vertexOffset, 0);
+    }
+    endGBufferPass(cmd, pass);
+}
+
 Buffer createBestFitTableBuffer(const VulkanContext& ctx) {
     const std::vector<uint32_t>& table = enc::bestFitNormalTable();
     return createBufferWithData(ctx, table.data(), table.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -309,9 +367,11 @@ void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {
     pass.targets.clear();
     if (pass.emissive.image) destroyImage(ctx, pass.emissive);
     destroyImage(ctx, pass.depth);
-    if (pass.pipeline) vkDestroyPipeline(ctx.device, pass.pipeline, nullptr);
-    if (pass.pipelineLayout) vkDestroyPipelineLayout(ctx.device, pass.pipelineLayout, nullptr);
-    if (pass.setLayout) vkDestroyDescriptorSetLayout(ctx.device, pass.setLayout, nullptr);
+    if (!pass.pipelineFromMemo) {
+        if (pass.pipeline) vkDestroyPipeline(ctx.device, pass.pipeline, nullptr);
+        if (pass.pipelineLayout) vkDestroyPipelineLayout(ctx.device, pass.pipelineLayout, nullptr);
+        if (pass.setLayout) vkDestroyDescriptorSetLayout(ctx.device, pass.setLayout, nullptr);
+    }
     if (pass.pool) vkDestroyDescriptorPool(ctx.device, pass.pool, nullptr);
     pass = GBufferPass{};
 }

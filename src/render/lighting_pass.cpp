@@ -1,18 +1,34 @@
 #include "renderer_passes.h"
 
+#include <stdexcept>
+
 #include "shader_compiler.h"
 #include "vk_pipeline.h"
 
 namespace gbl {
 
-std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
+std::vector<Binding> targetReadBindings(size_t targetCount, const TargetReadScene& scene) {
     std::vector<Binding> bindings;
-    for (uint32_t i = 0; i < pass.targets.size(); ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
-    if (const GpuScene* scene = pass.visibilityScene) {
+    for (uint32_t i = 0; i < targetCount; ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    if (scene.visibility) {
         for (uint32_t b = 1; b <= 4; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-        bindings.push_back({5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(scene->textures.size())});
+        bindings.push_back({5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene.textureCount});
     }
     return bindings;
+}
+
+TargetReadScene targetReadScene(const GBufferPass& pass) {
+    TargetReadScene s;
+    if (const GpuScene* scene = pass.visibilityScene) {
+        s.visibility = true;
+        s.textureCount = uint32_t(scene->textures.size());
+        s.nonUniformIndexing = pass.nonUniformTextureIndexing;
+    }
+    return s;
+}
+
+std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
+    return targetReadBindings(pass.targets.size(), targetReadScene(pass));
 }
 
 void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler) {
@@ -30,14 +46,84 @@ void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBu
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
 }
 
-void addTargetReadDefines(ShaderSource& s, const GBufferPass& pass) {
-    if (!pass.visibilityScene) return;
-    s.defines.push_back({"TEXTURE_COUNT", std::to_string(pass.visibilityScene->textures.size())});
-    if (pass.nonUniformTextureIndexing) s.defines.push_back({"GBL_NONUNIFORM_TEXTURE_INDEXING", "1"});
+void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene) {
+    if (!scene.visibility) return;
+    s.defines.push_back({"TEXTURE_COUNT", std::to_string(scene.textureCount)});
+    if (scene.nonUniformIndexing) s.defines.push_back({"GBL_NONUNIFORM_TEXTURE_INDEXING", "1"});
+}
+
+namespace {
+
+// Set 0's bindings; binding 9 (the light buffers' words) with a light pre-pass only.
+std::vector<Binding> lightingSet0(bool lightPrePass) {
+    std::vector<Binding> set0 = {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+        {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // emissive = forward: scene-colour emissive (else depth)
+        {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},  // ground truth: the environment's sampling table
+        {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},   // ground truth: the progressive accumulation
+    };
+    if (lightPrePass) set0.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+    return set0;
+}
+
+std::vector<Binding> samplerBindings(size_t count) {
+    std::vector<Binding> bindings;
+    for (uint32_t i = 0; i < count; ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    return bindings;
+}
+
+}  // namespace
+
+PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
+                                  PipelineMemo& memo) {
+    const bool lightPrePass = !wiring.lightBufferGlsl.empty();
+    const bool emissive = wiring.emissiveForward && !wiring.materialPass;  // createGBufferImages' rule
+    const size_t materialTargets = wiring.materialPass ? wiring.materialTargetFormats.size() : 0;
+    const uint32_t setCount = wiring.materialPass ? 3 : 2;
+    ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
+    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
+    addSpaceDefines(cs, wiring);
+    addTargetReadDefines(cs, scene);
+    if (lightPrePass) {
+        cs.virtualFiles["light_buffers.glsl"] = wiring.lightBufferGlsl;
+        cs.defines.push_back({"LIGHT_PRE_PASS", "1"});
+    }
+    cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
+    if (emissive) cs.defines.push_back({"EMISSIVE_FORWARD", "1"});
+    // The shader's input and the set layouts (set 0 follows LIGHT_PRE_PASS, set 1 a visibility
+    // buffer's TEXTURE_COUNT, both already in the key).
+    const std::string key = "lighting|" + shaderMemoKey(cs) + "|targets " +
+                            std::to_string(wiring.targetFormats.size()) + " " + std::to_string(materialTargets) +
+                            " sets " + std::to_string(setCount);
+    return memo.getOrBuild(ctx.device, key, [&] {
+        const std::vector<uint32_t> spirv = compileGlsl(cs);  // first: a failed compile leaks nothing
+        MemoPipeline p;
+        p.setLayouts = {createSetLayout(ctx.device, lightingSet0(lightPrePass), VK_SHADER_STAGE_COMPUTE_BIT),
+                        createSetLayout(ctx.device, targetReadBindings(wiring.targetFormats.size(), scene),
+                                        VK_SHADER_STAGE_COMPUTE_BIT)};
+        if (wiring.materialPass)
+            p.setLayouts.push_back(
+                createSetLayout(ctx.device, samplerBindings(materialTargets), VK_SHADER_STAGE_COMPUTE_BIT));
+        p.layout = createPipelineLayout(ctx.device, p.setLayouts, sizeof(uint32_t), VK_SHADER_STAGE_COMPUTE_BIT);
+        VkShaderModule module = createShaderModule(ctx.device, spirv);
+        p.pipeline = createComputePipeline(ctx, p.layout, module);
+        vkDestroyShaderModule(ctx.device, module, nullptr);
+        return p;
+    });
 }
 
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
-                                uint32_t width, uint32_t height) {
+                                uint32_t width, uint32_t height, PipelineMemo& memo) {
+    if (in.gbuffer->targets.size() != wiring.targetFormats.size() || (in.materialPass != nullptr) != wiring.materialPass ||
+        (in.materialPass && in.materialPass->targets.size() != wiring.materialTargetFormats.size()))
+        throw std::logic_error("createLightingPass: the G-buffer passes given are not the wiring's");
     LightingPass pass;
     pass.width = width;
     pass.height = height;
@@ -52,30 +138,17 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     a.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     pass.accumulation = createImage(ctx, a);
 
-    std::vector<Binding> set0 = {
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-        {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // emissive = forward: scene-colour emissive (else depth)
-        {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},  // ground truth: the environment's sampling table
-        {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},   // ground truth: the progressive accumulation
-    };
     const bool lightPrePass = !wiring.lightBufferGlsl.empty();
-    if (lightPrePass) set0.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});  // the light buffers' words
+    const std::vector<Binding> set0 = lightingSet0(lightPrePass);
     const std::vector<Binding> set1 = targetReadBindings(*in.gbuffer);
     const std::vector<Binding> set2 = in.materialPass ? targetReadBindings(*in.materialPass) : std::vector<Binding>{};
-    pass.setCount = in.materialPass ? 3 : 2;
-    pass.setLayouts[0] = createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT);
-    pass.setLayouts[1] = createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT);
-    if (in.materialPass) pass.setLayouts[2] = createSetLayout(ctx.device, set2, VK_SHADER_STAGE_COMPUTE_BIT);
-    pass.pipelineLayout = createPipelineLayout(
-        ctx.device, std::vector<VkDescriptorSetLayout>(pass.setLayouts, pass.setLayouts + pass.setCount), sizeof(uint32_t),
-        VK_SHADER_STAGE_COMPUTE_BIT);
+    const bool emissive = in.gbuffer->emissive.image != VK_NULL_HANDLE;
+    const PassPipeline pipeline = lightingPassPipeline(ctx, wiring, targetReadScene(*in.gbuffer), memo);
+    pass.setCount = uint32_t(pipeline.entry->setLayouts.size());
+    for (uint32_t i = 0; i < pass.setCount; ++i) pass.setLayouts[i] = pipeline.entry->setLayouts[i];
+    pass.pipelineLayout = pipeline.entry->layout;
+    pass.pipeline = pipeline.entry->pipeline;
+    pass.needsWarmUp = memo.firstUse(pipeline.entry);
     pass.pool = createPoolFor(ctx.device, {set0, set1, set2});
     for (uint32_t i = 0; i < pass.setCount; ++i) pass.sets[i] = allocateSet(ctx.device, pass.pool, pass.setLayouts[i]);
 
@@ -97,7 +170,6 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
         .buffer(pass.sets[0], 10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.ibl->environmentSampling.buffer)
         .image(pass.sets[0], 11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pass.accumulation.view, VK_NULL_HANDLE,
                VK_IMAGE_LAYOUT_GENERAL);
-    const bool emissive = in.gbuffer->emissive.image != VK_NULL_HANDLE;
     writer.image(pass.sets[0], 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                  emissive ? in.gbuffer->emissive.view : in.gbuffer->depth.view, in.nearestSampler,
                  emissive ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
@@ -109,19 +181,6 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
                          in.nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     writer.flush(ctx.device);
 
-    ShaderSource cs = loadShaderFile("lighting_pass.comp.glsl");
-    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
-    addSpaceDefines(cs, wiring);
-    addTargetReadDefines(cs, *in.gbuffer);
-    if (lightPrePass) {
-        cs.virtualFiles["light_buffers.glsl"] = wiring.lightBufferGlsl;
-        cs.defines.push_back({"LIGHT_PRE_PASS", "1"});
-    }
-    cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
-    if (emissive) cs.defines.push_back({"EMISSIVE_FORWARD", "1"});
-    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
-    pass.pipeline = createComputePipeline(ctx, pass.pipelineLayout, module);
-    vkDestroyShaderModule(ctx.device, module, nullptr);
     return pass;
 }
 
@@ -138,13 +197,22 @@ void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass, uint32_t 
     fullBarrier(cmd);
 }
 
+void recordLightingWarmUp(VkCommandBuffer cmd, const LightingPass& pass) {
+    transitionImage(cmd, pass.hdr, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    transitionImage(cmd, pass.accumulation, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipelineLayout, 0, pass.setCount, pass.sets, 0,
+                            nullptr);
+    const uint32_t batch = 0;
+    vkCmdPushConstants(cmd, pass.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(batch), &batch);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    fullBarrier(cmd);
+}
+
 void destroyLightingPass(const VulkanContext& ctx, LightingPass& pass) {
     destroyImage(ctx, pass.hdr);
     destroyImage(ctx, pass.accumulation);
-    if (pass.pipeline) vkDestroyPipeline(ctx.device, pass.pipeline, nullptr);
-    if (pass.pipelineLayout) vkDestroyPipelineLayout(ctx.device, pass.pipelineLayout, nullptr);
-    for (auto& l : pass.setLayouts)
-        if (l) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
+    // The pipeline and its layouts belong to the PipelineMemo.
     if (pass.pool) vkDestroyDescriptorPool(ctx.device, pass.pool, nullptr);
     pass = LightingPass{};
 }

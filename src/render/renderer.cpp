@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "error.h"
 #include "ibl_cache.h"
+#include "parallel_invoke.h"
 #include "renderer_passes.h"
 #include "stage_clock.h"
 #include "wiring_plan.h"
@@ -90,6 +92,35 @@ Renderer::~Renderer() {
     destroyIblGpu(ctx_, ibl_);
     vkDestroySampler(ctx_.device, environmentSampler_, nullptr);
     vkDestroySampler(ctx_.device, nearestSampler_, nullptr);
+    pipelines_.destroy(ctx_.device);
+}
+
+void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings) {
+    ScopedStage timed(Stage::ShaderCompile);
+    const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
+    std::vector<GBufferWiring> materials(wirings.size());
+    std::vector<std::function<void()>> tasks;
+    for (size_t i = 0; i < wirings.size(); ++i) {
+        tasks.push_back([&, i] { gbufferPassPipeline(ctx_, wirings[i], textureCount, pipelines_); });
+        if (wirings[i].materialPass) {
+            materials[i] = materialPassWiring(wirings[i]);
+            tasks.push_back([&, i] { gbufferPassPipeline(ctx_, materials[i], textureCount, pipelines_); });
+        }
+        TargetReadScene readScene;  // createGBufferPass's visibilityScene, as the passes will see it
+        if (wirings[i].visibilityBuffer)
+            readScene = {true, textureCount, ctx_.nonUniformSampledImageIndexing};
+        tasks.push_back([&, i, readScene] { lightingPassPipeline(ctx_, wirings[i], readScene, pipelines_); });
+        tasks.push_back([&, i, readScene] { decodePassPipeline(ctx_, wirings[i], readScene, pipelines_); });
+    }
+    for (auto& task : tasks)
+        task = [run = std::move(task)] {
+            try {
+                run();
+            } catch (const std::exception&) {
+                // left for render(), which reports it as that run's failure
+            }
+        };
+    parallelInvoke(tasks);
 }
 
 RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings& settings) {
@@ -116,14 +147,21 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     frame.ibl = glm::vec4(float(iblSamples), float(ibl_.sourceFaceSize), float(settings.groundTruthSeed), 0.0f);
     for (int k = 0; k < 9; ++k) frame.irradianceSh[k] = glm::vec4(ibl_.irradianceSh[k], 0.0f);
     frame.shading = glm::vec4(float(settings.fresnelMode), wiring.reversedZ ? 0.0f : 1.0f, 0.0f, 0.0f);
+    // Every pipeline this render needs, first (from the memo, or built now): a shader that does not
+    // compile fails the render before anything is allocated for it.
+    const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
+    gbufferPassPipeline(ctx_, wiring, textureCount, pipelines_);
+    if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), textureCount, pipelines_);
+    lightingPassPipeline(ctx_, wiring, pipelines_);
+    if (settings.decodeSurfaces) decodePassPipeline(ctx_, wiring, pipelines_);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
-    GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h);
+    GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h, pipelines_);
     // Deferred lighting: the second geometry pass writes the material attributes the slim
     // G-buffer leaves out, at full precision (the same generated GLSL, MATERIAL_PASS_WRITE).
     GBufferPass materialPass;
     if (wiring.materialPass)
-        materialPass = createGBufferPass(ctx_, materialPassWiring(wiring), gpuScene_, frameBuffer, w, h);
+        materialPass = createGBufferPass(ctx_, materialPassWiring(wiring), gpuScene_, frameBuffer, w, h, pipelines_);
     const GBufferPass* material = wiring.materialPass ? &materialPass : nullptr;
     // Deferred lighting: the light buffers, as the words their formats hold.
     Buffer lightBuffers;
@@ -133,7 +171,19 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     const bool groundTruth = settings.specularIbl == IblMode::GroundTruth;
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
                           nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth};
-    LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h);
+    LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h, pipelines_);
+    if (gbuffer.needsWarmUp || (material && material->needsWarmUp) || lighting.needsWarmUp) {
+        // New pipelines: one draw clipped to a pixel and one workgroup each, so that a driver that
+        // compiles at first use (llvmpipe JIT-compiles a shader variant at its first draw or
+        // dispatch, keyed by the bound formats and samplers, hence with the frame's own resources)
+        // does it here, timed as shader compile, and the frame below times the frame alone.
+        ScopedStage timedCompile(Stage::ShaderCompile);
+        ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+            recordGBufferWarmUp(cmd, gbuffer, gpuScene_);
+            if (material) recordGBufferWarmUp(cmd, *material, gpuScene_);
+            recordLightingWarmUp(cmd, lighting);
+        });
+    }
 
     const std::vector<double> passMs = submitTimedSegments(
         ctx_, {[&](VkCommandBuffer cmd) {
@@ -230,7 +280,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
                                     VK_IMAGE_ASPECT_STENCIL_BIT);
     if (settings.decodeSurfaces)
         out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth, material,
-                                      settings.decodeBandRows);
+                                      settings.decodeBandRows, pipelines_);
     if (material) destroyGBufferPass(ctx_, materialPass);
     destroyGBufferPass(ctx_, gbuffer);
     destroyBuffer(ctx_, frameBuffer);

@@ -11,6 +11,7 @@
 #include "gpu_scene.h"
 #include "ibl_precompute.h"
 #include "image.h"
+#include "pipeline_memo.h"
 #include "scene.h"
 #include "surface_images.h"
 
@@ -104,8 +105,18 @@ public:
 
     RenderOutput render(const GBufferWiring& wiring, const RenderSettings& settings);
 
+    // Builds the pipelines of every wiring's passes (G-buffer, material, lighting, decode) side by
+    // side on worker threads (vkCreate*Pipelines may be called from several threads; the
+    // VkPipelineCache is internally synchronised, created without EXTERNALLY_SYNCHRONIZED), timed
+    // as shader compile, so the renders of these wirings build nothing. A wiring whose pipeline
+    // cannot be built is skipped here: its render() fails with the error, as it would have.
+    void preparePipelines(const std::vector<GBufferWiring>& wirings);
+
     const Scene& scene() const { return scene_; }
     const IblGpu& ibl() const { return ibl_; }
+    // Pipelines built so far (G-buffer, material, lighting, decode): each layout's are built at its
+    // first render and reused by every later one, whatever the camera, size or IBL mode.
+    size_t pipelineCount() const { return pipelines_.size(); }
 
 private:
     void init(const EnvironmentMap& environment, const IblMaps& ibl);
@@ -116,6 +127,7 @@ private:
     VkSampler environmentSampler_ = VK_NULL_HANDLE;
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
     IblGpu ibl_;
+    PipelineMemo pipelines_;
 };
 
 // Camera matrices for the frame, with Vulkan's y-down flip and optional reversed Z.

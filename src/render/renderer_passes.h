@@ -3,12 +3,23 @@
 #include "gbuffer_wiring.h"
 #include "gpu_scene.h"
 #include "ibl_precompute.h"
+#include "pipeline_memo.h"
 #include "shader_compiler.h"
 #include "shared_types.h"
 #include "vk_pipeline.h"
 #include "vk_resources.h"
 
 namespace gbl {
+
+// What the passes that read a G-buffer compile against when it is a visibility buffer: its
+// resolve's texture array (set 1, binding 5) has the scene's texture count, and is indexed per
+// pixel only where the device allows it. All zero/false for a G-buffer layout, so its pipelines
+// do not depend on the scene.
+struct TargetReadScene {
+    bool visibility = false;
+    uint32_t textureCount = 0;
+    bool nonUniformIndexing = false;
+};
 
 struct GBufferPass {
     std::vector<GpuImage> targets;
@@ -34,6 +45,11 @@ struct GBufferPass {
     // ... and whether its resolve may index the textures per pixel (VulkanContext::
     // nonUniformSampledImageIndexing; without it, visibility_resolve.glsl loops over them).
     bool nonUniformTextureIndexing = false;
+    // Built by createGBufferPass: a PipelineMemo owns setLayout, pipelineLayout and pipeline
+    // (destroy leaves them). Passes put together by hand (the bit tests) own theirs.
+    bool pipelineFromMemo = false;
+    // This pass is the pipeline's first user (PipelineMemo::firstUse): the renderer warms it up.
+    bool needsWarmUp = true;
 };
 
 // The layout's [space] as defines for shaders/normal_space.glsl (GBL_NORMAL_SPACE,
@@ -52,10 +68,25 @@ Buffer createBestFitTableBuffer(const VulkanContext& ctx);
 // fragment shaders. Renderer::render calls it before it allocates anything.
 void checkVisibilityBufferSupport(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene);
 
+
+// The pipeline (and its layouts) is taken from `memo` when this wiring's was built before, else
+// built into it (gbufferPassPipeline).
 GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
-                              const Buffer& frameConstants, uint32_t width, uint32_t height);
+                              const Buffer& frameConstants, uint32_t width, uint32_t height, PipelineMemo& memo);
+// The pipelines of a wiring's passes alone (no images, no submission), from `memo` or built into
+// it: what createGBufferPass and createLightingPass use, callable from several threads at once
+// (Renderer::preparePipelines). `textureCount`: the scene's (GpuScene::textures).
+PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t textureCount,
+                                 PipelineMemo& memo);
+PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
+                                  PipelineMemo& memo);
 // Records the pass; leaves targets and depth in SHADER_READ_ONLY_OPTIMAL.
 void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene);
+// The pass's first draw only, clipped to one pixel: makes a driver that compiles shaders at their
+// first use (llvmpipe JIT-compiles its shader variants at the first draw) compile them here, so the
+// compile is timed as such and not as rendering. The targets are left as recordGBufferPass leaves
+// them; the frame's own pass clears them again.
+void recordGBufferWarmUp(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene);
 void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass);
 
 // The parts createGBufferPass is made of, for a G-buffer filled by other shaders (the GPU/CPU bit
@@ -93,6 +124,7 @@ struct LightingPass {
     VkDescriptorSet sets[3] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
     uint32_t setCount = 2;
     uint32_t width = 0, height = 0;
+    bool needsWarmUp = true;  // as GBufferPass's (the memo owns the pipeline and its layouts)
 };
 
 struct LightingInputs {
@@ -112,16 +144,23 @@ struct LightingInputs {
 // visibility buffer, also what its resolve reads (shaders/visibility_buffer.glsl, GBUFFER_READ):
 // binding 1 vertices, 2 indices, 3 draws, 4 materials (storage buffers), 5 the textures.
 std::vector<Binding> targetReadBindings(const GBufferPass& pass);
+std::vector<Binding> targetReadBindings(size_t targetCount, const TargetReadScene& scene);
+// A pass's TargetReadScene: visibility from its visibilityScene, else none.
+TargetReadScene targetReadScene(const GBufferPass& pass);
 // Writes those bindings of `set` (targets through `nearestSampler`).
 void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler);
-// What a pass reading `pass` compiles with: TEXTURE_COUNT for a visibility buffer's resolve.
-void addTargetReadDefines(ShaderSource& s, const GBufferPass& pass);
+// What a pass reading a visibility buffer compiles with: TEXTURE_COUNT for its resolve, and
+// GBL_NONUNIFORM_TEXTURE_INDEXING where the device has it; nothing for a G-buffer.
+void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene);
 
+// in.gbuffer and in.materialPass must be the wiring's (their target counts are the set layouts').
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,
-                                uint32_t width, uint32_t height);
+                                uint32_t width, uint32_t height, PipelineMemo& memo);
 // Records one dispatch; `batch` is the ground truth's batch index (push constant): batch 0
 // starts the accumulation afresh, later ones add to it.
 void recordLightingPass(VkCommandBuffer cmd, const LightingPass& pass, uint32_t batch = 0);
+// One workgroup of batch 0 (see recordGBufferWarmUp); the frame's dispatch overwrites its pixels.
+void recordLightingWarmUp(VkCommandBuffer cmd, const LightingPass& pass);
 void destroyLightingPass(const VulkanContext& ctx, LightingPass& pass);
 
 }  // namespace gbl

@@ -4,6 +4,7 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <Imath/half.h>
 
 #include <algorithm>
 #include <cmath>
@@ -135,7 +136,7 @@ std::vector<std::string> errorExrChannels(const RunErrorMaps& m) {
     return names;
 }
 
-void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& m) {
+void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& m, ExrPixelType type) {
     requireMap(m.flip, "FLIP");
     const int w = m.flip.width, h = m.flip.height;
     const size_t n = m.flip.pixelCount();
@@ -174,7 +175,18 @@ void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& m) {
     header.compression() = Imf::ZIP_COMPRESSION;
     header.zipCompressionLevel() = 1;  // error planes are noisy floats: higher levels cost time, save little
     Imf::FrameBuffer frame;
+    // Half: converted plane by plane here (image_io.h clampToHalfRange: no overflow to infinity).
+    std::vector<std::vector<half>> halfPlanes;
     for (auto& [name, plane] : planes) {
+        if (type == ExrPixelType::Half) {
+            std::vector<half>& hp = halfPlanes.emplace_back(plane.size());
+            for (size_t i = 0; i < plane.size(); ++i) hp[i] = half(clampToHalfRange(plane[i]));
+            std::vector<float>().swap(plane);
+            header.channels().insert(name, Imf::Channel(Imf::HALF));
+            frame.insert(name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(hp.data()), sizeof(half),
+                                          sizeof(half) * size_t(w)));
+            continue;
+        }
         header.channels().insert(name, Imf::Channel(Imf::FLOAT));
         frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(plane.data()), sizeof(float),
                                       sizeof(float) * size_t(w)));
@@ -191,6 +203,17 @@ void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& m) {
                            "); check that the directory exists, is writable and has space");
         }
     });
+}
+
+ErrorImagePaths errorImagePaths(const std::string& prefix, const RunErrorMaps& maps) {
+    ErrorImagePaths p;
+    p.render = prefix + "render.png";
+    p.heatmap = prefix + "error_heatmap.png";
+    p.flip = prefix + "flip.png";
+    if (!maps.normalDeg.empty()) p.normalError = prefix + "normal_error.png";
+    p.difference = prefix + "difference.png";
+    p.errorsExr = prefix + "errors.exr";
+    return p;
 }
 
 ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::string& prefix, const RunErrorMaps& maps,
@@ -240,7 +263,7 @@ ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::st
     });
 
     writes.push_back([&] {
-        writeErrorExr(dir / (prefix + "errors.exr"), maps);
+        writeErrorExr(dir / (prefix + "errors.exr"), maps, o.exrType);
         paths.errorsExr = prefix + "errors.exr";
     });
     parallelInvoke(writes);

@@ -21,6 +21,7 @@
 
 #include "color_map.h"  // titledPicture / titleBandHeight: the layout of these pictures
 #include "image.h"
+#include "image_io.h"
 #include "run_metrics.h"
 
 namespace gbl {
@@ -30,6 +31,7 @@ struct ErrorImageOptions {
     float amplification = 8.0f;      // k of the difference image
     float normalMinScaleDeg = 1.0f;  // the normal map's top is max(this, p99)
     std::string label;               // e.g. the layout's name, prefixed to every title ("" = none)
+    ExrPixelType exrType = ExrPixelType::Float32;  // of errors.exr (image_io.h: half's precision)
 };
 
 // Paths relative to `dir` (prefix + file name); "" when not written.
@@ -53,7 +55,10 @@ ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::st
 // out: flip, hdr_flip, abs_r, abs_g, abs_b, rel_luminance, normal_deg, base_color_de, diffuse_de,
 // specular_de, roughness_abs, metallic_abs, occlusion_abs, depth_rel, measured (1 = compared).
 std::vector<std::string> errorExrChannels(const RunErrorMaps& maps);
-void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& maps);
+void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& maps,
+                   ExrPixelType type = ExrPixelType::Float32);
+// The paths writeErrorImages(dir, prefix, maps, ...) writes, without writing them.
+ErrorImagePaths errorImagePaths(const std::string& prefix, const RunErrorMaps& maps);
 
 // ---- Building blocks (in memory) --------------------------------------------------------------
 

@@ -464,7 +464,8 @@ Json reportToJson(const ReportModel& model) {
                              {"ibl_modes", run.iblModes},
                              {"exposure", run.exposure},
                              {"notes", run.notes},
-                             {"views", run.views}}},
+                             {"views", run.views},
+                             {"exr_precision", run.exrPrecision}}},
                 {"reference", Json{{"layout", model.reference.layout}, {"images", std::move(references)}}},
                 {"runs", std::move(runs)}};
     if (model.iblFigure) j["ibl_figure"] = iblFigureJson(*model.iblFigure);
@@ -512,6 +513,7 @@ ReportModel reportFromJson(const Json& json) {
     model.run.notes = run["notes"].strings();
     if (run.has("exposure")) model.run.exposure = run["exposure"].num();
     if (run.has("views")) model.run.views = run["views"].strings();
+    if (run.has("exr_precision")) model.run.exrPrecision = run["exr_precision"].str();
     const Node reference = root["reference"];
     model.reference.layout = reference["layout"].str();
     const Node images = reference["images"];

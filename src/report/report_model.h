@@ -35,6 +35,10 @@ struct ReportRunInfo {
     double exposure = 1.0;    // the tone map's exposure (compare --exposure)
     std::vector<std::string> notes;  // free-form remarks (e.g. "12 ringing texels clamped to 0")
     std::vector<std::string> views;  // compare --views: how each camera was placed ("scene camera", ...)
+    // The pixel type of the EXR files written (render.exr, errors.exr, the reference's):
+    // "half" (compare's default) or "float32" (compare --float32-exr). The numbers in the report
+    // are computed in 32-bit float either way.
+    std::string exrPrecision = "float32";
 };
 
 struct ReferenceImage {

@@ -445,6 +445,12 @@ TEST(Cli, InterruptedCompareLeavesAMarkedFolderWithAReportOfFinishedRuns) {
         EXPECT_LT(report["runs"].size(), 6u);
         EXPECT_NE(report["run"]["notes"].dump().find("INCOMPLETE"), std::string::npos);
         EXPECT_TRUE(fs::exists(out / "report.html"));
+        // The images are written in the background; the runs the report lists had theirs
+        // queued, and the interruption writes them before the report.
+        for (const auto& r : report["runs"])
+            for (const char* key : {"render", "render_exr", "errors_exr"})
+                if (r["status"] == "ok")
+                    EXPECT_TRUE(fs::exists(out / r["images"][key].get<std::string>())) << r["images"][key];
     }
 }
 

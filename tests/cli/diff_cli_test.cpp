@@ -130,10 +130,14 @@ TEST(Diff, BadInputIsOneLineNamingTheFile) {
 // report.json's image errors are what `gbufferlab diff` computes from the files compare wrote:
 // LDR-FLIP, tone-mapped PSNR and RMSE from the PNGs; HDR-FLIP, linear PSNR and RMSE from the EXRs
 // (with several views, the default: the first view's numbers, whose files compare writes).
+// Exactly with --float32-exr: the metrics are computed on the 32-bit float renders.
 TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
-    const RunResult c = run("compare --size 96x54 --layouts crysis2-slim,ue4 --hdr-flip --out rep");
+    const RunResult c = run("compare --size 96x54 --layouts crysis2-slim,ue4 --hdr-flip --float32-exr --out rep");
     ASSERT_EQ(c.exitCode, 0) << c.err;
     const auto report = nlohmann::json::parse(slurp(scratch() / "rep" / "report.json"));
+    EXPECT_EQ(report["run"]["exr_precision"], "float32");
+    EXPECT_EQ(gbl::readExrPixelType((scratch() / "rep" / report["reference"]["images"][0]["render_exr"].get<std::string>()).string()),
+              gbl::ExrPixelType::Float32);
     const auto& refImage = report["reference"]["images"][0];
     ASSERT_FALSE(refImage["render_exr"].get<std::string>().empty());
     for (const auto& runJson : report["runs"]) {
@@ -158,4 +162,55 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
         EXPECT_DOUBLE_EQ(num(j["psnr_db"]), num(e["psnr_linear_db"]));
         EXPECT_NEAR(num(j["rmse"]), num(e["rmse_linear"]), 1e-9 * num(e["rmse_linear"]));
     }
+}
+
+// The default half-float EXRs: the report says so, the files are half, and the linear numbers
+// recomputed from them stay within what half's rounding allows. Each value read back is within
+// 2^-11 of the float one (relative, normal range) or 2^-25 (absolute, subnormal), so by the
+// triangle inequality |RMSE(t' - r') - RMSE(t - r)| <= RMSE(t' - t) + RMSE(r' - r)
+// <= 2^-11 (RMS(t) + RMS(r)) + 2^-24. PSNR = 20 log10(peak / RMSE) moves with the RMSE and the
+// peak (the reference's maximum, also rounded). The PNG numbers do not depend on the EXRs: exact.
+TEST(Diff, HalfExrsReproduceTheReportWithinHalfsRounding) {
+    const RunResult c = run("compare --size 96x54 --layouts ue4 --views 1 --out half");
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    const auto report = nlohmann::json::parse(slurp(scratch() / "half" / "report.json"));
+    EXPECT_EQ(report["run"]["exr_precision"], "half");
+    const std::string refExr = "half/" + report["reference"]["images"][0]["render_exr"].get<std::string>();
+    const auto& runJson = report["runs"][0];
+    const std::string testExr = "half/" + runJson["images"]["render_exr"].get<std::string>();
+    const std::string errorsExr = "half/" + runJson["images"]["errors_exr"].get<std::string>();
+    for (const std::string& f : {refExr, testExr, errorsExr})
+        EXPECT_EQ(gbl::readExrPixelType((scratch() / f).string()), gbl::ExrPixelType::Half) << f;
+    const auto& e = runJson["image_errors"];
+
+    RunResult d = run("diff half/" + report["reference"]["images"][0]["render"].get<std::string>() + " half/" +
+                      runJson["images"]["render"].get<std::string>() + " --json");
+    ASSERT_EQ(d.exitCode, 0) << d.err;
+    auto j = nlohmann::json::parse(d.out);
+    EXPECT_DOUBLE_EQ(num(j["psnr_db"]), num(e["psnr_tonemapped_db"]));
+    EXPECT_DOUBLE_EQ(num(j["flip_mean"]), num(e["flip_mean"]));
+
+    d = run("diff " + refExr + " " + testExr + " --json");
+    ASSERT_EQ(d.exitCode, 0) << d.err;
+    j = nlohmann::json::parse(d.out);
+    auto rms = [](const gbl::Image& image) {
+        double sum = 0.0;
+        for (float v : image.pixels) sum += double(v) * v;
+        return std::sqrt(sum / double(image.pixels.size()));
+    };
+    const gbl::Image refHalf = gbl::readExr((scratch() / refExr).string());  // RGB, as diff reads them
+    const gbl::Image testHalf = gbl::readExr((scratch() / testExr).string());
+    // RMS of the float images, from the half ones: at most 2^-11 (relative) larger.
+    const double slack = 1.0 + std::ldexp(1.0, -10);
+    const double bound = std::ldexp(1.0, -11) * slack * (rms(refHalf) + rms(testHalf)) + std::ldexp(1.0, -24);
+    const double rmseFloat = num(e["rmse_linear"]), rmseHalf = num(j["rmse"]);
+    EXPECT_LE(std::fabs(rmseHalf - rmseFloat), bound) << "float " << rmseFloat << ", half " << rmseHalf;
+    double peak = 0.0;
+    for (float v : refHalf.pixels) peak = std::max(peak, double(v));
+    const double peakLo = peak / (1.0 + std::ldexp(1.0, -11)), peakHi = peak / (1.0 - std::ldexp(1.0, -11));
+    const double psnrFloat = num(e["psnr_linear_db"]);
+    EXPECT_GE(psnrFloat, 20.0 * std::log10(peakLo / (rmseHalf + bound)) - 1e-9);
+    if (rmseHalf > bound) EXPECT_LE(psnrFloat, 20.0 * std::log10(peakHi / (rmseHalf - bound)) + 1e-9);
+    // The bound is not vacuous here: the run's error is well above half's rounding.
+    EXPECT_LT(bound, 0.2 * rmseFloat);
 }

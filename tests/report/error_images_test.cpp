@@ -202,6 +202,43 @@ TEST(ErrorImages, WritesEveryImageAndTheExrRoundTrips) {
     EXPECT_EQ(back.pixels[0 * nc + 10], 0.0f);  // background corner
 }
 
+// compare lists a run's files in the report before its background writer writes them: the paths
+// said beforehand are the ones written. errors.exr in half holds each map value as binary16.
+TEST(ErrorImages, PathsAreKnownBeforeWritingAndHalfExrHoldsRoundedValues) {
+    const int w = 40, h = 30;
+    const gbl::SurfaceImages ref = makeSurface(w, h);
+    gbl::SurfaceImages test = ref;
+    for (float& v : test.roughness.pixels) v += 0.013f;
+    const Image hdr = makeHdr(w, h);
+    Image hdrTest = hdr;
+    for (float& v : hdrTest.pixels) v *= 1.07f;
+    gbl::RunErrorMaps maps;
+    gbl::RunMetricsOptions options;
+    options.maps = &maps;
+    const gbl::RunMetrics metrics = gbl::computeRunMetrics(ref, test, hdr, hdrTest, 1.0f, options);
+    TempDir dir;
+    gbl::ErrorImageOptions o;
+    o.exrType = gbl::ExrPixelType::Half;
+    const gbl::ErrorImagePaths said = gbl::errorImagePaths("run/a_", maps);
+    const gbl::ErrorImagePaths written = gbl::writeErrorImages(dir.path, "run/a_", maps, metrics, o);
+    EXPECT_EQ(said.all(), written.all());
+    gbl::RunErrorMaps noNormals = maps;
+    noNormals.normalDeg = Image();
+    EXPECT_TRUE(gbl::errorImagePaths("x/", noNormals).normalError.empty());
+
+    const std::string exr = (dir.path / written.errorsExr).string();
+    EXPECT_EQ(gbl::readExrPixelType(exr), gbl::ExrPixelType::Half);
+    const Image back = gbl::readExrChannels(exr, {"rel_luminance", "roughness_abs", "abs_g"});
+    size_t nonzero = 0;
+    for (size_t i = 0; i < size_t(w) * size_t(h); ++i) {
+        ASSERT_EQ(back.pixels[i * 3 + 0], gbl::roundToHalf(maps.relLuminance.pixels[i]));
+        ASSERT_EQ(back.pixels[i * 3 + 1], gbl::roundToHalf(maps.roughnessAbs.pixels[i]));
+        ASSERT_EQ(back.pixels[i * 3 + 2], gbl::roundToHalf(maps.absLinear.pixels[i * 3 + 1]));
+        nonzero += maps.roughnessAbs.pixels[i] != 0.0f;
+    }
+    EXPECT_GT(nonzero, 0u);  // the comparison saw real values
+}
+
 TEST(ErrorImages, MissingMapsAreUserErrors) {
     TempDir dir;
     gbl::RunErrorMaps empty;
