@@ -27,6 +27,11 @@ TargetReadScene targetReadScene(const GBufferPass& pass) {
     return s;
 }
 
+TargetReadScene targetReadScene(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene) {
+    if (!wiring.visibilityBuffer) return {};
+    return {true, uint32_t(scene.textures.size()), ctx.nonUniformSampledImageIndexing};
+}
+
 std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
     return targetReadBindings(pass.targets.size(), targetReadScene(pass));
 }

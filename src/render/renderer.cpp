@@ -106,9 +106,7 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings) {
             materials[i] = materialPassWiring(wirings[i]);
             tasks.push_back([&, i] { gbufferPassPipeline(ctx_, materials[i], textureCount, pipelines_); });
         }
-        TargetReadScene readScene;  // createGBufferPass's visibilityScene, as the passes will see it
-        if (wirings[i].visibilityBuffer)
-            readScene = {true, textureCount, ctx_.nonUniformSampledImageIndexing};
+        const TargetReadScene readScene = targetReadScene(ctx_, wirings[i], gpuScene_);
         tasks.push_back([&, i, readScene] { lightingPassPipeline(ctx_, wirings[i], readScene, pipelines_); });
         tasks.push_back([&, i, readScene] { decodePassPipeline(ctx_, wirings[i], readScene, pipelines_); });
     }
@@ -152,8 +150,9 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
     gbufferPassPipeline(ctx_, wiring, textureCount, pipelines_);
     if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), textureCount, pipelines_);
-    lightingPassPipeline(ctx_, wiring, pipelines_);
-    if (settings.decodeSurfaces) decodePassPipeline(ctx_, wiring, pipelines_);
+    const TargetReadScene readScene = targetReadScene(ctx_, wiring, gpuScene_);
+    lightingPassPipeline(ctx_, wiring, readScene, pipelines_);
+    if (settings.decodeSurfaces) decodePassPipeline(ctx_, wiring, readScene, pipelines_);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
     GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h, pipelines_);

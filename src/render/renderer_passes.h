@@ -147,6 +147,9 @@ std::vector<Binding> targetReadBindings(const GBufferPass& pass);
 std::vector<Binding> targetReadBindings(size_t targetCount, const TargetReadScene& scene);
 // A pass's TargetReadScene: visibility from its visibilityScene, else none.
 TargetReadScene targetReadScene(const GBufferPass& pass);
+// The TargetReadScene createGBufferPass's pass will have for this wiring and scene (for building
+// pipelines before the pass exists: Renderer::preparePipelines).
+TargetReadScene targetReadScene(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene);
 // Writes those bindings of `set` (targets through `nearestSampler`).
 void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler);
 // What a pass reading a visibility buffer compiles with: TEXTURE_COUNT for its resolve, and
