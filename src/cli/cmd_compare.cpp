@@ -125,6 +125,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"hdr-flip", "", "also compute HDR-FLIP over the linear images (costs one FLIP per exposure: 14 on the "
                          "built-in sky)"},
         {"no-hdr-flip", "", "skip HDR-FLIP (the default; kept for older scripts)"},
+        {"eval", "WHERE", "where the metrics are computed: gpu (default; compute passes beside the render, only "
+                          "numbers and 8-bit images come back, no errors.exr) or cpu (the measure library, the oracle)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -162,6 +164,10 @@ int runCompareCommand(const std::vector<std::string>& args) {
     if (parsed.has("hdr-flip") && parsed.has("no-hdr-flip"))
         throwUserError("gbufferlab compare: --hdr-flip and --no-hdr-flip contradict each other; give one");
     const bool hdrFlip = parsed.has("hdr-flip");
+    const std::string evalWhere = parsed.get("eval", "gpu");
+    if (evalWhere != "gpu" && evalWhere != "cpu")
+        throwUserError("gbufferlab compare: --eval " + evalWhere + ": give gpu or cpu");
+    const bool gpuEval = evalWhere == "gpu";
     checkOutputDirectory(outDir, force, "--out");
 
     // Everything the user gave is read and validated before the first pixel is rendered.
@@ -189,6 +195,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
     model.run.exposure = exposure;
     model.reference.layout = kReferenceLayout;
     model.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(iblSettings) + " (--brdf-lut)");
+    // --eval gpu: one evaluator for every run (its working planes are allocated once).
+    std::unique_ptr<GpuEvaluator> evaluator;
+    if (gpuEval) {
+        evaluator = std::make_unique<GpuEvaluator>(ctx, width, height);
+        model.run.notes.push_back("metrics computed on the device (--eval gpu): quantiles from histograms (within "
+                                  "0.1 %), worst regions on 8-pixel tiles, no errors.exr");
+    }
 
     const bool compareLighting = modes.size() > 1 &&
                                  std::find(modeNames.begin(), modeNames.end(), kGroundTruth) != modeNames.end();
@@ -239,6 +252,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         settings.groundTruthMaxBatches = gtMaxBatches;
         settings.decodeSurfaces = true;
         settings.readTargetWords = false;
+        settings.keepOnDevice = gpuEval;
         return settings;
     };
     // compare --views: every view renders the references and every run again; the runs of views
@@ -271,6 +285,12 @@ int runCompareCommand(const std::vector<std::string>& args) {
             ReferenceRender ref;
             ref.output = renderer.render(referenceWiring, settingsFor(modes[m], view));
             gpuPassMs += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
+            // --eval gpu keeps the render on the device; its files (and the IBL figure) need it here.
+            const bool hostHdr = firstView || compareLighting;
+            if (gpuEval && ref.output.hdr.empty() && hostHdr) {
+                ScopedStage timed(Stage::Readback);
+                ref.output.hdr = ref.output.device->downloadHdr();
+            }
             if (firstView) {
             ref.renderPng = "reference-" + modeNames[m] + ".png";
             const std::string renderExr = "reference-" + modeNames[m] + ".exr";
@@ -298,6 +318,11 @@ int runCompareCommand(const std::vector<std::string>& args) {
                          std::to_string(int(ref.output.timings.lightingMs)) + " ms" +
                          (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches"));
             ReferenceRender& stored = references[modeNames[m]] = std::move(ref);
+            if (gpuEval) {
+                stored.evaluator = evaluator.get();
+                if (!compareLighting) stored.output.hdr = Image{};  // written; the metrics read the device's
+                continue;
+            }
             ScopedStage timedPrepare(Stage::Metrics);
             stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, exposure);
         }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <stdexcept>
 
 #include "color_map.h"
 #include "error_images.h"
@@ -68,19 +69,84 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
 }
 
 
+namespace {
+
+DeviceRender deviceView(const RenderOutput& r) {
+    if (!r.device) throw std::logic_error("--eval gpu: the render was not kept on the device");
+    DeviceRender d;
+    d.hdr = &r.device->hdr;
+    if (r.device->surfaces[0].image)
+        for (size_t k = 0; k < 4; ++k) d.surfaces[k] = &r.device->surfaces[k];
+    return d;
+}
+
+void setGroundTruth(RunReport& run, const ReferenceRender& reference) {
+    if (reference.output.noise.empty()) return;
+    const GroundTruthStats& g = reference.output.groundTruth;
+    run.groundTruth = GroundTruthConvergence{g.batches, g.samplesPerPixel, g.targetRelativeNoise,
+                                             g.meanRelativeNoise, g.targetMet, g.lightingMs};
+}
+
+void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
+                   const std::string& prefix, float exposure, bool hdrFlip, bool writeImages) {
+    GpuEvaluator& evaluator = *reference.evaluator;
+    setGroundTruth(run, reference);
+    std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
+    evaluator.setReference(deviceView(reference.output), exposure,
+                           reference.output.noise.empty() ? nullptr : &reference.output.noise);
+    GpuErrorImages images;
+    GpuEvalOptions options;
+    options.hdrFlip = hdrFlip;
+    options.images = writeImages ? &images : nullptr;
+    const int width = int(test.device->hdr.extent.width), height = int(test.device->hdr.extent.height);
+    options.cropSize = std::max(32, std::min(width, height) / 12);
+    const RunMetrics m = evaluator.evaluate(deviceView(test), options);
+    fillMetrics(run, m);
+    if (!writeImages) return;
+    timed.emplace(Stage::Report);
+    ErrorImageOptions imageOptions;
+    imageOptions.label = run.layout + " / " + run.iblMode;
+    const ErrorImagePaths paths = writeErrorImageBodies(
+        outDir, prefix, ErrorImageBodies{images.render, images.heat, images.flip, images.normal, images.difference}, m,
+        imageOptions);
+    run.images.render = paths.render;
+    run.images.errorHeatmap = paths.heatmap;
+    run.images.flip = paths.flip;
+    run.images.normalError = paths.normalError;
+    run.images.difference = paths.difference;
+    {
+        // The linear HDR render the metrics were computed on, as 32-bit float, and its preview.
+        const Image hdr = test.device->downloadHdr();
+        run.images.renderExr = prefix + "render.exr";
+        writeExr((outDir / run.images.renderExr).string(), hdr);
+        run.images.hdrPreview = prefix + "render_log.png";
+        writePng((outDir / run.images.hdrPreview).string(), logEncodeForPreview(hdr));
+    }
+    if (!images.worst.empty()) {
+        const auto files = writeCrops(outDir, prefix, images.worst, images.reference, images.render, images.heat);
+        for (size_t i = 0; i < images.worst.size(); ++i) {
+            const Crop& c = images.worst[i];
+            run.images.crops.push_back({c.x, c.y, c.size, c.size, files[i].reference, files[i].test, files[i].heat});
+        }
+    }
+}
+
+}  // namespace
+
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
                 const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages) {
+    if (reference.evaluator) {
+        measureRunGpu(run, test, reference, outDir, prefix, exposure, hdrFlip, writeImages);
+        if (releaseTest) test.device.reset();  // its images are freed once measured (peak memory at 4K)
+        return;
+    }
     RunErrorMaps maps;
     RunMetricsOptions options;
     options.maps = writeImages ? &maps : nullptr;
     options.hdrFlip = hdrFlip;
     options.prepared = reference.prepared.get();
-    if (!reference.output.noise.empty()) {
-        options.referenceNoise = &reference.output.noise;
-        const GroundTruthStats& g = reference.output.groundTruth;
-        run.groundTruth = GroundTruthConvergence{g.batches, g.samplesPerPixel, g.targetRelativeNoise,
-                                                 g.meanRelativeNoise, g.targetMet, g.lightingMs};
-    }
+    if (!reference.output.noise.empty()) options.referenceNoise = &reference.output.noise;
+    setGroundTruth(run, reference);
     std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
     const RunMetrics m =
         releaseTest ? computeRunMetrics(reference.output.surfaces, std::move(test.surfaces), reference.output.hdr,

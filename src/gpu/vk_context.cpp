@@ -236,6 +236,12 @@ VulkanContext::VulkanContext(const DeviceOptions& options) {
         vkGetPhysicalDeviceFeatures(physicalDevice, &supported);
         features.features.samplerAnisotropy = supported.samplerAnisotropy;
         features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+        // The GPU evaluation (src/evaluate/) sums in double and indexes arrays of storage buffers
+        // and images with push-constant (dynamically uniform) indices.
+        features.features.shaderFloat64 = supported.shaderFloat64;
+        features.features.shaderStorageBufferArrayDynamicIndexing = supported.shaderStorageBufferArrayDynamicIndexing;
+        features.features.shaderStorageImageArrayDynamicIndexing = supported.shaderStorageImageArrayDynamicIndexing;
+        shaderFloat64 = supported.shaderFloat64 == VK_TRUE;
 
         VkDeviceCreateInfo d{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
         d.queueCreateInfoCount = 1;

@@ -58,6 +58,9 @@ public:
     VkPhysicalDeviceMemoryProperties memoryProperties{};
     PhysicalDeviceInfo info;
     bool validationEnabled = false;
+    // 64-bit float shader arithmetic is on (enabled whenever the device has it; the GPU evaluation's
+    // sums need it).
+    bool shaderFloat64 = false;
 
     // The persistent pipeline cache (shader_cache.h): loaded from disk when the device is made,
     // written back when the context is destroyed.

@@ -1,6 +1,8 @@
 #pragma once
 // The decode pass: runs a layout's readGBuffer() over every pixel and reads the Surface back as
 // SurfaceImages (see shaders/decode_pass.comp.glsl).
+#include <array>
+
 #include "gbuffer_wiring.h"
 #include "renderer_passes.h"
 #include "surface_images.h"
@@ -16,5 +18,13 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
                              const Buffer& frameConstants, VkSampler nearestSampler,
                              const std::vector<float>& depthValues, const GBufferPass* materialPass = nullptr,
                              uint32_t bandRows = 0);
+
+// The same decode, kept in device memory for the GPU evaluation (src/evaluate/gpu_evaluator.h):
+// four RGBA32F images (STORAGE, left in GENERAL) of the whole frame: normal + roughness, base
+// colour + metallic, diffuse colour + occlusion, specular colour + view depth. Zero where no
+// geometry covers the pixel (the HDR image's alpha says which). The caller destroys them.
+std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
+                                               const GBufferPass& gbuffer, const Buffer& frameConstants,
+                                               VkSampler nearestSampler, const GBufferPass* materialPass = nullptr);
 
 }  // namespace gbl

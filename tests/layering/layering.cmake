@@ -27,3 +27,6 @@ gbl_layering_probe(layering_layout_cannot_see_codec gbl_layout wiring_codegen.h 
 gbl_layering_probe(layering_measure_cannot_see_render gbl_measure renderer.h refused)
 gbl_layering_probe(layering_report_cannot_see_cli gbl_report cli.h refused)
 gbl_layering_probe(layering_render_sees_codec gbl_render wiring_codegen.h allowed)
+gbl_layering_probe(layering_measure_cannot_see_evaluate gbl_measure gpu_evaluator.h refused)
+gbl_layering_probe(layering_render_cannot_see_evaluate gbl_render gpu_evaluator.h refused)
+gbl_layering_probe(layering_evaluate_sees_measure gbl_evaluate run_metrics.h allowed)
