@@ -13,16 +13,16 @@
 
 namespace gbl::evaluate {
 
-// Plane slots (binding 4): FLIP's prepared reference (L, a, b, edge, point) and test, its seven
+// Plane slots (binding 4): FLIP's prepared reference (L, a, b, edge, point) and test, its five
 // working planes, the LDR- and HDR-FLIP maps and the reference's noise.
 enum PlaneSlot : uint32_t {
     kRefPrepared = 0,
     kTestPrepared = 5,
-    kWork = 10,  // yy, cx, cz, lum, tmp, f1, f2
-    kFlipMap = 17,
-    kHdrFlipMap = 18,
-    kNoise = 19,
-    kPlaneCount = 20,
+    kWork = 10,  // yy, cx, cz, lum, tmp
+    kFlipMap = 15,
+    kHdrFlipMap = 16,
+    kNoise = 17,
+    kPlaneCount = 18,
 };
 enum Out8Slot : uint32_t { kOutRender = 0, kOutDifference, kOutHeat, kOutFlip, kOutNormal, kOutReference, kOut8Count };
 // Histograms (binding 6).

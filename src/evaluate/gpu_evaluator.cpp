@@ -291,7 +291,7 @@ float at(const Image& im, size_t i, int c) {
 }
 }  // namespace
 
-UploadedRender::UploadedRender(const VulkanContext& c, const Image& image, const SurfaceImages* s) : ctx(c) {
+UploadedRender::UploadedRender(const VulkanContext& context, const Image& image, const SurfaceImages* s) : ctx(context) {
     const size_t n = image.pixelCount();
     if (image.channels < 3) throwUserError("GPU evaluation: a render needs 3 or 4 channels (RGB[A])");
     hasSurfaces = s != nullptr;

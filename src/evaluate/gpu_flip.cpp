@@ -13,8 +13,7 @@ namespace gbl::evaluate {
 
 namespace {
 // Working planes (PlaneSlot kWork + ...).
-constexpr uint32_t kYy = kWork, kCx = kWork + 1, kCz = kWork + 2, kLum = kWork + 3, kTmp = kWork + 4, kF1 = kWork + 5,
-                   kF2 = kWork + 6;
+constexpr uint32_t kYy = kWork, kCx = kWork + 1, kCz = kWork + 2, kLum = kWork + 3, kTmp = kWork + 4;
 constexpr uint32_t kColorConstants = 24;  // flip_common.glsl KC_*
 
 // flip.cpp colorConsts: the same double computations rounded to float.
@@ -77,22 +76,25 @@ void GpuFlip::prepare(VkCommandBuffer cmd, uint32_t which, bool hdrMode, float f
         f.u[0] = in, f.u[1] = out, f.u[2] = offset;
         dev_.dispatch(cmd, Pass::FlipFilter, f);
     };
-    // The CSF filters (FLIP eq. (3)) per opponent channel, rows then columns, as flip.cpp prepare.
+    // The CSF filters (FLIP eq. (3)) per opponent channel, rows then columns, as flip.cpp prepare;
+    // the filtered channels go straight into the destination planes (the second blue-yellow term
+    // into dst + 3, free until the features), and the Lab pass works there in place.
     filter(kYy, kTmp, csfTaps_, offA_, false);
-    filter(kTmp, kYy, csfTaps_, offA_, true);
+    filter(kTmp, dst, csfTaps_, offA_, true);
     filter(kCx, kTmp, csfTaps_, offRG_, false);
-    filter(kTmp, kCx, csfTaps_, offRG_, true);
+    filter(kTmp, dst + 1, csfTaps_, offRG_, true);
     filter(kCz, kTmp, csfTaps_, offBY1_, false);
-    filter(kTmp, kF1, csfTaps_, offBY1_, true);
+    filter(kTmp, dst + 2, csfTaps_, offBY1_, true);
     const bool by2 = wBY2_ != 0.0f;
     if (by2) {
         filter(kCz, kTmp, csfTaps_, offBY2_, false);
-        filter(kTmp, kF2, csfTaps_, offBY2_, true);
+        filter(kTmp, dst + 3, csfTaps_, offBY2_, true);
     }
     Push lab;
     lab.flags = by2 ? 1 : 0;
     lab.f0 = wBY1_, lab.f1 = wBY2_;
-    lab.u[0] = kYy, lab.u[1] = kCx, lab.u[2] = kF1, lab.u[3] = kF2, lab.u[4] = dst, lab.u[5] = dst + 1, lab.u[6] = dst + 2;
+    lab.u[0] = dst, lab.u[1] = dst + 1, lab.u[2] = dst + 2, lab.u[3] = dst + 3, lab.u[4] = dst, lab.u[5] = dst + 1,
+    lab.u[6] = dst + 2;
     dev_.dispatch(cmd, Pass::FlipLab, lab);
     // Features (eq. (9)) on the unfiltered normalised luminance.
     Push rows;
