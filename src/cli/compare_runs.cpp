@@ -88,7 +88,7 @@ void setGroundTruth(RunReport& run, const ReferenceRender& reference) {
 }
 
 void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
-                   const std::string& prefix, float exposure, bool hdrFlip, bool writeImages) {
+                   const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages) {
     GpuEvaluator& evaluator = *reference.evaluator;
     setGroundTruth(run, reference);
     std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
@@ -100,6 +100,10 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
     options.images = writeImages ? &images : nullptr;
     const int width = int(test.device->hdr.extent.width), height = int(test.device->hdr.extent.height);
     options.cropSize = std::max(32, std::min(width, height) / 12);
+    if (releaseTest)  // the test's surfaces go as soon as the attributes are measured (peak memory at 4K)
+        options.surfacesDone = [&] {
+            for (GpuImage& image : test.device->surfaces) destroyImage(test.device->ctx, image);
+        };
     const RunMetrics m = evaluator.evaluate(deviceView(test), options);
     fillMetrics(run, m);
     if (!writeImages) return;
@@ -136,7 +140,7 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
                 const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages) {
     if (reference.evaluator) {
-        measureRunGpu(run, test, reference, outDir, prefix, exposure, hdrFlip, writeImages);
+        measureRunGpu(run, test, reference, outDir, prefix, exposure, hdrFlip, releaseTest, writeImages);
         if (releaseTest) test.device.reset();  // its images are freed once measured (peak memory at 4K)
         return;
     }

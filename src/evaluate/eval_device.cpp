@@ -142,6 +142,12 @@ void EvalDevice::ensureOut8() {
     rebindBuffers();
 }
 
+void EvalDevice::releaseOut8() {
+    if (!out8_[0].buffer) return;
+    for (Buffer& b : out8_) destroyBuffer(ctx, b);
+    rebindBuffers();
+}
+
 void EvalDevice::ensureTiles(size_t count) {
     if (tiles_.buffer && tiles_.size >= count * 4) return;
     destroyBuffer(ctx, tiles_);

@@ -58,6 +58,7 @@ public:
     // Allocates plane `slot` (width x height floats) if not yet there (and rebinds).
     void ensurePlane(uint32_t slot);
     void ensureOut8();   // the 8-bit output images (host visible)
+    void releaseOut8();
     void ensureTiles(size_t count);
     // Writes the kernels region of the constants buffer (binding 8) after the colour map.
     void setKernels(const std::vector<float>& kernels);

@@ -133,6 +133,7 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
     const bool crops = images && o.cropSize > 0 && o.cropCount > 0;
     if (crops) d.ensureTiles(size_t(tw) * th);
 
+    // 1: image errors and attributes (the test's surfaces are read only here).
     d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
         d.clearHistograms(cmd);
         Push img;
@@ -153,6 +154,35 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
                 }
             d.reduce(cmd, kAttrFields, mask, kAttrAt);
         }
+        if (crops) {
+            Push t;
+            t.u[0] = kTile;
+            t.f3 = s.floorY;
+            d.dispatch(cmd, Pass::Tiles, t);
+        }
+    });
+    // 2: the normal-error picture, scaled to the run's p99 normal error.
+    if (images && attributes) {
+        const double* nd = d.result() + kAttrAt;  // normal: dielectric fields, then metal
+        std::vector<uint32_t> both(kHistBins);
+        for (uint32_t b = 0; b < kHistBins; ++b)
+            both[b] = d.histogram(kHistAttributes)[b] + d.histogram(kHistAttributes + 1)[b];
+        const double p99 = histogramQuantile(both, 0.99, std::max(nd[3], nd[8]));
+        d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            Push p;
+            p.mode = 1;
+            p.f0 = s.exposure;
+            p.f1 = std::max(o.normalMinScaleDeg, float(p99));
+            d.dispatch(cmd, Pass::Attributes, p);
+        });
+    }
+    if (attributes) {
+        d.bindImages(*s.reference.hdr, *test.hdr, s.reference.surfaces.data(), nullptr);
+        if (o.surfacesDone) o.surfacesDone();
+    }
+    // 3: LDR- and HDR-FLIP, on planes that exist only for this.
+    s.flip.allocate();
+    d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
         s.flip.ldr(cmd, s.exposure);
         Push fs;
         fs.flags = 2u | (images ? 1u : 0u);
@@ -166,13 +196,8 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
             d.dispatch(cmd, Pass::FlipStats, hs);
             d.reduce(cmd, kFlipFields, {}, kHdrFlipAt);
         }
-        if (crops) {
-            Push t;
-            t.u[0] = kTile;
-            t.f3 = s.floorY;
-            d.dispatch(cmd, Pass::Tiles, t);
-        }
     });
+    s.flip.release();
 
     RunMetrics m;
     const double* r = d.result();
@@ -244,17 +269,7 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
         out.difference = toImage8(d.out8(kOutDifference), d.width, d.height);
         out.heat = toImage8(d.out8(kOutHeat), d.width, d.height);
         out.flip = toImage8(d.out8(kOutFlip), d.width, d.height);
-        out.normal = {};
-        if (attributes) {
-            d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
-                Push p;
-                p.mode = 1;
-                p.f0 = s.exposure;
-                p.f1 = std::max(o.normalMinScaleDeg, float(m.normal.all.error.p99));
-                d.dispatch(cmd, Pass::Attributes, p);
-            });
-            out.normal = toImage8(d.out8(kOutNormal), d.width, d.height);
-        }
+        out.normal = attributes ? toImage8(d.out8(kOutNormal), d.width, d.height) : Image8{};
         out.worst.clear();
         if (crops) {
             Image tiles(int(tw), int(th), 1);
@@ -268,6 +283,7 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
                 out.worst.push_back(c);
             }
         }
+        d.releaseOut8();
     }
     return m;
 }

@@ -15,6 +15,7 @@
 //  * FLIP: the same kernels and filter order in float; means agree to 1e-4 (gpu_evaluator_test).
 //  * Worst regions are found on 8 x 8 tiles (corners on multiples of 8).
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -52,6 +53,9 @@ struct GpuEvalOptions {
     float normalMinScaleDeg = 1.0f;
     int cropSize = 0;    // worst regions: window size (0: none)
     int cropCount = 3;
+    // Called once the test's surfaces are no longer read (after the attribute passes, before
+    // FLIP allocates its planes): compare frees them there (peak memory at 4K).
+    std::function<void()> surfacesDone;
 };
 
 class GpuEvaluator {
@@ -65,6 +69,7 @@ public:
     // use). noise: the reference's per-pixel noise (1 channel), uploaded once, or null.
     // Nothing is recomputed when called again with the same images, exposure and noise.
     void setReference(const DeviceRender& reference, float exposure, const Image* noise = nullptr);
+    // Its working planes and 8-bit images are allocated for the call and freed before it returns.
     RunMetrics evaluate(const DeviceRender& test, const GpuEvalOptions& options);
 
 private:

@@ -59,8 +59,14 @@ GpuFlip::GpuFlip(EvalDevice& device, double ppd) : dev_(device) {
     wBY2_ = k.wBY2;
     cMax_ = float(flip_pipeline::maxColorDifference());
     dev_.setKernels(all);
-    for (uint32_t s = 0; s < kPlaneCount; ++s)
-        if (s < kNoise) dev_.ensurePlane(s);
+}
+
+void GpuFlip::allocate() {
+    for (uint32_t s = 0; s < kNoise; ++s) dev_.ensurePlane(s);
+}
+
+void GpuFlip::release() {
+    for (uint32_t s = 0; s < kNoise; ++s) dev_.releasePlane(s);
 }
 
 void GpuFlip::prepare(VkCommandBuffer cmd, uint32_t which, bool hdrMode, float factor, uint32_t dst) {

@@ -11,6 +11,10 @@ namespace gbl::evaluate {
 class GpuFlip {
 public:
     explicit GpuFlip(EvalDevice& device, double pixelsPerDegree = flipPixelsPerDegree());
+    // The working and result planes (15 floats per pixel): allocated before ldr / hdr, released
+    // between runs so they do not add to the peak while the next run renders.
+    void allocate();
+    void release();
     // LDR-FLIP of the 8-bit tone-mapped images (toneMapToSrgb8 at `exposure`) into kFlipMap.
     void ldr(VkCommandBuffer cmd, float exposure);
     // HDR-FLIP over `range`'s exposures (per-pixel maximum) into kHdrFlipMap.
