@@ -7,8 +7,9 @@
 #   codec    codec_bench: CPU mirror encode/decode vs memcpy of the same bytes
 #   gpu      gpu_pass_bench: G-buffer and lighting pass per layout (GBL_BENCH_4K=1 adds 3840x2160)
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
-#   e2e      `gbufferlab compare` of all layouts at 1080p, run twice (the second, warm, is timed by
-#            stage: its timings.json), then once at 3840x2160 with one layout for peak memory
+#   e2e      `gbufferlab compare` of all layouts at 1080p, run twice per --eval gpu / cpu (the second,
+#            warm, is timed by stage: its timings.json), then at 3840x2160 with the layouts
+#            GBL_BENCH_4K_LAYOUTS (default ue4,ryse,crysis3-thin) per --eval for peak memory
 #   search   `gbufferlab search --budget 16` at 480x270, 3 views, 600 candidates, confirmed by full
 #            renders: candidates per minute, CPU seconds per candidate and the goals in
 #            results/search-16/search.json and search-report.md (GBL_BENCH_SEARCH_THREADS, default 2)
@@ -60,15 +61,20 @@ for w in "${what[@]}"; do
         gpu) run_bench gpu_pass_bench ;;
         compare) run_bench compare_bench ;;
         e2e)
-            out="$results/compare-e2e"
-            echo "== gbufferlab compare (warm-up run)"
-            "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force >/dev/null
-            echo "== gbufferlab compare (timed run)"
-            "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force >/dev/null
-            cp "$out/timings.json" "$results/compare_e2e.json"
-            echo "== gbufferlab compare at 3840x2160, ${GBL_BENCH_4K_LAYOUT:-ue4} (peak memory)"
-            /usr/bin/time -f '%M' -o "$results/compare_4k_rss_kib.txt" "$build/gbufferlab" compare \
-                --device "${GBL_BENCH_DEVICE:-cpu}" --size 3840x2160 --layouts "${GBL_BENCH_4K_LAYOUT:-ue4}" --out "$results/compare-4k" --force >/dev/null
+            for ev in gpu cpu; do
+                out="$results/compare-e2e-$ev"
+                echo "== gbufferlab compare --eval $ev (warm-up run)"
+                "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --out "$out" --force >/dev/null
+                echo "== gbufferlab compare --eval $ev (timed run)"
+                "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --out "$out" --force >/dev/null
+                cp "$out/timings.json" "$results/compare_e2e_$ev.json"
+            done
+            for ev in gpu cpu; do
+                echo "== gbufferlab compare --eval $ev at 3840x2160, ${GBL_BENCH_4K_LAYOUTS:-ue4,ryse,crysis3-thin} (peak memory)"
+                /usr/bin/time -f '%M' -o "$results/compare_4k_rss_kib_$ev.txt" "$build/gbufferlab" compare \
+                    --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --size 3840x2160 \
+                    --layouts "${GBL_BENCH_4K_LAYOUTS:-ue4,ryse,crysis3-thin}" --out "$results/compare-4k-$ev" --force >/dev/null
+            done
             ;;
         search)
             out="$results/search-16"

@@ -223,20 +223,25 @@ def compare(results, passes):
             mean_pass = sum(g + l for g, l in hd) / len(hd)
             print(f"    metrics of one layout (run_metrics/full) / its GPU passes (mean over layouts, 1080p): "
                   f"{ms(full) / mean_pass:.2f}x")
-    e2e = os.path.join(results, "compare_e2e.json")  # the timed run's timings.json
-    if os.path.exists(e2e):
+    # The timed (warm) run's timings.json per evaluation: --eval gpu and --eval cpu side by side.
+    for ev in ("gpu", "cpu", None):
+        e2e = os.path.join(results, f"compare_e2e_{ev}.json" if ev else "compare_e2e.json")
+        if not os.path.exists(e2e):
+            continue
         t = json.load(open(e2e))
         total, gpu_ms = t["total_ms"], t["gpu_pass_ms"]
-        print(f"== gbufferlab compare end to end (warm, 1080p, all layouts + reference): "
+        label = f", --eval {ev}" if ev else ""
+        print(f"== gbufferlab compare end to end (warm, 1080p, all layouts + reference{label}): "
               f"wall {total / 1000:.2f} s = {t['total_over_gpu_passes']:.2f}x the GPU passes' "
               f"{gpu_ms / 1000:.2f} s (goal <= {COMPARE_GOAL}x)")
         for stage, v in t["stages_ms"].items():
             print(f"    {stage:16s} {v / 1000:7.2f} s  {v / gpu_ms if gpu_ms else float('nan'):5.2f}x the GPU passes")
-    rss = os.path.join(results, "compare_4k_rss_kib.txt")
-    if os.path.exists(rss):
-        mib = float(open(rss).read().split()[-1]) / 1024.0
-        print(f"== gbufferlab compare at 3840x2160, one layout: peak RSS {mib:.0f} MiB "
-              f"(goal < {RSS_GOAL_MIB:.0f} MiB)")
+    for ev in ("gpu", "cpu", None):
+        rss = os.path.join(results, f"compare_4k_rss_kib_{ev}.txt" if ev else "compare_4k_rss_kib.txt")
+        if os.path.exists(rss):
+            mib = float(open(rss).read().split()[-1]) / 1024.0
+            label = f" --eval {ev}" if ev else ""
+            print(f"== gbufferlab compare at 3840x2160{label}: peak RSS {mib:.0f} MiB (goal < {RSS_GOAL_MIB:.0f} MiB)")
 
 
 def main():

@@ -29,10 +29,24 @@ struct DecodedPixel {
     vec4 specularColorSpecular;  // rgb F0, a UE4 scalar specular
     vec4 emissiveViewDepth;    // rgb emissive, a view depth (0 where uncovered)
 };
+#ifdef GBL_DECODE_TO_IMAGES
+// The surfaces stay in device memory for the GPU evaluation (src/evaluate/): the first four
+// vec4 of DecodedPixel as four RGBA32F images (emissive is not measured), whole frame.
+layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D decodedImages[4];
+layout(push_constant) uniform Band { uint firstRow; } band;  // 0
+void store(uint index, ivec2 pixel, DecodedPixel d) {
+    imageStore(decodedImages[0], pixel, d.normalRoughness);
+    imageStore(decodedImages[1], pixel, d.baseColorMetallic);
+    imageStore(decodedImages[2], pixel, d.diffuseOcclusion);
+    imageStore(decodedImages[3], pixel, vec4(d.specularColorSpecular.rgb, d.emissiveViewDepth.a));
+}
+#else
 // The frame is decoded in bands of rows (bounded read-back memory at 4K): this dispatch covers
 // rows firstRow.. and writes them from decoded[0].
 layout(set = 0, binding = 2, std430) writeonly buffer Decoded { DecodedPixel decoded[]; };
 layout(push_constant) uniform Band { uint firstRow; } band;
+void store(uint index, ivec2 pixel, DecodedPixel d) { decoded[index] = d; }
+#endif
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, int(band.firstRow));
@@ -46,7 +60,7 @@ void main() {
         d.diffuseOcclusion = vec4(0.0);
         d.specularColorSpecular = vec4(0.0);
         d.emissiveViewDepth = vec4(0.0);
-        decoded[index] = d;
+        store(index, pixel, d);
         return;
     }
     Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
@@ -59,5 +73,5 @@ void main() {
     d.diffuseOcclusion = vec4(s.diffuseColor, s.occlusion);
     d.specularColorSpecular = vec4(s.specularColor, s.specular);
     d.emissiveViewDepth = vec4(s.emissive, viewDepth);
-    decoded[index] = d;
+    store(index, pixel, d);
 }

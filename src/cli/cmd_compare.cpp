@@ -129,6 +129,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"no-hdr-flip", "", "skip HDR-FLIP (the default; kept for older scripts)"},
         {"float32-exr", "", "write the EXR files (renders, errors.exr) as 32-bit float instead of half (16-bit "
                             "float: half the bytes; values within 2^-11 relative, clamped to +-65504)"},
+        {"eval", "WHERE", "where the metrics are computed: auto (default: gpu on a GPU, cpu on a CPU device such as "
+                          "lavapipe), gpu (compute passes beside the render, only numbers and 8-bit images come "
+                          "back, no errors.exr) or cpu (the measure library, the oracle)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -167,6 +170,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
         throwUserError("gbufferlab compare: --hdr-flip and --no-hdr-flip contradict each other; give one");
     const bool hdrFlip = parsed.has("hdr-flip");
     const ExrPixelType exrType = parsed.has("float32-exr") ? ExrPixelType::Float32 : ExrPixelType::Half;
+    const std::string evalWhere = parsed.get("eval", "auto");
+    if (evalWhere != "gpu" && evalWhere != "cpu" && evalWhere != "auto")
+        throwUserError("gbufferlab compare: --eval " + evalWhere + ": give auto, gpu or cpu");
     checkOutputDirectory(outDir, force, "--out");
 
     // Everything the user gave is read and validated before the first pixel is rendered.
@@ -177,6 +183,11 @@ int runCompareCommand(const std::vector<std::string>& args) {
                                                 GltfLoadOptions{parsed.has("allow-outside-scene")});
 
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
+    // --eval auto: the metrics run where the render ran. On a CPU device (lavapipe) that is the
+    // CPU, where the measure library's vectorised code beats the same passes JIT-compiled by
+    // llvmpipe (bench/RESULTS.md: warm 1080p compare 7.09x the GPU passes with --eval gpu,
+    // 3.50x with --eval cpu, back to back); on a GPU it is the evaluate library's compute passes.
+    const bool gpuEval = evalWhere == "gpu" || (evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
     validateResolution(ctx, width, height, "--size");
     WiringOptions wiringOptions;
     wiringOptions.nativeFormats = parsed.has("native-formats");
@@ -196,6 +207,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
     model.reference.layout = kReferenceLayout;
     for (const Layout& l : layouts) model.atlas.push_back(atlasEntryOf(l));
     model.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(iblSettings) + " (--brdf-lut)");
+    // --eval gpu: one evaluator for every run (its working planes are allocated once).
+    std::unique_ptr<GpuEvaluator> evaluator;
+    if (gpuEval) {
+        evaluator = std::make_unique<GpuEvaluator>(ctx, width, height);
+        model.run.notes.push_back("metrics computed on the device (--eval gpu): quantiles from histograms (within "
+                                  "0.1 %), worst regions on 8-pixel tiles, no errors.exr");
+    }
 
     const bool compareLighting = modes.size() > 1 &&
                                  std::find(modeNames.begin(), modeNames.end(), kGroundTruth) != modeNames.end();
@@ -276,6 +294,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         settings.groundTruthMaxBatches = gtMaxBatches;
         settings.decodeSurfaces = true;
         settings.readTargetWords = false;
+        settings.keepOnDevice = gpuEval;
         return settings;
     };
     // compare --views: every view renders the references and every run again; the runs of views
@@ -308,6 +327,12 @@ int runCompareCommand(const std::vector<std::string>& args) {
             ReferenceRender ref;
             ref.output = renderer.render(referenceWiring, settingsFor(modes[m], view));
             gpuPassMs += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
+            // --eval gpu keeps the render on the device; its files (and the IBL figure) need it here.
+            const bool hostHdr = firstView || compareLighting;
+            if (gpuEval && ref.output.hdr.empty() && hostHdr) {
+                ScopedStage timed(Stage::Readback);
+                ref.output.hdr = ref.output.device->downloadHdr();
+            }
             if (firstView) {
             ref.renderPng = "reference-" + modeNames[m] + ".png";
             const std::string renderExr = "reference-" + modeNames[m] + ".exr";
@@ -340,6 +365,11 @@ int runCompareCommand(const std::vector<std::string>& args) {
                          std::to_string(int(ref.output.timings.lightingMs)) + " ms" +
                          (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches"));
             ReferenceRender& stored = references[modeNames[m]] = std::move(ref);
+            if (gpuEval) {
+                stored.evaluator = evaluator.get();
+                if (!compareLighting) stored.output.hdr = Image{};  // written; the metrics read the device's
+                continue;
+            }
             ScopedStage timedPrepare(Stage::Metrics);
             stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, exposure);
         }

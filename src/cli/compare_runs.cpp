@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 
 #include "color_map.h"
 #include "error_images.h"
@@ -69,21 +70,96 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
 }
 
 
+namespace {
+
+DeviceRender deviceView(const RenderOutput& r) {
+    if (!r.device) throw std::logic_error("--eval gpu: the render was not kept on the device");
+    DeviceRender d;
+    d.hdr = &r.device->hdr;
+    if (r.device->surfaces[0].image)
+        for (size_t k = 0; k < 4; ++k) d.surfaces[k] = &r.device->surfaces[k];
+    return d;
+}
+
+void setGroundTruth(RunReport& run, const ReferenceRender& reference) {
+    if (reference.output.noise.empty()) return;
+    const GroundTruthStats& g = reference.output.groundTruth;
+    run.groundTruth = GroundTruthConvergence{g.batches, g.samplesPerPixel, g.targetRelativeNoise,
+                                             g.meanRelativeNoise, g.targetMet, g.lightingMs};
+}
+
+void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
+                   const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages,
+                   const ImageOutput& output) {
+    GpuEvaluator& evaluator = *reference.evaluator;
+    setGroundTruth(run, reference);
+    std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
+    evaluator.setReference(deviceView(reference.output), exposure,
+                           reference.output.noise.empty() ? nullptr : &reference.output.noise);
+    GpuErrorImages images;
+    GpuEvalOptions options;
+    options.hdrFlip = hdrFlip;
+    options.images = writeImages ? &images : nullptr;
+    const int width = int(test.device->hdr.extent.width), height = int(test.device->hdr.extent.height);
+    options.cropSize = std::max(32, std::min(width, height) / 12);
+    if (releaseTest)  // the test's surfaces go as soon as the attributes are measured (peak memory at 4K)
+        options.surfacesDone = [&] {
+            for (GpuImage& image : test.device->surfaces) destroyImage(test.device->ctx, image);
+        };
+    const RunMetrics m = evaluator.evaluate(deviceView(test), options);
+    fillMetrics(run, m);
+    if (!writeImages) return;
+    timed.emplace(Stage::Report);
+    ErrorImageOptions imageOptions;
+    imageOptions.label = run.layout + " / " + run.iblMode;
+    imageOptions.exrType = output.exrType;
+    // Every path is known before any file is written (the report lists them now); the files are
+    // written by output.writer's threads when there is one, as on the CPU path.
+    run.images.render = prefix + "render.png";
+    run.images.errorHeatmap = prefix + "error_heatmap.png";
+    run.images.flip = prefix + "flip.png";
+    if (!images.normal.pixels.empty()) run.images.normalError = prefix + "normal_error.png";
+    run.images.difference = prefix + "difference.png";
+    // The linear HDR render the metrics were computed on (ImageOutput::exrType), and its preview.
+    run.images.renderExr = prefix + "render.exr";
+    run.images.hdrPreview = prefix + "render_log.png";
+    for (size_t i = 0; i < images.worst.size(); ++i) {
+        const Crop& c = images.worst[i];
+        const CropFiles f = cropFileNames(prefix, i);
+        run.images.crops.push_back({c.x, c.y, c.size, c.size, f.reference, f.test, f.heat});
+    }
+    auto owned = std::make_shared<GpuErrorImages>(std::move(images));
+    auto hdr = std::make_shared<const Image>(test.device->downloadHdr());
+    auto write = [outDir, prefix, owned, m, hdr, imageOptions, exrType = output.exrType] {
+        const GpuErrorImages& g = *owned;
+        writeErrorImageBodies(outDir, prefix, ErrorImageBodies{g.render, g.heat, g.flip, g.normal, g.difference}, m,
+                              imageOptions);
+        writeExr((outDir / (prefix + "render.exr")).string(), *hdr, {}, exrType);
+        writePng((outDir / (prefix + "render_log.png")).string(), logEncodeForPreview(*hdr));
+        if (!g.worst.empty()) writeCrops(outDir, prefix, g.worst, g.reference, g.render, g.heat);
+    };
+    if (output.writer) output.writer->enqueue(prefix, std::move(write));  // named by the run's prefix
+    else write();
+}
+
+}  // namespace
+
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
                 const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages,
                 const ImageOutput& output) {
+    if (reference.evaluator) {
+        measureRunGpu(run, test, reference, outDir, prefix, exposure, hdrFlip, releaseTest, writeImages, output);
+        if (releaseTest) test.device.reset();  // its images are freed once measured (peak memory at 4K)
+        return;
+    }
     // The run's maps outlive this call when a writer takes them (the job owns them).
     auto maps = std::make_shared<RunErrorMaps>();
     RunMetricsOptions options;
     options.maps = writeImages ? maps.get() : nullptr;
     options.hdrFlip = hdrFlip;
     options.prepared = reference.prepared.get();
-    if (!reference.output.noise.empty()) {
-        options.referenceNoise = &reference.output.noise;
-        const GroundTruthStats& g = reference.output.groundTruth;
-        run.groundTruth = GroundTruthConvergence{g.batches, g.samplesPerPixel, g.targetRelativeNoise,
-                                                 g.meanRelativeNoise, g.targetMet, g.lightingMs};
-    }
+    if (!reference.output.noise.empty()) options.referenceNoise = &reference.output.noise;
+    setGroundTruth(run, reference);
     std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
     const RunMetrics m =
         releaseTest ? computeRunMetrics(reference.output.surfaces, std::move(test.surfaces), reference.output.hdr,

@@ -7,6 +7,7 @@
 
 #include "background_writer.h"
 #include "image_io.h"
+#include "gpu_evaluator.h"
 #include "renderer.h"
 #include "report_model.h"
 #include "run_metrics.h"
@@ -17,6 +18,8 @@ struct ReferenceRender {
     RenderOutput output;
     std::string renderPng;  // relative to the report dir
     std::unique_ptr<PreparedReference> prepared;  // of output.hdr, shared by the runs measured against it
+    // --eval gpu: the evaluator the runs are measured with, on output.device (not owned).
+    GpuEvaluator* evaluator = nullptr;
 };
 
 // Copies a run's metrics (run_metrics.h) into its report row.
@@ -33,6 +36,10 @@ struct ImageOutput {
 // The comparison of one rendered run against its reference: metrics, images, crops. `test` is
 // moved from when `releaseTest` (its surfaces are freed once measured: peak memory at 4K; with a
 // writer, its HDR image too, handed to the writer).
+// With reference.evaluator (--eval gpu) the metrics and the error images are computed on the
+// device from test.device: only numbers and 8-bit images come back (render.exr and the log
+// preview read the HDR image back; errors.exr, whose float maps stay on the device, is not
+// written).
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const std::filesystem::path& outDir,
                 const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages = true,
                 const ImageOutput& output = {});

@@ -244,6 +244,12 @@ VulkanContext::VulkanContext(const DeviceOptions& options) {
         f12.shaderSampledImageArrayNonUniformIndexing = supported12.shaderSampledImageArrayNonUniformIndexing;
         primitiveIdInFragment = supported.geometryShader == VK_TRUE;
         nonUniformSampledImageIndexing = supported12.shaderSampledImageArrayNonUniformIndexing == VK_TRUE;
+        // The GPU evaluation (src/evaluate/) sums in double and indexes arrays of storage buffers
+        // and images with push-constant (dynamically uniform) indices.
+        features.features.shaderFloat64 = supported.shaderFloat64;
+        features.features.shaderStorageBufferArrayDynamicIndexing = supported.shaderStorageBufferArrayDynamicIndexing;
+        features.features.shaderStorageImageArrayDynamicIndexing = supported.shaderStorageImageArrayDynamicIndexing;
+        shaderFloat64 = supported.shaderFloat64 == VK_TRUE;
 
         VkDeviceCreateInfo d{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
         d.queueCreateInfoCount = 1;

@@ -63,6 +63,9 @@ public:
     // resolve (Vulkan 1.2 shaderSampledImageArrayNonUniformIndexing).
     bool primitiveIdInFragment = false;
     bool nonUniformSampledImageIndexing = false;
+    // 64-bit float shader arithmetic is on (enabled whenever the device has it; the GPU evaluation's
+    // sums need it).
+    bool shaderFloat64 = false;
 
     // The persistent pipeline cache (shader_cache.h): loaded from disk when the device is made,
     // written back when the context is destroyed.

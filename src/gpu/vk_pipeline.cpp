@@ -56,11 +56,13 @@ VkDescriptorSet allocateSet(VkDevice device, VkDescriptorPool pool, VkDescriptor
     return set;
 }
 
-DescriptorWriter& DescriptorWriter::buffer(VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkBuffer b) {
+DescriptorWriter& DescriptorWriter::buffer(VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkBuffer b,
+                                           uint32_t arrayElement) {
     buffers_.push_back({b, 0, VK_WHOLE_SIZE});
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = set;
     w.dstBinding = binding;
+    w.dstArrayElement = arrayElement;
     w.descriptorCount = 1;
     w.descriptorType = type;
     pending_.push_back({w, false, buffers_.size() - 1});

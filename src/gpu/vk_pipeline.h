@@ -22,7 +22,8 @@ VkDescriptorSet allocateSet(VkDevice device, VkDescriptorPool pool, VkDescriptor
 // Descriptor writes collected and flushed in one vkUpdateDescriptorSets call.
 class DescriptorWriter {
 public:
-    DescriptorWriter& buffer(VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkBuffer buffer);
+    DescriptorWriter& buffer(VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkBuffer buffer,
+                             uint32_t arrayElement = 0);
     DescriptorWriter& image(VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkImageView view,
                             VkSampler sampler, VkImageLayout layout, uint32_t arrayElement = 0);
     void flush(VkDevice device);

@@ -1,6 +1,8 @@
 #pragma once
 // The decode pass: runs a layout's readGBuffer() over every pixel and reads the Surface back as
 // SurfaceImages (see shaders/decode_pass.comp.glsl).
+#include <array>
+
 #include "gbuffer_wiring.h"
 #include "renderer_passes.h"
 #include "surface_images.h"
@@ -20,5 +22,13 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
 // gbufferPassPipeline says why).
 PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
                                 PipelineMemo& memo);
+
+// The same decode, kept in device memory for the GPU evaluation (src/evaluate/gpu_evaluator.h):
+// four RGBA32F images (STORAGE, left in GENERAL) of the whole frame: normal + roughness, base
+// colour + metallic, diffuse colour + occlusion, specular colour + view depth. Zero where no
+// geometry covers the pixel (the HDR image's alpha says which). The caller destroys them.
+std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
+                                               const GBufferPass& gbuffer, const Buffer& frameConstants,
+                                               VkSampler nearestSampler, const GBufferPass* materialPass = nullptr);
 
 }  // namespace gbl

@@ -240,7 +240,13 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     }
 
     ScopedStage timedReadback(Stage::Readback);
-    if (!groundTruth) readHdr();
+    if (settings.keepOnDevice) {
+        out.device = std::make_shared<DeviceRenderImages>(ctx_);
+        out.device->hdr = lighting.hdr;  // moved out: destroyLightingPass leaves it alone
+        lighting.hdr = GpuImage{};
+    } else if (!groundTruth) {
+        readHdr();
+    }
     // Free what the decode does not read before it allocates (peak memory at 4K).
     destroyLightingPass(ctx_, lighting);
     if (lightBuffers.buffer) {
@@ -254,6 +260,14 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         if (!settings.readTargetWords) break;
         const auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         out.targetWords.push_back(texelsToWords(bytes, size_t(w) * h));  // R8 / R16 targets widened
+    }
+    if (settings.keepOnDevice) {
+        if (settings.decodeSurfaces)
+            out.device->surfaces = decodeSurfacesOnDevice(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, material);
+        if (material) destroyGBufferPass(ctx_, materialPass);
+        destroyGBufferPass(ctx_, gbuffer);
+        destroyBuffer(ctx_, frameBuffer);
+        return out;
     }
     std::vector<uint8_t> depthBytes = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
                                     VK_IMAGE_ASPECT_DEPTH_BIT);
@@ -283,6 +297,18 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     if (material) destroyGBufferPass(ctx_, materialPass);
     destroyGBufferPass(ctx_, gbuffer);
     destroyBuffer(ctx_, frameBuffer);
+    return out;
+}
+
+DeviceRenderImages::~DeviceRenderImages() {
+    destroyImage(ctx, hdr);
+    for (GpuImage& s : surfaces) destroyImage(ctx, s);
+}
+
+Image DeviceRenderImages::downloadHdr() const {
+    const std::vector<uint8_t> bytes = downloadImage(ctx, hdr, VK_IMAGE_LAYOUT_GENERAL);
+    Image out(int(hdr.extent.width), int(hdr.extent.height), 4);
+    std::memcpy(out.pixels.data(), bytes.data(), std::min(bytes.size(), out.pixels.size() * 4));
     return out;
 }
 

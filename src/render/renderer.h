@@ -1,6 +1,7 @@
 #pragma once
 // Renders one scene, under one environment, through any G-buffer wiring: the G-buffer raster
 // pass, then the lighting compute pass, timed with timestamp queries, then read back.
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,6 +45,11 @@ struct RenderSettings {
     // Copy each target's raw words to RenderOutput::targetWords (bit tests need them; compare
     // only needs the decoded surfaces, and skipping the copy saves up to 80 bytes per pixel).
     bool readTargetWords = true;
+    // Keep the HDR image and (with decodeSurfaces) the decoded surfaces in device memory
+    // (RenderOutput::device) instead of reading them back (RenderOutput::hdr, ::surfaces and
+    // ::depth stay empty; a ground truth still reads its HDR image for the noise): the GPU
+    // evaluation (src/evaluate/) measures them there.
+    bool keepOnDevice = false;
     // Rows per read-back band of the decode pass (a multiple of 8); 0: as many as fit in 64 MiB.
     uint32_t decodeBandRows = 0;
     // The camera to render from; unset: the scene's (compare --views renders several).
@@ -68,6 +74,19 @@ struct GroundTruthStats {
     double lightingMs = 0.0;         // GPU time of all batches (timestamps)
 };
 
+// A render kept in device memory (RenderSettings::keepOnDevice); destroys its images.
+struct DeviceRenderImages {
+    explicit DeviceRenderImages(const VulkanContext& c) : ctx(c) {}
+    ~DeviceRenderImages();
+    DeviceRenderImages(const DeviceRenderImages&) = delete;
+    DeviceRenderImages& operator=(const DeviceRenderImages&) = delete;
+    // The HDR image read back (RGBA float), e.g. for render.exr.
+    Image downloadHdr() const;
+    const VulkanContext& ctx;
+    GpuImage hdr;  // RGBA32F, GENERAL: linear radiance, alpha 1 where geometry covers the pixel
+    std::array<GpuImage, 4> surfaces{};  // decode_pass.h decodeSurfacesOnDevice; empty without decodeSurfaces
+};
+
 struct RenderOutput {
     Image hdr;  // RGBA float: linear radiance, alpha 1 where geometry covers the pixel
     std::vector<std::vector<uint32_t>> targetWords;  // per target, row-major, texel size / 4 words per pixel
@@ -80,7 +99,8 @@ struct RenderOutput {
     // per pixel, buffers in layout order (empty unless RenderSettings::readTargetWords).
     std::vector<uint32_t> lightBufferWords;
     PassTimings timings;
-    SurfaceImages surfaces;  // filled when RenderSettings::decodeSurfaces
+    SurfaceImages surfaces;  // filled when RenderSettings::decodeSurfaces (and not keepOnDevice)
+    std::shared_ptr<DeviceRenderImages> device;  // RenderSettings::keepOnDevice
     // Ground truth only: per-pixel standard error of the luminance (1 channel, absolute, 0 where no
     // geometry), and how it converged.
     Image noise;

@@ -46,6 +46,25 @@ std::string writePngAt(const std::filesystem::path& dir, const std::string& pref
     return rel;
 }
 
+float heatMaxOf(const ErrorImageOptions& o) { return o.heatMax > 0.0f ? o.heatMax : 0.1f; }
+float amplificationOf(const ErrorImageOptions& o) { return o.amplification > 0.0f ? o.amplification : 8.0f; }
+float normalScaleOf(const ErrorImageOptions& o, const RunMetrics& m) {
+    return std::max(o.normalMinScaleDeg, float(m.normal.all.error.p99));
+}
+std::string heatTitle(const ErrorImageOptions& o) {
+    return titled(o, "RELATIVE LUMINANCE ERROR, 0-" + fmt("%g", 100.0 * heatMaxOf(o)) + "% (CLIPPED)");
+}
+std::string flipTitle(const ErrorImageOptions& o, const RunMetrics& m) {
+    return titled(o, "LDR-FLIP  MEAN " + fmt("%.4f", m.image.flipMean));
+}
+std::string normalTitle(const ErrorImageOptions& o, const RunMetrics& m) {
+    return titled(o, "NORMAL ERROR (\u00b0)  MEAN " + fmt("%.3g", m.normal.all.error.mean) + "  P99 " +
+                         fmt("%.3g", m.normal.all.error.p99));
+}
+std::string differenceTitle(const ErrorImageOptions& o) {
+    return titled(o, "ABS(TEST - REF) X " + fmt("%g", amplificationOf(o)) + ", TONE-MAPPED");
+}
+
 }  // namespace
 
 
@@ -228,43 +247,58 @@ ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::st
     std::vector<std::function<void()>> writes;
     writes.push_back([&] { paths.render = writePngAt(dir, prefix, "render.png", srgbFloatTo8(maps.testSrgb)); });
 
-    const float heatMax = o.heatMax > 0.0f ? o.heatMax : 0.1f;
     writes.push_back([&] {
-        paths.heatmap = writePngAt(
-            dir, prefix, "error_heatmap.png",
-            heatMapImage(maps.relLuminance, 0.0f, heatMax,
-                         titled(o, "RELATIVE LUMINANCE ERROR, 0-" + fmt("%g", 100.0 * heatMax) + "% (CLIPPED)")));
+        paths.heatmap = writePngAt(dir, prefix, "error_heatmap.png",
+                                   heatMapImage(maps.relLuminance, 0.0f, heatMaxOf(o), heatTitle(o)));
     });
-
     writes.push_back([&] {
-        paths.flip = writePngAt(dir, prefix, "flip.png",
-                                heatMapImage(maps.flip, 0.0f, 1.0f,
-                                             titled(o, "LDR-FLIP  MEAN " + fmt("%.4f", metrics.image.flipMean))));
+        paths.flip = writePngAt(dir, prefix, "flip.png", heatMapImage(maps.flip, 0.0f, 1.0f, flipTitle(o, metrics)));
     });
-
     if (!maps.normalDeg.empty()) {
         writes.push_back([&] {
-            const float hi = std::max(o.normalMinScaleDeg, float(metrics.normal.all.error.p99));
-            paths.normalError = writePngAt(
-                dir, prefix, "normal_error.png",
-                heatMapImage(maps.normalDeg, 0.0f, hi,
-                             titled(o, "NORMAL ERROR (\u00b0)  MEAN " + fmt("%.3g", metrics.normal.all.error.mean) +
-                                           "  P99 " + fmt("%.3g", metrics.normal.all.error.p99)),
-                             maps.referenceSrgb.get(), &maps.measured));
+            paths.normalError =
+                writePngAt(dir, prefix, "normal_error.png",
+                           heatMapImage(maps.normalDeg, 0.0f, normalScaleOf(o, metrics), normalTitle(o, metrics),
+                                        maps.referenceSrgb.get(), &maps.measured));
         });
     }
-
-    const float k = o.amplification > 0.0f ? o.amplification : 8.0f;
     writes.push_back([&] {
-        paths.difference =
-            writePngAt(dir, prefix, "difference.png",
-                       amplifiedDifferenceImage(*maps.referenceSrgb, maps.testSrgb, k,
-                                                titled(o, "ABS(TEST - REF) X " + fmt("%g", k) + ", TONE-MAPPED")));
+        paths.difference = writePngAt(dir, prefix, "difference.png",
+                                      amplifiedDifferenceImage(*maps.referenceSrgb, maps.testSrgb, amplificationOf(o),
+                                                               differenceTitle(o)));
     });
 
     writes.push_back([&] {
         writeErrorExr(dir / (prefix + "errors.exr"), maps, o.exrType);
         paths.errorsExr = prefix + "errors.exr";
+    });
+    parallelInvoke(writes);
+    return paths;
+}
+
+ErrorImagePaths writeErrorImageBodies(const std::filesystem::path& dir, const std::string& prefix,
+                                      const ErrorImageBodies& b, const RunMetrics& metrics, const ErrorImageOptions& o) {
+    if (b.render.pixels.empty() || b.heat.pixels.empty() || b.flip.pixels.empty() || b.difference.pixels.empty())
+        throwUserError("error images: a colour-mapped map is missing; evaluate the run with its images requested");
+    ErrorImagePaths paths;
+    std::vector<std::function<void()>> writes;
+    writes.push_back([&] { paths.render = writePngAt(dir, prefix, "render.png", b.render); });
+    writes.push_back([&] {
+        paths.heatmap = writePngAt(dir, prefix, "error_heatmap.png",
+                                   titledPicture(b.heat, heatTitle(o), true, 0.0f, heatMaxOf(o)));
+    });
+    writes.push_back([&] {
+        paths.flip = writePngAt(dir, prefix, "flip.png", titledPicture(b.flip, flipTitle(o, metrics), true, 0.0f, 1.0f));
+    });
+    if (!b.normal.pixels.empty())
+        writes.push_back([&] {
+            paths.normalError = writePngAt(dir, prefix, "normal_error.png",
+                                           titledPicture(b.normal, normalTitle(o, metrics), true, 0.0f,
+                                                         normalScaleOf(o, metrics)));
+        });
+    writes.push_back([&] {
+        paths.difference = writePngAt(dir, prefix, "difference.png",
+                                      titledPicture(b.difference, differenceTitle(o), false, 0.0f, 1.0f));
     });
     parallelInvoke(writes);
     return paths;

@@ -51,6 +51,16 @@ struct ErrorImagePaths {
 ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::string& prefix, const RunErrorMaps& maps,
                                  const RunMetrics& metrics, const ErrorImageOptions& options = {});
 
+// The same pictures from maps already colour-mapped to 8 bits elsewhere (the GPU evaluation,
+// src/evaluate/gpu_evaluator.h): the bodies get the titles and legends writeErrorImages gives
+// them. `normal` may be empty (no normal map). No errors.exr: its float maps are not at hand.
+struct ErrorImageBodies {
+    Image8 render, heat, flip, normal, difference;
+};
+ErrorImagePaths writeErrorImageBodies(const std::filesystem::path& dir, const std::string& prefix,
+                                      const ErrorImageBodies& bodies, const RunMetrics& metrics,
+                                      const ErrorImageOptions& options = {});
+
 // EXR channel names written to errors.exr, in this order; channels whose map is empty are left
 // out: flip, hdr_flip, abs_r, abs_g, abs_b, rel_luminance, normal_deg, base_color_de, diffuse_de,
 // specular_de, roughness_abs, metallic_abs, occlusion_abs, depth_rel, measured (1 = compared).

@@ -30,3 +30,6 @@ gbl_layering_probe(layering_search_cannot_see_render gbl_search renderer.h refus
 gbl_layering_probe(layering_search_cannot_see_cli gbl_search cli.h refused)
 gbl_layering_probe(layering_search_sees_codec gbl_search cpu_codec.h allowed)
 gbl_layering_probe(layering_render_sees_codec gbl_render wiring_codegen.h allowed)
+gbl_layering_probe(layering_measure_cannot_see_evaluate gbl_measure gpu_evaluator.h refused)
+gbl_layering_probe(layering_render_cannot_see_evaluate gbl_render gpu_evaluator.h refused)
+gbl_layering_probe(layering_evaluate_sees_measure gbl_evaluate run_metrics.h allowed)

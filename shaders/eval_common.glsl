@@ -1,0 +1,76 @@
+// Shared by the evaluation passes (src/evaluate/, gpu_evaluator.cpp drives them): one descriptor
+// set for all of them, the push constants, the histogram bin layout and the two-stage reduction's
+// first stage. Twin: src/evaluate/eval_layout.h (the same numbers on the C++ side).
+#extension GL_EXT_shader_explicit_arithmetic_types_float64 : require
+
+// Images: linear HDR RGBA32F (alpha 1 where geometry covers the pixel), and the decoded surfaces as
+// four RGBA32F images: normal + roughness, base colour + metallic, diffuse colour + occlusion,
+// specular colour (F0) + view depth (decode_pass.comp.glsl, GBL_DECODE_TO_IMAGES).
+layout(set = 0, binding = 0, rgba32f) uniform readonly image2D refHdr;
+layout(set = 0, binding = 1, rgba32f) uniform readonly image2D testHdr;
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D refSurface[4];
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2D testSurface[4];
+// Float planes of width x height (FLIP's working planes, its maps, the reference noise).
+layout(set = 0, binding = 4, std430) buffer Plane { float v[]; } planes[EVAL_PLANE_COUNT];
+// Stage 1 of every reduction: one record of EVAL_FIELDS doubles per invocation.
+layout(set = 0, binding = 5, std430) buffer Partials { double partials[]; };
+layout(set = 0, binding = 6, std430) buffer Histograms { uint hist[]; };
+// 8-bit RGBA images the report shows, one uint (R | G << 8 | B << 16) per pixel.
+layout(set = 0, binding = 7, std430) buffer Out8 { uint px[]; } out8[EVAL_OUT8_COUNT];
+// The colour map (256 packed RGB, image/color_map.h viridisTable) and FLIP's 1D kernels.
+layout(set = 0, binding = 8, std430) readonly buffer Constants { uint viridis[256]; float kernels[]; };
+layout(set = 0, binding = 9, std430) buffer Result { double result[]; };
+layout(set = 0, binding = 10, std430) buffer Tiles { float tiles[]; };
+
+layout(push_constant) uniform Push {
+    uint width, height;
+    uint mode;        // per pass (see each shader)
+    uint flags;       // per pass
+    float f0, f1, f2, f3;  // per pass
+    uint u0, u1, u2, u3, u4, u5, u6, u7;  // per pass: plane indices, kernel offsets, ...
+} pc;
+
+// Grid-stride: EVAL_INVOCATIONS invocations cover every pixel.
+#define EVAL_GROUP 64
+layout(local_size_x = EVAL_GROUP) in;
+uint invocation() { return gl_GlobalInvocationID.x; }
+
+// ---- Histograms -------------------------------------------------------------------------------
+// EVAL_HIST_BINS bins for non-negative values: bin 0 holds exact 0 (and NaN/negatives), bin 1
+// (0, 2^-32), bins 2 .. EVAL_HIST_BINS-2 the floats in [2^-32, 2^32) by their top bits (exponent
+// and the 9 leading mantissa bits: a relative bin width of 2^-9), the last bin [2^32, +inf].
+// A quantile read as the bin's midpoint is off by at most 2^-10 (0.1 %) relative.
+uint histBin(float v) {
+    if (!(v > 0.0)) return 0u;
+    uint bits = floatBitsToUint(v);
+    if (bits < 0x2F800000u) return 1u;
+    if (bits >= 0x4F800000u) return EVAL_HIST_BINS - 1u;
+    return 2u + ((bits - 0x2F800000u) >> 14);
+}
+void histAdd(uint h, float v) { atomicAdd(hist[h * EVAL_HIST_BINS + histBin(v)], 1u); }
+
+// ---- Tone mapping (image/tone_map.h) ------------------------------------------------------------
+float acesFilmNarkowicz(float x) {
+    if (!(x > 0.0)) return 0.0;
+    if (x >= 8.0) return 1.0;
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+float linearToSrgb(float x) {
+    x = clamp(x, 0.0, 1.0);
+    if (!(x > 0.0031308)) return isnan(x) ? 0.0 : 12.92 * x;
+    return 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+}
+// The byte toneMapToSrgb8 writes: floor(255 v + 0.5).
+uvec3 toneMap8(vec3 linear, float exposure) {
+    uvec3 b;
+    for (int c = 0; c < 3; ++c) b[c] = uint(floor(linearToSrgb(acesFilmNarkowicz(linear[c] * exposure)) * 255.0 + 0.5));
+    return b;
+}
+uint pack8(uvec3 c) { return c.r | (c.g << 8) | (c.b << 16) | (255u << 24); }
+uint colorMap(float v, float lo, float hi) {  // applyColorMap: grey for NaN
+    if (isnan(v)) return pack8(uvec3(128u));
+    float range = hi - lo;
+    float t = range > 0.0 ? clamp((v - lo) / range, 0.0, 1.0) : (v > lo ? 1.0 : 0.0);
+    return viridis[uint(floor(t * 255.0 + 0.5))] | (255u << 24);
+}
+float luminance(vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }

@@ -1,0 +1,190 @@
+#include "eval_device.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include "color_map.h"
+#include "error.h"
+#include "histogram.h"
+#include "shader_compiler.h"
+#include "vk_pipeline.h"
+
+namespace gbl::evaluate {
+
+namespace {
+
+constexpr size_t kConstantFloats = 8192;  // room for the colour constants and every FLIP kernel
+
+const char* shaderFile(Pass p) {
+    switch (p) {
+        case Pass::Image: return "eval_image.comp.glsl";
+        case Pass::Reduce: return "eval_reduce.comp.glsl";
+        case Pass::FlipOpponent: return "flip_opponent.comp.glsl";
+        case Pass::FlipFilter: return "flip_filter.comp.glsl";
+        case Pass::FlipLab: return "flip_lab.comp.glsl";
+        case Pass::FlipFeatures: return "flip_features.comp.glsl";
+        case Pass::FlipCombine: return "flip_combine.comp.glsl";
+        case Pass::FlipStats: return "eval_flip_stats.comp.glsl";
+        case Pass::Attributes: return "eval_attributes.comp.glsl";
+        case Pass::Tiles: return "eval_tiles.comp.glsl";
+        case Pass::Luminance: return "eval_luminance.comp.glsl";
+        case Pass::Count: break;
+    }
+    throw std::logic_error("evaluate: no shader for this pass");
+}
+
+std::vector<Binding> bindings() {
+    return {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+            {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},      {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
+            {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kPlaneCount}, {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},        {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kOut8Count},
+            {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},        {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+            {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+}
+
+}  // namespace
+
+uint32_t EvalDevice::kHistBinsTotal() { return kHistBins; }
+
+EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h) : ctx(c), width(w), height(h) {
+    if (!ctx.shaderFloat64)
+        throwUserError("--eval gpu: the Vulkan device '" + ctx.info.name +
+                       "' has no 64-bit float shaders (shaderFloat64), which the GPU evaluation's sums need; "
+                       "use --eval cpu");
+    const std::vector<Binding> b = bindings();
+    setLayout_ = createSetLayout(ctx.device, b, VK_SHADER_STAGE_COMPUTE_BIT);
+    pipelineLayout_ = createPipelineLayout(ctx.device, {setLayout_}, sizeof(Push), VK_SHADER_STAGE_COMPUTE_BIT);
+    pool_ = createPoolFor(ctx.device, {b});
+    set_ = allocateSet(ctx.device, pool_, setLayout_);
+    for (size_t p = 0; p < size_t(Pass::Count); ++p) {
+        ShaderSource s = loadShaderFile(shaderFile(Pass(p)));
+        s.defines.push_back({"EVAL_PLANE_COUNT", std::to_string(kPlaneCount)});
+        s.defines.push_back({"EVAL_OUT8_COUNT", std::to_string(kOut8Count)});
+        s.defines.push_back({"EVAL_HIST_BINS", std::to_string(kHistBins) + "u"});
+        VkShaderModule module = createShaderModule(ctx.device, compileGlsl(s));
+        pipelines_[p] = createComputePipeline(ctx, pipelineLayout_, module);
+        vkDestroyShaderModule(ctx.device, module, nullptr);
+    }
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    dummy_ = createBuffer(ctx, 256, storage, false);
+    partials_ = createBuffer(ctx, VkDeviceSize(kInvocations) * kMaxFields * sizeof(double), storage, false);
+    histograms_ = createBuffer(ctx, VkDeviceSize(kHistCount) * kHistBins * 4, storage, true);
+    constants_ = createBuffer(ctx, 256 * 4 + kConstantFloats * 4, storage, true);
+    result_ = createBuffer(ctx, 4 * kMaxFields * sizeof(double), storage, true);
+    uint32_t* table = static_cast<uint32_t*>(constants_.mapped);
+    const auto& viridis = viridisTable();
+    for (size_t i = 0; i < 256; ++i) table[i] = viridis[i].r | (uint32_t(viridis[i].g) << 8) | (uint32_t(viridis[i].b) << 16);
+    rebindBuffers();
+}
+
+EvalDevice::~EvalDevice() {
+    for (Buffer& p : planes_) destroyBuffer(ctx, p);
+    for (Buffer& p : out8_) destroyBuffer(ctx, p);
+    for (Buffer* b : {&dummy_, &partials_, &histograms_, &constants_, &result_, &tiles_}) destroyBuffer(ctx, *b);
+    for (VkPipeline p : pipelines_) vkDestroyPipeline(ctx.device, p, nullptr);
+    vkDestroyPipelineLayout(ctx.device, pipelineLayout_, nullptr);
+    vkDestroyDescriptorSetLayout(ctx.device, setLayout_, nullptr);
+    vkDestroyDescriptorPool(ctx.device, pool_, nullptr);
+}
+
+void EvalDevice::rebindBuffers() {
+    auto orDummy = [&](const Buffer& b) { return b.buffer ? b.buffer : dummy_.buffer; };
+    DescriptorWriter w;
+    for (uint32_t i = 0; i < kPlaneCount; ++i) w.buffer(set_, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, orDummy(planes_[i]), i);
+    w.buffer(set_, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, partials_.buffer);
+    w.buffer(set_, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, histograms_.buffer);
+    for (uint32_t i = 0; i < kOut8Count; ++i) w.buffer(set_, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, orDummy(out8_[i]), i);
+    w.buffer(set_, 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, constants_.buffer);
+    w.buffer(set_, 9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, result_.buffer);
+    w.buffer(set_, 10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, orDummy(tiles_));
+    w.flush(ctx.device);
+}
+
+void EvalDevice::bindImages(const GpuImage& refHdr, const GpuImage& testHdr, const GpuImage* const refSurfaces[4],
+                            const GpuImage* const testSurfaces[4]) {
+    DescriptorWriter w;
+    auto image = [&](uint32_t binding, const GpuImage& im, uint32_t element) {
+        w.image(set_, binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, im.view, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL,
+                element);
+    };
+    image(0, refHdr, 0);
+    image(1, testHdr, 0);
+    for (uint32_t k = 0; k < 4; ++k) {
+        image(2, refSurfaces && refSurfaces[k] ? *refSurfaces[k] : refHdr, k);
+        image(3, testSurfaces && testSurfaces[k] ? *testSurfaces[k] : testHdr, k);
+    }
+    w.flush(ctx.device);
+}
+
+void EvalDevice::ensurePlane(uint32_t slot) {
+    if (planes_[slot].buffer) return;
+    planes_[slot] = createBuffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+    rebindBuffers();
+}
+
+void EvalDevice::releasePlane(uint32_t slot) {
+    if (!planes_[slot].buffer) return;
+    destroyBuffer(ctx, planes_[slot]);
+    planes_[slot] = {};
+    rebindBuffers();
+}
+
+void EvalDevice::uploadPlane(uint32_t slot, const float* values) {
+    destroyBuffer(ctx, planes_[slot]);
+    planes_[slot] = createBuffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    std::memcpy(planes_[slot].mapped, values, size_t(width) * height * 4);
+    rebindBuffers();
+}
+
+void EvalDevice::ensureOut8() {
+    if (out8_[0].buffer) return;
+    for (Buffer& b : out8_) b = createBuffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    rebindBuffers();
+}
+
+void EvalDevice::releaseOut8() {
+    if (!out8_[0].buffer) return;
+    for (Buffer& b : out8_) destroyBuffer(ctx, b);
+    rebindBuffers();
+}
+
+void EvalDevice::ensureTiles(size_t count) {
+    if (tiles_.buffer && tiles_.size >= count * 4) return;
+    destroyBuffer(ctx, tiles_);
+    tiles_ = createBuffer(ctx, VkDeviceSize(std::max<size_t>(count, 1)) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    rebindBuffers();
+}
+
+void EvalDevice::setKernels(const std::vector<float>& kernels) {
+    if (kernels.size() > kConstantFloats) throw std::logic_error("evaluate: FLIP kernels exceed the constants buffer");
+    std::memcpy(static_cast<uint32_t*>(constants_.mapped) + 256, kernels.data(), kernels.size() * 4);
+}
+
+void EvalDevice::dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint32_t groups) const {
+    Push p = push;
+    p.width = width;
+    p.height = height;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[size_t(pass)]);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
+    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push), &p);
+    vkCmdDispatch(cmd, groups, 1, 1);
+    fullBarrier(cmd);
+}
+
+void EvalDevice::reduce(VkCommandBuffer cmd, uint32_t fields, const std::array<uint32_t, 4>& maxMask,
+                        uint32_t resultOffset) const {
+    if (fields > kMaxFields || resultOffset + fields > 4 * kMaxFields) throw std::logic_error("evaluate: too many fields");
+    Push p;
+    p.u[0] = fields;
+    for (int k = 0; k < 4; ++k) p.u[1 + k] = maxMask[size_t(k)];
+    p.u[5] = kInvocations;
+    p.u[6] = resultOffset;
+    dispatch(cmd, Pass::Reduce, p, (fields + 63) / 64);
+}
+
+void EvalDevice::clearHistograms(VkCommandBuffer cmd) const {
+    vkCmdFillBuffer(cmd, histograms_.buffer, 0, VK_WHOLE_SIZE, 0);
+    fullBarrier(cmd);
+}
+
+}  // namespace gbl::evaluate

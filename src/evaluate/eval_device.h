@@ -1,0 +1,95 @@
+#pragma once
+// The evaluation passes' shared machinery (internal to gbl_evaluate): one descriptor set layout for
+// every pass (shaders/eval_common.glsl), the pipelines, the planes and read-back buffers, and the
+// dispatch / two-stage reduction helpers.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "vk_context.h"
+#include "vk_resources.h"
+
+namespace gbl::evaluate {
+
+// Plane slots (binding 4): FLIP's prepared reference (L, a, b, edge, point) and test, its five
+// working planes, the LDR- and HDR-FLIP maps and the reference's noise.
+enum PlaneSlot : uint32_t {
+    kRefPrepared = 0,
+    kTestPrepared = 5,
+    kWork = 10,  // yy, cx, cz, lum, tmp
+    kFlipMap = 15,
+    kHdrFlipMap = 16,
+    kNoise = 17,
+    kPlaneCount = 18,
+};
+enum Out8Slot : uint32_t { kOutRender = 0, kOutDifference, kOutHeat, kOutFlip, kOutNormal, kOutReference, kOut8Count };
+// Histograms (binding 6).
+enum HistSlot : uint32_t { kHistAbsLinear = 0, kHistFlip = 1, kHistAttributes = 2 /* + 2 attribute + class */,
+                           kHistLuminance = 18, kHistRefine = 19, kHistCount = 20 };
+inline constexpr uint32_t kGroups = 128;  // workgroups of 64 per pass: 8192 invocations, grid-stride
+inline constexpr uint32_t kInvocations = kGroups * 64;
+inline constexpr uint32_t kMaxFields = 96;
+
+struct Push {
+    uint32_t width = 0, height = 0, mode = 0, flags = 0;
+    float f0 = 0, f1 = 0, f2 = 0, f3 = 0;
+    uint32_t u[8] = {};
+};
+
+enum class Pass { Image, Reduce, FlipOpponent, FlipFilter, FlipLab, FlipFeatures, FlipCombine, FlipStats, Attributes,
+                  Tiles, Luminance, Count };
+
+class EvalDevice {
+public:
+    EvalDevice(const VulkanContext& ctx, uint32_t width, uint32_t height);
+    ~EvalDevice();
+    EvalDevice(const EvalDevice&) = delete;
+    EvalDevice& operator=(const EvalDevice&) = delete;
+
+    const VulkanContext& ctx;
+    const uint32_t width, height;
+
+    // Binds the images (RGBA32F, GENERAL) of binding 0-3; surfaces may be null (the HDR image is
+    // bound in their place and attribute passes must not run).
+    void bindImages(const GpuImage& refHdr, const GpuImage& testHdr, const GpuImage* const refSurfaces[4],
+                    const GpuImage* const testSurfaces[4]);
+    // Allocates plane `slot` (width x height floats) if not yet there (and rebinds).
+    void ensurePlane(uint32_t slot);
+    void ensureOut8();   // the 8-bit output images (host visible)
+    void releaseOut8();
+    void ensureTiles(size_t count);
+    // Writes the kernels region of the constants buffer (binding 8) after the colour map.
+    void setKernels(const std::vector<float>& kernels);
+
+    void dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint32_t groups = kGroups) const;
+    // Stage 2: result[offset + f] = sum (max where bit f of maxMask) over the stage-1 records.
+    void reduce(VkCommandBuffer cmd, uint32_t fields, const std::array<uint32_t, 4>& maxMask, uint32_t resultOffset) const;
+    void clearHistograms(VkCommandBuffer cmd) const;
+
+    const double* result() const { return static_cast<const double*>(result_.mapped); }
+    const uint32_t* histogram(uint32_t slot) const {
+        return static_cast<const uint32_t*>(histograms_.mapped) + size_t(slot) * kHistBinsTotal();
+    }
+    const uint32_t* out8(uint32_t slot) const { return static_cast<const uint32_t*>(out8_[slot].mapped); }
+    const float* tiles() const { return static_cast<const float*>(tiles_.mapped); }
+    bool hasPlane(uint32_t slot) const { return planes_[slot].buffer != VK_NULL_HANDLE; }
+    void releasePlane(uint32_t slot);
+    // Plane `slot` holding `values` (width x height floats), host visible.
+    void uploadPlane(uint32_t slot, const float* values);
+
+private:
+    static uint32_t kHistBinsTotal();
+    void rebindBuffers();
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    std::array<VkPipeline, size_t(Pass::Count)> pipelines_{};
+    std::array<Buffer, kPlaneCount> planes_{};
+    std::array<Buffer, kOut8Count> out8_{};
+    Buffer dummy_, partials_, histograms_, constants_, result_, tiles_;
+};
+
+}  // namespace gbl::evaluate

@@ -1,0 +1,94 @@
+#pragma once
+// The comparison's metrics computed on the device, where the render is (issue 14 item 1): from
+// the reference's and a test's HDR images and decoded surfaces, still in device memory, compute
+// passes produce every number of measure/run_metrics.h's RunMetrics and the report's 8-bit error
+// images. Only scalars, histograms and 8-bit images come back to the host. measure/ stays the
+// CPU oracle (tests/evaluate/gpu_evaluator_test.cpp holds the two to stated tolerances).
+//
+// Where the GPU results differ from the CPU oracle, and by how much at most:
+//  * Sums are in double (per invocation, then a second pass in record order): as the CPU's.
+//  * p99 and medians come from histograms (histogram.h): within 2^-10 relative of the exact
+//    nearest-rank value (0 stays exactly 0); maxima are exact.
+//  * Per-pixel maths is float (the CPU uses double for CIEDE2000, normal angles and the sRGB
+//    curve): an 8-bit tone-mapped value can differ by one step where the CPU's value lies within
+//    float rounding of a rounding boundary.
+//  * FLIP: the same kernels and filter order in float; means agree to 1e-4 (gpu_evaluator_test).
+//  * Worst regions are found on 8 x 8 tiles (corners on multiples of 8).
+#include <array>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "image.h"
+#include "run_metrics.h"
+#include "vk_resources.h"
+#include "worst_regions.h"
+
+namespace gbl {
+
+// One render on the device: its HDR image (RGBA32F, GENERAL, alpha 1 where geometry covers the
+// pixel) and decoded surfaces (four RGBA32F images, GENERAL: normal + roughness, base colour +
+// metallic, diffuse colour + occlusion, specular colour + view depth; render/decode_pass.h).
+struct DeviceRender {
+    const GpuImage* hdr = nullptr;
+    std::array<const GpuImage*, 4> surfaces{};  // all set, or all null (no attribute metrics)
+};
+
+// What the report shows, as 8-bit RGB (untitled map bodies; report/error_images.h adds titles).
+struct GpuErrorImages {
+    Image8 render;      // the test's tone-mapped render (render.png)
+    Image8 reference;   // the reference's, for the crops
+    Image8 difference;  // min(1, k |test - reference|) of the tone-mapped images
+    Image8 heat;        // relative luminance error over [0, heatMax]
+    Image8 flip;        // LDR-FLIP over [0, 1]
+    Image8 normal;      // normal angle over [0, max(normalMinScaleDeg, p99)], other pixels dimmed grey
+    std::vector<Crop> worst;  // worst regions of the relative luminance error
+};
+
+struct GpuEvalOptions {
+    bool hdrFlip = true;
+    GpuErrorImages* images = nullptr;  // when set, filled
+    float heatMax = 0.10f;
+    float amplification = 8.0f;
+    float normalMinScaleDeg = 1.0f;
+    int cropSize = 0;    // worst regions: window size (0: none)
+    int cropCount = 3;
+    // Called once the test's surfaces are no longer read (after the attribute passes, before
+    // FLIP allocates its planes): compare frees them there (peak memory at 4K).
+    std::function<void()> surfacesDone;
+};
+
+class GpuEvaluator {
+public:
+    GpuEvaluator(const VulkanContext& ctx, uint32_t width, uint32_t height);
+    ~GpuEvaluator();
+    GpuEvaluator(const GpuEvaluator&) = delete;
+    GpuEvaluator& operator=(const GpuEvaluator&) = delete;
+
+    // The reference every later run is measured against (kept by pointer: it must outlive its
+    // use). noise: the reference's per-pixel noise (1 channel), uploaded once, or null.
+    // Nothing is recomputed when called again with the same images, exposure and noise.
+    void setReference(const DeviceRender& reference, float exposure, const Image* noise = nullptr);
+    // Its working planes and 8-bit images are allocated for the call and freed before it returns.
+    RunMetrics evaluate(const DeviceRender& test, const GpuEvalOptions& options);
+
+private:
+    struct State;
+    std::unique_ptr<State> s_;
+};
+
+// Uploads host images as a DeviceRender (tests, and runs whose render came back to the host).
+// `hdr` RGB(A) float; `surfaces` optional (empty images: no surfaces).
+struct UploadedRender {
+    UploadedRender(const VulkanContext& ctx, const Image& hdr, const SurfaceImages* surfaces);
+    ~UploadedRender();
+    UploadedRender(const UploadedRender&) = delete;
+    UploadedRender& operator=(const UploadedRender&) = delete;
+    DeviceRender view() const;
+    const VulkanContext& ctx;
+    GpuImage hdr;
+    std::array<GpuImage, 4> surfaces{};
+    bool hasSurfaces = false;
+};
+
+}  // namespace gbl
