@@ -21,6 +21,13 @@ uint32_t bandRows(uint32_t width, uint32_t height) {
     const uint32_t rows = uint32_t(std::max<size_t>(8, kBandBytes / rowBytes / 8 * 8));
     return std::min(rows, (height + 7) / 8 * 8);
 }
+std::vector<Binding> decodeToImagesSet0() {
+    return {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
+    };
+}
 std::vector<Binding> decodeSet0() {
     return {
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
@@ -64,76 +71,47 @@ PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& w
 
 namespace {
 
-// The decode pipeline for one wiring, with its descriptor sets written. toImages: the shader's
-// GBL_DECODE_TO_IMAGES variant writing `images` (binding 3), else the band buffer `output`.
-struct DecodePipeline {
-    std::vector<VkDescriptorSetLayout> layouts;
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    std::vector<VkDescriptorSet> sets;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-
-    void destroy(const VulkanContext& ctx) {
-        vkDestroyPipeline(ctx.device, pipeline, nullptr);
-        vkDestroyPipelineLayout(ctx.device, pipelineLayout, nullptr);
-        for (auto l : layouts) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
-        vkDestroyDescriptorPool(ctx.device, pool, nullptr);
-    }
-};
-
-DecodePipeline makeDecodePipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
-                                  const Buffer& frameConstants, VkSampler nearestSampler,
-                                  const GBufferPass* materialPass, const Buffer* output,
-                                  const std::array<GpuImage, 4>* images) {
-    DecodePipeline d;
-    std::vector<Binding> set0 = {
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-    };
-    if (images) set0.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4});
-    else set0.push_back({2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-    const std::vector<Binding> set1 = targetReadBindings(gbuffer);
-    const std::vector<Binding> set2 = materialPass ? targetReadBindings(*materialPass) : std::vector<Binding>{};
-    d.layouts = {createSetLayout(ctx.device, set0, VK_SHADER_STAGE_COMPUTE_BIT),
-                 createSetLayout(ctx.device, set1, VK_SHADER_STAGE_COMPUTE_BIT)};
-    if (materialPass) d.layouts.push_back(createSetLayout(ctx.device, set2, VK_SHADER_STAGE_COMPUTE_BIT));
-    d.pipelineLayout = createPipelineLayout(ctx.device, d.layouts, 4, VK_SHADER_STAGE_COMPUTE_BIT);
-    d.pool = createPoolFor(ctx.device, {set0, set1, set2});
-    for (VkDescriptorSetLayout l : d.layouts) d.sets.push_back(allocateSet(ctx.device, d.pool, l));
-    DescriptorWriter writer;
-    writer.buffer(d.sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
-        .image(d.sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
-               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
-    if (images)
-        for (uint32_t k = 0; k < 4; ++k)
-            writer.image(d.sets[0], 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, (*images)[k].view, VK_NULL_HANDLE,
-                         VK_IMAGE_LAYOUT_GENERAL, k);
-    else
-        writer.buffer(d.sets[0], 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output->buffer);
-    writeTargetReadSet(writer, d.sets[1], gbuffer, nearestSampler);
-    if (materialPass)
-        for (uint32_t i = 0; i < materialPass->targets.size(); ++i)
-            writer.image(d.sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, materialPass->targets[i].view,
-                         nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    writer.flush(ctx.device);
-
+// The GBL_DECODE_TO_IMAGES variant of the decode pass (the GPU evaluation's input: four RGBA32F
+// images at set 0 binding 3 instead of the band buffer), from `memo` like every pass's pipeline so
+// that views and IBL modes after the first compile nothing.
+PassPipeline decodeToImagesPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
+                                    PipelineMemo& memo) {
+    const size_t materialTargets = wiring.materialPass ? wiring.materialTargetFormats.size() : 0;
+    const uint32_t setCount = wiring.materialPass ? 3 : 2;
     ShaderSource cs = loadShaderFile("decode_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
     addSpaceDefines(cs, wiring);
-    addTargetReadDefines(cs, targetReadScene(gbuffer));
-    if (images) cs.defines.push_back({"GBL_DECODE_TO_IMAGES", "1"});
-    cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ")";
-    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
-    d.pipeline = createComputePipeline(ctx, d.pipelineLayout, module);
-    vkDestroyShaderModule(ctx.device, module, nullptr);
-    return d;
+    addTargetReadDefines(cs, scene);
+    cs.defines.push_back({"GBL_DECODE_TO_IMAGES", "1"});
+    cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ", to images)";
+    const std::string key = "decode-images|" + shaderMemoKey(cs) + "|targets " +
+                            std::to_string(wiring.targetFormats.size()) + " " + std::to_string(materialTargets) +
+                            " sets " + std::to_string(setCount);
+    return memo.getOrBuild(ctx.device, key, [&] {
+        const std::vector<uint32_t> spirv = compileGlsl(cs);  // first: a failed compile leaks nothing
+        std::vector<Binding> materialBindings;
+        for (uint32_t i = 0; i < materialTargets; ++i)
+            materialBindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+        MemoPipeline p;
+        p.setLayouts = {createSetLayout(ctx.device, decodeToImagesSet0(), VK_SHADER_STAGE_COMPUTE_BIT),
+                        createSetLayout(ctx.device, targetReadBindings(wiring.targetFormats.size(), scene),
+                                        VK_SHADER_STAGE_COMPUTE_BIT)};
+        if (wiring.materialPass)
+            p.setLayouts.push_back(createSetLayout(ctx.device, materialBindings, VK_SHADER_STAGE_COMPUTE_BIT));
+        p.layout = createPipelineLayout(ctx.device, p.setLayouts, 4, VK_SHADER_STAGE_COMPUTE_BIT);
+        VkShaderModule module = createShaderModule(ctx.device, spirv);
+        p.pipeline = createComputePipeline(ctx, p.layout, module);
+        vkDestroyShaderModule(ctx.device, module, nullptr);
+        return p;
+    });
 }
 
 }  // namespace
 
 std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
                                                const GBufferPass& gbuffer, const Buffer& frameConstants,
-                                               VkSampler nearestSampler, const GBufferPass* materialPass) {
+                                               VkSampler nearestSampler, const GBufferPass* materialPass,
+                                               PipelineMemo& memo) {
     const uint32_t w = gbuffer.depth.extent.width, h = gbuffer.depth.extent.height;
     std::array<GpuImage, 4> images;
     for (GpuImage& im : images) {
@@ -144,19 +122,44 @@ std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const G
         desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         im = createImage(ctx, desc);
     }
-    DecodePipeline d = makeDecodePipeline(ctx, wiring, gbuffer, frameConstants, nearestSampler, materialPass, nullptr,
-                                          &images);
+    const PassPipeline built = decodeToImagesPipeline(ctx, wiring, targetReadScene(gbuffer), memo);
+    const std::vector<VkDescriptorSetLayout>& layouts = built.entry->setLayouts;
+    const std::vector<Binding> set0 = decodeToImagesSet0();
+    const std::vector<Binding> set1 = targetReadBindings(gbuffer);
+    const std::vector<Binding> set2 = materialPass ? targetReadBindings(*materialPass) : std::vector<Binding>{};
+    VkDescriptorPool pool = createPoolFor(ctx.device, {set0, set1, set2});
+    std::vector<VkDescriptorSet> sets;
+    for (VkDescriptorSetLayout l : layouts) sets.push_back(allocateSet(ctx.device, pool, l));
+    DescriptorWriter writer;
+    writer.buffer(sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
+        .image(sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
+               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+    for (uint32_t k = 0; k < 4; ++k)
+        writer.image(sets[0], 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, images[k].view, VK_NULL_HANDLE,
+                     VK_IMAGE_LAYOUT_GENERAL, k);
+    writeTargetReadSet(writer, sets[1], gbuffer, nearestSampler);
+    if (materialPass)
+        for (uint32_t i = 0; i < materialPass->targets.size(); ++i)
+            writer.image(sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, materialPass->targets[i].view,
+                         nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    writer.flush(ctx.device);
     const uint32_t firstRow = 0;
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    auto record = [&](VkCommandBuffer cmd, uint32_t groupsX, uint32_t groupsY) {
         for (const GpuImage& im : images) transitionImage(cmd, im, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, d.pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, d.pipelineLayout, 0, uint32_t(d.sets.size()),
-                                d.sets.data(), 0, nullptr);
-        vkCmdPushConstants(cmd, d.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &firstRow);
-        vkCmdDispatch(cmd, (w + 7) / 8, (h + 7) / 8, 1);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, built.entry->pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, built.entry->layout, 0, uint32_t(sets.size()),
+                                sets.data(), 0, nullptr);
+        vkCmdPushConstants(cmd, built.entry->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &firstRow);
+        vkCmdDispatch(cmd, groupsX, groupsY, 1);
         fullBarrier(cmd);
-    });
-    d.destroy(ctx);
+    };
+    if (memo.firstUse(built.entry)) {
+        // llvmpipe compiles at first dispatch: timed as the compile it is (renderer.cpp's warm-up).
+        ScopedStage timed(Stage::ShaderCompile);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, 1, 1); });
+    }
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, (w + 7) / 8, (h + 7) / 8); });
+    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
     return images;
 }
 

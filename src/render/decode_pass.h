@@ -29,6 +29,7 @@ PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& w
 // geometry covers the pixel (the HDR image's alpha says which). The caller destroys them.
 std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
                                                const GBufferPass& gbuffer, const Buffer& frameConstants,
-                                               VkSampler nearestSampler, const GBufferPass* materialPass = nullptr);
+                                               VkSampler nearestSampler, const GBufferPass* materialPass,
+                                               PipelineMemo& memo);
 
 }  // namespace gbl

@@ -263,7 +263,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     }
     if (settings.keepOnDevice) {
         if (settings.decodeSurfaces)
-            out.device->surfaces = decodeSurfacesOnDevice(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, material);
+            out.device->surfaces = decodeSurfacesOnDevice(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, material, pipelines_);
         if (material) destroyGBufferPass(ctx_, materialPass);
         destroyGBufferPass(ctx_, gbuffer);
         destroyBuffer(ctx_, frameBuffer);
