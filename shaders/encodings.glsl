@@ -866,4 +866,7 @@ vec3 decodeNormalXyFloat16(uvec2 code) {
     return normalize(vec3(x, y, z));
 }
 
+// zeux/niagara's emissive-to-albedo ratio and dithered octahedral normals.
+#include "niagara_encodings.glsl"
+
 #endif  // GBL_ENCODINGS_GLSL

@@ -19,10 +19,12 @@ gbl_test(encoding/encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # n
 gbl_test(encoding/scalar_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
 gbl_test(encoding/color_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
 gbl_test(encoding/engine_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # RGB9E5, gamma 2.2, Bevy / Unity / Killzone normals
+gbl_test(encoding/niagara_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # emissive/albedo ratio, dithered octahedral
 gbl_test(encoding/encodings_fast_test LABELS unit DEPS gbl_encoding)
 gbl_test(encoding/light_buffer_encodings_test LABELS unit DEPS gbl_encoding)
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
+gbl_test(layout/layout_reads_test LABELS unit DEPS gbl_layout)  # encodings that read another attribute (niagara)
 gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s

@@ -92,7 +92,7 @@ std::string unusedText(const std::vector<Channel>& channels, const std::vector<F
 }
 
 void describeFields(std::ostream& o, const std::vector<Field>& fields, const std::vector<Channel>& channels) {
-    o << "  " << pad("bits", 18) << pad("attribute", 28) << pad("code", 8) << pad("encoding", 26) << "width\n";
+    o << "  " << pad("bits", 18) << pad("attribute", 28) << pad("code", 8) << pad("encoding", 28) << "width\n";
     for (const Field& f : fields) {
         for (size_t i = 0; i < f.codes.size(); ++i) {
             std::string attr = attributeName(f.attribute);
@@ -101,7 +101,7 @@ void describeFields(std::ostream& o, const std::vector<Field>& fields, const std
                 attr += " = " + number(f.value[k]);
             }
             o << "  " << pad(placeText(channels, f.codes[i]), 18) << pad(attr, 28) << pad(codeLabel(f, i), 8)
-              << pad(f.encoding, 26) << f.codes[i].bits() << "\n";
+              << pad(f.encoding, 28) << f.codes[i].bits() << "\n";
         }
     }
     o << "  unused: " << unusedText(channels, fields) << "\n";

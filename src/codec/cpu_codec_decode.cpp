@@ -12,6 +12,7 @@
 
 #include "cpu_codec_kernels.h"
 #include "encodings.h"
+#include "niagara_encodings.h"
 #include "simd_clones.h"
 #include "stream_copy.h"
 
@@ -215,6 +216,18 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
             }
             return;
         }
+        case Codec::EmissiveAlbedoRatio: {
+            // From the decoded base colour: validation puts its field before this one.
+            const float *ar = b.s[f.reads], *ag = b.s[f.reads + 1], *ab = b.s[f.reads + 2];
+            for (int j = 0; j < n; ++j) {
+                const vec3 e = decodeEmissiveAlbedoRatio(b.code[0][j], bits, vec3(ar[j], ag[j], ab[j]));
+                o.c[0][j] = e.x;
+                o.c[1][j] = e.y;
+                o.c[2][j] = e.z;
+            }
+            return;
+        }
+        case Codec::NormalOctahedralDithered:
         case Codec::NormalOctahedralBevy:
         case Codec::NormalOctahedralUnity:
             map3(n, c0, c1, c1, x, y, z,

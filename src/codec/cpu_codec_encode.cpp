@@ -11,6 +11,7 @@
 #include "cpu_codec_kernels.h"
 #include "encodings.h"
 #include "encodings_fast.h"
+#include "niagara_encodings.h"
 #include "simd_clones.h"
 #include "stream_copy.h"
 
@@ -317,6 +318,17 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
             return;
         case Codec::NormalXyFloat16:
             map3to2(n, x, yv, z, c0, c1, [](vec3 v, int) { return encodeNormalXyFloat16(v); });
+            return;
+        case Codec::EmissiveAlbedoRatio: {
+            // The unquantised base colour of the pixel, as niagara's mesh.frag.glsl divides by albedo.
+            const float *ar = b.s[f.reads], *ag = b.s[f.reads + 1], *ab = b.s[f.reads + 2];
+            for (int j = 0; j < n; ++j)
+                c0[j] = encodeEmissiveAlbedoRatio(vec3(x[j], yv[j], z[j]), vec3(ar[j], ag[j], ab[j]), bits);
+            return;
+        }
+        case Codec::NormalOctahedralDithered:
+            map3to2(n, x, yv, z, c0, c1,
+                    [bits, x0, y](vec3 v, int j) { return encodeNormalOctahedralDithered(v, bits, ivec2(x0 + j, y)); });
             return;
         default: return;  // scalars: above
     }

@@ -49,6 +49,8 @@ Codec resolveCodec(const std::string& e) {
         {"normal_octahedral_bevy", Codec::NormalOctahedralBevy},
         {"normal_octahedral_unity", Codec::NormalOctahedralUnity},
         {"normal_xy_float16", Codec::NormalXyFloat16},
+        {"emissive_albedo_ratio", Codec::EmissiveAlbedoRatio},
+        {"normal_octahedral_dithered", Codec::NormalOctahedralDithered},
     };
     for (const auto& [name, codec] : names)
         if (e == name) return codec;
@@ -68,7 +70,8 @@ size_t codeCount(Codec c) {
         case Codec::Gamma22:
         case Codec::Float111110: return 3;
         case Codec::Rgb9e5: return 4;
-        case Codec::Luma: return 1;
+        case Codec::Luma:
+        case Codec::EmissiveAlbedoRatio: return 1;
         case Codec::YCbCrCheckerboard:
         case Codec::YCoCgCheckerboard:
         case Codec::NormalSpheremap:
@@ -77,7 +80,8 @@ size_t codeCount(Codec c) {
         case Codec::NormalOctahedralPrecise:
         case Codec::NormalOctahedralBevy:
         case Codec::NormalOctahedralUnity:
-        case Codec::NormalXyFloat16: return 2;
+        case Codec::NormalXyFloat16:
+        case Codec::NormalOctahedralDithered: return 2;
         default: return 0;
     }
 }
@@ -111,6 +115,13 @@ FieldPlan planField(const Target& t, const Field& f, int words) {
         throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) + " (" + f.encoding +
                                ") has " + std::to_string(f.codes.size()) + " codes");
     fp.inputs = isScalar(fp.codec) ? int(fp.codes.size()) : 3;
+    if (const EncodingInfo* e = findEncoding(f.encoding); e && !e->reads.empty()) {
+        const AttributeInfo* r = findAttribute(e->reads);
+        fp.reads = r ? surfaceOffset(r->id) : -1;
+        if (fp.reads < 0 || fp.source < 0)
+            throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) + " (" + f.encoding +
+                                   ") reads " + e->reads + ", not a Surface member, or is an extra");
+    }
     if (fp.source >= 0 && fp.source + fp.inputs > kSurfaceFloats)
         throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) +
                                " reads past the Surface");
@@ -217,7 +228,10 @@ CodecPlan compilePlan(const Layout& layout) {
     };
     for (const TargetPlan& t : plan.targets)
         for (const FieldPlan& f : t.encodeFields)
-            if (f.source >= 0) read(f.source, f.inputs);
+            if (f.source >= 0) {
+                read(f.source, f.inputs);
+                if (f.reads >= 0) read(f.reads, 3);
+            }
     for (const int src : plan.materialSource)
         if (src >= 0) read(src, 1);
     return plan;

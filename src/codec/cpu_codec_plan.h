@@ -56,6 +56,8 @@ enum class Codec : uint8_t {
     NormalOctahedralBevy,
     NormalOctahedralUnity,
     NormalXyFloat16,
+    EmissiveAlbedoRatio,       // reads base colour (FieldPlan::reads)
+    NormalOctahedralDithered,  // reads the pixel coordinate (gradient noise)
 };
 
 // Per component of the attribute (one code each) or the whole vec3 (Color and Normal kinds).
@@ -80,6 +82,7 @@ struct FieldPlan {
     int source = -1;      // first float of the attribute in Surface; -1: an extra (no Surface member)
     int components = 0;   // the attribute's Surface components (what decode writes); 0 for extras
     int inputs = 0;       // floats read per pixel: one per code for scalars, 3 for vec3 encodings
+    int reads = -1;       // first float of the other attribute the encoding reads (base colour), -1: none
     float constant[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // the inputs of an extra (its declared value)
     std::vector<CodePlan> codes;
 };

@@ -56,6 +56,15 @@ const EncodingInfo& encodingOf(const Field& f) {
     return *e;
 }
 
+// The Surface member of the attribute an encoding reads besides its own (emissive_albedo_ratio:
+// "s.baseColor"): at write time the unquantised value, at read time the value decoded before it.
+std::string readsExpr(const EncodingInfo& e) {
+    const AttributeInfo* a = findAttribute(e.reads);
+    const char* m = a ? surfaceMemberName(a->id) : nullptr;
+    if (!m) throw std::logic_error("wiring: encoding " + e.name + " reads unknown attribute " + e.reads);
+    return std::string("s.") + m;
+}
+
 bool isScalarField(const Field& f) { return f.encoding == kIdEncoding || encodingOf(f).kind == AttributeKind::Scalar; }
 
 std::string scalarEncode(const std::string& enc, const std::string& x, int bits) {
@@ -149,6 +158,11 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
         for (int i = 0; i < 2; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "luma") {
         codes.push_back("quantizeUnorm(lumaBt601(" + v + "), " + b + ")");
+    } else if (e == "emissive_albedo_ratio") {
+        codes.push_back("encodeEmissiveAlbedoRatio(" + v + ", " + readsExpr(encodingOf(f)) + ", " + b + ")");
+    } else if (e == "normal_octahedral_dithered") {
+        o << ind << "uvec2 " << id << " = encodeNormalOctahedralDithered(" << v << ", " << b << ", pixel);\n";
+        for (int i = 0; i < 2; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
         colorTransform(e, fwd, inv);
         o << ind << "vec3 " << id << " = " << fwd << "(" << v << ");\n";
@@ -198,7 +212,9 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
     if (e == "float11_11_10")
         return "vec3(decodeFloat11(" + c[0] + "), decodeFloat11(" + c[1] + "), decodeFloat10(" + c[2] + "))";
     if (e == "rgb9e5") return "decodeRgb9e5(uvec4(" + c[0] + ", " + c[1] + ", " + c[2] + ", " + c[3] + "))";
-    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity")
+    if (e == "emissive_albedo_ratio")
+        return "decodeEmissiveAlbedoRatio(" + c[0] + ", " + b + ", " + readsExpr(encodingOf(f)) + ")";
+    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_dithered")
         return "decodeNormalOctahedralTrunc(uvec2(" + c[0] + ", " + c[1] + "), " + b + ")";
     if (e == "normal_xy_float16") return "decodeNormalXyFloat16(uvec2(" + c[0] + ", " + c[1] + "))";
     if (e == "luma") return "vec3(dequantizeUnorm(" + c[0] + ", " + b + "))";

@@ -106,6 +106,20 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"normal_xy_float16", K::Normal, 2, 16, 16, 16, 0, false, "unit vector, view space",
                  "x, y as IEEE half floats; z = +sqrt(1 - x^2 - y^2) (facing the camera), no sign bit",
                  "Valient, 'Deferred Rendering in Killzone 2', Develop Conference 2007 (RT1: FP16 normal X, Y)"});
+    // zeux/niagara (src/shaders/mesh.frag.glsl, final.comp.glsl @95f289b7): niagara_encodings.h.
+    EncodingInfo ratio{"emissive_albedo_ratio", K::Color, 1, 8, 1, 16, 0, false,
+                       "[0, inf)^3 emissive, with base_color",
+                       "x = log2(1 + L(emissive) / (L(base_color) + 0.001)) / 5 as unorm, L = (0.3, 0.6, 0.1); "
+                       "decodes emissive = base_color * (2^(5x) - 1) from the decoded base_color (its hue only)",
+                       "zeux/niagara mesh.frag.glsl (gbuffer[0].a) and final.comp.glsl"};
+    ratio.reads = "base_color";
+    v.push_back(ratio);
+    EncodingInfo dither{"normal_octahedral_dithered", K::Normal, 2, 10, 2, 16, 0, false, "unit vector",
+                        "octahedral, unorm of p*0.5+0.5 plus interleaved gradient noise of the pixel "
+                        "* 0.5 / (2^b - 1) before rounding (niagara's deband); error up to one step",
+                        "zeux/niagara mesh.frag.glsl (gbuffer[1].rg); Jimenez, SIGGRAPH 2014 (gradient noise)"};
+    dither.dithered = true;
+    v.push_back(dither);
     return v;
 }
 

@@ -26,6 +26,11 @@ struct EncodingInfo {
     std::string inputRange;   // what the encoder expects, e.g. "[0,1]", "unit vector"
     std::string description;
     std::string source;       // paper / talk / spec it follows
+    // Another attribute of the same pixel the encoding reads (layout-language name, "" for none):
+    // emissive_albedo_ratio stores emissive relative to base_color's luminance and decodes it from
+    // the decoded base_color, so the layout must store base_color in a field before it.
+    std::string reads = {};
+    bool dithered = false;    // the encoder adds noise that is a function of the pixel coordinate
 };
 
 // All encodings, in a stable order (scalars, colours, normals).

@@ -419,6 +419,7 @@ std::vector<std::string> wholeValueCodeNames(const std::string& encoding) {
     if (encoding == "ycbcr_checkerboard") return {"Y", "Cb|Cr"};
     if (encoding == "ycocg_checkerboard") return {"Y", "Co|Cg"};
     if (encoding == "luma") return {"Y"};
+    if (encoding == "emissive_albedo_ratio") return {"x"};  // log2(1 + L(e) / L(albedo)) / 5
     return {};
 }
 

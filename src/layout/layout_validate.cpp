@@ -29,6 +29,7 @@ public:
         checkTargets();
         checkStencil();
         checkStoredOnce();
+        checkReads();
         checkRequired();
         checkFallbacks();
         checkPipeline();
@@ -59,6 +60,8 @@ private:
             case AttributeKind::Color:
                 if (attr.components != 3 || attr.id == Attribute::Normal || attr.id == Attribute::Position)
                     return e + " encodes RGB colours, not " + a;
+                if (!enc.reads.empty() && attr.id != Attribute::Emissive)
+                    return e + " stores emissive relative to " + enc.reads + ", not " + a;
                 return "";
             case AttributeKind::Scalar:
                 break;
@@ -266,6 +269,31 @@ private:
         const std::vector<Channel> channels = {{"s", d.stencilBits, 0, ChannelType::Uint}};
         for (const Field& f : d.stencil) checkField(f, channels, "the stencil");
         checkPacking(d.stencil, channels, d.stencilBits, "the stencil", d.format, d.formatPlace);
+    }
+
+    // An encoding that reads another attribute of the pixel (emissive_albedo_ratio reads
+    // base_color) decodes from that attribute's decoded value: it must be stored in a field that
+    // comes before this one (an earlier target, or earlier in the same target), as readGBuffer
+    // and the CPU codec decode fields in layout order.
+    void checkReads() {
+        std::map<Attribute, const Field*> before;
+        for (const Target& t : layout_.targets)
+            for (const Field& f : t.fields) {
+                const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
+                if (enc && !enc->reads.empty()) {
+                    const AttributeInfo* r = findAttribute(enc->reads);
+                    const std::string a = squote(attributeName(f.attribute)), e = squote(enc->name);
+                    if (r && !before.count(r->id)) {
+                        const bool later = layout_.stores(r->id);
+                        error(f.encodingPlace,
+                              "encoding " + e + " of " + a + " reads " + squote(enc->reads) + ", which " +
+                                  (later ? "is stored after it" : "the layout does not store") + ": store " +
+                                  enc->reads + " in a field before " + a +
+                                  " (an earlier target, or earlier in this one), or choose another encoding for " + a);
+                    }
+                }
+                before.emplace(f.attribute, &f);
+            }
     }
 
     void checkStoredOnce() {

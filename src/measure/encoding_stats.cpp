@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "encodings.h"
+#include "niagara_encodings.h"
 #include "error.h"
 
 namespace gbl {
@@ -111,7 +112,7 @@ glm::dvec3 uniformSphere(double u, double v) {
 
 // ---- round trips -----------------------------------------------------------------------------
 
-glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n) {
+glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n, glm::ivec2 pixel) {
     const EncodingInfo& info = requireEncoding(name, bits, AttributeKind::Normal);
     unsigned b = unsigned(bits);
     if (info.name == "normal_xyz") return enc::decodeNormalXyz(enc::encodeNormalXyz(n, b), b);
@@ -127,6 +128,8 @@ glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n) {
         return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralTrunc(n, b, 0.0f), b);
     if (info.name == "normal_octahedral_unity")
         return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralTrunc(n, b, 0.5f), b);
+    if (info.name == "normal_octahedral_dithered")
+        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralDithered(n, b, pixel), b);
     // No sign bit: over the whole sphere, the half facing away (z < 0) comes back mirrored.
     if (info.name == "normal_xy_float16") return enc::decodeNormalXyFloat16(enc::encodeNormalXyFloat16(n));
     throwUserError("encoding '" + info.name + "' has no normal round trip");
@@ -156,6 +159,8 @@ glm::vec3 roundTripColor(std::string_view name, int bits, glm::vec3 c) {
         return vec3(enc::decodeFloat11(enc::encodeFloat11(c.x)), enc::decodeFloat11(enc::encodeFloat11(c.y)),
                     enc::decodeFloat10(enc::encodeFloat10(c.z)));
     if (info.name == "rgb9e5") return enc::decodeRgb9e5(enc::encodeRgb9e5(c));
+    if (info.name == "emissive_albedo_ratio")
+        return enc::decodeEmissiveAlbedoRatio(enc::encodeEmissiveAlbedoRatio(c, c, b), b, c);
     throwUserError("encoding '" + info.name + "' has no single-value colour round trip (it reads neighbours)");
 }
 
@@ -237,10 +242,12 @@ EncodingStats measureEncoding(std::string_view name, int bits, int samples, std:
     if (info->kind == AttributeKind::Normal) {
         s.domain = "uniform unit sphere";
         s.unit = "deg";
-        for (double& e : err) {
+        for (size_t i = 0; i < err.size(); ++i) {
+            double& e = err[i];
             double u = uniform01(rng), v = uniform01(rng);
             glm::dvec3 n = uniformSphere(u, v);
-            vec3 d = roundTripNormal(info->name, bits, toVec3(n));
+            // Sample i at pixel (i mod 256, i / 256): the dithered encodings' noise varies over them.
+            vec3 d = roundTripNormal(info->name, bits, toVec3(n), glm::ivec2(int(i % 256), int(i / 256)));
             e = angleDegrees(n, glm::dvec3(d));
         }
     } else if (info->kind == AttributeKind::Color) {

@@ -55,8 +55,10 @@ nlohmann::json encodingStatsToJson(const EncodingStats& stats);
 nlohmann::json encodingStatsToJson(const std::vector<EncodingStats>& stats);
 
 // Encode + decode one value through the C++ mirror. Kind must match (normal / colour / scalar);
-// the checkerboard colour encodings have no single-value round trip (throw).
-glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n);
+// the checkerboard colour encodings have no single-value round trip (throw). `pixel` feeds the
+// dithered encodings' noise (normal_octahedral_dithered). emissive_albedo_ratio round-trips rgb as
+// an emissive whose albedo is rgb itself (the hue it keeps), decoded with that exact albedo.
+glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n, glm::ivec2 pixel = {0, 0});
 glm::vec3 roundTripColor(std::string_view name, int bits, glm::vec3 rgb);
 float roundTripScalar(std::string_view name, int bits, float x);
 

@@ -20,6 +20,7 @@
 #include "cpu_codec.h"
 #include "encoding_registry.h"
 #include "encodings.h"
+#include "niagara_encodings.h"
 #include "layout_catalog.h"
 #include "normal_space.h"
 #include "encodings_fast.h"
@@ -153,6 +154,11 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
     } else if (e == "normal_xy_float16") {
         const uvec2 u = encodeNormalXyFloat16(v);
         c = {u.x, u.y};
+    } else if (e == "emissive_albedo_ratio") {  // niagara: relative to the unquantised albedo
+        c = {encodeEmissiveAlbedoRatio(v, s.baseColor, b)};
+    } else if (e == "normal_octahedral_dithered") {
+        const uvec2 u = encodeNormalOctahedralDithered(v, b, pixel);
+        c = {u.x, u.y};
     } else if (e == "luma") {
         c = {quantizeUnorm(lumaBt601(v), b)};
     } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
@@ -178,7 +184,8 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
     return c;
 }
 
-vec3 decodeField(const Field& f, const std::vector<uint>& c) {
+// `s`: the Surface decoded so far (emissive_albedo_ratio reads its base colour).
+vec3 decodeField(const Field& f, const std::vector<uint>& c, const Surface& s) {
     const std::string& e = f.encoding;
     if (isScalar(f)) {
         vec3 r(0.0f);
@@ -191,8 +198,9 @@ vec3 decodeField(const Field& f, const std::vector<uint>& c) {
     if (e == "gamma22") return vec3(decodeGamma22(c[0]), decodeGamma22(c[1]), decodeGamma22(c[2]));
     if (e == "float11_11_10") return vec3(decodeFloat11(c[0]), decodeFloat11(c[1]), decodeFloat10(c[2]));
     if (e == "rgb9e5") return decodeRgb9e5(uvec4(c[0], c[1], c[2], c[3]));
-    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity")
+    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_dithered")
         return decodeNormalOctahedralTrunc(uvec2(c[0], c[1]), b);
+    if (e == "emissive_albedo_ratio") return decodeEmissiveAlbedoRatio(c[0], b, s.baseColor);
     if (e == "normal_xy_float16") return decodeNormalXyFloat16(uvec2(c[0], c[1]));
     if (e == "luma") return vec3(dequantizeUnorm(c[0], b));
     if (colorTransform(e, fwd, inv))
@@ -357,7 +365,7 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                     }
                     std::vector<uint> codes;
                     for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, w));
-                    setMember(s, f.attribute, decodeField(f, codes));
+                    setMember(s, f.attribute, decodeField(f, codes, s));
                 }
             }
             for (const MaterialSlot& slot : slots) {

@@ -388,7 +388,10 @@ TEST_F(GpuCpuBits, NativeFormatsRenderAndDecodeNearTheBitExactPath) {
             auto cmp = [&](float a, float b) {
                 const float d = std::abs(a - b) / std::max(1.0f, std::abs(b));
                 worst = std::max(worst, d);
-                far += d > 0.01f;
+                // One 8-bit step in each code, through the widest inverse transform: YCbCr's
+                // B = Y + 1.772 Cb moves by 1/255 + 1.772/254 = 0.0109 (ryse's native RT2 reaches
+                // 0.0108 with the sample it got once niagara shifted the seeds; 0.0086 before).
+                far += d > 0.0115f;
             };
             for (int k = 0; k < 3; ++k) {
                 cmp(g[i].normal[k], s[i].normal[k]);

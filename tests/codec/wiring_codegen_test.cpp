@@ -187,7 +187,8 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                         if (e == "normal_xyz") bound = 0.39 * s8 * 1.1;
                         else if (e == "normal_bestfit") bound = 0.31 * 1.05;
                         else if (e == "normal_xy_zsign") bound = b >= 16 ? 0.35 : b >= 10 ? 2.9 : 5.8 * 1.05;
-                        else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity")
+                        else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" ||
+                                 e == "normal_octahedral_dithered")
                             bound = 2.0 * 0.95 * o8 * 1.1;  // truncation: up to a whole step, not half
                         else if (e.rfind("normal_octahedral", 0) == 0) bound = 0.95 * o8 * 1.1;
                         else if (e == "normal_spheremap") bound = 11.5 * std::sqrt(s8) * 1.1;
@@ -250,6 +251,14 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                         for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));
                         const double s8 = 255.0 / (std::ldexp(1.0, b) - 1.0);
                         bound = (e == "ycbcr" ? 0.0054 : e == "ycocg" ? 0.0058 : 0.011) * s8 * 1.05;
+                    } else if (e == "emissive_albedo_ratio") {
+                        // niagara: only the ratio of luminances survives, clamped to 31, within half
+                        // a code step in log2(1 + ratio) / 5; the hue is the decoded albedo's.
+                        auto L = [](glm::vec3 c) { return 0.3 * c.x + 0.6 * c.y + 0.1 * c.z; };
+                        const double want = std::min(L(x) / (L(a.baseColor) + 0.001), 31.0);
+                        const double got = L(d.baseColor) > 1e-6 ? L(y) / L(d.baseColor) : want;
+                        err = std::abs(std::log2(1.0 + got) - std::log2(1.0 + want)) / 5.0;
+                        bound = 0.5 / (std::ldexp(1.0, b) - 1.0) + 1e-6;
                     } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
                         // Smooth input: the quantisation bound plus the neighbours' chroma change.
                         for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));

@@ -89,6 +89,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
         // Valient, Develop 2007: four RGBA8 + D24S8 = 20 bytes; the talk's "36 MB" is this at
         // 1280x720 with 2x MSAA: 20 * 1280 * 720 * 2 = 36.9e6 bytes.
         {"killzone2", 4 * 4 + 4},
+        {"niagara", 4 + 4 + 4},                // zeux/niagara: RGBA8 + A2B10G10R10 + D32
     };
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     EXPECT_NEAR(bytesPerPixel(load("killzone2")) * 1280.0 * 720.0 * 2.0 / 1e6, 36.0, 1.0);
@@ -125,6 +126,13 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(bitsOf(load("ue5"), Attribute::Tangent), 24);
     EXPECT_EQ(bitsOf(load("ue5"), Attribute::Velocity), 32);
     EXPECT_EQ(bitsOf(load("ue5-16bit"), Attribute::BaseColor), 48);
+    // niagara: emissive is one 8-bit ratio to the albedo's luminance, read after the albedo.
+    const Layout niagara = load("niagara");
+    EXPECT_EQ(bitsOf(niagara, Attribute::Emissive), 8);
+    EXPECT_EQ(bitsOf(niagara, Attribute::Normal), 20);  // dithered octahedral 10:10
+    EXPECT_EQ(bitsOf(niagara, Attribute::Roughness), 10);
+    EXPECT_EQ(niagara.findField(Attribute::Emissive)->encoding, "emissive_albedo_ratio");
+    EXPECT_TRUE(niagara.depth.reversedZ);
 }
 
 // `layouts list` groups as the atlas does: each family once, its layouts under it by year.
@@ -171,6 +179,8 @@ TEST(LayoutFiles, ListGroupsByFamily) {
     EXPECT_EQ(familyOf["urp-deferred"], "Unity");
     EXPECT_EQ(familyOf["crysis3-thin"], "CryENGINE");
     EXPECT_EQ(yearOf["killzone2"], 2007);
+    EXPECT_EQ(familyOf["niagara"], "niagara");
+    EXPECT_EQ(yearOf["niagara"], 2024);
     // Families by their earliest year: early deferred (2005) before Guerrilla (2007) before CryENGINE (2011).
     const auto pos = [&](const std::string& f) { return std::find(families.begin(), families.end(), f) - families.begin(); };
     EXPECT_LT(pos("early deferred"), pos("Guerrilla"));
