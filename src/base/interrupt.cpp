@@ -1,5 +1,6 @@
 #include "interrupt.h"
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <mutex>
@@ -47,6 +48,21 @@ void watch(sigset_t set) {
     {
         std::lock_guard lock(s.mutex);
         s.interrupted = true;
+        for (const auto& path : s.temporaries) ::unlink(path.c_str());
+    }
+    // A writer registers its temporary, then creates it: one that registered before the
+    // interruption may create it after the unlink above (cli_test's interrupt test once found a
+    // .tmp left so). Such writers finish by committing (a whole file) or discarding, and either
+    // unregisters; wait for them (at most 10 s), then remove whatever is still registered.
+    for (int waited = 0; waited < 500; ++waited) {
+        {
+            std::lock_guard lock(s.mutex);
+            if (s.temporaries.empty()) break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    {
+        std::lock_guard lock(s.mutex);
         for (const auto& path : s.temporaries) ::unlink(path.c_str());
         s.temporaries.clear();
     }
