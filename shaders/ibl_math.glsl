@@ -1,7 +1,7 @@
 // ibl_math.glsl -- image-based lighting maths of UE4 (SIGGRAPH 2013) and Black Ops 2's analytic
 // environment BRDF. Include file (GLSL 450, no #version). Include brdf.glsl first.
 // The C++ mirror is src/shading/ibl_math.h / src/shading/ibl_math.cpp (same names, same math;
-// specularIBLGroundTruthMis too, checked against it by ibl_gpu_test GroundTruthMisMatchesCpuTwin).
+// specularIBLGroundTruthMis too, checked against it by ibl_ground_truth_test GroundTruthMisMatchesCpuTwin).
 //
 // Sources:
 //   [Karis13]   B. Karis, "Real Shading in Unreal Engine 4", SIGGRAPH 2013 course notes

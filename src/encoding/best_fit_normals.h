@@ -1,7 +1,7 @@
 #pragma once
 // The best-fit normal table: CryEngine 3's pre-baked look-up (Kaplanyan, "CryENGINE 3: Reaching
 // the Speed of Light", SIGGRAPH 2010 Advances course), generated here by one function and read
-// by both encoders, encodeNormalBestFit in shaders/encodings.glsl (uploaded as an SSBO, set 0,
+// by both encoders, encodeNormalBestFit in shaders/normal_encodings.glsl (uploaded as an SSBO, set 0,
 // binding kBestFitTableBinding of every G-buffer pass) and its mirror in encodings.h.
 //
 // Texel (i, j), j <= i < 1024, of the triangle of q = n / max|n|'s middle and smallest |component|
@@ -18,7 +18,7 @@ namespace gbl::enc {
 
 inline constexpr uint32_t kBestFitTableSize = 1024;  // CryEngine's 1024 x 1024
 inline constexpr uint32_t kBestFitTableEntries = kBestFitTableSize * (kBestFitTableSize + 1) / 2;
-inline constexpr uint32_t kBestFitTableBinding = 15;  // GBL_BEST_FIT_TABLE_BINDING in encodings.glsl
+inline constexpr uint32_t kBestFitTableBinding = 15;  // GBL_BEST_FIT_TABLE_BINDING in normal_encodings.glsl
 
 // Generated on first use (tests/encoding BestFitTableHoldsTheSearchAtTexelCentres generates it
 // twice, on 2 threads and on 1: 0.4-0.9 s measured on the loaded 2-core machine), deterministic: the same words on

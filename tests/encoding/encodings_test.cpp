@@ -1,4 +1,4 @@
-// Tests for the normal encodings (src/encoding/encodings.h, mirror of shaders/encodings.glsl).
+// Tests for the normal encodings (src/encoding/encodings.h, mirror of shaders/normal_encodings.glsl).
 // Exhaustive over every code up to 16 bits, millions of fixed-seed random inputs, and
 // references written independently here in double arithmetic.
 #include "encodings_test_support.h"
@@ -220,7 +220,7 @@ TEST(Normals, BestFitTableHoldsTheSearchAtTexelCentres) {
 
 // GLSL and C++ read the table at the same place and size.
 TEST(Normals, BestFitTableConstantsMatchTheShader) {
-    std::ifstream file(std::string(GBL_SOURCE_SHADER_DIR) + "/encodings.glsl");
+    std::ifstream file(std::string(GBL_SOURCE_SHADER_DIR) + "/normal_encodings.glsl");
     ASSERT_TRUE(file);
     std::stringstream text;
     text << file.rdbuf();

@@ -1,5 +1,5 @@
 // Tests for the scalar encoding primitives (src/encoding/encodings.h, mirror of
-// shaders/encodings.glsl): fixed point, small floats and 8-bit sRGB. Exhaustive over every code up
+// shaders/scalar_encodings.glsl): fixed point, small floats and 8-bit sRGB. Exhaustive over every code up
 // to 16 bits, millions of fixed-seed random inputs, and references written independently here in
 // double arithmetic.
 #include "encodings_test_support.h"
@@ -323,8 +323,8 @@ std::vector<std::string> glslArrayLiterals(const std::string& text, const std::s
 }
 
 TEST(Srgb8, GlslTablesEqualCppTables) {
-    std::ifstream file(std::string(GBL_SOURCE_SHADER_DIR) + "/encodings.glsl");
-    ASSERT_TRUE(file) << "cannot open shaders/encodings.glsl";
+    std::ifstream file(std::string(GBL_SOURCE_SHADER_DIR) + "/scalar_encodings.glsl");
+    ASSERT_TRUE(file) << "cannot open shaders/scalar_encodings.glsl";
     std::stringstream ss;
     ss << file.rdbuf();
     std::string text = ss.str();
@@ -348,7 +348,7 @@ TEST(Srgb8, GlslTablesEqualCppTables) {
 }
 
 // Regenerates the table literals: encodings_test --gtest_also_run_disabled_tests
-//   --gtest_filter='*PrintSrgbTables*' (paste into both shaders/encodings.glsl and
+//   --gtest_filter='*PrintSrgbTables*' (paste into both shaders/scalar_encodings.glsl and
 //   src/encoding/encodings.cpp; the C++ copy gets an `f` after each number).
 TEST(Srgb8, DISABLED_PrintSrgbTables) {
     auto print = [](const std::vector<float>& v) {

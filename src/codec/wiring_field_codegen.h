@@ -1,0 +1,40 @@
+#pragma once
+// Internal to codec/: the per-encoding GLSL of one field, used by wiring_codegen.cpp (which places
+// the codes in a target's words and assembles writeGBuffer / readGBuffer). Split from it so that
+// each file has one job: this one knows the encodings' GLSL names, that one the layout's bits.
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "layout.h"
+
+namespace gbl::wiring {
+
+// An unsigned GLSL literal ("12u").
+inline std::string ulit(uint64_t v) { return std::to_string(v) + "u"; }
+
+inline constexpr const char* kComp[] = {"x", "y", "z", "w"};
+
+// The vector component (0 = x .. 3 = w) a channel of a target is read from.
+int channelComponent(const Channel& c);
+int attributeComponents(Attribute a);
+
+// Colour transforms of the YCbCr family: forward, inverse; false for other encodings.
+bool colorTransform(const std::string& enc, std::string& fwd, std::string& inv);
+// The GLSL function that dequantises an encoding's chroma codes.
+std::string chromaDequantize(const std::string& enc);
+
+// Emits the encoder of a field: setup lines, returns one uint expression per code.
+std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind, const Field& f, const std::string& id);
+// Decoded value of a (non-checkerboard) field from its code expressions; "" for extras.
+std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c);
+
+// Native formats: whether every code of `f` is one whole channel of `t` whose hardware encoding is
+// the field's own; the floats the shader writes for them (emitNativeEncode) and the decoded value
+// from the floats the hardware reads back (nativeDecodeExpr).
+bool nativeField(const Target& t, const Field& f);
+std::vector<std::string> emitNativeEncode(std::ostream& o, const std::string& ind, const Field& f, const std::string& id);
+std::string nativeDecodeExpr(const Field& f, const std::vector<std::string>& u);
+
+}  // namespace gbl::wiring
