@@ -167,8 +167,9 @@ TEST(CryGlossPower, TablesMatchTheMapping) {
         const double g = (std::log2(2.0 / std::pow(double(r), 4.0) - 2.0) - 1.0) / 10.0;
         const uint code = encodeCryGlossPower(r);
         ASSERT_NEAR(double(code), std::clamp(std::floor(g * 255.0 + 0.5), 0.0, 255.0), 1.0) << r;
-        if (std::abs(g * 255.0 - std::floor(g * 255.0) - 0.5) > 1e-4)  // away from a tie
+        if (std::abs(g * 255.0 - std::floor(g * 255.0) - 0.5) > 1e-4) {  // away from a tie
             ASSERT_EQ(double(code), std::clamp(std::floor(g * 255.0 + 0.5), 0.0, 255.0)) << r;
+        }
         worst = std::max(worst, std::fabs(double(decodeCryGlossPower(code)) - double(r)));
     }
     std::printf("[measured] cry_gloss_power: max roughness error inside [0.1767, 0.8409] %.6f\n", worst);
