@@ -112,7 +112,8 @@ TEST(ReportAtlas, HtmlTableShowsTheSameRows) {
             << family;
     // Rows in the JSON's order, each with its FLIP and PSNR as report.json has them.
     size_t last = 0;
-    for (const Json& row : reportToJson(model)["atlas"]) {
+    const Json report = reportToJson(model);  // a named value: a temporary's ["atlas"] would dangle in the loop
+    for (const Json& row : report["atlas"]) {
         const std::string layout = row["layout"];
         const size_t p = section.find(">" + layout + "</td>");
         ASSERT_NE(p, std::string::npos) << layout;
