@@ -37,54 +37,22 @@ std::vector<Binding> decodeSet0() {
 }
 }  // namespace
 
-PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
-                                PipelineMemo& memo) {
+namespace {
+
+// The decode pass's pipeline, from `memo`: writing the band buffer (set 0 binding 2; the host
+// read-back), or `toImages`, the GBL_DECODE_TO_IMAGES variant writing four RGBA32F images (set 0
+// binding 3; the GPU evaluation's input). Views and IBL modes after the first compile nothing.
+PassPipeline decodePipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
+                            PipelineMemo& memo, bool toImages) {
     const size_t materialTargets = wiring.materialPass ? wiring.materialTargetFormats.size() : 0;
     const uint32_t setCount = wiring.materialPass ? 3 : 2;
     ShaderSource cs = loadShaderFile("decode_pass.comp.glsl");
     cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
     addSpaceDefines(cs, wiring);
     addTargetReadDefines(cs, scene);  // a visibility buffer's TEXTURE_COUNT: in the key below
-    cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ")";
-    const std::string key = "decode|" + shaderMemoKey(cs) + "|targets " + std::to_string(wiring.targetFormats.size()) +
-                            " " + std::to_string(materialTargets) + " sets " + std::to_string(setCount);
-    return memo.getOrBuild(ctx.device, key, [&] {
-        auto samplers = [](size_t count) {
-            std::vector<Binding> b;
-            for (uint32_t i = 0; i < count; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
-            return b;
-        };
-        const std::vector<uint32_t> spirv = compileGlsl(cs);  // first: a failed compile leaks nothing
-        MemoPipeline p;
-        p.setLayouts = {createSetLayout(ctx.device, decodeSet0(), VK_SHADER_STAGE_COMPUTE_BIT),
-                        createSetLayout(ctx.device, targetReadBindings(wiring.targetFormats.size(), scene),
-                                        VK_SHADER_STAGE_COMPUTE_BIT)};
-        if (wiring.materialPass)
-            p.setLayouts.push_back(createSetLayout(ctx.device, samplers(materialTargets), VK_SHADER_STAGE_COMPUTE_BIT));
-        p.layout = createPipelineLayout(ctx.device, p.setLayouts, 4, VK_SHADER_STAGE_COMPUTE_BIT);
-        VkShaderModule module = createShaderModule(ctx.device, spirv);
-        p.pipeline = createComputePipeline(ctx, p.layout, module);
-        vkDestroyShaderModule(ctx.device, module, nullptr);
-        return p;
-    });
-}
-
-namespace {
-
-// The GBL_DECODE_TO_IMAGES variant of the decode pass (the GPU evaluation's input: four RGBA32F
-// images at set 0 binding 3 instead of the band buffer), from `memo` like every pass's pipeline so
-// that views and IBL modes after the first compile nothing.
-PassPipeline decodeToImagesPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
-                                    PipelineMemo& memo) {
-    const size_t materialTargets = wiring.materialPass ? wiring.materialTargetFormats.size() : 0;
-    const uint32_t setCount = wiring.materialPass ? 3 : 2;
-    ShaderSource cs = loadShaderFile("decode_pass.comp.glsl");
-    cs.virtualFiles["gbuffer_wiring.glsl"] = wiring.glsl;
-    addSpaceDefines(cs, wiring);
-    addTargetReadDefines(cs, scene);
-    cs.defines.push_back({"GBL_DECODE_TO_IMAGES", "1"});
-    cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + ", to images)";
-    const std::string key = "decode-images|" + shaderMemoKey(cs) + "|targets " +
+    if (toImages) cs.defines.push_back({"GBL_DECODE_TO_IMAGES", "1"});
+    cs.name = "decode_pass.comp.glsl (layout " + wiring.layoutName + (toImages ? ", to images)" : ")");
+    const std::string key = std::string(toImages ? "decode-images|" : "decode|") + shaderMemoKey(cs) + "|targets " +
                             std::to_string(wiring.targetFormats.size()) + " " + std::to_string(materialTargets) +
                             " sets " + std::to_string(setCount);
     return memo.getOrBuild(ctx.device, key, [&] {
@@ -93,7 +61,8 @@ PassPipeline decodeToImagesPipeline(const VulkanContext& ctx, const GBufferWirin
         for (uint32_t i = 0; i < materialTargets; ++i)
             materialBindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
         MemoPipeline p;
-        p.setLayouts = {createSetLayout(ctx.device, decodeToImagesSet0(), VK_SHADER_STAGE_COMPUTE_BIT),
+        p.setLayouts = {createSetLayout(ctx.device, toImages ? decodeToImagesSet0() : decodeSet0(),
+                                        VK_SHADER_STAGE_COMPUTE_BIT),
                         createSetLayout(ctx.device, targetReadBindings(wiring.targetFormats.size(), scene),
                                         VK_SHADER_STAGE_COMPUTE_BIT)};
         if (wiring.materialPass)
@@ -107,6 +76,11 @@ PassPipeline decodeToImagesPipeline(const VulkanContext& ctx, const GBufferWirin
 }
 
 }  // namespace
+
+PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
+                                PipelineMemo& memo) {
+    return decodePipeline(ctx, wiring, scene, memo, false);
+}
 
 std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
                                                const GBufferPass& gbuffer, const Buffer& frameConstants,
@@ -122,7 +96,7 @@ std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const G
         desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         im = createImage(ctx, desc);
     }
-    const PassPipeline built = decodeToImagesPipeline(ctx, wiring, targetReadScene(gbuffer), memo);
+    const PassPipeline built = decodePipeline(ctx, wiring, targetReadScene(gbuffer), memo, true);
     const std::vector<VkDescriptorSetLayout>& layouts = built.entry->setLayouts;
     const std::vector<Binding> set0 = decodeToImagesSet0();
     const std::vector<Binding> set1 = targetReadBindings(gbuffer);
