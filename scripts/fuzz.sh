@@ -36,9 +36,9 @@ flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize=vptr 
        -DGBL_SOURCE_SHADER_DIR="\"$PWD/shaders\"" -DGBL_SOURCE_LAYOUT_DIR="\"$PWD/layouts\"")
 for folder in base encoding layout scene; do flags+=("-Isrc/$folder"); done
 base=(src/base/error.cpp src/base/file_io.cpp src/base/interrupt.cpp)
-layout_sources=(src/layout/layout.cpp src/layout/layout_parser.cpp src/layout/layout_parse_fields.cpp
-                src/layout/layout_parse_fallbacks.cpp src/layout/layout_validate.cpp src/layout/layout_toml_guard.cpp
-                src/encoding/encoding_registry.cpp)
+# The whole layout library (a list by hand missed a file added later and broke this build), and
+# the one encoding file it uses.
+layout_sources=(src/layout/*.cpp src/encoding/encoding_registry.cpp)
 scene_sources=(src/scene/scene.cpp src/scene/gltf_loader.cpp src/scene/tangents.cpp src/scene/camera.cpp
                src/scene/scene_normals.cpp src/scene/scene_gltf_accessor.cpp src/scene/scene_gltf_geometry.cpp
                src/scene/scene_gltf_textures.cpp src/scene/scene_gltf_materials.cpp src/scene/scene_gltf_nodes.cpp
