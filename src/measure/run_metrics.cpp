@@ -149,6 +149,19 @@ double luminance(const float* p, int channels) {
     return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
 }
 
+// The denominator's floor of relativeLuminanceError: 1e-2 x the reference's mean luminance
+// (non-positive pixels count as 0, non-finite ones are left out), at least 1e-6.
+double relativeLuminanceFloor(const Image& ref) {
+    double sum = 0.0;
+    size_t finite = 0;
+    for (size_t i = 0; i < ref.pixelCount(); ++i) {
+        const double y = luminance(&ref.pixels[i * size_t(ref.channels)], ref.channels);
+        if (std::isfinite(y) && y > 0.0) sum += y;
+        finite += std::isfinite(y) ? 1 : 0;
+    }
+    return std::max(1e-2 * (finite ? sum / double(finite) : 0.0), 1e-6);
+}
+
 }  // namespace
 
 Image relativeLuminanceError(const Image& ref, const Image& test) {
@@ -157,15 +170,7 @@ Image relativeLuminanceError(const Image& ref, const Image& test) {
                        std::to_string(ref.height) + " but test is " + std::to_string(test.width) + "x" +
                        std::to_string(test.height));
     const size_t n = ref.pixelCount();
-    double sum = 0.0;
-    size_t finite = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const double y = luminance(&ref.pixels[i * size_t(ref.channels)], ref.channels);
-        if (std::isfinite(y) && y > 0.0) sum += y;
-        finite += std::isfinite(y) ? 1 : 0;
-    }
-    const double mean = finite ? sum / double(finite) : 0.0;
-    const double floor = std::max(1e-2 * mean, 1e-6);
+    const double floor = relativeLuminanceFloor(ref);
     Image out(ref.width, ref.height, 1);
     for (size_t i = 0; i < n; ++i) {
         const double yr = luminance(&ref.pixels[i * size_t(ref.channels)], ref.channels);
@@ -314,15 +319,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     // Image errors per material class.
     {
         Image rel = relativeLuminanceError(referenceHdr, testHdr);
-        // floor of relativeLuminanceError: 1e-2 x the reference's mean luminance
-        double sum = 0.0;
-        size_t finite = 0;
-        for (size_t i = 0; i < n; ++i) {
-            const double y = luminance(&referenceHdr.pixels[i * size_t(referenceHdr.channels)], referenceHdr.channels);
-            if (std::isfinite(y) && y > 0.0) sum += y;
-            finite += std::isfinite(y) ? 1 : 0;
-        }
-        const double floor = std::max(1e-2 * (finite ? sum / double(finite) : 0.0), 1e-6);
+        const double floor = relativeLuminanceFloor(referenceHdr);  // relativeLuminanceError's
         const Image* noise = options.referenceNoise;
         if (noise && (noise->width != w || noise->height != h || noise->channels != 1))
             throw std::invalid_argument("computeRunMetrics: the reference noise image must be 1 channel, " +

@@ -75,6 +75,33 @@ PassPipeline decodePipeline(const VulkanContext& ctx, const GBufferWiring& wirin
     });
 }
 
+// One dispatch's descriptor sets: a pool and `layouts`' sets, with set 0's frame constants
+// (binding 0) and depth (1), set 1 the G-buffer, set 2 the material pass written into `writer`;
+// the caller adds its output binding (2: the band buffer, 3: the four images) and flushes.
+struct DecodeSets {
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> sets;
+};
+DecodeSets writeDecodeSets(const VulkanContext& ctx, const std::vector<VkDescriptorSetLayout>& layouts,
+                           const std::vector<Binding>& set0, const GBufferPass& gbuffer,
+                           const GBufferPass* materialPass, const Buffer& frameConstants, VkSampler nearestSampler,
+                           DescriptorWriter& writer) {
+    const std::vector<Binding> set1 = targetReadBindings(gbuffer);
+    const std::vector<Binding> set2 = materialPass ? targetReadBindings(*materialPass) : std::vector<Binding>{};
+    DecodeSets d;
+    d.pool = createPoolFor(ctx.device, {set0, set1, set2});
+    for (VkDescriptorSetLayout l : layouts) d.sets.push_back(allocateSet(ctx.device, d.pool, l));
+    writer.buffer(d.sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
+        .image(d.sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
+               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+    writeTargetReadSet(writer, d.sets[1], gbuffer, nearestSampler);
+    if (materialPass)
+        for (uint32_t i = 0; i < materialPass->targets.size(); ++i)
+            writer.image(d.sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, materialPass->targets[i].view,
+                         nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    return d;
+}
+
 }  // namespace
 
 PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
@@ -97,25 +124,13 @@ std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const G
         im = createImage(ctx, desc);
     }
     const PassPipeline built = decodePipeline(ctx, wiring, targetReadScene(gbuffer), memo, true);
-    const std::vector<VkDescriptorSetLayout>& layouts = built.entry->setLayouts;
-    const std::vector<Binding> set0 = decodeToImagesSet0();
-    const std::vector<Binding> set1 = targetReadBindings(gbuffer);
-    const std::vector<Binding> set2 = materialPass ? targetReadBindings(*materialPass) : std::vector<Binding>{};
-    VkDescriptorPool pool = createPoolFor(ctx.device, {set0, set1, set2});
-    std::vector<VkDescriptorSet> sets;
-    for (VkDescriptorSetLayout l : layouts) sets.push_back(allocateSet(ctx.device, pool, l));
     DescriptorWriter writer;
-    writer.buffer(sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
-        .image(sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
-               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+    DecodeSets d = writeDecodeSets(ctx, built.entry->setLayouts, decodeToImagesSet0(), gbuffer, materialPass,
+                                   frameConstants, nearestSampler, writer);
+    std::vector<VkDescriptorSet>& sets = d.sets;
     for (uint32_t k = 0; k < 4; ++k)
         writer.image(sets[0], 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, images[k].view, VK_NULL_HANDLE,
                      VK_IMAGE_LAYOUT_GENERAL, k);
-    writeTargetReadSet(writer, sets[1], gbuffer, nearestSampler);
-    if (materialPass)
-        for (uint32_t i = 0; i < materialPass->targets.size(); ++i)
-            writer.image(sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, materialPass->targets[i].view,
-                         nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     writer.flush(ctx.device);
     const uint32_t firstRow = 0;
     auto record = [&](VkCommandBuffer cmd, uint32_t groupsX, uint32_t groupsY) {
@@ -133,7 +148,7 @@ std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const G
         ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, 1, 1); });
     }
     ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, (w + 7) / 8, (h + 7) / 8); });
-    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
+    vkDestroyDescriptorPool(ctx.device, d.pool, nullptr);
     return images;
 }
 
@@ -147,27 +162,15 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     Buffer output =
         createBuffer(ctx, size_t(w) * band * kFloatsPerPixel * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
 
-    const std::vector<Binding> set0 = decodeSet0();
-    const std::vector<Binding> set1 = targetReadBindings(gbuffer);
-    const std::vector<Binding> set2 = materialPass ? targetReadBindings(*materialPass) : std::vector<Binding>{};
     const PassPipeline built = decodePassPipeline(ctx, wiring, targetReadScene(gbuffer), memo);
-    const std::vector<VkDescriptorSetLayout>& layouts = built.entry->setLayouts;
-    const uint32_t setCount = uint32_t(layouts.size());
+    const uint32_t setCount = uint32_t(built.entry->setLayouts.size());
     const VkPipelineLayout pipelineLayout = built.entry->layout;
     const VkPipeline pipeline = built.entry->pipeline;
-    VkDescriptorPool pool = createPoolFor(ctx.device, {set0, set1, set2});
-    std::vector<VkDescriptorSet> sets;
-    for (VkDescriptorSetLayout l : layouts) sets.push_back(allocateSet(ctx.device, pool, l));
     DescriptorWriter writer;
-    writer.buffer(sets[0], 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
-        .image(sets[0], 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, gbuffer.depth.view, nearestSampler,
-               VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)
-        .buffer(sets[0], 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output.buffer);
-    writeTargetReadSet(writer, sets[1], gbuffer, nearestSampler);
-    if (materialPass)
-        for (uint32_t i = 0; i < materialPass->targets.size(); ++i)
-            writer.image(sets[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, materialPass->targets[i].view,
-                         nearestSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    DecodeSets d = writeDecodeSets(ctx, built.entry->setLayouts, decodeSet0(), gbuffer, materialPass, frameConstants,
+                                   nearestSampler, writer);
+    std::vector<VkDescriptorSet>& sets = d.sets;
+    writer.buffer(sets[0], 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, output.buffer);
     writer.flush(ctx.device);
 
     auto record = [&](VkCommandBuffer cmd, uint32_t firstRow, uint32_t groupsX, uint32_t groupsY) {
@@ -226,7 +229,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     }
 
     destroyBuffer(ctx, output);
-    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
+    vkDestroyDescriptorPool(ctx.device, d.pool, nullptr);
     return s;
 }
 
