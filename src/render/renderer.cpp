@@ -38,7 +38,6 @@ void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t heigh
 RenderBand renderBand(const RenderSettings& settings) {
     RenderBand b;
     const uint32_t h = settings.height;
-    b.frameRows = h;
     if (settings.bandRows == 0) {
         b.rows = b.rasterRows = h;
         return b;
@@ -58,13 +57,6 @@ RenderBand renderBand(const RenderSettings& settings) {
     b.rasterFirst = b.first == 0 ? 0u : b.first - 1;
     b.rasterRows = std::min(h, b.first + b.rows + 1) - b.rasterFirst;
     return b;
-}
-
-std::vector<uint8_t> RenderBand::ownRows(std::vector<uint8_t> bytes) const {
-    if (first == 0 && rows == frameRows) return bytes;
-    const size_t rowBytes = bytes.size() / frameRows;
-    const auto from = bytes.begin() + std::ptrdiff_t(size_t(first) * rowBytes);
-    return std::vector<uint8_t>(from, from + std::ptrdiff_t(size_t(rows) * rowBytes));
 }
 
 CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool reversedZ) {
@@ -298,7 +290,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     }
     for (const GpuImage& t : gbuffer.targets) {
         if (!settings.readTargetWords) break;
-        const auto bytes = band.ownRows(downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+        const auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, 0, band.first, band.rows);
         out.targetWords.push_back(texelsToWords(bytes, size_t(w) * rows));  // R8 / R16 targets widened
     }
     if (settings.keepOnDevice) {
@@ -310,8 +302,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         destroyBuffer(ctx_, frameBuffer);
         return out;
     }
-    std::vector<uint8_t> depthBytes = band.ownRows(downloadImage(
-        ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0, VK_IMAGE_ASPECT_DEPTH_BIT));
+    std::vector<uint8_t> depthBytes = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
+                                                    VK_IMAGE_ASPECT_DEPTH_BIT, band.first, band.rows);
     out.depth.resize(size_t(w) * rows);
     if (wiring.depthFormat == VK_FORMAT_D32_SFLOAT || wiring.depthFormat == VK_FORMAT_D32_SFLOAT_S8_UINT) {
         std::memcpy(out.depth.data(), depthBytes.data(), out.depth.size() * 4);
@@ -330,8 +322,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     }
     std::vector<uint8_t>().swap(depthBytes);
     if (settings.readTargetWords && (gbuffer.depth.aspect & VK_IMAGE_ASPECT_STENCIL_BIT))
-        out.stencil = band.ownRows(downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
-                                                 VK_IMAGE_ASPECT_STENCIL_BIT));
+        out.stencil = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
+                                    VK_IMAGE_ASPECT_STENCIL_BIT, band.first, band.rows);
     if (settings.decodeSurfaces)
         out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth, material,
                                       settings.decodeBandRows, pipelines_);

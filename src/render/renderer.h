@@ -164,9 +164,6 @@ private:
 struct RenderBand {
     uint32_t first = 0, rows = 0;
     uint32_t rasterFirst = 0, rasterRows = 0;
-    uint32_t frameRows = 0;
-    // The band's own rows of a read-back G-buffer image (frameRows rows of equal size).
-    std::vector<uint8_t> ownRows(std::vector<uint8_t> bytes) const;
 };
 RenderBand renderBand(const RenderSettings& settings);
 

@@ -111,8 +111,9 @@ void expectBandsStitch(Renderer& renderer, const std::string& layoutName) {
             EXPECT_EQ(rowsOf(whole.lightBufferWords, rowWords, first, rows), band.lightBufferWords)
                 << at << " light buffer words";
         }
-        if (!whole.stencil.empty())
+        if (!whole.stencil.empty()) {
             EXPECT_EQ(rowsOf(whole.stencil, kWidth, first, rows), band.stencil) << at << " stencil";
+        }
         first += rows;
     }
 }
