@@ -46,6 +46,11 @@ RenderBand renderBand(const RenderSettings& settings) {
         throwUserError("band of rows " + std::to_string(settings.bandFirstRow) + ".." +
                        std::to_string(uint64_t(settings.bandFirstRow) + settings.bandRows) +
                        ": outside the frame's " + std::to_string(h) + " rows");
+    // The ground truth's batch count follows its mean noise over the frame (GroundTruthStats): a
+    // band's would follow the band's, another image.
+    if (settings.specularIbl == IblMode::GroundTruth)
+        throwUserError("band of rows " + std::to_string(settings.bandFirstRow) +
+                       "..: the ground truth converges over the whole frame; render it whole");
     b.first = settings.bandFirstRow;
     b.rows = settings.bandRows;
     // A halo of one row each side: checkerboard chroma (color_encodings.glsl reconstructChroma)

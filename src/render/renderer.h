@@ -56,7 +56,8 @@ struct RenderSettings {
     // bandRows) of the width x height frame, as the whole frame's render has them (rendered with
     // the frame's viewport and a halo of rows: render_band_test). Every output (HDR, noise, depth,
     // stencil, target and light-buffer words, surfaces, device images) holds the band's rows only.
-    // bandRows 0: the whole frame.
+    // bandRows 0: the whole frame. Not with IblMode::GroundTruth (UserError: it converges over the
+    // whole frame).
     uint32_t bandFirstRow = 0;
     uint32_t bandRows = 0;
     // The camera to render from; unset: the scene's (compare --views renders several).

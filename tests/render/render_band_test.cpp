@@ -155,6 +155,9 @@ TEST_F(RenderBandTest, BandOutsideTheFrameIsAUserError) {
     const GBufferWiring wiring = generateWiring(loadLayout("ue4"));
     EXPECT_THROW(renderer.render(wiring, settingsFor(50, 12, false)), UserError);  // rows 50..62 of 61
     EXPECT_THROW(renderer.render(wiring, settingsFor(61, 1, false)), UserError);
+    RenderSettings groundTruth = settingsFor(0, 8, false);
+    groundTruth.specularIbl = IblMode::GroundTruth;
+    EXPECT_THROW(renderer.render(wiring, groundTruth), UserError);
 }
 
 }  // namespace
