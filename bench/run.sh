@@ -9,7 +9,9 @@
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
 #   e2e      `gbufferlab compare` of all layouts at 1080p, run twice per --eval gpu / cpu (the second,
 #            warm, is timed by stage: its timings.json), then at 3840x2160 with the layouts
-#            GBL_BENCH_4K_LAYOUTS (default ue4,ryse,crysis3-thin) per --eval for peak memory
+#            GBL_BENCH_4K_LAYOUTS (default ue4,ryse,crysis3-thin) per --eval for peak memory, and
+#            `gbufferlab render` at 3840x2160 whole and with --band-rows 256 and 64 (peak memory;
+#            the EXRs compared byte for byte)
 #   search   `gbufferlab search --budget 16` at 480x270, 3 views, 600 candidates, confirmed by full
 #            renders: candidates per minute, CPU seconds per candidate and the goals in
 #            results/search-16/search.json and search-report.md (GBL_BENCH_SEARCH_THREADS, default 2)
@@ -74,6 +76,15 @@ for w in "${what[@]}"; do
                 /usr/bin/time -f '%M' -o "$results/compare_4k_rss_kib_$ev.txt" "$build/gbufferlab" compare \
                     --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --size 3840x2160 \
                     --layouts "${GBL_BENCH_4K_LAYOUTS:-ue4,ryse,crysis3-thin}" --out "$results/compare-4k-$ev" --force >/dev/null
+            done
+            for rows in 0 256 64; do  # 0: the whole frame
+                echo "== gbufferlab render at 3840x2160, --band-rows $rows (peak memory)"
+                band=()
+                [ "$rows" != 0 ] && band=(--band-rows "$rows")
+                /usr/bin/time -f '%M' -o "$results/render_4k_rss_kib_rows$rows.txt" "$build/gbufferlab" render \
+                    --device "${GBL_BENCH_DEVICE:-cpu}" --size 3840x2160 "${band[@]}" --out "$results/render-4k-$rows" \
+                    --force >/dev/null
+                cmp "$results/render-4k-0/reference.exr" "$results/render-4k-$rows/reference.exr"  # bit for bit
             done
             ;;
         search)

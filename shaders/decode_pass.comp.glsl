@@ -49,9 +49,12 @@ void store(uint index, ivec2 pixel, DecodedPixel d) { decoded[index] = d; }
 #endif
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, int(band.firstRow));
-    if (any(greaterThanEqual(pixel, ivec2(frame.extent.xy)))) return;
-    uint index = uint(pixel.y - int(band.firstRow)) * frame.extent.x + uint(pixel.x);
+    // `outPixel` in the outputs (the render's rows: frame.band), `pixel` in the frame and the
+    // G-buffer; the same for a whole frame.
+    ivec2 outPixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, int(band.firstRow));
+    if (outPixel.x >= int(frame.extent.x) || outPixel.y >= int(frame.band.y)) return;
+    uint index = uint(outPixel.y - int(band.firstRow)) * frame.extent.x + uint(outPixel.x);
+    ivec2 pixel = outPixel + ivec2(0, int(frame.band.x));
     float depth = texelFetch(depthTexture, pixel, 0).r;
     DecodedPixel d;
     if (depth == frame.shading.y) {
@@ -60,7 +63,7 @@ void main() {
         d.diffuseOcclusion = vec4(0.0);
         d.specularColorSpecular = vec4(0.0);
         d.emissiveViewDepth = vec4(0.0);
-        store(index, pixel, d);
+        store(index, outPixel, d);
         return;
     }
     Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
@@ -73,5 +76,5 @@ void main() {
     d.diffuseOcclusion = vec4(s.diffuseColor, s.occlusion);
     d.specularColorSpecular = vec4(s.specularColor, s.specular);
     d.emissiveViewDepth = vec4(s.emissive, viewDepth);
-    store(index, pixel, d);
+    store(index, outPixel, d);
 }

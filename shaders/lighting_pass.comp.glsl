@@ -83,14 +83,17 @@ vec3 lightRadianceAndDirection(GpuLight light, vec3 position, out vec3 L) {
 #endif
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, ivec2(frame.extent.xy)))) return;
+    // `outPixel` in the outputs (HDR, accumulation, light buffers: the render's rows, frame.band),
+    // `pixel` in the frame and the G-buffer; the same for a whole frame.
+    ivec2 outPixel = ivec2(gl_GlobalInvocationID.xy);
+    if (outPixel.x >= int(frame.extent.x) || outPixel.y >= int(frame.band.y)) return;
+    ivec2 pixel = outPixel + ivec2(0, int(frame.band.x));
     float depth = texelFetch(depthTexture, pixel, 0).r;
     if (depth == frame.shading.y) {  // cleared: no geometry here
         vec3 viewDir = normalize(worldPositionFromDepth(pixel, 0.5) - frame.cameraPosition.xyz);
-        imageStore(hdrOutput, pixel, vec4(sampleEnvironment(viewDir), 0.0));
+        imageStore(hdrOutput, outPixel, vec4(sampleEnvironment(viewDir), 0.0));
 #ifdef LIGHT_PRE_PASS
-        clearLightBufferWords(pixel);
+        clearLightBufferWords(outPixel);
 #endif
         return;
     }
@@ -105,7 +108,7 @@ void main() {
     vec3 V = normalize(frame.cameraPosition.xyz - position);
     vec3 N = normalize(s.normal);
 #ifdef LIGHT_PRE_PASS
-    vec3 color = shadeLightPrePass(pixel, s, N, V, position);
+    vec3 color = shadeLightPrePass(outPixel, s, N, V, position);
 #else
     vec3 color = vec3(0.0);
     for (uint i = 0u; i < frame.extent.z; ++i) {
@@ -124,13 +127,13 @@ void main() {
     if (int(frame.environment.z) == GBL_IBL_GROUND_TRUTH) {
         // Welford's update over batch means of the luminance (CIE Y of linear sRGB).
         const vec3 kY = vec3(0.2126, 0.7152, 0.0722);
-        vec4 acc = batch.batchIndex == 0u ? vec4(0.0) : imageLoad(accumulation, pixel);
+        vec4 acc = batch.batchIndex == 0u ? vec4(0.0) : imageLoad(accumulation, outPixel);
         float y = dot(color, kY);
         float delta = y - dot(acc.rgb, kY);
         vec3 mean = acc.rgb + (color - acc.rgb) / float(batch.batchIndex + 1u);
         float m2 = acc.a + delta * (y - dot(mean, kY));
-        imageStore(accumulation, pixel, vec4(mean, m2));
+        imageStore(accumulation, outPixel, vec4(mean, m2));
         color = mean;
     }
-    imageStore(hdrOutput, pixel, vec4(color, 1.0));
+    imageStore(hdrOutput, outPixel, vec4(color, 1.0));
 }

@@ -29,6 +29,10 @@ struct FrameConstants {
     vec4 ibl;             // x ground-truth steps per batch / split-sum-shader samples per pixel, y environment cube face,
                           // z ground-truth random seed, w unused
     vec4 irradianceSh[9]; // rgb: SH9 of the irradiance, cosine convolution folded in (src/shading/ibl_precompute.h)
+    // The rows of the frame a render covers (RenderSettings::bandFirstRow): x the frame row at row
+    // 0 of the outputs (HDR image, decoded surfaces, light buffers), y their rows; zw unused. The
+    // G-buffer's images are the frame's (pixel = frame pixel). A whole frame: (0, height, 0, 0).
+    uvec4 band;
 };
 
 struct GpuLight {

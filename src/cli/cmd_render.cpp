@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -45,6 +46,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         {"exposure", "X", "exposure multiplier for the PNG tone map (default 1)"},
         {"ibl", "MODE", "specular IBL: ground-truth, split-sum-shader, split-sum (default), envbrdf-approx, bo2"},
         {"ibl-samples", "N", "samples per pixel of split-sum-shader (default 1024), and steps per batch of ground-truth (default 64)"},
+        {"band-rows", "N", "render N rows of the frame at a time (less memory at large sizes; the same image, bit for bit); default: all"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -64,6 +66,10 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const float exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     const IblMode iblMode = parseIblMode(parsed.get("ibl", "split-sum"));
     const int iblSamples = parseIntFlag(parsed, "ibl-samples", 1024, 1, 65536);
+    const uint32_t bandRows = uint32_t(parseIntFlag(parsed, "band-rows", 0, 1, 65536));
+    if (bandRows && iblMode == IblMode::GroundTruth)
+        throwUserError("--band-rows " + std::to_string(bandRows) +
+                       ": the ground truth converges over the whole frame; leave --band-rows out with --ibl ground-truth");
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("render");
     // Refuse a non-empty output directory before any work, but create it only once all succeeded.
     checkOutputDirectory(outDir, parsed.has("force"), "--out");
@@ -78,7 +84,24 @@ int runRenderCommand(const std::vector<std::string>& args) {
     settings.specularIbl = iblMode;
     if (parsed.has("ibl-samples")) settings.groundTruthSamples = iblSamples;  // per batch (default 64)
     settings.splitSumShaderSamples = iblSamples;
-    const RenderOutput out = renderer.render(makeReferenceWiring(), settings);
+    settings.readTargetWords = false;  // only the HDR image is written
+    RenderOutput out;
+    if (bandRows == 0 || bandRows >= height) {
+        out = renderer.render(makeReferenceWiring(), settings);
+    } else {
+        // Band by band (renderer.h RenderSettings::bandRows): only the HDR image is whole.
+        const GBufferWiring reference = makeReferenceWiring();
+        out.hdr = Image(int(width), int(height), 4);
+        for (uint32_t first = 0; first < height; first += bandRows) {
+            settings.bandFirstRow = first;
+            settings.bandRows = std::min(bandRows, height - first);
+            const RenderOutput band = renderer.render(reference, settings);
+            std::copy(band.hdr.pixels.begin(), band.hdr.pixels.end(),
+                      out.hdr.pixels.begin() + std::ptrdiff_t(size_t(first) * width * 4));
+            out.timings.gbufferMs += band.timings.gbufferMs;
+            out.timings.lightingMs += band.timings.lightingMs;
+        }
+    }
 
     prepareOutputDirectory(outDir, parsed.has("force"), "--out");
     writeExr((outDir / "reference.exr").string(), out.hdr);

@@ -212,9 +212,12 @@ void uploadImage(const VulkanContext& ctx, GpuImage& image, const void* pixels, 
 }
 
 std::vector<uint8_t> downloadImage(const VulkanContext& ctx, const GpuImage& image, VkImageLayout currentLayout,
-                                   uint32_t mip, VkImageAspectFlags aspect) {
+                                   uint32_t mip, VkImageAspectFlags aspect, uint32_t firstRow, uint32_t rowCount) {
     const VkImageAspectFlags a = aspect ? aspect : image.aspect;
-    const uint32_t w = std::max(image.extent.width >> mip, 1u), h = std::max(image.extent.height >> mip, 1u);
+    const uint32_t w = std::max(image.extent.width >> mip, 1u), mipRows = std::max(image.extent.height >> mip, 1u);
+    if (rowCount && (firstRow >= mipRows || rowCount > mipRows - firstRow))
+        throw std::logic_error("downloadImage: rows outside the image");
+    const uint32_t h = rowCount ? rowCount : mipRows;
     uint32_t texel = formatTexelSize(image.format);
     // Depth-stencil copies: the depth aspect of D24S8 / D32S8 is copied as 4 bytes, stencil as 1.
     if (a == VK_IMAGE_ASPECT_DEPTH_BIT && (image.format == VK_FORMAT_D24_UNORM_S8_UINT ||
@@ -227,6 +230,7 @@ std::vector<uint8_t> downloadImage(const VulkanContext& ctx, const GpuImage& ima
         transitionImage(cmd, image, currentLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image.aspect);
         VkBufferImageCopy region{};
         region.imageSubresource = {a, mip, 0, image.layers};
+        region.imageOffset = {0, int32_t(rowCount ? firstRow : 0), 0};
         region.imageExtent = {w, h, 1};
         vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &region);
         transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, currentLayout, image.aspect);

@@ -62,8 +62,11 @@ void uploadImage(const VulkanContext& ctx, GpuImage& image, const void* pixels, 
                  VkImageLayout finalLayout, bool generateMips);
 // Reads back mip `mip` of every layer (tightly packed, layer after layer). Image must be in
 // `currentLayout`; it is returned to it.
+// rowCount > 0: only rows [firstRow, firstRow + rowCount) of the mip (a band's rows of a
+// frame-sized image: the rest is neither copied nor staged).
 std::vector<uint8_t> downloadImage(const VulkanContext& ctx, const GpuImage& image, VkImageLayout currentLayout,
-                                   uint32_t mip = 0, VkImageAspectFlags aspect = 0);
+                                   uint32_t mip = 0, VkImageAspectFlags aspect = 0, uint32_t firstRow = 0,
+                                   uint32_t rowCount = 0);
 
 uint32_t formatTexelSize(VkFormat format);
 uint32_t mipCountFor(uint32_t width, uint32_t height);

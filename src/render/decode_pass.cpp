@@ -112,8 +112,8 @@ PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& w
 std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
                                                const GBufferPass& gbuffer, const Buffer& frameConstants,
                                                VkSampler nearestSampler, const GBufferPass* materialPass,
-                                               PipelineMemo& memo) {
-    const uint32_t w = gbuffer.depth.extent.width, h = gbuffer.depth.extent.height;
+                                               uint32_t rows, PipelineMemo& memo) {
+    const uint32_t w = gbuffer.depth.extent.width, h = rows;
     std::array<GpuImage, 4> images;
     for (GpuImage& im : images) {
         ImageDesc desc;
@@ -156,7 +156,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
                              const Buffer& frameConstants, VkSampler nearestSampler,
                              const std::vector<float>& depthValues, const GBufferPass* materialPass,
                              uint32_t bandRowsWanted, PipelineMemo& memo) {
-    const uint32_t w = gbuffer.depth.extent.width, h = gbuffer.depth.extent.height;
+    const uint32_t w = gbuffer.depth.extent.width, h = uint32_t(depthValues.size() / w);
     const size_t pixels = size_t(w) * h;
     const uint32_t band = bandRowsWanted ? std::max(8u, bandRowsWanted / 8 * 8) : bandRows(w, h);
     Buffer output =

@@ -12,7 +12,8 @@ namespace gbl {
 // Decodes the G-buffer `gbuffer` (targets in SHADER_READ_ONLY_OPTIMAL, depth in
 // DEPTH_STENCIL_READ_ONLY_OPTIMAL) written with `wiring`, in bands of `bandRows` rows (a multiple
 // of 8; 0: as many as fit in 64 MiB of floats). `depthValues` are the depth buffer's
-// values, already read back (they go into SurfaceImages::depth). `materialPass`: deferred
+// values of the render's rows (FrameConstants::band), already read back (they go into
+// SurfaceImages::depth; their count / the width is the row count). `materialPass`: deferred
 // lighting's material targets, bound at set 2 as in the lighting pass.
 SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
                              const Buffer& frameConstants, VkSampler nearestSampler,
@@ -24,12 +25,12 @@ PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& w
                                 PipelineMemo& memo);
 
 // The same decode, kept in device memory for the GPU evaluation (src/evaluate/gpu_evaluator.h):
-// four RGBA32F images (STORAGE, left in GENERAL) of the whole frame: normal + roughness, base
+// four RGBA32F images (STORAGE, left in GENERAL) of the render's `rows` rows (FrameConstants::band): normal + roughness, base
 // colour + metallic, diffuse colour + occlusion, specular colour + view depth. Zero where no
 // geometry covers the pixel (the HDR image's alpha says which). The caller destroys them.
 std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
                                                const GBufferPass& gbuffer, const Buffer& frameConstants,
                                                VkSampler nearestSampler, const GBufferPass* materialPass,
-                                               PipelineMemo& memo);
+                                               uint32_t rows, PipelineMemo& memo);
 
 }  // namespace gbl

@@ -291,8 +291,12 @@ void beginGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass) {
     depth.clearValue.depthStencil = {pass.clearDepth, 0};
     VkRenderingAttachmentInfo stencil = depth;
 
+    // A band (renderRows): only its rows are cleared, drawn and so ever written. On a device whose
+    // memory is host memory committed at first write (lavapipe), the rows outside it cost nothing.
+    VkRect2D area{{0, 0}, extent};
+    if (pass.renderRows) area = {{0, int32_t(pass.renderFirstRow)}, {extent.width, pass.renderRows}};
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, extent};
+    info.renderArea = area;
     info.layerCount = 1;
     info.colorAttachmentCount = uint32_t(colors.size());
     info.pColorAttachments = colors.data();
@@ -300,9 +304,8 @@ void beginGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass) {
     info.pStencilAttachment = (pass.depth.aspect & VK_IMAGE_ASPECT_STENCIL_BIT) ? &stencil : nullptr;
     vkCmdBeginRendering(cmd, &info);
     VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0.0f, 1.0f};
-    VkRect2D scissor{{0, 0}, extent};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdSetScissor(cmd, 0, 1, &area);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass.pipelineLayout, 0, 1, &pass.set, 0, nullptr);
 }
@@ -341,7 +344,7 @@ void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuSc
 
 void recordGBufferWarmUp(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene) {
     beginGBufferPass(cmd, pass);
-    const VkRect2D onePixel{{0, 0}, {1, 1}};
+    const VkRect2D onePixel{{0, int32_t(pass.renderFirstRow)}, {1, 1}};
     vkCmdSetScissor(cmd, 0, 1, &onePixel);
     if (!scene.drawRanges.empty()) {
         VkDeviceSize offset = 0;

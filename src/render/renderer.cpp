@@ -35,6 +35,35 @@ void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t heigh
                        " GiB); use at most 7680x4320");
 }
 
+RenderBand renderBand(const RenderSettings& settings) {
+    RenderBand b;
+    const uint32_t h = settings.height;
+    if (settings.bandRows == 0) {
+        b.rows = b.rasterRows = h;
+        return b;
+    }
+    if (settings.bandFirstRow >= h || settings.bandRows > h - settings.bandFirstRow)
+        throwUserError("band of rows " + std::to_string(settings.bandFirstRow) + ".." +
+                       std::to_string(uint64_t(settings.bandFirstRow) + settings.bandRows) +
+                       ": outside the frame's " + std::to_string(h) + " rows");
+    // The ground truth's batch count follows its mean noise over the frame (GroundTruthStats): a
+    // band's would follow the band's, another image.
+    if (settings.specularIbl == IblMode::GroundTruth)
+        throwUserError("band of rows " + std::to_string(settings.bandFirstRow) +
+                       "..: the ground truth converges over the whole frame; render it whole");
+    b.first = settings.bandFirstRow;
+    b.rows = settings.bandRows;
+    // A halo of one row each side: checkerboard chroma (color_encodings.glsl reconstructChroma)
+    // reads the 4 direct neighbours of a pixel. The G-buffer's images are the frame's (its pass
+    // draws only these rows), not band-sized ones behind a viewport shifted by the band's first
+    // row: llvmpipe's attribute interpolation (plane equations from the window coordinates)
+    // rounds differently then, and depth, G-buffer codes and HDR values came out up to a few
+    // ulps (a code or a checkerboard edge decision: more) off the whole frame's.
+    b.rasterFirst = b.first == 0 ? 0u : b.first - 1;
+    b.rasterRows = std::min(h, b.first + b.rows + 1) - b.rasterFirst;
+    return b;
+}
+
 CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool reversedZ) {
     CameraMatrices m;
     m.view = glm::lookAt(camera.position, camera.target, camera.up);
@@ -126,6 +155,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     validateResolution(ctx_, settings.width, settings.height, "--size");
     if (wiring.visibilityBuffer) checkVisibilityBufferSupport(ctx_, wiring, gpuScene_);
     const uint32_t w = settings.width, h = settings.height;
+    const RenderBand band = renderBand(settings);
+    const uint32_t rows = band.rows;  // of every output
     const Camera& camera = settings.camera ? *settings.camera : scene_.camera;
     const CameraMatrices cam = computeCameraMatrices(camera, float(w) / float(h), wiring.reversedZ);
     gpu::FrameConstants frame{};
@@ -145,6 +176,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     frame.ibl = glm::vec4(float(iblSamples), float(ibl_.sourceFaceSize), float(settings.groundTruthSeed), 0.0f);
     for (int k = 0; k < 9; ++k) frame.irradianceSh[k] = glm::vec4(ibl_.irradianceSh[k], 0.0f);
     frame.shading = glm::vec4(float(settings.fresnelMode), wiring.reversedZ ? 0.0f : 1.0f, 0.0f, 0.0f);
+    frame.band = glm::uvec4(band.first, band.rows, 0u, 0u);
     // Every pipeline this render needs, first (from the memo, or built now): a shader that does not
     // compile fails the render before anything is allocated for it.
     const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
@@ -156,21 +188,26 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
     GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h, pipelines_);
+    gbuffer.renderFirstRow = band.rasterFirst;
+    gbuffer.renderRows = settings.bandRows ? band.rasterRows : 0;
     // Deferred lighting: the second geometry pass writes the material attributes the slim
     // G-buffer leaves out, at full precision (the same generated GLSL, MATERIAL_PASS_WRITE).
     GBufferPass materialPass;
-    if (wiring.materialPass)
+    if (wiring.materialPass) {
         materialPass = createGBufferPass(ctx_, materialPassWiring(wiring), gpuScene_, frameBuffer, w, h, pipelines_);
+        materialPass.renderFirstRow = band.rasterFirst;
+        materialPass.renderRows = settings.bandRows ? band.rasterRows : 0;
+    }
     const GBufferPass* material = wiring.materialPass ? &materialPass : nullptr;
     // Deferred lighting: the light buffers, as the words their formats hold.
     Buffer lightBuffers;
     if (wiring.lightBufferWordsPerPixel > 0)
-        lightBuffers = createBuffer(ctx_, VkDeviceSize(w) * h * uint32_t(wiring.lightBufferWordsPerPixel) * 4,
+        lightBuffers = createBuffer(ctx_, VkDeviceSize(w) * rows * uint32_t(wiring.lightBufferWordsPerPixel) * 4,
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, settings.readTargetWords);
     const bool groundTruth = settings.specularIbl == IblMode::GroundTruth;
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
                           nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth};
-    LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h, pipelines_);
+    LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, rows, pipelines_);
     if (gbuffer.needsWarmUp || (material && material->needsWarmUp) || lighting.needsWarmUp) {
         // New pipelines: one draw clipped to a pixel and one workgroup each, so that a driver that
         // compiles at first use (llvmpipe JIT-compiles a shader variant at its first draw or
@@ -195,7 +232,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     out.timings.lightingMs = passMs[1];
     auto readHdr = [&] {
         const std::vector<uint8_t> hdrBytes = downloadImage(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL);
-        out.hdr = Image(int(w), int(h), 4);
+        out.hdr = Image(int(w), int(rows), 4);
         std::memcpy(out.hdr.pixels.data(), hdrBytes.data(), hdrBytes.size());
     };
     if (groundTruth) {
@@ -220,7 +257,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
             readHdr();
             const std::vector<uint8_t> accBytes = downloadImage(ctx_, lighting.accumulation, VK_IMAGE_LAYOUT_GENERAL);
             const float* acc = reinterpret_cast<const float*>(accBytes.data());
-            out.noise = Image(int(w), int(h), 1);
+            out.noise = Image(int(w), int(rows), 1);
             for (size_t i = 0; i < out.noise.pixelCount(); ++i) {
                 if (out.hdr.pixels[i * 4 + 3] < 0.5f) continue;
                 const double m2 = std::max(0.0, double(acc[i * 4 + 3]));
@@ -251,27 +288,28 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     destroyLightingPass(ctx_, lighting);
     if (lightBuffers.buffer) {
         if (settings.readTargetWords) {
-            out.lightBufferWords.resize(size_t(w) * h * size_t(wiring.lightBufferWordsPerPixel));
+            out.lightBufferWords.resize(size_t(w) * rows * size_t(wiring.lightBufferWordsPerPixel));
             std::memcpy(out.lightBufferWords.data(), lightBuffers.mapped, out.lightBufferWords.size() * 4);
         }
         destroyBuffer(ctx_, lightBuffers);
     }
     for (const GpuImage& t : gbuffer.targets) {
         if (!settings.readTargetWords) break;
-        const auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        out.targetWords.push_back(texelsToWords(bytes, size_t(w) * h));  // R8 / R16 targets widened
+        const auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, 0, band.first, band.rows);
+        out.targetWords.push_back(texelsToWords(bytes, size_t(w) * rows));  // R8 / R16 targets widened
     }
     if (settings.keepOnDevice) {
         if (settings.decodeSurfaces)
-            out.device->surfaces = decodeSurfacesOnDevice(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, material, pipelines_);
+            out.device->surfaces =
+                decodeSurfacesOnDevice(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, material, rows, pipelines_);
         if (material) destroyGBufferPass(ctx_, materialPass);
         destroyGBufferPass(ctx_, gbuffer);
         destroyBuffer(ctx_, frameBuffer);
         return out;
     }
     std::vector<uint8_t> depthBytes = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
-                                    VK_IMAGE_ASPECT_DEPTH_BIT);
-    out.depth.resize(size_t(w) * h);
+                                                    VK_IMAGE_ASPECT_DEPTH_BIT, band.first, band.rows);
+    out.depth.resize(size_t(w) * rows);
     if (wiring.depthFormat == VK_FORMAT_D32_SFLOAT || wiring.depthFormat == VK_FORMAT_D32_SFLOAT_S8_UINT) {
         std::memcpy(out.depth.data(), depthBytes.data(), out.depth.size() * 4);
     } else if (wiring.depthFormat == VK_FORMAT_D16_UNORM) {
@@ -290,7 +328,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     std::vector<uint8_t>().swap(depthBytes);
     if (settings.readTargetWords && (gbuffer.depth.aspect & VK_IMAGE_ASPECT_STENCIL_BIT))
         out.stencil = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
-                                    VK_IMAGE_ASPECT_STENCIL_BIT);
+                                    VK_IMAGE_ASPECT_STENCIL_BIT, band.first, band.rows);
     if (settings.decodeSurfaces)
         out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth, material,
                                       settings.decodeBandRows, pipelines_);

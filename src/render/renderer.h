@@ -52,6 +52,14 @@ struct RenderSettings {
     bool keepOnDevice = false;
     // Rows per read-back band of the decode pass (a multiple of 8); 0: as many as fit in 64 MiB.
     uint32_t decodeBandRows = 0;
+    // A band of rows of the frame (bounded memory at 4K): rows [bandFirstRow, bandFirstRow +
+    // bandRows) of the width x height frame, as the whole frame's render has them (rendered with
+    // the frame's viewport and a halo of rows: render_band_test). Every output (HDR, noise, depth,
+    // stencil, target and light-buffer words, surfaces, device images) holds the band's rows only.
+    // bandRows 0: the whole frame. Not with IblMode::GroundTruth (UserError: it converges over the
+    // whole frame).
+    uint32_t bandFirstRow = 0;
+    uint32_t bandRows = 0;
     // The camera to render from; unset: the scene's (compare --views renders several).
     std::optional<Camera> camera;
 };
@@ -149,6 +157,16 @@ private:
     IblGpu ibl_;
     PipelineMemo pipelines_;
 };
+
+// The rows a render covers (RenderSettings::bandFirstRow, ::bandRows): its outputs' rows
+// [first, first + rows) and the rows its G-buffer pass draws, [rasterFirst, rasterFirst +
+// rasterRows) (the band and a halo of a row each side) of frame-sized images. A whole frame: 0
+// and the height. Throws UserError for a band outside the frame.
+struct RenderBand {
+    uint32_t first = 0, rows = 0;
+    uint32_t rasterFirst = 0, rasterRows = 0;
+};
+RenderBand renderBand(const RenderSettings& settings);
 
 // Camera matrices for the frame, with Vulkan's y-down flip and optional reversed Z.
 struct CameraMatrices {

@@ -31,6 +31,11 @@ struct GBufferPass {
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet set = VK_NULL_HANDLE;
     float clearDepth = 1.0f;
+    // A band of rows (RenderSettings::bandFirstRow): render area and scissor are rows
+    // renderFirstRow.. (renderRows of them) of the frame-sized images, with the frame's viewport,
+    // so every pixel is rasterised and shaded as in the whole frame's pass. 0 rows: the frame.
+    uint32_t renderFirstRow = 0;
+    uint32_t renderRows = 0;
     // The best-fit normal table (src/encoding/best_fit_normals.h) that encodeNormalBestFit reads:
     // set 0, binding kBestFitTableBinding of every pipeline that writes a G-buffer.
     Buffer bestFitTable;

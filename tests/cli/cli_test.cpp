@@ -94,6 +94,25 @@ TEST(Cli, NonEmptyOutputNeedsForceAndIsNotTouchedWithout) {
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+// render --band-rows: the frame rendered 7 rows at a time (renderer.h RenderSettings::bandRows)
+// is written as the same files, byte for byte, as the whole frame.
+TEST(Cli, RenderInBandsWritesTheSameFiles) {
+    RunResult r = run("render --out whole --size 96x54");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = run("render --out bands --size 96x54 --band-rows 7");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* file : {"reference.exr", "reference.png"})
+        EXPECT_EQ(slurp(scratch() / "whole" / file), slurp(scratch() / "bands" / file)) << file;
+    for (const std::string rows : {"0", "-3", "abc", "99999999"}) {
+        r = run("render --out badband --size 32x32 --band-rows " + rows);
+        expectOneLineError(r, {"--band-rows"});
+        EXPECT_FALSE(fs::exists(scratch() / "badband")) << rows;
+    }
+    r = run("render --out badband --size 32x32 --band-rows 8 --ibl ground-truth");
+    expectOneLineError(r, {"--band-rows", "ground-truth"});
+    EXPECT_FALSE(fs::exists(scratch() / "badband"));
+}
+
 TEST(Cli, RenderWritesExrAndPng) {
     const RunResult r = run("render --out ok --size 96x54");
     ASSERT_EQ(r.exitCode, 0) << r.err;
