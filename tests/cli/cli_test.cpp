@@ -468,8 +468,9 @@ TEST(Cli, InterruptedCompareLeavesAMarkedFolderWithAReportOfFinishedRuns) {
         // queued, and the interruption writes them before the report.
         for (const auto& r : report["runs"])
             for (const char* key : {"render", "render_exr", "errors_exr"})
-                if (r["status"] == "ok")
+                if (r["status"] == "ok") {
                     EXPECT_TRUE(fs::exists(out / r["images"][key].get<std::string>())) << r["images"][key];
+                }
     }
 }
 
