@@ -15,13 +15,24 @@ namespace {
 // stay in its cache between the codec writing them and the planes reading them.
 constexpr int kRowsPerBand = 1;
 
+// GLSL's mat4 * vec4 as Mesa's SPIR-V front end spells it (the last column first, then each column
+// times its component added on) and llvmpipe runs it, unfused (this file builds with
+// -ffp-contract=off): glm's operator* sums the columns pairwise, which differs by an ulp or two
+// after the inverse projection's cancellation (cpu_decode_test, orbit view).
+glm::vec4 mulMV(const glm::mat4& m, const glm::vec4& v) {
+    glm::vec4 r = m[3] * v.w;
+    r = m[2] * v.z + r;
+    r = m[1] * v.y + r;
+    r = m[0] * v.x + r;
+    return r;
+}
 // decode_pass.comp.glsl's view depth, in the same float steps: the pixel centre in NDC, through
 // the inverse view-projection to the world, then -z in view space.
 float viewDepthAt(const gpu::FrameConstants& frame, int x, int y, float depth) {
     const glm::vec2 ndc = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(frame.extent.x, frame.extent.y) * 2.0f - 1.0f;
-    const glm::vec4 world = frame.invViewProj * glm::vec4(ndc, depth, 1.0f);
+    const glm::vec4 world = mulMV(frame.invViewProj, glm::vec4(ndc, depth, 1.0f));
     const glm::vec3 position = glm::vec3(world) / world.w;
-    return -(frame.view * glm::vec4(position, 1.0f)).z;
+    return -mulMV(frame.view, glm::vec4(position, 1.0f)).z;
 }
 
 }  // namespace
@@ -49,10 +60,16 @@ SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, cons
     s.coverage = words.covered;
 
     const StoredSpace space = StoredSpace(normalSpace);
+    // The depth as the decode pass's texelFetch sees it. A 24-bit UNORM depth reads back here as
+    // the correctly rounded v / (2^24 - 1) (renderer.cpp), but llvmpipe's sampler converts it as
+    // float(v) times the rounded reciprocal (gallivm's unsigned-normalised-to-float for widths
+    // beyond the float mantissa), an ulp off at times: near the far plane one ulp of depth is
+    // tens of ulps of view depth. v is recovered exactly: the read-back value is within half an
+    // ulp, under half a step of 1 / (2^24 - 1) in v.
+    const bool unorm24 = depthFormat == VK_FORMAT_D24_UNORM_S8_UINT || depthFormat == VK_FORMAT_X8_D24_UNORM_PACK32;
     auto sampled = [&](float d) {
-        if (depthFormat != VK_FORMAT_D24_UNORM_S8_UINT && depthFormat != VK_FORMAT_X8_D24_UNORM_PACK32) return d;
-        const double v = std::nearbyint(double(d) * 16777215.0);
-        return float(v) * (1.0f / 16777215.0f);
+        if (!unorm24) return d;
+        return float(std::nearbyint(double(d) * 16777215.0)) * (1.0f / 16777215.0f);
     };
     const glm::mat4 view = frame.view;
     const int bands = (h + kRowsPerBand - 1) / kRowsPerBand;

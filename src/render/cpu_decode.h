@@ -21,7 +21,8 @@ namespace gbl {
 // `words`: the targets' (and material pass's) words of a width x height frame, width and height
 // set; its `covered` is filled here from `depth` (the depth buffer's values, row-major) against
 // the clear depth frame.shading.y, as the decode pass's gblHasGeometry. `frame`: the frame's
-// constants (view, inverse view-projection, extent). `normalSpace`: GBufferWiring::normalSpace.
+// constants (view, inverse view-projection, extent). `normalSpace`, `depthFormat`: the wiring's
+// (a 24-bit depth's view depth is computed from the value as the device's sampler converts it).
 // Runs on hardwareThreads() threads, a band of rows at a time per thread.
 SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, const std::vector<float>& depth,
                                   const gpu::FrameConstants& frame, int normalSpace, VkFormat depthFormat);

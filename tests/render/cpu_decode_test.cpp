@@ -54,6 +54,52 @@ PlaneDiff comparePlane(const Image& pass, const Image& cpu, const char* what) {
     return d;
 }
 
+// The two decodes of one frame: what differs is the decode alone (the frame is rendered twice by a
+// deterministic rasteriser: HDR and depth must be identical).
+void compareDecodes(const char* name, const char* view, const RenderOutput& host, const RenderOutput& device) {
+    SCOPED_TRACE(view);
+    ASSERT_EQ(host.hdr.pixels, device.hdr.pixels);
+    ASSERT_EQ(host.depth, device.depth);
+    const SurfaceImages& a = device.surfaces;
+    const SurfaceImages& b = host.surfaces;
+    ASSERT_EQ(a.coverage, b.coverage);
+    size_t covered = 0;
+    for (uint8_t c : a.coverage) covered += c;
+    ASSERT_GT(covered, a.coverage.size() / 4) << "too little geometry to compare";
+    ASSERT_LT(covered, a.coverage.size()) << "no background pixel to compare";
+
+    const std::pair<const Image*, const Image*> planes[] = {
+        {&a.normal, &b.normal},       {&a.baseColor, &b.baseColor}, {&a.diffuseColor, &b.diffuseColor},
+        {&a.specularColor, &b.specularColor}, {&a.roughness, &b.roughness}, {&a.metallic, &b.metallic},
+        {&a.occlusion, &b.occlusion}, {&a.emissive, &b.emissive}, {&a.depth, &b.depth},
+        {&a.viewDepth, &b.viewDepth}};
+    const char* names[] = {"normal",    "base colour", "diffuse colour", "specular colour", "roughness",
+                           "metallic",  "occlusion",   "emissive",       "depth",           "view depth"};
+    size_t beyond = 0, differ = 0, values = 0;
+    for (size_t p = 0; p < std::size(planes); ++p) {
+        const PlaneDiff d = comparePlane(*planes[p].first, *planes[p].second, names[p]);
+        beyond += d.beyond;
+        differ += d.differ;
+        values += planes[p].first->pixels.size();
+        if (d.differ)
+            std::printf("[ planes   ] %-14s %-12s %-15s %6zu of %zu values differ, max |pass - cpu| %g\n", name, view, names[p],
+                        d.differ, planes[p].first->pixels.size(), double(d.worst));
+    }
+    EXPECT_EQ(beyond, 0u);
+    std::printf("[ decode   ] %-14s %-12s %zu values, %zu not bit-equal, %zu beyond 4 ulp\n", name, view, values, differ,
+                beyond);
+}
+
+// An orbit about the scene camera's target (as compare_views.cpp's), lower and from the side.
+Camera orbitCamera(const Scene& scene) {
+    Camera c = scene.camera;
+    const glm::vec3 from = c.position - c.target;
+    const float a = glm::radians(40.0f);
+    c.position = c.target + glm::vec3(std::cos(a) * from.x + std::sin(a) * from.z, 0.6f * from.y,
+                                      -std::sin(a) * from.x + std::cos(a) * from.z);
+    return c;
+}
+
 TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
     constexpr uint32_t kWidth = 160, kHeight = 90;
     const Scene scene = makeSphereGridScene();
@@ -83,39 +129,14 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
         const RenderOutput device = renderer.render(wiring, pass);
         EXPECT_EQ(renderer.pipelineCount() - before, passes + 1);
         EXPECT_TRUE(host.targetWords.empty());  // readTargetWords = false: the words are not kept
-
-        // The same frame twice (deterministic rasteriser): what differs below is the decode alone.
-        ASSERT_EQ(host.hdr.pixels, device.hdr.pixels);
-        ASSERT_EQ(host.depth, device.depth);
-        const SurfaceImages& a = device.surfaces;
-        const SurfaceImages& b = host.surfaces;
-        ASSERT_EQ(a.coverage, b.coverage);
-        size_t covered = 0;
-        for (uint8_t c : a.coverage) covered += c;
-        ASSERT_GT(covered, a.coverage.size() / 4) << "too little geometry to compare";
-        ASSERT_LT(covered, a.coverage.size()) << "no background pixel to compare";
-
-        const std::pair<const Image*, const Image*> planes[] = {
-            {&a.normal, &b.normal},       {&a.baseColor, &b.baseColor}, {&a.diffuseColor, &b.diffuseColor},
-            {&a.specularColor, &b.specularColor}, {&a.roughness, &b.roughness}, {&a.metallic, &b.metallic},
-            {&a.occlusion, &b.occlusion}, {&a.emissive, &b.emissive}, {&a.depth, &b.depth},
-            {&a.viewDepth, &b.viewDepth}};
-        const char* names[] = {"normal",    "base colour", "diffuse colour", "specular colour", "roughness",
-                               "metallic",  "occlusion",   "emissive",       "depth",           "view depth"};
-        size_t beyond = 0, differ = 0, values = 0;
-        for (size_t p = 0; p < std::size(planes); ++p) {
-            const PlaneDiff d = comparePlane(*planes[p].first, *planes[p].second, names[p]);
-            beyond += d.beyond;
-            differ += d.differ;
-            values += planes[p].first->pixels.size();
-            if (d.differ)
-                std::printf("[ planes   ] %-14s %-15s %6zu of %zu values differ, max |pass - cpu| %g\n", name, names[p],
-                            d.differ, planes[p].first->pixels.size(), double(d.worst));
-        }
-        EXPECT_EQ(beyond, 0u);
-        std::printf("[ decode   ] %-14s %zu values, %zu not bit-equal, %zu beyond 4 ulp\n", name, values, differ, beyond);
+        compareDecodes(name, "scene camera", host, device);
+        // A second view (compare --views): other matrices, another spread of depths.
+        RenderSettings cpuOrbit = cpu, passOrbit = pass;
+        cpuOrbit.camera = passOrbit.camera = orbitCamera(scene);
+        compareDecodes(name, "orbit", renderer.render(wiring, cpuOrbit), renderer.render(wiring, passOrbit));
     }
 }
+
 
 // Where the codec cannot stand in for readGBuffer, the wiring has no CPU decoder and the renderer
 // keeps the decode pass: a visibility buffer (its readGBuffer resolves triangles) and targets in
