@@ -266,21 +266,6 @@ int runCompareCommand(const std::vector<std::string>& args) {
     timedSetup.reset();
     double gpuPassMs = 0.0;  // timestamps of every frame rendered
 
-    Renderer renderer(ctx, inputs.scene, inputs.environment, loadOrComputeIbl(ctx, inputs.environment, iblSettings));
-    const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
-    {
-        // Every run's pipelines are built now, side by side on worker threads (timed as shader
-        // compile), and reused by every view and IBL mode; a layout whose wiring or pipeline
-        // fails is left to fail in its own run.
-        std::vector<GBufferWiring> wirings = {referenceWiring};
-        for (const Layout& layout : layouts) {
-            try {
-                wirings.push_back(generateWiring(layout, wiringOptions));
-            } catch (const std::exception&) {
-            }
-        }
-        renderer.preparePipelines(wirings);
-    }
     // Every run renders the same way but for the IBL mode, and decodes its G-buffer for metrics.
     auto settingsFor = [&](IblMode mode, int view) {
         RenderSettings settings;
@@ -295,8 +280,39 @@ int runCompareCommand(const std::vector<std::string>& args) {
         settings.decodeSurfaces = true;
         settings.readTargetWords = false;
         settings.keepOnDevice = gpuEval;
+        // On a CPU device (lavapipe) with the metrics on the CPU, the read-back decodes the raw
+        // target words with each layout's CPU codec instead of running the decode pass: the
+        // codec's vectorised loops beat readGBuffer JIT-compiled by llvmpipe on the same cores,
+        // and the words are a fraction of the decoded floats (bench/RESULTS.md, "Read-back on
+        // the CPU codec"). On a GPU the decode pass is cheap and stays.
+        settings.decodeOnCpu = !gpuEval && ctx.info.type == VK_PHYSICAL_DEVICE_TYPE_CPU;
         return settings;
     };
+    Renderer renderer(ctx, inputs.scene, inputs.environment, loadOrComputeIbl(ctx, inputs.environment, iblSettings));
+    const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
+    {
+        // Every run's pipelines are built now, side by side on worker threads (timed as shader
+        // compile), and reused by every view and IBL mode; a layout whose wiring or pipeline
+        // fails is left to fail in its own run.
+        std::vector<GBufferWiring> wirings = {referenceWiring};
+        for (const Layout& layout : layouts) {
+            try {
+                wirings.push_back(generateWiring(layout, wiringOptions));
+            } catch (const std::exception&) {
+            }
+        }
+        const RenderSettings decodeSettings = settingsFor(modes[0], 0);
+        renderer.preparePipelines(wirings, decodeSettings);
+        if (decodeSettings.decodeOnCpu) {
+            std::vector<std::string> onDevice;
+            for (const GBufferWiring& w : wirings)
+                if (!Renderer::decodesOnCpu(w, decodeSettings)) onDevice.push_back(w.layoutName);
+            model.run.notes.push_back(
+                "read-back: G-buffer words decoded on the host by each layout's CPU codec (the bit-exact mirror of "
+                "readGBuffer), not by the decode pass" +
+                (onDevice.empty() ? std::string() : "; by the decode pass: " + joinList(onDevice)));
+        }
+    }
     // compare --views: every view renders the references and every run again; the runs of views
     // after the first add their metrics to the first view's run (RunReport::views), in the same order.
     for (int view = 0; view < viewCount; ++view) {

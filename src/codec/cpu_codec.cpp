@@ -62,8 +62,14 @@ std::vector<Surface> CpuCodec::decode(const CpuGBuffer& gbuffer) const {
     return out;
 }
 
-void CpuCodec::decode(const CpuGBuffer& g, std::vector<Surface>& out) const {
-    const codec::CodecPlan& plan = *plan_;
+namespace {
+
+// The word views of `g`, checked against the plan: throws std::invalid_argument when they do not fit.
+struct CheckedViews {
+    std::vector<const uint32_t*> targets, material;
+    codec::ConstWordViews views;
+};
+CheckedViews checkedViews(const codec::CodecPlan& plan, const CpuGBuffer& g) {
     const size_t pixels = size_t(std::max(g.width, 0)) * size_t(std::max(g.height, 0));
     bool fits = g.targetWords.size() == plan.targets.size() && int(g.materialWords.size()) == plan.materialTargets;
     for (size_t t = 0; fits && t < plan.targets.size(); ++t)
@@ -71,15 +77,31 @@ void CpuCodec::decode(const CpuGBuffer& g, std::vector<Surface>& out) const {
     for (size_t m = 0; fits && m < g.materialWords.size(); ++m) fits = g.materialWords[m].size() == pixels * 4;
     fits = fits && (g.covered.empty() || g.covered.size() == pixels);
     if (!fits) throw std::invalid_argument("decodeGBuffer: the G-buffer's words do not match its layout and size");
-    out.resize(pixels);
-    std::vector<const uint32_t*> targets, material;
-    for (const std::vector<uint32_t>& w : g.targetWords) targets.push_back(w.data());
-    for (const std::vector<uint32_t>& w : g.materialWords) material.push_back(w.data());
-    const codec::ConstWordViews views{targets.data(), material.data(), g.covered.empty() ? nullptr : g.covered.data()};
+    CheckedViews c;
+    for (const std::vector<uint32_t>& w : g.targetWords) c.targets.push_back(w.data());
+    for (const std::vector<uint32_t>& w : g.materialWords) c.material.push_back(w.data());
+    c.views = {c.targets.data(), c.material.data(), g.covered.empty() ? nullptr : g.covered.data()};
+    return c;
+}
+
+}  // namespace
+
+void CpuCodec::decode(const CpuGBuffer& g, std::vector<Surface>& out) const {
+    const codec::CodecPlan& plan = *plan_;
+    const CheckedViews c = checkedViews(plan, g);
+    out.resize(size_t(std::max(g.width, 0)) * size_t(std::max(g.height, 0)));
     parallelFor(g.height, bandCount(threads_, g.width, g.height), [&](int64_t y0, int64_t y1) {
-        codec::decodeRows(plan, views, g.width, g.height, int(y0), int(y1), out.data());
+        codec::decodeRows(plan, c.views, g.width, g.height, int(y0), int(y1), out.data() + size_t(y0) * size_t(g.width));
     });
 }
+
+void CpuCodec::decodeRows(const CpuGBuffer& g, int y0, int y1, Surface* out) const {
+    if (y0 < 0 || y1 > g.height || y0 > y1) throw std::invalid_argument("CpuCodec::decodeRows: rows outside the image");
+    const CheckedViews c = checkedViews(*plan_, g);
+    codec::decodeRows(*plan_, c.views, g.width, g.height, y0, y1, out);
+}
+
+bool CpuCodec::decodes() const { return plan_->decodeError == nullptr; }
 
 Surface clearSurface(const Layout& layout) {
     Surface s;

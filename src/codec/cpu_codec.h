@@ -54,6 +54,13 @@ public:
     // What readGBuffer returns at every pixel (stored attributes decoded, the rest from fallbacks).
     std::vector<Surface> decode(const CpuGBuffer& gbuffer) const;
     void decode(const CpuGBuffer& gbuffer, std::vector<Surface>& out) const;
+    // Rows [y0, y1) of decode(gbuffer) into out[0 .. width * (y1 - y0)), on the calling thread
+    // (the same values as decode's: a row's decode does not depend on the band). For a caller
+    // that runs bands on its own threads and uses each at once (the renderer's read-back keeps
+    // a band of Surfaces per thread, not a frame of them: 88 bytes per pixel).
+    void decodeRows(const CpuGBuffer& gbuffer, int y0, int y1, Surface* out) const;
+    // False where a stored Surface member has no decoder (an `id` encoding): decode throws.
+    bool decodes() const;
 
 private:
     std::shared_ptr<const codec::CodecPlan> plan_;

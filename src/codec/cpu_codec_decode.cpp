@@ -478,7 +478,7 @@ void decodeRows(const CodecPlan& plan, const ConstWordViews& in, int width, int 
                 decodeTargetBlock(plan.targets[t], in.targets[t], in.covered, width, height, x0, y, n, b);
             decodeMaterial(plan, in.material, first, n, b);
             applyFallbacks(plan, n, b);
-            writeSurfaces(b, n, out + first);
+            writeSurfaces(b, n, out + (first - size_t(y0) * size_t(width)));
         }
     streamFence();
 }

@@ -37,8 +37,8 @@ struct ConstWordViews {
 // Encodes rows [y0, y1) of the width x height image `surfaces` (row-major) into `out`.
 void encodeRows(const CodecPlan& plan, const Surface* surfaces, int width, int y0, int y1, const WordViews& out);
 
-// Decodes rows [y0, y1) into out (row-major, the whole image's Surfaces). Reads the rows above
-// and below the band too (checkerboard chroma), so the whole G-buffer must be readable.
+// Decodes rows [y0, y1) into out (row-major, the band's Surfaces: out[0] is pixel (0, y0)). Reads
+// the rows above and below the band too (checkerboard chroma), so the whole G-buffer must be readable.
 void decodeRows(const CodecPlan& plan, const ConstWordViews& in, int width, int height, int y0, int y1,
                 Surface* out);
 

@@ -6,6 +6,7 @@
 // binding i (one per target) and `Surface readGBuffer(ivec2 pixel)`.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +14,8 @@
 #include <vulkan/vulkan.h>
 
 namespace gbl {
+
+class CpuCodec;
 
 struct GBufferWiring {
     std::string layoutName;
@@ -69,6 +72,12 @@ struct GBufferWiring {
     };
     bool visibilityBuffer = false;
     VisibilityIds visibilityIds;
+    // The layout's CPU codec (cpu_codec.h) where it decodes these targets exactly as readGBuffer
+    // does (gpu_cpu_bits_test: within 4 ulps): every target UINT (not --native-formats, where the
+    // hardware quantises), not a visibility buffer (its readGBuffer resolves triangles), every
+    // stored attribute decodable. Null otherwise. The renderer may decode with it on the host
+    // instead of running the decode pass (RenderSettings::decodeOnCpu).
+    std::shared_ptr<const CpuCodec> cpuDecoder;
 };
 
 // The stencil reference a draw of a material with these per-material values writes (see

@@ -375,6 +375,12 @@ GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options)
     w.glsl = generateWiringGlsl(layout, options);
     w.lightBufferGlsl = generateLightBufferGlsl(layout);
     if (!w.lightBufferGlsl.empty()) w.lightBufferWordsPerPixel = lightBufferWordsPerPixel(layout);
+    bool allUint = true;
+    for (size_t t = 0; t < layout.targets.size(); ++t) allUint = allUint && w.targetFormats[t] == uintFormatOf(layout.targets[t]);
+    if (allUint) {
+        auto codec = std::make_shared<const CpuCodec>(layout);
+        if (codec->decodes()) w.cpuDecoder = std::move(codec);
+    }
     return w;
 }
 

@@ -105,8 +105,8 @@ DecodeSets writeDecodeSets(const VulkanContext& ctx, const std::vector<VkDescrip
 }  // namespace
 
 PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
-                                PipelineMemo& memo) {
-    return decodePipeline(ctx, wiring, scene, memo, false);
+                                PipelineMemo& memo, bool toImages) {
+    return decodePipeline(ctx, wiring, scene, memo, toImages);
 }
 
 std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,

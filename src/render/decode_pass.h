@@ -20,9 +20,10 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
                              const std::vector<float>& depthValues, const GBufferPass* materialPass,
                              uint32_t bandRows, PipelineMemo& memo);
 // The decode pass's pipeline alone, from `memo` or built into it (renderer_passes.h's
-// gbufferPassPipeline says why).
+// gbufferPassPipeline says why): decodeSurfaces' (bands read back), or with `toImages`
+// decodeSurfacesOnDevice's.
 PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
-                                PipelineMemo& memo);
+                                PipelineMemo& memo, bool toImages = false);
 
 // The same decode, kept in device memory for the GPU evaluation (src/evaluate/gpu_evaluator.h):
 // four RGBA32F images (STORAGE, left in GENERAL) of the render's `rows` rows (FrameConstants::band): normal + roughness, base

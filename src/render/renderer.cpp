@@ -1,5 +1,6 @@
 #include "renderer.h"
 
+#include "cpu_decode.h"
 #include "decode_pass.h"
 
 #include <algorithm>
@@ -124,7 +125,14 @@ Renderer::~Renderer() {
     pipelines_.destroy(ctx_.device);
 }
 
-void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings) {
+bool Renderer::decodesOnCpu(const GBufferWiring& wiring, const RenderSettings& settings) {
+    // A band keeps the decode pass: the codec decodes whole frames (checkerboard chroma reads the
+    // rows beyond a band's edge, and pixel-dependent decodes need the frame's row).
+    return settings.decodeSurfaces && settings.decodeOnCpu && !settings.keepOnDevice && settings.bandRows == 0 &&
+           wiring.cpuDecoder != nullptr;
+}
+
+void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const RenderSettings& settings) {
     ScopedStage timed(Stage::ShaderCompile);
     const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
     std::vector<GBufferWiring> materials(wirings.size());
@@ -137,7 +145,10 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings) {
         }
         const TargetReadScene readScene = targetReadScene(ctx_, wirings[i], gpuScene_);
         tasks.push_back([&, i, readScene] { lightingPassPipeline(ctx_, wirings[i], readScene, pipelines_); });
-        tasks.push_back([&, i, readScene] { decodePassPipeline(ctx_, wirings[i], readScene, pipelines_); });
+        if (settings.decodeSurfaces && !decodesOnCpu(wirings[i], settings))  // no pipeline a render does not use
+            tasks.push_back([&, i, readScene] {
+                decodePassPipeline(ctx_, wirings[i], readScene, pipelines_, settings.keepOnDevice);
+            });
     }
     for (auto& task : tasks)
         task = [run = std::move(task)] {
@@ -184,7 +195,9 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), textureCount, pipelines_);
     const TargetReadScene readScene = targetReadScene(ctx_, wiring, gpuScene_);
     lightingPassPipeline(ctx_, wiring, readScene, pipelines_);
-    if (settings.decodeSurfaces) decodePassPipeline(ctx_, wiring, readScene, pipelines_);
+    const bool cpuDecode = decodesOnCpu(wiring, settings);
+    if (settings.decodeSurfaces && !cpuDecode)
+        decodePassPipeline(ctx_, wiring, readScene, pipelines_, settings.keepOnDevice);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
     GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h, pipelines_);
@@ -294,7 +307,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         destroyBuffer(ctx_, lightBuffers);
     }
     for (const GpuImage& t : gbuffer.targets) {
-        if (!settings.readTargetWords) break;
+        if (!settings.readTargetWords && !cpuDecode) break;
         const auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, 0, band.first, band.rows);
         out.targetWords.push_back(texelsToWords(bytes, size_t(w) * rows));  // R8 / R16 targets widened
     }
@@ -329,6 +342,24 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     if (settings.readTargetWords && (gbuffer.depth.aspect & VK_IMAGE_ASPECT_STENCIL_BIT))
         out.stencil = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
                                     VK_IMAGE_ASPECT_STENCIL_BIT, band.first, band.rows);
+    if (cpuDecode) {
+        // The decode pass's work on the host (RenderSettings::decodeOnCpu): the raw words (read
+        // above), the material pass's, then the G-buffer's images are freed before the decode.
+        CpuGBuffer words;
+        words.width = int(w);
+        words.height = int(rows);  // decodesOnCpu: never a band, so rows == h
+        words.targetWords = std::move(out.targetWords);
+        for (const GpuImage& t : materialPass.targets)
+            words.materialWords.push_back(
+                texelsToWords(downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL), size_t(w) * rows));
+        if (material) destroyGBufferPass(ctx_, materialPass);
+        destroyGBufferPass(ctx_, gbuffer);
+        destroyBuffer(ctx_, frameBuffer);
+        out.surfaces = decodeSurfacesOnCpu(*wiring.cpuDecoder, words, out.depth, frame, wiring.normalSpace, wiring.depthFormat);
+        out.targetWords.clear();
+        if (settings.readTargetWords) out.targetWords = std::move(words.targetWords);
+        return out;
+    }
     if (settings.decodeSurfaces)
         out.surfaces = decodeSurfaces(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, out.depth, material,
                                       settings.decodeBandRows, pipelines_);

@@ -60,6 +60,11 @@ struct RenderSettings {
     // whole frame).
     uint32_t bandFirstRow = 0;
     uint32_t bandRows = 0;
+    // With decodeSurfaces (and not keepOnDevice): read the targets' raw words back and decode
+    // them on the host with the layout's CPU codec (GBufferWiring::cpuDecoder; cpu_decode.h)
+    // instead of running the decode pass, where the wiring has one; a visibility buffer or
+    // --native-formats targets still run the pass (Renderer::decodesOnCpu says which).
+    bool decodeOnCpu = false;
     // The camera to render from; unset: the scene's (compare --views renders several).
     std::optional<Camera> camera;
 };
@@ -133,12 +138,18 @@ public:
 
     RenderOutput render(const GBufferWiring& wiring, const RenderSettings& settings);
 
-    // Builds the pipelines of every wiring's passes (G-buffer, material, lighting, decode) side by
+    // Builds the pipelines render(wiring, settings) uses for every wiring (G-buffer, material,
+    // lighting, and the decode pass's variant where it runs one: none when decodesOnCpu) side by
     // side on worker threads (vkCreate*Pipelines may be called from several threads; the
     // VkPipelineCache is internally synchronised, created without EXTERNALLY_SYNCHRONIZED), timed
     // as shader compile, so the renders of these wirings build nothing. A wiring whose pipeline
     // cannot be built is skipped here: its render() fails with the error, as it would have.
-    void preparePipelines(const std::vector<GBufferWiring>& wirings);
+    // Only the settings' decode choices matter (decodeSurfaces, keepOnDevice, decodeOnCpu).
+    void preparePipelines(const std::vector<GBufferWiring>& wirings, const RenderSettings& settings);
+
+    // Whether render(wiring, settings) decodes the surfaces on the host with the wiring's CPU
+    // codec (RenderSettings::decodeOnCpu) rather than with the decode pass.
+    static bool decodesOnCpu(const GBufferWiring& wiring, const RenderSettings& settings);
 
     const Scene& scene() const { return scene_; }
     const IblGpu& ibl() const { return ibl_; }

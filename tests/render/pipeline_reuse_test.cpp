@@ -63,7 +63,7 @@ TEST_F(PipelineReuseTest, ViewsModesAndSizesReuseEachLayoutsPipelines) {
 
     Renderer prepared(test::sharedContext(), scene, sky);
     const int before = pipelinesCreated();
-    EXPECT_NO_THROW(prepared.preparePipelines({slim, ue4, broken}));
+    EXPECT_NO_THROW(prepared.preparePipelines({slim, ue4, broken}, settingsAt(96, 64, IblMode::SplitSum, std::nullopt)));
     // ue4: G-buffer, lighting, decode; crysis2-slim adds its material pass; nothing of the broken
     // wiring (its three shaders fail to compile).
     EXPECT_EQ(pipelinesCreated() - before, 4 + 3);
@@ -89,6 +89,35 @@ TEST_F(PipelineReuseTest, ViewsModesAndSizesReuseEachLayoutsPipelines) {
     expectSameImage(slimOther.surfaces.baseColor, slimFresh.surfaces.baseColor, "decoded base colour");
     EXPECT_EQ(slimOther.depth, slimFresh.depth);
     expectSameImage(ue4Out.hdr, ue4Fresh.hdr, "ue4 after crysis2-slim vs alone");
+}
+
+// Only the pipelines a render uses are built (issue 14: every unused pipeline is llvmpipe JIT
+// time). With the read-back on the CPU codec (decodeOnCpu) no decode pass is built for a wiring
+// the codec decodes, but still for one it cannot (a visibility buffer); with the surfaces kept on
+// the device, the decode pass's to-images variant is built, not the band variant it never runs.
+TEST_F(PipelineReuseTest, PreparesNoDecodePassTheRendersDoNotRun) {
+    const Scene scene = makeSphereGridScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    const GBufferWiring ue4 = generateWiring(loadLayout("ue4"));
+    const GBufferWiring slim = generateWiring(loadLayout("crysis2-slim"));
+    const GBufferWiring visibility = generateWiring(loadLayout("visibility-32"));
+    Renderer renderer(test::sharedContext(), scene, sky);
+    RenderSettings cpu = settingsAt(96, 64, IblMode::SplitSum, std::nullopt);
+    cpu.decodeOnCpu = true;
+    const int before = pipelinesCreated();
+    renderer.preparePipelines({slim, ue4, visibility}, cpu);
+    // crysis2-slim: G-buffer, material, lighting; ue4: G-buffer, lighting; the visibility
+    // buffer: G-buffer, lighting and the decode pass.
+    EXPECT_EQ(pipelinesCreated() - before, 3 + 2 + 3);
+    RenderSettings device = cpu;
+    device.keepOnDevice = true;  // --eval gpu: decodeSurfacesOnDevice's variant, for all three
+    renderer.preparePipelines({slim, ue4, visibility}, device);
+    EXPECT_EQ(pipelinesCreated() - before, 3 + 2 + 3 + 3);
+    RenderSettings bands = cpu;
+    bands.decodeOnCpu = false;  // the band variant: new for the two the codec decoded
+    renderer.preparePipelines({slim, ue4, visibility}, bands);
+    EXPECT_EQ(pipelinesCreated() - before, 3 + 2 + 3 + 3 + 2);
+    EXPECT_EQ(renderer.pipelineCount(), size_t(3 + 2 + 3 + 3 + 2));
 }
 
 }  // namespace

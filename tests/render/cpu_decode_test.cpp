@@ -1,0 +1,166 @@
+// The read-back's two decoders on real content (RenderSettings::decodeOnCpu): the built-in scene
+// rendered through layouts that exercise the codec's harder parts (a light pre-pass with its
+// material pass, checkerboard chroma, dithered normals and the emissive/albedo ratio, Z-up and
+// view-space normals, R8 targets, the float reference), decoded once by the decode pass
+// (readGBuffer on the device) and once by the layout's CPU codec on the host. Every SurfaceImages
+// plane must agree within gpu_cpu_bits_test's bound (4 ulps of max(1, |value|)), coverage and
+// depth exactly, and the CPU path must not build the decode pass's pipeline.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "layout_catalog.h"
+#include "procedural_sky.h"
+#include "renderer.h"
+#include "vk_test_support.h"
+#include "wiring_codegen.h"
+
+namespace gbl {
+namespace {
+
+class CpuDecodeTest : public test::VulkanTest {};
+
+// gpu_cpu_bits_test's `near`: the bound it holds readGBuffer on the device and the codec to.
+bool near(float a, float b) {
+    if (a == b) return true;
+    return std::abs(a - b) <= 4.0f * std::numeric_limits<float>::epsilon() * std::max(1.0f, std::abs(b));
+}
+
+struct PlaneDiff {
+    size_t beyond = 0;   // values outside `near`
+    size_t differ = 0;   // values not bit-equal
+    float worst = 0.0f;  // max |pass - cpu|
+};
+
+PlaneDiff comparePlane(const Image& pass, const Image& cpu, const char* what) {
+    PlaneDiff d;
+    EXPECT_EQ(pass.width, cpu.width) << what;
+    EXPECT_EQ(pass.height, cpu.height) << what;
+    EXPECT_EQ(pass.channels, cpu.channels) << what;
+    if (pass.pixels.size() != cpu.pixels.size()) {
+        ADD_FAILURE() << what << ": " << pass.pixels.size() << " vs " << cpu.pixels.size() << " values";
+        return d;
+    }
+    for (size_t i = 0; i < pass.pixels.size(); ++i) {
+        const float a = pass.pixels[i], b = cpu.pixels[i];
+        d.differ += a != b;
+        d.worst = std::max(d.worst, std::abs(a - b));
+        if (!near(a, b) && d.beyond++ < 3)
+            ADD_FAILURE() << what << " value " << i << " (pixel " << i / size_t(pass.channels) << "): decode pass " << a
+                          << ", cpu codec " << b;
+    }
+    return d;
+}
+
+// The two decodes of one frame: what differs is the decode alone (the frame is rendered twice by a
+// deterministic rasteriser: HDR and depth must be identical).
+void compareDecodes(const char* name, const char* view, const RenderOutput& host, const RenderOutput& device) {
+    SCOPED_TRACE(view);
+    ASSERT_EQ(host.hdr.pixels, device.hdr.pixels);
+    ASSERT_EQ(host.depth, device.depth);
+    const SurfaceImages& a = device.surfaces;
+    const SurfaceImages& b = host.surfaces;
+    ASSERT_EQ(a.coverage, b.coverage);
+    size_t covered = 0;
+    for (uint8_t c : a.coverage) covered += c;
+    ASSERT_GT(covered, a.coverage.size() / 4) << "too little geometry to compare";
+    ASSERT_LT(covered, a.coverage.size()) << "no background pixel to compare";
+
+    const std::pair<const Image*, const Image*> planes[] = {
+        {&a.normal, &b.normal},       {&a.baseColor, &b.baseColor}, {&a.diffuseColor, &b.diffuseColor},
+        {&a.specularColor, &b.specularColor}, {&a.roughness, &b.roughness}, {&a.metallic, &b.metallic},
+        {&a.occlusion, &b.occlusion}, {&a.emissive, &b.emissive}, {&a.depth, &b.depth},
+        {&a.viewDepth, &b.viewDepth}};
+    const char* names[] = {"normal",    "base colour", "diffuse colour", "specular colour", "roughness",
+                           "metallic",  "occlusion",   "emissive",       "depth",           "view depth"};
+    size_t beyond = 0, differ = 0, values = 0;
+    for (size_t p = 0; p < std::size(planes); ++p) {
+        const PlaneDiff d = comparePlane(*planes[p].first, *planes[p].second, names[p]);
+        beyond += d.beyond;
+        differ += d.differ;
+        values += planes[p].first->pixels.size();
+        if (d.differ)
+            std::printf("[ planes   ] %-14s %-12s %-15s %6zu of %zu values differ, max |pass - cpu| %g\n", name, view, names[p],
+                        d.differ, planes[p].first->pixels.size(), double(d.worst));
+    }
+    EXPECT_EQ(beyond, 0u);
+    std::printf("[ decode   ] %-14s %-12s %zu values, %zu not bit-equal, %zu beyond 4 ulp\n", name, view, values, differ,
+                beyond);
+}
+
+// An orbit about the scene camera's target (as compare_views.cpp's), lower and from the side.
+Camera orbitCamera(const Scene& scene) {
+    Camera c = scene.camera;
+    const glm::vec3 from = c.position - c.target;
+    const float a = glm::radians(40.0f);
+    c.position = c.target + glm::vec3(std::cos(a) * from.x + std::sin(a) * from.z, 0.6f * from.y,
+                                      -std::sin(a) * from.x + std::cos(a) * from.z);
+    return c;
+}
+
+TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
+    constexpr uint32_t kWidth = 160, kHeight = 90;
+    const Scene scene = makeSphereGridScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(test::sharedContext(), scene, sky);
+    RenderSettings pass;
+    pass.width = kWidth;
+    pass.height = kHeight;
+    pass.decodeSurfaces = true;
+    pass.readTargetWords = false;
+    RenderSettings cpu = pass;
+    cpu.decodeOnCpu = true;
+
+    for (const char* name :
+         {"ue4", "crysis2-slim", "crysis3-thin", "niagara", "ryse", "bevy-deferred", "killzone2", "reference"}) {
+        SCOPED_TRACE(name);
+        const GBufferWiring wiring = generateWiring(loadLayout(name));
+        ASSERT_NE(wiring.cpuDecoder, nullptr);
+        ASSERT_TRUE(Renderer::decodesOnCpu(wiring, cpu));
+        ASSERT_FALSE(Renderer::decodesOnCpu(wiring, pass));
+
+        // The host decode first: it builds the G-buffer (+ material) and lighting pipelines only.
+        const size_t before = renderer.pipelineCount();
+        const RenderOutput host = renderer.render(wiring, cpu);
+        const size_t passes = wiring.materialPass ? 3 : 2;
+        EXPECT_EQ(renderer.pipelineCount() - before, passes) << "the CPU decode built the decode pass's pipeline";
+        const RenderOutput device = renderer.render(wiring, pass);
+        EXPECT_EQ(renderer.pipelineCount() - before, passes + 1);
+        EXPECT_TRUE(host.targetWords.empty());  // readTargetWords = false: the words are not kept
+        compareDecodes(name, "scene camera", host, device);
+        // A second view (compare --views): other matrices, another spread of depths.
+        RenderSettings cpuOrbit = cpu, passOrbit = pass;
+        cpuOrbit.camera = passOrbit.camera = orbitCamera(scene);
+        compareDecodes(name, "orbit", renderer.render(wiring, cpuOrbit), renderer.render(wiring, passOrbit));
+    }
+}
+
+
+// Where the codec cannot stand in for readGBuffer, the wiring has no CPU decoder and the renderer
+// keeps the decode pass: a visibility buffer (its readGBuffer resolves triangles) and targets in
+// their native formats (the hardware quantises). With the metrics on the device (keepOnDevice),
+// the decode pass's images are what they read: no CPU decode either.
+TEST(CpuDecodeChoice, DecodePassWhereTheCodecCannotStandIn) {
+    RenderSettings cpu;
+    cpu.decodeSurfaces = true;
+    cpu.decodeOnCpu = true;
+    const GBufferWiring visibility = generateWiring(loadLayout("visibility-32"));
+    EXPECT_EQ(visibility.cpuDecoder, nullptr);
+    EXPECT_FALSE(Renderer::decodesOnCpu(visibility, cpu));
+    WiringOptions native;
+    native.nativeFormats = true;
+    EXPECT_EQ(generateWiring(loadLayout("ue4"), native).cpuDecoder, nullptr);  // ue4's targets map onto UNORM
+    const GBufferWiring ue4 = generateWiring(loadLayout("ue4"));
+    EXPECT_TRUE(Renderer::decodesOnCpu(ue4, cpu));
+    RenderSettings onDevice = cpu;
+    onDevice.keepOnDevice = true;
+    EXPECT_FALSE(Renderer::decodesOnCpu(ue4, onDevice));
+    RenderSettings noDecode = cpu;
+    noDecode.decodeSurfaces = false;
+    EXPECT_FALSE(Renderer::decodesOnCpu(ue4, noDecode));
+}
+
+}  // namespace
+}  // namespace gbl
