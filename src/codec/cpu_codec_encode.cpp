@@ -85,7 +85,7 @@ GBL_CLONE_INLINE void checkerboard(int n, int x0, int y, EncodeBlock& b, uint bi
     });
 }
 
-// sRGB codes of a row (n <= kBlock). Written to a local array first: in target_clones clones GCC
+// sRGB (or gamma 2.2: the table decides) codes of a row (n <= kBlock). Written to a local array first: in target_clones clones GCC
 // 12 drops `restrict`, and then cannot rule out that the stores change the look-up table, so the
 // loop stays scalar (3.7x slower); a local array whose address never escapes cannot alias it.
 GBL_SIMD_CLONES void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8EncodeTable& table) {
@@ -289,10 +289,10 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
         case Codec::NormalOctahedralPrecise:
             map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralPrecise(v, bits); });
             return;
-        case Codec::Gamma22:
-            map1(n, x, c0, [](float v) { return encodeGamma22(v); });
-            map1(n, yv, c1, [](float v) { return encodeGamma22(v); });
-            map1(n, z, c2, [](float v) { return encodeGamma22(v); });
+        case Codec::Gamma22:  // encodeGamma22's codes by one look-up each, as sRGB (encodings_fast.h)
+            srgb8Row(n, x, c0, gamma22EncodeTable());
+            srgb8Row(n, yv, c1, gamma22EncodeTable());
+            srgb8Row(n, z, c2, gamma22EncodeTable());
             return;
         case Codec::Float111110:
             map1(n, x, c0, [](float v) { return encodeFloat11Fast(v); });
