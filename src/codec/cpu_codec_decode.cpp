@@ -254,12 +254,15 @@ GBL_CLONE_INLINE void lumaChromaRow(const FieldPlan& f, const uint32_t* image, c
     uint32_t* __restrict chromaCode = b.code[3];
     extractCode<Words>(f.codes[0], hi - lo, rowWords + size_t(lo) * Words, lumaCode + (lo - xFrom));
     extractCode<Words>(f.codes[1], hi - lo, rowWords + size_t(lo) * Words, chromaCode + (lo - xFrom));
-    for (int k = 0; k < count; ++k) {
-        if (xFrom + k >= lo && xFrom + k < hi) continue;
+    // Only the pixels beyond the edges (k < lo - xFrom, k >= hi - xFrom): a loop over all `count`
+    // that skipped the inside cost a compare and branch per pixel (perf: ~12 % of crysis3-thin's decode).
+    const int ranges[2][2] = {{0, std::min(lo - xFrom, count)}, {std::max(hi - xFrom, 0), count}};
+    for (const auto& r : ranges)
+        for (int k = r[0]; k < r[1]; ++k) {
         const uint32_t* w = rowWords + size_t(mirror(xFrom + k, width)) * Words;
         lumaCode[k] = extractOne(f.codes[0], w);
         chromaCode[k] = extractOne(f.codes[1], w);
-    }
+        }
     if (f.codec == Codec::YCbCrCheckerboard) {
         for (int k = 0; k < count; ++k) {
             luma[k] = dequantizeUnorm(lumaCode[k], bits);
