@@ -100,9 +100,9 @@ GBL_SIMD_CLONES void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8
 // slice of the lines before each field's codes (and the material words), so that misses are in
 // flight all the time the block computes. Issued all at once, as the loads of loadSurfaces went
 // before, they leave memory idle while the fields compute, and each burst waits for the core's
-// few outstanding-miss slots. Side by side with the burst in loadSurfaces (codec_bench, CPU time
-// per image over both threads, loaded machine): niagara 40-56 -> 31-32 ms, compact-octahedral
-// 38-44 -> 24-33 ms (then 16 KB ahead, prefetcht0). Two blocks
+// few outstanding-miss slots. Side by side with the burst in loadSurfaces (16 KB ahead,
+// prefetcht0), a first version with a slice per target (codec_bench, CPU time per image over both
+// threads, loaded machine): niagara 40-56 -> 31-32 ms, compact-octahedral 38-44 -> 24-33 ms. Two blocks
 // ahead and into the outer caches (prefetcht2, locality 1): the line is not needed before the
 // next block but one, and 22 KB of Surfaces ahead would crowd the block's own working set out of L1.
 class SurfacePrefetch {
