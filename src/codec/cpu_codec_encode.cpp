@@ -16,6 +16,7 @@
 #include "stream_copy.h"
 
 #if defined(__SSE2__)
+#include <emmintrin.h>
 #include <xmmintrin.h>
 #endif
 
@@ -85,7 +86,7 @@ GBL_CLONE_INLINE void checkerboard(int n, int x0, int y, EncodeBlock& b, uint bi
     });
 }
 
-// sRGB codes of a row (n <= kBlock). Written to a local array first: in target_clones clones GCC
+// sRGB (or gamma 2.2: the table decides) codes of a row (n <= kBlock). Written to a local array first: in target_clones clones GCC
 // 12 drops `restrict`, and then cannot rule out that the stores change the look-up table, so the
 // loop stays scalar (3.7x slower); a local array whose address never escapes cannot alias it.
 GBL_SIMD_CLONES void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8EncodeTable& table) {
@@ -95,10 +96,37 @@ GBL_SIMD_CLONES void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8
     std::copy(codes, codes + n, out);
 }
 
+// Prefetches of the Surfaces two blocks ahead, spread over the work of the current block: one
+// slice of the lines before each field's codes (and the material words), so that misses are in
+// flight all the time the block computes. Issued all at once, as the loads of loadSurfaces went
+// before, they leave memory idle while the fields compute, and each burst waits for the core's
+// few outstanding-miss slots. Side by side with the burst in loadSurfaces (16 KB ahead,
+// prefetcht0), a first version with a slice per target (codec_bench, CPU time per image over both
+// threads, loaded machine): niagara 40-56 -> 31-32 ms, compact-octahedral 38-44 -> 24-33 ms. Two blocks
+// ahead and into the outer caches (prefetcht2, locality 1): the line is not needed before the
+// next block but one, and 22 KB of Surfaces ahead would crowd the block's own working set out of L1.
+class SurfacePrefetch {
+  public:
+    // From the Surface `ahead` (may lie past the image: prefetches never fault), `n` Surfaces, in
+    // `steps` calls of step().
+    SurfacePrefetch(const Surface* ahead, int n, int steps)
+        : at_(reinterpret_cast<uintptr_t>(ahead) & ~uintptr_t(63)),
+          end_(reinterpret_cast<uintptr_t>(ahead + n)),
+          perStep_(((size_t(n) * sizeof(Surface) + size_t(steps) * 64 - 1) / size_t(steps) + 63) & ~size_t(63)) {}
+    void step() {
+        const uintptr_t to = std::min(at_ + perStep_, end_);
+        for (; at_ < to; at_ += 64) __builtin_prefetch(reinterpret_cast<const void*>(at_), 0, 1);
+    }
+
+  private:
+    uintptr_t at_, end_;
+    size_t perStep_;
+};
+
 // The block's Surfaces member-major (b.s[k][j] = float k of pixel j): 4 x 4 transposes (4 pixels
 // by 4 members at a time, the last 2 members one by one), cheaper than gathering each field's
-// members with strided loads. The Surfaces ahead are prefetched as we go: without it the loads
-// stall on the first touch of each line (about 20 % more time at 1080p). Only the groups of 4
+// members with strided loads. Its lines were prefetched while the blocks before computed
+// (SurfacePrefetch). Only the groups of 4
 // members the layout reads (plan.encodeGroups) are transposed: 4 of the 6 for crysis3-thin and
 // compact-octahedral (the memory traffic is the same: every line is touched either way).
 GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, uint32_t groups, EncodeBlock& b) {
@@ -107,7 +135,6 @@ GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, uint32_t groups, Enc
 #if defined(__SSE2__)
     static_assert(kSurfaceFloats == 22, "5 groups of 4 members + 2");
     for (; j + 4 <= n; j += 4) {
-        prefetchAhead(in + j * kSurfaceFloats, 4 * sizeof(Surface));
         for (int k = 0; k < 20; k += 4) {
             if (!(groups & (1u << (k / 4)))) continue;  // no field reads these members
             __m128 r0 = _mm_loadu_ps(in + (j + 0) * kSurfaceFloats + k);
@@ -160,24 +187,55 @@ GBL_CLONE_INLINE void placeCode(const CodePlan& code, int n, const uint32_t* __r
 // words are then interleaved into the image (Words per pixel).
 template <int Words>
 GBL_CLONE_INLINE void encodeTarget(const TargetPlan& t, int n, int x0, int y, EncodeBlock& b,
-                                   uint32_t* __restrict out) {
+                                   uint32_t* __restrict out, SurfacePrefetch& ahead) {
     for (int k = 0; k < Words; ++k) std::fill(b.words[k], b.words[k] + kBlock, t.constantWords[k]);
     for (const FieldPlan& f : t.encodeFields) {
+        ahead.step();
         gatherInputs(f, n, b);
         encodeCodes(f, n, x0, y, b);
         for (size_t k = 0; k < f.codes.size(); ++k) placeCode(f.codes[k], n, b.code[k], b.words);
     }
+    int j = 0;
+#if defined(__SSE2__)
+    // 4 pixels' words at a time interleaved in registers (Words 2: unpacks, 4: a 4 x 4 transpose)
+    // and streamed straight to the image when it is 16-byte aligned there (a std::vector's image
+    // is, at every block of a row whose pixel index times Words is a multiple of 4), instead of
+    // through b.pixels and a copy.
+    if (reinterpret_cast<uintptr_t>(out) % 16 == 0) {
+        __m128i* dst = reinterpret_cast<__m128i*>(out);
+        for (; j + 4 <= n; j += 4) {
+            const __m128i w0 = _mm_load_si128(reinterpret_cast<const __m128i*>(b.words[0] + j));
+            if constexpr (Words == 1) {
+                _mm_stream_si128(dst + j / 4, w0);
+            } else if constexpr (Words == 2) {
+                const __m128i w1 = _mm_load_si128(reinterpret_cast<const __m128i*>(b.words[1] + j));
+                _mm_stream_si128(dst + j / 2, _mm_unpacklo_epi32(w0, w1));
+                _mm_stream_si128(dst + j / 2 + 1, _mm_unpackhi_epi32(w0, w1));
+            } else {
+                __m128 r0 = _mm_castsi128_ps(w0), r1 = _mm_load_ps(reinterpret_cast<const float*>(b.words[1] + j));
+                __m128 r2 = _mm_load_ps(reinterpret_cast<const float*>(b.words[2] + j));
+                __m128 r3 = _mm_load_ps(reinterpret_cast<const float*>(b.words[3] + j));
+                _MM_TRANSPOSE4_PS(r0, r1, r2, r3);  // bit moves only
+                _mm_stream_si128(dst + j, _mm_castps_si128(r0));
+                _mm_stream_si128(dst + j + 1, _mm_castps_si128(r1));
+                _mm_stream_si128(dst + j + 2, _mm_castps_si128(r2));
+                _mm_stream_si128(dst + j + 3, _mm_castps_si128(r3));
+            }
+        }
+    }
+#endif
     uint32_t* __restrict pixels = b.pixels;
-    for (int j = 0; j < n; ++j)
-        for (int k = 0; k < Words; ++k) pixels[j * Words + k] = b.words[k][j];
-    streamCopy(out, pixels, size_t(n) * Words * sizeof(uint32_t));
+    for (int p = j; p < n; ++p)
+        for (int k = 0; k < Words; ++k) pixels[(p - j) * Words + k] = b.words[k][p];
+    if (j < n) streamCopy(out + size_t(j) * Words, pixels, size_t(n - j) * Words * sizeof(uint32_t));
 }
 
-GBL_SIMD_CLONES void encodeBlock(const TargetPlan& t, int n, int x0, int y, EncodeBlock& b, uint32_t* words) {
+GBL_SIMD_CLONES void encodeBlock(const TargetPlan& t, int n, int x0, int y, EncodeBlock& b, uint32_t* words,
+                                 SurfacePrefetch& ahead) {
     switch (t.words) {
-        case 1: encodeTarget<1>(t, n, x0, y, b, words); return;
-        case 2: encodeTarget<2>(t, n, x0, y, b, words); return;
-        default: encodeTarget<4>(t, n, x0, y, b, words); return;
+        case 1: encodeTarget<1>(t, n, x0, y, b, words, ahead); return;
+        case 2: encodeTarget<2>(t, n, x0, y, b, words, ahead); return;
+        default: encodeTarget<4>(t, n, x0, y, b, words, ahead); return;
     }
 }
 
@@ -187,9 +245,10 @@ GBL_SIMD_CLONES void encodeBlock(const TargetPlan& t, int n, int x0, int y, Enco
 // bits) and streamed to the image, straight from the registers when the image is 16-byte
 // aligned (a std::vector's memory is), else through b.pixels.
 GBL_SIMD_CLONES void encodeMaterial(const CodecPlan& plan, int n, size_t first, uint32_t* const* material,
-                                    EncodeBlock& b) {
+                                    EncodeBlock& b, SurfacePrefetch& ahead) {
     alignas(32) static const float zeros[kBlock] = {};
     for (int m = 0; m < plan.materialTargets; ++m) {
+        ahead.step();
         const float* rows[4];
         for (int ch = 0; ch < 4; ++ch) {
             const int src = plan.materialSource[size_t(m * 4 + ch)];
@@ -289,10 +348,10 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
         case Codec::NormalOctahedralPrecise:
             map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralPrecise(v, bits); });
             return;
-        case Codec::Gamma22:
-            map1(n, x, c0, [](float v) { return encodeGamma22(v); });
-            map1(n, yv, c1, [](float v) { return encodeGamma22(v); });
-            map1(n, z, c2, [](float v) { return encodeGamma22(v); });
+        case Codec::Gamma22:  // encodeGamma22's codes by one look-up each, as sRGB (encodings_fast.h)
+            srgb8Row(n, x, c0, gamma22EncodeTable());
+            srgb8Row(n, yv, c1, gamma22EncodeTable());
+            srgb8Row(n, z, c2, gamma22EncodeTable());
             return;
         case Codec::Float111110:
             map1(n, x, c0, [](float v) { return encodeFloat11Fast(v); });
@@ -336,17 +395,21 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
 
 void encodeRows(const CodecPlan& plan, const Surface* surfaces, int width, int y0, int y1, const WordViews& out) {
     EncodeBlock b;
+    int steps = plan.materialTargets + 1;  // a slice per field, per material target, and one to start
+    for (const TargetPlan& t : plan.targets) steps += int(t.encodeFields.size());
     for (int y = y0; y < y1; ++y)
         for (int x0 = 0; x0 < width; x0 += kBlock) {
             const int n = std::min(kBlock, width - x0);
             const size_t first = size_t(y) * size_t(width) + size_t(x0);
             const Surface* px = surfaces + first;
+            SurfacePrefetch ahead(px + 2 * kBlock, kBlock, steps);
+            ahead.step();
             loadSurfaces(px, n, plan.encodeGroups, b);
             for (size_t t = 0; t < plan.targets.size(); ++t) {
                 const TargetPlan& tp = plan.targets[t];
-                encodeBlock(tp, n, x0, y, b, out.targets[t] + first * size_t(tp.words));
+                encodeBlock(tp, n, x0, y, b, out.targets[t] + first * size_t(tp.words), ahead);
             }
-            if (plan.materialTargets > 0) encodeMaterial(plan, n, first, out.material, b);
+            if (plan.materialTargets > 0) encodeMaterial(plan, n, first, out.material, b, ahead);
         }
     streamFence();
 }

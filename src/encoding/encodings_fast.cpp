@@ -144,27 +144,38 @@ GBL_SIMD_CLONES void encodeNormalBestFitRow(int n, const float* x, const float* 
 // those upper bits; `base` counts the thresholds below the bucket, and a threshold inside it (at
 // most one, checked here) has the same upper bits, so it is <= x exactly when its low 16 bits are
 // <= x's. Count = base + that comparison. Outside [first, last) the count is 0 or 255.
-const Srgb8EncodeTable& srgb8EncodeTable() {
-    static const std::vector<uint32_t> entries = [] {
-        constexpr int k = Srgb8EncodeTable::kShift;
-        const uint32_t first = floatBitsToUint(kSrgbEncodeThresholds[0]) >> k;
-        const uint32_t last = floatBitsToUint(kSrgbEncodeThresholds[254]) >> k;
-        std::vector<uint32_t> v;
-        size_t below = 0;  // thresholds below the current bucket
-        for (uint32_t b = first; b <= last; ++b) {
-            while (below < 255 && (floatBitsToUint(kSrgbEncodeThresholds[below]) >> k) < b) ++below;
-            size_t inside = below;
-            while (inside < 255 && (floatBitsToUint(kSrgbEncodeThresholds[inside]) >> k) == b) ++inside;
-            if (inside - below > 1) throw std::logic_error("srgb8EncodeTable: two thresholds in one bucket");
-            const uint32_t cut = inside > below ? (floatBitsToUint(kSrgbEncodeThresholds[below]) & 0xffffu) : 0x10000u;
-            v.push_back(uint32_t(below) | (cut << 8));
-        }
-        return v;
-    }();
+// encodeGamma22 is the same binary search over its own 255 thresholds, so the same table form
+// serves it: the thresholds ((i + 0.5) / 255)^2.2 are at least 0.86 % apart (the top two), a
+// bucket at most 2^-7 = 0.79 % wide (the build below throws otherwise).
+namespace {
+
+Srgb8EncodeTable thresholdTable(const float (&thresholds)[255], std::vector<uint32_t>& v) {
     constexpr int k = Srgb8EncodeTable::kShift;
-    static const Srgb8EncodeTable table{floatBitsToUint(kSrgbEncodeThresholds[0]) >> k,
-                                        floatBitsToUint(kSrgbEncodeThresholds[254]) >> k, kSrgbEncodeThresholds[0],
-                                        kSrgbEncodeThresholds[254], entries.data()};
+    const uint32_t first = floatBitsToUint(thresholds[0]) >> k;
+    const uint32_t last = floatBitsToUint(thresholds[254]) >> k;
+    size_t below = 0;  // thresholds below the current bucket
+    for (uint32_t b = first; b <= last; ++b) {
+        while (below < 255 && (floatBitsToUint(thresholds[below]) >> k) < b) ++below;
+        size_t inside = below;
+        while (inside < 255 && (floatBitsToUint(thresholds[inside]) >> k) == b) ++inside;
+        if (inside - below > 1) throw std::logic_error("thresholdTable: two thresholds in one bucket");
+        const uint32_t cut = inside > below ? (floatBitsToUint(thresholds[below]) & 0xffffu) : 0x10000u;
+        v.push_back(uint32_t(below) | (cut << 8));
+    }
+    return Srgb8EncodeTable{first, last, thresholds[0], thresholds[254], v.data()};
+}
+
+}  // namespace
+
+const Srgb8EncodeTable& srgb8EncodeTable() {
+    static std::vector<uint32_t> entries;
+    static const Srgb8EncodeTable table = thresholdTable(kSrgbEncodeThresholds, entries);
+    return table;
+}
+
+const Srgb8EncodeTable& gamma22EncodeTable() {
+    static std::vector<uint32_t> entries;
+    static const Srgb8EncodeTable table = thresholdTable(kGamma22EncodeThresholds, entries);
     return table;
 }
 

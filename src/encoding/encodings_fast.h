@@ -39,6 +39,9 @@ struct Srgb8EncodeTable {
     const uint32_t* entries = nullptr;
 };
 const Srgb8EncodeTable& srgb8EncodeTable();
+// The same form for encodeGamma22's thresholds (kGamma22EncodeThresholds): encodeSrgb8Fast(x,
+// gamma22EncodeTable()) == encodeGamma22(x) for every float (a table per threshold array).
+const Srgb8EncodeTable& gamma22EncodeTable();
 
 // Branch-free (the bucket is clamped so every input reads a valid entry), so loops vectorise.
 inline uint encodeSrgb8Fast(float x, const Srgb8EncodeTable& t) {

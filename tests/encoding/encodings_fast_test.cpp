@@ -216,6 +216,33 @@ TEST(Srgb8EncodeFast, SameCodesAsTheReference) {
     EXPECT_EQ(bad, 0u);
 }
 
+// Gamma 2.2 (Bevy's and niagara's base colour) by the sRGB table form over its own thresholds:
+// every 5th float of the range the table spans (about 30M: every bucket, every threshold's
+// surroundings), each threshold and bucket edge with its neighbours, and the whole-range sweep.
+TEST(Gamma22EncodeFast, SameCodesAsTheReference) {
+    std::vector<float> xs = floatSweep();
+    for (float t : enc::kGamma22EncodeThresholds) addNeighbours(xs, t, 4);
+    const enc::Srgb8EncodeTable& table = enc::gamma22EncodeTable();
+    for (uint32_t b = table.firstBucket; b <= table.lastBucket + 1; ++b)
+        addNeighbours(xs, enc::uintBitsToFloat(b << enc::Srgb8EncodeTable::kShift), 2);
+    size_t bad = 0, count = xs.size();
+    auto check = [&](float x) {
+        const uint fast = enc::encodeSrgb8Fast(x, table), ref = enc::encodeGamma22(x);
+        if (fast != ref && bad++ < 5)
+            ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
+                          << "): fast " << fast << ", reference " << ref;
+    };
+    for (float x : xs) check(x);
+    const uint32_t from = (table.firstBucket - 1) << enc::Srgb8EncodeTable::kShift;
+    const uint32_t to = (table.lastBucket + 2) << enc::Srgb8EncodeTable::kShift;
+    for (uint32_t bits = from; bits < to; bits += 5, ++count) check(enc::uintBitsToFloat(bits));
+    std::printf("[ gamma22  ] %zu values, %zu differ\n", count, bad);
+    EXPECT_EQ(bad, 0u);
+    // The table is not the sRGB one: the curves differ (0.2: sRGB code 124, gamma 2.2 code 123).
+    EXPECT_EQ(enc::encodeSrgb8Fast(0.2f, table), 123u);
+    EXPECT_EQ(enc::encodeSrgb8(0.2f), 124u);
+}
+
 TEST(SmallFloatEncodeFast, SameCodesAsTheReference) {
     std::vector<float> xs = floatSweep();
     // Every exponent, with mantissas at and around the rounding points of 10, 6 and 5 kept bits
