@@ -6,6 +6,10 @@
 //
 //   gbuffer_pass/<layout>/<W>x<H>    manual time = timings.gbufferMs of each frame
 //   lighting_pass/<layout>/<W>x<H>   manual time = timings.lightingMs of each frame
+//   readback/<layout>/<W>x<H>/decode_pass, .../cpu_codec
+//                                    manual time = the frame's read-back stage (StageClock): HDR,
+//                                    depth and the decoded surfaces, by the decode pass or by the
+//                                    CPU codec from the raw words (RenderSettings::decodeOnCpu)
 //
 // Every frame times both passes, so lighting_pass first uses the lighting times of the frames
 // that gbuffer_pass of the same layout and size rendered (same frames, not re-rendered) and
@@ -36,6 +40,7 @@
 #include "procedural_sky.h"
 #include "renderer.h"
 #include "scene.h"
+#include "stage_clock.h"
 #include "vk_context.h"
 #include "wiring_codegen.h"
 
@@ -129,6 +134,38 @@ void registerLayout(const gbl::Layout& layout, Size size) {
     })->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
 }
 
+// The read-back of compare's renders (decoded surfaces, no raw words kept), one way or the other.
+void registerReadback(const gbl::Layout& layout, Size size) {
+    const auto wiring = std::make_shared<gbl::GBufferWiring>(gbl::generateWiring(layout));
+    for (const bool cpu : {false, true}) {
+        const std::string name = "readback/" + layout.name + "/" + size.text() + (cpu ? "/cpu_codec" : "/decode_pass");
+        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
+            try {
+                gbl::RenderSettings settings;
+                settings.width = size.width;
+                settings.height = size.height;
+                settings.decodeSurfaces = true;
+                settings.readTargetWords = false;
+                settings.decodeOnCpu = cpu;
+                if (cpu && !gbl::Renderer::decodesOnCpu(*wiring, settings)) {
+                    state.SkipWithError("no CPU decoder for this layout (visibility buffer)");
+                    return;
+                }
+                (void)gpu().renderer->render(*wiring, settings);  // warm-up: pipelines, first-touch pages
+                for (auto _ : state) {
+                    const double before = gbl::StageClock::global().read()[gbl::Stage::Readback];
+                    const gbl::RenderOutput out = gpu().renderer->render(*wiring, settings);
+                    state.SetIterationTime((gbl::StageClock::global().read()[gbl::Stage::Readback] - before) / 1000.0);
+                    benchmark::DoNotOptimize(out.surfaces.normal.pixels.data());
+                }
+                setCounters(state, layout, size);
+            } catch (const std::exception& e) {
+                state.SkipWithError(e.what());
+            }
+        })->UseManualTime()->Iterations(3)->Unit(benchmark::kMillisecond);
+    }
+}
+
 std::vector<std::string> selectedLayouts() {
     std::vector<std::string> names;
     if (const char* env = std::getenv("GBL_BENCH_LAYOUTS"); env && *env) {
@@ -170,12 +207,16 @@ int main(int argc, char** argv) {
         std::vector<Size> sizes = {{1920, 1080}};
         if (with4k) sizes.push_back({3840, 2160});
         for (const Size size : sizes)
-            for (const std::string& name : selectedLayouts()) registerLayout(gbl::loadLayout(name), size);
+            for (const std::string& name : selectedLayouts()) {
+                registerLayout(gbl::loadLayout(name), size);
+                registerReadback(gbl::loadLayout(name), size);
+            }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "gpu_pass_bench: %s\n", e.what());
         return 1;
     }
 
+    gbl::StageClock::global().start();  // the renderer marks its read-back stage on it
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
     std::fprintf(stderr, "gpu_pass_bench: peak RSS of the process %.1f MiB\n", peakRssMiB());
