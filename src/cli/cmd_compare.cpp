@@ -279,7 +279,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
             } catch (const std::exception&) {
             }
         }
-        renderer.preparePipelines(wirings);
+        renderer.preparePipelines(wirings, modes);
     }
     // Every run renders the same way but for the IBL mode, and decodes its G-buffer for metrics.
     auto settingsFor = [&](IblMode mode, int view) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "best_fit_normals.h"
+#include "codec_tables.h"
 #include "error.h"
 #include "shader_compiler.h"
 #include "stage_clock.h"
@@ -237,6 +238,7 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
     pass.pool = createPoolFor(ctx.device, {bindings});
     pass.set = allocateSet(ctx.device, pass.pool, pass.setLayout);
     pass.bestFitTable = createBestFitTableBuffer(ctx);
+    pass.codecTables = createCodecTablesBuffer(ctx);
     DescriptorWriter writer;
     writer.buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
         .buffer(pass.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materials.buffer)
@@ -356,6 +358,11 @@ void recordGBufferWarmUp(VkCommandBuffer cmd, const GBufferPass& pass, const Gpu
     endGBufferPass(cmd, pass);
 }
 
+Buffer createCodecTablesBuffer(const VulkanContext& ctx) {
+    const std::vector<float>& floats = enc::codecTableFloats();
+    return createBufferWithData(ctx, floats.data(), floats.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+
 Buffer createBestFitTableBuffer(const VulkanContext& ctx) {
     const std::vector<uint32_t>& table = enc::bestFitNormalTable();
     return createBufferWithData(ctx, table.data(), table.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -363,6 +370,7 @@ Buffer createBestFitTableBuffer(const VulkanContext& ctx) {
 
 void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {
     if (pass.bestFitTable.buffer) destroyBuffer(ctx, pass.bestFitTable);
+    if (pass.codecTables.buffer) destroyBuffer(ctx, pass.codecTables);
     for (auto& t : pass.targets) destroyImage(ctx, t);
     pass.targets.clear();
     if (pass.emissive.image) destroyImage(ctx, pass.emissive);

@@ -15,6 +15,7 @@
 #include "parallel_invoke.h"
 #include "renderer_passes.h"
 #include "stage_clock.h"
+#include "warm_up_times.h"
 #include "wiring_plan.h"
 
 namespace gbl {
@@ -95,7 +96,8 @@ Renderer::~Renderer() {
     pipelines_.destroy(ctx_.device);
 }
 
-void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings) {
+void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const std::vector<IblMode>& iblModes,
+                                int fresnelMode) {
     ScopedStage timed(Stage::ShaderCompile);
     const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
     std::vector<GBufferWiring> materials(wirings.size());
@@ -107,7 +109,10 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings) {
             tasks.push_back([&, i] { gbufferPassPipeline(ctx_, materials[i], textureCount, pipelines_); });
         }
         const TargetReadScene readScene = targetReadScene(ctx_, wirings[i], gpuScene_);
-        tasks.push_back([&, i, readScene] { lightingPassPipeline(ctx_, wirings[i], readScene, pipelines_); });
+        for (IblMode mode : iblModes)  // one lighting pipeline per mode (LightingVariant)
+            tasks.push_back([&, i, readScene, mode] {
+                lightingPassPipeline(ctx_, wirings[i], readScene, LightingVariant{mode, fresnelMode}, pipelines_);
+            });
         tasks.push_back([&, i, readScene] { decodePassPipeline(ctx_, wirings[i], readScene, pipelines_); });
     }
     for (auto& task : tasks)
@@ -151,7 +156,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     gbufferPassPipeline(ctx_, wiring, textureCount, pipelines_);
     if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), textureCount, pipelines_);
     const TargetReadScene readScene = targetReadScene(ctx_, wiring, gpuScene_);
-    lightingPassPipeline(ctx_, wiring, readScene, pipelines_);
+    const LightingVariant variant{settings.specularIbl, settings.fresnelMode};
+    lightingPassPipeline(ctx_, wiring, readScene, variant, pipelines_);
     if (settings.decodeSurfaces) decodePassPipeline(ctx_, wiring, readScene, pipelines_);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
@@ -169,19 +175,31 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, settings.readTargetWords);
     const bool groundTruth = settings.specularIbl == IblMode::GroundTruth;
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
-                          nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth};
+                          nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth,
+                          variant};
     LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, h, pipelines_);
     if (gbuffer.needsWarmUp || (material && material->needsWarmUp) || lighting.needsWarmUp) {
         // New pipelines: one draw clipped to a pixel and one workgroup each, so that a driver that
         // compiles at first use (llvmpipe JIT-compiles a shader variant at its first draw or
         // dispatch, keyed by the bound formats and samplers, hence with the frame's own resources)
         // does it here, timed as shader compile, and the frame below times the frame alone.
+        // One submission per pass, each timed as its pass kind's warm-up (gpu/warm_up_times.h:
+        // which shaders a first run's compile is spent on). A pass whose pipeline was warmed
+        // before still runs (it leaves the targets in the layout the next pass reads them in),
+        // uncounted.
         ScopedStage timedCompile(Stage::ShaderCompile);
-        ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-            recordGBufferWarmUp(cmd, gbuffer, gpuScene_);
-            if (material) recordGBufferWarmUp(cmd, *material, gpuScene_);
-            recordLightingWarmUp(cmd, lighting);
-        });
+        const std::string of = " (layout " + wiring.layoutName + ")";
+        {
+            ScopedWarmUp timed("gbuffer", "gbuffer" + of, gbuffer.needsWarmUp);
+            ctx_.submitAndWait([&](VkCommandBuffer cmd) { recordGBufferWarmUp(cmd, gbuffer, gpuScene_); });
+        }
+        if (material) {
+            ScopedWarmUp timed("material", "material" + of, material->needsWarmUp);
+            ctx_.submitAndWait([&](VkCommandBuffer cmd) { recordGBufferWarmUp(cmd, *material, gpuScene_); });
+        }
+        ScopedWarmUp timed("lighting", "lighting (layout " + wiring.layoutName + ", " + iblModeName(settings.specularIbl) + ")",
+                           lighting.needsWarmUp);
+        ctx_.submitAndWait([&](VkCommandBuffer cmd) { recordLightingWarmUp(cmd, lighting); });
     }
 
     const std::vector<double> passMs = submitTimedSegments(

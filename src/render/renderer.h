@@ -128,14 +128,18 @@ public:
     // Builds the pipelines of every wiring's passes (G-buffer, material, lighting, decode) side by
     // side on worker threads (vkCreate*Pipelines may be called from several threads; the
     // VkPipelineCache is internally synchronised, created without EXTERNALLY_SYNCHRONIZED), timed
-    // as shader compile, so the renders of these wirings build nothing. A wiring whose pipeline
-    // cannot be built is skipped here: its render() fails with the error, as it would have.
-    void preparePipelines(const std::vector<GBufferWiring>& wirings);
+    // as shader compile, so the renders of these wirings under these IBL modes (and Fresnel,
+    // RenderSettings::fresnelMode) build nothing: the lighting pass has one pipeline per mode
+    // (render/renderer_passes.h LightingVariant). A wiring whose pipeline cannot be built is
+    // skipped here: its render() fails with the error, as it would have.
+    void preparePipelines(const std::vector<GBufferWiring>& wirings, const std::vector<IblMode>& iblModes,
+                          int fresnelMode = RenderSettings{}.fresnelMode);
 
     const Scene& scene() const { return scene_; }
     const IblGpu& ibl() const { return ibl_; }
     // Pipelines built so far (G-buffer, material, lighting, decode): each layout's are built at its
-    // first render and reused by every later one, whatever the camera, size or IBL mode.
+    // first render and reused by every later one, whatever the camera or size; the lighting
+    // pass's once per IBL mode (and Fresnel).
     size_t pipelineCount() const { return pipelines_.size(); }
 
 private:

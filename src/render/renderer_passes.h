@@ -34,6 +34,10 @@ struct GBufferPass {
     // The best-fit normal table (src/encoding/best_fit_normals.h) that encodeNormalBestFit reads:
     // set 0, binding kBestFitTableBinding of every pipeline that writes a G-buffer.
     Buffer bestFitTable;
+    // The encodings' 8-bit tables (src/encoding/codec_tables.h) that the passes reading this
+    // G-buffer (lighting, decode) bind at set 1, binding enc::kCodecTablesBinding
+    // (writeTargetReadSet): made by createGBufferPass, empty in passes put together by hand.
+    Buffer codecTables;
     std::vector<std::array<uint32_t, 4>> clearWords;  // per target (GBufferWiring::targetClearWords)
     // The layout declares stencil extras: the pipeline writes the stencil with op REPLACE and a
     // dynamic reference, set per draw to stencilReference(wiring, material's values).
@@ -62,6 +66,8 @@ inline void addSpaceDefines(ShaderSource& s, const GBufferWiring& w) {
 
 // Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).
 Buffer createBestFitTableBuffer(const VulkanContext& ctx);
+// Uploads enc::codecTableFloats() as a storage buffer (for GBufferPass::codecTables).
+Buffer createCodecTablesBuffer(const VulkanContext& ctx);
 
 // Throws UserError (one line naming the layout, the count and the fix) when the scene has more
 // draws or triangles than a visibility buffer's ids hold, or the device lacks gl_PrimitiveID in
@@ -78,8 +84,16 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
 // (Renderer::preparePipelines). `textureCount`: the scene's (GpuScene::textures).
 PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t textureCount,
                                  PipelineMemo& memo);
+// What a lighting pipeline is built for besides its wiring: the specular IBL mode and the direct
+// lights' Fresnel, compiled in as defines (GBL_IBL_MODE, GBL_FRESNEL_MODE) so the driver compiles
+// only the code they take (on llvmpipe, which JIT-compiles every branch, most of a first run's
+// time: issue 14). A render needs the variant of its RenderSettings.
+struct LightingVariant {
+    IblMode ibl = IblMode::SplitSum;
+    int fresnelMode = 1;  // brdf.glsl FRESNEL_* (RenderSettings::fresnelMode)
+};
 PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
-                                  PipelineMemo& memo);
+                                  const LightingVariant& variant, PipelineMemo& memo);
 // Records the pass; leaves targets and depth in SHADER_READ_ONLY_OPTIMAL.
 void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene);
 // The pass's first draw only, clipped to one pixel: makes a driver that compiles shaders at their
@@ -138,9 +152,11 @@ struct LightingInputs {
     const GBufferPass* materialPass = nullptr;  // deferred lighting's second geometry pass (set 2)
     const Buffer* lightBufferWords = nullptr;  // deferred lighting's light buffers (set 0, binding 9)
     bool accumulate = false;  // ground truth: batches accumulate into LightingPass::accumulation
+    LightingVariant variant;  // must match the frame constants' IBL mode and Fresnel
 };
 
-// The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2); for a
+// The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2), and the
+// encodings' tables (binding enc::kCodecTablesBinding, a storage buffer: codec_tables.glsl); for a
 // visibility buffer, also what its resolve reads (shaders/visibility_buffer.glsl, GBUFFER_READ):
 // binding 1 vertices, 2 indices, 3 draws, 4 materials (storage buffers), 5 the textures.
 std::vector<Binding> targetReadBindings(const GBufferPass& pass);
@@ -150,10 +166,11 @@ TargetReadScene targetReadScene(const GBufferPass& pass);
 // The TargetReadScene createGBufferPass's pass will have for this wiring and scene (for building
 // pipelines before the pass exists: Renderer::preparePipelines).
 TargetReadScene targetReadScene(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene);
-// Writes those bindings of `set` (targets through `nearestSampler`).
+// Writes those bindings of `set` (targets through `nearestSampler`, the pass's codecTables).
 void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler);
-// What a pass reading a visibility buffer compiles with: TEXTURE_COUNT for its resolve, and
-// GBL_NONUNIFORM_TEXTURE_INDEXING where the device has it; nothing for a G-buffer.
+// What a pass reading a G-buffer compiles with: GBL_CODEC_TABLES_SET / _BINDING (the tables from
+// the storage buffer of targetReadBindings); for a visibility buffer also TEXTURE_COUNT for its
+// resolve, and GBL_NONUNIFORM_TEXTURE_INDEXING where the device has it.
 void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene);
 
 // in.gbuffer and in.materialPass must be the wiring's (their target counts are the set layouts').

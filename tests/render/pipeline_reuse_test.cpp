@@ -1,6 +1,6 @@
 // A Renderer builds each layout's pipelines once (issue 14: compare --views 3 built 92 pipelines
-// where 32 do): later renders of the same layout, from another camera, under another IBL mode or
-// at another size, create no pipeline, and render exactly what a fresh Renderer renders.
+// where 32 do): later renders of the same layout, from another camera, under another prepared IBL
+// mode or at another size, create no pipeline, and render exactly what a fresh Renderer renders.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -47,8 +47,8 @@ void expectSameImage(const Image& a, const Image& b, const char* what) {
 }
 
 // One renderer builds everything once: preparePipelines builds every pipeline up front (on worker
-// threads), then renders of those layouts from other cameras, under other IBL modes and at other
-// sizes build none. A wiring whose shader does not compile is skipped by preparePipelines and
+// threads; the lighting pass's once per IBL mode), then renders of those layouts from other
+// cameras, under those IBL modes and at other sizes build none. A wiring whose shader does not compile is skipped by preparePipelines and
 // fails in its render, as before. (One test: every new pipeline costs llvmpipe seconds of JIT.)
 TEST_F(PipelineReuseTest, ViewsModesAndSizesReuseEachLayoutsPipelines) {
     const Scene scene = makeSphereGridScene();
@@ -63,18 +63,18 @@ TEST_F(PipelineReuseTest, ViewsModesAndSizesReuseEachLayoutsPipelines) {
 
     Renderer prepared(test::sharedContext(), scene, sky);
     const int before = pipelinesCreated();
-    EXPECT_NO_THROW(prepared.preparePipelines({slim, ue4, broken}));
-    // ue4: G-buffer, lighting, decode; crysis2-slim adds its material pass; nothing of the broken
-    // wiring (its three shaders fail to compile).
-    EXPECT_EQ(pipelinesCreated() - before, 4 + 3);
-    EXPECT_EQ(prepared.pipelineCount(), size_t(4 + 3));
+    EXPECT_NO_THROW(prepared.preparePipelines({slim, ue4, broken}, {IblMode::SplitSum, IblMode::SplitSumShader}));
+    // ue4: G-buffer, lighting per IBL mode (2), decode; crysis2-slim adds its material pass;
+    // nothing of the broken wiring (its shaders fail to compile).
+    EXPECT_EQ(pipelinesCreated() - before, 5 + 4);
+    EXPECT_EQ(prepared.pipelineCount(), size_t(5 + 4));
     prepared.render(slim, settingsAt(96, 64, IblMode::SplitSum, std::nullopt));
     prepared.render(slim, settingsAt(96, 64, IblMode::SplitSum, other));
     const RenderOutput slimOther = prepared.render(slim, settingsAt(96, 64, IblMode::SplitSumShader, other));
     prepared.render(slim, settingsAt(80, 48, IblMode::SplitSumShader, scene.camera));
     const RenderOutput ue4Out = prepared.render(ue4, settingsAt(96, 64, IblMode::SplitSum, std::nullopt));
-    EXPECT_EQ(pipelinesCreated() - before, 4 + 3) << "a render built a pipeline preparePipelines had built";
-    EXPECT_EQ(prepared.pipelineCount(), size_t(4 + 3));
+    EXPECT_EQ(pipelinesCreated() - before, 5 + 4) << "a render built a pipeline preparePipelines had built";
+    EXPECT_EQ(prepared.pipelineCount(), size_t(5 + 4));
     EXPECT_THROW(prepared.render(broken, settingsAt(96, 64, IblMode::SplitSum, std::nullopt)), ShaderCompileError);
 
     // Built one by one, at first render: one layout's pipelines, then the other's (different
