@@ -3,9 +3,9 @@
 // engine_encodings.glsl): GBL_CODEC_TABLE(array, offset, i) is array[i].
 //
 // A pass that defines GBL_CODEC_TABLES_SET and GBL_CODEC_TABLES_BINDING reads them from a
-// storage buffer there instead (the renderer's lighting and decode passes: set 1, binding
-// kCodecTablesBinding, src/encoding/codec_tables.h, which fills it from the C++ twins of the same
-// tables). The values are the same floats; the difference is the driver's compile: a constant
+// storage buffer there instead (the renderer's G-buffer pass: set 0; its lighting and decode
+// passes: set 1; binding kCodecTablesBinding of src/encoding/codec_tables.h, which fills it from
+// the C++ twins of the same tables). The values are the same floats; the difference is the driver's compile: a constant
 // array indexed with a run-time code is copied into per-invocation memory, element by element,
 // at every call, and llvmpipe (lavapipe 22.3) spent about 30 s JIT-compiling the three sRGB
 // decodes of one ue4 lighting shader (0.5 s with this buffer; measured with GBL_WARM_UP_LOG=1,

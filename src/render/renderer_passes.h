@@ -34,9 +34,10 @@ struct GBufferPass {
     // The best-fit normal table (src/encoding/best_fit_normals.h) that encodeNormalBestFit reads:
     // set 0, binding kBestFitTableBinding of every pipeline that writes a G-buffer.
     Buffer bestFitTable;
-    // The encodings' 8-bit tables (src/encoding/codec_tables.h) that the passes reading this
-    // G-buffer (lighting, decode) bind at set 1, binding enc::kCodecTablesBinding
-    // (writeTargetReadSet): made by createGBufferPass, empty in passes put together by hand.
+    // The encodings' 8-bit tables (src/encoding/codec_tables.h): the G-buffer pass's encoders read
+    // them at set 0, and the passes reading this G-buffer (lighting, decode) at set 1, binding
+    // enc::kCodecTablesBinding (writeTargetReadSet). Made by createGBufferPass, empty in passes
+    // put together by hand.
     Buffer codecTables;
     std::vector<std::array<uint32_t, 4>> clearWords;  // per target (GBufferWiring::targetClearWords)
     // The layout declares stencil extras: the pipeline writes the stencil with op REPLACE and a
