@@ -110,10 +110,13 @@ PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring&
     }
     cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
     if (emissive) cs.defines.push_back({"EMISSIVE_FORWARD", "1"});
-    // One IBL mode and one Fresnel per pipeline (in the key through the defines): the shader
-    // without them holds every mode behind run-time branches, all of which llvmpipe compiles.
-    cs.defines.push_back({"GBL_IBL_MODE", std::to_string(int(variant.ibl))});
-    cs.defines.push_back({"GBL_FRESNEL_MODE", std::to_string(variant.fresnelMode)});
+    // Specialised: one IBL mode and one Fresnel per pipeline (in the key through the defines);
+    // without them the shader holds every mode behind run-time branches, all of which llvmpipe
+    // compiles, and the pipeline serves every mode (LightingVariant).
+    if (variant.specialised) {
+        cs.defines.push_back({"GBL_IBL_MODE", std::to_string(int(variant.ibl))});
+        cs.defines.push_back({"GBL_FRESNEL_MODE", std::to_string(variant.fresnelMode)});
+    }
     // The shader's input and the set layouts (set 0 follows LIGHT_PRE_PASS, set 1 a visibility
     // buffer's TEXTURE_COUNT, both already in the key).
     const std::string key = "lighting|" + shaderMemoKey(cs) + "|targets " +

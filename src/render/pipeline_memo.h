@@ -4,9 +4,9 @@
 // mode, 92 pipelines where 32 do). A pipeline depends on its shaders' full input (source, every
 // included file, the defines) and the fixed-function state it was created with, never on the
 // image size or the camera (uniforms and descriptors), so one built for a layout serves every
-// view of that layout. The lighting pass's is built per IBL mode and Fresnel (defines in its key,
-// renderer_passes.h LightingVariant): llvmpipe JIT-compiles every branch of a shader, and one
-// shader holding all the modes cost several times the compile of the one mode a run uses; the
+// view of that layout. The lighting pass's is built per IBL mode and Fresnel in a run of one mode
+// (defines in its key, renderer_passes.h LightingVariant: llvmpipe JIT-compiles every branch, and
+// the shader holding all the modes cost about 1.5x the one mode's), else once for all modes; the
 // G-buffer, material and decode passes do not depend on the mode and serve all of them.
 //
 // Each entry owns its descriptor-set layouts and pipeline layout as well: a pass that borrows the

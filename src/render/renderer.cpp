@@ -102,6 +102,11 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const
     const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
     std::vector<GBufferWiring> materials(wirings.size());
     std::vector<std::function<void()>> tasks;
+    // One mode: its specialised lighting pipelines; several: one generic pipeline per wiring
+    // serves them all (LightingVariant), and later renders build the same.
+    specialiseLighting_ = iblModes.size() <= 1;
+    const std::vector<IblMode> lightingModes =
+        specialiseLighting_ ? iblModes : std::vector<IblMode>{iblModes.front()};
     for (size_t i = 0; i < wirings.size(); ++i) {
         tasks.push_back([&, i] { gbufferPassPipeline(ctx_, wirings[i], textureCount, pipelines_); });
         if (wirings[i].materialPass) {
@@ -109,9 +114,10 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const
             tasks.push_back([&, i] { gbufferPassPipeline(ctx_, materials[i], textureCount, pipelines_); });
         }
         const TargetReadScene readScene = targetReadScene(ctx_, wirings[i], gpuScene_);
-        for (IblMode mode : iblModes)  // one lighting pipeline per mode (LightingVariant)
+        for (IblMode mode : lightingModes)
             tasks.push_back([&, i, readScene, mode] {
-                lightingPassPipeline(ctx_, wirings[i], readScene, LightingVariant{mode, fresnelMode}, pipelines_);
+                lightingPassPipeline(ctx_, wirings[i], readScene,
+                                     LightingVariant{mode, fresnelMode, specialiseLighting_}, pipelines_);
             });
         tasks.push_back([&, i, readScene] { decodePassPipeline(ctx_, wirings[i], readScene, pipelines_); });
     }
@@ -156,7 +162,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     gbufferPassPipeline(ctx_, wiring, textureCount, pipelines_);
     if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), textureCount, pipelines_);
     const TargetReadScene readScene = targetReadScene(ctx_, wiring, gpuScene_);
-    const LightingVariant variant{settings.specularIbl, settings.fresnelMode};
+    const LightingVariant variant{settings.specularIbl, settings.fresnelMode, specialiseLighting_};
     lightingPassPipeline(ctx_, wiring, readScene, variant, pipelines_);
     if (settings.decodeSurfaces) decodePassPipeline(ctx_, wiring, readScene, pipelines_);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);

@@ -129,9 +129,11 @@ public:
     // side on worker threads (vkCreate*Pipelines may be called from several threads; the
     // VkPipelineCache is internally synchronised, created without EXTERNALLY_SYNCHRONIZED), timed
     // as shader compile, so the renders of these wirings under these IBL modes (and Fresnel,
-    // RenderSettings::fresnelMode) build nothing: the lighting pass has one pipeline per mode
-    // (render/renderer_passes.h LightingVariant). A wiring whose pipeline cannot be built is
-    // skipped here: its render() fails with the error, as it would have.
+    // RenderSettings::fresnelMode) build nothing. With one mode the lighting pipelines are
+    // specialised for it (render/renderer_passes.h LightingVariant), with several they are generic
+    // and serve them all, and so are those of later renders. A wiring whose pipeline cannot be
+    // built is skipped here: its render() fails with the error, as it would have. An empty
+    // `iblModes` builds no lighting pipeline.
     void preparePipelines(const std::vector<GBufferWiring>& wirings, const std::vector<IblMode>& iblModes,
                           int fresnelMode = RenderSettings{}.fresnelMode);
 
@@ -152,6 +154,9 @@ private:
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
     IblGpu ibl_;
     PipelineMemo pipelines_;
+    // Lighting pipelines specialised per IBL mode and Fresnel: until preparePipelines is given
+    // several modes (LightingVariant).
+    bool specialiseLighting_ = true;
 };
 
 // Camera matrices for the frame, with Vulkan's y-down flip and optional reversed Z.

@@ -85,13 +85,17 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
 // (Renderer::preparePipelines). `textureCount`: the scene's (GpuScene::textures).
 PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t textureCount,
                                  PipelineMemo& memo);
-// What a lighting pipeline is built for besides its wiring: the specular IBL mode and the direct
-// lights' Fresnel, compiled in as defines (GBL_IBL_MODE, GBL_FRESNEL_MODE) so the driver compiles
-// only the code they take (on llvmpipe, which JIT-compiles every branch, most of a first run's
-// time: issue 14). A render needs the variant of its RenderSettings.
+// What a lighting pipeline is built for besides its wiring. Specialised: the specular IBL mode
+// and the direct lights' Fresnel compiled in as defines (GBL_IBL_MODE, GBL_FRESNEL_MODE), so the
+// driver compiles only the code they take; else one pipeline reads both from the frame constants
+// and serves every mode. On llvmpipe (JIT-compiles every branch) a specialised lighting pipeline
+// cost 0.55-0.63 s of JIT against 0.79-1.0 s for the generic one (96x54, 4 layouts + reference,
+// loaded machine): worth it for a run of one mode, not for a run of several (k specialised
+// pipelines against one generic). Same pixels either way (pipeline_reuse_test).
 struct LightingVariant {
     IblMode ibl = IblMode::SplitSum;
     int fresnelMode = 1;  // brdf.glsl FRESNEL_* (RenderSettings::fresnelMode)
+    bool specialised = true;
 };
 PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
                                   const LightingVariant& variant, PipelineMemo& memo);
@@ -153,7 +157,7 @@ struct LightingInputs {
     const GBufferPass* materialPass = nullptr;  // deferred lighting's second geometry pass (set 2)
     const Buffer* lightBufferWords = nullptr;  // deferred lighting's light buffers (set 0, binding 9)
     bool accumulate = false;  // ground truth: batches accumulate into LightingPass::accumulation
-    LightingVariant variant;  // must match the frame constants' IBL mode and Fresnel
+    LightingVariant variant;  // when specialised, must match the frame constants' IBL mode and Fresnel
 };
 
 // The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2), and the
