@@ -241,11 +241,13 @@ uint encodeCryGlossPower(float r) {
     uint hi = 255u;
     for (int i = 0; i < 8; ++i) {
         uint mid = (lo + hi) >> 1u;
-        if (kCryGlossEncodeThresholds[mid] >= r) lo = mid + 1u; else hi = mid;
+        if (GBL_CODEC_TABLE(kCryGlossEncodeThresholds, GBL_CODEC_TABLE_CRY_GLOSS_ENCODE, mid) >= r) lo = mid + 1u; else hi = mid;
     }
     return lo;
 }
-float decodeCryGlossPower(uint code) { return kCryGlossRoughness[code & 255u]; }
+float decodeCryGlossPower(uint code) {
+    return GBL_CODEC_TABLE(kCryGlossRoughness, GBL_CODEC_TABLE_CRY_GLOSS_DECODE, code & 255u);
+}
 
 // ---------------------------------------------------------------------------------------------
 // 8. UE4 specular colour and depth.

@@ -18,6 +18,7 @@
 
 // The families, in dependency order (each uses only those before it); section numbers as in
 // src/encoding/encodings.h.
+#include "codec_tables.glsl"      // where the 8-bit tables below are read from
 #include "scalar_encodings.glsl"  // 1-3. fixed point, small floats, 8-bit sRGB
 #include "normal_encodings.glsl"  // 4. unit normals
 #include "color_encodings.glsl"   // 5-8. colour transforms, chroma checkerboard, roughness maps, UE4 specular colour, depth

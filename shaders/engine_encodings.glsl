@@ -118,12 +118,12 @@ uint encodeGamma22(float x) {
     uint hi = 255u;
     for (int i = 0; i < 8; ++i) {
         uint mid = (lo + hi) >> 1u;
-        if (kGamma22EncodeThresholds[mid] <= x) lo = mid + 1u; else hi = mid;
+        if (GBL_CODEC_TABLE(kGamma22EncodeThresholds, GBL_CODEC_TABLE_GAMMA22_ENCODE, mid) <= x) lo = mid + 1u; else hi = mid;
     }
     return lo;
 }
 
-float decodeGamma22(uint code) { return kGamma22Decode[code & 255u]; }
+float decodeGamma22(uint code) { return GBL_CODEC_TABLE(kGamma22Decode, GBL_CODEC_TABLE_GAMMA22_DECODE, code & 255u); }
 
 // Octahedral normals stored as unorm of p * 0.5 + 0.5 (p = octEncode(n) in [-1,1]^2), quantised
 // by TRUNCATION with scale s, decoded as code / (2^bits - 1):

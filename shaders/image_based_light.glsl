@@ -1,7 +1,13 @@
 // Image-based lighting, included by the lighting pass after sampleEnvironment() and the IBL
 // bindings (environmentCube, prefilteredCube, brdfLut, frame) are declared. The single place
-// where IBL enters the lighting pass. Specular mode = frame.environment.z (IblMode in
+// where IBL enters the lighting pass. Specular mode = GBL_IBL_ACTIVE_MODE (IblMode in
 // src/shading/ibl_precompute.h); diffuse (SH9 irradiance, Lambert) for every mode when frame.environment.w.
+//
+// The mode is the define GBL_IBL_MODE where the pipeline is built for one (the renderer's are:
+// src/render/lighting_pass.cpp), so the other modes' code (ground truth's MIS loop,
+// split-sum-shader's two sample loops, ...) is gone before the driver compiles the shader; that
+// compile is most of a first run on llvmpipe, which JIT-compiles every branch (issue 14). Without
+// the define the mode is read from frame.environment.z at run time, every mode compiled in.
 //
 //   0 ground-truth      the integral of [Karis13 SpecularIBL] (environment-cube mip 0, exact Schlick,
 //                       Smith-Schlick k = alpha/2), estimated by specularIBLGroundTruthMis: frame.ibl.x
@@ -30,6 +36,12 @@
 #define GBL_IBL_SPLIT_SUM 2
 #define GBL_IBL_ENVBRDF_APPROX 3
 #define GBL_IBL_BO2 4
+
+#ifdef GBL_IBL_MODE
+#define GBL_IBL_ACTIVE_MODE GBL_IBL_MODE
+#else
+#define GBL_IBL_ACTIVE_MODE int(frame.environment.z)
+#endif
 
 vec3 sampleEnvironmentLod(vec3 dir, float lod) {
     return textureLod(environmentCube, dir, lod).rgb * frame.environment.x;
@@ -79,7 +91,7 @@ vec3 prefilteredRadianceInShader(vec3 N, vec3 V, float roughness, uint numSample
 }
 
 vec3 evaluateImageBasedLight(Surface s, vec3 N, vec3 V) {
-    int mode = int(frame.environment.z);
+    const int mode = GBL_IBL_ACTIVE_MODE;
     uint samples = uint(frame.ibl.x);
     float roughness = clamp(s.roughness, 0.0, 1.0);
     float NoV = max(clamp(dot(N, V), 0.0, 1.0), kMinIblNoV);

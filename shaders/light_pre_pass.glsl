@@ -59,7 +59,7 @@ vec3 materialPassCombine(Surface s, vec3 N, vec3 V, vec4 ch[LIGHT_BUFFER_COUNT])
     lightFromBuffers(ch, diffuseLight, specularLight);
     vec3 F = s.specularColor;
 #if LPP_FRESNEL == 1
-    F = fresnel(int(frame.shading.x), s.specularColor, clamp(dot(N, V), 0.0, 1.0));
+    F = fresnel(GBL_ACTIVE_FRESNEL, s.specularColor, clamp(dot(N, V), 0.0, 1.0));
 #endif
     return s.diffuseColor * diffuseLight + F * specularLight + evaluateImageBasedLight(s, N, V) * s.occlusion;
 }

@@ -7,6 +7,14 @@
 #include "shared_types.h"
 #include "surface.glsl"
 #include "brdf.glsl"
+// The direct lights' Fresnel (brdf.glsl FRESNEL_*): GBL_FRESNEL_MODE where the pipeline is built for
+// one (src/render/lighting_pass.cpp: constant-folded before the driver compiles, as GBL_IBL_MODE
+// in image_based_light.glsl), else frame.shading.x at run time.
+#ifdef GBL_FRESNEL_MODE
+#define GBL_ACTIVE_FRESNEL GBL_FRESNEL_MODE
+#else
+#define GBL_ACTIVE_FRESNEL int(frame.shading.x)
+#endif
 #include "environment_map.glsl"
 #define GBUFFER_READ 1
 #define GBL_GEOMETRY_MASK 1  // checkerboard chroma skips neighbours without geometry
@@ -115,7 +123,7 @@ void main() {
         vec3 L;
         vec3 radiance = lightRadianceAndDirection(lights[i], position, L);
         color += evaluateDirectLightMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, radiance,
-                                         int(frame.shading.x));
+                                         GBL_ACTIVE_FRESNEL);
     }
     iblBatchKey = uvec3(uint(pixel.x), uint(pixel.y), batch.batchIndex + uint(frame.ibl.z) * 0x10000u);
     color += evaluateImageBasedLight(s, N, V) * s.occlusion;
@@ -124,7 +132,7 @@ void main() {
 #ifdef EMISSIVE_FORWARD
     color += texelFetch(sceneColorEmissive, pixel, 0).rgb;
 #endif
-    if (int(frame.environment.z) == GBL_IBL_GROUND_TRUTH) {
+    if (GBL_IBL_ACTIVE_MODE == GBL_IBL_GROUND_TRUTH) {
         // Welford's update over batch means of the luminance (CIE Y of linear sRGB).
         const vec3 kY = vec3(0.2126, 0.7152, 0.0722);
         vec4 acc = batch.batchIndex == 0u ? vec4(0.0) : imageLoad(accumulation, outPixel);

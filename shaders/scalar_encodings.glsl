@@ -225,13 +225,13 @@ uint encodeSrgb8(float x) {
     uint hi = 255u;
     for (int i = 0; i < 8; ++i) {
         uint mid = (lo + hi) >> 1u;
-        if (kSrgbEncodeThresholds[mid] <= x) lo = mid + 1u; else hi = mid;
+        if (GBL_CODEC_TABLE(kSrgbEncodeThresholds, GBL_CODEC_TABLE_SRGB_ENCODE, mid) <= x) lo = mid + 1u; else hi = mid;
     }
     return lo;
 }
 
 // Error of the round trip over linear [0,1]: max abs 0.0045, CIEDE2000 mean 0.14, max 0.82.
 // decodeSrgb8: exact sRGB -> linear, correctly rounded to float.
-float decodeSrgb8(uint code) { return kSrgbDecode[code & 255u]; }
+float decodeSrgb8(uint code) { return GBL_CODEC_TABLE(kSrgbDecode, GBL_CODEC_TABLE_SRGB_DECODE, code & 255u); }
 
 #endif  // GBL_SCALAR_ENCODINGS_GLSL

@@ -22,6 +22,7 @@ gbl_test(encoding/engine_encodings_test LABELS unit DEPS gbl_encoding gbl_measur
 gbl_test(encoding/niagara_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # emissive/albedo ratio, dithered octahedral
 gbl_test(encoding/encodings_fast_test LABELS unit DEPS gbl_encoding)
 gbl_test(encoding/light_buffer_encodings_test LABELS unit DEPS gbl_encoding)
+gbl_test(encoding/codec_tables_test LABELS unit DEPS gbl_encoding gbl_gpu)  # the tables buffer = the shaders' arrays
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_reads_test LABELS unit DEPS gbl_layout)  # encodings that read another attribute (niagara)

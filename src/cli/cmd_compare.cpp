@@ -302,7 +302,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
             }
         }
         const RenderSettings decodeSettings = settingsFor(modes[0], 0);
-        renderer.preparePipelines(wirings, decodeSettings);
+        renderer.preparePipelines(wirings, decodeSettings, modes);
         if (decodeSettings.decodeOnCpu) {
             std::vector<std::string> onDevice;
             for (const GBufferWiring& w : wirings)

@@ -10,6 +10,7 @@
 #include "shader_cache.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
+#include "warm_up_times.h"
 
 namespace gbl::compare {
 
@@ -101,6 +102,20 @@ void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPas
                                               " invalid cache files ignored").c_str()
                                            : "",
                 c.pipelines.load(), c.pipelineCacheHits.load(), c.pipelinesReused.load());
+    // The warm-ups inside "shader compile" by pass kind (gpu/warm_up_times.h): on llvmpipe, where
+    // a first run's JIT compile goes.
+    nlohmann::ordered_json warmUps = nlohmann::ordered_json::object();
+    for (const auto& [kind, w] : warmUpTotals()) {
+        nlohmann::ordered_json k;
+        k["count"] = w.count;
+        k["ms"] = w.ms;
+        k["slowest_ms"] = w.slowestMs;
+        k["slowest"] = w.slowest;
+        warmUps[kind] = k;
+        std::printf("\nwarm-ups %s: %d, %.2f s (slowest %.2f s: %s)", kind.c_str(), w.count, w.ms / 1000.0,
+                    w.slowestMs / 1000.0, w.slowest.c_str());
+    }
+    j["warm_ups"] = warmUps;
     j["total_ms"] = t.totalMs;
     j["gpu_pass_ms"] = gpuPassMs;
     j["total_over_gpu_passes"] = gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0;

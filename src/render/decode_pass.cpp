@@ -7,6 +7,7 @@
 #include "shader_compiler.h"
 #include "stage_clock.h"
 #include "vk_pipeline.h"
+#include "warm_up_times.h"
 
 namespace gbl {
 
@@ -145,6 +146,7 @@ std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const G
     if (memo.firstUse(built.entry)) {
         // llvmpipe compiles at first dispatch: timed as the compile it is (renderer.cpp's warm-up).
         ScopedStage timed(Stage::ShaderCompile);
+        ScopedWarmUp warmUp("decode", "decode to images (layout " + wiring.layoutName + ")");
         ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, 1, 1); });
     }
     ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, (w + 7) / 8, (h + 7) / 8); });
@@ -185,6 +187,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
         // A driver that compiles at first use (llvmpipe) compiles here, timed as the compile it is
         // (renderer.cpp's warm-up); the band's dispatch below rewrites the one workgroup's pixels.
         ScopedStage timed(Stage::ShaderCompile);
+        ScopedWarmUp warmUp("decode", "decode (layout " + wiring.layoutName + ")");
         ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, 0, 1, 1); });
     }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "best_fit_normals.h"
+#include "codec_tables.h"
 #include "error.h"
 #include "shader_compiler.h"
 #include "stage_clock.h"
@@ -185,6 +186,7 @@ std::vector<Binding> gbufferBindings(uint32_t textureCount) {
         {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount},
         {enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {enc::kCodecTablesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},  // codec_tables.glsl, set 0 here
     };
 }
 constexpr VkShaderStageFlags kGBufferStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -196,6 +198,10 @@ PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& 
     const ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
     ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
     fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
+    // The encoders' threshold tables from GBufferPass::codecTables, not constant arrays: llvmpipe
+    // JIT-compiles their binary searches far faster so (codec_tables.glsl).
+    fs.defines.push_back({"GBL_CODEC_TABLES_SET", "0"});
+    fs.defines.push_back({"GBL_CODEC_TABLES_BINDING", std::to_string(enc::kCodecTablesBinding)});
     fs.name = "gbuffer_pass.frag.glsl (layout " + wiring.layoutName + ")";
     // The key: the shaders' input as createGBufferPipeline compiles them (the wiring's GLSL and
     // [space] go in as a virtual file and defines) and every piece of fixed-function state it
@@ -237,10 +243,12 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
     pass.pool = createPoolFor(ctx.device, {bindings});
     pass.set = allocateSet(ctx.device, pass.pool, pass.setLayout);
     pass.bestFitTable = createBestFitTableBuffer(ctx);
+    pass.codecTables = createCodecTablesBuffer(ctx);
     DescriptorWriter writer;
     writer.buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
         .buffer(pass.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materials.buffer)
-        .buffer(pass.set, enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.bestFitTable.buffer);
+        .buffer(pass.set, enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.bestFitTable.buffer)
+        .buffer(pass.set, enc::kCodecTablesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.codecTables.buffer);
     for (uint32_t i = 0; i < textureCount; ++i)
         writer.image(pass.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene.textures[i].view,
                      scene.textureSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
@@ -359,6 +367,11 @@ void recordGBufferWarmUp(VkCommandBuffer cmd, const GBufferPass& pass, const Gpu
     endGBufferPass(cmd, pass);
 }
 
+Buffer createCodecTablesBuffer(const VulkanContext& ctx) {
+    const std::vector<float>& floats = enc::codecTableFloats();
+    return createBufferWithData(ctx, floats.data(), floats.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+
 Buffer createBestFitTableBuffer(const VulkanContext& ctx) {
     const std::vector<uint32_t>& table = enc::bestFitNormalTable();
     return createBufferWithData(ctx, table.data(), table.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -366,6 +379,7 @@ Buffer createBestFitTableBuffer(const VulkanContext& ctx) {
 
 void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {
     if (pass.bestFitTable.buffer) destroyBuffer(ctx, pass.bestFitTable);
+    if (pass.codecTables.buffer) destroyBuffer(ctx, pass.codecTables);
     for (auto& t : pass.targets) destroyImage(ctx, t);
     pass.targets.clear();
     if (pass.emissive.image) destroyImage(ctx, pass.emissive);

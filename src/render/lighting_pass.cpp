@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "codec_tables.h"
 #include "shader_compiler.h"
 #include "vk_pipeline.h"
 
@@ -10,6 +11,7 @@ namespace gbl {
 std::vector<Binding> targetReadBindings(size_t targetCount, const TargetReadScene& scene) {
     std::vector<Binding> bindings;
     for (uint32_t i = 0; i < targetCount; ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    bindings.push_back({enc::kCodecTablesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     if (scene.visibility) {
         for (uint32_t b = 1; b <= 4; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         bindings.push_back({5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene.textureCount});
@@ -37,6 +39,9 @@ std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
 }
 
 void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler) {
+    if (!pass.codecTables.buffer)
+        throw std::logic_error("writeTargetReadSet: the G-buffer pass has no codec tables (createGBufferPass makes them)");
+    writer.buffer(set, enc::kCodecTablesBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.codecTables.buffer);
     for (uint32_t i = 0; i < pass.targets.size(); ++i)
         writer.image(set, i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, pass.targets[i].view, nearestSampler,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -52,6 +57,9 @@ void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBu
 }
 
 void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene) {
+    // The encodings' tables from the storage buffer, not constant arrays (codec_tables.glsl).
+    s.defines.push_back({"GBL_CODEC_TABLES_SET", "1"});
+    s.defines.push_back({"GBL_CODEC_TABLES_BINDING", std::to_string(enc::kCodecTablesBinding)});
     if (!scene.visibility) return;
     s.defines.push_back({"TEXTURE_COUNT", std::to_string(scene.textureCount)});
     if (scene.nonUniformIndexing) s.defines.push_back({"GBL_NONUNIFORM_TEXTURE_INDEXING", "1"});
@@ -87,7 +95,7 @@ std::vector<Binding> samplerBindings(size_t count) {
 }  // namespace
 
 PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
-                                  PipelineMemo& memo) {
+                                  const LightingVariant& variant, PipelineMemo& memo) {
     const bool lightPrePass = !wiring.lightBufferGlsl.empty();
     const bool emissive = wiring.emissiveForward && !wiring.materialPass;  // createGBufferImages' rule
     const size_t materialTargets = wiring.materialPass ? wiring.materialTargetFormats.size() : 0;
@@ -102,6 +110,13 @@ PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring&
     }
     cs.name = "lighting_pass.comp.glsl (layout " + wiring.layoutName + ")";
     if (emissive) cs.defines.push_back({"EMISSIVE_FORWARD", "1"});
+    // Specialised: one IBL mode and one Fresnel per pipeline (in the key through the defines);
+    // without them the shader holds every mode behind run-time branches, all of which llvmpipe
+    // compiles, and the pipeline serves every mode (LightingVariant).
+    if (variant.specialised) {
+        cs.defines.push_back({"GBL_IBL_MODE", std::to_string(int(variant.ibl))});
+        cs.defines.push_back({"GBL_FRESNEL_MODE", std::to_string(variant.fresnelMode)});
+    }
     // The shader's input and the set layouts (set 0 follows LIGHT_PRE_PASS, set 1 a visibility
     // buffer's TEXTURE_COUNT, both already in the key).
     const std::string key = "lighting|" + shaderMemoKey(cs) + "|targets " +
@@ -148,7 +163,7 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
     const std::vector<Binding> set1 = targetReadBindings(*in.gbuffer);
     const std::vector<Binding> set2 = in.materialPass ? targetReadBindings(*in.materialPass) : std::vector<Binding>{};
     const bool emissive = in.gbuffer->emissive.image != VK_NULL_HANDLE;
-    const PassPipeline pipeline = lightingPassPipeline(ctx, wiring, targetReadScene(*in.gbuffer), memo);
+    const PassPipeline pipeline = lightingPassPipeline(ctx, wiring, targetReadScene(*in.gbuffer), in.variant, memo);
     pass.setCount = uint32_t(pipeline.entry->setLayouts.size());
     for (uint32_t i = 0; i < pass.setCount; ++i) pass.setLayouts[i] = pipeline.entry->setLayouts[i];
     pass.pipelineLayout = pipeline.entry->layout;

@@ -3,8 +3,11 @@
 // built from (issue 14: `compare --views 3` rebuilt every layout's pipelines per view and per IBL
 // mode, 92 pipelines where 32 do). A pipeline depends on its shaders' full input (source, every
 // included file, the defines) and the fixed-function state it was created with, never on the
-// image size, the camera or the IBL mode (those are uniforms and descriptors), so one built for
-// a layout serves every view and mode of that layout.
+// image size or the camera (uniforms and descriptors), so one built for a layout serves every
+// view of that layout. The lighting pass's is built per IBL mode and Fresnel in a run of one mode
+// (defines in its key, renderer_passes.h LightingVariant: llvmpipe JIT-compiles every branch, and
+// the shader holding all the modes cost about 1.5x the one mode's), else once for all modes; the
+// G-buffer, material and decode passes do not depend on the mode and serve all of them.
 //
 // Each entry owns its descriptor-set layouts and pipeline layout as well: a pass that borrows the
 // pipeline binds its sets through the same pipeline layout the pipeline was created with.

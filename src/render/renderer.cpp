@@ -16,6 +16,7 @@
 #include "parallel_invoke.h"
 #include "renderer_passes.h"
 #include "stage_clock.h"
+#include "warm_up_times.h"
 #include "wiring_plan.h"
 
 namespace gbl {
@@ -132,11 +133,18 @@ bool Renderer::decodesOnCpu(const GBufferWiring& wiring, const RenderSettings& s
            wiring.cpuDecoder != nullptr;
 }
 
-void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const RenderSettings& settings) {
+void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const RenderSettings& settings,
+                                 const std::vector<IblMode>& iblModes) {
+    const int fresnelMode = settings.fresnelMode;
     ScopedStage timed(Stage::ShaderCompile);
     const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
     std::vector<GBufferWiring> materials(wirings.size());
     std::vector<std::function<void()>> tasks;
+    // One mode: its specialised lighting pipelines; several: one generic pipeline per wiring
+    // serves them all (LightingVariant), and later renders build the same.
+    specialiseLighting_ = iblModes.size() <= 1;
+    const std::vector<IblMode> lightingModes =
+        specialiseLighting_ ? iblModes : std::vector<IblMode>{iblModes.front()};
     for (size_t i = 0; i < wirings.size(); ++i) {
         tasks.push_back([&, i] { gbufferPassPipeline(ctx_, wirings[i], textureCount, pipelines_); });
         if (wirings[i].materialPass) {
@@ -144,7 +152,11 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const
             tasks.push_back([&, i] { gbufferPassPipeline(ctx_, materials[i], textureCount, pipelines_); });
         }
         const TargetReadScene readScene = targetReadScene(ctx_, wirings[i], gpuScene_);
-        tasks.push_back([&, i, readScene] { lightingPassPipeline(ctx_, wirings[i], readScene, pipelines_); });
+        for (IblMode mode : lightingModes)
+            tasks.push_back([&, i, readScene, mode] {
+                lightingPassPipeline(ctx_, wirings[i], readScene,
+                                     LightingVariant{mode, fresnelMode, specialiseLighting_}, pipelines_);
+            });
         if (settings.decodeSurfaces && !decodesOnCpu(wirings[i], settings))  // no pipeline a render does not use
             tasks.push_back([&, i, readScene] {
                 decodePassPipeline(ctx_, wirings[i], readScene, pipelines_, settings.keepOnDevice);
@@ -194,7 +206,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     gbufferPassPipeline(ctx_, wiring, textureCount, pipelines_);
     if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), textureCount, pipelines_);
     const TargetReadScene readScene = targetReadScene(ctx_, wiring, gpuScene_);
-    lightingPassPipeline(ctx_, wiring, readScene, pipelines_);
+    const LightingVariant variant{settings.specularIbl, settings.fresnelMode, specialiseLighting_};
+    lightingPassPipeline(ctx_, wiring, readScene, variant, pipelines_);
     const bool cpuDecode = decodesOnCpu(wiring, settings);
     if (settings.decodeSurfaces && !cpuDecode)
         decodePassPipeline(ctx_, wiring, readScene, pipelines_, settings.keepOnDevice);
@@ -219,19 +232,31 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, settings.readTargetWords);
     const bool groundTruth = settings.specularIbl == IblMode::GroundTruth;
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
-                          nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth};
+                          nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth,
+                          variant};
     LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, rows, pipelines_);
     if (gbuffer.needsWarmUp || (material && material->needsWarmUp) || lighting.needsWarmUp) {
         // New pipelines: one draw clipped to a pixel and one workgroup each, so that a driver that
         // compiles at first use (llvmpipe JIT-compiles a shader variant at its first draw or
         // dispatch, keyed by the bound formats and samplers, hence with the frame's own resources)
         // does it here, timed as shader compile, and the frame below times the frame alone.
+        // One submission per pass, each timed as its pass kind's warm-up (gpu/warm_up_times.h:
+        // which shaders a first run's compile is spent on). A pass whose pipeline was warmed
+        // before still runs (it leaves the targets in the layout the next pass reads them in),
+        // uncounted.
         ScopedStage timedCompile(Stage::ShaderCompile);
-        ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-            recordGBufferWarmUp(cmd, gbuffer, gpuScene_);
-            if (material) recordGBufferWarmUp(cmd, *material, gpuScene_);
-            recordLightingWarmUp(cmd, lighting);
-        });
+        const std::string of = " (layout " + wiring.layoutName + ")";
+        {
+            ScopedWarmUp timed("gbuffer", "gbuffer" + of, gbuffer.needsWarmUp);
+            ctx_.submitAndWait([&](VkCommandBuffer cmd) { recordGBufferWarmUp(cmd, gbuffer, gpuScene_); });
+        }
+        if (material) {
+            ScopedWarmUp timed("material", "material" + of, material->needsWarmUp);
+            ctx_.submitAndWait([&](VkCommandBuffer cmd) { recordGBufferWarmUp(cmd, *material, gpuScene_); });
+        }
+        ScopedWarmUp timed("lighting", "lighting (layout " + wiring.layoutName + ", " + iblModeName(settings.specularIbl) + ")",
+                           lighting.needsWarmUp);
+        ctx_.submitAndWait([&](VkCommandBuffer cmd) { recordLightingWarmUp(cmd, lighting); });
     }
 
     const std::vector<double> passMs = submitTimedSegments(

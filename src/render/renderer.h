@@ -142,10 +142,15 @@ public:
     // lighting, and the decode pass's variant where it runs one: none when decodesOnCpu) side by
     // side on worker threads (vkCreate*Pipelines may be called from several threads; the
     // VkPipelineCache is internally synchronised, created without EXTERNALLY_SYNCHRONIZED), timed
-    // as shader compile, so the renders of these wirings build nothing. A wiring whose pipeline
-    // cannot be built is skipped here: its render() fails with the error, as it would have.
-    // Only the settings' decode choices matter (decodeSurfaces, keepOnDevice, decodeOnCpu).
-    void preparePipelines(const std::vector<GBufferWiring>& wirings, const RenderSettings& settings);
+    // as shader compile, so the renders of these wirings under these IBL modes (and Fresnel,
+    // RenderSettings::fresnelMode) build nothing. With one mode the lighting pipelines are
+    // specialised for it (render/renderer_passes.h LightingVariant), with several they are generic
+    // and serve them all, and so are those of later renders. A wiring whose pipeline cannot be
+    // built is skipped here: its render() fails with the error, as it would have. An empty
+    // `iblModes` builds no lighting pipeline. Of the settings only the decode choices
+    // (decodeSurfaces, keepOnDevice, decodeOnCpu, bandRows) and fresnelMode matter.
+    void preparePipelines(const std::vector<GBufferWiring>& wirings, const RenderSettings& settings,
+                          const std::vector<IblMode>& iblModes);
 
     // Whether render(wiring, settings) decodes the surfaces on the host with the wiring's CPU
     // codec (RenderSettings::decodeOnCpu) rather than with the decode pass.
@@ -154,7 +159,8 @@ public:
     const Scene& scene() const { return scene_; }
     const IblGpu& ibl() const { return ibl_; }
     // Pipelines built so far (G-buffer, material, lighting, decode): each layout's are built at its
-    // first render and reused by every later one, whatever the camera, size or IBL mode.
+    // first render and reused by every later one, whatever the camera or size; the lighting
+    // pass's once per IBL mode (and Fresnel).
     size_t pipelineCount() const { return pipelines_.size(); }
 
 private:
@@ -167,6 +173,9 @@ private:
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
     IblGpu ibl_;
     PipelineMemo pipelines_;
+    // Lighting pipelines specialised per IBL mode and Fresnel: until preparePipelines is given
+    // several modes (LightingVariant).
+    bool specialiseLighting_ = true;
 };
 
 // The rows a render covers (RenderSettings::bandFirstRow, ::bandRows): its outputs' rows

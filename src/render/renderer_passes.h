@@ -39,6 +39,11 @@ struct GBufferPass {
     // The best-fit normal table (src/encoding/best_fit_normals.h) that encodeNormalBestFit reads:
     // set 0, binding kBestFitTableBinding of every pipeline that writes a G-buffer.
     Buffer bestFitTable;
+    // The encodings' 8-bit tables (src/encoding/codec_tables.h): the G-buffer pass's encoders read
+    // them at set 0, and the passes reading this G-buffer (lighting, decode) at set 1, binding
+    // enc::kCodecTablesBinding (writeTargetReadSet). Made by createGBufferPass, empty in passes
+    // put together by hand.
+    Buffer codecTables;
     std::vector<std::array<uint32_t, 4>> clearWords;  // per target (GBufferWiring::targetClearWords)
     // The layout declares stencil extras: the pipeline writes the stencil with op REPLACE and a
     // dynamic reference, set per draw to stencilReference(wiring, material's values).
@@ -67,6 +72,8 @@ inline void addSpaceDefines(ShaderSource& s, const GBufferWiring& w) {
 
 // Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).
 Buffer createBestFitTableBuffer(const VulkanContext& ctx);
+// Uploads enc::codecTableFloats() as a storage buffer (for GBufferPass::codecTables).
+Buffer createCodecTablesBuffer(const VulkanContext& ctx);
 
 // Throws UserError (one line naming the layout, the count and the fix) when the scene has more
 // draws or triangles than a visibility buffer's ids hold, or the device lacks gl_PrimitiveID in
@@ -83,8 +90,20 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
 // (Renderer::preparePipelines). `textureCount`: the scene's (GpuScene::textures).
 PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t textureCount,
                                  PipelineMemo& memo);
+// What a lighting pipeline is built for besides its wiring. Specialised: the specular IBL mode
+// and the direct lights' Fresnel compiled in as defines (GBL_IBL_MODE, GBL_FRESNEL_MODE), so the
+// driver compiles only the code they take; else one pipeline reads both from the frame constants
+// and serves every mode. On llvmpipe (JIT-compiles every branch) a specialised lighting pipeline
+// cost 0.55-0.63 s of JIT against 0.79-1.0 s for the generic one (96x54, 4 layouts + reference,
+// loaded machine): worth it for a run of one mode, not for a run of several (k specialised
+// pipelines against one generic). Same pixels either way (pipeline_reuse_test).
+struct LightingVariant {
+    IblMode ibl = IblMode::SplitSum;
+    int fresnelMode = 1;  // brdf.glsl FRESNEL_* (RenderSettings::fresnelMode)
+    bool specialised = true;
+};
 PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,
-                                  PipelineMemo& memo);
+                                  const LightingVariant& variant, PipelineMemo& memo);
 // Records the pass; leaves targets and depth in SHADER_READ_ONLY_OPTIMAL.
 void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuScene& scene);
 // The pass's first draw only, clipped to one pixel: makes a driver that compiles shaders at their
@@ -143,9 +162,11 @@ struct LightingInputs {
     const GBufferPass* materialPass = nullptr;  // deferred lighting's second geometry pass (set 2)
     const Buffer* lightBufferWords = nullptr;  // deferred lighting's light buffers (set 0, binding 9)
     bool accumulate = false;  // ground truth: batches accumulate into LightingPass::accumulation
+    LightingVariant variant;  // when specialised, must match the frame constants' IBL mode and Fresnel
 };
 
-// The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2); for a
+// The bindings of a set of G-buffer-like targets read with usampler2D (sets 1 and 2), and the
+// encodings' tables (binding enc::kCodecTablesBinding, a storage buffer: codec_tables.glsl); for a
 // visibility buffer, also what its resolve reads (shaders/visibility_buffer.glsl, GBUFFER_READ):
 // binding 1 vertices, 2 indices, 3 draws, 4 materials (storage buffers), 5 the textures.
 std::vector<Binding> targetReadBindings(const GBufferPass& pass);
@@ -155,10 +176,11 @@ TargetReadScene targetReadScene(const GBufferPass& pass);
 // The TargetReadScene createGBufferPass's pass will have for this wiring and scene (for building
 // pipelines before the pass exists: Renderer::preparePipelines).
 TargetReadScene targetReadScene(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene);
-// Writes those bindings of `set` (targets through `nearestSampler`).
+// Writes those bindings of `set` (targets through `nearestSampler`, the pass's codecTables).
 void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler);
-// What a pass reading a visibility buffer compiles with: TEXTURE_COUNT for its resolve, and
-// GBL_NONUNIFORM_TEXTURE_INDEXING where the device has it; nothing for a G-buffer.
+// What a pass reading a G-buffer compiles with: GBL_CODEC_TABLES_SET / _BINDING (the tables from
+// the storage buffer of targetReadBindings); for a visibility buffer also TEXTURE_COUNT for its
+// resolve, and GBL_NONUNIFORM_TEXTURE_INDEXING where the device has it.
 void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene);
 
 // in.gbuffer and in.materialPass must be the wiring's (their target counts are the set layouts').

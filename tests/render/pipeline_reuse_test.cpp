@@ -1,6 +1,6 @@
 // A Renderer builds each layout's pipelines once (issue 14: compare --views 3 built 92 pipelines
-// where 32 do): later renders of the same layout, from another camera, under another IBL mode or
-// at another size, create no pipeline, and render exactly what a fresh Renderer renders.
+// where 32 do): later renders of the same layout, from another camera, under another prepared IBL
+// mode or at another size, create no pipeline, and render exactly what a fresh Renderer renders.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -47,9 +47,9 @@ void expectSameImage(const Image& a, const Image& b, const char* what) {
 }
 
 // One renderer builds everything once: preparePipelines builds every pipeline up front (on worker
-// threads), then renders of those layouts from other cameras, under other IBL modes and at other
-// sizes build none. A wiring whose shader does not compile is skipped by preparePipelines and
-// fails in its render, as before. (One test: every new pipeline costs llvmpipe seconds of JIT.)
+// threads; with several IBL modes one generic lighting pipeline per layout), then renders of
+// those layouts from other cameras, under those IBL modes and at other sizes build none. A wiring
+// whose shader does not compile is skipped by preparePipelines and fails in its render, as before. (One test: every new pipeline costs llvmpipe seconds of JIT.)
 TEST_F(PipelineReuseTest, ViewsModesAndSizesReuseEachLayoutsPipelines) {
     const Scene scene = makeSphereGridScene();
     const EnvironmentMap sky = makeProceduralSky(64);
@@ -63,9 +63,10 @@ TEST_F(PipelineReuseTest, ViewsModesAndSizesReuseEachLayoutsPipelines) {
 
     Renderer prepared(test::sharedContext(), scene, sky);
     const int before = pipelinesCreated();
-    EXPECT_NO_THROW(prepared.preparePipelines({slim, ue4, broken}, settingsAt(96, 64, IblMode::SplitSum, std::nullopt)));
-    // ue4: G-buffer, lighting, decode; crysis2-slim adds its material pass; nothing of the broken
-    // wiring (its three shaders fail to compile).
+    EXPECT_NO_THROW(prepared.preparePipelines({slim, ue4, broken}, settingsAt(96, 64, IblMode::SplitSum, std::nullopt),
+                                              {IblMode::SplitSum, IblMode::SplitSumShader}));
+    // ue4: G-buffer, lighting (one generic pipeline for the two IBL modes), decode; crysis2-slim
+    // adds its material pass; nothing of the broken wiring (its shaders fail to compile).
     EXPECT_EQ(pipelinesCreated() - before, 4 + 3);
     EXPECT_EQ(prepared.pipelineCount(), size_t(4 + 3));
     prepared.render(slim, settingsAt(96, 64, IblMode::SplitSum, std::nullopt));
@@ -78,7 +79,9 @@ TEST_F(PipelineReuseTest, ViewsModesAndSizesReuseEachLayoutsPipelines) {
     EXPECT_THROW(prepared.render(broken, settingsAt(96, 64, IblMode::SplitSum, std::nullopt)), ShaderCompileError);
 
     // Built one by one, at first render: one layout's pipelines, then the other's (different
-    // layouts share nothing), and the same images as the prepared, reused ones.
+    // layouts share nothing), and the same images as the prepared, reused ones. These lighting
+    // pipelines are specialised for their IBL mode (no preparePipelines of several modes), the
+    // prepared ones generic: the same pixels to the bit (renderer_passes.h LightingVariant).
     Renderer oneByOne(test::sharedContext(), scene, sky);
     const RenderOutput slimFresh = oneByOne.render(slim, settingsAt(96, 64, IblMode::SplitSumShader, other));
     EXPECT_EQ(oneByOne.pipelineCount(), 4u);
@@ -105,17 +108,17 @@ TEST_F(PipelineReuseTest, PreparesNoDecodePassTheRendersDoNotRun) {
     RenderSettings cpu = settingsAt(96, 64, IblMode::SplitSum, std::nullopt);
     cpu.decodeOnCpu = true;
     const int before = pipelinesCreated();
-    renderer.preparePipelines({slim, ue4, visibility}, cpu);
+    renderer.preparePipelines({slim, ue4, visibility}, cpu, {IblMode::SplitSum});
     // crysis2-slim: G-buffer, material, lighting; ue4: G-buffer, lighting; the visibility
     // buffer: G-buffer, lighting and the decode pass.
     EXPECT_EQ(pipelinesCreated() - before, 3 + 2 + 3);
     RenderSettings device = cpu;
     device.keepOnDevice = true;  // --eval gpu: decodeSurfacesOnDevice's variant, for all three
-    renderer.preparePipelines({slim, ue4, visibility}, device);
+    renderer.preparePipelines({slim, ue4, visibility}, device, {IblMode::SplitSum});
     EXPECT_EQ(pipelinesCreated() - before, 3 + 2 + 3 + 3);
     RenderSettings bands = cpu;
     bands.decodeOnCpu = false;  // the band variant: new for the two the codec decoded
-    renderer.preparePipelines({slim, ue4, visibility}, bands);
+    renderer.preparePipelines({slim, ue4, visibility}, bands, {IblMode::SplitSum});
     EXPECT_EQ(pipelinesCreated() - before, 3 + 2 + 3 + 3 + 2);
     EXPECT_EQ(renderer.pipelineCount(), size_t(3 + 2 + 3 + 3 + 2));
 }
