@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "flip.h"
+#include "pair_memo.h"
 #include "parallel_invoke.h"
 #include "tone_map.h"
 
@@ -119,6 +120,7 @@ AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask&
                                 size_t metalCount, Image* map, const char* what) {
     if (!usable(ref, test, 3, what)) return {};
     const size_t rc = size_t(ref.channels), tc = size_t(test.channels);
+    PairMemo<double> memo;
     return measure(measured, metal, metalCount, map, true, [&](size_t i, bool& ok, double& sq) {
         const float* a = &ref.pixels[i * rc];
         const float* b = &test.pixels[i * tc];
@@ -127,7 +129,7 @@ AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask&
             sq += d * d;
         }
         if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) return 0.0;  // common (stored exactly); saves the costly path
-        const double e = pixelDeltaE(a, b);
+        const double e = memo.get(a, b, pixelDeltaE);  // pairs repeat (pair_memo.h)
         ok = std::isfinite(e);
         return e;
     });
