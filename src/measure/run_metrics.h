@@ -126,6 +126,7 @@ struct PreparedReference {
     float exposure;
     std::shared_ptr<const Image> srgb;  // toneMapToSrgbFloat(*hdr, exposure)
     LdrFlipReference flip;
+    double luminanceFloor;  // relativeLuminanceError's floor for this reference
 };
 
 struct RunMetricsOptions {
