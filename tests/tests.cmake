@@ -50,6 +50,8 @@ gbl_test(evaluate/gpu_evaluator_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_
 gbl_test(measure/metrics_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/flip_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/run_metrics_test LABELS unit DEPS gbl_measure)
+gbl_test(measure/float_sort_test LABELS unit DEPS gbl_measure)
+gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/encoding_stats_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)
 gbl_test(report/report_test LABELS unit DEPS gbl_report)

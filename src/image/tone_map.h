@@ -10,6 +10,9 @@ float acesFilmNarkowicz(float x);
 float linearToSrgb(float linear);   // exact piecewise sRGB OETF, x in [0,1]
 float srgbToLinear(float encoded);  // exact inverse
 
+// The 8-bit code of a display-referred linear value in [0,1] (clamped; NaN -> 0):
+// floor(linearToSrgb(display) * 255 + 0.5), found from the curve's 255 steps (no pow).
+unsigned char srgbByte(float display);
 // RGB(A) float -> RGB 8-bit, with the tone map above. Alpha is dropped.
 Image8 toneMapToSrgb8(const Image& hdr, float exposure = 1.0f);
 // What toneMapToSrgb8 writes, read back as a PNG reader does: byte / 255.0f (float division).

@@ -11,8 +11,10 @@
 
 #include "color_difference.h"
 #include "error.h"
+#include "float_sort.h"
 #include "metrics.h"
 #include "parallel_for.h"
+#include "simd_clones.h"
 
 // Equation numbers below are those of the FLIP paper (HPG 2020) unless marked [HDR], which
 // refers to the HDR-FLIP paper (Eurographics 2021 short). Every comment also restates the
@@ -81,7 +83,7 @@ const ColorConsts& colorConsts() {
 // Cube root of t > 0 (here t > (6/29)^3): a bit-level first guess (about 5% off), then two
 // Halley steps y <- y (y^3 + 2t) / (2 y^3 + t) in double (cubic convergence: 5e-2 -> 1e-4 ->
 // 1e-12), rounded to float. About 3x faster than glibc's cbrtf, and as accurate after rounding.
-inline float cubeRoot(float t) {
+GBL_CLONE_INLINE float cubeRoot(float t) {
     uint32_t bits;
     std::memcpy(&bits, &t, sizeof bits);
     bits = bits / 3u + 0x2A514067u;  // exponent / 3, re-biased
@@ -97,7 +99,7 @@ inline float cubeRoot(float t) {
 }
 
 // CIE 15 f(t) of CIELAB.
-inline float labF(float t) {
+GBL_CLONE_INLINE float labF(float t) {
     constexpr float d3 = float((6.0 / 29.0) * (6.0 / 29.0) * (6.0 / 29.0));
     constexpr float s = float(1.0 / (3.0 * (6.0 / 29.0) * (6.0 / 29.0)));
     constexpr float o = float(4.0 / 29.0);
@@ -116,7 +118,7 @@ struct HuntLab {
     float L, a, b;
 };
 
-inline HuntLab linearRgbToHuntLab(float r, float g, float b, const ColorConsts& k) {
+GBL_CLONE_INLINE HuntLab linearRgbToHuntLab(float r, float g, float b, const ColorConsts& k) {
     const float X = k.m[0][0] * r + k.m[0][1] * g + k.m[0][2] * b;
     const float Y = k.m[1][0] * r + k.m[1][1] * g + k.m[1][2] * b;
     const float Z = k.m[2][0] * r + k.m[2][1] * g + k.m[2][2] * b;
@@ -225,6 +227,13 @@ Kernels makeKernels(double ppd) {
 
 // ---- Separable filtering (clamp-to-edge), correlation order ------------------------------------
 
+// a[x] += k * src[x]: one tap of a filter over a row. The per-pixel loops below are compiled for
+// AVX2 too (simd_clones.h): lanes only widen the loop over x, each sum still adds its taps in the
+// same order with the same roundings (no FMA contraction), so the maps are unchanged.
+GBL_SIMD_CLONES void addTap(float* __restrict a, const float* __restrict src, float k, int w) {
+    for (int x = 0; x < w; ++x) a[x] += k * src[x];
+}
+
 // out(x, y) = sum_j k[j] in(clamp(x + j - r), y).
 void filterRows(const float* in, float* out, int w, int h, const std::vector<float>& k) {
     const int r = int(k.size() / 2);
@@ -235,12 +244,7 @@ void filterRows(const float* in, float* out, int w, int h, const std::vector<flo
             const float* row = in + y * size_t(w);
             for (int i = 0; i < w + 2 * r; ++i) pad[size_t(i)] = row[std::clamp(i - r, 0, w - 1)];
             std::fill(acc.begin(), acc.end(), 0.0f);
-            for (size_t j = 0; j < k.size(); ++j) {
-                const float kj = k[j];
-                const float* src = pad.data() + j;
-                float* a = acc.data();
-                for (int x = 0; x < w; ++x) a[x] += kj * src[x];
-            }
+            for (size_t j = 0; j < k.size(); ++j) addTap(acc.data(), pad.data() + j, k[j], w);
             std::copy(acc.begin(), acc.end(), out + y * size_t(w));
         }
     });
@@ -253,11 +257,8 @@ void filterCols(const float* in, float* out, int w, int h, const std::vector<flo
         for (size_t y = y0; y < y1; ++y) {
             float* o = out + y * size_t(w);
             std::fill(o, o + w, 0.0f);
-            for (size_t j = 0; j < k.size(); ++j) {
-                const float kj = k[j];
-                const float* src = in + size_t(std::clamp(int(y) + int(j) - r, 0, h - 1)) * size_t(w);
-                for (int x = 0; x < w; ++x) o[x] += kj * src[x];
-            }
+            for (size_t j = 0; j < k.size(); ++j)
+                addTap(o, in + size_t(std::clamp(int(y) + int(j) - r, 0, h - 1)) * size_t(w), k[j], w);
         }
     });
 }
@@ -268,7 +269,7 @@ void filterCols(const float* in, float* out, int w, int h, const std::vector<flo
 // Linear RGB -> XYZ -> YyCxCz (the colour pipeline's opponent space, after Zhang & Wandell's
 // S-CIELAB): Yy = 116 Y/Yn - 16, Cx = 500 (X/Xn - Y/Yn), Cz = 200 (Y/Yn - Z/Zn). The feature
 // pipeline uses the achromatic channel normalised to [0,1], (Yy + 16) / 116 = Y / Yn (lum).
-void rgbToOpponent(const float* __restrict R, const float* __restrict G, const float* __restrict B,
+GBL_SIMD_CLONES void rgbToOpponent(const float* __restrict R, const float* __restrict G, const float* __restrict B,
                    float* __restrict oy, float* __restrict ox, float* __restrict oz, float* __restrict ol, size_t n,
                    const ColorConsts& cc) {
     const ColorConsts k = cc;
@@ -286,7 +287,7 @@ void rgbToOpponent(const float* __restrict R, const float* __restrict G, const f
 
 // Filtered YyCxCz -> XYZ -> linear RGB, clamped to [0,1] (the filtered colour may leave the
 // gamut), in place: the planes y, x, z become r, g, b.
-void opponentToClampedRgb(float* __restrict y, float* __restrict x, float* __restrict z, size_t n,
+GBL_SIMD_CLONES void opponentToClampedRgb(float* __restrict y, float* __restrict x, float* __restrict z, size_t n,
                           const ColorConsts& cc) {
     const ColorConsts k = cc;
     for (size_t i = 0; i < n; ++i) {
@@ -302,7 +303,7 @@ void opponentToClampedRgb(float* __restrict y, float* __restrict x, float* __res
 }
 
 // Linear RGB -> CIELAB with the Hunt adjustment, eq. (4).
-void rgbToHuntLab(const float* __restrict R, const float* __restrict G, const float* __restrict B,
+GBL_SIMD_CLONES void rgbToHuntLab(const float* __restrict R, const float* __restrict G, const float* __restrict B,
                   float* __restrict oL, float* __restrict oa, float* __restrict ob, size_t n, const ColorConsts& cc) {
     const ColorConsts k = cc;
     for (size_t i = 0; i < n; ++i) {
@@ -396,7 +397,29 @@ void checkPair(const Image& ref, const Image& test, const char* what) {
 
 enum class Input { Srgb, Linear01 };
 
+// srgbToLinearF of the 256 values an 8-bit image holds (code / 255.0f, as image files are read and
+// as compare's tone map gives them): its inputs are almost always one of these, and a table
+// lookup, checked to be that exact float, replaces the powf.
+struct Srgb8Decode {
+    float value[256];  // code / 255.0f
+    float linear[256];  // srgbToLinearF(value)
+    Srgb8Decode() {
+        for (int c = 0; c < 256; ++c) {
+            value[c] = float(c) / 255.0f;
+            linear[c] = srgbToLinearF(value[c]);
+        }
+    }
+    float operator()(float v) const {
+        if (v >= 0.0f && v <= 1.0f) {
+            const int c = int(v * 255.0f + 0.5f);
+            if (value[c] == v) return linear[c];
+        }
+        return srgbToLinearF(v);  // any other value (and NaN)
+    }
+};
+
 void toLinearPlanes(const Image& im, Input mode, Plane rgb[3]) {
+    static const Srgb8Decode decode;
     const size_t n = im.pixelCount();
     for (int c = 0; c < 3; ++c) rgb[c].resize(n);
     const int ch = im.channels;
@@ -405,7 +428,7 @@ void toLinearPlanes(const Image& im, Input mode, Plane rgb[3]) {
             const float* p = im.pixels.data() + i * size_t(ch);
             for (int c = 0; c < 3; ++c) {
                 const float v = p[ch == 1 ? 0 : c];
-                rgb[c][i] = mode == Input::Srgb ? srgbToLinearF(v) : clamp01(v);
+                rgb[c][i] = mode == Input::Srgb ? decode(v) : clamp01(v);
             }
         }
     });
@@ -521,16 +544,22 @@ FlipStats flipStats(const Image& map, const std::vector<uint8_t>* mask) {
     if (useMask && mask->size() != map.pixelCount())
         throwUserError("flipStats: the mask has " + std::to_string(mask->size()) + " entries for " +
                        std::to_string(map.pixelCount()) + " pixels; give one byte per pixel");
-    std::vector<double> v;
-    v.reserve(map.pixelCount());
-    for (size_t i = 0; i < map.pixelCount(); ++i)
-        if (!useMask || (*mask)[i]) v.push_back(map.pixels[i]);
+    std::vector<float> v;
+    if (useMask) {
+        v.reserve(map.pixelCount());
+        for (size_t i = 0; i < map.pixelCount(); ++i)
+            if ((*mask)[i]) v.push_back(map.pixels[i]);
+    } else {
+        v = map.pixels;
+    }
     FlipStats s;
     s.count = v.size();
     if (v.empty()) return s;
-    std::sort(v.begin(), v.end());
+    // Sorted as the floats they are (float -> double is exact and keeps the order): the sum below
+    // adds the same values in the same order as a std::sort of doubles would.
+    radixSortFloats(v);
     double sum = 0.0;
-    for (double x : v) sum += x;
+    for (float x : v) sum += x;
     s.mean = sum / double(v.size());
     s.min = v.front();
     s.max = v.back();

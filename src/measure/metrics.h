@@ -10,6 +10,7 @@
 // fraction p of the samples <= v. p99 below is that with p = 0.99.
 //
 // Identical images give exactly 0 for every error and PSNR = +infinity.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -34,6 +35,8 @@ double pixelDeltaE(const float* a, const float* b);
 size_t nearestRankIndex(double p, size_t n);
 // The nearest-rank p-quantile of the samples (reorders them; 0 for no samples).
 double percentileNearestRank(std::vector<double>& samples, double p);
+// The sample of 0-based rank k in sorted order (reorders them; k < samples.size()).
+double percentileNearestRankAt(std::vector<double>& samples, size_t k);
 
 // Summary of a set of non-negative per-sample errors.
 struct ScalarStats {
@@ -44,6 +47,14 @@ struct ScalarStats {
     double max = 0.0;
 };
 ScalarStats summarize(std::vector<double>& samples);  // reorders the samples
+// summarize() of two classes of samples kept in one pool, and of the whole pool: samples[i] is of
+// class cls[i] != 0 (1) or == 0 (0). Returns {class 0, class 1, all}, each the same doubles as
+// summarize() of that class's samples listed in pool order (the same sums in the same order, the
+// same order statistic: p99 is selected inside the one histogram bucket of the bit patterns that
+// holds its rank). One pool instead of three, and two streaming passes instead of nth_element
+// over every sample. (For -0 against +0, or NaN, which summarize leaves unspecified, the value
+// picked may differ.)
+std::array<ScalarStats, 3> summarizeByClass(const std::vector<double>& samples, const std::vector<uint8_t>& cls);
 
 // ---- Image (radiance / colour) errors ----------------------------------------------------------
 
@@ -70,6 +81,10 @@ struct ImageErrorStats {
 // channels to compare (0 = all, e.g. 3 to skip alpha); both images need at least that many.
 ImageErrorStats imageErrorStats(const Image& reference, const Image& test, const Mask* mask = nullptr,
                                 PsnrPeak peak = PsnrPeak::One, int channels = 0);
+
+// imageErrorStats(reference, test, nullptr, peak, channels).mse, the same double (the same
+// samples summed in the same order), without the work of the other statistics.
+double meanSquaredError(const Image& reference, const Image& test, int channels = 0);
 
 // PSNR in dB for a mean squared error and a peak: 10 log10(peak^2 / mse); +inf when mse == 0.
 double psnrFromMse(double mse, double peak);

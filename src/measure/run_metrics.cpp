@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "flip.h"
+#include "pair_memo.h"
 #include "parallel_invoke.h"
 #include "tone_map.h"
 
@@ -47,64 +48,49 @@ bool usable(const Image& a, const Image& b, int channels, const char* what) {
     return true;
 }
 
-// Per-class sample pools of one attribute.
-struct Pools {
-    std::vector<double> all, metal, dielectric;
-    double sqAll = 0.0, sqMetal = 0.0, sqDielectric = 0.0;  // colour: summed squared RGB error
-    size_t skipped = 0;
-};
-
-ClassStats finish(std::vector<double>& samples, double sq, bool color) {
-    ClassStats out;
-    const size_t n = samples.size();
-    out.error = summarize(samples);
-    if (color && n > 0) out.rmse = std::sqrt(sq / (3.0 * double(n)));
-    std::vector<double>().swap(samples);
-    return out;
-}
-
-AttributeMetrics finish(Pools& p, bool color) {
-    AttributeMetrics m;
-    m.all = finish(p.all, p.sqAll, color);
-    m.metal = finish(p.metal, p.sqMetal, color);
-    m.dielectric = finish(p.dielectric, p.sqDielectric, color);
-    m.skipped = p.skipped;
-    return m;
-}
-
 // Runs errorAt(i, ok, sq) for every measured pixel, pools the results by class and writes the
 // per-pixel value into `map` (0 where not measured). sq: summed squared channel error (colours).
+// One pool in pixel order with a class byte per sample (summarizeByClass gives each class the
+// statistics of its own pool).
 template <class ErrorAt>
-AttributeMetrics measure(const Mask& measured, const Mask& metal, size_t metalCount, Image* map, bool color,
-                         ErrorAt&& errorAt) {
-    Pools p;
+AttributeMetrics measure(const Mask& measured, const Mask& metal, Image* map, bool color, ErrorAt&& errorAt) {
     const size_t n = measured.size();
     size_t both = 0;
     for (uint8_t m : measured) both += m ? 1 : 0;
-    p.all.reserve(both);
-    p.metal.reserve(metalCount);
-    p.dielectric.reserve(both - metalCount);
+    std::vector<double> samples;
+    std::vector<uint8_t> isMetal;
+    samples.reserve(both);
+    isMetal.reserve(both);
+    double sqAll = 0.0, sqMetal = 0.0, sqDielectric = 0.0;  // colour: summed squared RGB error
+    size_t skipped = 0;
     for (size_t i = 0; i < n; ++i) {
         if (!measured[i]) continue;
         bool ok = true;
         double sq = 0.0;
         const double e = errorAt(i, ok, sq);
         if (!ok) {
-            ++p.skipped;
+            ++skipped;
             continue;
         }
         if (map) map->pixels[i] = float(e);
-        p.all.push_back(e);
-        p.sqAll += sq;
-        if (metal[i]) {
-            p.metal.push_back(e);
-            p.sqMetal += sq;
-        } else {
-            p.dielectric.push_back(e);
-            p.sqDielectric += sq;
-        }
+        samples.push_back(e);
+        isMetal.push_back(metal[i]);
+        sqAll += sq;
+        (metal[i] ? sqMetal : sqDielectric) += sq;
     }
-    return finish(p, color);
+    const std::array<ScalarStats, 3> stats = summarizeByClass(samples, isMetal);  // dielectric, metal, all
+    auto finish = [&](const ScalarStats& st, double sq) {
+        ClassStats c;
+        c.error = st;
+        if (color && st.count > 0) c.rmse = std::sqrt(sq / (3.0 * double(st.count)));
+        return c;
+    };
+    AttributeMetrics m;
+    m.all = finish(stats[2], sqAll);
+    m.metal = finish(stats[1], sqMetal);
+    m.dielectric = finish(stats[0], sqDielectric);
+    m.skipped = skipped;
+    return m;
 }
 
 
@@ -116,10 +102,11 @@ Image* mapOrNull(RunErrorMaps* maps, Image RunErrorMaps::*member, int width, int
 }
 
 AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask& measured, const Mask& metal,
-                                size_t metalCount, Image* map, const char* what) {
+                                Image* map, const char* what) {
     if (!usable(ref, test, 3, what)) return {};
     const size_t rc = size_t(ref.channels), tc = size_t(test.channels);
-    return measure(measured, metal, metalCount, map, true, [&](size_t i, bool& ok, double& sq) {
+    PairMemo<double> memo;
+    return measure(measured, metal, map, true, [&](size_t i, bool& ok, double& sq) {
         const float* a = &ref.pixels[i * rc];
         const float* b = &test.pixels[i * tc];
         for (int c = 0; c < 3; ++c) {
@@ -127,17 +114,17 @@ AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask&
             sq += d * d;
         }
         if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) return 0.0;  // common (stored exactly); saves the costly path
-        const double e = pixelDeltaE(a, b);
+        const double e = memo.get(a, b, pixelDeltaE);  // pairs repeat (pair_memo.h)
         ok = std::isfinite(e);
         return e;
     });
 }
 
 AttributeMetrics scalarAttribute(const Image& ref, const Image& test, const Mask& measured, const Mask& metal,
-                                 size_t metalCount, Image* map, const char* what) {
+                                 Image* map, const char* what) {
     if (!usable(ref, test, 1, what)) return {};
     const size_t rc = size_t(ref.channels), tc = size_t(test.channels);
-    return measure(measured, metal, metalCount, map, false, [&](size_t i, bool& ok, double&) {
+    return measure(measured, metal, map, false, [&](size_t i, bool& ok, double&) {
         const double e = std::abs(double(test.pixels[i * tc]) - double(ref.pixels[i * rc]));
         ok = std::isfinite(e);
         return e;
@@ -162,6 +149,20 @@ double relativeLuminanceFloor(const Image& ref) {
     return std::max(1e-2 * (finite ? sum / double(finite) : 0.0), 1e-6);
 }
 
+// Pixel i of relativeLuminanceError, as its image stores it (float; NaN where not finite).
+float relativeLuminanceAt(const Image& ref, const Image& test, size_t i, double floor) {
+    const double yr = luminance(&ref.pixels[i * size_t(ref.channels)], ref.channels);
+    const double yt = luminance(&test.pixels[i * size_t(test.channels)], test.channels);
+    const double e = std::abs(yt - yr) / std::max(std::isfinite(yr) ? yr : 0.0, floor);
+    return std::isfinite(e) ? float(e) : std::numeric_limits<float>::quiet_NaN();
+}
+
+Image relativeLuminanceErrorImage(const Image& ref, const Image& test, double floor) {
+    Image out(ref.width, ref.height, 1);
+    for (size_t i = 0; i < ref.pixelCount(); ++i) out.pixels[i] = relativeLuminanceAt(ref, test, i, floor);
+    return out;
+}
+
 }  // namespace
 
 Image relativeLuminanceError(const Image& ref, const Image& test) {
@@ -169,23 +170,15 @@ Image relativeLuminanceError(const Image& ref, const Image& test) {
         throwUserError("relative luminance error: reference is " + std::to_string(ref.width) + "x" +
                        std::to_string(ref.height) + " but test is " + std::to_string(test.width) + "x" +
                        std::to_string(test.height));
-    const size_t n = ref.pixelCount();
-    const double floor = relativeLuminanceFloor(ref);
-    Image out(ref.width, ref.height, 1);
-    for (size_t i = 0; i < n; ++i) {
-        const double yr = luminance(&ref.pixels[i * size_t(ref.channels)], ref.channels);
-        const double yt = luminance(&test.pixels[i * size_t(test.channels)], test.channels);
-        const double e = std::abs(yt - yr) / std::max(std::isfinite(yr) ? yr : 0.0, floor);
-        out.pixels[i] = std::isfinite(e) ? float(e) : std::numeric_limits<float>::quiet_NaN();
-    }
-    return out;
+    return relativeLuminanceErrorImage(ref, test, relativeLuminanceFloor(ref));
 }
 
 PreparedReference::PreparedReference(const Image& referenceHdr, float exposure_)
     : hdr(&referenceHdr),
       exposure(exposure_),
       srgb(std::make_shared<const Image>(toneMapToSrgb8AsFloat(referenceHdr, exposure_))),
-      flip(*srgb) {}
+      flip(*srgb),
+      luminanceFloor(relativeLuminanceFloor(referenceHdr)) {}
 
 RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
                              const Image& testHdr, float exposure) {
@@ -206,6 +199,10 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     if (testHdr.empty()) throwUserError("compare: the layout's render is empty");
     checkSurface(reference, w, h, "reference");
     checkSurface(test, w, h, "layout's");
+    const Image* noise = options.referenceNoise;
+    if (noise && (noise->width != w || noise->height != h || noise->channels != 1))
+        throw std::invalid_argument("computeRunMetrics: the reference noise image must be 1 channel, " +
+                                    std::to_string(w) + "x" + std::to_string(h));
 
     RunMetrics out;
     RunErrorMaps* maps = options.maps;
@@ -230,45 +227,44 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
             ++out.coverage.testOnly;
         }
     }
-    const size_t mc = out.coverage.metal;
 
     // Attributes, side by side (each task fills its own fields and maps; each is computed exactly
     // as alone, so results do not depend on the thread count).
     std::vector<std::function<void()>> tasks;
     if (usable(reference.normal, test.normal, 3, "normal")) tasks.push_back([&] {
         const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
-        out.normal = measure(measured, metal, mc, mapOrNull(maps, &RunErrorMaps::normalDeg, w, h, true), false,
+        out.normal = measure(measured, metal, mapOrNull(maps, &RunErrorMaps::normalDeg, w, h, true), false,
                              [&](size_t i, bool& ok, double&) {
                                  return normalAngleDeg(&reference.normal.pixels[i * rc], &test.normal.pixels[i * tc], ok);
                              });
     });
     tasks.push_back([&] {
-        out.baseColor = colorAttribute(reference.baseColor, test.baseColor, measured, metal, mc,
+        out.baseColor = colorAttribute(reference.baseColor, test.baseColor, measured, metal,
                                    mapOrNull(maps, &RunErrorMaps::baseColorDe, w, h, true), "base colour");
     });
     tasks.push_back([&] {
-        out.diffuseColor = colorAttribute(reference.diffuseColor, test.diffuseColor, measured, metal, mc,
+        out.diffuseColor = colorAttribute(reference.diffuseColor, test.diffuseColor, measured, metal,
                                       mapOrNull(maps, &RunErrorMaps::diffuseColorDe, w, h, true), "diffuse colour");
     });
     tasks.push_back([&] {
-        out.specularColor = colorAttribute(reference.specularColor, test.specularColor, measured, metal, mc,
+        out.specularColor = colorAttribute(reference.specularColor, test.specularColor, measured, metal,
                                        mapOrNull(maps, &RunErrorMaps::specularColorDe, w, h, true), "specular colour");
     });
     tasks.push_back([&] {
-        out.roughness = scalarAttribute(reference.roughness, test.roughness, measured, metal, mc,
+        out.roughness = scalarAttribute(reference.roughness, test.roughness, measured, metal,
                                     mapOrNull(maps, &RunErrorMaps::roughnessAbs, w, h, true), "roughness");
     });
     tasks.push_back([&] {
-        out.metallic = scalarAttribute(reference.metallic, test.metallic, measured, metal, mc,
+        out.metallic = scalarAttribute(reference.metallic, test.metallic, measured, metal,
                                    mapOrNull(maps, &RunErrorMaps::metallicAbs, w, h, true), "metallic");
     });
     tasks.push_back([&] {
-        out.occlusion = scalarAttribute(reference.occlusion, test.occlusion, measured, metal, mc,
+        out.occlusion = scalarAttribute(reference.occlusion, test.occlusion, measured, metal,
                                     mapOrNull(maps, &RunErrorMaps::occlusionAbs, w, h, true), "occlusion");
     });
     if (usable(reference.viewDepth, test.viewDepth, 1, "view depth")) tasks.push_back([&] {
         const size_t rc = size_t(reference.viewDepth.channels), tc = size_t(test.viewDepth.channels);
-        out.depth = measure(measured, metal, mc, mapOrNull(maps, &RunErrorMaps::depthRel, w, h, true), false,
+        out.depth = measure(measured, metal, mapOrNull(maps, &RunErrorMaps::depthRel, w, h, true), false,
                             [&](size_t i, bool& ok, double&) {
                                 const double r = reference.viewDepth.pixels[i * rc];
                                 const double t = test.viewDepth.pixels[i * tc];
@@ -295,18 +291,14 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     if (!prepared) prepared = &local.emplace(referenceHdr, exposure);
     Image testSrgb = toneMapToSrgb8AsFloat(testHdr, exposure);
     tasks.push_back([&] {
-        const ImageErrorStats tone = imageErrorStats(*prepared->srgb, testSrgb, nullptr, PsnrPeak::One, 3);
-        out.image.rmseToneMapped = tone.rmse;
-        out.image.psnrToneMapped = tone.psnr;
+        const double mse = meanSquaredError(*prepared->srgb, testSrgb, 3);  // imageErrorStats' mse
+        out.image.rmseToneMapped = std::sqrt(mse);
+        out.image.psnrToneMapped = psnrFromMse(mse, 1.0);
     });
     parallelInvoke(tasks);
     if (release) *release = SurfaceImages{};
 
     Image flip = prepared->flip.compare(testSrgb);
-    const FlipStats fs = flipStats(flip);
-    out.image.flipMean = fs.mean;
-    out.image.flipMedian = fs.median;
-
     Image hdrFlip;
     if (options.hdrFlip) {
         HdrFlipResult result = flipHdr(referenceHdr, testHdr);
@@ -316,14 +308,17 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         out.image.hdrFlipComputed = true;
     }
 
-    // Image errors per material class.
-    {
-        Image rel = relativeLuminanceError(referenceHdr, testHdr);
-        const double floor = relativeLuminanceFloor(referenceHdr);  // relativeLuminanceError's
-        const Image* noise = options.referenceNoise;
-        if (noise && (noise->width != w || noise->height != h || noise->channels != 1))
-            throw std::invalid_argument("computeRunMetrics: the reference noise image must be 1 channel, " +
-                                        std::to_string(w) + "x" + std::to_string(h));
+    // FLIP's statistics and the image errors per material class, side by side (both only read).
+    Image rel;  // the whole map, for the heat map and the worst regions; else per pixel below
+    const double floor = prepared->luminanceFloor;
+    tasks.clear();
+    tasks.push_back([&] {
+        const FlipStats fs = flipStats(flip);
+        out.image.flipMean = fs.mean;
+        out.image.flipMedian = fs.median;
+    });
+    tasks.push_back([&] {
+        if (maps) rel = relativeLuminanceErrorImage(referenceHdr, testHdr, floor);
         struct Acc {
             size_t pixels = 0;
             double rel = 0.0, sq = 0.0, flip = 0.0, noise = 0.0;
@@ -333,7 +328,8 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
             if (!measured[i]) continue;
             Acc& a = acc[metal[i] ? 1 : 0];
             ++a.pixels;
-            a.rel += std::isfinite(rel.pixels[i]) ? rel.pixels[i] : 0.0;
+            const float r = maps ? rel.pixels[i] : relativeLuminanceAt(referenceHdr, testHdr, i, floor);
+            a.rel += std::isfinite(r) ? r : 0.0;
             for (size_t c = 0; c < 3; ++c) {
                 const double d = double(testHdr.pixels[i * tc + c]) - double(referenceHdr.pixels[i * rc + c]);
                 a.sq += d * d;
@@ -360,8 +356,9 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         out.image.dielectric = finish(acc[0]);
         out.image.metal = finish(acc[1]);
         out.image.covered = finish(all);
-        if (maps) maps->relLuminance = std::move(rel);
-    }
+    });
+    parallelInvoke(tasks);
+    if (maps) maps->relLuminance = std::move(rel);
 
     if (maps) {
         maps->referenceSrgb = prepared->srgb;  // shared: outlives `local`

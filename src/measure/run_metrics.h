@@ -118,14 +118,15 @@ struct RunErrorMaps {
 };
 
 // What the metrics derive from the reference render alone (its tone-mapped image, its half of
-// LDR-FLIP), computed once and shared by every run measured against that reference. Keeps a
-// pointer to `referenceHdr`, which must outlive it.
+// LDR-FLIP, the floor of the relative luminance error), computed once and shared by every run
+// measured against that reference. Keeps a pointer to `referenceHdr`, which must outlive it.
 struct PreparedReference {
     PreparedReference(const Image& referenceHdr, float exposure);
     const Image* hdr;
     float exposure;
     std::shared_ptr<const Image> srgb;  // toneMapToSrgbFloat(*hdr, exposure)
     LdrFlipReference flip;
+    double luminanceFloor;  // relativeLuminanceError's floor for this reference
 };
 
 struct RunMetricsOptions {

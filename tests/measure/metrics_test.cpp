@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "color_difference.h"
@@ -132,6 +134,86 @@ TEST(Metrics, P99AndChannelsArgument) {
     EXPECT_FLOAT_EQ(float(s.maxAbs), 1.0f);
     EXPECT_THROW(gbl::imageErrorStats(r, t, nullptr, gbl::PsnrPeak::One, 3), gbl::UserError);
     EXPECT_THROW(gbl::imageErrorStats(Image(2, 2, 3), Image(2, 3, 3)), gbl::UserError);
+}
+
+TEST(Metrics, ImageStatsEqualAPlainSortOfEverySample) {
+    // imageErrorStats selects its p99 in one histogram bucket instead of keeping every sample;
+    // here every statistic is recomputed from all samples (sorted, summed in order) and must be
+    // the same double. Errors span many exponents, many repeat one value (one crowded bucket),
+    // and a mask drops some pixels.
+    const int w = 157, h = 93, c = 4;
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    Image r(w, h, c), t(w, h, c);
+    for (size_t i = 0; i < r.pixels.size(); ++i) {
+        r.pixels[i] = std::pow(10.0f, -3.0f + 6.0f * u(rng));
+        const float kind = u(rng);
+        t.pixels[i] = kind < 0.3f ? r.pixels[i] + 0.125f : r.pixels[i] * (1.0f + 0.2f * (u(rng) - 0.5f));
+    }
+    gbl::Mask mask(size_t(w) * h);
+    for (auto& m : mask) m = u(rng) < 0.8f ? 1 : 0;
+    const gbl::Mask* masks[] = {nullptr, &mask};
+    for (const gbl::Mask* mk : masks)
+        for (int channels : {3, 4}) {
+            std::vector<double> all;
+            double sum = 0.0, sum2 = 0.0;
+            for (size_t p = 0; p < r.pixelCount(); ++p) {
+                if (mk && !(*mk)[p]) continue;
+                for (int k = 0; k < channels; ++k) {
+                    const double d = double(t.pixels[p * c + k]) - double(r.pixels[p * c + k]);
+                    all.push_back(std::abs(d));
+                    sum += d;
+                    sum2 += d * d;
+                }
+            }
+            std::vector<double> sorted = all;
+            std::sort(sorted.begin(), sorted.end());
+            const size_t rank = (99 * sorted.size() + 99) / 100;  // nearest rank ceil(0.99 n), 1-based
+            const gbl::ImageErrorStats s = gbl::imageErrorStats(r, t, mk, gbl::PsnrPeak::ReferenceMax, channels);
+            ASSERT_EQ(s.count, all.size());
+            EXPECT_EQ(s.p99Abs, sorted[rank - 1]) << channels;
+            EXPECT_EQ(s.maxAbs, sorted.back());
+            EXPECT_EQ(s.mean, sum / double(all.size()));
+            EXPECT_EQ(s.mse, sum2 / double(all.size()));
+            if (!mk) EXPECT_EQ(gbl::meanSquaredError(r, t, channels), s.mse);  // the same double
+        }
+    EXPECT_EQ(gbl::meanSquaredError(r, r, 3), 0.0);
+    EXPECT_THROW(gbl::meanSquaredError(Image(2, 2, 3), Image(2, 3, 3)), gbl::UserError);
+}
+
+TEST(Metrics, SummarizeByClassIsSummarizeOfEachClass) {
+    // One pool with a class byte per sample against three separate pools through summarize()
+    // (nth_element): the same doubles for every statistic. Samples span exponents, repeat (a
+    // crowded bucket), include zeros; sizes include a class with one sample and an empty class.
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (size_t n : {size_t(1), size_t(2), size_t(137), size_t(20000)}) {
+        for (double metalShare : {0.0, 0.3, 1.0}) {
+            std::vector<double> pool;
+            std::vector<uint8_t> cls;
+            std::vector<double> byClass[2], all;
+            for (size_t i = 0; i < n; ++i) {
+                const double kind = u(rng);
+                const double v = kind < 0.2 ? 0.0 : kind < 0.5 ? 1.5 : std::pow(10.0, -5.0 + 8.0 * u(rng));
+                const uint8_t c = u(rng) < metalShare ? 1 : 0;
+                pool.push_back(v);
+                cls.push_back(c);
+                byClass[c].push_back(v);
+                all.push_back(v);
+            }
+            const std::array<gbl::ScalarStats, 3> got = gbl::summarizeByClass(pool, cls);
+            const gbl::ScalarStats want[3] = {gbl::summarize(byClass[0]), gbl::summarize(byClass[1]), gbl::summarize(all)};
+            for (int k = 0; k < 3; ++k) {
+                SCOPED_TRACE("n " + std::to_string(n) + " share " + std::to_string(metalShare) + " class " + std::to_string(k));
+                EXPECT_EQ(got[size_t(k)].count, want[k].count);
+                EXPECT_EQ(got[size_t(k)].mean, want[k].mean);
+                EXPECT_EQ(got[size_t(k)].rms, want[k].rms);
+                EXPECT_EQ(got[size_t(k)].p99, want[k].p99);
+                EXPECT_EQ(got[size_t(k)].max, want[k].max);
+            }
+        }
+    }
+    EXPECT_THROW(gbl::summarizeByClass({1.0, 2.0}, {0}), std::invalid_argument);
 }
 
 // ---- Normals ---------------------------------------------------------------------------------
