@@ -175,7 +175,9 @@ TEST(Metrics, ImageStatsEqualAPlainSortOfEverySample) {
             EXPECT_EQ(s.maxAbs, sorted.back());
             EXPECT_EQ(s.mean, sum / double(all.size()));
             EXPECT_EQ(s.mse, sum2 / double(all.size()));
-            if (!mk) EXPECT_EQ(gbl::meanSquaredError(r, t, channels), s.mse);  // the same double
+            if (!mk) {
+                EXPECT_EQ(gbl::meanSquaredError(r, t, channels), s.mse);  // the same double
+            }
         }
     EXPECT_EQ(gbl::meanSquaredError(r, r, 3), 0.0);
     EXPECT_THROW(gbl::meanSquaredError(Image(2, 2, 3), Image(2, 3, 3)), gbl::UserError);
