@@ -230,7 +230,8 @@ PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& 
 }
 
 GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
-                              const Buffer& frameConstants, uint32_t width, uint32_t height, PipelineMemo& memo) {
+                              const Buffer& frameConstants, uint32_t width, uint32_t height, PipelineMemo& memo,
+                              const CodecTableBuffers& tables) {
     GBufferPass pass;
     const uint32_t textureCount = uint32_t(scene.textures.size());
     const PassPipeline pipeline = gbufferPassPipeline(ctx, wiring, textureCount, memo);
@@ -242,8 +243,9 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
     const std::vector<Binding> bindings = gbufferBindings(textureCount);
     pass.pool = createPoolFor(ctx.device, {bindings});
     pass.set = allocateSet(ctx.device, pass.pool, pass.setLayout);
-    pass.bestFitTable = createBestFitTableBuffer(ctx);
-    pass.codecTables = createCodecTablesBuffer(ctx);
+    pass.bestFitTable = tables.bestFitTable;
+    pass.codecTables = tables.codecTables;
+    pass.tablesBorrowed = true;
     DescriptorWriter writer;
     writer.buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameConstants.buffer)
         .buffer(pass.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene.materials.buffer)
@@ -377,9 +379,25 @@ Buffer createBestFitTableBuffer(const VulkanContext& ctx) {
     return createBufferWithData(ctx, table.data(), table.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
+CodecTableBuffers createCodecTableBuffers(const VulkanContext& ctx) {
+    CodecTableBuffers tables;
+    tables.bestFitTable = createBestFitTableBuffer(ctx);
+    tables.codecTables = createCodecTablesBuffer(ctx);
+    return tables;
+}
+
+void destroyCodecTableBuffers(const VulkanContext& ctx, CodecTableBuffers& tables) {
+    if (tables.bestFitTable.buffer) destroyBuffer(ctx, tables.bestFitTable);
+    if (tables.codecTables.buffer) destroyBuffer(ctx, tables.codecTables);
+}
+
 void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {
-    if (pass.bestFitTable.buffer) destroyBuffer(ctx, pass.bestFitTable);
-    if (pass.codecTables.buffer) destroyBuffer(ctx, pass.codecTables);
+    if (!pass.tablesBorrowed) {
+        if (pass.bestFitTable.buffer) destroyBuffer(ctx, pass.bestFitTable);
+        if (pass.codecTables.buffer) destroyBuffer(ctx, pass.codecTables);
+    }
+    pass.bestFitTable = Buffer{};
+    pass.codecTables = Buffer{};
     for (auto& t : pass.targets) destroyImage(ctx, t);
     pass.targets.clear();
     if (pass.emissive.image) destroyImage(ctx, pass.emissive);

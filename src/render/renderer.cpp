@@ -114,6 +114,7 @@ void Renderer::init(const EnvironmentMap& environment, const IblMaps& ibl) {
                                         VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     nearestSampler_ = createSampler(ctx_, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                     VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    codecTables_ = createCodecTableBuffers(ctx_);
 }
 
 Renderer::~Renderer() {
@@ -123,6 +124,7 @@ Renderer::~Renderer() {
     destroyIblGpu(ctx_, ibl_);
     vkDestroySampler(ctx_.device, environmentSampler_, nullptr);
     vkDestroySampler(ctx_.device, nearestSampler_, nullptr);
+    destroyCodecTableBuffers(ctx_, codecTables_);
     pipelines_.destroy(ctx_.device);
 }
 
@@ -213,14 +215,15 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         decodePassPipeline(ctx_, wiring, readScene, pipelines_, settings.keepOnDevice);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
-    GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h, pipelines_);
+    GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h, pipelines_, codecTables_);
     gbuffer.renderFirstRow = band.rasterFirst;
     gbuffer.renderRows = settings.bandRows ? band.rasterRows : 0;
     // Deferred lighting: the second geometry pass writes the material attributes the slim
     // G-buffer leaves out, at full precision (the same generated GLSL, MATERIAL_PASS_WRITE).
     GBufferPass materialPass;
     if (wiring.materialPass) {
-        materialPass = createGBufferPass(ctx_, materialPassWiring(wiring), gpuScene_, frameBuffer, w, h, pipelines_);
+        materialPass = createGBufferPass(ctx_, materialPassWiring(wiring), gpuScene_, frameBuffer, w, h, pipelines_,
+                                         codecTables_);
         materialPass.renderFirstRow = band.rasterFirst;
         materialPass.renderRows = settings.bandRows ? band.rasterRows : 0;
     }

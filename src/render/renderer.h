@@ -13,6 +13,7 @@
 #include "ibl_precompute.h"
 #include "image.h"
 #include "pipeline_memo.h"
+#include "renderer_passes.h"
 #include "scene.h"
 #include "surface_images.h"
 
@@ -173,6 +174,8 @@ private:
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
     IblGpu ibl_;
     PipelineMemo pipelines_;
+    // The best-fit normal and encodings' tables every G-buffer pass binds: constant, uploaded once.
+    CodecTableBuffers codecTables_;
     // Lighting pipelines specialised per IBL mode and Fresnel: until preparePipelines is given
     // several modes (LightingVariant).
     bool specialiseLighting_ = true;

@@ -41,9 +41,12 @@ struct GBufferPass {
     Buffer bestFitTable;
     // The encodings' 8-bit tables (src/encoding/codec_tables.h): the G-buffer pass's encoders read
     // them at set 0, and the passes reading this G-buffer (lighting, decode) at set 1, binding
-    // enc::kCodecTablesBinding (writeTargetReadSet). Made by createGBufferPass, empty in passes
-    // put together by hand.
+    // enc::kCodecTablesBinding (writeTargetReadSet). Lent by createGBufferPass's caller, empty in
+    // passes put together by hand.
     Buffer codecTables;
+    // bestFitTable and codecTables belong to someone else (createGBufferPass: the Renderer's,
+    // uploaded once): destroyGBufferPass leaves them. Passes put together by hand own theirs.
+    bool tablesBorrowed = false;
     std::vector<std::array<uint32_t, 4>> clearWords;  // per target (GBufferWiring::targetClearWords)
     // The layout declares stencil extras: the pipeline writes the stencil with op REPLACE and a
     // dynamic reference, set per draw to stencilReference(wiring, material's values).
@@ -75,6 +78,14 @@ Buffer createBestFitTableBuffer(const VulkanContext& ctx);
 // Uploads enc::codecTableFloats() as a storage buffer (for GBufferPass::codecTables).
 Buffer createCodecTablesBuffer(const VulkanContext& ctx);
 
+// Both constant tables, uploaded once (the Renderer's) and lent to every createGBufferPass.
+struct CodecTableBuffers {
+    Buffer bestFitTable;
+    Buffer codecTables;
+};
+CodecTableBuffers createCodecTableBuffers(const VulkanContext& ctx);
+void destroyCodecTableBuffers(const VulkanContext& ctx, CodecTableBuffers& tables);
+
 // Throws UserError (one line naming the layout, the count and the fix) when the scene has more
 // draws or triangles than a visibility buffer's ids hold, or the device lacks gl_PrimitiveID in
 // fragment shaders. Renderer::render calls it before it allocates anything.
@@ -83,8 +94,10 @@ void checkVisibilityBufferSupport(const VulkanContext& ctx, const GBufferWiring&
 
 // The pipeline (and its layouts) is taken from `memo` when this wiring's was built before, else
 // built into it (gbufferPassPipeline).
+// `tables` are lent (GBufferPass::tablesBorrowed): they must outlive the pass.
 GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
-                              const Buffer& frameConstants, uint32_t width, uint32_t height, PipelineMemo& memo);
+                              const Buffer& frameConstants, uint32_t width, uint32_t height, PipelineMemo& memo,
+                              const CodecTableBuffers& tables);
 // The pipelines of a wiring's passes alone (no images, no submission), from `memo` or built into
 // it: what createGBufferPass and createLightingPass use, callable from several threads at once
 // (Renderer::preparePipelines). `textureCount`: the scene's (GpuScene::textures).
