@@ -20,6 +20,7 @@
 #include "cli_args.h"
 #include "color_map.h"
 #include "commands.h"
+#include "compare_bands.h"
 #include "compare_console.h"
 #include "compare_runs.h"
 #include "compare_views.h"
@@ -132,6 +133,11 @@ int runCompareCommand(const std::vector<std::string>& args) {
         {"eval", "WHERE", "where the metrics are computed: auto (default: gpu on a GPU, cpu on a CPU device such as "
                           "lavapipe), gpu (compute passes beside the render, only numbers and 8-bit images come "
                           "back, no errors.exr) or cpu (the measure library, the oracle)"},
+        {"band-rows", "N|auto", "render and measure the frame in bands of N rows (a multiple of 8), each with FLIP's "
+                                "halo, on the device evaluator: bounded memory at 4K, at the price of rendering the "
+                                "reference again for every run; 0: whole frames; auto (default): bands of " +
+                                    std::to_string(kAutoBandRows) + " rows on a CPU device above " +
+                                    std::to_string(kAutoBandPixels) + " pixels, unless --eval cpu or ground-truth"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -173,6 +179,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const std::string evalWhere = parsed.get("eval", "auto");
     if (evalWhere != "gpu" && evalWhere != "cpu" && evalWhere != "auto")
         throwUserError("gbufferlab compare: --eval " + evalWhere + ": give auto, gpu or cpu");
+    const bool groundTruthAsked = std::find(modes.begin(), modes.end(), IblMode::GroundTruth) != modes.end();
+    const std::optional<uint32_t> bandRowsGiven =
+        parseBandRowsFlag(parsed.get("band-rows", "auto"), evalWhere == "cpu", groundTruthAsked);
     checkOutputDirectory(outDir, force, "--out");
 
     // Everything the user gave is read and validated before the first pixel is rendered.
@@ -187,7 +196,16 @@ int runCompareCommand(const std::vector<std::string>& args) {
     // CPU, where the measure library's vectorised code beats the same passes JIT-compiled by
     // llvmpipe (bench/RESULTS.md: warm 1080p compare 7.09x the GPU passes with --eval gpu,
     // 3.50x with --eval cpu, back to back); on a GPU it is the evaluate library's compute passes.
-    const bool gpuEval = evalWhere == "gpu" || (evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
+    // --band-rows auto: bands where a whole frame would not fit comfortably, i.e. on a CPU device
+    // (device memory is host memory) at 4K-class sizes; never against the user's --eval cpu or for
+    // a ground truth (it converges over the whole frame).
+    const uint32_t bandRows = bandRowsGiven ? *bandRowsGiven
+                              : (evalWhere == "cpu" || groundTruthAsked)
+                                  ? 0u
+                                  : autoBandRows(ctx.info.type == VK_PHYSICAL_DEVICE_TYPE_CPU, width, height);
+    const BandPlan bandPlan = planBands(height, bandRows, bandRows ? flipHaloRows() : 0u);
+    const bool gpuEval = bandPlan.banded() || evalWhere == "gpu" ||
+                         (evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
     validateResolution(ctx, width, height, "--size");
     WiringOptions wiringOptions;
     wiringOptions.nativeFormats = parsed.has("native-formats");
@@ -210,9 +228,17 @@ int runCompareCommand(const std::vector<std::string>& args) {
     // --eval gpu: one evaluator for every run (its working planes are allocated once).
     std::unique_ptr<GpuEvaluator> evaluator;
     if (gpuEval) {
-        evaluator = std::make_unique<GpuEvaluator>(ctx, width, height);
+        evaluator = std::make_unique<GpuEvaluator>(ctx, width, height, bandPlan.maxImageRows());
         model.run.notes.push_back("metrics computed on the device (--eval gpu): quantiles from histograms (within "
                                   "0.1 %), worst regions on 8-pixel tiles, no errors.exr");
+    }
+    if (bandPlan.banded()) {
+        model.run.notes.push_back(
+            "rendered and measured in " + std::to_string(bandPlan.bands.size()) + " bands of " +
+            std::to_string(bandPlan.bandRows) + " rows with " + std::to_string(bandPlan.halo) +
+            " rows of FLIP halo each side (--band-rows" + (bandRowsGiven ? "" : " auto") +
+            "): the same numbers as whole frames; the reference is rendered again for every run, and the pass "
+            "times are the layout's own, summed over its bands");
     }
 
     const bool compareLighting = modes.size() > 1 &&
@@ -236,7 +262,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
     bool reportComplete = false;
     // Image files are written on a worker thread while the next run renders; at most two runs'
     // images wait (each job owns its images: memory stays bounded).
-    BackgroundWriter imageWriter(1, 2);
+    // In bands a run's images span the frame while its bands do not: one run waits at most.
+    BackgroundWriter imageWriter(1, bandPlan.banded() ? 1 : 2);
     const ImageOutput imageOutput{&imageWriter, exrType};
     // The action below uses this function's locals: it is cleared on every way out (an exception
     // included), before they are destroyed.
@@ -301,7 +328,8 @@ int runCompareCommand(const std::vector<std::string>& args) {
             } catch (const std::exception&) {
             }
         }
-        const RenderSettings decodeSettings = settingsFor(modes[0], 0);
+        RenderSettings decodeSettings = settingsFor(modes[0], 0);
+        if (bandPlan.banded()) decodeSettings.bandRows = bandPlan.bands.front().imageRows;
         renderer.preparePipelines(wirings, decodeSettings, modes);
         if (decodeSettings.decodeOnCpu) {
             std::vector<std::string> onDevice;
@@ -338,14 +366,22 @@ int runCompareCommand(const std::vector<std::string>& args) {
             ++runIndex;
         };
         std::map<std::string, ReferenceRender> references;
+        size_t bandedReferenceMode = 0;  // in bands: whose statistics the evaluator holds
         for (size_t m = 0; m < modes.size(); ++m) {
             progress.begin("reference / " + modeNames[m] + viewLabel);
             ReferenceRender ref;
-            ref.output = renderer.render(referenceWiring, settingsFor(modes[m], view));
+            if (bandPlan.banded()) {  // its statistics into the evaluator, its HDR image for the files
+                ref.output.timings = renderReferenceInBands(renderer, referenceWiring, settingsFor(modes[m], view),
+                                                            bandPlan, *evaluator, exposure,
+                                                            firstView ? &ref.output.hdr : nullptr);
+                bandedReferenceMode = m;
+            } else {
+                ref.output = renderer.render(referenceWiring, settingsFor(modes[m], view));
+            }
             gpuPassMs += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
             // --eval gpu keeps the render on the device; its files (and the IBL figure) need it here.
             const bool hostHdr = firstView || compareLighting;
-            if (gpuEval && ref.output.hdr.empty() && hostHdr) {
+            if (gpuEval && !bandPlan.banded() && ref.output.hdr.empty() && hostHdr) {
                 ScopedStage timed(Stage::Readback);
                 ref.output.hdr = ref.output.device->downloadHdr();
             }
@@ -357,7 +393,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
             imageWriter.enqueue("images of the reference / " + modeNames[m],
                                 [png = (outDir / ref.renderPng).string(), exr = (outDir / renderExr).string(),
                                  log = (outDir / preview).string(), exposure, exrType,
-                                 hdr = std::make_shared<const Image>(ref.output.hdr)] {
+                                 hdr = gpuEval && !compareLighting  // the files are its last use
+                                           ? std::make_shared<const Image>(std::move(ref.output.hdr))
+                                           : std::make_shared<const Image>(ref.output.hdr)] {
                                     writePng(png, toneMapToSrgb8(*hdr, exposure));
                                     writeExr(exr, *hdr, {}, exrType);
                                     writePng(log, logEncodeForPreview(*hdr));
@@ -466,6 +504,12 @@ int runCompareCommand(const std::vector<std::string>& args) {
 
         for (size_t m = 0; m < modes.size(); ++m) {
             const ReferenceRender& ref = references.at(modeNames[m]);
+            if (bandPlan.banded() && bandedReferenceMode != m) {  // the evaluator holds another mode's
+                const PassTimings t = renderReferenceInBands(renderer, referenceWiring, settingsFor(modes[m], view),
+                                                             bandPlan, *evaluator, exposure, nullptr);
+                gpuPassMs += t.gbufferMs + t.lightingMs;
+                bandedReferenceMode = m;
+            }
             for (const Layout& layout : layouts) {
                 progress.begin(layout.name + " / " + modeNames[m] + viewLabel);
                 if (!firstView && model.runs.at(runIndex).status == RunStatus::Failed) {
@@ -475,11 +519,20 @@ int runCompareCommand(const std::vector<std::string>& args) {
                 }
                 RunReport run = makeRun(layout, modeNames[m]);
                 try {
-                    RenderOutput out = renderer.render(generateWiring(layout, wiringOptions), settingsFor(modes[m], view));
-                    gpuPassMs += out.timings.gbufferMs + out.timings.lightingMs;
-                    run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
-                    measureRun(run, out, ref, outDir, "runs/" + layout.name + "/" + modeNames[m] + "/", exposure, hdrFlip, true,
-                               firstView, imageOutput);
+                    const std::string prefix = "runs/" + layout.name + "/" + modeNames[m] + "/";
+                    const GBufferWiring wiring = generateWiring(layout, wiringOptions);
+                    if (bandPlan.banded()) {
+                        const PassTimings t =
+                            measureRunInBands(run, renderer, referenceWiring, wiring, settingsFor(modes[m], view),
+                                              bandPlan, *evaluator, outDir, prefix, hdrFlip, firstView, imageOutput,
+                                              gpuPassMs);
+                        run.times = PassTimes{t.gbufferMs, t.lightingMs, ctx.info.name};
+                    } else {
+                        RenderOutput out = renderer.render(wiring, settingsFor(modes[m], view));
+                        gpuPassMs += out.timings.gbufferMs + out.timings.lightingMs;
+                        run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx.info.name};
+                        measureRun(run, out, ref, outDir, prefix, exposure, hdrFlip, true, firstView, imageOutput);
+                    }
                     progress.end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                                  std::to_string(run.image->flipMean).substr(0, 6));
                 } catch (const std::exception& e) {

@@ -70,8 +70,6 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
 }
 
 
-namespace {
-
 DeviceRender deviceView(const RenderOutput& r) {
     if (!r.device) throw std::logic_error("--eval gpu: the render was not kept on the device");
     DeviceRender d;
@@ -80,6 +78,8 @@ DeviceRender deviceView(const RenderOutput& r) {
         for (size_t k = 0; k < 4; ++k) d.surfaces[k] = &r.device->surfaces[k];
     return d;
 }
+
+namespace {
 
 void setGroundTruth(RunReport& run, const ReferenceRender& reference) {
     if (reference.output.noise.empty()) return;
@@ -110,6 +110,16 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
     fillMetrics(run, m);
     if (!writeImages) return;
     timed.emplace(Stage::Report);
+    queueDeviceImages(run, std::move(images), m, std::make_shared<const Image>(test.device->downloadHdr()), outDir,
+                      prefix, output);
+}
+
+}  // namespace
+
+// The files of a run measured on the device: the 8-bit images the evaluator made, the HDR render
+// (render.exr and its log preview) and the crops.
+void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics& m, std::shared_ptr<const Image> hdr,
+                       const fs::path& outDir, const std::string& prefix, const ImageOutput& output) {
     ErrorImageOptions imageOptions;
     imageOptions.label = run.layout + " / " + run.iblMode;
     imageOptions.exrType = output.exrType;
@@ -129,7 +139,6 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
         run.images.crops.push_back({c.x, c.y, c.size, c.size, f.reference, f.test, f.heat});
     }
     auto owned = std::make_shared<GpuErrorImages>(std::move(images));
-    auto hdr = std::make_shared<const Image>(test.device->downloadHdr());
     auto write = [outDir, prefix, owned, m, hdr, imageOptions, exrType = output.exrType] {
         const GpuErrorImages& g = *owned;
         writeErrorImageBodies(outDir, prefix, ErrorImageBodies{g.render, g.heat, g.flip, g.normal, g.difference}, m,
@@ -141,8 +150,6 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
     if (output.writer) output.writer->enqueue(prefix, std::move(write));  // named by the run's prefix
     else write();
 }
-
-}  // namespace
 
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const fs::path& outDir,
                 const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages,

@@ -22,6 +22,9 @@ struct ReferenceRender {
     GpuEvaluator* evaluator = nullptr;
 };
 
+// The render's device images as the GPU evaluator takes them (RenderSettings::keepOnDevice).
+DeviceRender deviceView(const RenderOutput& r);
+
 // Copies a run's metrics (run_metrics.h) into its report row.
 void fillMetrics(RunReport& run, const RunMetrics& m);
 
@@ -43,5 +46,11 @@ struct ImageOutput {
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const std::filesystem::path& outDir,
                 const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages = true,
                 const ImageOutput& output = {});
+
+// The files of a run measured on the device (--eval gpu, bands): the evaluator's 8-bit images, the
+// HDR render (render.exr, render_log.png) and the worst-region crops; their names go into `run`.
+void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics& metrics,
+                       std::shared_ptr<const Image> hdr, const std::filesystem::path& outDir, const std::string& prefix,
+                       const ImageOutput& output);
 
 }  // namespace gbl::compare
