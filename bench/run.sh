@@ -9,9 +9,13 @@
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
 #   e2e      `gbufferlab compare` of all layouts at 1080p, run twice per --eval gpu / cpu (the second,
 #            warm, is timed by stage: its timings.json), then at 3840x2160 with the layouts
-#            GBL_BENCH_4K_LAYOUTS (default ue4,ryse,crysis3-thin) per --eval for peak memory, and
+#            GBL_BENCH_4K_LAYOUTS (default ue4,ryse,crysis3-thin) as mem4k does, and
 #            `gbufferlab render` at 3840x2160 whole and with --band-rows 256 and 64 (peak memory;
 #            the EXRs compared byte for byte)
+#   mem4k    `gbufferlab compare` at 3840x2160 with GBL_BENCH_4K_LAYOUTS, one view: in bands (the
+#            default there on lavapipe) and on whole frames with --eval gpu and cpu: peak RSS and
+#            wall time in results/compare_4k_rss_<mode>.txt; the banded numbers checked against
+#            the whole-frame --eval gpu ones (bench/report_numbers.py)
 #   search   `gbufferlab search --budget 16` at 480x270, 3 views, 600 candidates, confirmed by full
 #            renders: candidates per minute, CPU seconds per candidate and the goals in
 #            results/search-16/search.json and search-report.md (GBL_BENCH_SEARCH_THREADS, default 2)
@@ -41,7 +45,7 @@ for w in "${what[@]}"; do
         codec) targets+=(codec_bench) ;;
         gpu) targets+=(gpu_pass_bench) ;;
         compare) targets+=(compare_bench) ;;
-        e2e | coldwarm | search) targets+=(gbufferlab) ;;
+        e2e | coldwarm | search | mem4k) targets+=(gbufferlab) ;;
     esac
 done
 
@@ -55,6 +59,23 @@ run_bench() {  # name
     [ -n "${GBL_BENCH_FILTER:-}" ] && args+=(--benchmark_filter="$GBL_BENCH_FILTER")
     echo "== $1 -> $results/$1.json"
     "$build/$1" "${args[@]}"
+}
+
+# compare at 3840x2160 with GBL_BENCH_4K_LAYOUTS, one view, for peak memory (KiB) and wall time:
+# in bands (--band-rows auto: the default there on a CPU device), and on whole frames per --eval;
+# the banded report's numbers are checked against the whole-frame --eval gpu one's.
+run_mem4k() {
+    local layouts=${GBL_BENCH_4K_LAYOUTS:-ue4,ryse,crysis3-thin}
+    for mode in bands gpu cpu; do
+        local flags=(--band-rows 0 --eval "$mode")
+        [ "$mode" = bands ] && flags=(--band-rows auto)
+        echo "== gbufferlab compare at 3840x2160, $layouts, one view, ${flags[*]} (peak memory)"
+        /usr/bin/time -f '%M KiB %e s' -o "$results/compare_4k_rss_$mode.txt" "$build/gbufferlab" compare \
+            --device "${GBL_BENCH_DEVICE:-cpu}" "${flags[@]}" --size 3840x2160 --views 1 --layouts "$layouts" \
+            --out "$results/compare-4k-$mode" --force >/dev/null
+        cat "$results/compare_4k_rss_$mode.txt"
+    done
+    python3 bench/report_numbers.py "$results/compare-4k-gpu/report.json" "$results/compare-4k-bands/report.json"
 }
 
 for w in "${what[@]}"; do
@@ -71,12 +92,7 @@ for w in "${what[@]}"; do
                 "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --out "$out" --force >/dev/null
                 cp "$out/timings.json" "$results/compare_e2e_$ev.json"
             done
-            for ev in gpu cpu; do
-                echo "== gbufferlab compare --eval $ev at 3840x2160, ${GBL_BENCH_4K_LAYOUTS:-ue4,ryse,crysis3-thin} (peak memory)"
-                /usr/bin/time -f '%M' -o "$results/compare_4k_rss_kib_$ev.txt" "$build/gbufferlab" compare \
-                    --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --size 3840x2160 \
-                    --layouts "${GBL_BENCH_4K_LAYOUTS:-ue4,ryse,crysis3-thin}" --out "$results/compare-4k-$ev" --force >/dev/null
-            done
+            run_mem4k
             for rows in 0 256 64; do  # 0: the whole frame
                 echo "== gbufferlab render at 3840x2160, --band-rows $rows (peak memory)"
                 band=()
@@ -87,6 +103,7 @@ for w in "${what[@]}"; do
                 cmp "$results/render-4k-0/reference.exr" "$results/render-4k-$rows/reference.exr"  # bit for bit
             done
             ;;
+        mem4k) run_mem4k ;;
         search)
             out="$results/search-16"
             rm -rf "$out"

@@ -65,5 +65,7 @@ gbl_test(search/layout_search_test LABELS unit DEPS gbl_search)
 gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_cli)  # fast evaluation vs full renders
 gbl_test(cli/search_cli_test LABELS gpu DEPS gbufferlab)
 gbl_test(cli/cli_test LABELS gpu DEPS gbufferlab gbl_report gbl_image nlohmann_json::nlohmann_json)
+gbl_test(cli/compare_bands_test LABELS unit DEPS gbl_cli)
+gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
 gbl_test(cli/diff_cli_test LABELS gpu DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
 include(tests/layering/layering.cmake)

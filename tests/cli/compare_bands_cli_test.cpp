@@ -1,0 +1,98 @@
+// compare in bands against compare on whole frames, through the real executable: every number of
+// report.json (times, the command line and notes aside) and every image file must be the same,
+// for layouts that stress a band's edges (crysis3-thin's checkerboard chroma, crysis2-slim's light
+// pre-pass, a visibility buffer), over two views; and the flag's bad uses fail with one line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+
+namespace fs = std::filesystem;
+using namespace gbl::test;
+
+namespace {
+
+fs::path scratch() {
+    static const fs::path dir = scratchFolder("gbl_compare_bands_test_");
+    return dir;
+}
+
+RunResult run(const std::string& args) { return runGbufferlab(scratch(), args); }
+
+// Every number under `j`, by its JSON pointer, but for times and other facts of the run itself.
+void collectNumbers(const nlohmann::json& j, const std::string& at, std::vector<std::pair<std::string, double>>& out) {
+    if (j.is_object()) {
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            const std::string& k = it.key();
+            if (k.find("ms") != std::string::npos || k == "times" || k == "pass_times" || k == "run" || k == "date")
+                continue;
+            collectNumbers(it.value(), at + "/" + k, out);
+        }
+    } else if (j.is_array()) {
+        for (size_t i = 0; i < j.size(); ++i) collectNumbers(j[i], at + "/" + std::to_string(i), out);
+    } else if (j.is_number()) {
+        out.emplace_back(at, j.get<double>());
+    }
+}
+
+TEST(CompareBandsCli, BandsGiveTheWholeFramesNumbersAndImages) {
+    const std::string common =
+        "compare --size 200x120 --layouts crysis3-thin,crysis2-slim,visibility-32 --views 2 --eval gpu --hdr-flip ";
+    const RunResult whole = run(common + "--band-rows 0 --out whole");
+    ASSERT_EQ(whole.exitCode, 0) << whole.err;
+    const RunResult bands = run(common + "--band-rows 24 --out bands");  // 120 = 5 x 24
+    ASSERT_EQ(bands.exitCode, 0) << bands.err;
+    const RunResult odd = run(common + "--band-rows 56 --out odd");  // 56 + 56 + 8 rows
+    ASSERT_EQ(odd.exitCode, 0) << odd.err;
+
+    const nlohmann::json w = nlohmann::json::parse(slurp(scratch() / "whole" / "report.json"));
+    std::vector<std::pair<std::string, double>> expected;
+    collectNumbers(w, "", expected);
+    ASSERT_GT(expected.size(), 200u);
+    for (const char* dir : {"bands", "odd"}) {
+        const nlohmann::json b = nlohmann::json::parse(slurp(scratch() / dir / "report.json"));
+        std::vector<std::pair<std::string, double>> got;
+        collectNumbers(b, "", got);
+        ASSERT_EQ(got.size(), expected.size()) << dir;
+        size_t differ = 0;
+        for (size_t i = 0; i < got.size(); ++i) {
+            ASSERT_EQ(got[i].first, expected[i].first);
+            const double e = expected[i].second, g = got[i].second;
+            // Sums over bands add in another order: 1e-9 relative; every other number is exact.
+            if (std::abs(g - e) > 1e-9 * std::max(1.0, std::abs(e))) {
+                ++differ;
+                ADD_FAILURE() << dir << " " << got[i].first << ": " << g << " vs " << e;
+            }
+        }
+        EXPECT_EQ(differ, 0u) << dir;
+        // Every image the whole-frame run wrote, byte for byte (PNGs, render.exr, crops).
+        size_t files = 0;
+        for (const auto& entry : fs::recursive_directory_iterator(scratch() / "whole")) {
+            const fs::path rel = fs::relative(entry.path(), scratch() / "whole");
+            const std::string ext = rel.extension().string();
+            if (ext != ".png" && ext != ".exr") continue;
+            ++files;
+            ASSERT_TRUE(fs::exists(scratch() / dir / rel)) << dir << "/" << rel;
+            EXPECT_EQ(slurp(entry.path()), slurp(scratch() / dir / rel)) << dir << "/" << rel << " differs";
+        }
+        EXPECT_GT(files, 20u);
+    }
+}
+
+TEST(CompareBandsCli, BadUsesAreOneLine) {
+    expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows 12 --out e1"), {"--band-rows", "multiple of 8"});
+    expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows 16 --eval cpu --out e2"),
+                       {"--band-rows", "--eval cpu"});
+    expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows 16 --ibl ground-truth,split-sum --out e3"),
+                       {"--band-rows", "ground-truth"});
+    expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows many --out e4"), {"--band-rows"});
+    for (const char* d : {"e1", "e2", "e3", "e4"}) EXPECT_FALSE(fs::exists(scratch() / d)) << d;
+}
+
+}  // namespace
