@@ -8,6 +8,9 @@
 // the relative view depth error. Histograms 2 + 2 a + class. mode 1 instead writes the report's
 // normal-error image into out8[4]: the angle colour-mapped over [0, f1], other pixels the
 // reference's tone-mapped luminance (exposure f0) dimmed to grey (report/error_images.cpp).
+// mode 2 (a band of a banded run, whose colour scale needs the whole frame's p99) writes what
+// mode 1 would map instead, into planes[u0]: the angle as the float mode 1 maps, or -(grey + 1)
+// for the other pixels; eval_normal_map.comp.glsl maps them once the frame is done.
 #include "eval_common.glsl"
 
 #define ATTRS 8
@@ -114,24 +117,24 @@ void scalar(int a, int cls, float r, float t) {
 }
 
 void main() {
-    const uint n = pc.width * pc.height;
     const uint total = gl_NumWorkGroups.x * EVAL_GROUP;
     for (int f = 0; f < FIELDS; ++f) acc[f] = 0.0;
-    for (uint i = invocation(); i < n; i += total) {
+    for (uint i = countedBegin() + invocation(); i < countedEnd(); i += total) {
         ivec2 p = ivec2(i % pc.width, i / pc.width);
         bool rc = imageLoad(refHdr, p).a != 0.0, tc = imageLoad(testHdr, p).a != 0.0;
-        if (pc.mode == 1u) {
-            uint c;
+        if (pc.mode != 0u) {
+            float angle = 0.0;
+            uint grey = 0u;
             if (rc && tc) {
                 bool ok;
-                double e = normalAngleDeg(imageLoad(refSurface[0], p).xyz, imageLoad(testSurface[0], p).xyz, ok);
-                c = colorMap(float(e), 0.0, pc.f1);
+                angle = float(normalAngleDeg(imageLoad(refSurface[0], p).xyz, imageLoad(testSurface[0], p).xyz, ok));
             } else {
                 vec3 s = vec3(toneMap8(imageLoad(refHdr, p).rgb, pc.f0)) / 255.0;
                 float y = clamp(luminance(s), 0.0, 1.0);
-                c = pack8(uvec3(uint(floor((0.12 + 0.3 * y) * 255.0 + 0.5))));
+                grey = uint(floor((0.12 + 0.3 * y) * 255.0 + 0.5));
             }
-            out8[4].px[i] = c;
+            if (pc.mode == 2u) planes[pc.u0].v[i] = rc && tc ? angle : -(float(grey) + 1.0);
+            else out8[4].px[i] = rc && tc ? colorMap(angle, 0.0, pc.f1) : pack8(uvec3(grey));
             continue;
         }
         if (!(rc && tc)) {
@@ -162,6 +165,6 @@ void main() {
         if (rd > 0.0 && finiteD(rd) && finiteD(e)) add(7, cls, e, 0.0);
         else skip(7);
     }
-    if (pc.mode == 1u) return;
+    if (pc.mode != 0u) return;
     for (int f = 0; f < FIELDS; ++f) partials[invocation() * FIELDS + f] = acc[f];
 }

@@ -28,12 +28,20 @@ layout(push_constant) uniform Push {
     uint flags;       // per pass
     float f0, f1, f2, f3;  // per pass
     uint u0, u1, u2, u3, u4, u5, u6, u7;  // per pass: plane indices, kernel offsets, ...
+    // The rows whose pixels count (statistics, histograms, 8-bit images, tiles): all of them for a
+    // whole frame; in a band (gpu_evaluator.h EvalBand) the band's rows, not its halo. width x
+    // height is the bound images' size (and the planes' in use), so FLIP's filters still clamp
+    // at the band image's edges, which are the frame's wherever the halo is clamped.
+    uint rowFirst, rowCount;
 } pc;
 
 // Grid-stride: EVAL_INVOCATIONS invocations cover every pixel.
 #define EVAL_GROUP 64
 layout(local_size_x = EVAL_GROUP) in;
 uint invocation() { return gl_GlobalInvocationID.x; }
+// The pixel indices (row-major in the bound images) of the rows that count: [countedBegin, countedEnd).
+uint countedBegin() { return pc.rowFirst * pc.width; }
+uint countedEnd() { return (pc.rowFirst + pc.rowCount) * pc.width; }
 
 // ---- Histograms -------------------------------------------------------------------------------
 // EVAL_HIST_BINS bins for non-negative values: bin 0 holds exact 0 (and NaN/negatives), bin 1

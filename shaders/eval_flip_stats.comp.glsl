@@ -9,9 +9,8 @@
 void main() {
     double acc[FIELDS];
     for (int f = 0; f < FIELDS; ++f) acc[f] = 0.0;
-    const uint n = pc.width * pc.height;
     const uint total = gl_NumWorkGroups.x * EVAL_GROUP;
-    for (uint i = invocation(); i < n; i += total) {
+    for (uint i = countedBegin() + invocation(); i < countedEnd(); i += total) {
         ivec2 p = ivec2(i % pc.width, i / pc.width);
         float v = planes[pc.u0].v[i];
         acc[0] += v;

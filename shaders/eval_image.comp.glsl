@@ -19,10 +19,9 @@ void main() {
     for (int f = 0; f < FIELDS; ++f) acc[f] = 0.0;
     acc[2] = 0.0;
     acc[3] = double(uintBitsToFloat(0xFF800000u));  // -inf
-    const uint n = pc.width * pc.height;
     const uint total = gl_NumWorkGroups.x * EVAL_GROUP;
     const float exposure = pc.f0, floorY = pc.f3;
-    for (uint i = invocation(); i < n; i += total) {
+    for (uint i = countedBegin() + invocation(); i < countedEnd(); i += total) {
         ivec2 p = ivec2(i % pc.width, i / pc.width);
         vec4 r = imageLoad(refHdr, p), t = imageLoad(testHdr, p);
         for (int c = 0; c < 3; ++c) {

@@ -1,5 +1,6 @@
 #include "eval_device.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -28,6 +29,7 @@ const char* shaderFile(Pass p) {
         case Pass::Attributes: return "eval_attributes.comp.glsl";
         case Pass::Tiles: return "eval_tiles.comp.glsl";
         case Pass::Luminance: return "eval_luminance.comp.glsl";
+        case Pass::NormalMap: return "eval_normal_map.comp.glsl";
         case Pass::Count: break;
     }
     throw std::logic_error("evaluate: no shader for this pass");
@@ -46,7 +48,9 @@ std::vector<Binding> bindings() {
 
 uint32_t EvalDevice::kHistBinsTotal() { return kHistBins; }
 
-EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h) : ctx(c), width(w), height(h) {
+EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t rows)
+    : ctx(c), width(w), height(h), planeRows(rows == 0 ? h : std::min(rows, h)) {
+    setWholeFrameView();
     if (!ctx.shaderFloat64)
         throwUserError("--eval gpu: the Vulkan device '" + ctx.info.name +
                        "' has no 64-bit float shaders (shaderFloat64), which the GPU evaluation's sums need; "
@@ -116,9 +120,17 @@ void EvalDevice::bindImages(const GpuImage& refHdr, const GpuImage& testHdr, con
     w.flush(ctx.device);
 }
 
+void EvalDevice::setView(uint32_t imageRows, uint32_t countedFirst, uint32_t countedRows) {
+    if (imageRows > planeRows || countedFirst + countedRows > imageRows)
+        throw std::logic_error("evaluate: the view exceeds the planes or its image");
+    viewRows_ = imageRows;
+    countedFirst_ = countedFirst;
+    countedRows_ = countedRows;
+}
+
 void EvalDevice::ensurePlane(uint32_t slot) {
     if (planes_[slot].buffer) return;
-    planes_[slot] = createBuffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+    planes_[slot] = createBuffer(ctx, VkDeviceSize(width) * planeRows * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
     rebindBuffers();
 }
 
@@ -131,14 +143,23 @@ void EvalDevice::releasePlane(uint32_t slot) {
 
 void EvalDevice::uploadPlane(uint32_t slot, const float* values) {
     destroyBuffer(ctx, planes_[slot]);
-    planes_[slot] = createBuffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    std::memcpy(planes_[slot].mapped, values, size_t(width) * height * 4);
+    planes_[slot] = createBuffer(ctx, VkDeviceSize(width) * planeRows * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    std::memcpy(planes_[slot].mapped, values, size_t(width) * planeRows * 4);
     rebindBuffers();
+}
+
+float* EvalDevice::hostPlane(uint32_t slot) {
+    if (!planes_[slot].mapped) {
+        destroyBuffer(ctx, planes_[slot]);
+        planes_[slot] = createBuffer(ctx, VkDeviceSize(width) * planeRows * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        rebindBuffers();
+    }
+    return static_cast<float*>(planes_[slot].mapped);
 }
 
 void EvalDevice::ensureOut8() {
     if (out8_[0].buffer) return;
-    for (Buffer& b : out8_) b = createBuffer(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    for (Buffer& b : out8_) b = createBuffer(ctx, VkDeviceSize(width) * planeRows * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     rebindBuffers();
 }
 
@@ -163,7 +184,9 @@ void EvalDevice::setKernels(const std::vector<float>& kernels) {
 void EvalDevice::dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint32_t groups) const {
     Push p = push;
     p.width = width;
-    p.height = height;
+    p.height = viewRows_;
+    p.rowFirst = countedFirst_;
+    p.rowCount = countedRows_;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[size_t(pass)]);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push), &p);

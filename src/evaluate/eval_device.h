@@ -14,7 +14,9 @@
 namespace gbl::evaluate {
 
 // Plane slots (binding 4): FLIP's prepared reference (L, a, b, edge, point) and test, its five
-// working planes, the LDR- and HDR-FLIP maps and the reference's noise.
+// working planes, the LDR- and HDR-FLIP maps, the reference's noise, and the host-visible plane a
+// band's per-pixel values come back through (banded runs: the reference's luminance, the normal
+// angles).
 enum PlaneSlot : uint32_t {
     kRefPrepared = 0,
     kTestPrepared = 5,
@@ -22,7 +24,8 @@ enum PlaneSlot : uint32_t {
     kFlipMap = 15,
     kHdrFlipMap = 16,
     kNoise = 17,
-    kPlaneCount = 18,
+    kBandOut = 18,
+    kPlaneCount = 19,
 };
 enum Out8Slot : uint32_t { kOutRender = 0, kOutDifference, kOutHeat, kOutFlip, kOutNormal, kOutReference, kOut8Count };
 // Histograms (binding 6).
@@ -36,26 +39,37 @@ struct Push {
     uint32_t width = 0, height = 0, mode = 0, flags = 0;
     float f0 = 0, f1 = 0, f2 = 0, f3 = 0;
     uint32_t u[8] = {};
+    uint32_t rowFirst = 0, rowCount = 0;  // set by dispatch from the view (eval_common.glsl)
 };
 
 enum class Pass { Image, Reduce, FlipOpponent, FlipFilter, FlipLab, FlipFeatures, FlipCombine, FlipStats, Attributes,
-                  Tiles, Luminance, Count };
+                  Tiles, Luminance, NormalMap, Count };
 
 class EvalDevice {
 public:
-    EvalDevice(const VulkanContext& ctx, uint32_t width, uint32_t height);
+    // planeRows: the rows of every plane and 8-bit output buffer (0: height, a whole frame); a
+    // banded evaluation's bands hold at most that many rows.
+    EvalDevice(const VulkanContext& ctx, uint32_t width, uint32_t height, uint32_t planeRows = 0);
     ~EvalDevice();
     EvalDevice(const EvalDevice&) = delete;
     EvalDevice& operator=(const EvalDevice&) = delete;
 
     const VulkanContext& ctx;
-    const uint32_t width, height;
+    const uint32_t width, height;  // the frame
+    const uint32_t planeRows;
+
+    // What the passes see: bound images of width x imageRows (imageRows <= planeRows), of which
+    // rows [countedFirst, countedFirst + countedRows) count. The default view is the whole frame.
+    void setView(uint32_t imageRows, uint32_t countedFirst, uint32_t countedRows);
+    // Back to the whole frame (the view outside a band; only whole-frame evaluators dispatch in it).
+    void setWholeFrameView() { viewRows_ = countedRows_ = height, countedFirst_ = 0; }
+    uint32_t viewRows() const { return viewRows_; }
 
     // Binds the images (RGBA32F, GENERAL) of binding 0-3; surfaces may be null (the HDR image is
     // bound in their place and attribute passes must not run).
     void bindImages(const GpuImage& refHdr, const GpuImage& testHdr, const GpuImage* const refSurfaces[4],
                     const GpuImage* const testSurfaces[4]);
-    // Allocates plane `slot` (width x height floats) if not yet there (and rebinds).
+    // Allocates plane `slot` (width x planeRows floats) if not yet there (and rebinds).
     void ensurePlane(uint32_t slot);
     void ensureOut8();   // the 8-bit output images (host visible)
     void releaseOut8();
@@ -76,8 +90,10 @@ public:
     const float* tiles() const { return static_cast<const float*>(tiles_.mapped); }
     bool hasPlane(uint32_t slot) const { return planes_[slot].buffer != VK_NULL_HANDLE; }
     void releasePlane(uint32_t slot);
-    // Plane `slot` holding `values` (width x height floats), host visible.
+    // Plane `slot` holding `values` (width x planeRows floats), host visible.
     void uploadPlane(uint32_t slot, const float* values);
+    // Plane `slot` made host visible (allocated if needed, contents undefined), and its memory.
+    float* hostPlane(uint32_t slot);
 
 private:
     static uint32_t kHistBinsTotal();
@@ -90,6 +106,7 @@ private:
     std::array<Buffer, kPlaneCount> planes_{};
     std::array<Buffer, kOut8Count> out8_{};
     Buffer dummy_, partials_, histograms_, constants_, result_, tiles_;
+    uint32_t viewRows_ = 0, countedFirst_ = 0, countedRows_ = 0;
 };
 
 }  // namespace gbl::evaluate

@@ -6,37 +6,49 @@
 #include <optional>
 
 #include "error.h"
-#include "eval_device.h"
-#include "gpu_flip.h"
+#include "evaluator_state.h"
+#include "flip_pipeline.h"
 #include "histogram.h"
 #include "metrics.h"
 
 namespace gbl {
 
-using namespace evaluate;
+namespace evaluate {
 
-namespace {
-
-// Result offsets of the reductions (eval_device reduce), one submission per run.
-constexpr uint32_t kImageFields = 15, kImageAt = 0;
-constexpr uint32_t kAttrs = 8, kPerAttr = 11, kAttrFields = kAttrs * kPerAttr + 5, kAttrAt = 96;
-constexpr uint32_t kFlipFields = 5, kFlipAt = 200, kHdrFlipAt = 210;
-constexpr int kTile = 8;
-
-std::array<uint32_t, 4> maskOf(std::initializer_list<uint32_t> fields) {
-    std::array<uint32_t, 4> m{};
+FieldMask maskOf(std::initializer_list<uint32_t> fields) {
+    FieldMask m{};
     for (uint32_t f : fields) m[f / 32] |= 1u << (f % 32);
     return m;
 }
 
+FieldMask imageMaxMask() { return maskOf({2, 3}); }
+
+FieldMask attributeMaxMask() {
+    FieldMask mask{};
+    for (uint32_t k = 0; k < kAttrs; ++k)
+        for (uint32_t c = 0; c < 2; ++c) {
+            const uint32_t f = k * kPerAttr + c * 5 + 3;
+            mask[f / 32] |= 1u << (f % 32);
+        }
+    return mask;
+}
+
+void unpackRows(const uint32_t* packed, uint32_t rows, Image8& out, uint32_t row) {
+    const size_t w = size_t(out.width), first = size_t(row) * w;
+    for (size_t i = 0; i < size_t(rows) * w; ++i) {
+        const uint32_t v = packed[i];
+        unsigned char* px = &out.pixels[(first + i) * 3];
+        px[0] = uint8_t(v);
+        px[1] = uint8_t(v >> 8);
+        px[2] = uint8_t(v >> 16);
+    }
+}
+
+namespace {
+
 Image8 toImage8(const uint32_t* packed, uint32_t w, uint32_t h) {
     Image8 out{int(w), int(h), 3, std::vector<unsigned char>(size_t(w) * h * 3)};
-    for (size_t i = 0; i < size_t(w) * h; ++i) {
-        const uint32_t v = packed[i];
-        out.pixels[i * 3 + 0] = uint8_t(v);
-        out.pixels[i * 3 + 1] = uint8_t(v >> 8);
-        out.pixels[i * 3 + 2] = uint8_t(v >> 16);
-    }
+    unpackRows(packed, h, out, 0);
     return out;
 }
 
@@ -57,25 +69,157 @@ ClassStats classStats(const double* f, std::span<const uint32_t> hist, bool colo
 
 }  // namespace
 
-struct GpuEvaluator::State {
-    State(const VulkanContext& ctx, uint32_t w, uint32_t h) : device(ctx, w, h), flip(device) {}
-    EvalDevice device;
-    GpuFlip flip;
-    DeviceRender reference;
-    float exposure = 1.0f;
-    float floorY = 1e-6f;
-    bool noise = false;
-    const Image* noiseSource = nullptr;
-    FlipExposureRange hdrRange;
-};
+ErrorPassSettings errorPassSettings(const GpuEvalOptions& o, float exposure, float floorY) {
+    ErrorPassSettings s;
+    s.images = o.images != nullptr;
+    s.crops = s.images && o.cropSize > 0 && o.cropCount > 0;
+    s.exposure = exposure;
+    s.amplification = o.amplification > 0.0f ? o.amplification : 8.0f;
+    s.heatMax = o.heatMax > 0.0f ? o.heatMax : 0.1f;
+    s.floorY = floorY;
+    return s;
+}
 
-GpuEvaluator::GpuEvaluator(const VulkanContext& ctx, uint32_t width, uint32_t height)
-    : s_(std::make_unique<State>(ctx, width, height)) {}
+void recordErrorPasses(VkCommandBuffer cmd, const EvalDevice& d, const ErrorPassSettings& s) {
+    Push img;
+    img.flags = (s.images ? 1u : 0u) | (s.noise ? 2u : 0u);
+    img.f0 = s.exposure, img.f1 = s.amplification;
+    img.f2 = s.heatMax, img.f3 = s.floorY;
+    img.u[0] = kNoise;
+    d.dispatch(cmd, Pass::Image, img);
+    d.reduce(cmd, kImageFields, imageMaxMask(), kImageAt);
+    if (s.attributes) {
+        Push a;
+        d.dispatch(cmd, Pass::Attributes, a);
+        d.reduce(cmd, kAttrFields, attributeMaxMask(), kAttrAt);
+    }
+    if (s.crops) {
+        Push t;
+        t.u[0] = kTile;
+        t.f3 = s.floorY;
+        d.dispatch(cmd, Pass::Tiles, t);
+    }
+}
+
+void recordFlipPasses(VkCommandBuffer cmd, const EvalDevice& d, GpuFlip& flip, float exposure, bool images,
+                      bool hdrFlip, const FlipExposureRange& range) {
+    flip.ldr(cmd, exposure);
+    Push fs;
+    fs.flags = 2u | (images ? 1u : 0u);
+    fs.u[0] = kFlipMap, fs.u[1] = kHistFlip;
+    d.dispatch(cmd, Pass::FlipStats, fs);
+    d.reduce(cmd, kFlipFields, {}, kFlipAt);
+    if (hdrFlip) {
+        flip.hdr(cmd, range);
+        Push hs;
+        hs.u[0] = kHdrFlipMap;
+        d.dispatch(cmd, Pass::FlipStats, hs);
+        d.reduce(cmd, kFlipFields, {}, kHdrFlipAt);
+    }
+}
+
+float normalImageScale(const double* result, const EvalDevice& d, float minDeg) {
+    const double* nd = result + kAttrAt;  // normal: dielectric fields, then metal
+    std::vector<uint32_t> both(kHistBins);
+    for (uint32_t b = 0; b < kHistBins; ++b)
+        both[b] = d.histogram(kHistAttributes)[b] + d.histogram(kHistAttributes + 1)[b];
+    const double p99 = histogramQuantile(both, 0.99, std::max(nd[3], nd[8]));
+    return std::max(minDeg, float(p99));
+}
+
+RunMetrics assembleMetrics(const double* r, const EvalDevice& d, size_t n, bool attributes, bool hdrFlip, bool noise,
+                           const FlipExposureRange& range) {
+    RunMetrics m;
+    const double nd = double(n);
+    ShadedErrors& e = m.image;
+    e.rmseLinear = std::sqrt(r[0] / (3.0 * nd));
+    e.peakLinear = r[3] > 0.0 ? r[3] : 1.0;
+    e.psnrLinear = psnrFromMse(r[0] / (3.0 * nd), e.peakLinear);
+    e.meanAbs = r[1] / (3.0 * nd);
+    e.maxAbs = r[2];
+    e.p99Abs = histogramQuantile({d.histogram(kHistAbsLinear), kHistBins}, 0.99, r[2]);
+    e.rmseToneMapped = std::sqrt(r[4] / (3.0 * nd));
+    e.psnrToneMapped = psnrFromMse(r[4] / (3.0 * nd), 1.0);
+    const double* f = r + kFlipAt;
+    e.flipMean = f[0] / nd;
+    e.flipMedian = histogramQuantile({d.histogram(kHistFlip), kHistBins}, 0.5, 1.0);
+    if (hdrFlip) {
+        e.hdrFlipMean = r[kHdrFlipAt] / nd;
+        e.hdrFlipComputed = true;
+        e.hdrFlipExposures = range.count;
+    }
+    auto cls = [&](const double* c, double flipSum) {  // c: pixels, rel, d^2, noise
+        ClassImageErrors k;
+        k.pixels = size_t(c[0]);
+        if (k.pixels) {
+            k.relLuminanceMean = c[1] / c[0];
+            k.rmseLinear = std::sqrt(c[2] / (3.0 * c[0]));
+            k.flipMean = flipSum / c[0];
+            if (noise) k.referenceNoise = c[3] / c[0];
+        }
+        return k;
+    };
+    if (!attributes) return m;
+    e.dielectric = cls(r + 7, f[1]);
+    e.metal = cls(r + 11, f[3]);
+    const double all[4] = {r[7] + r[11], r[8] + r[12], r[9] + r[13], r[10] + r[14]};
+    e.covered = cls(all, f[1] + f[3]);
+
+    const double* a = r + kAttrAt;
+    AttributeMetrics* out[kAttrs] = {&m.normal, &m.baseColor, &m.diffuseColor, &m.specularColor,
+                                     &m.roughness, &m.metallic, &m.occlusion, &m.depth};
+    for (uint32_t k = 0; k < kAttrs; ++k) {
+        const bool colour = k >= 1 && k <= 3;
+        const double* dl = a + k * kPerAttr;  // dielectric
+        const double* mt = dl + 5;            // metal
+        std::span<const uint32_t> hd{d.histogram(kHistAttributes + 2 * k), kHistBins};
+        std::span<const uint32_t> hm{d.histogram(kHistAttributes + 2 * k + 1), kHistBins};
+        std::vector<uint32_t> both(kHistBins);
+        for (uint32_t b = 0; b < kHistBins; ++b) both[b] = hd[b] + hm[b];
+        const double merged[5] = {dl[0] + mt[0], dl[1] + mt[1], dl[2] + mt[2], std::max(dl[3], mt[3]), dl[4] + mt[4]};
+        out[k]->dielectric = classStats(dl, hd, colour);
+        out[k]->metal = classStats(mt, hm, colour);
+        out[k]->all = classStats(merged, both, colour);
+        out[k]->skipped = size_t(dl[10]);
+    }
+    const double* c = a + kAttrs * kPerAttr;
+    m.coverage.pixels = n;
+    m.coverage.both = size_t(c[0]);
+    m.coverage.referenceOnly = size_t(c[1]);
+    m.coverage.testOnly = size_t(c[2]);
+    m.coverage.metal = size_t(c[3]);
+    m.coverage.dielectric = size_t(c[4]);
+    return m;
+}
+
+std::vector<Crop> worstCrops(const Image& tiles, uint32_t width, uint32_t height, int cropSize, int cropCount) {
+    std::vector<Crop> worst;
+    const int size = std::min({cropSize, int(width), int(height)});
+    const int tileWindow = std::max(1, size / kTile);
+    for (Crop c : findWorstRegions(tiles, tileWindow, cropCount)) {
+        c.size = std::min({tileWindow * kTile, int(width), int(height)});
+        c.x = std::min(c.x * kTile, int(width) - c.size);
+        c.y = std::min(c.y * kTile, int(height) - c.size);
+        worst.push_back(c);
+    }
+    return worst;
+}
+
+}  // namespace evaluate
+
+using namespace evaluate;
+
+uint32_t flipHaloRows() {
+    const flip_pipeline::Kernels k = flip_pipeline::makeKernels(flipPixelsPerDegree());
+    return uint32_t(std::max(k.csfRadius, k.featRadius));
+}
+
+GpuEvaluator::GpuEvaluator(const VulkanContext& ctx, uint32_t width, uint32_t height, uint32_t maxImageRows)
+    : s_(std::make_unique<State>(ctx, width, height, maxImageRows)) {}
 
 GpuEvaluator::~GpuEvaluator() = default;
 
-namespace {
-void checkRender(const DeviceRender& r, uint32_t w, uint32_t h, const char* what) {
+void evaluate::checkRender(const DeviceRender& r, uint32_t w, uint32_t h, const char* what) {
     if (!r.hdr || r.hdr->extent.width != w || r.hdr->extent.height != h)
         throwUserError(std::string("GPU evaluation: the ") + what + " render is missing or not " + std::to_string(w) +
                        "x" + std::to_string(h) + "; every image of a run must have the render's size");
@@ -84,14 +228,23 @@ void checkRender(const DeviceRender& r, uint32_t w, uint32_t h, const char* what
             throwUserError(std::string("GPU evaluation: the ") + what + " surfaces are not " + std::to_string(w) + "x" +
                            std::to_string(h));
 }
+
+namespace {
+void requireWholeFrames(const EvalDevice& d, const char* call) {
+    if (d.planeRows < d.height)
+        throw std::logic_error(std::string("GpuEvaluator::") + call + ": this evaluator's planes hold " +
+                               std::to_string(d.planeRows) + " of " + std::to_string(d.height) +
+                               " rows; use the banded calls");
+}
 }  // namespace
 
 void GpuEvaluator::setReference(const DeviceRender& reference, float exposure, const Image* noise) {
     State& s = *s_;
     EvalDevice& d = s.device;
+    requireWholeFrames(d, "setReference");
     checkRender(reference, d.width, d.height, "reference");
-    if (s.reference.hdr == reference.hdr && s.reference.surfaces == reference.surfaces && s.exposure == exposure &&
-        s.noiseSource == noise)
+    if (s.statsReady && s.reference.hdr == reference.hdr && s.reference.surfaces == reference.surfaces &&
+        s.exposure == exposure && s.noiseSource == noise)
         return;
     s.noiseSource = noise;
     s.reference = reference;
@@ -111,177 +264,71 @@ void GpuEvaluator::setReference(const DeviceRender& reference, float exposure, c
         p.f0 = exposure;
         p.f3 = 1.0f;
         d.dispatch(cmd, Pass::Image, p);
-        d.reduce(cmd, kImageFields, maskOf({2, 3}), kImageAt);
+        d.reduce(cmd, kImageFields, imageMaxMask(), kImageAt);
     });
     const double* r = d.result();
     s.floorY = float(std::max(1e-2 * (r[6] > 0.0 ? r[5] / r[6] : 0.0), 1e-6));
     s.hdrRange = s.flip.exposureRange();
+    s.statsReady = true;
 }
 
 RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions& o) {
     State& s = *s_;
     EvalDevice& d = s.device;
     if (!s.reference.hdr) throw std::logic_error("GpuEvaluator::evaluate before setReference");
+    requireWholeFrames(d, "evaluate");
     checkRender(test, d.width, d.height, "layout's");
-    const bool attributes = test.surfaces[0] && s.reference.surfaces[0];
+    ErrorPassSettings pass = errorPassSettings(o, s.exposure, s.floorY);
+    pass.noise = s.noise;
+    pass.attributes = test.surfaces[0] && s.reference.surfaces[0];
     const size_t n = size_t(d.width) * d.height;
-    d.bindImages(*s.reference.hdr, *test.hdr, attributes ? s.reference.surfaces.data() : nullptr,
-                 attributes ? test.surfaces.data() : nullptr);
-    const bool images = o.images != nullptr;
-    if (images) d.ensureOut8();
+    d.bindImages(*s.reference.hdr, *test.hdr, pass.attributes ? s.reference.surfaces.data() : nullptr,
+                 pass.attributes ? test.surfaces.data() : nullptr);
+    if (pass.images) d.ensureOut8();
     const uint32_t tw = (d.width + kTile - 1) / kTile, th = (d.height + kTile - 1) / kTile;
-    const bool crops = images && o.cropSize > 0 && o.cropCount > 0;
-    if (crops) d.ensureTiles(size_t(tw) * th);
+    if (pass.crops) d.ensureTiles(size_t(tw) * th);
 
     // 1: image errors and attributes (the test's surfaces are read only here).
     d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
         d.clearHistograms(cmd);
-        Push img;
-        img.flags = (images ? 1u : 0u) | (s.noise ? 2u : 0u);
-        img.f0 = s.exposure, img.f1 = o.amplification > 0.0f ? o.amplification : 8.0f;
-        img.f2 = o.heatMax > 0.0f ? o.heatMax : 0.1f, img.f3 = s.floorY;
-        img.u[0] = kNoise;
-        d.dispatch(cmd, Pass::Image, img);
-        d.reduce(cmd, kImageFields, maskOf({2, 3}), kImageAt);
-        if (attributes) {
-            Push a;
-            d.dispatch(cmd, Pass::Attributes, a);
-            std::array<uint32_t, 4> mask{};
-            for (uint32_t k = 0; k < kAttrs; ++k)
-                for (uint32_t c = 0; c < 2; ++c) {
-                    const uint32_t f = k * kPerAttr + c * 5 + 3;
-                    mask[f / 32] |= 1u << (f % 32);
-                }
-            d.reduce(cmd, kAttrFields, mask, kAttrAt);
-        }
-        if (crops) {
-            Push t;
-            t.u[0] = kTile;
-            t.f3 = s.floorY;
-            d.dispatch(cmd, Pass::Tiles, t);
-        }
+        recordErrorPasses(cmd, d, pass);
     });
     // 2: the normal-error picture, scaled to the run's p99 normal error.
-    if (images && attributes) {
-        const double* nd = d.result() + kAttrAt;  // normal: dielectric fields, then metal
-        std::vector<uint32_t> both(kHistBins);
-        for (uint32_t b = 0; b < kHistBins; ++b)
-            both[b] = d.histogram(kHistAttributes)[b] + d.histogram(kHistAttributes + 1)[b];
-        const double p99 = histogramQuantile(both, 0.99, std::max(nd[3], nd[8]));
+    if (pass.images && pass.attributes) {
+        const float scale = normalImageScale(d.result(), d, o.normalMinScaleDeg);
         d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
             Push p;
             p.mode = 1;
             p.f0 = s.exposure;
-            p.f1 = std::max(o.normalMinScaleDeg, float(p99));
+            p.f1 = scale;
             d.dispatch(cmd, Pass::Attributes, p);
         });
     }
-    if (attributes) {
+    if (pass.attributes) {
         d.bindImages(*s.reference.hdr, *test.hdr, s.reference.surfaces.data(), nullptr);
         if (o.surfacesDone) o.surfacesDone();
     }
     // 3: LDR- and HDR-FLIP, on planes that exist only for this.
     s.flip.allocate();
     d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        s.flip.ldr(cmd, s.exposure);
-        Push fs;
-        fs.flags = 2u | (images ? 1u : 0u);
-        fs.u[0] = kFlipMap, fs.u[1] = kHistFlip;
-        d.dispatch(cmd, Pass::FlipStats, fs);
-        d.reduce(cmd, kFlipFields, {}, kFlipAt);
-        if (o.hdrFlip) {
-            s.flip.hdr(cmd, s.hdrRange);
-            Push hs;
-            hs.u[0] = kHdrFlipMap;
-            d.dispatch(cmd, Pass::FlipStats, hs);
-            d.reduce(cmd, kFlipFields, {}, kHdrFlipAt);
-        }
+        recordFlipPasses(cmd, d, s.flip, s.exposure, pass.images, o.hdrFlip, s.hdrRange);
     });
     s.flip.release();
 
-    RunMetrics m;
-    const double* r = d.result();
-    const double nd = double(n);
-    ShadedErrors& e = m.image;
-    e.rmseLinear = std::sqrt(r[0] / (3.0 * nd));
-    e.peakLinear = r[3] > 0.0 ? r[3] : 1.0;
-    e.psnrLinear = psnrFromMse(r[0] / (3.0 * nd), e.peakLinear);
-    e.meanAbs = r[1] / (3.0 * nd);
-    e.maxAbs = r[2];
-    e.p99Abs = histogramQuantile({d.histogram(kHistAbsLinear), kHistBins}, 0.99, r[2]);
-    e.rmseToneMapped = std::sqrt(r[4] / (3.0 * nd));
-    e.psnrToneMapped = psnrFromMse(r[4] / (3.0 * nd), 1.0);
-    const double* f = r + kFlipAt;
-    e.flipMean = f[0] / nd;
-    e.flipMedian = histogramQuantile({d.histogram(kHistFlip), kHistBins}, 0.5, 1.0);
-    if (o.hdrFlip) {
-        e.hdrFlipMean = r[kHdrFlipAt] / nd;
-        e.hdrFlipComputed = true;
-        e.hdrFlipExposures = s.hdrRange.count;
-    }
-    auto cls = [&](const double* c, double flipSum) {  // c: pixels, rel, d^2, noise
-        ClassImageErrors k;
-        k.pixels = size_t(c[0]);
-        if (k.pixels) {
-            k.relLuminanceMean = c[1] / c[0];
-            k.rmseLinear = std::sqrt(c[2] / (3.0 * c[0]));
-            k.flipMean = flipSum / c[0];
-            if (s.noise) k.referenceNoise = c[3] / c[0];
-        }
-        return k;
-    };
-    if (attributes) {
-        e.dielectric = cls(r + 7, f[1]);
-        e.metal = cls(r + 11, f[3]);
-        const double all[4] = {r[7] + r[11], r[8] + r[12], r[9] + r[13], r[10] + r[14]};
-        e.covered = cls(all, f[1] + f[3]);
-
-        const double* a = r + kAttrAt;
-        AttributeMetrics* out[kAttrs] = {&m.normal, &m.baseColor, &m.diffuseColor, &m.specularColor,
-                                         &m.roughness, &m.metallic, &m.occlusion, &m.depth};
-        for (uint32_t k = 0; k < kAttrs; ++k) {
-            const bool colour = k >= 1 && k <= 3;
-            const double* dl = a + k * kPerAttr;  // dielectric
-            const double* mt = dl + 5;            // metal
-            std::span<const uint32_t> hd{d.histogram(kHistAttributes + 2 * k), kHistBins};
-            std::span<const uint32_t> hm{d.histogram(kHistAttributes + 2 * k + 1), kHistBins};
-            std::vector<uint32_t> both(kHistBins);
-            for (uint32_t b = 0; b < kHistBins; ++b) both[b] = hd[b] + hm[b];
-            const double merged[5] = {dl[0] + mt[0], dl[1] + mt[1], dl[2] + mt[2], std::max(dl[3], mt[3]), dl[4] + mt[4]};
-            out[k]->dielectric = classStats(dl, hd, colour);
-            out[k]->metal = classStats(mt, hm, colour);
-            out[k]->all = classStats(merged, both, colour);
-            out[k]->skipped = size_t(dl[10]);
-        }
-        const double* c = a + kAttrs * kPerAttr;
-        m.coverage.pixels = n;
-        m.coverage.both = size_t(c[0]);
-        m.coverage.referenceOnly = size_t(c[1]);
-        m.coverage.testOnly = size_t(c[2]);
-        m.coverage.metal = size_t(c[3]);
-        m.coverage.dielectric = size_t(c[4]);
-    }
-
-    if (images) {
+    const RunMetrics m = assembleMetrics(d.result(), d, n, pass.attributes, o.hdrFlip, s.noise, s.hdrRange);
+    if (pass.images) {
         GpuErrorImages& out = *o.images;
         out.render = toImage8(d.out8(kOutRender), d.width, d.height);
         out.reference = toImage8(d.out8(kOutReference), d.width, d.height);
         out.difference = toImage8(d.out8(kOutDifference), d.width, d.height);
         out.heat = toImage8(d.out8(kOutHeat), d.width, d.height);
         out.flip = toImage8(d.out8(kOutFlip), d.width, d.height);
-        out.normal = attributes ? toImage8(d.out8(kOutNormal), d.width, d.height) : Image8{};
+        out.normal = pass.attributes ? toImage8(d.out8(kOutNormal), d.width, d.height) : Image8{};
         out.worst.clear();
-        if (crops) {
+        if (pass.crops) {
             Image tiles(int(tw), int(th), 1);
             std::memcpy(tiles.pixels.data(), d.tiles(), size_t(tw) * th * 4);
-            const int size = std::min({o.cropSize, int(d.width), int(d.height)});
-            const int tileWindow = std::max(1, size / kTile);
-            for (Crop c : findWorstRegions(tiles, tileWindow, o.cropCount)) {
-                c.size = std::min({tileWindow * kTile, int(d.width), int(d.height)});
-                c.x = std::min(c.x * kTile, int(d.width) - c.size);
-                c.y = std::min(c.y * kTile, int(d.height) - c.size);
-                out.worst.push_back(c);
-            }
+            out.worst = worstCrops(tiles, d.width, d.height, o.cropSize, o.cropCount);
         }
         d.releaseOut8();
     }

@@ -14,6 +14,24 @@
 //    float rounding of a rounding boundary.
 //  * FLIP: the same kernels and filter order in float; means agree to 1e-4 (gpu_evaluator_test).
 //  * Worst regions are found on 8 x 8 tiles (corners on multiples of 8).
+//
+// A frame can be evaluated in bands of rows (issue 14: 4K in bounded memory), each band's images
+// holding its rows and a halo (EvalBand). The planes and 8-bit buffers then hold maxImageRows
+// rows; the host keeps, whole-frame, only the 8-bit images and what they need (State::Run in
+// evaluator_state.h: 19-22 bytes per pixel with images, none without). A banded run equals the
+// whole-frame evaluate() of the same images:
+//  * counts, maxima, histograms (so p99, medians) exactly; double sums to 1e-12 relative (the
+//    bands change their order of summation only);
+//  * FLIP per pixel bit for bit when every band's halo is at least flipHaloRows() rows (or
+//    reaches the frame's edge): its filters clamp at the band image's edges, which are then only
+//    ever the frame's;
+//  * the 8-bit images byte for byte: the normal-error picture is mapped at the last band, when
+//    the whole frame's p99 is known; the heat map and relative errors use the luminance floor of
+//    the reference bands (1e-2 x their mean luminance, a sum in another order: it may differ
+//    from setReference's by a float ulp; the tests assert equality on the default scene);
+//  * the worst-region crops, when every band's firstRow is a multiple of 8 (required with crops:
+//    a tile then never straddles two bands; compare's bands are multiples of 8 rows).
+// The reference's noise (setReference's `noise`) is not supported in bands.
 #include <array>
 #include <functional>
 #include <memory>
@@ -58,9 +76,25 @@ struct GpuEvalOptions {
     std::function<void()> surfacesDone;
 };
 
+// Rows of halo a band needs above and below so that FLIP (whose CSF and feature filters run side by
+// side on the same input, so their radii do not add) sees every tap it would see in the whole frame:
+// max(CSF radius, feature radius) at the evaluator's pixels per degree (flipPixelsPerDegree()).
+uint32_t flipHaloRows();
+
+// One band of a banded evaluation. The band's images (both renders) hold frame rows
+// [imageFirstRow, imageFirstRow + imageRows) (the band and its halo, clamped to the frame); the
+// rows that count, and that the 8-bit images and tiles receive, are [firstRow, firstRow + rows).
+struct EvalBand {
+    uint32_t imageFirstRow = 0, imageRows = 0;
+    uint32_t firstRow = 0, rows = 0;
+};
+
 class GpuEvaluator {
 public:
-    GpuEvaluator(const VulkanContext& ctx, uint32_t width, uint32_t height);
+    // maxImageRows 0: whole frames only (evaluate/setReference, as now). Otherwise the planes hold
+    // maxImageRows rows and the banded calls below are used (and evaluate/setReference only when
+    // maxImageRows >= height; a std::logic_error otherwise).
+    GpuEvaluator(const VulkanContext& ctx, uint32_t width, uint32_t height, uint32_t maxImageRows = 0);
     ~GpuEvaluator();
     GpuEvaluator(const GpuEvaluator&) = delete;
     GpuEvaluator& operator=(const GpuEvaluator&) = delete;
@@ -71,6 +105,22 @@ public:
     void setReference(const DeviceRender& reference, float exposure, const Image* noise = nullptr);
     // Its working planes and 8-bit images are allocated for the call and freed before it returns.
     RunMetrics evaluate(const DeviceRender& test, const GpuEvalOptions& options);
+
+    // The reference's statistics (luminance floor; HDR-FLIP exposure range, exact median included)
+    // over bands that cover the frame once, top to bottom. Holds the frame's reference luminance
+    // on the host (4 bytes per pixel) until endReferenceBands. Replaces setReference's reference.
+    void beginReferenceBands(float exposure);
+    void addReferenceBand(const DeviceRender& reference, const EvalBand& band);
+    void endReferenceBands();
+    // One run in bands, top to bottom, covering the frame once; options.images filled by finishRun
+    // as evaluate() fills them (whole-frame 8-bit images, crops). options.surfacesDone unused.
+    // Needs the reference's statistics (reference bands, or setReference without noise: noise
+    // is a std::logic_error here). Misuse (bands out of order, overlapping, past the frame, more
+    // rows than maxImageRows, a crop run's firstRow not a multiple of 8, surfaces in some bands
+    // only) is a std::logic_error; images of the wrong size a UserError, as in evaluate().
+    void beginRun(const GpuEvalOptions& options);
+    void addBand(const DeviceRender& reference, const DeviceRender& test, const EvalBand& band);
+    RunMetrics finishRun();
 
 private:
     struct State;

@@ -36,6 +36,20 @@ std::vector<float> colorConstants() {
     k[21] = float(1.0 / w.X), k[22] = float(1.0 / w.Y), k[23] = float(1.0 / w.Z);
     return k;
 }
+
+// flipExposureRange's last step, from the reference's maximum and median luminance.
+FlipExposureRange rangeOf(double yMax, double yMedian) {
+    // x_max [HDR]: t(x_max) = 0.85 for the tone mapper, as flip_hdr.cpp solves it.
+    const double k[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0.0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
+    const double t = 0.85;
+    const double qa = k[0] - t * k[3], qb = k[1] - t * k[4], qc = k[2] - t * k[5];
+    const double xMax = (-qb + std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa);
+    FlipExposureRange range;
+    range.start = float(std::log2(xMax / yMax));
+    range.stop = float(std::log2(xMax / yMedian));
+    range.count = std::max(2, int(std::ceil(double(range.stop) - double(range.start))));
+    return range;
+}
 }  // namespace
 
 GpuFlip::GpuFlip(EvalDevice& device, double ppd) : dev_(device) {
@@ -150,13 +164,7 @@ FlipExposureRange GpuFlip::exposureRange() {
     });
     const double yMax = dev_.result()[0];
     std::vector<uint32_t> bins(dev_.histogram(kHistLuminance), dev_.histogram(kHistLuminance) + kHistBins);
-    // x_max [HDR]: t(x_max) = 0.85 for the tone mapper, as flip_hdr.cpp solves it.
-    const double k[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0.0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
-    const double t = 0.85;
-    const double qa = k[0] - t * k[3], qb = k[1] - t * k[4], qc = k[2] - t * k[5];
-    const double xMax = (-qb + std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa);
-    FlipExposureRange range;
-    if (!(yMax > 0.0)) return range;
+    if (!(yMax > 0.0)) return FlipExposureRange{};
     // The exact lower median: the bin holding its rank, then that bin's 2^14 values counted one by one.
     size_t rank = nearestRankIndex(0.5, n);
     uint32_t first = 0;  // bin 0: exact zeros; a zero median uses the positive values' median
@@ -194,10 +202,26 @@ FlipExposureRange GpuFlip::exposureRange() {
         histogramBinRange(std::min(bin, kHistBins - 1), lo, hi);
         yMedian = std::isinf(hi) ? lo : hi;
     }
-    range.start = float(std::log2(xMax / yMax));
-    range.stop = float(std::log2(xMax / yMedian));
-    range.count = std::max(2, int(std::ceil(double(range.stop) - double(range.start))));
-    return range;
+    return rangeOf(yMax, yMedian);
+}
+
+FlipExposureRange GpuFlip::exposureRange(std::vector<float>& y, double yMax) {
+    if (!(yMax > 0.0)) return FlipExposureRange{};
+    // As above: the lower median over all pixels, or over the positive ones when it is 0 (the
+    // luminance pass wrote 0 for NaN and infinities; -0 and 0 both sort as zeros here).
+    for (float& v : y) v = v > 0.0f ? v : 0.0f;
+    const size_t n = y.size();
+    const size_t zeros = size_t(std::count(y.begin(), y.end(), 0.0f));
+    size_t rank = nearestRankIndex(0.5, n);
+    if (zeros > rank) rank = zeros + nearestRankIndex(0.5, n - zeros);
+    std::nth_element(y.begin(), y.begin() + std::ptrdiff_t(rank), y.end());
+    const float v = y[rank];
+    // Outside the histogram's exact bins (eval_common.glsl histBin) exposureRange takes a bound.
+    const uint32_t bits = std::bit_cast<uint32_t>(v);
+    double yMedian = double(v);
+    if (bits < kHistFirstBits) yMedian = double(std::bit_cast<float>(kHistFirstBits));  // bin 1: its top
+    else if (bits >= 0x4F800000u) yMedian = double(std::bit_cast<float>(0x4F800000u));  // last bin: its bottom
+    return rangeOf(yMax, yMedian);
 }
 
 }  // namespace gbl::evaluate

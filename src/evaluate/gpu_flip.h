@@ -3,6 +3,8 @@
 // passes over the device's HDR images: the twin of measure/flip.cpp and flip_hdr.cpp, with the
 // same kernels (flip_pipeline.h makeKernels), colour constants and separable filters in the same
 // order, in float. Internal to gbl_evaluate (gpu_evaluator.h drives it).
+#include <vector>
+
 #include "eval_device.h"
 #include "flip.h"
 
@@ -22,6 +24,11 @@ public:
     // The reference's exposure range (flipExposureRange), from its luminance histogram refined to
     // the exact median; submits its own work. The reference image must be bound.
     FlipExposureRange exposureRange();
+
+    // The same range from the frame's reference luminance read back band by band (the luminance
+    // pass's mode 2 values, `y` reordered in place) and its maximum: the same median (the values'
+    // exact lower median, or the bound exposureRange uses outside the histogram's exact bins).
+    static FlipExposureRange exposureRange(std::vector<float>& y, double yMax);
 
 private:
     // Image `which` (0 reference, 1 test) through the per-image pipeline into planes dst..dst+4.
