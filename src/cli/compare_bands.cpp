@@ -137,6 +137,12 @@ PassTimings measureRunInBands(RunReport& run, Renderer& renderer, const GBufferW
                        const RenderSettings& settings, const BandPlan& plan, GpuEvaluator& evaluator,
                        const std::filesystem::path& outDir, const std::string& prefix, bool hdrFlip, bool writeImages,
                        const ImageOutput& output, double& gpuPassMs) {
+    // The run's whole-frame images fill band by band; those of the run before must be written and
+    // gone first, or two runs' images (34 B/px each, 4K: 282 MB) would be held at once.
+    if (writeImages && output.writer) {
+        ScopedStage timed(Stage::Report);
+        output.writer->drain();
+    }
     GpuErrorImages images;
     GpuEvalOptions options;
     options.hdrFlip = hdrFlip;
