@@ -1,11 +1,13 @@
 #include "eval_device.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 
 #include "color_map.h"
 #include "error.h"
+#include "eval_profile.h"
 #include "histogram.h"
 #include "shader_compiler.h"
 #include "vk_pipeline.h"
@@ -15,6 +17,26 @@ namespace gbl::evaluate {
 namespace {
 
 constexpr size_t kConstantFloats = 8192;  // room for the colour constants and every FLIP kernel
+
+// The profile's kinds: each pass, and the separable ones' rows and columns apart (flags bit 0).
+constexpr uint32_t kKinds = 2 * uint32_t(Pass::Count);
+uint32_t profileKind(Pass p, uint32_t flags) {
+    const bool split = p == Pass::FlipFilter || p == Pass::FlipFeatures;
+    return 2 * uint32_t(p) + (split ? (flags & 1u) : 0u);
+}
+std::vector<std::string> profileKinds() {
+    const char* names[] = {"Image", "Reduce", "FlipOpponent", "FlipFilter", "FlipLab", "FlipFeatures", "FlipCombine",
+                           "FlipStats", "Attributes", "Tiles", "Luminance", "NormalMap"};
+    static_assert(std::size(names) == size_t(Pass::Count));
+    std::vector<std::string> k(kKinds);
+    for (uint32_t p = 0; p < uint32_t(Pass::Count); ++p) {
+        const bool split = Pass(p) == Pass::FlipFilter || Pass(p) == Pass::FlipFeatures;
+        k[2 * p] = std::string(names[p]) + (split ? " rows" : "");
+        k[2 * p + 1] = std::string(names[p]) + " cols";
+    }
+    k[kKinds - 1] = "clear histograms";
+    return k;
+}
 
 const char* shaderFile(Pass p) {
     switch (p) {
@@ -79,9 +101,11 @@ EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t 
     const auto& viridis = viridisTable();
     for (size_t i = 0; i < 256; ++i) table[i] = viridis[i].r | (uint32_t(viridis[i].g) << 8) | (uint32_t(viridis[i].b) << 16);
     rebindBuffers();
+    if (EvalProfile::wanted()) profile_ = std::make_unique<EvalProfile>(profileKinds(), ctx.info.name);
 }
 
 EvalDevice::~EvalDevice() {
+    profile_.reset();
     for (Buffer& p : planes_) destroyBuffer(ctx, p);
     for (Buffer& p : out8_) destroyBuffer(ctx, p);
     for (Buffer* b : {&dummy_, &partials_, &histograms_, &constants_, &result_, &tiles_}) destroyBuffer(ctx, *b);
@@ -187,11 +211,23 @@ void EvalDevice::dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint
     p.height = viewRows_;
     p.rowFirst = countedFirst_;
     p.rowCount = countedRows_;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[size_t(pass)]);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
-    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push), &p);
-    vkCmdDispatch(cmd, groups, 1, 1);
-    fullBarrier(cmd);
+    auto record = [&](VkCommandBuffer c) {
+        vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[size_t(pass)]);
+        vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
+        vkCmdPushConstants(c, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push), &p);
+        vkCmdDispatch(c, groups, 1, 1);
+        fullBarrier(c);
+    };
+    if (profile_) return profiled(profileKind(pass, p.flags), record);
+    record(cmd);
+}
+
+void EvalDevice::profiled(uint32_t kind, const std::function<void(VkCommandBuffer)>& record) const {
+    // Submitted now, in recording order: the caller's command buffer holds only evaluation
+    // commands (every one goes through here), so it is left empty and nothing is reordered.
+    const auto start = std::chrono::steady_clock::now();
+    ctx.submitAndWait(record);
+    profile_->add(kind, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 void EvalDevice::reduce(VkCommandBuffer cmd, uint32_t fields, const std::array<uint32_t, 4>& maxMask,
@@ -206,8 +242,12 @@ void EvalDevice::reduce(VkCommandBuffer cmd, uint32_t fields, const std::array<u
 }
 
 void EvalDevice::clearHistograms(VkCommandBuffer cmd) const {
-    vkCmdFillBuffer(cmd, histograms_.buffer, 0, VK_WHOLE_SIZE, 0);
-    fullBarrier(cmd);
+    auto record = [&](VkCommandBuffer c) {
+        vkCmdFillBuffer(c, histograms_.buffer, 0, VK_WHOLE_SIZE, 0);
+        fullBarrier(c);
+    };
+    if (profile_) return profiled(kKinds - 1, record);  // NormalMap never splits: its second slot is free
+    record(cmd);
 }
 
 }  // namespace gbl::evaluate

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "vk_resources.h"
 
 namespace gbl::evaluate {
+
+class EvalProfile;
 
 // Plane slots (binding 4): FLIP's prepared reference (L, a, b, edge, point) and test, its five
 // working planes, the LDR- and HDR-FLIP maps, the reference's noise, and the host-visible plane a
@@ -98,6 +101,7 @@ public:
 private:
     static uint32_t kHistBinsTotal();
     void rebindBuffers();
+    void profiled(uint32_t kind, const std::function<void(VkCommandBuffer)>& record) const;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
@@ -107,6 +111,7 @@ private:
     std::array<Buffer, kOut8Count> out8_{};
     Buffer dummy_, partials_, histograms_, constants_, result_, tiles_;
     uint32_t viewRows_ = 0, countedFirst_ = 0, countedRows_ = 0;
+    std::unique_ptr<EvalProfile> profile_;  // null unless GBL_EVAL_PROFILE
 };
 
 }  // namespace gbl::evaluate
