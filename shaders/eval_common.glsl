@@ -39,6 +39,17 @@ layout(push_constant) uniform Push {
 #define EVAL_GROUP 64
 layout(local_size_x = EVAL_GROUP) in;
 uint invocation() { return gl_GlobalInvocationID.x; }
+// Column walks, for the separable filters' vertical passes: the image split into tasks of
+// EVAL_GROUP adjacent columns by EVAL_COLUMN_STRIP rows, a workgroup per task (grid-stride over the
+// tasks), each invocation walking its column down the strip. A column tap's rows are then the
+// previous output row's but one, still in cache; grid-stride by pixel instead moved each
+// invocation 8192 pixels on (another column every step), so every tap row was fetched anew: on
+// llvmpipe the vertical passes ran 2 to 5.6 times slower than the horizontal ones.
+#define EVAL_COLUMN_STRIP 32u
+uint columnTasks() { return ((pc.width + EVAL_GROUP - 1u) / EVAL_GROUP) * ((pc.height + EVAL_COLUMN_STRIP - 1u) / EVAL_COLUMN_STRIP); }
+// Task `task`'s column (may be >= width: no pixel) and first row.
+uint columnTaskX(uint task) { return (task % ((pc.width + EVAL_GROUP - 1u) / EVAL_GROUP)) * EVAL_GROUP + gl_LocalInvocationID.x; }
+uint columnTaskY(uint task) { return (task / ((pc.width + EVAL_GROUP - 1u) / EVAL_GROUP)) * EVAL_COLUMN_STRIP; }
 // The pixel indices (row-major in the bound images) of the rows that count: [countedBegin, countedEnd).
 uint countedBegin() { return pc.rowFirst * pc.width; }
 uint countedEnd() { return (pc.rowFirst + pc.rowCount) * pc.width; }

@@ -18,11 +18,13 @@ namespace {
 
 constexpr size_t kConstantFloats = 8192;  // room for the colour constants and every FLIP kernel
 
-// The profile's kinds: each pass, and the separable ones' rows and columns apart (flags bit 0).
+// The profile's kinds: each pass, the separable ones' rows and columns apart (flags bit 0), the
+// attribute statistics apart from the normal-error image (mode 1, 2).
 constexpr uint32_t kKinds = 2 * uint32_t(Pass::Count);
-uint32_t profileKind(Pass p, uint32_t flags) {
+uint32_t profileKind(Pass p, const Push& push) {
     const bool split = p == Pass::FlipFilter || p == Pass::FlipFeatures;
-    return 2 * uint32_t(p) + (split ? (flags & 1u) : 0u);
+    if (p == Pass::Attributes) return 2 * uint32_t(p) + (push.mode != 0 ? 1u : 0u);
+    return 2 * uint32_t(p) + (split ? (push.flags & 1u) : 0u);
 }
 std::vector<std::string> profileKinds() {
     const char* names[] = {"Image", "Reduce", "FlipOpponent", "FlipFilter", "FlipLab", "FlipFeatures", "FlipCombine",
@@ -32,7 +34,7 @@ std::vector<std::string> profileKinds() {
     for (uint32_t p = 0; p < uint32_t(Pass::Count); ++p) {
         const bool split = Pass(p) == Pass::FlipFilter || Pass(p) == Pass::FlipFeatures;
         k[2 * p] = std::string(names[p]) + (split ? " rows" : "");
-        k[2 * p + 1] = std::string(names[p]) + " cols";
+        k[2 * p + 1] = std::string(names[p]) + (Pass(p) == Pass::Attributes ? " image" : " cols");
     }
     k[kKinds - 1] = "clear histograms";
     return k;
@@ -218,7 +220,7 @@ void EvalDevice::dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint
         vkCmdDispatch(c, groups, 1, 1);
         fullBarrier(c);
     };
-    if (profile_) return profiled(profileKind(pass, p.flags), record);
+    if (profile_) return profiled(profileKind(pass, p), record);
     record(cmd);
 }
 
