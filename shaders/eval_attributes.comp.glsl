@@ -116,27 +116,38 @@ void scalar(int a, int cls, float r, float t) {
     else skip(a);
 }
 
+// Modes 1 and 2: the normal-error image, in a loop of its own: llvmpipe runs both sides of a
+// branch under a lane mask, so the statistics' code inside the same loop cost as much again.
+void normalImage() {
+    const uint total = gl_NumWorkGroups.x * EVAL_GROUP;
+    for (uint i = countedBegin() + invocation(); i < countedEnd(); i += total) {
+        ivec2 p = ivec2(i % pc.width, i / pc.width);
+        bool rc = imageLoad(refHdr, p).a != 0.0, tc = imageLoad(testHdr, p).a != 0.0;
+        float angle = 0.0;
+        uint grey = 0u;
+        if (rc && tc) {
+            bool ok;
+            angle = float(normalAngleDeg(imageLoad(refSurface[0], p).xyz, imageLoad(testSurface[0], p).xyz, ok));
+        } else {
+            vec3 s = vec3(toneMap8(imageLoad(refHdr, p).rgb, pc.f0)) / 255.0;
+            float y = clamp(luminance(s), 0.0, 1.0);
+            grey = uint(floor((0.12 + 0.3 * y) * 255.0 + 0.5));
+        }
+        if (pc.mode == 2u) planes[pc.u0].v[i] = rc && tc ? angle : -(float(grey) + 1.0);
+        else out8[4].px[i] = rc && tc ? colorMap(angle, 0.0, pc.f1) : pack8(uvec3(grey));
+    }
+}
+
 void main() {
+    if (pc.mode != 0u) {
+        normalImage();
+        return;
+    }
     const uint total = gl_NumWorkGroups.x * EVAL_GROUP;
     for (int f = 0; f < FIELDS; ++f) acc[f] = 0.0;
     for (uint i = countedBegin() + invocation(); i < countedEnd(); i += total) {
         ivec2 p = ivec2(i % pc.width, i / pc.width);
         bool rc = imageLoad(refHdr, p).a != 0.0, tc = imageLoad(testHdr, p).a != 0.0;
-        if (pc.mode != 0u) {
-            float angle = 0.0;
-            uint grey = 0u;
-            if (rc && tc) {
-                bool ok;
-                angle = float(normalAngleDeg(imageLoad(refSurface[0], p).xyz, imageLoad(testSurface[0], p).xyz, ok));
-            } else {
-                vec3 s = vec3(toneMap8(imageLoad(refHdr, p).rgb, pc.f0)) / 255.0;
-                float y = clamp(luminance(s), 0.0, 1.0);
-                grey = uint(floor((0.12 + 0.3 * y) * 255.0 + 0.5));
-            }
-            if (pc.mode == 2u) planes[pc.u0].v[i] = rc && tc ? angle : -(float(grey) + 1.0);
-            else out8[4].px[i] = rc && tc ? colorMap(angle, 0.0, pc.f1) : pack8(uvec3(grey));
-            continue;
-        }
         if (!(rc && tc)) {
             if (rc) acc[ATTRS * PER_ATTR + 1] += 1.0;
             if (tc) acc[ATTRS * PER_ATTR + 2] += 1.0;
@@ -165,6 +176,5 @@ void main() {
         if (rd > 0.0 && finiteD(rd) && finiteD(e)) add(7, cls, e, 0.0);
         else skip(7);
     }
-    if (pc.mode != 0u) return;
     for (int f = 0; f < FIELDS; ++f) partials[invocation() * FIELDS + f] = acc[f];
 }

@@ -13,25 +13,37 @@ float srgbToLinearF(float v) {
     return v <= 0.04045 ? v * (1.0 / 12.92) : pow((v + 0.055) * (1.0 / 1.055), 2.4);
 }
 
+vec3 inputAt(uint i) {
+    ivec2 p = ivec2(i % pc.width, i / pc.width);
+    return (pc.u6 == 0u ? imageLoad(refHdr, p) : imageLoad(testHdr, p)).rgb;
+}
+void store(uint i, vec3 rgb) {
+    float X = dot(flipM(0), rgb) * kernels[KC_IW + 0];
+    float Y = dot(flipM(1), rgb) * kernels[KC_IW + 1];
+    float Z = dot(flipM(2), rgb) * kernels[KC_IW + 2];
+    planes[pc.u0].v[i] = 116.0 * Y - 16.0;
+    planes[pc.u1].v[i] = 500.0 * (X - Y);
+    planes[pc.u2].v[i] = 200.0 * (Y - Z);
+    planes[pc.u3].v[i] = Y;
+}
+
+// One loop per mode: llvmpipe runs both sides of a branch under a lane mask, so with the mode
+// tested inside one loop every pixel paid for both tone mappings.
 void main() {
     const uint n = pc.width * pc.height;
     const uint total = gl_NumWorkGroups.x * EVAL_GROUP;
-    for (uint i = invocation(); i < n; i += total) {
-        ivec2 p = ivec2(i % pc.width, i / pc.width);
-        vec3 x = (pc.u6 == 0u ? imageLoad(refHdr, p) : imageLoad(testHdr, p)).rgb;
-        vec3 rgb;
-        if (pc.mode == 0u) {
-            vec3 s = vec3(toneMap8(x, pc.f0)) / 255.0;
+    if (pc.mode == 0u) {
+        for (uint i = invocation(); i < n; i += total) {
+            vec3 s = vec3(toneMap8(inputAt(i), pc.f0)) / 255.0;
+            vec3 rgb;
             for (int c = 0; c < 3; ++c) rgb[c] = srgbToLinearF(s[c]);
-        } else {
-            for (int c = 0; c < 3; ++c) rgb[c] = flipToneMap((x[c] >= 0.0 ? x[c] : 0.0) * pc.f0);
+            store(i, rgb);
         }
-        float X = dot(flipM(0), rgb) * kernels[KC_IW + 0];
-        float Y = dot(flipM(1), rgb) * kernels[KC_IW + 1];
-        float Z = dot(flipM(2), rgb) * kernels[KC_IW + 2];
-        planes[pc.u0].v[i] = 116.0 * Y - 16.0;
-        planes[pc.u1].v[i] = 500.0 * (X - Y);
-        planes[pc.u2].v[i] = 200.0 * (Y - Z);
-        planes[pc.u3].v[i] = Y;
+    } else {
+        for (uint i = invocation(); i < n; i += total) {
+            vec3 x = inputAt(i), rgb;
+            for (int c = 0; c < 3; ++c) rgb[c] = flipToneMap((x[c] >= 0.0 ? x[c] : 0.0) * pc.f0);
+            store(i, rgb);
+        }
     }
 }
