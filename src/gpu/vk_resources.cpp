@@ -213,6 +213,16 @@ void uploadImage(const VulkanContext& ctx, GpuImage& image, const void* pixels, 
 
 std::vector<uint8_t> downloadImage(const VulkanContext& ctx, const GpuImage& image, VkImageLayout currentLayout,
                                    uint32_t mip, VkImageAspectFlags aspect, uint32_t firstRow, uint32_t rowCount) {
+    std::vector<uint8_t> out;
+    downloadImageWith(
+        ctx, image, currentLayout, [&](const uint8_t* bytes, size_t size) { out.assign(bytes, bytes + size); }, mip,
+        aspect, firstRow, rowCount);
+    return out;
+}
+
+void downloadImageWith(const VulkanContext& ctx, const GpuImage& image, VkImageLayout currentLayout,
+                       const std::function<void(const uint8_t* bytes, size_t size)>& consume, uint32_t mip,
+                       VkImageAspectFlags aspect, uint32_t firstRow, uint32_t rowCount) {
     const VkImageAspectFlags a = aspect ? aspect : image.aspect;
     const uint32_t w = std::max(image.extent.width >> mip, 1u), mipRows = std::max(image.extent.height >> mip, 1u);
     if (rowCount && (firstRow >= mipRows || rowCount > mipRows - firstRow))
@@ -235,10 +245,13 @@ std::vector<uint8_t> downloadImage(const VulkanContext& ctx, const GpuImage& ima
         vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &region);
         transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, currentLayout, image.aspect);
     });
-    std::vector<uint8_t> out(bytes);
-    std::memcpy(out.data(), staging.mapped, bytes);
+    try {
+        consume(static_cast<const uint8_t*>(staging.mapped), size_t(bytes));
+    } catch (...) {
+        destroyBuffer(ctx, staging);
+        throw;
+    }
     destroyBuffer(ctx, staging);
-    return out;
 }
 
 VkSampler createSampler(const VulkanContext& ctx, VkFilter filter, VkSamplerMipmapMode mipMode,

@@ -167,7 +167,11 @@ void writeExr(const std::string& path, const Image& image, const std::vector<std
                                     std::to_string(image.channels) + " channels");
 
     Imf::Header header(image.width, image.height);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    // PIZ (wavelet + Huffman, lossless for half and float alike): compare's 1080p render.exr (RGBA
+    // half) wrote in about 175 ms against 315 ms with ZIP at OpenEXR's default level 4, for 13%
+    // more bytes (2-core machine under load; RLE: 83 ms, 51% more). The files are written beside
+    // the renders, so their CPU time is taken from the passes and the metrics.
+    header.compression() = Imf::PIZ_COMPRESSION;
     Imf::FrameBuffer frame;
     // Half: converted here (with the clamp roundToHalf documents), not by OpenEXR, whose
     // float -> half conversion turns values beyond 65504 into infinity.

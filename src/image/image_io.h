@@ -31,7 +31,7 @@ enum class ExrPixelType { Float32, Half };
 const char* exrPixelTypeName(ExrPixelType type);  // "float32" / "half"
 inline constexpr float kHalfMax = 65504.0f;
 
-// Writes a float image (1..4 channels) as EXR, ZIP compression, every channel `type`.
+// Writes a float image (1..4 channels) as EXR, PIZ compression (lossless), every channel `type`.
 // channelNames optional: defaults R,G,B,A / Y for 1 channel.
 void writeExr(const std::string& path, const Image& image, const std::vector<std::string>& channelNames = {},
               ExrPixelType type = ExrPixelType::Float32);

@@ -35,10 +35,10 @@ public:
         std::array<uint32_t, 6> key;
         std::memcpy(key.data(), a, 12);
         std::memcpy(key.data() + 3, b, 12);
-        if (last_ && last_->key == key) return last_->value;  // most pixels repeat the previous one: no hash
+        if (last_ && same(last_->key, key)) return last_->value;  // most pixels repeat the previous one: no hash
         Slot& s = slots_[index(key)];
         last_ = &s;
-        if (s.used && s.key == key) return s.value;
+        if (s.used && same(s.key, key)) return s.value;
         ++misses_;
         s.value = compute(a, b);
         s.key = key;
@@ -55,6 +55,15 @@ private:
         bool used = false;
         Value value{};
     };
+
+    // The keys' 24 bytes as three 64-bit compares: std::array's == called memcmp, 9% of the
+    // metrics' CPU samples of compare --size 960x540 --views 1 (perf, 2-core machine).
+    static bool same(const std::array<uint32_t, 6>& a, const std::array<uint32_t, 6>& b) {
+        uint64_t x[3], y[3];
+        std::memcpy(x, a.data(), 24);
+        std::memcpy(y, b.data(), 24);
+        return ((x[0] ^ y[0]) | (x[1] ^ y[1]) | (x[2] ^ y[2])) == 0;
+    }
 
     // Multiplicative hashing (Knuth, TAOCP vol. 3, 6.4) of the six words folded into 64 bits.
     size_t index(const std::array<uint32_t, 6>& k) const {

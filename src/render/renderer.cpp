@@ -8,6 +8,7 @@
 #include <cstring>
 #include <exception>
 #include <functional>
+#include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -20,6 +21,48 @@
 #include "wiring_plan.h"
 
 namespace gbl {
+
+namespace {
+
+// An RGBA32F image read back straight into an Image: one copy out of the staging buffer's memory
+// (downloadImageWith), no zero-filled byte vector and pixel vector in between.
+Image downloadRgba32f(const VulkanContext& ctx, const GpuImage& image, VkImageLayout layout, uint32_t firstRow = 0,
+                      uint32_t rowCount = 0) {
+    Image out;
+    out.width = int(image.extent.width);
+    out.height = int(rowCount ? rowCount : image.extent.height);
+    out.channels = 4;
+    downloadImageWith(
+        ctx, image, layout,
+        [&](const uint8_t* bytes, size_t size) {
+            if (size != out.pixelCount() * 16) throw std::logic_error("downloadRgba32f: not an RGBA32F image");
+            const float* f = reinterpret_cast<const float*>(bytes);  // mapped memory: aligned for any texel
+            out.pixels.assign(f, f + size / 4);
+        },
+        0, 0, firstRow, rowCount);
+    return out;
+}
+
+// A target's raw words (texelsToWords' layout: texels of 4 bytes or more as they are, 1- and
+// 2-byte texels widened to a word each) straight from the staging buffer's memory.
+std::vector<uint32_t> downloadWords(const VulkanContext& ctx, const GpuImage& image, size_t pixels, uint32_t firstRow = 0,
+                                    uint32_t rowCount = 0) {
+    std::vector<uint32_t> words;
+    downloadImageWith(
+        ctx, image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+        [&](const uint8_t* bytes, size_t size) {
+            if (pixels && size % pixels == 0 && size / pixels >= 4 && (size / pixels) % 4 == 0) {
+                const uint32_t* w = reinterpret_cast<const uint32_t*>(bytes);
+                words.assign(w, w + size / 4);
+            } else {
+                words = texelsToWords(std::vector<uint8_t>(bytes, bytes + size), pixels);
+            }
+        },
+        0, 0, firstRow, rowCount);
+    return words;
+}
+
+}  // namespace
 
 void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag) {
     const uint32_t maxDim = ctx.properties.limits.maxImageDimension2D;
@@ -271,11 +314,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     RenderOutput out;
     out.timings.gbufferMs = passMs[0];
     out.timings.lightingMs = passMs[1];
-    auto readHdr = [&] {
-        const std::vector<uint8_t> hdrBytes = downloadImage(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL);
-        out.hdr = Image(int(w), int(rows), 4);
-        std::memcpy(out.hdr.pixels.data(), hdrBytes.data(), hdrBytes.size());
-    };
+    auto readHdr = [&] { out.hdr = downloadRgba32f(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL); };
     if (groundTruth) {
         // Progressive: more batches until the noise target is met (or the batch limit is reached).
         if (settings.groundTruthMinBatches < 2 || settings.groundTruthMaxBatches < settings.groundTruthMinBatches ||
@@ -336,8 +375,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     }
     for (const GpuImage& t : gbuffer.targets) {
         if (!settings.readTargetWords && !cpuDecode) break;
-        const auto bytes = downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, 0, band.first, band.rows);
-        out.targetWords.push_back(texelsToWords(bytes, size_t(w) * rows));  // R8 / R16 targets widened
+        out.targetWords.push_back(downloadWords(ctx_, t, size_t(w) * rows, band.first, band.rows));  // R8 / R16 widened
     }
     if (settings.keepOnDevice) {
         if (settings.decodeSurfaces)
@@ -348,25 +386,31 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         destroyBuffer(ctx_, frameBuffer);
         return out;
     }
-    std::vector<uint8_t> depthBytes = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
-                                                    VK_IMAGE_ASPECT_DEPTH_BIT, band.first, band.rows);
     out.depth.resize(size_t(w) * rows);
-    if (wiring.depthFormat == VK_FORMAT_D32_SFLOAT || wiring.depthFormat == VK_FORMAT_D32_SFLOAT_S8_UINT) {
-        std::memcpy(out.depth.data(), depthBytes.data(), out.depth.size() * 4);
-    } else if (wiring.depthFormat == VK_FORMAT_D16_UNORM) {
-        for (size_t i = 0; i < out.depth.size(); ++i) {
-            uint16_t v;
-            std::memcpy(&v, depthBytes.data() + i * 2, 2);
-            out.depth[i] = float(v) / 65535.0f;
-        }
-    } else {  // D24: 24 bits in the low bits of a 32-bit word
-        for (size_t i = 0; i < out.depth.size(); ++i) {
-            uint32_t v;
-            std::memcpy(&v, depthBytes.data() + i * 4, 4);
-            out.depth[i] = float(double(v & 0xFFFFFFu) / 16777215.0);
-        }
-    }
-    std::vector<uint8_t>().swap(depthBytes);
+    // Converted straight from the staging buffer's memory (downloadImageWith).
+    downloadImageWith(
+        ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+        [&](const uint8_t* depthBytes, size_t size) {
+            const size_t n = out.depth.size();
+            const size_t texel = wiring.depthFormat == VK_FORMAT_D16_UNORM ? 2 : 4;
+            if (size != n * texel) throw std::logic_error("render: depth read-back of unexpected size");
+            if (wiring.depthFormat == VK_FORMAT_D32_SFLOAT || wiring.depthFormat == VK_FORMAT_D32_SFLOAT_S8_UINT) {
+                std::memcpy(out.depth.data(), depthBytes, n * 4);
+            } else if (wiring.depthFormat == VK_FORMAT_D16_UNORM) {
+                for (size_t i = 0; i < n; ++i) {
+                    uint16_t v;
+                    std::memcpy(&v, depthBytes + i * 2, 2);
+                    out.depth[i] = float(v) / 65535.0f;
+                }
+            } else {  // D24: 24 bits in the low bits of a 32-bit word
+                for (size_t i = 0; i < n; ++i) {
+                    uint32_t v;
+                    std::memcpy(&v, depthBytes + i * 4, 4);
+                    out.depth[i] = float(double(v & 0xFFFFFFu) / 16777215.0);
+                }
+            }
+        },
+        0, VK_IMAGE_ASPECT_DEPTH_BIT, band.first, band.rows);
     if (settings.readTargetWords && (gbuffer.depth.aspect & VK_IMAGE_ASPECT_STENCIL_BIT))
         out.stencil = downloadImage(ctx_, gbuffer.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, 0,
                                     VK_IMAGE_ASPECT_STENCIL_BIT, band.first, band.rows);
@@ -377,9 +421,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         words.width = int(w);
         words.height = int(rows);  // decodesOnCpu: never a band, so rows == h
         words.targetWords = std::move(out.targetWords);
-        for (const GpuImage& t : materialPass.targets)
-            words.materialWords.push_back(
-                texelsToWords(downloadImage(ctx_, t, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL), size_t(w) * rows));
+        for (const GpuImage& t : materialPass.targets) words.materialWords.push_back(downloadWords(ctx_, t, size_t(w) * rows));
         if (material) destroyGBufferPass(ctx_, materialPass);
         destroyGBufferPass(ctx_, gbuffer);
         destroyBuffer(ctx_, frameBuffer);
@@ -402,12 +444,7 @@ DeviceRenderImages::~DeviceRenderImages() {
     for (GpuImage& s : surfaces) destroyImage(ctx, s);
 }
 
-Image DeviceRenderImages::downloadHdr() const {
-    const std::vector<uint8_t> bytes = downloadImage(ctx, hdr, VK_IMAGE_LAYOUT_GENERAL);
-    Image out(int(hdr.extent.width), int(hdr.extent.height), 4);
-    std::memcpy(out.pixels.data(), bytes.data(), std::min(bytes.size(), out.pixels.size() * 4));
-    return out;
-}
+Image DeviceRenderImages::downloadHdr() const { return downloadRgba32f(ctx, hdr, VK_IMAGE_LAYOUT_GENERAL); }
 
 double meanRelativeNoise(const Image& hdr, const Image& noise) {
     if (noise.empty() || hdr.pixelCount() != noise.pixelCount() || hdr.channels < 4) return 0.0;

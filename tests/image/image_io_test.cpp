@@ -182,8 +182,8 @@ TEST(Exr, RoundTripIsBitExact) {
         ASSERT_EQ(back.channels, channels);
         EXPECT_EQ(std::memcmp(back.pixels.data(), image.pixels.data(), image.pixels.size() * sizeof(float)), 0);
 
-        Imf::InputFile file(path.c_str());  // what was promised: float32, ZIP
-        EXPECT_EQ(file.header().compression(), Imf::ZIP_COMPRESSION);
+        Imf::InputFile file(path.c_str());  // what was promised: float32, PIZ (lossless)
+        EXPECT_EQ(file.header().compression(), Imf::PIZ_COMPRESSION);
         for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
             EXPECT_EQ(it.channel().type, Imf::FLOAT);
         if (channels == 4) {  // readExr keeps R,G,B bit exact and drops A

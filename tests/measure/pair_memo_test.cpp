@@ -64,4 +64,24 @@ TEST(PairMemo, KeysAreBitPatterns) {
     EXPECT_EQ(calls, 1);
 }
 
+TEST(PairMemo, EveryWordOfTheKeyCounts) {
+    // A pair that differs from the previous one in the lowest bit of any one of its six floats is
+    // a new pair (the key compare covers all 24 bytes): the memo calls the function again.
+    const float base[6] = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f};
+    for (int k = 0; k < 6; ++k) {
+        gbl::PairMemo<double> memo;
+        int calls = 0;
+        auto count = [&](const float*, const float*) { return double(++calls); };
+        float changed[6];
+        std::memcpy(changed, base, sizeof changed);
+        uint32_t u;
+        std::memcpy(&u, &changed[k], 4);
+        u ^= 1u;
+        std::memcpy(&changed[k], &u, 4);
+        EXPECT_EQ(memo.get(base, base + 3, count), 1.0);
+        EXPECT_EQ(memo.get(changed, changed + 3, count), 2.0) << "float " << k;
+        EXPECT_EQ(memo.get(changed, changed + 3, count), 2.0) << "float " << k;  // and then kept
+    }
+}
+
 }  // namespace
