@@ -23,6 +23,11 @@
 
 #include "simd_clones.h"
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#define GBL_HAVE_F16C_PATH 1
+#endif
+
 namespace gbl::enc {
 
 namespace {
@@ -93,7 +98,7 @@ uvec3 encodeNormalBestFitFast(vec3 n) {
 // IEEE-754 operations in its order (no FMA: -ffp-contract=off), so the codes are identical;
 // tests/encoding/encodings_fast_test.cpp compares them on random and adversarial normals.
 // Results go to local arrays first: GCC 12 drops `restrict` in target_clones clones.
-GBL_SIMD_CLONES void encodeNormalBestFitRow(int n, const float* x, const float* y, const float* z,
+GBL_SIMD_CLONES_AVX512 void encodeNormalBestFitRow(int n, const float* x, const float* y, const float* z,
                                             const uint32_t* table, uint32_t* c0, uint32_t* c1, uint32_t* c2) {
     constexpr int kChunk = 128;
     alignas(32) float qx[kChunk], qy[kChunk], qz[kChunk];
@@ -166,6 +171,49 @@ Srgb8EncodeTable thresholdTable(const float (&thresholds)[255], std::vector<uint
 }
 
 }  // namespace
+
+namespace {
+
+void encodeFloat16RowPortable(int n, const float* in, uint32_t* out) {
+    for (int j = 0; j < n; ++j) out[j] = encodeFloat16Fast(in[j]);
+}
+
+#if defined(GBL_HAVE_F16C_PATH)
+__attribute__((target("avx2,f16c"))) void encodeFloat16RowF16c(int n, const float* in, uint32_t* out) {
+    const __m256i absMask = _mm256_set1_epi32(0x7fffffff);
+    const __m256i saturateFrom = _mm256_set1_epi32(0x477fefff);  // compared with >: a >= 0x477ff000
+    const __m256i signMask = _mm256_set1_epi32(0x8000);
+    const __m256i maxFinite = _mm256_set1_epi32(0x7bff);
+    int j = 0;
+    for (; j + 8 <= n; j += 8) {
+        const __m256 x = _mm256_loadu_ps(in + j);
+        const __m256i bits = _mm256_castps_si256(x);
+        const __m256i half = _mm256_cvtepu16_epi32(_mm256_cvtps_ph(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+        // Signed compare is exact here: the magnitudes are below 2^31.
+        const __m256i saturate = _mm256_cmpgt_epi32(_mm256_and_si256(bits, absMask), saturateFrom);
+        const __m256i saturated = _mm256_or_si256(_mm256_and_si256(_mm256_srli_epi32(bits, 16), signMask), maxFinite);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + j), _mm256_blendv_epi8(half, saturated, saturate));
+    }
+    for (; j < n; ++j) out[j] = encodeFloat16Fast(in[j]);
+}
+#endif
+
+using Float16RowFn = void (*)(int, const float*, uint32_t*);
+
+Float16RowFn pickFloat16Row() {
+#if defined(GBL_HAVE_F16C_PATH)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("f16c")) return encodeFloat16RowF16c;
+#endif
+    return encodeFloat16RowPortable;
+}
+
+}  // namespace
+
+void encodeFloat16Row(int n, const float* in, uint32_t* out) {
+    static const Float16RowFn fn = pickFloat16Row();
+    fn(n, in, out);
+}
 
 const Srgb8EncodeTable& srgb8EncodeTable() {
     static std::vector<uint32_t> entries;

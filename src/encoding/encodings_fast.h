@@ -89,4 +89,13 @@ inline uint encodeFloat10Fast(float x) {
     return a >= 0x80000000u ? 0u : encodeSmallFloatMagnitudeFast(a, 5u);
 }
 
+// encodeFloat16Fast(in[j]) for j < n into out. On a CPU with F16C (every x86-64-v3 one) by the
+// hardware conversion VCVTPS2PH, 8 at a time: IEEE round to nearest even with subnormals, as the
+// reference (its explicit rounding mode, not MXCSR's), then the reference's saturation: a
+// magnitude that rounds to infinity (>= 65520, bits 0x477ff000) and infinity and NaN give the
+// largest finite half, 0x7bff, with the sign, instead of infinity or NaN. Elsewhere the portable
+// loop. Identical codes (tests/encoding/encodings_fast_test.cpp: every float of 2^32 whose low
+// bits are sampled, and the rounding points of every exponent).
+void encodeFloat16Row(int n, const float* in, uint32_t* out);
+
 }  // namespace gbl::enc
