@@ -86,13 +86,21 @@ GBL_CLONE_INLINE void checkerboard(int n, int x0, int y, EncodeBlock& b, uint bi
     });
 }
 
-// sRGB (or gamma 2.2: the table decides) codes of a row (n <= kBlock). Written to a local array first: in target_clones clones GCC
-// 12 drops `restrict`, and then cannot rule out that the stores change the look-up table, so the
-// loop stays scalar (3.7x slower); a local array whose address never escapes cannot alias it.
+// sRGB (or gamma 2.2: the table decides) codes of a row (n <= kBlock): encodeSrgb8Fast in three
+// passes, the buckets (vectorised), their entries by scalar loads (gatherWords: a vectorised
+// look-up is assembled lane by lane on the shuffle ports), the codes (vectorised). Written to
+// local arrays: in target_clones clones GCC 12 drops `restrict`, and then cannot rule out that
+// the stores change the look-up table, so the loops stay scalar; a local array whose address
+// never escapes cannot alias it.
 GBL_SIMD_CLONES_AVX512 void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8EncodeTable& table) {
     const Srgb8EncodeTable t = table;
-    alignas(32) uint32_t codes[kBlock];
-    for (int j = 0; j < n; ++j) codes[j] = encodeSrgb8Fast(in[j], t);
+    alignas(32) uint32_t buckets[kBlock], entries[kBlock], codes[kBlock];
+    for (int j = 0; j < n; ++j) buckets[j] = srgb8Bucket(in[j], t);
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // GCC cannot see that it reads only the n written
+    gatherWords(n, buckets, t.entries, entries);
+#pragma GCC diagnostic pop
+    for (int j = 0; j < n; ++j) codes[j] = srgb8FromEntry(in[j], entries[j], t);
     std::copy(codes, codes + n, out);
 }
 

@@ -126,7 +126,7 @@ GBL_SIMD_CLONES_AVX512 void encodeNormalBestFitRow(int n, const float* x, const 
             t[j] = i * (i + 1u) / 2u + jj;
             valid[j] = ok ? 1u : 0u;
         }
-        for (int j = 0; j < count; ++j) entry[j] = (table[t[j] >> 2u] >> ((t[j] & 3u) * 8u)) & 0xffu;
+        gatherBytes(count, t, table, entry);
         for (int j = 0; j < count; ++j) {
             const float k = float(255u - 2u * entry[j]);
             const float dx = 2.0f * floor(qx[j] * k * 0.5f) + 1.0f;
@@ -213,6 +213,28 @@ Float16RowFn pickFloat16Row() {
 void encodeFloat16Row(int n, const float* in, uint32_t* out) {
     static const Float16RowFn fn = pickFloat16Row();
     fn(n, in, out);
+}
+
+// Scalar on purpose (encodings_fast.h): no vectorisation, unrolled so the loads stream.
+#if defined(__GNUC__) && !defined(__clang__)
+#define GBL_SCALAR_LOADS __attribute__((optimize("no-tree-vectorize")))
+#else
+#define GBL_SCALAR_LOADS
+#endif
+
+GBL_SCALAR_LOADS void gatherWords(int n, const uint32_t* index, const uint32_t* table, uint32_t* out) {
+#pragma GCC unroll 4
+    for (int j = 0; j < n; ++j) out[j] = table[index[j]];
+}
+
+GBL_SCALAR_LOADS void gatherBytes(int n, const uint32_t* index, const uint32_t* table, uint32_t* out) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(table);  // byte i = entry i
+#pragma GCC unroll 4
+    for (int j = 0; j < n; ++j) out[j] = bytes[index[j]];
+#else
+    for (int j = 0; j < n; ++j) out[j] = (table[index[j] >> 2u] >> ((index[j] & 3u) * 8u)) & 0xffu;
+#endif
 }
 
 const Srgb8EncodeTable& srgb8EncodeTable() {
