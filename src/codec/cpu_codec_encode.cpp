@@ -236,7 +236,7 @@ GBL_CLONE_INLINE void encodeTarget(const TargetPlan& t, int n, int x0, int y, En
 }
 
 GBL_SIMD_CLONES_AVX512 void encodeBlock(const TargetPlan& t, int n, int x0, int y, EncodeBlock& b, uint32_t* words,
-                                 SurfacePrefetch& ahead) {
+                                        SurfacePrefetch& ahead) {
     switch (t.words) {
         case 1: encodeTarget<1>(t, n, x0, y, b, words, ahead); return;
         case 2: encodeTarget<2>(t, n, x0, y, b, words, ahead); return;
@@ -250,7 +250,7 @@ GBL_SIMD_CLONES_AVX512 void encodeBlock(const TargetPlan& t, int n, int x0, int 
 // bits) and streamed to the image, straight from the registers when the image is 16-byte
 // aligned (a std::vector's memory is), else through b.pixels.
 GBL_SIMD_CLONES_AVX512 void encodeMaterial(const CodecPlan& plan, int n, size_t first, uint32_t* const* material,
-                                    EncodeBlock& b, SurfacePrefetch& ahead) {
+                                           EncodeBlock& b, SurfacePrefetch& ahead) {
     alignas(32) static const float zeros[kBlock] = {};
     for (int m = 0; m < plan.materialTargets; ++m) {
         ahead.step();

@@ -100,7 +100,7 @@ uvec3 encodeNormalBestFitFast(vec3 n) {
 // The passes meet in local arrays (GCC 12 drops `restrict` in target_clones clones, and a local
 // array cannot alias the table); the last pass, which reads no table, writes the codes out.
 GBL_SIMD_CLONES_AVX512 void encodeNormalBestFitRow(int n, const float* x, const float* y, const float* z,
-                                            const uint32_t* table, uint32_t* c0, uint32_t* c1, uint32_t* c2) {
+                                                   const uint32_t* table, uint32_t* c0, uint32_t* c1, uint32_t* c2) {
     constexpr int kChunk = 128;
     alignas(32) float qx[kChunk], qy[kChunk], qz[kChunk];
     alignas(32) uint32_t t[kChunk], valid[kChunk], entry[kChunk];

@@ -272,12 +272,13 @@ TEST(SmallFloatEncodeFast, SameCodesAsTheReference) {
 
 // The row form (F16C's VCVTPS2PH plus saturation where the CPU has it) against the reference
 // encodeFloat16: every float whose upper 16 bits are any of the 65536 and whose lower 16 bits sit
-// at or next to a multiple of 2^12 (the rounding points of normal halves), and the rounding points of every
-// subnormal shift (the sweep above), in rows of odd lengths so that the 8-wide loop's tails run.
+// at or next to a multiple of 2^12 (the rounding points of normal halves), and the rounding points
+// of every subnormal shift (the sweep above), in rows of odd lengths so that the 8-wide loop's
+// tails run.
 TEST(Float16Row, SameCodesAsTheReference) {
     std::vector<float> xs = floatSweep();
     for (uint32_t hi = 0; hi < 0x10000u; ++hi)
-        for (uint32_t k = 0; k < 16; ++k)  // lower 16 bits: k 2^12 (a normal half's rounding point when k is odd) and +-1
+        for (uint32_t k = 0; k < 16; ++k)  // lower 16 bits: k 2^12 (odd k: a normal half's rounding point), +-1
             for (uint32_t lo : {(k << 12) - 1u, k << 12, (k << 12) + 1u})
                 xs.push_back(enc::uintBitsToFloat((hi << 16) | (lo & 0xffffu)));
     for (uint32_t sign = 0; sign < 2; ++sign)
