@@ -69,7 +69,7 @@ GBL_CLONE_INLINE void map3to3(int n, const float* __restrict x, const float* __r
 // quantizeUnorm (YCoCg), as chromaQuantize in wiring_codegen.
 template <vec3 (*Fwd)(vec3), uint (*Q)(float, uint)>
 GBL_CLONE_INLINE void transformed3(int n, EncodeBlock& b, uint bits) {
-    map3to3(n, b.in[0], b.in[1], b.in[2], b.code[0], b.code[1], b.code[2], [bits](vec3 v) {
+    map3to3(n, b.src[0], b.src[1], b.src[2], b.code[0], b.code[1], b.code[2], [bits](vec3 v) {
         const vec3 t = Fwd(v);
         return uvec3(quantizeUnorm(t.x, bits), Q(t.y, bits), Q(t.z, bits));
     });
@@ -79,21 +79,27 @@ GBL_CLONE_INLINE void transformed3(int n, EncodeBlock& b, uint bits) {
 // written out with an int parity: GCC 12 does not vectorise the loop through chromaIsSecond's bool.
 template <vec3 (*Fwd)(vec3), uint (*Q)(float, uint)>
 GBL_CLONE_INLINE void checkerboard(int n, int x0, int y, EncodeBlock& b, uint bits) {
-    map3to2(n, b.in[0], b.in[1], b.in[2], b.code[0], b.code[1], [bits, x0, y](vec3 v, int j) {
+    map3to2(n, b.src[0], b.src[1], b.src[2], b.code[0], b.code[1], [bits, x0, y](vec3 v, int j) {
         const vec3 t = Fwd(v);
         const int second = (x0 + j + y) & 1;
         return uvec2(quantizeUnorm(t.x, bits), Q(second ? t.z : t.y, bits));
     });
 }
 
-// sRGB (or gamma 2.2: the table decides) codes of a row (n <= kBlock). Written to a local array first: in target_clones clones GCC
-// 12 drops `restrict`, and then cannot rule out that the stores change the look-up table, so the
-// loop stays scalar (3.7x slower); a local array whose address never escapes cannot alias it.
-GBL_SIMD_CLONES void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8EncodeTable& table) {
+// sRGB (or gamma 2.2: the table decides) codes of a row (n <= kBlock): encodeSrgb8Fast in three
+// passes, the buckets (vectorised), their entries by scalar loads (gatherWords: a vectorised
+// look-up is assembled lane by lane on the shuffle ports), the codes (vectorised, straight into
+// `out`: this pass reads no table, only the row and the local entries, so the one alias check
+// GCC adds in place of the `restrict` it drops in target_clones clones is all it costs).
+GBL_SIMD_CLONES_AVX512 void srgb8Row(int n, const float* in, uint32_t* out, const Srgb8EncodeTable& table) {
     const Srgb8EncodeTable t = table;
-    alignas(32) uint32_t codes[kBlock];
-    for (int j = 0; j < n; ++j) codes[j] = encodeSrgb8Fast(in[j], t);
-    std::copy(codes, codes + n, out);
+    alignas(32) uint32_t buckets[kBlock], entries[kBlock];
+    for (int j = 0; j < n; ++j) buckets[j] = srgb8Bucket(in[j], t);
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // GCC cannot see that it reads only the n written
+    gatherWords(n, buckets, t.entries, entries);
+#pragma GCC diagnostic pop
+    for (int j = 0; j < n; ++j) out[j] = srgb8FromEntry(in[j], entries[j], t);
 }
 
 // Prefetches of the Surfaces two blocks ahead, spread over the work of the current block: one
@@ -129,7 +135,7 @@ class SurfacePrefetch {
 // (SurfacePrefetch). Only the groups of 4
 // members the layout reads (plan.encodeGroups) are transposed: 4 of the 6 for crysis3-thin and
 // compact-octahedral (the memory traffic is the same: every line is touched either way).
-GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, uint32_t groups, EncodeBlock& b) {
+GBL_SIMD_CLONES_AVX512 void loadSurfaces(const Surface* px, int n, uint32_t groups, EncodeBlock& b) {
     const float* __restrict in = floats(px);
     int j = 0;
 #if defined(__SSE2__)
@@ -158,15 +164,14 @@ GBL_SIMD_CLONES void loadSurfaces(const Surface* px, int n, uint32_t groups, Enc
         for (int k = 0; k < kSurfaceFloats; ++k) b.s[k][j] = in[j * kSurfaceFloats + k];
 }
 
-// The field's input components for the block: its Surface members or its constant.
+// The field's input components for the block: rows of its Surface members, or its constant.
 GBL_CLONE_INLINE void gatherInputs(const FieldPlan& f, int n, EncodeBlock& b) {
     for (int c = 0; c < f.inputs; ++c) {
-        float* __restrict in = b.in[c];
         if (f.source < 0) {
-            std::fill(in, in + n, f.constant[c]);
+            std::fill(b.in[c], b.in[c] + n, f.constant[c]);
+            b.src[c] = b.in[c];
         } else {
-            const float* __restrict src = b.s[f.source + c];
-            std::copy(src, src + n, in);
+            b.src[c] = b.s[f.source + c];
         }
     }
 }
@@ -230,8 +235,8 @@ GBL_CLONE_INLINE void encodeTarget(const TargetPlan& t, int n, int x0, int y, En
     if (j < n) streamCopy(out + size_t(j) * Words, pixels, size_t(n - j) * Words * sizeof(uint32_t));
 }
 
-GBL_SIMD_CLONES void encodeBlock(const TargetPlan& t, int n, int x0, int y, EncodeBlock& b, uint32_t* words,
-                                 SurfacePrefetch& ahead) {
+GBL_SIMD_CLONES_AVX512 void encodeBlock(const TargetPlan& t, int n, int x0, int y, EncodeBlock& b, uint32_t* words,
+                                        SurfacePrefetch& ahead) {
     switch (t.words) {
         case 1: encodeTarget<1>(t, n, x0, y, b, words, ahead); return;
         case 2: encodeTarget<2>(t, n, x0, y, b, words, ahead); return;
@@ -244,8 +249,8 @@ GBL_SIMD_CLONES void encodeBlock(const TargetPlan& t, int n, int x0, int y, Enco
 // for an unused channel), interleaved by 4 x 4 transposes (bit moves: every word is the float's
 // bits) and streamed to the image, straight from the registers when the image is 16-byte
 // aligned (a std::vector's memory is), else through b.pixels.
-GBL_SIMD_CLONES void encodeMaterial(const CodecPlan& plan, int n, size_t first, uint32_t* const* material,
-                                    EncodeBlock& b, SurfacePrefetch& ahead) {
+GBL_SIMD_CLONES_AVX512 void encodeMaterial(const CodecPlan& plan, int n, size_t first, uint32_t* const* material,
+                                           EncodeBlock& b, SurfacePrefetch& ahead) {
     alignas(32) static const float zeros[kBlock] = {};
     for (int m = 0; m < plan.materialTargets; ++m) {
         ahead.step();
@@ -281,17 +286,17 @@ GBL_SIMD_CLONES void encodeMaterial(const CodecPlan& plan, int n, size_t first, 
 
 // Mirror of encodeField in the former per-pixel codec (and of emitEncodeField in wiring_codegen):
 // scalars per component with each code's bits, vec3 encodings with the first code's bits.
-GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, EncodeBlock& b) {
+GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y, EncodeBlock& b) {
     const uint bits = f.codes[0].bits;
     if (isScalar(f.codec)) {
         for (size_t k = 0; k < f.codes.size(); ++k) {
             const uint bk = f.codes[k].bits;
-            const float* in = b.in[k];
+            const float* in = b.src[k];
             uint32_t* out = b.code[k];
             switch (f.codec) {
                 case Codec::Unorm: map1(n, in, out, [bk](float x) { return quantizeUnorm(x, bk); }); break;
                 case Codec::Snorm: map1(n, in, out, [bk](float x) { return quantizeSnorm(x, bk); }); break;
-                case Codec::Float16: map1(n, in, out, [](float x) { return encodeFloat16Fast(x); }); break;
+                case Codec::Float16: encodeFloat16Row(n, in, out); break;  // F16C where the CPU has it
                 case Codec::Float11: map1(n, in, out, [](float x) { return encodeFloat11Fast(x); }); break;
                 case Codec::Float10: map1(n, in, out, [](float x) { return encodeFloat10Fast(x); }); break;
                 case Codec::Float32: map1(n, in, out, [](float x) { return encodeFloat32(x); }); break;
@@ -311,7 +316,7 @@ GBL_SIMD_CLONES void encodeCodes(const FieldPlan& f, int n, int x0, int y, Encod
         }
         return;
     }
-    const float *x = b.in[0], *yv = b.in[1], *z = b.in[2];
+    const float *x = b.src[0], *yv = b.src[1], *z = b.src[2];
     uint32_t *c0 = b.code[0], *c1 = b.code[1], *c2 = b.code[2];
     switch (f.codec) {
         case Codec::Srgb8:

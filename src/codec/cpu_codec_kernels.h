@@ -8,18 +8,20 @@
 namespace gbl::codec {
 
 // A block of up to kBlock pixels of one row: its Surfaces member-major (s[k][j]), and field by
-// field the field's input components (in[c][j], from s or the field's constant), its codes
+// field the field's input components (src[c]: a row of s, or of in filled with the field's
+// constant; pointing at s saves copying every input of every field), its codes
 // (code[k][j]), and the target's words being assembled (words[w][j], word-major: contiguous per
 // word), then interleaved (pixels) and streamed to the image.
 struct EncodeBlock {
     alignas(32) float s[kSurfaceFloats][kBlock];  // the block's Surfaces, member-major
     alignas(32) float in[4][kBlock];
+    const float* src[4] = {in[0], in[1], in[2], in[3]};  // the current field's inputs (see above)
     alignas(32) uint32_t code[4][kBlock];
     alignas(32) uint32_t words[4][kBlock];
     alignas(32) uint32_t pixels[4 * kBlock];  // the block's words interleaved, as in the image
 };
 
-// Codes of field `f` for the pixels (x0 + j, y), j < n, from b.in into b.code (mirror of the
+// Codes of field `f` for the pixels (x0 + j, y), j < n, from b.src into b.code (mirror of the
 // generated writeGBuffer: the same primitives, src/encoding/encodings.h). Also used to fold constants.
 void encodeCodes(const FieldPlan& f, int n, int x0, int y, EncodeBlock& b);
 

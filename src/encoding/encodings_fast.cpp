@@ -23,6 +23,11 @@
 
 #include "simd_clones.h"
 
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#define GBL_HAVE_F16C_PATH 1
+#endif
+
 namespace gbl::enc {
 
 namespace {
@@ -92,13 +97,13 @@ uvec3 encodeNormalBestFitFast(vec3 n) {
 // Pass 3 is the reference's rest. Each lane performs the reference's
 // IEEE-754 operations in its order (no FMA: -ffp-contract=off), so the codes are identical;
 // tests/encoding/encodings_fast_test.cpp compares them on random and adversarial normals.
-// Results go to local arrays first: GCC 12 drops `restrict` in target_clones clones.
-GBL_SIMD_CLONES void encodeNormalBestFitRow(int n, const float* x, const float* y, const float* z,
-                                            const uint32_t* table, uint32_t* c0, uint32_t* c1, uint32_t* c2) {
+// The passes meet in local arrays (GCC 12 drops `restrict` in target_clones clones, and a local
+// array cannot alias the table); the last pass, which reads no table, writes the codes out.
+GBL_SIMD_CLONES_AVX512 void encodeNormalBestFitRow(int n, const float* x, const float* y, const float* z,
+                                                   const uint32_t* table, uint32_t* c0, uint32_t* c1, uint32_t* c2) {
     constexpr int kChunk = 128;
     alignas(32) float qx[kChunk], qy[kChunk], qz[kChunk];
     alignas(32) uint32_t t[kChunk], valid[kChunk], entry[kChunk];
-    alignas(32) uint32_t o0[kChunk], o1[kChunk], o2[kChunk];
     for (int at = 0; at < n; at += kChunk) {
         const int count = std::min(kChunk, n - at);
         const float* __restrict px = x + at;
@@ -121,7 +126,12 @@ GBL_SIMD_CLONES void encodeNormalBestFitRow(int n, const float* x, const float* 
             t[j] = i * (i + 1u) / 2u + jj;
             valid[j] = ok ? 1u : 0u;
         }
-        for (int j = 0; j < count; ++j) entry[j] = (table[t[j] >> 2u] >> ((t[j] & 3u) * 8u)) & 0xffu;
+        gatherBytes(count, t, table, entry);
+        // Straight into c0..c2: this pass reads only local arrays (no table), so GCC's alias
+        // checks between the three outputs are all the dropped `restrict` costs.
+        uint32_t* o0 = c0 + at;
+        uint32_t* o1 = c1 + at;
+        uint32_t* o2 = c2 + at;
         for (int j = 0; j < count; ++j) {
             const float k = float(255u - 2u * entry[j]);
             const float dx = 2.0f * floor(qx[j] * k * 0.5f) + 1.0f;
@@ -132,9 +142,6 @@ GBL_SIMD_CLONES void encodeNormalBestFitRow(int n, const float* x, const float* 
             o1[j] = ok ? uint(dy + 255.0f) >> 1u : 128u;
             o2[j] = ok ? uint(dz + 255.0f) >> 1u : 255u;
         }
-        std::copy(o0, o0 + count, c0 + at);
-        std::copy(o1, o1 + count, c1 + at);
-        std::copy(o2, o2 + count, c2 + at);
     }
 }
 
@@ -166,6 +173,71 @@ Srgb8EncodeTable thresholdTable(const float (&thresholds)[255], std::vector<uint
 }
 
 }  // namespace
+
+namespace {
+
+void encodeFloat16RowPortable(int n, const float* in, uint32_t* out) {
+    for (int j = 0; j < n; ++j) out[j] = encodeFloat16Fast(in[j]);
+}
+
+#if defined(GBL_HAVE_F16C_PATH)
+__attribute__((target("avx2,f16c"))) void encodeFloat16RowF16c(int n, const float* in, uint32_t* out) {
+    const __m256i absMask = _mm256_set1_epi32(0x7fffffff);
+    const __m256i saturateFrom = _mm256_set1_epi32(0x477fefff);  // compared with >: a >= 0x477ff000
+    const __m256i signMask = _mm256_set1_epi32(0x8000);
+    const __m256i maxFinite = _mm256_set1_epi32(0x7bff);
+    int j = 0;
+    for (; j + 8 <= n; j += 8) {
+        const __m256 x = _mm256_loadu_ps(in + j);
+        const __m256i bits = _mm256_castps_si256(x);
+        const __m256i half = _mm256_cvtepu16_epi32(_mm256_cvtps_ph(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+        // Signed compare is exact here: the magnitudes are below 2^31.
+        const __m256i saturate = _mm256_cmpgt_epi32(_mm256_and_si256(bits, absMask), saturateFrom);
+        const __m256i saturated = _mm256_or_si256(_mm256_and_si256(_mm256_srli_epi32(bits, 16), signMask), maxFinite);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + j), _mm256_blendv_epi8(half, saturated, saturate));
+    }
+    for (; j < n; ++j) out[j] = encodeFloat16Fast(in[j]);
+}
+#endif
+
+using Float16RowFn = void (*)(int, const float*, uint32_t*);
+
+Float16RowFn pickFloat16Row() {
+#if defined(GBL_HAVE_F16C_PATH)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("f16c")) return encodeFloat16RowF16c;
+#endif
+    return encodeFloat16RowPortable;
+}
+
+}  // namespace
+
+void encodeFloat16Row(int n, const float* in, uint32_t* out) {
+    static const Float16RowFn fn = pickFloat16Row();
+    fn(n, in, out);
+}
+
+// Scalar on purpose (encodings_fast.h): no vectorisation, unrolled so the loads stream.
+#if defined(__GNUC__) && !defined(__clang__)
+#define GBL_SCALAR_LOADS __attribute__((optimize("no-tree-vectorize")))
+#else
+#define GBL_SCALAR_LOADS
+#endif
+
+GBL_SCALAR_LOADS void gatherWords(int n, const uint32_t* index, const uint32_t* table, uint32_t* out) {
+#pragma GCC unroll 4
+    for (int j = 0; j < n; ++j) out[j] = table[index[j]];
+}
+
+GBL_SCALAR_LOADS void gatherBytes(int n, const uint32_t* index, const uint32_t* table, uint32_t* out) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(table);  // byte i = entry i
+#pragma GCC unroll 4
+    for (int j = 0; j < n; ++j) out[j] = bytes[index[j]];
+#else
+    for (int j = 0; j < n; ++j) out[j] = (table[index[j] >> 2u] >> ((index[j] & 3u) * 8u)) & 0xffu;
+#endif
+}
 
 const Srgb8EncodeTable& srgb8EncodeTable() {
     static std::vector<uint32_t> entries;

@@ -1,9 +1,10 @@
 // The fast encoder variants the CPU codec uses (src/encoding/encodings_fast.h: the vectorised
 // best-fit normal search, the best-fit table look-up a row at a time, branch-free sRGB, table
-// small floats) return the reference encoders' codes
+// small floats, float16 by F16C) return the reference encoders' codes
 // (src/encoding/encodings.h) for millions of random and adversarial inputs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -266,6 +267,38 @@ TEST(SmallFloatEncodeFast, SameCodesAsTheReference) {
                               << r[i];
     }
     std::printf("[ float16  ] %zu values x 3 encoders, %zu differ\n", xs.size(), bad);
+    EXPECT_EQ(bad, 0u);
+}
+
+// The row form (F16C's VCVTPS2PH plus saturation where the CPU has it) against the reference
+// encodeFloat16: every float whose upper 16 bits are any of the 65536 and whose lower 16 bits sit
+// at or next to a multiple of 2^12 (the rounding points of normal halves), and the rounding points
+// of every subnormal shift (the sweep above), in rows of odd lengths so that the 8-wide loop's
+// tails run.
+TEST(Float16Row, SameCodesAsTheReference) {
+    std::vector<float> xs = floatSweep();
+    for (uint32_t hi = 0; hi < 0x10000u; ++hi)
+        for (uint32_t k = 0; k < 16; ++k)  // lower 16 bits: k 2^12 (odd k: a normal half's rounding point), +-1
+            for (uint32_t lo : {(k << 12) - 1u, k << 12, (k << 12) + 1u})
+                xs.push_back(enc::uintBitsToFloat((hi << 16) | (lo & 0xffffu)));
+    for (uint32_t sign = 0; sign < 2; ++sign)
+        for (uint32_t e = 90; e < 150; ++e)  // half's subnormals and the overflow: rounding at bits 13-23
+            for (int k = 12; k < 24; ++k)
+                for (uint32_t m : {(1u << k) - 1u, 1u << k, (1u << k) + 1u, (3u << k) - 1u, 3u << k, (3u << k) + 1u})
+                    xs.push_back(enc::uintBitsToFloat((sign << 31) | (e << 23) | (m & 0x7fffffu)));
+    std::vector<uint32_t> codes(xs.size());
+    size_t at = 0;
+    for (int len = 1; at < xs.size(); len = len % 37 + 1) {  // rows of 1..37 floats
+        const int n = int(std::min<size_t>(size_t(len), xs.size() - at));
+        enc::encodeFloat16Row(n, xs.data() + at, codes.data() + at);
+        at += size_t(n);
+    }
+    size_t bad = 0;
+    for (size_t i = 0; i < xs.size(); ++i)
+        if (codes[i] != enc::encodeFloat16(xs[i]) && bad++ < 5)
+            ADD_FAILURE() << "bits 0x" << std::hex << enc::floatBitsToUint(xs[i]) << ": row 0x" << codes[i]
+                          << ", reference 0x" << enc::encodeFloat16(xs[i]);
+    std::printf("[ float16  ] row form: %zu values, %zu differ\n", xs.size(), bad);
     EXPECT_EQ(bad, 0u);
 }
 
