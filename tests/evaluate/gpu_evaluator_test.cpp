@@ -173,24 +173,29 @@ TEST_F(GpuEvaluatorTest, ErrorImagesMatchTheCpuMaps) {
     EXPECT_LE(std::abs(images.worst[0].y - cpuWorst[0].y), 8);
 }
 
+// Every pixel covered by the same flat dielectric: normal +z, base and diffuse colour 0.5,
+// specular 0.04, roughness 0.5, occlusion 1, view depth 2 (cases change the pixels they test).
+SurfaceImages flatSurfaces(int w, int h) {
+    SurfaceImages s;
+    s.normal = Image(w, h, 3, 0.0f);
+    for (int i = 0; i < w * h; ++i) s.normal.pixels[size_t(i) * 3 + 2] = 1.0f;
+    s.baseColor = Image(w, h, 3, 0.5f);
+    s.diffuseColor = Image(w, h, 3, 0.5f);
+    s.specularColor = Image(w, h, 3, 0.04f);
+    s.roughness = Image(w, h, 1, 0.5f);
+    s.metallic = Image(w, h, 1, 0.0f);
+    s.occlusion = Image(w, h, 1, 1.0f);
+    s.viewDepth = Image(w, h, 1, 2.0f);
+    s.coverage.assign(size_t(w * h), 1);
+    return s;
+}
+
 // 4 x 2 pixels worked out by hand.
 TEST_F(GpuEvaluatorTest, TinyCaseByHand) {
     const int w = 4, h = 2;
     Image refHdr(w, h, 4, 0.5f), testHdr(w, h, 4, 0.5f);
     testHdr.pixels[0] = 0.6f;  // pixel 0, red: +0.1
-    SurfaceImages rs, ts;
-    for (SurfaceImages* s : {&rs, &ts}) {
-        s->normal = Image(w, h, 3, 0.0f);
-        for (int i = 0; i < w * h; ++i) s->normal.pixels[size_t(i) * 3 + 2] = 1.0f;
-        s->baseColor = Image(w, h, 3, 0.5f);
-        s->diffuseColor = Image(w, h, 3, 0.5f);
-        s->specularColor = Image(w, h, 3, 0.04f);
-        s->roughness = Image(w, h, 1, 0.5f);
-        s->metallic = Image(w, h, 1, 0.0f);
-        s->occlusion = Image(w, h, 1, 1.0f);
-        s->viewDepth = Image(w, h, 1, 2.0f);
-        s->coverage.assign(size_t(w * h), 1);
-    }
+    SurfaceImages rs = flatSurfaces(w, h), ts = flatSurfaces(w, h);
     const double tenDeg = 10.0 * std::numbers::pi / 180.0;
     ts.normal.pixels[3 * 1 + 0] = float(std::sin(tenDeg));  // pixel 1: normal tilted 10 degrees
     ts.normal.pixels[3 * 1 + 2] = float(std::cos(tenDeg));
@@ -251,19 +256,7 @@ TEST_F(GpuEvaluatorTest, FlipAtOddSizesAgreesWithTheCpuOracle) {
                     testHdr.pixels[i] = refHdr.pixels[i] * (1.0f + 0.05f * float(((x + 2 * y + c) % 5) - 2));
                     if (x % 17 < 3 && y % 11 < 2) testHdr.pixels[i] = 4.0f;
                 }
-        SurfaceImages rs, ts;
-        for (SurfaceImages* s : {&rs, &ts}) {
-            s->normal = Image(w, h, 3, 0.0f);
-            for (int i = 0; i < w * h; ++i) s->normal.pixels[size_t(i) * 3 + 2] = 1.0f;
-            s->baseColor = Image(w, h, 3, 0.5f);
-            s->diffuseColor = Image(w, h, 3, 0.5f);
-            s->specularColor = Image(w, h, 3, 0.04f);
-            s->roughness = Image(w, h, 1, 0.5f);
-            s->metallic = Image(w, h, 1, 0.0f);
-            s->occlusion = Image(w, h, 1, 1.0f);
-            s->viewDepth = Image(w, h, 1, 2.0f);
-            s->coverage.assign(size_t(w * h), 1);
-        }
+        SurfaceImages rs = flatSurfaces(w, h), ts = flatSurfaces(w, h);
         UploadedRender ref(ctx(), refHdr, &rs), test(ctx(), testHdr, &ts);
         GpuEvaluator evaluator(ctx(), uint32_t(w), uint32_t(h));
         evaluator.setReference(ref.view(), 1.0f);
