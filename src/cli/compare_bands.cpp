@@ -76,15 +76,19 @@ void addTimes(PassTimings& sum, const PassTimings& t) {
     sum.lightingMs += t.lightingMs;
 }
 
-// The band's own rows (not its halo) of its device HDR image into the frame's.
+// The band's own rows (not its halo) of its device HDR image into the frame's, copied once
+// straight out of the staging memory (downloadImageWith).
 void copyBandRows(const RenderOutput& out, const EvalBand& band, Image& frame) {
     ScopedStage timed(Stage::Readback);
-    const std::vector<uint8_t> bytes = downloadImage(out.device->ctx, out.device->hdr, VK_IMAGE_LAYOUT_GENERAL, 0, 0,
-                                                     band.firstRow - band.imageFirstRow, band.rows);
     const size_t rowBytes = size_t(frame.width) * 4 * sizeof(float);
-    if (frame.channels != 4 || bytes.size() < rowBytes * band.rows)
-        throw std::logic_error("copyBandRows: the band's HDR rows do not fit the frame's RGBA image");
-    std::memcpy(frame.pixels.data() + size_t(band.firstRow) * frame.width * 4, bytes.data(), rowBytes * band.rows);
+    downloadImageWith(
+        out.device->ctx, out.device->hdr, VK_IMAGE_LAYOUT_GENERAL,
+        [&](const uint8_t* bytes, size_t size) {
+            if (frame.channels != 4 || size != rowBytes * band.rows)
+                throw std::logic_error("copyBandRows: the band's HDR rows do not fit the frame's RGBA image");
+            std::memcpy(frame.pixels.data() + size_t(band.firstRow) * frame.width * 4, bytes, size);
+        },
+        0, 0, band.firstRow - band.imageFirstRow, band.rows);
 }
 
 }  // namespace
