@@ -227,7 +227,9 @@ TEST(Diff, HalfExrsReproduceTheReportWithinHalfsRounding) {
     const double peakLo = peak / (1.0 + std::ldexp(1.0, -11)), peakHi = peak / (1.0 - std::ldexp(1.0, -11));
     const double psnrFloat = num(e["psnr_linear_db"]);
     EXPECT_GE(psnrFloat, 20.0 * std::log10(peakLo / (rmseHalf + bound)) - 1e-9);
-    if (rmseHalf > bound) EXPECT_LE(psnrFloat, 20.0 * std::log10(peakHi / (rmseHalf - bound)) + 1e-9);
+    if (rmseHalf > bound) {
+        EXPECT_LE(psnrFloat, 20.0 * std::log10(peakHi / (rmseHalf - bound)) + 1e-9);
+    }
     // The bound is not vacuous here: the run's error is well above half's rounding.
     EXPECT_LT(bound, 0.2 * rmseFloat);
 }
