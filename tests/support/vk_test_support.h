@@ -3,14 +3,24 @@
 // check that the test which ran did not raise a validation error.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <memory>
+#include <string>
 
 #include "vk_context.h"
 
 namespace gbl::test {
 
+// lavapipe unless GBL_TEST_DEVICE names another device as --device does ("gpu", an index, a
+// name): the GPU-against-CPU tests then check a real driver's arithmetic against the CPU oracle.
+inline std::string testDeviceName() {
+    const char* d = std::getenv("GBL_TEST_DEVICE");
+    return d ? d : "";
+}
+
 inline VulkanContext& sharedContext() {
-    static std::unique_ptr<VulkanContext> ctx = std::make_unique<VulkanContext>(DeviceOptions{"", true});
+    static std::unique_ptr<VulkanContext> ctx =
+        std::make_unique<VulkanContext>(DeviceOptions{testDeviceName(), true});
     return *ctx;
 }
 
