@@ -34,6 +34,7 @@
 #include "interrupt.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "parallel_invoke.h"
 #include "progress.h"
 #include "renderer.h"
 #include "report_html.h"
@@ -396,9 +397,10 @@ int runCompareCommand(const std::vector<std::string>& args) {
                                  hdr = gpuEval && !compareLighting  // the files are its last use
                                            ? std::make_shared<const Image>(std::move(ref.output.hdr))
                                            : std::make_shared<const Image>(ref.output.hdr)] {
-                                    writePng(png, toneMapToSrgb8(*hdr, exposure));
-                                    writeExr(exr, *hdr, {}, exrType);
-                                    writePng(log, logEncodeForPreview(*hdr));
+                                    // Side by side (each file is one core's work: 4K on a GPU)
+                                    parallelInvoke({[&] { writePng(png, toneMapToSrgb8(*hdr, exposure)); },
+                                                    [&] { writeExr(exr, *hdr, {}, exrType); },
+                                                    [&] { writePng(log, logEncodeForPreview(*hdr)); }});
                                 });
             model.reference.images.push_back({modeNames[m], ref.renderPng, renderExr, preview});
             }

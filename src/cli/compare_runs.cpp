@@ -7,6 +7,7 @@
 
 #include "color_map.h"
 #include "error_images.h"
+#include "parallel_invoke.h"
 #include "image_io.h"
 #include "stage_clock.h"
 #include "tone_map.h"
@@ -116,6 +117,14 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
 
 }  // namespace
 
+namespace {
+// The run's folder, before its files are written side by side (the EXR writer does not create it).
+void makeRunDirectory(const fs::path& outDir, const std::string& prefix) {
+    std::error_code ec;
+    fs::create_directories((outDir / (prefix + "render.exr")).parent_path(), ec);
+}
+}  // namespace
+
 // The files of a run measured on the device: the 8-bit images the evaluator made, the HDR render
 // (render.exr and its log preview) and the crops.
 void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics& m, std::shared_ptr<const Image> hdr,
@@ -141,11 +150,19 @@ void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics
     auto owned = std::make_shared<GpuErrorImages>(std::move(images));
     auto write = [outDir, prefix, owned, m, hdr, imageOptions, exrType = output.exrType] {
         const GpuErrorImages& g = *owned;
-        writeErrorImageBodies(outDir, prefix, ErrorImageBodies{g.render, g.heat, g.flip, g.normal, g.difference}, m,
-                              imageOptions);
-        writeExr((outDir / (prefix + "render.exr")).string(), *hdr, {}, exrType);
-        writePng((outDir / (prefix + "render_log.png")).string(), logEncodeForPreview(*hdr));
-        if (!g.worst.empty()) writeCrops(outDir, prefix, g.worst, g.reference, g.render, g.heat);
+        makeRunDirectory(outDir, prefix);
+        // Every file side by side: one 4K file is one core's work, and on a GPU the run's files
+        // are most of its time (compare at 4K: report writing 4.5 s of 7.9 s when they ran one by one).
+        parallelInvoke({[&] {
+                            writeErrorImageBodies(outDir, prefix,
+                                                  ErrorImageBodies{g.render, g.heat, g.flip, g.normal, g.difference},
+                                                  m, imageOptions);
+                        },
+                        [&] { writeExr((outDir / (prefix + "render.exr")).string(), *hdr, {}, exrType); },
+                        [&] { writePng((outDir / (prefix + "render_log.png")).string(), logEncodeForPreview(*hdr)); },
+                        [&] {
+                            if (!g.worst.empty()) writeCrops(outDir, prefix, g.worst, g.reference, g.render, g.heat);
+                        }});
     };
     if (output.writer) output.writer->enqueue(prefix, std::move(write));  // named by the run's prefix
     else write();
@@ -202,13 +219,16 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
     if (!output.writer) hdr = std::shared_ptr<const Image>(std::shared_ptr<const Image>(), &test.hdr);
     else hdr = std::make_shared<const Image>(releaseTest ? std::move(test.hdr) : test.hdr);
     auto write = [outDir, prefix, maps, m, hdr, crops, imageOptions, exrType = output.exrType] {
-        writeErrorImages(outDir, prefix, *maps, m, imageOptions);
-        writeExr((outDir / (prefix + "render.exr")).string(), *hdr, {}, exrType);
-        writePng((outDir / (prefix + "render_log.png")).string(), logEncodeForPreview(*hdr));
-        if (!crops.empty()) {
-            const Image8 heat = applyColorMap(maps->relLuminance, 0.0f, imageOptions.heatMax);
-            writeCrops(outDir, prefix, crops, srgbFloatTo8(*maps->referenceSrgb), srgbFloatTo8(maps->testSrgb), heat);
-        }
+        makeRunDirectory(outDir, prefix);
+        parallelInvoke({[&] { writeErrorImages(outDir, prefix, *maps, m, imageOptions); },
+                        [&] { writeExr((outDir / (prefix + "render.exr")).string(), *hdr, {}, exrType); },
+                        [&] { writePng((outDir / (prefix + "render_log.png")).string(), logEncodeForPreview(*hdr)); },
+                        [&] {
+                            if (crops.empty()) return;
+                            const Image8 heat = applyColorMap(maps->relLuminance, 0.0f, imageOptions.heatMax);
+                            writeCrops(outDir, prefix, crops, srgbFloatTo8(*maps->referenceSrgb),
+                                       srgbFloatTo8(maps->testSrgb), heat);
+                        }});
     };
     // Named by the run's file prefix: a failure is matched back to its run (cmd_compare.cpp).
     if (output.writer) output.writer->enqueue(prefix, std::move(write));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -72,8 +73,20 @@ std::vector<Binding> bindings() {
 
 uint32_t EvalDevice::kHistBinsTotal() { return kHistBins; }
 
+namespace {
+bool cpuDevice(const VulkanContext& c) { return c.info.type == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+uint32_t groupsFor(const VulkanContext& c) {
+    if (const char* v = std::getenv("GBL_EVAL_GROUPS"); v && *v) {
+        const long n = std::strtol(v, nullptr, 10);
+        if (n >= 1 && n <= 65535) return uint32_t(n);
+    }
+    return cpuDevice(c) ? kCpuGroups : kGpuGroups;
+}
+}  // namespace
+
 EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t rows)
-    : ctx(c), width(w), height(h), planeRows(rows == 0 ? h : std::min(rows, h)) {
+    : ctx(c), width(w), height(h), planeRows(rows == 0 ? h : std::min(rows, h)), groups(groupsFor(c)),
+      keepScratch(!cpuDevice(c)) {
     setWholeFrameView();
     if (!ctx.shaderFloat64)
         throwUserError("--eval gpu: the Vulkan device '" + ctx.info.name +
@@ -95,7 +108,8 @@ EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t 
     }
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     dummy_ = createBuffer(ctx, 256, storage, false);
-    partials_ = createBuffer(ctx, VkDeviceSize(kInvocations) * kMaxFields * sizeof(double), storage, false);
+    // Stage-1 records, then room for the chunk sums of a chunked reduction.
+    partials_ = createBuffer(ctx, VkDeviceSize(groups * 64 + kReduceChunks) * kMaxFields * sizeof(double), storage, false);
     histograms_ = createBuffer(ctx, VkDeviceSize(kHistCount) * kHistBins * 4, storage, true);
     constants_ = createBuffer(ctx, 256 * 4 + kConstantFloats * 4, storage, true);
     result_ = createBuffer(ctx, 4 * kMaxFields * sizeof(double), storage, true);
@@ -207,7 +221,8 @@ void EvalDevice::setKernels(const std::vector<float>& kernels) {
     std::memcpy(static_cast<uint32_t*>(constants_.mapped) + 256, kernels.data(), kernels.size() * 4);
 }
 
-void EvalDevice::dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint32_t groups) const {
+void EvalDevice::dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint32_t groupCount) const {
+    const uint32_t count = groupCount ? groupCount : groups;
     Push p = push;
     p.width = width;
     p.height = viewRows_;
@@ -217,7 +232,7 @@ void EvalDevice::dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint
         vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[size_t(pass)]);
         vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
         vkCmdPushConstants(c, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push), &p);
-        vkCmdDispatch(c, groups, 1, 1);
+        vkCmdDispatch(c, count, 1, 1);
         fullBarrier(c);
     };
     if (profile_) return profiled(profileKind(pass, p), record);
@@ -238,8 +253,22 @@ void EvalDevice::reduce(VkCommandBuffer cmd, uint32_t fields, const std::array<u
     Push p;
     p.u[0] = fields;
     for (int k = 0; k < 4; ++k) p.u[1 + k] = maxMask[size_t(k)];
-    p.u[5] = kInvocations;
     p.u[6] = resultOffset;
+    const uint32_t records = groups * 64;
+    if (records <= kReduceChunkAbove) {  // one invocation per field walks every record (lavapipe)
+        p.u[5] = records;
+        dispatch(cmd, Pass::Reduce, p, (fields + 63) / 64);
+        return;
+    }
+    // Chunks: field f of chunk c folds records [c R / C, (c + 1) R / C) into record R + c; then
+    // the C chunk records are folded as above.
+    p.mode = 1;
+    p.flags = kReduceChunks;
+    p.u[5] = records;
+    dispatch(cmd, Pass::Reduce, p, (fields * kReduceChunks + 63) / 64);
+    p.mode = 0;
+    p.u[5] = kReduceChunks;
+    p.u[7] = records;
     dispatch(cmd, Pass::Reduce, p, (fields + 63) / 64);
 }
 

@@ -34,9 +34,17 @@ enum Out8Slot : uint32_t { kOutRender = 0, kOutDifference, kOutHeat, kOutFlip, k
 // Histograms (binding 6).
 enum HistSlot : uint32_t { kHistAbsLinear = 0, kHistFlip = 1, kHistAttributes = 2 /* + 2 attribute + class */,
                            kHistLuminance = 18, kHistRefine = 19, kHistCount = 20 };
-inline constexpr uint32_t kGroups = 128;  // workgroups of 64 per pass: 8192 invocations, grid-stride
-inline constexpr uint32_t kInvocations = kGroups * 64;
+// Workgroups of 64 per grid-stride pass. On a CPU device (lavapipe) 128 groups, 8192 invocations:
+// a few per core, each walking many pixels. On a GPU that leaves nearly every multiprocessor idle
+// (an H200 holds 270,336 resident invocations; with 8192 a 4K compare spent 1.9 s in metrics),
+// so a GPU gets kGpuGroups (GBL_EVAL_GROUPS overrides both, for measurements).
+inline constexpr uint32_t kCpuGroups = 128;
+inline constexpr uint32_t kGpuGroups = 2048;
 inline constexpr uint32_t kMaxFields = 96;
+// Above this many stage-1 records the reduction folds them in kReduceChunks fixed chunks first
+// (one invocation per field and chunk), then the chunks: the same order on every run.
+inline constexpr uint32_t kReduceChunkAbove = 8192;
+inline constexpr uint32_t kReduceChunks = 256;
 
 struct Push {
     uint32_t width = 0, height = 0, mode = 0, flags = 0;
@@ -60,6 +68,11 @@ public:
     const VulkanContext& ctx;
     const uint32_t width, height;  // the frame
     const uint32_t planeRows;
+    const uint32_t groups;  // of every grid-stride pass (kCpuGroups / kGpuGroups)
+    // Scratch (FLIP's planes, the 8-bit outputs) kept from one evaluation to the next: on a GPU,
+    // where allocating hundreds of MB per run costs more than the passes; a CPU device frees it
+    // between runs (its memory is the process's: the 4K peak).
+    const bool keepScratch;
 
     // What the passes see: bound images of width x imageRows (imageRows <= planeRows), of which
     // rows [countedFirst, countedFirst + countedRows) count. The default view is the whole frame.
@@ -80,7 +93,8 @@ public:
     // Writes the kernels region of the constants buffer (binding 8) after the colour map.
     void setKernels(const std::vector<float>& kernels);
 
-    void dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint32_t groups = kGroups) const;
+    // groupCount 0: `groups`.
+    void dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint32_t groupCount = 0) const;
     // Stage 2: result[offset + f] = sum (max where bit f of maxMask) over the stage-1 records.
     void reduce(VkCommandBuffer cmd, uint32_t fields, const std::array<uint32_t, 4>& maxMask, uint32_t resultOffset) const;
     void clearHistograms(VkCommandBuffer cmd) const;
