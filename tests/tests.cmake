@@ -44,6 +44,7 @@ gbl_test(render/render_test LABELS gpu DEPS gbl_render)
 gbl_test(render/visibility_test LABELS gpu DEPS gbl_render)
 gbl_test(render/pipeline_reuse_test LABELS gpu DEPS gbl_render gbl_layout)
 gbl_test(render/render_band_test LABELS gpu DEPS gbl_render gbl_layout)
+gbl_test(render/memory_recycler_test LABELS gpu DEPS gbl_render gbl_layout)
 gbl_test(render/cpu_decode_test LABELS gpu DEPS gbl_render gbl_layout)  # the read-back on the CPU codec vs the decode pass
 gbl_test(evaluate/histogram_test LABELS unit DEPS gbl_evaluate)
 gbl_test(evaluate/eval_profile_test LABELS unit DEPS gbl_evaluate)

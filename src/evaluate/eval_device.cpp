@@ -82,6 +82,19 @@ uint32_t groupsFor(const VulkanContext& c) {
     }
     return cpuDevice(c) ? kCpuGroups : kGpuGroups;
 }
+bool envSet(const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v && std::strcmp(v, "0") != 0;
+}
+// Subgroup vote and ballot in compute shaders (eval_common.glsl histAdd).
+bool subgroupVoteAndBallot(const VulkanContext& c) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
+    vkGetPhysicalDeviceProperties2(c.physicalDevice, &properties);
+    const VkSubgroupFeatureFlags needed =
+        VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
+    return (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) && (subgroup.supportedOperations & needed) == needed;
+}
 }  // namespace
 
 EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t rows)
@@ -97,8 +110,10 @@ EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t 
     pipelineLayout_ = createPipelineLayout(ctx.device, {setLayout_}, sizeof(Push), VK_SHADER_STAGE_COMPUTE_BIT);
     pool_ = createPoolFor(ctx.device, {b});
     set_ = allocateSet(ctx.device, pool_, setLayout_);
+    const bool subgroupHist = subgroupVoteAndBallot(ctx) && !envSet("GBL_EVAL_NO_SUBGROUPS");
     for (size_t p = 0; p < size_t(Pass::Count); ++p) {
         ShaderSource s = loadShaderFile(shaderFile(Pass(p)));
+        if (subgroupHist) s.defines.push_back({"EVAL_SUBGROUP_HIST", "1"});
         s.defines.push_back({"EVAL_PLANE_COUNT", std::to_string(kPlaneCount)});
         s.defines.push_back({"EVAL_OUT8_COUNT", std::to_string(kOut8Count)});
         s.defines.push_back({"EVAL_HIST_BINS", std::to_string(kHistBins) + "u"});

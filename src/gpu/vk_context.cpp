@@ -262,6 +262,7 @@ VulkanContext::VulkanContext(const DeviceOptions& options) {
         pool.queueFamilyIndex = queueFamily;
         VK_CHECK(vkCreateCommandPool(device, &pool, nullptr, &commandPool));
         pipelineCache_.open(device, properties);
+        recycler.enable(device, info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
     } catch (...) {
         release();
         throw;
@@ -273,6 +274,7 @@ VulkanContext::~VulkanContext() { release(); }
 void VulkanContext::release() noexcept {
     if (device) {
         vkDeviceWaitIdle(device);
+        recycler.clear();
         pipelineCache_.save();
         pipelineCache_.destroy();
         if (commandPool) vkDestroyCommandPool(device, commandPool, nullptr);

@@ -10,6 +10,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "memory_recycler.h"
 #include "shader_cache.h"
 
 namespace gbl {
@@ -71,6 +72,9 @@ public:
     // written back when the context is destroyed.
     VkPipelineCache pipelineCache() const { return pipelineCache_.handle(); }
     const std::string& pipelineCacheNote() const { return pipelineCache_.note(); }
+
+    // Freed device memory kept for reuse on a GPU (memory_recycler.h; off on a CPU device).
+    mutable MemoryRecycler recycler;
 
     // Records `record` into a one-time command buffer, submits it and waits.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;

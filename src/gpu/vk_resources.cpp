@@ -15,22 +15,28 @@ Buffer createBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFl
     VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &b.buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = hostVisible
+    b.memoryType = hostVisible
         ? ctx.findMemoryType(req.memoryTypeBits,
                              VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
                              VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
         : ctx.findMemoryType(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VK_CHECK(vkAllocateMemory(ctx.device, &alloc, nullptr, &b.memory));
+    b.allocationSize = req.size;
+    b.memory = ctx.recycler.take(b.memoryType, req.size, &b.mapped);
+    if (!b.memory) {
+        VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        alloc.allocationSize = req.size;
+        alloc.memoryTypeIndex = b.memoryType;
+        VK_CHECK(vkAllocateMemory(ctx.device, &alloc, nullptr, &b.memory));
+    }
     VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
-    if (hostVisible) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+    if (hostVisible && !b.mapped) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
     return b;
 }
 
 void destroyBuffer(const VulkanContext& ctx, Buffer& b) {
     if (b.buffer) vkDestroyBuffer(ctx.device, b.buffer, nullptr);
-    if (b.memory) vkFreeMemory(ctx.device, b.memory, nullptr);
+    if (b.memory && !ctx.recycler.park(b.memory, b.memoryType, b.allocationSize, b.mapped, b.mapped != nullptr))
+        vkFreeMemory(ctx.device, b.memory, nullptr);
     b = Buffer{};
 }
 
@@ -91,10 +97,16 @@ GpuImage createImage(const VulkanContext& ctx, const ImageDesc& desc) {
     VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &img.image));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx.device, img.image, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = ctx.findMemoryType(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VK_CHECK(vkAllocateMemory(ctx.device, &alloc, nullptr, &img.memory));
+    img.memoryType = ctx.findMemoryType(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    img.allocationSize = req.size;
+    void* unusedMapping = nullptr;  // device-local images are never mapped
+    img.memory = ctx.recycler.take(img.memoryType, req.size, &unusedMapping);
+    if (!img.memory) {
+        VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        alloc.allocationSize = req.size;
+        alloc.memoryTypeIndex = img.memoryType;
+        VK_CHECK(vkAllocateMemory(ctx.device, &alloc, nullptr, &img.memory));
+    }
     VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view.image = img.image;
@@ -120,7 +132,8 @@ VkImageView createMipView(const VulkanContext& ctx, const GpuImage& image, uint3
 void destroyImage(const VulkanContext& ctx, GpuImage& img) {
     if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
     if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
-    if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
+    if (img.memory && !ctx.recycler.park(img.memory, img.memoryType, img.allocationSize, nullptr, false))
+        vkFreeMemory(ctx.device, img.memory, nullptr);
     img = GpuImage{};
 }
 

@@ -16,6 +16,8 @@ struct Buffer {
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkDeviceSize size = 0;
     void* mapped = nullptr;  // non-null when host visible
+    uint32_t memoryType = 0;  // of `memory` (its size: allocationSize), for the recycler
+    VkDeviceSize allocationSize = 0;
 };
 
 struct GpuImage {
@@ -27,6 +29,8 @@ struct GpuImage {
     uint32_t mipLevels = 1;
     uint32_t layers = 1;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    uint32_t memoryType = 0;  // of `memory` (its size: allocationSize), for the recycler
+    VkDeviceSize allocationSize = 0;
 };
 
 Buffer createBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
