@@ -34,6 +34,7 @@
 #include "interrupt.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "parallel_for.h"
 #include "parallel_invoke.h"
 #include "progress.h"
 #include "renderer.h"
@@ -264,7 +265,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
     // Image files are written on a worker thread while the next run renders; at most two runs'
     // images wait (each job owns its images: memory stays bounded).
     // In bands a run's images span the frame while its bands do not: one run waits at most.
-    BackgroundWriter imageWriter(1, bandPlan.banded() ? 1 : 2);
+    // With many cores (a GPU workstation) two runs' files are written at once: each run's files
+    // already go side by side, but one 4K PNG is one core's work and the next run is ready sooner.
+    BackgroundWriter imageWriter(bandPlan.banded() || hardwareThreads() < 8 ? 1 : 2, bandPlan.banded() ? 1 : 2);
     const ImageOutput imageOutput{&imageWriter, exrType};
     // The action below uses this function's locals: it is cleared on every way out (an exception
     // included), before they are destroyed.
