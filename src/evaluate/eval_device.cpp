@@ -125,12 +125,18 @@ EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t 
     dummy_ = createBuffer(ctx, 256, storage, false);
     // Stage-1 records, then room for the chunk sums of a chunked reduction.
     partials_ = createBuffer(ctx, VkDeviceSize(groups * 64 + kReduceChunks) * kMaxFields * sizeof(double), storage, false);
-    histograms_ = createBuffer(ctx, VkDeviceSize(kHistCount) * kHistBins * 4, storage, true);
-    constants_ = createBuffer(ctx, 256 * 4 + kConstantFloats * 4, storage, true);
+    const VkDeviceSize histogramBytes = VkDeviceSize(kHistCount) * kHistBins * 4;
+    const VkDeviceSize constantBytes = 256 * 4 + kConstantFloats * 4;
+    histograms_ = createBuffer(ctx, histogramBytes, storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false);
+    histogramsHost_ = createBuffer(ctx, histogramBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    constants_ = createBuffer(ctx, constantBytes, storage, false);
+    constantsHost_ = createBuffer(ctx, constantBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memset(constantsHost_.mapped, 0, size_t(constantBytes));
     result_ = createBuffer(ctx, 4 * kMaxFields * sizeof(double), storage, true);
-    uint32_t* table = static_cast<uint32_t*>(constants_.mapped);
+    uint32_t* table = static_cast<uint32_t*>(constantsHost_.mapped);
     const auto& viridis = viridisTable();
     for (size_t i = 0; i < 256; ++i) table[i] = viridis[i].r | (uint32_t(viridis[i].g) << 8) | (uint32_t(viridis[i].b) << 16);
+    uploadConstants();
     rebindBuffers();
     if (EvalProfile::wanted()) profile_ = std::make_unique<EvalProfile>(profileKinds(), ctx.info.name);
 }
@@ -139,7 +145,8 @@ EvalDevice::~EvalDevice() {
     profile_.reset();
     for (Buffer& p : planes_) destroyBuffer(ctx, p);
     for (Buffer& p : out8_) destroyBuffer(ctx, p);
-    for (Buffer* b : {&dummy_, &partials_, &histograms_, &constants_, &result_, &tiles_}) destroyBuffer(ctx, *b);
+    for (Buffer* b : {&dummy_, &partials_, &histograms_, &histogramsHost_, &constants_, &constantsHost_, &result_, &tiles_})
+        destroyBuffer(ctx, *b);
     for (VkPipeline p : pipelines_) vkDestroyPipeline(ctx.device, p, nullptr);
     vkDestroyPipelineLayout(ctx.device, pipelineLayout_, nullptr);
     vkDestroyDescriptorSetLayout(ctx.device, setLayout_, nullptr);
@@ -233,11 +240,34 @@ void EvalDevice::ensureTiles(size_t count) {
 
 void EvalDevice::setKernels(const std::vector<float>& kernels) {
     if (kernels.size() > kConstantFloats) throw std::logic_error("evaluate: FLIP kernels exceed the constants buffer");
-    std::memcpy(static_cast<uint32_t*>(constants_.mapped) + 256, kernels.data(), kernels.size() * 4);
+    std::memcpy(static_cast<uint32_t*>(constantsHost_.mapped) + 256, kernels.data(), kernels.size() * 4);
+    uploadConstants();
+}
+
+void EvalDevice::uploadConstants() {
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy region{0, 0, constantsHost_.size};
+        vkCmdCopyBuffer(cmd, constantsHost_.buffer, constants_.buffer, 1, &region);
+        fullBarrier(cmd);
+    });
+}
+
+const uint32_t* EvalDevice::histogram(uint32_t slot) const {
+    if (histogramsDirty_) {
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            fullBarrier(cmd);
+            const VkBufferCopy region{0, 0, histograms_.size};
+            vkCmdCopyBuffer(cmd, histograms_.buffer, histogramsHost_.buffer, 1, &region);
+            fullBarrier(cmd);
+        });
+        histogramsDirty_ = false;
+    }
+    return static_cast<const uint32_t*>(histogramsHost_.mapped) + size_t(slot) * kHistBinsTotal();
 }
 
 void EvalDevice::dispatch(VkCommandBuffer cmd, Pass pass, const Push& push, uint32_t groupCount) const {
     const uint32_t count = groupCount ? groupCount : groups;
+    histogramsDirty_ = true;  // any pass may add to them
     Push p = push;
     p.width = width;
     p.height = viewRows_;
@@ -288,6 +318,7 @@ void EvalDevice::reduce(VkCommandBuffer cmd, uint32_t fields, const std::array<u
 }
 
 void EvalDevice::clearHistograms(VkCommandBuffer cmd) const {
+    histogramsDirty_ = true;
     auto record = [&](VkCommandBuffer c) {
         vkCmdFillBuffer(c, histograms_.buffer, 0, VK_WHOLE_SIZE, 0);
         fullBarrier(c);
