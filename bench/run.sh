@@ -12,6 +12,11 @@
 #            GBL_BENCH_4K_LAYOUTS (default ue4,ryse,crysis3-thin) as mem4k does, and
 #            `gbufferlab render` at 3840x2160 whole and with --band-rows 256 and 64 (peak memory;
 #            the EXRs compared byte for byte)
+#   gpu4k    issue 14's GPU goal: `gbufferlab compare` of the four seed layouts at 3840x2160 (3 views)
+#            on GBL_BENCH_DEVICE (default gpu) on fresh caches, then three warm runs: wall, CPU
+#            and peak memory per run in results/gpu4k_*.txt, the device and driver in
+#            results/gpu4k_device.txt, each run's timings.json; prints the median warm wall time
+#            against the goal (< 2 s)
 #   mem4k    `gbufferlab compare` at 3840x2160 with GBL_BENCH_4K_LAYOUTS, one view: in bands (the
 #            default there on lavapipe) and on whole frames with --eval gpu and cpu: peak RSS and
 #            wall time in results/compare_4k_rss_<mode>.txt; the banded numbers checked against
@@ -29,7 +34,9 @@
 #            in results/coldwarm_<WxH>_<mesa>_*; e.g. bench/run.sh coldwarm:480x270 coldwarm:1920x1080
 # environment:
 #   GBL_BENCH_REPETITIONS (default 3; medians are reported), GBL_BENCH_BUILD_DIR (default build-bench),
-#   GBL_BENCH_FILTER (a --benchmark_filter regex), GBL_BENCH_4K, GBL_BENCH_LAYOUTS, GBL_BENCH_DEVICE
+#   GBL_BENCH_FILTER (a --benchmark_filter regex), GBL_BENCH_4K, GBL_BENCH_LAYOUTS, GBL_BENCH_DEVICE,
+#   GBL_BENCH_NO_BUILD=1 (use the binaries already in GBL_BENCH_BUILD_DIR: a machine without the
+#   build's packages, e.g. a lent GPU machine given a build made elsewhere)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -45,12 +52,14 @@ for w in "${what[@]}"; do
         codec) targets+=(codec_bench) ;;
         gpu) targets+=(gpu_pass_bench) ;;
         compare) targets+=(compare_bench) ;;
-        e2e | coldwarm | search | mem4k) targets+=(gbufferlab) ;;
+        e2e | coldwarm | search | mem4k | gpu4k) targets+=(gbufferlab) ;;
     esac
 done
 
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGBL_BUILD_BENCH=ON >/dev/null
-cmake --build "$build" --target "${targets[@]}" -j2
+if [ -z "${GBL_BENCH_NO_BUILD:-}" ]; then
+    cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGBL_BUILD_BENCH=ON >/dev/null
+    cmake --build "$build" --target "${targets[@]}" -j2
+fi
 mkdir -p "$results"
 
 run_bench() {  # name
@@ -76,6 +85,31 @@ run_mem4k() {
         cat "$results/compare_4k_rss_$mode.txt"
     done
     python3 bench/report_numbers.py "$results/compare-4k-gpu/report.json" "$results/compare-4k-bands/report.json"
+}
+
+# Issue 14's GPU goal: every seed layout at 4K, compare end to end, in under 2 s of wall time.
+run_gpu4k() {
+    local device=${GBL_BENCH_DEVICE:-gpu} cache
+    cache=$(mktemp -d)
+    "$build/gbufferlab" devices | tee "$results/gpu4k_device.txt"
+    for run in cold warm1 warm2 warm3; do
+        echo "== gbufferlab compare --device $device, 3840x2160, the seed layouts, 3 views ($run)"
+        GBL_CACHE_DIR="$cache" /usr/bin/time -f '%e %U %S %M' -o "$results/gpu4k_${run}_time.txt" \
+            "$build/gbufferlab" compare --device "$device" --size 3840x2160 --layouts ue4,ryse,crysis2-slim,crysis3-thin \
+            --out "$results/compare-gpu4k-$run" --force >"$results/gpu4k_${run}_console.txt"
+        cp "$results/compare-gpu4k-$run/timings.json" "$results/gpu4k_${run}.json"
+        grep -E '^time by stage|^total' "$results/gpu4k_${run}_console.txt"
+        echo "wall, user, system (s), peak KiB: $(cat "$results/gpu4k_${run}_time.txt")"
+    done
+    rm -rf "$cache"
+    python3 - "$results" <<'PY'
+import statistics, sys
+walls = [float(open(f"{sys.argv[1]}/gpu4k_warm{i}_time.txt").read().split()[0]) for i in (1, 2, 3)]
+cold = float(open(f"{sys.argv[1]}/gpu4k_cold_time.txt").read().split()[0])
+m = statistics.median(walls)
+print(f"4K seed layouts, warm wall median {m:.2f} s (goal < 2 s: {'met' if m < 2 else 'missed'}); "
+      f"first run {cold:.2f} s = {cold / m:.2f}x warm")
+PY
 }
 
 for w in "${what[@]}"; do
@@ -104,6 +138,7 @@ for w in "${what[@]}"; do
             done
             ;;
         mem4k) run_mem4k ;;
+        gpu4k) run_gpu4k ;;
         search)
             out="$results/search-16"
             rm -rf "$out"
@@ -140,7 +175,7 @@ print(f"first run / warm run ({sys.argv[3]}, Mesa cache {sys.argv[4]}): wall {co
       f"CPU (user + system) {(cold[1] + cold[2]) / (warm[1] + warm[2]):.3f}x")
 PY
             ;;
-        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, search, coldwarm[:WxH])" >&2; exit 2 ;;
+        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, mem4k, gpu4k, search, coldwarm[:WxH])" >&2; exit 2 ;;
     esac
 done
 
