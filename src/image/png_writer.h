@@ -1,0 +1,34 @@
+#pragma once
+// gbufferlab's own PNG encoder: one large image deflated on several cores.
+//
+// The rows are filtered with Sub (PNG filter type 1) and split into contiguous bands of rows
+// ("chunks"), each deflated on its own by zlib at level 1 as an independent piece of one zlib
+// stream, the way pigz splits a file: every piece but the last ends on a byte boundary with no
+// back-reference into the next, so the pieces can be compressed side by side and concatenated.
+// writePng (image_io.h) writes what encodePng returns.
+#include <cstdint>
+#include <vector>
+
+#include "image.h"
+
+namespace gbl {
+
+// Filtered bytes (filter byte + one row) per chunk that pngChunkCount aims at: 1 MiB keeps the
+// stream within 0.1% of one zlib stream's size (each chunk starts with an empty dictionary and
+// ends with a 4-5 byte flush marker) and gives a 4K RGB image 24 chunks for up to 24 cores.
+inline constexpr int64_t kPngChunkBytes = int64_t(1) << 20;
+
+// How many chunks encodePng splits `image` into when asked for 0: from the image's size alone
+// (never the machine's thread count), so a file's bytes are the same on every machine. An image
+// of at most kPngChunkBytes of filtered data is one chunk.
+int pngChunkCount(const Image8& image);
+
+// The PNG file for `image` (1-4 channels, 8 bits each: gray, gray+alpha, RGB, RGBA), its rows
+// split into `chunks` bands (clamped to [1, height]; 0: pngChunkCount(image)), deflated on up to
+// hardwareThreads() threads. One IDAT chunk per band. With one band the file is byte for byte
+// what stb_image_write writes with the Sub filter forced and zlib's compress2 at level 1.
+// Throws std::invalid_argument for an inconsistent image (a bug of the caller, not user input)
+// and std::runtime_error if zlib fails (out of memory).
+std::vector<unsigned char> encodePng(const Image8& image, int chunks = 0);
+
+}  // namespace gbl
