@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <climits>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -148,10 +149,10 @@ std::vector<unsigned char> encodePng(const Image8& image, int chunks) {
         band.endRow = int64_t(image.height) * (b + 1) / count;
         tasks.emplace_back([&image, &band, rowBytes, last = b == count - 1] {
             band.filtered = size_t(band.endRow - band.firstRow) * rowBytes;
-            std::vector<unsigned char> filtered(band.filtered);
-            filterRows(image, band.firstRow, band.endRow, filtered.data());
-            band.adler = adler32_z(adler32_z(0, nullptr, 0), filtered.data(), filtered.size());
-            deflateBand(band, filtered.data(), filtered.size(), last);
+            const std::unique_ptr<unsigned char[]> filtered(new unsigned char[band.filtered]);  // every byte written
+            filterRows(image, band.firstRow, band.endRow, filtered.get());
+            band.adler = adler32_z(adler32_z(0, nullptr, 0), filtered.get(), band.filtered);
+            deflateBand(band, filtered.get(), band.filtered, last);
         });
     }
     parallelInvoke(tasks);
