@@ -11,7 +11,9 @@
 // The image: a viridis error heat map (applyColorMap, as compare's error images) of a smooth
 // field plus per-pixel noise; GBL_BENCH_PNG_IMAGE=<file.png> encodes that PNG instead (e.g. a
 // heat map from a real 4K compare). Counters: bytes (the file's size), chunks, threads,
-// Mpix_per_s. Wall time (the work runs on several threads).
+// Mpix_per_s, cpu_ms (CPU time of the whole process, every thread, per encode: the work the
+// bands cost, which a loaded machine does not change much). Wall time (the work runs on several
+// threads).
 #include <benchmark/benchmark.h>
 #include <zlib.h>
 
@@ -20,6 +22,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <random>
+#include <sys/resource.h>
 #include <vector>
 
 #include "color_map.h"
@@ -82,7 +85,16 @@ std::vector<unsigned char> oldEncode(const gbl::Image8& image) {
     return png;
 }
 
-void setCounters(benchmark::State& state, const gbl::Image8& image, size_t bytes, int chunks) {
+// CPU seconds of the whole process so far, every thread (user + system).
+double processCpuSeconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+void setCounters(benchmark::State& state, const gbl::Image8& image, size_t bytes, int chunks, double cpuSeconds) {
+    state.counters["cpu_ms"] = 1e3 * cpuSeconds / double(state.iterations());
     state.counters["bytes"] = double(bytes);
     state.counters["chunks"] = chunks;
     state.counters["threads"] = gbl::hardwareThreads();
@@ -93,12 +105,13 @@ void setCounters(benchmark::State& state, const gbl::Image8& image, size_t bytes
 void BM_PngOld(benchmark::State& state) {
     const gbl::Image8& image = benchImage();
     size_t bytes = 0;
+    const double cpu = processCpuSeconds();
     for (auto _ : state) {
         const auto png = oldEncode(image);
         bytes = png.size();
         benchmark::DoNotOptimize(png.data());
     }
-    setCounters(state, image, bytes, 1);
+    setCounters(state, image, bytes, 1, processCpuSeconds() - cpu);
 }
 BENCHMARK(BM_PngOld)->Name("png/old_stb")->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -106,12 +119,14 @@ void BM_PngNew(benchmark::State& state) {
     const gbl::Image8& image = benchImage();
     const int chunks = int(state.range(0));
     size_t bytes = 0;
+    const double cpu = processCpuSeconds();
     for (auto _ : state) {
         const auto png = gbl::encodePng(image, chunks);
         bytes = png.size();
         benchmark::DoNotOptimize(png.data());
     }
-    setCounters(state, image, bytes, chunks > 0 ? std::min(chunks, image.height) : gbl::pngChunkCount(image));
+    setCounters(state, image, bytes, chunks > 0 ? std::min(chunks, image.height) : gbl::pngChunkCount(image),
+                processCpuSeconds() - cpu);
 }
 BENCHMARK(BM_PngNew)
     ->Name("png/new")

@@ -277,7 +277,8 @@ def png(results):
         return
     print(f"== png_bench: one 3840x2160 RGB heat map, in memory (medians; {ctx.get('num_cpus', '?')} CPUs, "
           f"load average {ctx.get('load_avg', ['?'])[0]})")
-    print(f"    {'encoder':22s} {'chunks':>6s} {'threads':>7s} {'ms':>8s} {'x faster':>8s} {'bytes':>10s} {'size':>8s}")
+    print(f"    {'encoder':22s} {'chunks':>6s} {'threads':>7s} {'wall ms':>8s} {'x faster':>8s} {'CPU ms':>7s} "
+          f"{'bytes':>10s} {'size':>8s}")
     for k in ["png/old_stb"] + sorted((k for k in rows if k.startswith("png/new")),
                                        key=lambda k: int(k.rsplit(":", 1)[-1] or 0)):
         v = rows[k]
@@ -285,7 +286,7 @@ def png(results):
             print(f"    {k:22s} error: {v.get('error', 'missing')}")
             continue
         print(f"    {k:22s} {v['chunks']:6.0f} {v['threads']:7.0f} {ms(v):8.1f} {ms(old) / ms(v):7.2f}x "
-              f"{v['bytes']:10.0f} {100.0 * (v['bytes'] / old['bytes'] - 1.0):+7.2f}%")
+              f"{v.get('cpu_ms', float('nan')):7.1f} {v['bytes']:10.0f} {100.0 * (v['bytes'] / old['bytes'] - 1.0):+7.2f}%")
 
 
 def main():

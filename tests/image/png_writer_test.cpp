@@ -180,6 +180,23 @@ TEST(PngWriter, RoundTripsThroughStbEveryChannelCountAndOddSizes) {
         }
 }
 
+// Random bytes do not compress: zlib falls back to stored blocks, the largest output a band can
+// have (deflateBound's worst case, plus the flush marker every band but the last ends with).
+TEST(PngWriter, IncompressibleImagesRoundTrip) {
+    for (int channels : {1, 3, 4}) {
+        Image8 image{701, 97, channels, {}};
+        std::mt19937 rng(static_cast<unsigned>(channels));
+        for (size_t i = 0; i < size_t(701 * 97 * channels); ++i) image.pixels.push_back((unsigned char)rng());
+        for (int bands : {1, 3, 97}) {
+            const Bytes png = encodePng(image, bands);
+            const std::string what = std::to_string(channels) + " channels, " + std::to_string(bands) + " bands";
+            expectSameImage(decodeWithStb(png), image, what);
+            const Bytes expected = subFiltered(image);
+            EXPECT_TRUE(inflateAll(idatChunks(png, image), expected.size()) == expected) << what;
+        }
+    }
+}
+
 TEST(PngWriter, ChunkCountFollowsTheImageSize) {
     EXPECT_EQ(pngChunkCount(testImage(1, 1, 1, 1)), 1);
     EXPECT_EQ(pngChunkCount(testImage(4097, 5, 4, 1)), 1);  // 81,945 filtered bytes
