@@ -37,8 +37,8 @@ namespace {
 // error heat maps and tone-mapped renders compare writes it was the best size/speed trade
 // (measured when the stb path was tuned, image_io.cpp's history).
 constexpr unsigned char kFilterSub = 1;
-// PNG chunk data is at most 2^31 - 1 bytes (5.3); bands' data is split at 1 GiB to be safe.
-constexpr size_t kMaxIdatData = size_t(1) << 30;
+// PNG chunk data is at most 2^31 - 1 bytes (5.3).
+constexpr size_t kMaxChunkData = size_t(0x7fffffff);
 // zlib's counts are uInt: feed and drain at most this much per call.
 constexpr size_t kMaxZlibStep = size_t(1) << 30;
 
@@ -129,7 +129,10 @@ int pngChunkCount(const Image8& image) {
     return int(std::min<int64_t>(image.height, (image.height + rowsPerChunk - 1) / rowsPerChunk));
 }
 
-std::vector<unsigned char> encodePng(const Image8& image, int chunks) {
+std::vector<unsigned char> encodePng(const Image8& image, int chunks, size_t maxIdatBytes) {
+    if (maxIdatBytes == 0 || maxIdatBytes > kMaxChunkData)
+        throw std::invalid_argument("encodePng: IDAT chunk limit " + std::to_string(maxIdatBytes) +
+                                    " is outside [1, 2^31 - 1]");
     if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
         image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels))
         throw std::invalid_argument("encodePng: inconsistent image (" + std::to_string(image.width) + "x" +
@@ -168,11 +171,13 @@ std::vector<unsigned char> encodePng(const Image8& image, int chunks) {
     putBigEndian32(zlibTrailer, uint32_t(adler));
 
     // Where each band's IDAT chunk(s) go: band 0's data starts with the header, the last band's
-    // ends with the trailer; a band's data over kMaxIdatData is split into several chunks.
+    // ends with the trailer; a band's data over maxIdatBytes is split into several chunks.
     const auto payload = [&](size_t b) {
         return bands[b].deflated.size() + (b == 0 ? 2 : 0) + (b + 1 == bands.size() ? 4 : 0);
     };
-    const auto idatCount = [](size_t bytes) { return std::max<size_t>(1, (bytes + kMaxIdatData - 1) / kMaxIdatData); };
+    const auto idatCount = [maxIdatBytes](size_t bytes) {
+        return std::max<size_t>(1, (bytes + maxIdatBytes - 1) / maxIdatBytes);
+    };
 
     // Signature and IHDR (33 bytes), the bands' IDAT chunks, IEND (12 bytes): sized once.
     std::vector<size_t> offsets(bands.size());
@@ -211,7 +216,7 @@ std::vector<unsigned char> encodePng(const Image8& image, int chunks) {
             size_t span = 0, used = 0;  // the next byte to copy: spans[span].data[used]
             unsigned char* out = png.data() + offsets[b];
             for (size_t left = payload(b), i = 0; i < idatCount(payload(b)); ++i) {
-                const size_t n = std::min(left, kMaxIdatData);
+                const size_t n = std::min(left, maxIdatBytes);
                 putBigEndian32(out, uint32_t(n));
                 std::memcpy(out + 4, "IDAT", 4);
                 for (size_t copied = 0; copied < n;) {

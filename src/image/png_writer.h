@@ -6,6 +6,7 @@
 // stream, the way pigz splits a file: every piece but the last ends on a byte boundary with no
 // back-reference into the next, so the pieces can be compressed side by side and concatenated.
 // writePng (image_io.h) writes what encodePng returns.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -26,10 +27,13 @@ int pngChunkCount(const Image8& image);
 
 // The PNG file for `image` (1-4 channels, 8 bits each: gray, gray+alpha, RGB, RGBA), its rows
 // split into `chunks` bands (clamped to [1, height]; 0: pngChunkCount(image)), deflated on up to
-// hardwareThreads() threads. One IDAT chunk per band. With one band the file is byte for byte
-// what stb_image_write writes with the Sub filter forced and zlib's compress2 at level 1.
-// Throws std::invalid_argument for an inconsistent image (a bug of the caller, not user input)
-// and std::runtime_error if zlib fails (out of memory).
-std::vector<unsigned char> encodePng(const Image8& image, int chunks = 0);
+// hardwareThreads() threads. One IDAT chunk per band, split into several when a band's data is
+// over maxIdatBytes (PNG chunks hold at most 2^31 - 1 bytes; tests pass small values to split
+// small bands). With one band the file is byte for byte what stb_image_write writes with the Sub
+// filter forced and zlib's compress2 at level 1.
+// Throws std::invalid_argument for an inconsistent image or a maxIdatBytes of 0 or over 2^31 - 1
+// (bugs of the caller, not user input) and std::runtime_error if zlib fails (out of memory).
+inline constexpr size_t kPngMaxIdatBytes = size_t(1) << 30;
+std::vector<unsigned char> encodePng(const Image8& image, int chunks = 0, size_t maxIdatBytes = kPngMaxIdatBytes);
 
 }  // namespace gbl

@@ -275,6 +275,34 @@ TEST(PngWriter, OneBandIsTheOldEncoderByteForByteAndBandsKeepThePixels) {
     }
 }
 
+// A band's data split over several IDAT chunks (at 2^31 - 1 bytes in real files; here small
+// limits, so that the header, a band's data and the trailer fall across chunk boundaries).
+TEST(PngWriter, BandsSplitOverSeveralIdatChunks) {
+    const Image8 image = testImage(301, 40, 3, 5);
+    const Bytes expected = subFiltered(image);
+    for (size_t limit : {1, 2, 3, 5, 1000}) {
+        for (int bands : {1, 4}) {
+            const std::string what = "limit " + std::to_string(limit) + ", " + std::to_string(bands) + " bands";
+            const Bytes png = encodePng(image, bands, limit);
+            const std::vector<Bytes> idats = idatChunks(png, image);
+            size_t total = 0;
+            for (const Bytes& idat : idats) {
+                EXPECT_LE(idat.size(), limit) << what;
+                EXPECT_GE(idat.size(), 1u) << what;
+                total += idat.size();
+            }
+            EXPECT_GT(idats.size(), size_t(bands)) << what;
+            // Same stream as with unlimited chunks: only the framing differs.
+            EXPECT_EQ(total + 12 * idats.size() + 45, png.size()) << what;  // + signature, IHDR, IEND
+            EXPECT_EQ(png.size() - 12 * idats.size(), encodePng(image, bands).size() - 12 * size_t(bands)) << what;
+            EXPECT_TRUE(inflateAll(idats, expected.size()) == expected) << what;
+            expectSameImage(decodeWithStb(png), image, what);
+        }
+    }
+    EXPECT_THROW(encodePng(image, 1, 0), std::invalid_argument);
+    EXPECT_THROW(encodePng(image, 1, size_t(1) << 31), std::invalid_argument);
+}
+
 TEST(PngWriter, RejectsAnInconsistentImage) {
     EXPECT_THROW(encodePng(Image8{4, 4, 3, {}}), std::invalid_argument);
     EXPECT_THROW(encodePng(Image8{0, 4, 3, {}}), std::invalid_argument);
