@@ -3,10 +3,11 @@
 # bench/results/<name>.json (gitignored), then prints the summary (bench/summarize.py), also
 # written to bench/results/summary.txt.
 #
-# usage: bench/run.sh [codec] [gpu] [compare] [e2e]    (default: codec gpu compare)
+# usage: bench/run.sh [codec] [gpu] [compare] [png] [e2e]    (default: codec gpu compare)
 #   codec    codec_bench: CPU mirror encode/decode vs memcpy of the same bytes
 #   gpu      gpu_pass_bench: G-buffer and lighting pass per layout (GBL_BENCH_4K=1 adds 3840x2160)
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
+#   png      png_bench: one 4K RGB PNG by the old stb encoder and by encodePng on 1 and several cores
 #   e2e      `gbufferlab compare` of all layouts at 1080p, run twice per --eval gpu / cpu (the second,
 #            warm, is timed by stage: its timings.json), then at 3840x2160 with the layouts
 #            GBL_BENCH_4K_LAYOUTS (default ue4,ryse,crysis3-thin) as mem4k does, and
@@ -52,6 +53,7 @@ for w in "${what[@]}"; do
         codec) targets+=(codec_bench) ;;
         gpu) targets+=(gpu_pass_bench) ;;
         compare) targets+=(compare_bench) ;;
+        png) targets+=(png_bench) ;;
         e2e | coldwarm | search | mem4k | gpu4k) targets+=(gbufferlab) ;;
     esac
 done
@@ -117,6 +119,7 @@ for w in "${what[@]}"; do
         codec) run_bench codec_bench ;;
         gpu) run_bench gpu_pass_bench ;;
         compare) run_bench compare_bench ;;
+        png) run_bench png_bench ;;
         e2e)
             for ev in gpu cpu; do
                 out="$results/compare-e2e-$ev"
@@ -175,7 +178,7 @@ print(f"first run / warm run ({sys.argv[3]}, Mesa cache {sys.argv[4]}): wall {co
       f"CPU (user + system) {(cold[1] + cold[2]) / (warm[1] + warm[2]):.3f}x")
 PY
             ;;
-        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, e2e, mem4k, gpu4k, search, coldwarm[:WxH])" >&2; exit 2 ;;
+        *) echo "bench/run.sh: unknown part '$w' (codec, gpu, compare, png, e2e, mem4k, gpu4k, search, coldwarm[:WxH])" >&2; exit 2 ;;
     esac
 done
 

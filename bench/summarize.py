@@ -6,7 +6,8 @@ Prints: codec GB/s as a ratio of memcpy GB/s of the same bytes (goal >= 0.25x; p
 the faster of memcpy on 1 thread and on the codec's threads, with the memory-traffic ceilings, and
 the verdict on issue 14's goal: >= 0.5x of the DRAM bound in each direction); GPU pass times
 per layout and the 4K/1080p ratio; the CPU metrics cost per layout as a ratio of the GPU passes;
-`compare` wall time as a ratio of its GPU pass times (goal <= 1.5x); peak RSS (goal < 2 GiB).
+`compare` wall time as a ratio of its GPU pass times (goal <= 1.5x); peak RSS (goal < 2 GiB); the
+4K PNG encoders' wall time and file size against the old stb encoder's (png_bench).
 """
 import json
 import os
@@ -265,12 +266,36 @@ def compare(results, passes):
             print(f"== gbufferlab compare at 3840x2160{label}: peak RSS {mib:.0f} MiB (goal < {RSS_GOAL_MIB:.0f} MiB)")
 
 
+def png(results):
+    """png_bench: each encoder's wall time and file size beside the old stb encoder's, same run."""
+    rows, ctx = medians(os.path.join(results, "png_bench.json"))
+    if rows is None:
+        return
+    old = rows.get("png/old_stb", {})
+    if "real_time" not in old:
+        print("== png_bench: no png/old_stb result")
+        return
+    print(f"== png_bench: one 3840x2160 RGB heat map, in memory (medians; {ctx.get('num_cpus', '?')} CPUs, "
+          f"load average {ctx.get('load_avg', ['?'])[0]})")
+    print(f"    {'encoder':22s} {'chunks':>6s} {'threads':>7s} {'wall ms':>8s} {'x faster':>8s} {'CPU ms':>7s} "
+          f"{'bytes':>10s} {'size':>8s}")
+    for k in ["png/old_stb"] + sorted((k for k in rows if k.startswith("png/new")),
+                                       key=lambda k: int(k.rsplit(":", 1)[-1] or 0)):
+        v = rows[k]
+        if "real_time" not in v:
+            print(f"    {k:22s} error: {v.get('error', 'missing')}")
+            continue
+        print(f"    {k:22s} {v['chunks']:6.0f} {v['threads']:7.0f} {ms(v):8.1f} {ms(old) / ms(v):7.2f}x "
+              f"{v.get('cpu_ms', float('nan')):7.1f} {v['bytes']:10.0f} {100.0 * (v['bytes'] / old['bytes'] - 1.0):+7.2f}%")
+
+
 def main():
     results = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "results")
     codec(results)
     passes = gpu(results)
     gpu(results, "gpu_pass_bench_4k.json")  # GBL_BENCH_4K=1 run written under this name, if any
     compare(results, passes)
+    png(results)
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@ gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads envi
 gbl_test(image/exr_half_test LABELS unit DEPS gbl_image)
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/color_map_test LABELS unit DEPS gbl_image)
+gbl_test(image/png_writer_test LABELS unit DEPS gbl_image)
 gbl_test(gpu/shader_compiler_test LABELS unit DEPS gbl_gpu)
 gbl_test(gpu/shader_cache_test LABELS unit DEPS gbl_gpu)
 gbl_test(scene/environment_test LABELS unit DEPS gbl_scene)
