@@ -34,6 +34,7 @@
 #include "interrupt.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "host_profile.h"
 #include "parallel_for.h"
 #include "parallel_invoke.h"
 #include "progress.h"
@@ -193,7 +194,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
                                                 GltfLoadOptions{parsed.has("allow-outside-scene")});
 
+    std::optional<HostScope> contextScope(std::in_place, "set-up: Vulkan context");
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
+    contextScope.reset();
     // --eval auto: the metrics run where the render ran. On a CPU device (lavapipe) that is the
     // CPU, where the measure library's vectorised code beats the same passes JIT-compiled by
     // llvmpipe (bench/RESULTS.md: warm 1080p compare 7.09x the GPU passes with --eval gpu,
@@ -230,6 +233,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     // --eval gpu: one evaluator for every run (its working planes are allocated once).
     std::unique_ptr<GpuEvaluator> evaluator;
     if (gpuEval) {
+        HostScope scope("set-up: GPU evaluator");
         evaluator = std::make_unique<GpuEvaluator>(ctx, width, height, bandPlan.maxImageRows());
         model.run.notes.push_back("metrics computed on the device (--eval gpu): quantiles from histograms (within "
                                   "0.1 %), worst regions on 8-pixel tiles, no errors.exr");
@@ -319,7 +323,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
         settings.decodeOnCpu = !gpuEval && ctx.info.type == VK_PHYSICAL_DEVICE_TYPE_CPU;
         return settings;
     };
+    std::optional<HostScope> rendererScope(std::in_place, "set-up: renderer and IBL");
     Renderer renderer(ctx, inputs.scene, inputs.environment, loadOrComputeIbl(ctx, inputs.environment, iblSettings));
+    rendererScope.reset();
     const GBufferWiring referenceWiring = generateWiring(referenceLayout, {});
     {
         // Every run's pipelines are built now, side by side on worker threads (timed as shader
@@ -563,7 +569,11 @@ int runCompareCommand(const std::vector<std::string>& args) {
         // exist. A run whose images could not be written fails, as it did when they were written
         // in line; any other file that could not be written is an error of the command.
         std::lock_guard lock(modelMutex);
-        for (const WriteFailure& f : imageWriter.finish()) {
+        std::optional<HostScope> finishScope(std::in_place, "report: waiting for the image files");
+        std::vector<WriteFailure> failures = imageWriter.finish();
+        finishScope.reset();
+        HostScope reportScope("report: html, json, csv");
+        for (const WriteFailure& f : failures) {
             bool matched = false;
             for (RunReport& r : model.runs) {
                 if (r.status != RunStatus::Ok || r.images.render.rfind(f.what, 0) != 0 || f.what.empty()) continue;

@@ -7,6 +7,7 @@
 
 #include "color_map.h"
 #include "error_images.h"
+#include "host_profile.h"
 #include "parallel_invoke.h"
 #include "image_io.h"
 #include "stage_clock.h"
@@ -111,7 +112,10 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
     fillMetrics(run, m);
     if (!writeImages) return;
     timed.emplace(Stage::Report);
-    queueDeviceImages(run, std::move(images), m, std::make_shared<const Image>(test.device->downloadHdr()), outDir,
+    std::optional<HostScope> download(std::in_place, "run: HDR download for its files");
+    auto hdr = std::make_shared<const Image>(test.device->downloadHdr());
+    download.reset();
+    queueDeviceImages(run, std::move(images), m, std::move(hdr), outDir,
                       prefix, output);
 }
 
@@ -164,6 +168,7 @@ void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics
                             if (!g.worst.empty()) writeCrops(outDir, prefix, g.worst, g.reference, g.render, g.heat);
                         }});
     };
+    HostScope enqueue("run: queue its files (waits when full)");
     if (output.writer) output.writer->enqueue(prefix, std::move(write));  // named by the run's prefix
     else write();
 }

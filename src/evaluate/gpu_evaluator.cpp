@@ -9,6 +9,7 @@
 #include "evaluator_state.h"
 #include "flip_pipeline.h"
 #include "histogram.h"
+#include "host_profile.h"
 #include "parallel_for.h"
 #include "metrics.h"
 
@@ -250,6 +251,7 @@ void GpuEvaluator::setReference(const DeviceRender& reference, float exposure, c
     if (s.statsReady && s.reference.hdr == reference.hdr && s.reference.surfaces == reference.surfaces &&
         s.exposure == exposure && s.noiseSource == noise)
         return;
+    HostScope scope("evaluate: set reference (new view)");
     s.noiseSource = noise;
     s.reference = reference;
     s.exposure = exposure;
@@ -293,11 +295,13 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
     if (pass.crops) d.ensureTiles(size_t(tw) * th);
 
     // 1: image errors and attributes (the test's surfaces are read only here).
+    std::optional<HostScope> phase(std::in_place, "evaluate: errors and attributes");
     d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
         d.clearHistograms(cmd);
         recordErrorPasses(cmd, d, pass);
     });
     // 2: the normal-error picture, scaled to the run's p99 normal error.
+    phase.emplace("evaluate: normal-error image");
     if (pass.images && pass.attributes) {
         const float scale = normalImageScale(d.result(), d, o.normalMinScaleDeg);
         d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -313,13 +317,16 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
         if (o.surfacesDone) o.surfacesDone();
     }
     // 3: LDR- and HDR-FLIP, on planes that exist only for this.
+    phase.emplace("evaluate: FLIP");
     s.flip.allocate();
     d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
         recordFlipPasses(cmd, d, s.flip, s.exposure, pass.images, o.hdrFlip, s.hdrRange);
     });
     if (!d.keepScratch) s.flip.release();
 
+    phase.emplace("evaluate: assemble (histogram copy)");
     const RunMetrics m = assembleMetrics(d.result(), d, n, pass.attributes, o.hdrFlip, s.noise, s.hdrRange);
+    phase.emplace("evaluate: 8-bit images and crops");
     if (pass.images) {
         GpuErrorImages& out = *o.images;
         out.render = toImage8(d.out8(kOutRender), d.width, d.height);
