@@ -34,7 +34,6 @@
 #include "interrupt.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
-#include "host_heap.h"
 #include "host_profile.h"
 #include "parallel_for.h"
 #include "parallel_invoke.h"
@@ -198,7 +197,6 @@ int runCompareCommand(const std::vector<std::string>& args) {
     std::optional<HostScope> contextScope(std::in_place, "set-up: Vulkan context");
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
     contextScope.reset();
-    retainLargeBlocks(ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);  // host_heap.h
     // --eval auto: the metrics run where the render ran. On a CPU device (lavapipe) that is the
     // CPU, where the measure library's vectorised code beats the same passes JIT-compiled by
     // llvmpipe (bench/RESULTS.md: warm 1080p compare 7.09x the GPU passes with --eval gpu,
