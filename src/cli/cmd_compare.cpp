@@ -594,6 +594,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         reportComplete = true;
     }
     setInterruptAction({});
+    hostProfileAdd("compare: up to the report (then teardown)", StageClock::global().read().totalMs / 1e3);
     std::printf("report: %s\n", (outDir / "report.html").string().c_str());
     // A file that could not be written is an error of the command, one line each, never lost.
     for (const std::string& e : writeErrors) std::fprintf(stderr, "gbufferlab: error: %s\n", e.c_str());

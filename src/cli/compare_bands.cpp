@@ -160,7 +160,7 @@ PassTimings measureRunInBands(RunReport& run, Renderer& renderer, const GBufferW
     fillMetrics(run, r.metrics);
     if (!writeImages) return r.test;
     ScopedStage timed(Stage::Report);
-    queueDeviceImages(run, std::move(images), r.metrics, std::move(hdr), outDir, prefix, output);
+    queueDeviceImages(run, std::move(images), r.metrics, [hdr = std::move(hdr)] { return hdr; }, outDir, prefix, output);
     return r.test;
 }
 

@@ -112,11 +112,12 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
     fillMetrics(run, m);
     if (!writeImages) return;
     timed.emplace(Stage::Report);
-    std::optional<HostScope> download(std::in_place, "run: HDR download for its files");
-    auto hdr = std::make_shared<const Image>(test.device->downloadHdr());
-    download.reset();
-    queueDeviceImages(run, std::move(images), m, std::move(hdr), outDir,
-                      prefix, output);
+    // The job holds the device images until it has downloaded the HDR one (the surfaces are gone).
+    auto download = [device = test.device] {
+        HostScope scope("job: HDR download");
+        return std::make_shared<const Image>(device->downloadHdr());
+    };
+    queueDeviceImages(run, std::move(images), m, download, outDir, prefix, output);
 }
 
 }  // namespace
@@ -131,8 +132,9 @@ void makeRunDirectory(const fs::path& outDir, const std::string& prefix) {
 
 // The files of a run measured on the device: the 8-bit images the evaluator made, the HDR render
 // (render.exr and its log preview) and the crops.
-void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics& m, std::shared_ptr<const Image> hdr,
-                       const fs::path& outDir, const std::string& prefix, const ImageOutput& output) {
+void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics& m,
+                       std::function<std::shared_ptr<const Image>()> hdrSource, const fs::path& outDir,
+                       const std::string& prefix, const ImageOutput& output) {
     ErrorImageOptions imageOptions;
     imageOptions.label = run.layout + " / " + run.iblMode;
     imageOptions.exrType = output.exrType;
@@ -152,8 +154,9 @@ void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics
         run.images.crops.push_back({c.x, c.y, c.size, c.size, f.reference, f.test, f.heat});
     }
     auto owned = std::make_shared<GpuErrorImages>(std::move(images));
-    auto write = [outDir, prefix, owned, m, hdr, imageOptions, exrType = output.exrType] {
+    auto write = [outDir, prefix, owned, m, hdrSource = std::move(hdrSource), imageOptions, exrType = output.exrType] {
         const GpuErrorImages& g = *owned;
+        const std::shared_ptr<const Image> hdr = hdrSource();
         makeRunDirectory(outDir, prefix);
         // Every file side by side: one 4K file is one core's work, and on a GPU the run's files
         // are most of its time (compare at 4K: report writing 4.5 s of 7.9 s when they ran one by one).

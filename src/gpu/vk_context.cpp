@@ -305,6 +305,7 @@ std::string VulkanContext::firstValidationError() const {
 }
 
 void VulkanContext::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+    std::unique_lock lock(submitMutex_);
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = commandPool;
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -323,8 +324,10 @@ void VulkanContext::submitAndWait(const std::function<void(VkCommandBuffer)>& re
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
     VK_CHECK(vkQueueSubmit(queue, 1, &submit, fence));
+    lock.unlock();
     VK_CHECK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
     vkDestroyFence(device, fence, nullptr);
+    lock.lock();
     vkFreeCommandBuffers(device, commandPool, 1, &cmd);
 }
 

@@ -76,7 +76,10 @@ public:
     // Freed device memory kept for reuse on a GPU (memory_recycler.h; off on a CPU device).
     mutable MemoryRecycler recycler;
 
-    // Records `record` into a one-time command buffer, submits it and waits.
+    // Records `record` into a one-time command buffer, submits it and waits. Thread-safe (the
+    // command pool and queue are used under a lock, released while waiting): compare's image
+    // writer downloads a run's HDR image while the next run renders. `record` may itself call
+    // submitAndWait (GBL_EVAL_PROFILE submits each dispatch from inside a recording).
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
     // Validation messages of severity error seen so far (tests assert this stays 0).
@@ -93,6 +96,7 @@ private:
     PersistentPipelineCache pipelineCache_;
     std::atomic<int> validationErrors_{0};
     mutable std::mutex messageMutex_;
+    mutable std::recursive_mutex submitMutex_;
     std::string firstValidationError_;
 };
 
