@@ -42,6 +42,7 @@ bool hostProfileOn() {
 }
 
 void hostProfileAdd(const char* name, double seconds) {
+    if (!hostProfileOn()) return;
     Table& t = table();
     std::lock_guard lock(t.mutex);
     auto& r = t.rows[name];

@@ -225,6 +225,13 @@ void EvalDevice::ensureOut8() {
     rebindBuffers();
 }
 
+std::vector<Buffer> EvalDevice::detachOut8() {
+    std::vector<Buffer> out(out8_.begin(), out8_.end());
+    out8_ = {};
+    rebindBuffers();
+    return out;
+}
+
 void EvalDevice::releaseOut8() {
     if (!out8_[0].buffer) return;
     for (Buffer& b : out8_) destroyBuffer(ctx, b);

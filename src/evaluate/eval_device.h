@@ -89,6 +89,9 @@ public:
     void ensurePlane(uint32_t slot);
     void ensureOut8();   // the 8-bit output images (host visible)
     void releaseOut8();
+    // Hands the 8-bit output buffers over (kOut8Count, Out8Slot order); the next ensureOut8
+    // allocates new ones.
+    std::vector<Buffer> detachOut8();
     void ensureTiles(size_t count);
     // Writes the kernels region of the constants buffer (binding 8) after the colour map.
     void setKernels(const std::vector<float>& kernels);

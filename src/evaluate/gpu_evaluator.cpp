@@ -329,21 +329,42 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
     phase.emplace("evaluate: 8-bit images and crops");
     if (pass.images) {
         GpuErrorImages& out = *o.images;
-        out.render = toImage8(d.out8(kOutRender), d.width, d.height);
-        out.reference = toImage8(d.out8(kOutReference), d.width, d.height);
-        out.difference = toImage8(d.out8(kOutDifference), d.width, d.height);
-        out.heat = toImage8(d.out8(kOutHeat), d.width, d.height);
-        out.flip = toImage8(d.out8(kOutFlip), d.width, d.height);
-        out.normal = pass.attributes ? toImage8(d.out8(kOutNormal), d.width, d.height) : Image8{};
+        out.render = out.reference = out.difference = out.heat = out.flip = out.normal = Image8{};
+        out.packed = std::make_shared<PackedEvalImages>(d.ctx, d.width, d.height, d.detachOut8(), pass.attributes);
+        if (!o.deferImages) out.unpack();
         out.worst.clear();
         if (pass.crops) {
             Image tiles(int(tw), int(th), 1);
             std::memcpy(tiles.pixels.data(), d.tiles(), size_t(tw) * th * 4);
             out.worst = worstCrops(tiles, d.width, d.height, o.cropSize, o.cropCount);
         }
-        if (!d.keepScratch) d.releaseOut8();
     }
     return m;
+}
+
+// ---- The 8-bit images, packed and unpacked --------------------------------------------------------
+
+PackedEvalImages::PackedEvalImages(const VulkanContext& ctx, uint32_t width, uint32_t height,
+                                   std::vector<Buffer> buffers, bool normal)
+    : ctx_(ctx), width_(width), height_(height), buffers_(std::move(buffers)), normal_(normal) {}
+
+PackedEvalImages::~PackedEvalImages() {
+    for (Buffer& b : buffers_) destroyBuffer(ctx_, b);
+}
+
+void GpuErrorImages::unpack() {
+    if (!packed) return;
+    const PackedEvalImages& p = *packed;
+    auto image = [&](uint32_t slot) {
+        return toImage8(static_cast<const uint32_t*>(p.buffers_.at(slot).mapped), p.width_, p.height_);
+    };
+    render = image(kOutRender);
+    reference = image(kOutReference);
+    difference = image(kOutDifference);
+    heat = image(kOutHeat);
+    flip = image(kOutFlip);
+    normal = p.normal_ ? image(kOutNormal) : Image8{};
+    packed.reset();
 }
 
 // ---- Host images onto the device ---------------------------------------------------------------

@@ -52,6 +52,26 @@ struct DeviceRender {
     std::array<const GpuImage*, 4> surfaces{};  // all set, or all null (no attribute metrics)
 };
 
+// The evaluator's 8-bit outputs of one run still in its host-visible buffers, packed (one uint per
+// pixel), handed over by GpuEvalOptions::deferImages so that unpacking them (six 4K images: 0.14 s
+// of the main thread on an H200) happens where the files are written. Destroying it returns the
+// buffers (to the context's recycler on a GPU).
+class PackedEvalImages {
+public:
+    PackedEvalImages(const VulkanContext& ctx, uint32_t width, uint32_t height, std::vector<Buffer> buffers, bool normal);
+    ~PackedEvalImages();
+    PackedEvalImages(const PackedEvalImages&) = delete;
+    PackedEvalImages& operator=(const PackedEvalImages&) = delete;
+    bool hasNormal() const { return normal_; }
+
+private:
+    friend struct GpuErrorImages;
+    const VulkanContext& ctx_;
+    uint32_t width_, height_;
+    std::vector<Buffer> buffers_;  // evaluate::Out8Slot order
+    bool normal_;
+};
+
 // What the report shows, as 8-bit RGB (untitled map bodies; report/error_images.h adds titles).
 struct GpuErrorImages {
     Image8 render;      // the test's tone-mapped render (render.png)
@@ -61,6 +81,10 @@ struct GpuErrorImages {
     Image8 flip;        // LDR-FLIP over [0, 1]
     Image8 normal;      // normal angle over [0, max(normalMinScaleDeg, p99)], other pixels dimmed grey
     std::vector<Crop> worst;  // worst regions of the relative luminance error
+    // With GpuEvalOptions::deferImages the Image8s above are empty and these hold them: unpack()
+    // fills them (the same bytes as without deferral) and frees the buffers.
+    std::shared_ptr<PackedEvalImages> packed;
+    void unpack();
 };
 
 struct GpuEvalOptions {
@@ -71,6 +95,9 @@ struct GpuEvalOptions {
     float normalMinScaleDeg = 1.0f;
     int cropSize = 0;    // worst regions: window size (0: none)
     int cropCount = 3;
+    // Leave the 8-bit images packed in `images->packed` (GpuErrorImages::unpack) instead of
+    // unpacking them here; a later run's images go to new buffers meanwhile.
+    bool deferImages = false;
     // Called once the test's surfaces are no longer read (after the attribute passes, before
     // FLIP allocates its planes): compare frees them there (peak memory at 4K).
     std::function<void()> surfacesDone;

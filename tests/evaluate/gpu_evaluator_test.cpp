@@ -286,6 +286,25 @@ TEST_F(GpuEvaluatorTest, FlipAtOddSizesAgreesWithTheCpuOracle) {
         }
         EXPECT_EQ(offByMore, 0u) << at;
         EXPECT_LT(double(off), 1e-2 * double(cpuFlip.pixels.size())) << at;
+
+        // Deferred (compare on a GPU: the writer's job unpacks): packed until unpack(), the same
+        // bytes then, and untouched by a later run that writes its own images meanwhile.
+        GpuErrorImages deferred, later;
+        options.images = &deferred;
+        options.deferImages = true;
+        evaluator.evaluate(test.view(), options);
+        EXPECT_TRUE(deferred.render.pixels.empty() && deferred.packed) << at;
+        options.images = &later;
+        options.deferImages = false;
+        evaluator.evaluate(ref.view(), options);  // the reference against itself: other images
+        EXPECT_NE(later.difference.pixels, images.difference.pixels) << at;
+        deferred.unpack();
+        EXPECT_FALSE(deferred.packed) << at;
+        const std::pair<const Image8*, const Image8*> same[] = {
+            {&deferred.render, &images.render}, {&deferred.reference, &images.reference},
+            {&deferred.difference, &images.difference}, {&deferred.heat, &images.heat},
+            {&deferred.flip, &images.flip}, {&deferred.normal, &images.normal}};
+        for (const auto& [a, b] : same) EXPECT_EQ(a->pixels, b->pixels) << at;
     }
 }
 
