@@ -19,3 +19,6 @@ gbl_bench(codec_bench DEPS gbl_encoding gbl_layout gbl_codec)
 gbl_bench(gpu_pass_bench DEPS gbl_render gbl_layout gbl_codec gbl_image gbl_scene)
 gbl_bench(compare_bench DEPS gbl_measure gbl_report)
 gbl_bench(png_bench DEPS gbl_image)
+if(TARGET png_bench)
+  target_include_directories(png_bench PRIVATE ${CMAKE_SOURCE_DIR}/tests/support)  # the old encoder
+endif()

@@ -1,6 +1,6 @@
 // png_bench: writing one 3840x2160 RGB PNG, the slowest single file of a 4K `compare`, by the
 // encoder writePng used before (stb_image_write, Sub filter forced, zlib compress2 at level 1:
-// a copy of it is kept below) and by encodePng (src/image/png_writer.h) with one band (one core)
+// tests/support/stb_png_encoder.h) and by encodePng (src/image/png_writer.h) with one band (one core)
 // and with its default bands (24 at 4K RGB) on hardwareThreads() threads. All in memory: no disk.
 //
 //   png/old_stb           the old encoder
@@ -30,24 +30,7 @@
 #include "parallel_for.h"
 #include "png_writer.h"
 
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STBI_WRITE_NO_STDIO
-#define STBIW_ZLIB_COMPRESS oldZlibCompress
-static unsigned char* oldZlibCompress(unsigned char* data, int length, int* outLength, int) {
-    uLongf size = compressBound(uLong(length));
-    auto* out = static_cast<unsigned char*>(std::malloc(size));  // stb frees it with free()
-    if (!out || compress2(out, &size, data, uLong(length), 1) != Z_OK) {
-        std::free(out);
-        return nullptr;
-    }
-    *outLength = int(size);
-    return out;
-}
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include <stb/stb_image_write.h>
-#pragma GCC diagnostic pop
+#include "stb_png_encoder.h"  // the old encoder (tests/support)
 
 namespace {
 
@@ -73,15 +56,8 @@ const gbl::Image8& benchImage() {
 }
 
 std::vector<unsigned char> oldEncode(const gbl::Image8& image) {
-    stbi_write_force_png_filter = 1;
-    std::vector<unsigned char> png;
-    const auto append = [](void* context, void* data, int size) {
-        auto* out = static_cast<std::vector<unsigned char>*>(context);
-        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-    };
-    if (!stbi_write_png_to_func(append, &png, image.width, image.height, image.channels, image.pixels.data(),
-                                image.width * image.channels))
-        std::abort();
+    std::vector<unsigned char> png = gbl::test::stbPngSubLevel1(image);
+    if (png.empty()) std::abort();
     return png;
 }
 
