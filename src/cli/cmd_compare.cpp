@@ -573,19 +573,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
         std::vector<WriteFailure> failures = imageWriter.finish();
         finishScope.reset();
         HostScope reportScope("report: html, json, csv");
-        for (const WriteFailure& f : failures) {
-            bool matched = false;
-            for (RunReport& r : model.runs) {
-                if (r.status != RunStatus::Ok || r.images.render.rfind(f.what, 0) != 0 || f.what.empty()) continue;
-                r.status = RunStatus::Failed;
-                r.error = f.message;
-                r.image.reset();
-                r.images = {};  // named files that do not exist
-                matched = true;
-            }
-            if (!matched) writeErrors.push_back(f.line());
-        }
-        for (const std::string& e : writeErrors) model.run.notes.push_back("not written: " + e);
+        writeErrors = failRunsOfWriteFailures(model, failures);
         writeReport(outDir, model);
         printTable(model);
         reportStageTimes(outDir, StageClock::global().read(), gpuPassMs);

@@ -122,6 +122,24 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
 
 }  // namespace
 
+std::vector<std::string> failRunsOfWriteFailures(ReportModel& model, const std::vector<WriteFailure>& failures) {
+    std::vector<std::string> others;
+    for (const WriteFailure& f : failures) {
+        bool matched = false;
+        for (RunReport& r : model.runs) {
+            if (r.status != RunStatus::Ok || r.images.render.rfind(f.what, 0) != 0 || f.what.empty()) continue;
+            r.status = RunStatus::Failed;
+            r.error = f.message;
+            r.image.reset();
+            r.images = {};  // named files that do not exist
+            matched = true;
+        }
+        if (!matched) others.push_back(f.line());
+    }
+    for (const std::string& e : others) model.run.notes.push_back("not written: " + e);
+    return others;
+}
+
 namespace {
 // The run's folder, before its files are written side by side (the EXR writer does not create it).
 void makeRunDirectory(const fs::path& outDir, const std::string& prefix) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "background_writer.h"
 #include "image_io.h"
@@ -47,6 +48,11 @@ struct ImageOutput {
 void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& reference, const std::filesystem::path& outDir,
                 const std::string& prefix, float exposure, bool hdrFlip, bool releaseTest, bool writeImages = true,
                 const ImageOutput& output = {});
+
+// Image files that could not be written: a run whose files they were (its file prefix) fails
+// with the message, its images unnamed; the others come back as one line each, and are noted in
+// the report ("not written: ...").
+std::vector<std::string> failRunsOfWriteFailures(ReportModel& model, const std::vector<WriteFailure>& failures);
 
 // The files of a run measured on the device (--eval gpu, bands): the evaluator's 8-bit images, the
 // HDR render (render.exr, render_log.png) and the worst-region crops; their names go into `run`.
