@@ -75,7 +75,9 @@ vec3 yCoCgToRgb(vec3 c) {
 // (Cb / Co) where (x+y) is even, the second (Cr / Cg) where it is odd.
 // ---------------------------------------------------------------------------------------------
 
-const float kChromaEdgeThreshold = 0.11764706;  // 30/255, the paper's THRESH
+// 29.5/255: codes 30 or more apart are an edge (the paper's THRESH, 30/255), decided as the
+// integers are whatever the last bits of the float difference (src/encoding/encodings.h).
+const float kChromaEdgeThreshold = 0.115686275;
 
 bool chromaIsSecond(ivec2 pixel) { return ((pixel.x + pixel.y) & 1) != 0; }
 
@@ -83,8 +85,8 @@ bool chromaIsSecond(ivec2 pixel) { return ((pixel.x + pixel.y) & 1) != 0; }
 float chromaForPixel(ivec2 pixel, vec2 chroma) { return chromaIsSecond(pixel) ? chroma.y : chroma.x; }
 
 // reconstructChroma: the paper's edge-directed filter. The 4 direct neighbours (order: +x, -x,
-// +y, -y) hold the other chroma; each gets weight 1 - step(30/255, |Yn - Yc|) (1 when its luma
-// is within the threshold), times `covered` (1 where the neighbour has geometry, 0 where it holds
+// +y, -y) hold the other chroma; each gets weight 1 - step(29.5/255, |Yn - Yc|) (1 when its luma
+// is fewer than 30 codes away), times `covered` (1 where the neighbour has geometry, 0 where it holds
 // only the clear value: a silhouette never takes its chroma from the background). Their weighted
 // mean is the missing chroma; when all 4 weights are 0 the first covered neighbour in that order
 // is used alone (the paper's listing takes +x alone), and when no neighbour is covered the

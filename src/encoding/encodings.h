@@ -51,7 +51,13 @@ vec3 decodeNormalOctahedralPrecise(uvec2 code, uint bits);
 vec3 positionFromDepth(vec2 uv, float depth, mat4 invViewProj);
 
 // 6. Chroma checkerboard (Mavridis & Papaioannou 2012).
-inline constexpr float kChromaEdgeThreshold = 0.11764706f;  // 30/255, the paper's THRESH
+// The paper's THRESH is 30/255: lumas 30 or more 8-bit codes apart are an edge. Compared in
+// float, |k/255 - j/255| for codes exactly 30 apart falls below 30/255 for 134 of the 226 pairs
+// and not for the other 92 (float32, any IEEE machine), and a driver whose UNORM conversion or
+// division rounds otherwise decides other pairs otherwise: on an NVIDIA H200 the decode disagreed
+// with this mirror on 0.75% of crysis3-thin's values. Half a code lower, every pair of 8-bit codes
+// is decided as the integers are (color_encodings_test), with room for a few ulp of error.
+inline constexpr float kChromaEdgeThreshold = 0.115686275f;  // 29.5/255
 
 // ---------------------------------------------------------------------------------------------
 // 1. Fixed point. Source: Vulkan spec, "Fixed-Point Data Conversions" (but ties round up).
@@ -378,8 +384,8 @@ inline bool chromaIsSecond(ivec2 pixel) { return ((pixel.x + pixel.y) & 1) != 0;
 inline float chromaForPixel(ivec2 pixel, vec2 chroma) { return chromaIsSecond(pixel) ? chroma.y : chroma.x; }
 
 // reconstructChroma: the paper's edge-directed filter. The 4 direct neighbours (order: +x, -x,
-// +y, -y) hold the other chroma; each gets weight 1 - step(30/255, |Yn - Yc|) (1 when its luma
-// is within the threshold), times `covered` (1 where the neighbour has geometry, 0 where it holds
+// +y, -y) hold the other chroma; each gets weight 1 - step(29.5/255, |Yn - Yc|) (1 when its luma
+// is fewer than 30 codes away: kChromaEdgeThreshold), times `covered` (1 where the neighbour has geometry, 0 where it holds
 // only the clear value: a silhouette never takes its chroma from the background). Their weighted
 // mean is the missing chroma; when all 4 weights are 0 the first covered neighbour in that order
 // is used alone (the paper's listing takes +x alone), and when no neighbour is covered the

@@ -117,6 +117,31 @@ TEST(Chroma, EdgeDirectedFilter) {
     EXPECT_EQ(odd, glm::vec2(0.7f, 0.3f));
 }
 
+// The edge test decides every pair of 8-bit luma codes as the integers do (|a - b| >= 30: an
+// edge, weight 0), also when each luma is a few ulp off k/255 (a driver's UNORM conversion or
+// division rounding otherwise). At 30/255 itself, 134 of the 226 pairs exactly 30 apart fell on
+// the wrong side in float32.
+TEST(Chroma, EdgeThresholdDecidesEveryCodePairAsTheIntegers) {
+    size_t wrong = 0, checked = 0;
+    for (int a = 0; a <= 255; ++a)
+        for (int b = 0; b <= 255; ++b)
+            for (int ulps : {0, -4, 4}) {
+                float ya = float(a) / 255.0f, yb = float(b) / 255.0f;
+                for (int k = 0; k < std::abs(ulps); ++k) {
+                    ya = std::nextafter(ya, ulps > 0 ? 2.0f : -1.0f);
+                    yb = std::nextafter(yb, ulps > 0 ? -1.0f : 2.0f);  // the other way: the gap widens or shrinks
+                }
+                // +x: the luma under test, chroma 0.9; -x: the centre's own luma (always weight 1),
+                // chroma 0.1. +x within the threshold: their mean 0.5; across an edge: 0.1 alone.
+                const glm::vec2 r = reconstructChroma(ya, 0.5f, glm::vec4(yb, ya, 5.0f, 5.0f),
+                                                      glm::vec4(0.9f, 0.1f, 0.3f, 0.3f), glm::vec4(1.0f, 1.0f, 0.0f, 0.0f));
+                const bool edge = std::abs(a - b) >= 30;
+                wrong += r.y != (edge ? 0.1f : 0.5f);
+                ++checked;
+            }
+    EXPECT_EQ(wrong, 0u) << "of " << checked;
+}
+
 TEST(Chroma, FlatImageReconstructsExactly) {
     const int w = 9, h = 7;
     std::vector<glm::vec3> img(size_t(w * h), glm::vec3(0.2f, 0.6f, 0.4f));
