@@ -35,9 +35,10 @@ enum Out8Slot : uint32_t { kOutRender = 0, kOutDifference, kOutHeat, kOutFlip, k
 enum HistSlot : uint32_t { kHistAbsLinear = 0, kHistFlip = 1, kHistAttributes = 2 /* + 2 attribute + class */,
                            kHistLuminance = 18, kHistRefine = 19, kHistCount = 20 };
 // Workgroups of 64 per grid-stride pass. On a CPU device (lavapipe) 128 groups, 8192 invocations:
-// a few per core, each walking many pixels. On a GPU that leaves nearly every multiprocessor idle
-// (an H200 holds 270,336 resident invocations; with 8192 a 4K compare spent 1.9 s in metrics),
-// so a GPU gets kGpuGroups (GBL_EVAL_GROUPS overrides both, for measurements).
+// a few per core, each walking many pixels. A GPU holds far more (an H200: 270,336 resident
+// invocations), so it gets kGpuGroups. Measured on the H200 at 4K: no change in the evaluation's
+// time while its histograms were in host memory (their atomics were the cost); not measured
+// apart since. GBL_EVAL_GROUPS overrides both, for measurements.
 inline constexpr uint32_t kCpuGroups = 128;
 inline constexpr uint32_t kGpuGroups = 2048;
 inline constexpr uint32_t kMaxFields = 96;
@@ -69,9 +70,9 @@ public:
     const uint32_t width, height;  // the frame
     const uint32_t planeRows;
     const uint32_t groups;  // of every grid-stride pass (kCpuGroups / kGpuGroups)
-    // Scratch (FLIP's planes, the 8-bit outputs) kept from one evaluation to the next: on a GPU,
-    // where allocating hundreds of MB per run costs more than the passes; a CPU device frees it
-    // between runs (its memory is the process's: the 4K peak).
+    // FLIP's planes kept from one evaluation to the next on a GPU (15 floats a pixel: 500 MB at
+    // 4K, allocated per run before); a CPU device frees them between runs (its memory is the
+    // process's: the 4K peak). The 8-bit outputs go with each run's images (detachOut8).
     const bool keepScratch;
 
     // What the passes see: bound images of width x imageRows (imageRows <= planeRows), of which
