@@ -1,6 +1,8 @@
 #include "compare_runs.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -102,6 +104,13 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
     GpuEvalOptions options;
     options.hdrFlip = hdrFlip;
     options.images = writeImages ? &images : nullptr;
+    // On a GPU the images stay packed until the writer's job unpacks them (GpuErrorImages::unpack),
+    // off the main thread; a CPU device's memory is the process's, so it unpacks (and frees) now.
+    // GBL_EVAL_DEFER_IMAGES=1 / 0 forces the choice (compare_bands_cli_test runs the GPU's way
+    // on lavapipe).
+    bool defer = test.device->ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU;
+    if (const char* v = std::getenv("GBL_EVAL_DEFER_IMAGES"); v && *v) defer = std::strcmp(v, "0") != 0;
+    options.deferImages = output.writer && defer;
     const int width = int(test.device->hdr.extent.width), height = int(test.device->hdr.extent.height);
     options.cropSize = std::max(32, std::min(width, height) / 12);
     if (releaseTest)  // the test's surfaces go as soon as the attributes are measured (peak memory at 4K)
@@ -176,7 +185,12 @@ void queueDeviceImages(RunReport& run, GpuErrorImages&& images, const RunMetrics
         GpuErrorImages& g = *owned;
         makeRunDirectory(outDir, prefix);
         std::shared_ptr<const Image> hdr;
-        parallelInvoke({[&] { hdr = hdrSource(); }, [&] { g.unpack(); }});
+        parallelInvoke({[&] { hdr = hdrSource(); },
+                        [&] {
+                            if (!g.packed) return;
+                            HostScope scope("job: unpack the 8-bit images");
+                            g.unpack();
+                        }});
         // Every file side by side: one 4K file is one core's work, and on a GPU the run's files
         // are most of its time (compare at 4K: report writing 4.5 s of 7.9 s when they ran one by one).
         parallelInvoke({[&] {

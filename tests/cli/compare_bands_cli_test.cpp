@@ -1,7 +1,8 @@
 // compare in bands against compare on whole frames, through the real executable: every number of
 // report.json (times, the command line and notes aside) and every image file must be the same,
 // for layouts that stress a band's edges (crysis3-thin's checkerboard chroma, crysis2-slim's light
-// pre-pass, a visibility buffer), over two views; and the flag's bad uses fail with one line.
+// pre-pass, a visibility buffer), over two views; whole frames with the GPU's deferred 8-bit images
+// give the same too; and the flag's bad uses fail with one line.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,12 +51,19 @@ TEST(CompareBandsCli, BandsGiveTheWholeFramesNumbersAndImages) {
     ASSERT_EQ(bands.exitCode, 0) << bands.err;
     const RunResult odd = run(common + "--band-rows 56 --out odd");  // 56 + 56 + 8 rows
     ASSERT_EQ(odd.exitCode, 0) << odd.err;
+    // Whole frames the way a GPU runs them: each run's 8-bit images unpacked by the writer's job
+    // (GpuErrorImages::unpack) while later runs evaluate into new buffers. The same files.
+    const RunResult deferred =
+        runGbufferlab(scratch(), common + "--band-rows 0 --out deferred", "GBL_EVAL_DEFER_IMAGES=1 GBL_HOST_PROFILE=1");
+    ASSERT_EQ(deferred.exitCode, 0) << deferred.err;
+    EXPECT_NE(deferred.err.find("job: unpack the 8-bit images"), std::string::npos) << "no image was deferred";
+    EXPECT_EQ(whole.err.find("job: unpack the 8-bit images"), std::string::npos);
 
     const nlohmann::json w = nlohmann::json::parse(slurp(scratch() / "whole" / "report.json"));
     std::vector<std::pair<std::string, double>> expected;
     collectNumbers(w, "", expected);
     ASSERT_GT(expected.size(), 200u);
-    for (const char* dir : {"bands", "odd"}) {
+    for (const char* dir : {"bands", "odd", "deferred"}) {
         const nlohmann::json b = nlohmann::json::parse(slurp(scratch() / dir / "report.json"));
         std::vector<std::pair<std::string, double>> got;
         collectNumbers(b, "", got);
