@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "env_flag.h"
+
 namespace gbl {
 namespace {
 
@@ -34,10 +36,7 @@ Table& table() {
 }  // namespace
 
 bool hostProfileOn() {
-    static const bool on = [] {
-        const char* v = std::getenv("GBL_HOST_PROFILE");
-        return v && *v && std::strcmp(v, "0") != 0;
-    }();
+    static const bool on = envFlag("GBL_HOST_PROFILE");
     return on;
 }
 

@@ -1,13 +1,12 @@
 #include "compare_runs.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 
 #include "color_map.h"
+#include "env_flag.h"
 #include "error_images.h"
 #include "host_profile.h"
 #include "parallel_invoke.h"
@@ -108,9 +107,8 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
     // off the main thread; a CPU device's memory is the process's, so it unpacks (and frees) now.
     // GBL_EVAL_DEFER_IMAGES=1 / 0 forces the choice (compare_bands_cli_test runs the GPU's way
     // on lavapipe).
-    bool defer = test.device->ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU;
-    if (const char* v = std::getenv("GBL_EVAL_DEFER_IMAGES"); v && *v) defer = std::strcmp(v, "0") != 0;
-    options.deferImages = output.writer && defer;
+    options.deferImages =
+        output.writer && envChoice("GBL_EVAL_DEFER_IMAGES").value_or(test.device->ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
     const int width = int(test.device->hdr.extent.width), height = int(test.device->hdr.extent.height);
     options.cropSize = std::max(32, std::min(width, height) / 12);
     if (releaseTest)  // the test's surfaces go as soon as the attributes are measured (peak memory at 4K)

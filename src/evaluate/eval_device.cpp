@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "color_map.h"
+#include "env_flag.h"
 #include "error.h"
 #include "eval_profile.h"
 #include "histogram.h"
@@ -82,10 +83,6 @@ uint32_t groupsFor(const VulkanContext& c) {
     }
     return cpuDevice(c) ? kCpuGroups : kGpuGroups;
 }
-bool envSet(const char* name) {
-    const char* v = std::getenv(name);
-    return v && *v && std::strcmp(v, "0") != 0;
-}
 // Subgroup vote and ballot in compute shaders (eval_common.glsl histAdd).
 bool subgroupVoteAndBallot(const VulkanContext& c) {
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
@@ -98,8 +95,7 @@ bool subgroupVoteAndBallot(const VulkanContext& c) {
 }  // namespace
 
 EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t rows)
-    : ctx(c), width(w), height(h), planeRows(rows == 0 ? h : std::min(rows, h)), groups(groupsFor(c)),
-      keepScratch(!cpuDevice(c)) {
+    : ctx(c), width(w), height(h), planeRows(rows == 0 ? h : std::min(rows, h)), groups(groupsFor(c)) {
     setWholeFrameView();
     if (!ctx.shaderFloat64)
         throwUserError("--eval gpu: the Vulkan device '" + ctx.info.name +
@@ -110,7 +106,7 @@ EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t 
     pipelineLayout_ = createPipelineLayout(ctx.device, {setLayout_}, sizeof(Push), VK_SHADER_STAGE_COMPUTE_BIT);
     pool_ = createPoolFor(ctx.device, {b});
     set_ = allocateSet(ctx.device, pool_, setLayout_);
-    const bool subgroupHist = subgroupVoteAndBallot(ctx) && !envSet("GBL_EVAL_NO_SUBGROUPS");
+    const bool subgroupHist = subgroupVoteAndBallot(ctx) && !envFlag("GBL_EVAL_NO_SUBGROUPS");
     for (size_t p = 0; p < size_t(Pass::Count); ++p) {
         ShaderSource s = loadShaderFile(shaderFile(Pass(p)));
         if (subgroupHist) s.defines.push_back({"EVAL_SUBGROUP_HIST", "1"});

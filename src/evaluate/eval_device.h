@@ -70,10 +70,6 @@ public:
     const uint32_t width, height;  // the frame
     const uint32_t planeRows;
     const uint32_t groups;  // of every grid-stride pass (kCpuGroups / kGpuGroups)
-    // FLIP's planes kept from one evaluation to the next on a GPU (15 floats a pixel: 500 MB at
-    // 4K, allocated per run before); a CPU device frees them between runs (its memory is the
-    // process's: the 4K peak). The 8-bit outputs go with each run's images (detachOut8).
-    const bool keepScratch;
 
     // What the passes see: bound images of width x imageRows (imageRows <= planeRows), of which
     // rows [countedFirst, countedFirst + countedRows) count. The default view is the whole frame.

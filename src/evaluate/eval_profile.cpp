@@ -7,11 +7,12 @@
 #include <numeric>
 #include <utility>
 
+#include "env_flag.h"
+
 namespace gbl::evaluate {
 
 bool EvalProfile::wanted() {
-    const char* v = std::getenv("GBL_EVAL_PROFILE");
-    return v && *v && std::strcmp(v, "0") != 0;
+    return envFlag("GBL_EVAL_PROFILE");
 }
 
 EvalProfile::EvalProfile(std::vector<std::string> kinds, std::string device)

@@ -322,7 +322,9 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
     d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
         recordFlipPasses(cmd, d, s.flip, s.exposure, pass.images, o.hdrFlip, s.hdrRange);
     });
-    if (!d.keepScratch) s.flip.release();
+    // Freed after every run: on a CPU device that is the 4K peak; on a GPU the context's
+    // recycler (memory_recycler.h) hands the same blocks to the next run's planes.
+    s.flip.release();
 
     phase.emplace("evaluate: assemble (histogram copy)");
     const RunMetrics m = assembleMetrics(d.result(), d, n, pass.attributes, o.hdrFlip, s.noise, s.hdrRange);

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "env_flag.h"
 #include "error.h"
 
 namespace gbl {
@@ -48,11 +49,6 @@ void vkFail(const char* call, VkResult result, const char* file, int line) {
 namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
-
-bool envFlag(const char* name) {
-    const char* v = std::getenv(name);
-    return v && *v && std::strcmp(v, "0") != 0;
-}
 
 VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                               VkDebugUtilsMessageTypeFlagsEXT,

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <mutex>
 
+#include "env_flag.h"
+
 namespace gbl {
 
 namespace {
@@ -19,10 +21,7 @@ std::map<std::string, WarmUpTotal>& ledger() {
 }
 
 bool logEachWarmUp() {
-    static const bool on = [] {
-        const char* v = std::getenv("GBL_WARM_UP_LOG");
-        return v && *v && std::string(v) != "0";
-    }();
+    static const bool on = envFlag("GBL_WARM_UP_LOG");
     return on;
 }
 
