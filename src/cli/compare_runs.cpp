@@ -258,6 +258,7 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
     if (!output.writer) hdr = std::shared_ptr<const Image>(std::shared_ptr<const Image>(), &test.hdr);
     else hdr = std::make_shared<const Image>(releaseTest ? std::move(test.hdr) : test.hdr);
     auto write = [outDir, prefix, maps, m, hdr, crops, imageOptions, exrType = output.exrType] {
+        HostScope scope("job: a run's files (host metrics)");
         makeRunDirectory(outDir, prefix);
         parallelInvoke({[&] { writeErrorImages(outDir, prefix, *maps, m, imageOptions); },
                         [&] { writeExr((outDir / (prefix + "render.exr")).string(), *hdr, {}, exrType); },
@@ -270,6 +271,7 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
                         }});
     };
     // Named by the run's file prefix: a failure is matched back to its run (cmd_compare.cpp).
+    HostScope enqueue("run: queue its files (waits when full)");
     if (output.writer) output.writer->enqueue(prefix, std::move(write));
     else write();
 }

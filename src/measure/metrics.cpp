@@ -47,14 +47,8 @@ inline bool covered(const Mask* mask, size_t i) { return !mask || mask->empty() 
 // 16 bits of an order-preserving key of their bit patterns (Herf, "Radix Tricks", 2001: flip
 // negatives), find the bucket that holds the wanted rank, then select only among its samples.
 // The k-th smallest value is one value however it is found.
-constexpr int kBucketShift = 48;
-constexpr size_t kBuckets = size_t(1) << (64 - kBucketShift);
-inline size_t bucketOf(double v) {
-    uint64_t u;
-    std::memcpy(&u, &v, sizeof u);
-    u ^= (u >> 63) ? ~uint64_t(0) : (uint64_t(1) << 63);
-    return size_t(u >> kBucketShift);
-}
+constexpr size_t kBuckets = ClassStatsPool::kBuckets;
+inline size_t bucketOf(double v) { return ClassStatsPool::bucketOf(v); }
 
 }  // namespace
 
@@ -112,30 +106,33 @@ ScalarStats summarize(std::vector<double>& s) {
 
 std::array<ScalarStats, 3> summarizeByClass(const std::vector<double>& s, const std::vector<uint8_t>& cls) {
     if (cls.size() != s.size()) throw std::invalid_argument("summarizeByClass: one class byte per sample");
+    ClassStatsPool pool(s.size());
+    for (size_t i = 0; i < s.size(); ++i) pool.add(s[i], cls[i] != 0);
+    return pool.finish();
+}
+
+ClassStatsPool::ClassStatsPool(size_t expectedSamples) : histogram_(2 * kBuckets, 0) {
+    // Address space only: the pages a class's samples do not reach are never touched.
+    for (std::vector<double>& v : samples_) v.reserve(expectedSamples);
+}
+
+std::array<ScalarStats, 3> ClassStatsPool::finish() {
     std::array<ScalarStats, 3> out{};
-    double sum[3] = {}, sum2[3] = {}, mx[3] = {};
-    std::vector<uint32_t> histogram(2 * kBuckets, 0);  // class 0, class 1; "all" is their sum
-    for (size_t i = 0; i < s.size(); ++i) {
-        const double v = s[i];
-        const int c = cls[i] ? 1 : 0;
-        for (int k : {c, 2}) {
-            mx[k] = out[size_t(k)].count == 0 ? v : std::max(mx[k], v);  // summarize's: from the first sample
-            sum[k] += v;
-            sum2[k] += v * v;
-            ++out[size_t(k)].count;
-        }
-        ++histogram[size_t(c) * kBuckets + bucketOf(v)];
-    }
+    const size_t zeros[3] = {zeros_[0], zeros_[1], zeros_[0] + zeros_[1]};
+    const size_t zeroBucket = bucketOf(0.0);
     size_t bucket[3] = {}, below[3] = {}, rank[3] = {};
     for (int k = 0; k < 3; ++k) {
         ScalarStats& r = out[size_t(k)];
+        r.count = nonZero_[k] + zeros[k];
         if (r.count == 0) continue;
-        r.mean = sum[k] / double(r.count);
-        r.rms = std::sqrt(sum2[k] / double(r.count));
-        r.max = mx[k];
+        r.mean = sum_[k] / double(r.count);
+        r.rms = std::sqrt(sum2_[k] / double(r.count));
+        r.max = nonZero_[k] == 0 ? 0.0 : zeros[k] ? std::max(max_[k], 0.0) : max_[k];
         rank[k] = nearestRankIndex(0.99, r.count);
         auto at = [&](size_t b) {
-            return k == 2 ? size_t(histogram[b]) + histogram[kBuckets + b] : size_t(histogram[size_t(k) * kBuckets + b]);
+            const size_t inClass =
+                k == 2 ? size_t(histogram_[b]) + histogram_[kBuckets + b] : size_t(histogram_[size_t(k) * kBuckets + b]);
+            return inClass + (b == zeroBucket ? zeros[k] : 0);
         };
         size_t b = 0, n = 0;
         while (n + at(b) <= rank[k]) n += at(b++);
@@ -143,14 +140,19 @@ std::array<ScalarStats, 3> summarizeByClass(const std::vector<double>& s, const 
         below[k] = n;
     }
     std::vector<double> inBucket[3];
-    for (size_t i = 0; i < s.size(); ++i) {
-        const size_t b = bucketOf(s[i]);
-        const int c = cls[i] ? 1 : 0;
-        if (b == bucket[c] && out[size_t(c)].count) inBucket[c].push_back(s[i]);
-        if (b == bucket[2]) inBucket[2].push_back(s[i]);
+    for (int c = 0; c < 2; ++c)
+        for (double v : samples_[c]) {
+            const size_t b = bucketOf(v);
+            if (b == bucket[c]) inBucket[c].push_back(v);
+            if (b == bucket[2]) inBucket[2].push_back(v);
+        }
+    for (int k = 0; k < 3; ++k) {
+        if (out[size_t(k)].count == 0) continue;
+        // The zeros are the smallest members of the zero bucket (+0 before any positive value).
+        const size_t kth = rank[k] - below[k], leadingZeros = bucket[k] == zeroBucket ? zeros[k] : 0;
+        out[size_t(k)].p99 = kth < leadingZeros ? 0.0 : percentileNearestRankAt(inBucket[k], kth - leadingZeros);
     }
-    for (int k = 0; k < 3; ++k)
-        if (out[size_t(k)].count) out[size_t(k)].p99 = percentileNearestRankAt(inBucket[k], rank[k] - below[k]);
+    for (std::vector<double>& v : samples_) std::vector<double>().swap(v);
     return out;
 }
 

@@ -10,7 +10,9 @@
 // fraction p of the samples <= v. p99 below is that with p = 0.99.
 //
 // Identical images give exactly 0 for every error and PSNR = +infinity.
+#include <algorithm>
 #include <array>
+#include <cstring>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -55,6 +57,54 @@ ScalarStats summarize(std::vector<double>& samples);  // reorders the samples
 // over every sample. (For -0 against +0, or NaN, which summarize leaves unspecified, the value
 // picked may differ.)
 std::array<ScalarStats, 3> summarizeByClass(const std::vector<double>& samples, const std::vector<uint8_t>& cls);
+
+// summarizeByClass as a stream: add(v, cls) in pool order, then finish() gives the same doubles
+// without the pool. compare measures 8 attributes of about 2 million pixels per run at 1080p,
+// and most of an exactly stored attribute's errors are 0: a +0 sample only counts (adding +0 to
+// a sum of non-negative errors, or to its square, changes no bit), the others go to their class's
+// histogram and list. The p99 is selected among the samples of its bucket only, the zeros of the
+// zero bucket standing first. Samples are errors, so never -0 or NaN (as summarizeByClass).
+class ClassStatsPool {
+public:
+    explicit ClassStatsPool(size_t expectedSamples = 0);
+    void add(double v, bool cls1) {
+        const int c = cls1 ? 1 : 0;
+        uint64_t bits;
+        std::memcpy(&bits, &v, sizeof bits);
+        if (bits == 0) {
+            ++zeros_[c];
+            return;
+        }
+        accumulate(c, v);
+        accumulate(2, v);
+        ++histogram_[size_t(c) * kBuckets + bucketOf(v)];
+        samples_[c].push_back(v);
+    }
+    std::array<ScalarStats, 3> finish();  // {class 0, class 1, all}; once
+
+    // The histogram's key: the top 16 bits of an order-preserving map of the bit pattern (Herf,
+    // "Radix Tricks", 2001: flip negatives).
+    static constexpr int kBucketShift = 48;
+    static constexpr size_t kBuckets = size_t(1) << (64 - kBucketShift);
+    static size_t bucketOf(double v) {
+        uint64_t u;
+        std::memcpy(&u, &v, sizeof u);
+        u ^= (u >> 63) ? ~uint64_t(0) : (uint64_t(1) << 63);
+        return size_t(u >> kBucketShift);
+    }
+
+private:
+    void accumulate(int k, double v) {
+        max_[k] = nonZero_[k] == 0 ? v : std::max(max_[k], v);  // summarize's: from the first sample
+        sum_[k] += v;
+        sum2_[k] += v * v;
+        ++nonZero_[k];
+    }
+    double sum_[3] = {}, sum2_[3] = {}, max_[3] = {};
+    size_t nonZero_[3] = {}, zeros_[2] = {};
+    std::vector<uint32_t> histogram_;  // class 0's buckets, then class 1's; "all" is their sum
+    std::vector<double> samples_[2];   // each class's samples that are not +0, in pool order
+};
 
 // ---- Image (radiance / colour) errors ----------------------------------------------------------
 

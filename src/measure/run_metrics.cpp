@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "flip.h"
+#include "host_profile.h"
 #include "pair_memo.h"
 #include "parallel_invoke.h"
 #include "tone_map.h"
@@ -50,17 +51,14 @@ bool usable(const Image& a, const Image& b, int channels, const char* what) {
 
 // Runs errorAt(i, ok, sq) for every measured pixel, pools the results by class and writes the
 // per-pixel value into `map` (0 where not measured). sq: summed squared channel error (colours).
-// One pool in pixel order with a class byte per sample (summarizeByClass gives each class the
-// statistics of its own pool).
+// The samples stream into one pool in pixel order with their class (ClassStatsPool: each class
+// gets the statistics of its own samples, as summarize() of them would give).
 template <class ErrorAt>
 AttributeMetrics measure(const Mask& measured, const Mask& metal, Image* map, bool color, ErrorAt&& errorAt) {
     const size_t n = measured.size();
     size_t both = 0;
     for (uint8_t m : measured) both += m ? 1 : 0;
-    std::vector<double> samples;
-    std::vector<uint8_t> isMetal;
-    samples.reserve(both);
-    isMetal.reserve(both);
+    ClassStatsPool pool(both);
     double sqAll = 0.0, sqMetal = 0.0, sqDielectric = 0.0;  // colour: summed squared RGB error
     size_t skipped = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -73,12 +71,11 @@ AttributeMetrics measure(const Mask& measured, const Mask& metal, Image* map, bo
             continue;
         }
         if (map) map->pixels[i] = float(e);
-        samples.push_back(e);
-        isMetal.push_back(metal[i]);
+        pool.add(e, metal[i] != 0);
         sqAll += sq;
         (metal[i] ? sqMetal : sqDielectric) += sq;
     }
-    const std::array<ScalarStats, 3> stats = summarizeByClass(samples, isMetal);  // dielectric, metal, all
+    const std::array<ScalarStats, 3> stats = pool.finish();  // dielectric, metal, all
     auto finish = [&](const ScalarStats& st, double sq) {
         ClassStats c;
         c.error = st;
@@ -209,6 +206,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     const size_t n = referenceHdr.pixelCount();
 
     // Coverage and material classes.
+    std::optional<HostScope> scope(std::in_place, "metrics: coverage");
     Mask measured(n, 0), metal(n, 0);
     const bool haveMetallic = !reference.metallic.empty();
     out.coverage.pixels = n;
@@ -230,6 +228,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
 
     // Attributes, side by side (each task fills its own fields and maps; each is computed exactly
     // as alone, so results do not depend on the thread count).
+    scope.emplace("metrics: attributes and image errors");
     std::vector<std::function<void()>> tasks;
     if (usable(reference.normal, test.normal, 3, "normal")) tasks.push_back([&] {
         const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
@@ -298,6 +297,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     parallelInvoke(tasks);
     if (release) *release = SurfaceImages{};
 
+    scope.emplace("metrics: FLIP");
     Image flip = prepared->flip.compare(testSrgb);
     Image hdrFlip;
     if (options.hdrFlip) {
@@ -309,6 +309,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     }
 
     // FLIP's statistics and the image errors per material class, side by side (both only read).
+    scope.emplace("metrics: FLIP statistics and classes");
     Image rel;  // the whole map, for the heat map and the worst regions; else per pixel below
     const double floor = prepared->luminanceFloor;
     tasks.clear();
@@ -360,6 +361,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     parallelInvoke(tasks);
     if (maps) maps->relLuminance = std::move(rel);
 
+    scope.emplace("metrics: maps");
     if (maps) {
         maps->referenceSrgb = prepared->srgb;  // shared: outlives `local`
         maps->testSrgb = std::move(testSrgb);

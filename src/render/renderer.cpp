@@ -8,11 +8,13 @@
 #include <cstring>
 #include <exception>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "error.h"
+#include "host_profile.h"
 #include "ibl_cache.h"
 #include "parallel_invoke.h"
 #include "renderer_passes.h"
@@ -314,7 +316,10 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     RenderOutput out;
     out.timings.gbufferMs = passMs[0];
     out.timings.lightingMs = passMs[1];
-    auto readHdr = [&] { out.hdr = downloadRgba32f(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL); };
+    auto readHdr = [&] {
+        HostScope scope("read-back: HDR image");
+        out.hdr = downloadRgba32f(ctx_, lighting.hdr, VK_IMAGE_LAYOUT_GENERAL);
+    };
     if (groundTruth) {
         // Progressive: more batches until the noise target is met (or the batch limit is reached).
         if (settings.groundTruthMinBatches < 2 || settings.groundTruthMaxBatches < settings.groundTruthMinBatches ||
@@ -373,6 +378,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         }
         destroyBuffer(ctx_, lightBuffers);
     }
+    std::optional<HostScope> wordsScope(std::in_place, "read-back: G-buffer words and depth");
     for (const GpuImage& t : gbuffer.targets) {
         if (!settings.readTargetWords && !cpuDecode) break;
         out.targetWords.push_back(downloadWords(ctx_, t, size_t(w) * rows, band.first, band.rows));  // R8 / R16 widened
@@ -425,6 +431,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         if (material) destroyGBufferPass(ctx_, materialPass);
         destroyGBufferPass(ctx_, gbuffer);
         destroyBuffer(ctx_, frameBuffer);
+        wordsScope.reset();
+        HostScope scope("read-back: decode on the host");
         out.surfaces = decodeSurfacesOnCpu(*wiring.cpuDecoder, words, out.depth, frame, wiring.normalSpace, wiring.depthFormat);
         out.targetWords.clear();
         if (settings.readTargetWords) out.targetWords = std::move(words.targetWords);

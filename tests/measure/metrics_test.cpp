@@ -189,6 +189,13 @@ TEST(Metrics, SummarizeByClassIsSummarizeOfEachClass) {
     // crowded bucket), include zeros; sizes include a class with one sample and an empty class.
     std::mt19937 rng(4);
     std::uniform_real_distribution<double> u(0.0, 1.0);
+    // The mixes: a fifth zeros; zeros holding the p99's rank; the rank past the zeros but inside
+    // their bucket (subnormal errors share the top 16 bits of +0), where the pool's zeros stand
+    // first among the bucket's samples.
+    struct Mix {
+        double zeros, tiny;
+    };
+    for (const Mix mix : {Mix{0.2, 0.0}, Mix{0.995, 0.0}, Mix{0.985, 0.012}}) {
     for (size_t n : {size_t(1), size_t(2), size_t(137), size_t(20000)}) {
         for (double metalShare : {0.0, 0.3, 1.0}) {
             std::vector<double> pool;
@@ -196,7 +203,11 @@ TEST(Metrics, SummarizeByClassIsSummarizeOfEachClass) {
             std::vector<double> byClass[2], all;
             for (size_t i = 0; i < n; ++i) {
                 const double kind = u(rng);
-                const double v = kind < 0.2 ? 0.0 : kind < 0.5 ? 1.5 : std::pow(10.0, -5.0 + 8.0 * u(rng));
+                const double v = kind < mix.zeros                ? 0.0
+                                 : kind < mix.zeros + mix.tiny   ? 1e-310 * (1.0 + u(rng))
+                                 : kind < mix.zeros + 0.3 * (1.0 - mix.zeros - mix.tiny) + mix.tiny
+                                     ? 1.5
+                                     : std::pow(10.0, -5.0 + 8.0 * u(rng));
                 const uint8_t c = u(rng) < metalShare ? 1 : 0;
                 pool.push_back(v);
                 cls.push_back(c);
@@ -214,6 +225,7 @@ TEST(Metrics, SummarizeByClassIsSummarizeOfEachClass) {
                 EXPECT_EQ(got[size_t(k)].max, want[k].max);
             }
         }
+    }
     }
     EXPECT_THROW(gbl::summarizeByClass({1.0, 2.0}, {0}), std::invalid_argument);
 }
