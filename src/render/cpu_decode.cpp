@@ -15,32 +15,11 @@ namespace {
 // stay in its cache between the codec writing them and the planes reading them.
 constexpr int kRowsPerBand = 1;
 
-// GLSL's mat4 * vec4 as Mesa's SPIR-V front end spells it (the last column first, then each column
-// times its component added on) and llvmpipe runs it, unfused (this file builds with
-// -ffp-contract=off): glm's operator* sums the columns pairwise, which differs by an ulp or two
-// after the inverse projection's cancellation (cpu_decode_test, orbit view).
-[[gnu::always_inline]] inline glm::vec4 mulMV(const glm::mat4& m, const glm::vec4& v) {
-    glm::vec4 r = m[3] * v.w;
-    r = m[2] * v.z + r;
-    r = m[1] * v.y + r;
-    r = m[0] * v.x + r;
-    return r;
-}
-// decode_pass.comp.glsl's view depth, in the same float steps: the pixel centre in NDC, through
-// the inverse view-projection to the world, then -z in view space.
-float viewDepthAt(const gpu::FrameConstants& frame, int x, int y, float depth) {
-    const glm::vec2 ndc = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(frame.extent.x, frame.extent.y) * 2.0f - 1.0f;
-    const glm::vec4 world = mulMV(frame.invViewProj, glm::vec4(ndc, depth, 1.0f));
-    const glm::vec3 position = glm::vec3(world) / world.w;
-    // mulMV(frame.view, vec4(position, 1)).z alone, in mulMV's steps: each component of mulMV is
-    // its own chain of products and sums, so the z row computed by itself is bit for bit the same
-    // (the other three rows went unused; mulMV was 2.4% of a whole 1080p compare's CPU samples).
-    const glm::mat4& v = frame.view;
-    float z = v[3].z * 1.0f;
-    z = v[2].z * position.z + z;
-    z = v[1].z * position.y + z;
-    z = v[0].z * position.x + z;
-    return -z;
+// decode_pass.comp.glsl's view depth, in the same float steps: from the depth value and the
+// projection alone (see there why not through world space).
+float viewDepthAt(const gpu::FrameConstants& frame, float depth) {
+    const glm::mat4& p = frame.proj;
+    return (depth * p[3][3] - p[3][2]) / (depth * p[2][3] - p[2][2]);
 }
 
 }  // namespace
@@ -99,7 +78,7 @@ SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, cons
                     s.roughness.pixels[i] = d.roughness;
                     s.metallic.pixels[i] = d.metallic;
                     s.occlusion.pixels[i] = d.occlusion;
-                    s.viewDepth.pixels[i] = viewDepthAt(frame, x, y, sampled(depth[i]));
+                    s.viewDepth.pixels[i] = viewDepthAt(frame, sampled(depth[i]));
                 }
         }
     });

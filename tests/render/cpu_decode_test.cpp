@@ -7,9 +7,11 @@
 // depth exactly, and the CPU path must not build the decode pass's pipeline.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 
 #include "layout_catalog.h"
 #include "procedural_sky.h"
@@ -137,6 +139,70 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
     }
 }
 
+
+// The decoded view depth against the exact view depth of each stored depth value: the float
+// projection the depth was rasterised with, solved for view z in double precision.
+// decode_pass.comp.glsl takes it from the depth value and the projection alone; the way it took
+// before, through world space and back (kept here as `worldRoundTrip`), cancels large
+// coordinates. Both are measured; the decode must stay within 2 ulp and beat the round trip.
+double ulpsApart(float value, double exact) {
+    const double ulp = double(std::nextafter(float(exact), std::numeric_limits<float>::infinity())) - double(float(exact));
+    return std::abs(double(value) - exact) / ulp;
+}
+
+float worldRoundTrip(const CameraMatrices& m, int x, int y, int w, int h, float depth) {
+    const glm::vec2 ndc = (glm::vec2(float(x), float(y)) + 0.5f) / glm::vec2(float(w), float(h)) * 2.0f - 1.0f;
+    const glm::vec4 world = m.invViewProj * glm::vec4(ndc, depth, 1.0f);
+    return -(m.view * glm::vec4(glm::vec3(world) / world.w, 1.0f)).z;
+}
+
+TEST_F(CpuDecodeTest, ViewDepthIsTheProjectionsWithinTwoUlp) {
+    constexpr uint32_t kWidth = 160, kHeight = 90;
+    const Scene scene = makeSphereGridScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(test::sharedContext(), scene, sky);
+    for (const char* name : {"reference", "ue4", "crysis3-thin"}) {
+        const GBufferWiring wiring = generateWiring(loadLayout(name));
+        for (const bool orbit : {false, true}) {
+            SCOPED_TRACE(std::string(name) + (orbit ? " orbit" : " scene camera"));
+            RenderSettings settings;
+            settings.width = kWidth;
+            settings.height = kHeight;
+            settings.decodeSurfaces = true;
+            settings.readTargetWords = false;
+            const Camera camera = orbit ? orbitCamera(scene) : scene.camera;
+            settings.camera = camera;
+            const RenderOutput out = renderer.render(wiring, settings);  // the decode pass
+            const float aspect = float(kWidth) / float(kHeight);
+            const CameraMatrices m = computeCameraMatrices(camera, aspect, wiring.reversedZ);
+            const glm::dmat4 p(m.proj);  // the projection the depth was rasterised with, exactly
+            const bool unorm24 = wiring.depthFormat == VK_FORMAT_D24_UNORM_S8_UINT ||
+                                 wiring.depthFormat == VK_FORMAT_X8_D24_UNORM_PACK32;
+            double worst = 0.0, worstRoundTrip = 0.0;
+            size_t covered = 0;
+            for (uint32_t y = 0; y < kHeight; ++y)
+                for (uint32_t x = 0; x < kWidth; ++x) {
+                    const size_t i = size_t(y) * kWidth + x;
+                    if (!out.surfaces.coverage[i]) continue;
+                    ++covered;
+                    // The depth the decode pass read: a 24-bit UNORM depth as llvmpipe's sampler
+                    // converts it (cpu_decode.cpp `sampled`), the read-back value otherwise.
+                    const float read = unorm24 ? float(std::nearbyint(double(out.depth[i]) * 16777215.0)) * (1.0f / 16777215.0f)
+                                               : out.depth[i];
+                    const double d = read;
+                    const double exact = (d * p[3][3] - p[3][2]) / (d * p[2][3] - p[2][2]);
+                    worst = std::max(worst, ulpsApart(out.surfaces.viewDepth.pixels[i], exact));
+                    worstRoundTrip = std::max(
+                        worstRoundTrip, ulpsApart(worldRoundTrip(m, int(x), int(y), int(kWidth), int(kHeight), read), exact));
+                }
+            ASSERT_GT(covered, size_t(kWidth) * kHeight / 4);
+            std::printf("[ depth    ] %-13s %-6s view depth within %.2f ulp of the double projection (world round trip: %.2f)\n",
+                        name, orbit ? "orbit" : "scene", worst, worstRoundTrip);
+            EXPECT_LE(worst, 2.0);
+            EXPECT_LT(worst, worstRoundTrip);
+        }
+    }
+}
 
 // Where the codec cannot stand in for readGBuffer, the wiring has no CPU decoder and the renderer
 // keeps the decode pass: a visibility buffer (its readGBuffer resolves triangles) and targets in
