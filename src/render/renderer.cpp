@@ -378,7 +378,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         }
         destroyBuffer(ctx_, lightBuffers);
     }
-    std::optional<HostScope> wordsScope(std::in_place, "read-back: G-buffer words and depth");
+    std::optional<HostScope> wordsScope(std::in_place, "read-back: G-buffer words, depth (and a decode pass)");
     for (const GpuImage& t : gbuffer.targets) {
         if (!settings.readTargetWords && !cpuDecode) break;
         out.targetWords.push_back(downloadWords(ctx_, t, size_t(w) * rows, band.first, band.rows));  // R8 / R16 widened
