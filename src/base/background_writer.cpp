@@ -3,10 +3,27 @@
 #include <algorithm>
 #include <exception>
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace gbl {
 
-BackgroundWriter::BackgroundWriter(int threads, size_t maxQueued) : maxQueued_(std::max<size_t>(1, maxQueued)) {
-    for (int i = 0; i < std::max(1, threads); ++i) threads_.emplace_back([this] { work(); });
+BackgroundWriter::BackgroundWriter(int threads, size_t maxQueued, int niceness)
+    : maxQueued_(std::max<size_t>(1, maxQueued)) {
+    for (int i = 0; i < std::max(1, threads); ++i)
+        threads_.emplace_back([this, niceness] {
+#if defined(__linux__)
+            // Per thread on Linux (the nice value is a thread's own; threads started later
+            // inherit it). A refusal leaves the thread at the command's priority: no error.
+            if (niceness > 0) setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), niceness);
+#else
+            (void)niceness;
+#endif
+            work();
+        });
 }
 
 BackgroundWriter::~BackgroundWriter() {

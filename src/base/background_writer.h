@@ -9,6 +9,10 @@
 //   one line) and finish() returns them all, in the order the jobs were queued.
 // - No partial file: jobs write through file_io's atomic writes (temporary + rename), whose
 //   temporaries interrupt.h removes on SIGINT / SIGTERM.
+// - Priority: with `niceness` > 0 the writer's threads (and the threads their jobs start, which
+//   inherit it) run at that nice value (Linux). On a machine whose cores are all busy (lavapipe
+//   renders on the same cores) the files then take the time the render and the metrics leave
+//   over instead of stretching them; compare uses it to measure its passes unstretched.
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -29,7 +33,7 @@ struct WriteFailure {
 
 class BackgroundWriter {
 public:
-    explicit BackgroundWriter(int threads = 1, size_t maxQueued = 2);
+    explicit BackgroundWriter(int threads = 1, size_t maxQueued = 2, int niceness = 0);
     // Waits for the queued jobs (their errors are dropped only if finish() was never called:
     // call it to see them).
     ~BackgroundWriter();

@@ -2,6 +2,7 @@
 // layout (under every chosen IBL mode) at the same camera, measures attribute and image error,
 // writes error images, the bandwidth model and report.html / report.json / report.csv.
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -93,6 +94,11 @@ std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec) {
         layouts.push_back(loadLayout(n));
     }
     return layouts;
+}
+
+int writerNiceness() {
+    const char* v = std::getenv("GBL_WRITER_NICE");
+    return v && *v ? std::clamp(std::atoi(v), 0, 19) : 0;
 }
 
 std::string isoDate() {
@@ -276,7 +282,13 @@ int runCompareCommand(const std::vector<std::string>& args) {
     // In bands a run's images span the frame while its bands do not: one run waits at most.
     // With many cores (a GPU workstation) two runs' files are written at once: each run's files
     // already go side by side, but one 4K PNG is one core's work and the next run is ready sooner.
-    BackgroundWriter imageWriter(bandPlan.banded() || hardwareThreads() < 8 ? 1 : 2, bandPlan.banded() ? 1 : 2);
+    // GBL_WRITER_NICE=N (1-19) runs the files' encoders at that nice value (measurements): on
+    // lavapipe they share the cores with the passes and stretch the passes' timestamps. At 19 the
+    // default comparison's passes took 27.4 s against 32.9-33.2 s, for 1-3% less wall time and
+    // 0.63 GB more peak memory (the writer falls behind and its queue holds images), so the
+    // default stays 0 (bench/RESULTS.md, eighth session).
+    BackgroundWriter imageWriter(bandPlan.banded() || hardwareThreads() < 8 ? 1 : 2, bandPlan.banded() ? 1 : 2,
+                                 writerNiceness());
     const ImageOutput imageOutput{&imageWriter, exrType};
     // The action below uses this function's locals: it is cleared on every way out (an exception
     // included), before they are destroyed.

@@ -13,6 +13,14 @@
 #include <stdexcept>
 #include <thread>
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <cerrno>
+#endif
+
 #include "background_writer.h"
 #include "error.h"
 #include "file_io.h"
@@ -174,3 +182,32 @@ TEST(BackgroundWriter, TheSameFileFromTwoThreadsEndsWhole) {
 
 }  // namespace
 }  // namespace gbl
+
+#if defined(__linux__)
+// A writer made with a niceness runs its jobs at it, and so do the threads a job starts (the
+// files' encoders: parallelInvoke, OpenEXR's pool); the caller's own priority is left alone.
+TEST(BackgroundWriter, JobsRunAtTheWritersNiceValue) {
+    const auto niceOfThisThread = [] {
+        errno = 0;
+        return getpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)));
+    };
+    const int callerBefore = niceOfThisThread();
+    if (callerBefore >= 19) GTEST_SKIP() << "already at the lowest priority";
+    gbl::BackgroundWriter writer(1, 2, 19);
+    std::atomic<int> inJob{-100}, inChild{-100};
+    writer.enqueue("nice", [&] {
+        inJob = niceOfThisThread();
+        std::thread child([&] { inChild = niceOfThisThread(); });
+        child.join();
+    });
+    EXPECT_TRUE(writer.finish().empty());
+    EXPECT_EQ(inJob.load(), 19);
+    EXPECT_EQ(inChild.load(), 19);
+    EXPECT_EQ(niceOfThisThread(), callerBefore);
+    gbl::BackgroundWriter plain(1, 2);
+    std::atomic<int> inPlain{-100};
+    plain.enqueue("plain", [&] { inPlain = niceOfThisThread(); });
+    EXPECT_TRUE(plain.finish().empty());
+    EXPECT_EQ(inPlain.load(), callerBefore);
+}
+#endif
