@@ -2,7 +2,6 @@
 // layout (under every chosen IBL mode) at the same camera, measures attribute and image error,
 // writes error images, the bandwidth model and report.html / report.json / report.csv.
 #include <algorithm>
-#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -35,6 +34,7 @@
 #include "interrupt.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "env_flag.h"
 #include "host_heap.h"
 #include "host_profile.h"
 #include "parallel_for.h"
@@ -96,10 +96,7 @@ std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec) {
     return layouts;
 }
 
-int writerNiceness() {
-    const char* v = std::getenv("GBL_WRITER_NICE");
-    return v && *v ? std::clamp(std::atoi(v), 0, 19) : 0;
-}
+int writerNiceness() { return int(std::clamp(envLong("GBL_WRITER_NICE").value_or(0), 0L, 19L)); }
 
 std::string isoDate() {
     const std::time_t now = std::time(nullptr);

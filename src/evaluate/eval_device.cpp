@@ -77,10 +77,7 @@ uint32_t EvalDevice::kHistBinsTotal() { return kHistBins; }
 namespace {
 bool cpuDevice(const VulkanContext& c) { return c.info.type == VK_PHYSICAL_DEVICE_TYPE_CPU; }
 uint32_t groupsFor(const VulkanContext& c) {
-    if (const char* v = std::getenv("GBL_EVAL_GROUPS"); v && *v) {
-        const long n = std::strtol(v, nullptr, 10);
-        if (n >= 1 && n <= 65535) return uint32_t(n);
-    }
+    if (const std::optional<long> n = envLong("GBL_EVAL_GROUPS"); n && *n >= 1 && *n <= 65535) return uint32_t(*n);
     return cpuDevice(c) ? kCpuGroups : kGpuGroups;
 }
 // Subgroup vote and ballot in compute shaders (eval_common.glsl histAdd).
