@@ -15,7 +15,6 @@
 // values of an unmemoised one; only the number of `compute` calls changes. A miss overwrites
 // its slot (no eviction policy to get wrong); with no repetition at all (every pixel a new
 // pair) the memo costs one hash and one compare per pixel.
-#include <array>
 #include <cstdint>
 #include <cstring>
 #include <vector>
