@@ -64,8 +64,14 @@ if [ -z "${GBL_BENCH_NO_BUILD:-}" ]; then
 fi
 mkdir -p "$results"
 
+# Repetitions in random order (Google Benchmark's random interleaving): each benchmark's
+# repetitions are spread over the run instead of back to back, so a disturbance of a few seconds
+# (another process, a VM neighbour) touches one repetition of several benchmarks, not every
+# repetition of one. The medians, and the ratios of benchmarks measured side by side, then no
+# longer swing with it (bench/RESULTS.md: the codec goal's verdict, eighth and ninth sessions).
 run_bench() {  # name
-    local args=(--benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true
+    local args=(--benchmark_repetitions="$reps" --benchmark_enable_random_interleaving=true
+                --benchmark_report_aggregates_only=true
                 --benchmark_out="$results/$1.json" --benchmark_out_format=json)
     [ -n "${GBL_BENCH_FILTER:-}" ] && args+=(--benchmark_filter="$GBL_BENCH_FILTER")
     echo "== $1 -> $results/$1.json"
