@@ -1,0 +1,143 @@
+// compare's flags: parsed and checked in the order the command used to, so that of several bad
+// values the same one is named first.
+#include "compare_options.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "cli_args.h"
+#include "compare_bands.h"
+#include "error.h"
+#include "file_io.h"
+#include "ibl_cache.h"
+#include "layout_catalog.h"
+
+namespace gbl::compare {
+
+bool CompareOptions::compareLighting() const {
+    return modes.size() > 1 && std::find(modeNames.begin(), modeNames.end(), kGroundTruth) != modeNames.end();
+}
+
+std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args) {
+    const std::vector<FlagSpec> specs = {
+        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in scene (the sphere grid and its surroundings)"},
+        {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
+        {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
+        {"layouts", "A,B,...", "layouts to compare (names in layouts/ or .toml paths), or all (default)"},
+        {"ibl", "MODES", "specular IBL modes, comma-separated (default split-sum; known: " +
+                             joinList(iblModeNames()) + ")"},
+        {"samples", "N", "samples per pixel of the split-sum-shader IBL mode (default 1024)"},
+        {"gt-noise", "X", "ground truth: add batches until the mean relative noise (standard error of the "
+                          "luminance / luminance) over covered pixels is at most X (default 0.002)"},
+        {"gt-batch-samples", "N", "ground truth: steps per batch, each one GGX + one environment sample (default 64)"},
+        {"gt-max-batches", "N", "ground truth: stop after N batches even if the noise target is not met (default 256)"},
+        {"brdf-lut", "VARIANT", "split-sum BRDF LUT: converged (visible-normal sampling, 4096 samples; default) or "
+                                "seed (the seed's IntegrateBRDF, 1024 samples)"},
+        {"size", "WxH", "image size (default 1920x1080)"},
+        {"views", "N", "cameras measured (default 3: the scene camera, an orbit about the scene's centre, a grazing "
+                       "view of the ground; more add orbit views); every metric is the mean over them with its "
+                       "spread; per-pixel images are the first view's"},
+        {"out", "DIR", "output directory, new or empty (default: out/compare-<time>)"},
+        {"force", "", "write into a non-empty --out directory, replacing files of the same name"},
+        {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
+        {"exposure", "X", "exposure for tone-mapped images and their metrics (default 1)"},
+        {"native-formats", "", "render targets in their real UNORM/SRGB/float formats where the layout allows"},
+        {"hdr-flip", "", "also compute HDR-FLIP over the linear images (costs one FLIP per exposure: 14 on the "
+                         "built-in sky)"},
+        {"no-hdr-flip", "", "skip HDR-FLIP (the default; kept for older scripts)"},
+        {"float32-exr", "", "write the EXR files (renders, errors.exr) as 32-bit float instead of half (16-bit "
+                            "float: half the bytes; values within 2^-11 relative, clamped to +-65504)"},
+        {"eval", "WHERE", "where the metrics are computed: auto (default: gpu on a GPU, cpu on a CPU device such as "
+                          "lavapipe), gpu (compute passes beside the render, only numbers and 8-bit images come "
+                          "back, no errors.exr) or cpu (the measure library, the oracle)"},
+        {"band-rows", "N|auto", "render and measure the frame in bands of N rows (a multiple of 8), each with FLIP's "
+                                "halo, on the device evaluator: bounded memory at 4K, at the price of rendering the "
+                                "reference again for every run; 0: whole frames; auto (default): bands of " +
+                                    std::to_string(kAutoBandRows) + " rows on a CPU device above " +
+                                    std::to_string(kAutoBandPixels) + " pixels, unless --eval cpu or ground-truth"},
+        {"validation", "", "enable Vulkan validation layers"},
+        {"help", "", "show this help"},
+    };
+    const ParsedArgs parsed = parseArgs("compare", args, specs);
+    if (parsed.has("help")) {
+        std::printf("%s", formatHelp("gbufferlab compare [--scene F] [--env F] [--layouts A,B,...|all] [--ibl MODES] "
+                                     "[--size WxH] [--out DIR]",
+                                     "Renders the float reference and each layout at the same camera, and reports "
+                                     "what each loses\n(attribute and image error, FLIP, error images) and costs "
+                                     "(bytes per pixel, bandwidth).\nWith --ibl listing several modes and "
+                                     "ground-truth among them, the reference under each mode is also\ncompared with "
+                                     "the reference under ground-truth: the error of the lighting approximation.",
+                                     specs)
+                               .c_str());
+        return std::nullopt;
+    }
+    if (!parsed.positional.empty())
+        throwUserError("gbufferlab compare: unexpected argument '" + parsed.positional[0] + "' (see --help)");
+
+    CompareOptions o;
+    o.scenePath = parsed.get("scene");
+    o.envPath = parsed.get("env");
+    o.allowOutsideScene = parsed.has("allow-outside-scene");
+    if (parsed.has("layouts")) o.layoutsSpec = parsed.get("layouts");
+    const auto [width, height] = parseSize(parsed.get("size", "1920x1080"), "--size");
+    o.width = width;
+    o.height = height;
+    o.exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
+    o.viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
+    o.modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
+    for (const auto& n : o.modeNames) o.modes.push_back(parseIblMode(n));
+    o.splitSumShaderSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
+    o.gtBatchSamples = parseIntFlag(parsed, "gt-batch-samples", 64, 1, 65536);
+    o.gtMaxBatches = parseIntFlag(parsed, "gt-max-batches", 256, 8, 65536);
+    o.gtNoise = parsePositiveFloatFlag(parsed, "gt-noise", 0.002f);
+    if (parsed.has("brdf-lut")) applyBrdfLutVariant(parsed.get("brdf-lut"), o.iblSettings);
+    o.outDir = parsed.has("out") ? std::filesystem::path(parsed.get("out")) : defaultOutputDirectory("compare");
+    o.force = parsed.has("force");
+    if (parsed.has("hdr-flip") && parsed.has("no-hdr-flip"))
+        throwUserError("gbufferlab compare: --hdr-flip and --no-hdr-flip contradict each other; give one");
+    o.hdrFlip = parsed.has("hdr-flip");
+    o.exrType = parsed.has("float32-exr") ? ExrPixelType::Float32 : ExrPixelType::Half;
+    o.evalWhere = parsed.get("eval", "auto");
+    if (o.evalWhere != "gpu" && o.evalWhere != "cpu" && o.evalWhere != "auto")
+        throwUserError("gbufferlab compare: --eval " + o.evalWhere + ": give auto, gpu or cpu");
+    o.groundTruthAsked = std::find(o.modes.begin(), o.modes.end(), IblMode::GroundTruth) != o.modes.end();
+    o.bandRowsGiven = parseBandRowsFlag(parsed.get("band-rows", "auto"), o.evalWhere == "cpu", o.groundTruthAsked);
+    o.device = parsed.get("device");
+    o.validation = parsed.has("validation");
+    o.nativeFormats = parsed.has("native-formats");
+    o.commandLine = "gbufferlab compare";
+    for (const auto& a : args) o.commandLine += " " + a;
+    return o;
+}
+
+std::string joinList(const std::vector<std::string>& items) {
+    std::string out;
+    for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+    return out;
+}
+
+// "all" (or no flag) = every file in layouts/ but the reference; otherwise names or paths. Every
+// file is parsed and validated here, before any rendering.
+std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec) {
+    std::vector<std::string> names;
+    const std::vector<std::string> known = listLayoutNames();
+    const std::vector<std::string> given = spec ? splitFlagList(*spec, "--layouts") : std::vector<std::string>{"all"};
+    if (given.size() > 1 && std::find(given.begin(), given.end(), "all") != given.end())
+        throwUserError("--layouts " + quoteName(*spec) + ": 'all' already names every layout; give all alone, or names");
+    if (given.front() == "all") {
+        for (const auto& n : known)
+            if (n != kReferenceLayout) names.push_back(n);
+    } else {
+        names = given;
+    }
+    std::vector<Layout> layouts;
+    for (const std::string& n : names) {
+        const bool isPath = n.find('/') != std::string::npos || n.find(".toml") != std::string::npos;
+        if (!isPath && std::find(known.begin(), known.end(), n) == known.end())
+            throwUserError("--layouts: unknown layout " + quoteName(n) + " (known: " + joinList(known) + ", or all)");
+        layouts.push_back(loadLayout(n));
+    }
+    return layouts;
+}
+
+}  // namespace gbl::compare

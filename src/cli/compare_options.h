@@ -1,0 +1,61 @@
+#pragma once
+// compare's command line: every flag read and checked before anything is rendered, so that a bad
+// value is one line naming the flag and the fix, and no output folder is touched for it.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ibl_precompute.h"
+#include "image_io.h"
+#include "layout.h"
+#include "renderer.h"
+
+namespace gbl::compare {
+
+inline constexpr const char* kReferenceLayout = "reference";
+inline constexpr const char* kGroundTruth = "ground-truth";  // the IBL mode's name
+
+struct CompareOptions {
+    std::string scenePath;  // empty: the built-in scene
+    std::string envPath;    // empty: the built-in sky
+    bool allowOutsideScene = false;
+    std::optional<std::string> layoutsSpec;  // --layouts as given; unset: all
+    std::vector<IblMode> modes;              // --ibl, in the order given
+    std::vector<std::string> modeNames;      // their names, as given
+    int splitSumShaderSamples = 1024;
+    int gtBatchSamples = 64;
+    int gtMaxBatches = 256;
+    double gtNoise = 0.002;
+    IblSettings iblSettings;
+    uint32_t width = 1920, height = 1080;
+    int viewCount = 3;
+    std::filesystem::path outDir;
+    bool force = false;
+    std::string device;  // --device; empty: lavapipe
+    bool validation = false;
+    float exposure = 1.0f;
+    bool nativeFormats = false;
+    bool hdrFlip = false;
+    ExrPixelType exrType = ExrPixelType::Half;
+    std::string evalWhere = "auto";  // auto, gpu or cpu
+    bool groundTruthAsked = false;   // ground-truth among the modes
+    std::optional<uint32_t> bandRowsGiven;  // unset: --band-rows auto
+    std::string commandLine;                // "gbufferlab compare" and the arguments, for the report
+
+    // Several modes with ground-truth among them: each mode's reference is also compared with the
+    // ground truth's (the error of the lighting approximation).
+    bool compareLighting() const;
+};
+
+// The options of `gbufferlab compare ARGS`; unset when --help was asked (the help is printed).
+// Throws UserError for anything the user must fix.
+std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args);
+
+// --layouts: names in layouts/ or .toml paths, or all (unset: all), loaded and validated.
+std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec);
+
+std::string joinList(const std::vector<std::string>& items);
+
+}  // namespace gbl::compare

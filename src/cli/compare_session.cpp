@@ -1,0 +1,302 @@
+// compare's set-up, bookkeeping and finish (the renders and runs of a view: compare_session_view.cpp).
+#include "compare_session.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+
+#include "bandwidth.h"
+#include "compare_console.h"
+#include "env_flag.h"
+#include "error.h"
+#include "file_io.h"
+#include "host_heap.h"
+#include "host_profile.h"
+#include "ibl_cache.h"
+#include "interrupt.h"
+#include "layout_atlas.h"
+#include "layout_catalog.h"
+#include "parallel_for.h"
+#include "report_html.h"
+#include "stage_clock.h"
+
+namespace gbl::compare {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// In the output folder while it is incomplete (see the constructor).
+constexpr const char* kIncompleteMarker = "INCOMPLETE";
+
+int writerNiceness() { return int(std::clamp(envLong("GBL_WRITER_NICE").value_or(0), 0L, 19L)); }
+
+std::string isoDate() {
+    const std::time_t now = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return buf;
+}
+
+}  // namespace
+
+CompareSession::CompareSession(const CompareOptions& options) : options_(options) {
+    const CompareOptions& o = options_;
+    std::optional<ScopedStage> timedSetup(std::in_place, Stage::Setup);
+    checkOutputDirectory(o.outDir, o.force, "--out");
+
+    // Everything the user gave is read and validated before the first pixel is rendered.
+    layouts_ = resolveLayouts(o.layoutsSpec);
+    referenceLayout_ = loadLayout(kReferenceLayout);
+    inputs_ = loadSceneInputs(o.scenePath, o.envPath, float(o.width) / float(o.height),
+                              GltfLoadOptions{o.allowOutsideScene});
+
+    std::optional<HostScope> contextScope(std::in_place, "set-up: Vulkan context");
+    ctx_.emplace(DeviceOptions{o.device, o.validation});
+    contextScope.reset();
+    const VulkanContext& ctx = *ctx_;
+    // --eval auto: the metrics run where the render ran. On a CPU device (lavapipe) that is the
+    // CPU, where the measure library's vectorised code beats the same passes JIT-compiled by
+    // llvmpipe (bench/RESULTS.md: warm 1080p compare 7.09x the GPU passes with --eval gpu,
+    // 3.50x with --eval cpu, back to back); on a GPU it is the evaluate library's compute passes.
+    // --band-rows auto: bands where a whole frame would not fit comfortably, i.e. on a CPU device
+    // (device memory is host memory) at 4K-class sizes; never against the user's --eval cpu or for
+    // a ground truth (it converges over the whole frame).
+    const uint32_t bandRows = o.bandRowsGiven ? *o.bandRowsGiven
+                              : (o.evalWhere == "cpu" || o.groundTruthAsked)
+                                  ? 0u
+                                  : autoBandRows(ctx.info.type == VK_PHYSICAL_DEVICE_TYPE_CPU, o.width, o.height);
+    bandPlan_ = planBands(o.height, bandRows, bandRows ? flipHaloRows() : 0u);
+    // Whole frames: freed images stay with the allocator for the next run (host_heap.h); in bands
+    // the peak memory is the point. (The device memory recycler on lavapipe as well, on top of
+    // this: 18% more minor faults and 250 MB more peak for no faster run, 6 layouts x 3 views.)
+    retainHostBlocks(!bandPlan_.banded());
+    gpuEval_ = bandPlan_.banded() || o.evalWhere == "gpu" ||
+               (o.evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
+    validateResolution(ctx, o.width, o.height, "--size");
+    wiringOptions_.nativeFormats = o.nativeFormats;
+
+    model_.run.scene = inputs_.scene.source;
+    model_.run.environment = inputs_.environment.source;
+    model_.run.width = int(o.width);
+    model_.run.height = int(o.height);
+    model_.run.device = {ctx.info.name, ctx.info.driver, ctx.info.typeName};
+    model_.run.date = isoDate();
+    model_.run.commandLine = o.commandLine;
+    model_.run.iblModes = o.modeNames;
+    model_.run.exposure = o.exposure;
+    model_.run.exrPrecision = exrPixelTypeName(o.exrType);
+    model_.reference.layout = kReferenceLayout;
+    for (const Layout& l : layouts_) model_.atlas.push_back(atlasEntryOf(l));
+    model_.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(o.iblSettings) + " (--brdf-lut)");
+    // --eval gpu: one evaluator for every run (its working planes are allocated once).
+    if (gpuEval_) {
+        HostScope scope("set-up: GPU evaluator");
+        evaluator_ = std::make_unique<GpuEvaluator>(ctx, o.width, o.height, bandPlan_.maxImageRows());
+        model_.run.notes.push_back("metrics computed on the device (--eval gpu): quantiles from histograms (within "
+                                   "0.1 %), worst regions on 8-pixel tiles, no errors.exr");
+    }
+    if (bandPlan_.banded()) {
+        model_.run.notes.push_back(
+            "rendered and measured in " + std::to_string(bandPlan_.bands.size()) + " bands of " +
+            std::to_string(bandPlan_.bandRows) + " rows with " + std::to_string(bandPlan_.halo) +
+            " rows of FLIP halo each side (--band-rows" + (o.bandRowsGiven ? "" : " auto") +
+            "): the same numbers as whole frames; the reference is rendered again for every run, and the pass "
+            "times are the layout's own, summed over its bands");
+    }
+
+    views_ = compareViews(inputs_.scene, o.viewCount);
+    for (const CompareView& v : views_) model_.run.views.push_back(v.description);
+    if (o.viewCount > 1)
+        model_.run.notes.push_back("every metric is the mean over " + std::to_string(o.viewCount) +
+                                   " views (--views); images and crops are the first view's (the scene camera)");
+    const int modeCount = int(o.modes.size());
+    steps_ = o.viewCount * (modeCount * (1 + int(layouts_.size())) + (o.compareLighting() ? modeCount - 1 : 0));
+    progress_.emplace(steps_, stderr);
+    prepareOutputDirectory(o.outDir, o.force, "--out");
+    // Until the report is complete the folder says so: an interruption (SIGINT, SIGTERM) writes
+    // the report of the runs that finished and leaves this file, naming the signal; a kill -9
+    // leaves it as written here. The finished report removes it.
+    incompleteMarker_ = o.outDir / kIncompleteMarker;
+    writeFileAtomic(incompleteMarker_, "gbufferlab compare started " + model_.run.date +
+                                           " and has not finished: this folder is incomplete\n");
+    // Image files are written on a worker thread while the next run renders; at most two runs'
+    // images wait (each job owns its images: memory stays bounded).
+    // In bands a run's images span the frame while its bands do not: one run waits at most.
+    // With many cores (a GPU workstation) two runs' files are written at once: each run's files
+    // already go side by side, but one 4K PNG is one core's work and the next run is ready sooner.
+    // GBL_WRITER_NICE=N (1-19) runs the files' encoders at that nice value (measurements): on
+    // lavapipe they share the cores with the passes and stretch the passes' timestamps. At 19 the
+    // default comparison's passes took 27.4 s against 32.9-33.2 s, for 1-3% less wall time and
+    // 0.63 GB more peak memory (the writer falls behind and its queue holds images), so the
+    // default stays 0 (bench/RESULTS.md, eighth session).
+    imageWriter_.emplace(bandPlan_.banded() || hardwareThreads() < 8 ? 1 : 2, bandPlan_.banded() ? 1 : 2,
+                         writerNiceness());
+    imageOutput_ = ImageOutput{&*imageWriter_, o.exrType};
+    setInterruptAction([this](int signal) { writeInterruptedReport(signal); });
+    interruptActionSet_ = true;
+    timedSetup.reset();
+
+    std::optional<HostScope> rendererScope(std::in_place, "set-up: renderer and IBL");
+    renderer_.emplace(ctx, inputs_.scene, inputs_.environment, loadOrComputeIbl(ctx, inputs_.environment, o.iblSettings));
+    rendererScope.reset();
+    referenceWiring_ = generateWiring(referenceLayout_, {});
+    preparePipelines();
+}
+
+CompareSession::~CompareSession() {
+    // The action uses this session's members: cleared on every way out (an exception included),
+    // before they are destroyed.
+    if (interruptActionSet_) setInterruptAction({});
+}
+
+// Every run renders the same way but for the IBL mode and the camera, and decodes its G-buffer
+// for the metrics.
+RenderSettings CompareSession::settingsFor(IblMode mode, int view) const {
+    const CompareOptions& o = options_;
+    RenderSettings settings;
+    settings.camera = views_[size_t(view)].camera;
+    settings.width = o.width;
+    settings.height = o.height;
+    settings.specularIbl = mode;
+    settings.groundTruthSamples = o.gtBatchSamples;
+    settings.splitSumShaderSamples = o.splitSumShaderSamples;
+    settings.groundTruthNoiseTarget = o.gtNoise;
+    settings.groundTruthMaxBatches = o.gtMaxBatches;
+    settings.decodeSurfaces = true;
+    settings.readTargetWords = false;
+    settings.keepOnDevice = gpuEval_;
+    // On a CPU device (lavapipe) with the metrics on the CPU, the read-back decodes the raw
+    // target words with each layout's CPU codec instead of running the decode pass: the
+    // codec's vectorised loops beat readGBuffer JIT-compiled by llvmpipe on the same cores,
+    // and the words are a fraction of the decoded floats (bench/RESULTS.md, "Read-back on
+    // the CPU codec"). On a GPU the decode pass is cheap and stays.
+    settings.decodeOnCpu = !gpuEval_ && ctx_->info.type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    return settings;
+}
+
+// Every run's pipelines are built now, side by side on worker threads (timed as shader compile),
+// and reused by every view and IBL mode; a layout whose wiring or pipeline fails is left to fail
+// in its own run.
+void CompareSession::preparePipelines() {
+    std::vector<GBufferWiring> wirings = {referenceWiring_};
+    for (const Layout& layout : layouts_) {
+        try {
+            wirings.push_back(generateWiring(layout, wiringOptions_));
+        } catch (const std::exception&) {
+        }
+    }
+    RenderSettings decodeSettings = settingsFor(options_.modes[0], 0);
+    if (bandPlan_.banded()) decodeSettings.bandRows = bandPlan_.bands.front().imageRows;
+    renderer_->preparePipelines(wirings, decodeSettings, options_.modes);
+    if (decodeSettings.decodeOnCpu) {
+        std::vector<std::string> onDevice;
+        for (const GBufferWiring& w : wirings)
+            if (!Renderer::decodesOnCpu(w, decodeSettings)) onDevice.push_back(w.layoutName);
+        model_.run.notes.push_back(
+            "read-back: G-buffer words decoded on the host by each layout's CPU codec (the bit-exact mirror of "
+            "readGBuffer), not by the decode pass" +
+            (onDevice.empty() ? std::string() : "; by the decode pass: " + joinList(onDevice)));
+    }
+}
+
+RunReport CompareSession::makeRun(const Layout& layout, const std::string& mode) const {
+    RunReport run;
+    run.layout = layout.name;
+    run.title = layout.title;
+    run.source = layout.source.text();
+    run.pipeline = pipelineName(layout.pipeline);
+    run.iblMode = mode;
+    const BandwidthReport bw = computeBandwidth(layout, options_.width, options_.height);
+    run.bytesPerPixel = bytesPerPixelOf(bw);
+    run.bandwidth = bw.frames;
+    return run;
+}
+
+void CompareSession::record(RunReport&& run, int view) {
+    std::lock_guard lock(modelMutex_);
+    if (view == 0) {
+        if (run.status == RunStatus::Ok) run.views.push_back({run.attributes, run.image});
+        model_.runs.push_back(std::move(run));
+    } else {
+        RunReport& first = model_.runs.at(runIndex_);
+        if (first.status == RunStatus::Ok) {
+            if (run.status == RunStatus::Ok) {
+                first.views.push_back({run.attributes, run.image});
+            } else {
+                first.status = RunStatus::Failed;
+                first.error = "view " + std::to_string(view) + ": " + run.error;
+            }
+        }
+    }
+    ++runIndex_;
+}
+
+// SIGINT, SIGTERM: the report of the runs that finished, the folder left marked incomplete.
+void CompareSession::writeInterruptedReport(int signal) {
+    ReportModel partial;
+    {
+        std::lock_guard lock(modelMutex_);
+        if (reportComplete_) return;
+        partial = model_;
+    }
+    // Every run in `partial` queued its images before it was recorded: they are written before
+    // the report that names them (a job writes through temporaries as always).
+    imageWriter_->drain();
+    std::lock_guard lock(modelMutex_);
+    if (reportComplete_) return;
+    for (RunReport& r : partial.runs) finishViews(r);
+    const std::string what = std::string("INCOMPLETE: interrupted by ") + signalName(signal) + " after " +
+                             std::to_string(partial.runs.size()) + " of " +
+                             std::to_string(steps_ - int(options_.modes.size())) +
+                             " runs; this report lists only the runs that finished";
+    partial.run.notes.push_back(what);
+    writeReport(options_.outDir, partial);
+    writeFileAtomic(incompleteMarker_, what + "\n");
+}
+
+int CompareSession::finish() {
+    const fs::path& outDir = options_.outDir;
+    {
+        std::lock_guard lock(modelMutex_);
+        for (RunReport& r : model_.runs) finishViews(r);
+    }
+
+    std::vector<std::string> writeErrors;  // image files of no run (the references', the figure)
+    {
+        ScopedStage timed(Stage::Report);
+        // What is still being written is waited for here, so the report names only files that
+        // exist. A run whose images could not be written fails, as it did when they were written
+        // in line; any other file that could not be written is an error of the command.
+        std::lock_guard lock(modelMutex_);
+        std::optional<HostScope> finishScope(std::in_place, "report: waiting for the image files");
+        std::vector<WriteFailure> failures = imageWriter_->finish();
+        finishScope.reset();
+        HostScope reportScope("report: html, json, csv");
+        writeErrors = failRunsOfWriteFailures(model_, failures);
+        writeReport(outDir, model_);
+        printTable(model_);
+        reportStageTimes(outDir, StageClock::global().read(), gpuPassMs_);
+        std::error_code ec;
+        fs::remove(incompleteMarker_, ec);
+        reportComplete_ = true;
+    }
+    setInterruptAction({});
+    interruptActionSet_ = false;
+    hostProfileAdd("compare: up to the report (then teardown)", StageClock::global().read().totalMs / 1e3);
+    std::printf("report: %s\n", (outDir / "report.html").string().c_str());
+    // A file that could not be written is an error of the command, one line each, never lost.
+    for (const std::string& e : writeErrors) std::fprintf(stderr, "gbufferlab: error: %s\n", e.c_str());
+    // The report lists what failed and why; the exit status says that something did, so that
+    // scripts and CI notice (2 runs failed of 7: exit 4).
+    const auto failed = std::count_if(model_.runs.begin(), model_.runs.end(),
+                                      [](const RunReport& r) { return r.status == RunStatus::Failed; });
+    if (failed > 0) {
+        std::fprintf(stderr, "gbufferlab: error: %d of %d runs failed (see the FAILED rows above and in %s)\n",
+                     int(failed), int(model_.runs.size()), escapeText((outDir / "report.html").string()).c_str());
+        return kExitRunsFailed;
+    }
+    return writeErrors.empty() ? 0 : 1;
+}
+
+}  // namespace gbl::compare

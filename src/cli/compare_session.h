@@ -1,0 +1,95 @@
+#pragma once
+// compare, the whole comparison: one device, renderer and (with --eval gpu) evaluator for every
+// view, IBL mode and layout; the report model the runs fill; the writer their files go to.
+//
+// The steps, in the order runCompareCommand calls them:
+//   CompareSession(options)  set-up: inputs read and validated, device, output folder (marked
+//                            INCOMPLETE until the report is written), pipelines built;
+//   runView(v) per view      the references under each mode, the lighting approximations against
+//                            the ground truth (with --ibl ...,ground-truth), the IBL figure (first
+//                            view), then every layout under every mode;
+//   finish()                 waits for the image files, writes the report; the exit status.
+// An interruption (SIGINT, SIGTERM) at any point after the set-up writes the report of the runs
+// that finished (compare_session.cpp).
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "background_writer.h"
+#include "compare_bands.h"
+#include "compare_options.h"
+#include "compare_runs.h"
+#include "compare_views.h"
+#include "gpu_evaluator.h"
+#include "progress.h"
+#include "renderer.h"
+#include "report_model.h"
+#include "scene_inputs.h"
+#include "vk_context.h"
+#include "wiring_codegen.h"
+
+namespace gbl::compare {
+
+// Exit status when the report was written but some runs failed (1: bad input, 2: usage, 3: bug).
+inline constexpr int kExitRunsFailed = 4;
+
+class CompareSession {
+public:
+    explicit CompareSession(const CompareOptions& options);
+    ~CompareSession();  // clears the interrupt action before anything it uses is destroyed
+    CompareSession(const CompareSession&) = delete;
+    CompareSession& operator=(const CompareSession&) = delete;
+
+    int viewCount() const { return int(views_.size()); }
+    // Every run of view `view` (0 first: its runs are the report's rows; the later views' add
+    // their metrics to those rows, in the same order).
+    void runView(int view);
+    // After the last view: waits for the image files, writes the report and prints the table.
+    // Returns the exit status: 0, 1 (a file could not be written) or kExitRunsFailed.
+    int finish();
+
+private:
+    using References = std::map<std::string, ReferenceRender>;  // by IBL mode name
+
+    RenderSettings settingsFor(IblMode mode, int view) const;
+    void preparePipelines();
+    References renderReferences(int view);
+    void compareLightingModes(int view, References& references);
+    void addIblFigure(const References& references);  // the IBL figure's rows, its file queued
+    void runLayouts(int view, const References& references);
+    RunReport makeRun(const Layout& layout, const std::string& mode) const;
+    // Into the model: a first view's run as a new row, a later view's into its row.
+    void record(RunReport&& run, int view);
+    void writeInterruptedReport(int signal);
+
+    const CompareOptions& options_;
+    std::vector<Layout> layouts_;
+    Layout referenceLayout_;
+    SceneInputs inputs_;
+    std::optional<VulkanContext> ctx_;
+    BandPlan bandPlan_;
+    bool gpuEval_ = false;
+    WiringOptions wiringOptions_;
+    ReportModel model_;
+    std::unique_ptr<GpuEvaluator> evaluator_;
+    std::vector<CompareView> views_;
+    int steps_ = 0;  // progress steps: references, lighting comparisons and runs, every view
+    std::optional<Progress> progress_;
+    std::filesystem::path incompleteMarker_;
+    std::mutex modelMutex_;  // model_.runs, shared with the interrupt action
+    bool reportComplete_ = false;
+    std::optional<BackgroundWriter> imageWriter_;
+    ImageOutput imageOutput_;
+    bool interruptActionSet_ = false;
+    double gpuPassMs_ = 0.0;  // timestamps of every frame rendered
+    std::optional<Renderer> renderer_;
+    GBufferWiring referenceWiring_;
+    size_t runIndex_ = 0;  // the row of the next run recorded in this view
+    size_t bandedReferenceMode_ = 0;  // in bands: the mode whose reference statistics the evaluator holds
+};
+
+}  // namespace gbl::compare

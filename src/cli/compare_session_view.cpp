@@ -1,0 +1,211 @@
+// compare, one view: the references under each IBL mode, the lighting approximations against the
+// ground truth, the IBL figure (first view), then every layout under every mode.
+#include <cstdio>
+
+#include "compare_console.h"
+#include "compare_session.h"
+#include "host_profile.h"
+#include "ibl_figure.h"
+#include "image_io.h"
+#include "parallel_invoke.h"
+#include "run_metrics.h"
+#include "stage_clock.h"
+#include "tone_map.h"
+
+namespace gbl::compare {
+
+void CompareSession::runView(int view) {
+    runIndex_ = 0;
+    bandedReferenceMode_ = 0;
+    References references = renderReferences(view);
+    if (options_.compareLighting()) {
+        compareLightingModes(view, references);
+        if (view == 0) addIblFigure(references);
+    }
+    runLayouts(view, references);
+}
+
+CompareSession::References CompareSession::renderReferences(int view) {
+    const CompareOptions& o = options_;
+    const bool firstView = view == 0;
+    const std::string viewLabel = o.viewCount > 1 ? " [view " + std::to_string(view) + "]" : "";
+    References references;
+    for (size_t m = 0; m < o.modes.size(); ++m) {
+        progress_->begin("reference / " + o.modeNames[m] + viewLabel);
+        ReferenceRender ref;
+        if (bandPlan_.banded()) {  // its statistics into the evaluator, its HDR image for the files
+            ref.output.timings = renderReferenceInBands(*renderer_, referenceWiring_, settingsFor(o.modes[m], view),
+                                                        bandPlan_, *evaluator_, o.exposure,
+                                                        firstView ? &ref.output.hdr : nullptr);
+            bandedReferenceMode_ = m;
+        } else {
+            ref.output = renderer_->render(referenceWiring_, settingsFor(o.modes[m], view));
+        }
+        gpuPassMs_ += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
+        // --eval gpu keeps the render on the device; its files (and the IBL figure) need it here.
+        const bool hostHdr = firstView || o.compareLighting();
+        if (gpuEval_ && !bandPlan_.banded() && ref.output.hdr.empty() && hostHdr) {
+            ScopedStage timed(Stage::Readback);
+            ref.output.hdr = ref.output.device->downloadHdr();
+        }
+        if (firstView) {
+            ref.renderPng = "reference-" + o.modeNames[m] + ".png";
+            const std::string renderExr = "reference-" + o.modeNames[m] + ".exr";
+            ScopedStage timed(Stage::Report);
+            const std::string preview = "reference-" + o.modeNames[m] + "-log.png";
+            imageWriter_->enqueue("images of the reference / " + o.modeNames[m],
+                                  [png = (o.outDir / ref.renderPng).string(), exr = (o.outDir / renderExr).string(),
+                                   log = (o.outDir / preview).string(), exposure = o.exposure, exrType = o.exrType,
+                                   hdr = gpuEval_ && !o.compareLighting()  // the files are its last use
+                                             ? std::make_shared<const Image>(std::move(ref.output.hdr))
+                                             : std::make_shared<const Image>(ref.output.hdr)] {
+                                      // Side by side (each file is one core's work: 4K on a GPU)
+                                      parallelInvoke({[&] { writePng(png, toneMapToSrgb8(*hdr, exposure)); },
+                                                      [&] { writeExr(exr, *hdr, {}, exrType); },
+                                                      [&] { writePng(log, logEncodeForPreview(*hdr)); }});
+                                  });
+            model_.reference.images.push_back({o.modeNames[m], ref.renderPng, renderExr, preview});
+        }
+        std::string gtNote;
+        if (o.modes[m] == IblMode::GroundTruth) {
+            const GroundTruthStats& g = ref.output.groundTruth;
+            char buf[256];
+            std::snprintf(buf, sizeof(buf),
+                          "ground truth: %d batches x %d steps (%d samples per pixel, GGX + environment by MIS), mean "
+                          "relative noise %.5f (target %.5f%s), lighting %.0f ms GPU on %s",
+                          g.batches, o.gtBatchSamples, g.samplesPerPixel, g.meanRelativeNoise, g.targetRelativeNoise,
+                          g.targetMet ? ", met" : ", NOT met", g.lightingMs, ctx_->info.name.c_str());
+            gtNote = buf;
+            std::lock_guard lock(modelMutex_);
+            model_.run.notes.push_back(gtNote + viewLabel);
+        }
+        progress_->end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
+                       std::to_string(int(ref.output.timings.lightingMs)) + " ms" +
+                       (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches"));
+        ReferenceRender& stored = references[o.modeNames[m]] = std::move(ref);
+        if (gpuEval_) {
+            stored.evaluator = evaluator_.get();
+            if (!o.compareLighting()) stored.output.hdr = Image{};  // written; the metrics read the device's
+            continue;
+        }
+        ScopedStage timedPrepare(Stage::Metrics);
+        stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, o.exposure);
+    }
+    return references;
+}
+
+// The lighting approximations: the reference layout under each mode vs under ground truth.
+void CompareSession::compareLightingModes(int view, References& references) {
+    const CompareOptions& o = options_;
+    const bool firstView = view == 0;
+    const std::string viewLabel = o.viewCount > 1 ? " [view " + std::to_string(view) + "]" : "";
+    const ReferenceRender& truth = references.at(kGroundTruth);
+    for (const auto& mode : o.modeNames) {
+        if (mode == kGroundTruth) continue;
+        progress_->begin("lighting " + mode + " vs " + kGroundTruth + viewLabel);
+        RunReport run = makeRun(referenceLayout_, mode);
+        run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
+        ReferenceRender& approx = references.at(mode);
+        run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx_->info.name};
+        measureRun(run, approx.output, truth, o.outDir, "lighting/" + mode + "/", o.exposure, o.hdrFlip, false,
+                   firstView, imageOutput_);
+        progress_->end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
+                       std::to_string(run.image->flipMean).substr(0, 6));
+        record(std::move(run), view);
+    }
+}
+
+// The seed's figure: rows = modes (enum order: ground truth first), columns = the grid's balls.
+void CompareSession::addIblFigure(const References& references) {
+    const CompareOptions& o = options_;
+    const std::vector<FigureBall> balls = findFigureBalls(inputs_.scene, o.width, o.height);
+    if (balls.empty()) {
+        model_.run.notes.push_back("IBL figure: only for the built-in scene (it crops the sphere grid's balls)");
+        return;
+    }
+    ScopedStage timed(Stage::Report);
+    IblFigure figure;
+    figure.png = "ibl-figure.png";
+    for (const FigureBall& b : balls) figure.columns.push_back(b.label);
+    std::vector<Image8> renders;
+    std::vector<std::string> captions;
+    for (const std::string& name : iblModeNames()) {
+        if (!references.count(name)) continue;
+        IblFigureRow row;
+        row.iblMode = name;
+        for (const RunReport& r : model_.runs) {
+            if (!r.image) continue;
+            if (name == kGroundTruth) {
+                if (r.image->metal && r.image->metal->referenceNoise) row.metalNoise = r.image->metal->referenceNoise;
+                if (r.image->dielectric && r.image->dielectric->referenceNoise)
+                    row.dielectricNoise = r.image->dielectric->referenceNoise;
+            } else if (r.iblMode == name) {
+                if (r.image->metal) row.metalError = r.image->metal->relLuminanceMean;
+                if (r.image->dielectric) row.dielectricError = r.image->dielectric->relLuminanceMean;
+            }
+        }
+        row.caption = iblFigureCaption(row);
+        captions.push_back(row.caption);
+        renders.push_back(toneMapToSrgb8(references.at(name).output.hdr, o.exposure));
+        figure.rows.push_back(std::move(row));
+    }
+    imageWriter_->enqueue("the IBL figure",
+                          [path = (o.outDir / figure.png).string(),
+                           picture = std::make_shared<const Image8>(composeIblFigure(
+                               renders, balls, captions,
+                               "IBL modes vs ground truth: metals, then dielectrics, roughness 0.05 to 1"))] {
+                              writePng(path, *picture);
+                          });
+    model_.iblFigure = std::move(figure);
+}
+
+void CompareSession::runLayouts(int view, const References& references) {
+    const CompareOptions& o = options_;
+    const bool firstView = view == 0;
+    const std::string viewLabel = o.viewCount > 1 ? " [view " + std::to_string(view) + "]" : "";
+    for (size_t m = 0; m < o.modes.size(); ++m) {
+        const ReferenceRender& ref = references.at(o.modeNames[m]);
+        if (bandPlan_.banded() && bandedReferenceMode_ != m) {  // the evaluator holds another mode's
+            const PassTimings t = renderReferenceInBands(*renderer_, referenceWiring_, settingsFor(o.modes[m], view),
+                                                         bandPlan_, *evaluator_, o.exposure, nullptr);
+            gpuPassMs_ += t.gbufferMs + t.lightingMs;
+            bandedReferenceMode_ = m;
+        }
+        for (const Layout& layout : layouts_) {
+            progress_->begin(layout.name + " / " + o.modeNames[m] + viewLabel);
+            if (!firstView && model_.runs.at(runIndex_).status == RunStatus::Failed) {
+                progress_->end("skipped: failed in view 0");
+                ++runIndex_;
+                continue;
+            }
+            RunReport run = makeRun(layout, o.modeNames[m]);
+            try {
+                const std::string prefix = "runs/" + layout.name + "/" + o.modeNames[m] + "/";
+                const GBufferWiring wiring = generateWiring(layout, wiringOptions_);
+                if (bandPlan_.banded()) {
+                    const PassTimings t =
+                        measureRunInBands(run, *renderer_, referenceWiring_, wiring, settingsFor(o.modes[m], view),
+                                          bandPlan_, *evaluator_, o.outDir, prefix, o.hdrFlip, firstView,
+                                          imageOutput_, gpuPassMs_);
+                    run.times = PassTimes{t.gbufferMs, t.lightingMs, ctx_->info.name};
+                } else {
+                    RenderOutput out = renderer_->render(wiring, settingsFor(o.modes[m], view));
+                    gpuPassMs_ += out.timings.gbufferMs + out.timings.lightingMs;
+                    run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx_->info.name};
+                    measureRun(run, out, ref, o.outDir, prefix, o.exposure, o.hdrFlip, true, firstView, imageOutput_);
+                }
+                progress_->end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
+                               std::to_string(run.image->flipMean).substr(0, 6));
+            } catch (const std::exception& e) {
+                // One layout that cannot be rendered must not sink the others: report it as failed.
+                run.status = RunStatus::Failed;
+                run.error = e.what();
+                run.image.reset();
+                progress_->end("FAILED: " + std::string(e.what()).substr(0, 200));
+            }
+            record(std::move(run), view);
+        }
+    }
+}
+
+}  // namespace gbl::compare
