@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "bandwidth.h"
+#include "best_fit_normals.h"
 #include "compare_console.h"
 #include "env_flag.h"
 #include "error.h"
@@ -47,6 +48,10 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
 
     // Everything the user gave is read and validated before the first pixel is rendered.
     layouts_ = resolveLayouts(o.layoutsSpec);
+    // The best-fit normal table (best_fit_normals.h), if a layout writes with it, is generated
+    // while the scene loads and the device starts.
+    if (std::any_of(layouts_.begin(), layouts_.end(), [](const Layout& l) { return usesBestFitTable(l); }))
+        enc::prefetchBestFitNormalTable();
     referenceLayout_ = loadLayout(kReferenceLayout);
     inputs_ = loadSceneInputs(o.scenePath, o.envPath, float(o.width) / float(o.height),
                               GltfLoadOptions{o.allowOutsideScene});

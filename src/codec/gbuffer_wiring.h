@@ -33,6 +33,9 @@ struct GBufferWiring {
     // (GLSL: `gblSceneColorEmissive` at location targetFormats.size()); the lighting pass adds it.
     // It is scene colour, not G-buffer: it is not in the layout's bytes per pixel.
     bool emissiveForward = false;
+    // A field is encoded with normal_bestfit: the G-buffer pass reads the best-fit table
+    // (best_fit_normals.h); for the others the renderer binds a placeholder and never generates it.
+    bool bestFitTable = false;
     // Deferred lighting's material pass: the renderer runs a second geometry pass compiled with
     // MATERIAL_PASS_WRITE into these targets (float32 bits, see wiring_codegen.h) and binds them
     // for readGBuffer at set 2, binding i.

@@ -333,6 +333,13 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
     return o.str();
 }
 
+bool usesBestFitTable(const Layout& layout) {
+    for (const Target& t : layout.targets)
+        for (const Field& f : t.fields)
+            if (f.encoding == "normal_bestfit") return true;
+    return false;
+}
+
 GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options) {
     if (layout.pipeline == Pipeline::VisibilityBuffer) return generateVisibilityWiring(layout);
     GBufferWiring w;
@@ -370,6 +377,7 @@ GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options)
     w.reversedZ = layout.depth.reversedZ;
     const Fallback* emissive = layout.findFallback(Attribute::Emissive);
     w.emissiveForward = emissive && emissive->kind == FallbackKind::Forward;
+    w.bestFitTable = usesBestFitTable(layout);
     w.materialPass = materialTargetCount(layout) > 0;
     w.materialTargetFormats.assign(size_t(materialTargetCount(layout)), VK_FORMAT_R32G32B32A32_UINT);
     w.glsl = generateWiringGlsl(layout, options);

@@ -39,6 +39,10 @@ struct WiringOptions {
 };
 
 GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options = {});
+
+// A field of `layout` is encoded with normal_bestfit: writing its G-buffer needs the best-fit
+// table (GBufferWiring::bestFitTable; compare starts generating it early, prefetchBestFitNormalTable).
+bool usesBestFitTable(const Layout& layout);
 // The GLSL alone, with a "generated from layouts/NAME.toml by gbufferlab -- do not edit" header.
 std::string generateWiringGlsl(const Layout& layout, const WiringOptions& options = {});
 

@@ -379,13 +379,6 @@ Buffer createBestFitTableBuffer(const VulkanContext& ctx) {
     return createBufferWithData(ctx, table.data(), table.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
-CodecTableBuffers createCodecTableBuffers(const VulkanContext& ctx) {
-    CodecTableBuffers tables;
-    tables.bestFitTable = createBestFitTableBuffer(ctx);
-    tables.codecTables = createCodecTablesBuffer(ctx);
-    return tables;
-}
-
 void destroyCodecTableBuffers(const VulkanContext& ctx, CodecTableBuffers& tables) {
     if (tables.bestFitTable.buffer) destroyBuffer(ctx, tables.bestFitTable);
     if (tables.codecTables.buffer) destroyBuffer(ctx, tables.codecTables);

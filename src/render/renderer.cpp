@@ -159,7 +159,18 @@ void Renderer::init(const EnvironmentMap& environment, const IblMaps& ibl) {
                                         VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     nearestSampler_ = createSampler(ctx_, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                     VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    codecTables_ = createCodecTableBuffers(ctx_);
+    codecTables_.codecTables = createCodecTablesBuffer(ctx_);
+    // The binding is in every G-buffer pass's set layout; a shader without best-fit normals never
+    // reads it, so any valid buffer serves.
+    const uint32_t zeros[4] = {};
+    bestFitPlaceholder_ = createBufferWithData(ctx_, zeros, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+}
+
+CodecTableBuffers Renderer::tablesFor(const GBufferWiring& wiring) {
+    if (!wiring.bestFitTable) return {bestFitPlaceholder_, codecTables_.codecTables};
+    std::lock_guard lock(tablesMutex_);
+    if (!codecTables_.bestFitTable.buffer) codecTables_.bestFitTable = createBestFitTableBuffer(ctx_);
+    return codecTables_;
 }
 
 Renderer::~Renderer() {
@@ -170,6 +181,7 @@ Renderer::~Renderer() {
     vkDestroySampler(ctx_.device, environmentSampler_, nullptr);
     vkDestroySampler(ctx_.device, nearestSampler_, nullptr);
     destroyCodecTableBuffers(ctx_, codecTables_);
+    destroyBuffer(ctx_, bestFitPlaceholder_);
     pipelines_.destroy(ctx_.device);
 }
 
@@ -260,15 +272,17 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         decodePassPipeline(ctx_, wiring, readScene, pipelines_, settings.keepOnDevice);
     Buffer frameBuffer = createBufferWithData(ctx_, &frame, sizeof(frame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 
-    GBufferPass gbuffer = createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h, pipelines_, codecTables_);
+    GBufferPass gbuffer =
+        createGBufferPass(ctx_, wiring, gpuScene_, frameBuffer, w, h, pipelines_, tablesFor(wiring));
     gbuffer.renderFirstRow = band.rasterFirst;
     gbuffer.renderRows = settings.bandRows ? band.rasterRows : 0;
     // Deferred lighting: the second geometry pass writes the material attributes the slim
     // G-buffer leaves out, at full precision (the same generated GLSL, MATERIAL_PASS_WRITE).
     GBufferPass materialPass;
     if (wiring.materialPass) {
-        materialPass = createGBufferPass(ctx_, materialPassWiring(wiring), gpuScene_, frameBuffer, w, h, pipelines_,
-                                         codecTables_);
+        const GBufferWiring materialWiring = materialPassWiring(wiring);
+        materialPass = createGBufferPass(ctx_, materialWiring, gpuScene_, frameBuffer, w, h, pipelines_,
+                                         tablesFor(materialWiring));
         materialPass.renderFirstRow = band.rasterFirst;
         materialPass.renderRows = settings.bandRows ? band.rasterRows : 0;
     }

@@ -3,6 +3,7 @@
 // pass, then the lighting compute pass, timed with timestamp queries, then read back.
 #include <array>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -174,8 +175,14 @@ private:
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
     IblGpu ibl_;
     PipelineMemo pipelines_;
-    // The best-fit normal and encodings' tables every G-buffer pass binds: constant, uploaded once.
+    // The tables a G-buffer pass binds (tablesFor): the encodings' (uploaded at init) and the
+    // best-fit normal table (uploaded at the first render of a wiring that reads it: generating it
+    // is the largest part of a small compare's set-up, and most layouts never read it; compare
+    // starts its generation early, prefetchBestFitNormalTable).
+    CodecTableBuffers tablesFor(const GBufferWiring& wiring);
     CodecTableBuffers codecTables_;
+    Buffer bestFitPlaceholder_;  // bound where the table would be for the other wirings
+    std::mutex tablesMutex_;
     // Lighting pipelines specialised per IBL mode and Fresnel: until preparePipelines is given
     // several modes (LightingVariant).
     bool specialiseLighting_ = true;

@@ -83,7 +83,6 @@ struct CodecTableBuffers {
     Buffer bestFitTable;
     Buffer codecTables;
 };
-CodecTableBuffers createCodecTableBuffers(const VulkanContext& ctx);
 void destroyCodecTableBuffers(const VulkanContext& ctx, CodecTableBuffers& tables);
 
 // Throws UserError (one line naming the layout, the count and the fix) when the scene has more
