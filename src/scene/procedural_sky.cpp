@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "error.h"
+#include "parallel_for.h"
 
 namespace gbl {
 namespace {
@@ -91,15 +92,18 @@ EnvironmentMap makeProceduralSky(int width, const SkyParameters& params) {
     const int height = width / 2;
     const glm::dvec3 sun = glm::normalize(glm::dvec3(params.sunDirection));
     EnvironmentMap map{"built-in procedural sky", Image(width, height, 3)};
-    for (int j = 0; j < height; ++j) {
-        for (int i = 0; i < width; ++i) {
-            const glm::dvec3 d = directionAt((i + 0.5) / width, (j + 0.5) / height);
-            const glm::dvec3 radiance = skyAndGround(d, params) +
-                                        glm::dvec3(params.sunRadiance) * sunCoverage(i, j, width, height, sun,
-                                                                                     double(params.sunAngularRadius));
-            for (int c = 0; c < 3; ++c) map.image.at(i, j, c) = float(radiance[c]);
+    // Every texel on its own (rows side by side: the same values on any thread count).
+    parallelFor(height, 0, [&](int64_t j0, int64_t j1) {
+        for (int j = int(j0); j < int(j1); ++j) {
+            for (int i = 0; i < width; ++i) {
+                const glm::dvec3 d = directionAt((i + 0.5) / width, (j + 0.5) / height);
+                const glm::dvec3 radiance =
+                    skyAndGround(d, params) + glm::dvec3(params.sunRadiance) *
+                                                  sunCoverage(i, j, width, height, sun, double(params.sunAngularRadius));
+                for (int c = 0; c < 3; ++c) map.image.at(i, j, c) = float(radiance[c]);
+            }
         }
-    }
+    });
     return map;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "integer_hash.h"
+#include "parallel_for.h"
 
 namespace gbl {
 namespace {
@@ -54,10 +55,14 @@ float heightAt(int px, int py, int size) {
 
 }  // namespace
 
+// Rows side by side in both loops (every texel on its own: the same bytes on any thread count);
+// single-threaded the 1024^2 map was the largest part of loading the built-in scene (93 ms).
 Texture makeDetailNormalMap(int size) {
     std::vector<float> height(size_t(size) * size_t(size));
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) height[size_t(y) * size_t(size) + size_t(x)] = heightAt(x, y, size);
+    parallelFor(size, 0, [&](int64_t y0, int64_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+            for (int x = 0; x < size; ++x) height[size_t(y) * size_t(size) + size_t(x)] = heightAt(x, y, size);
+    });
     auto h = [&](int x, int y) {
         return height[size_t((y + size) % size) * size_t(size) + size_t((x + size) % size)];
     };
@@ -67,17 +72,19 @@ Texture makeDetailNormalMap(int size) {
     texture.width = texture.height = size;
     texture.srgb = false;  // vectors, not colours
     texture.rgba.resize(size_t(size) * size_t(size) * 4);
-    for (int y = 0; y < size; ++y) {
-        for (int x = 0; x < size; ++x) {
-            const float dhdx = 0.5f * (h(x + 1, y) - h(x - 1, y));
-            const float dhdRow = 0.5f * (h(x, y + 1) - h(x, y - 1));
-            // Rows go down the image but tangent-space +Y goes up, hence +dhdRow.
-            const glm::vec3 n = glm::normalize(glm::vec3(-dhdx, dhdRow, 1.0f));
-            uint8_t* out = &texture.rgba[(size_t(y) * size_t(size) + size_t(x)) * 4];
-            for (int c = 0; c < 3; ++c) out[c] = uint8_t(std::lround((n[c] * 0.5f + 0.5f) * 255.0f));
-            out[3] = 255;
+    parallelFor(size, 0, [&](int64_t y0, int64_t y1) {
+        for (int y = int(y0); y < int(y1); ++y) {
+            for (int x = 0; x < size; ++x) {
+                const float dhdx = 0.5f * (h(x + 1, y) - h(x - 1, y));
+                const float dhdRow = 0.5f * (h(x, y + 1) - h(x, y - 1));
+                // Rows go down the image but tangent-space +Y goes up, hence +dhdRow.
+                const glm::vec3 n = glm::normalize(glm::vec3(-dhdx, dhdRow, 1.0f));
+                uint8_t* out = &texture.rgba[(size_t(y) * size_t(size) + size_t(x)) * 4];
+                for (int c = 0; c < 3; ++c) out[c] = uint8_t(std::lround((n[c] * 0.5f + 0.5f) * 255.0f));
+                out[3] = 255;
+            }
         }
-    }
+    });
     return texture;
 }
 
