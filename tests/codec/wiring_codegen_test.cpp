@@ -133,6 +133,22 @@ TEST(WiringCodegen, WiringFlagsAndFormats) {
     EXPECT_NE(c3n.glsl.find("stays UINT"), std::string::npos);
 }
 
+// The renderer binds a placeholder instead of the best-fit table (and never generates it) for a
+// wiring whose flag is clear: the flag must hold exactly where the generated GLSL calls the
+// encoder that reads the table.
+TEST(WiringCodegen, BestFitTableFlagFollowsTheGeneratedGlsl) {
+    int flagged = 0, clear = 0;
+    for (const Layout& l : allLayouts()) {
+        const GBufferWiring w = generateWiring(l);
+        const bool calls = w.glsl.find("encodeNormalBestFit(") != std::string::npos;
+        EXPECT_EQ(w.bestFitTable, calls) << l.name;
+        EXPECT_EQ(usesBestFitTable(l), calls) << l.name;
+        ++(w.bestFitTable ? flagged : clear);
+    }
+    EXPECT_GE(flagged, 4);  // crysis2-slim (3 platforms), ryse
+    EXPECT_GE(clear, 10);
+}
+
 TEST(WiringCodegen, LayoutsGlslCommandPrintsTheWiring) {
     std::ostringstream out, err;
     EXPECT_EQ(runLayoutsCommand({"glsl", "crysis3-thin"}, out, err), 0) << err.str();
