@@ -21,10 +21,10 @@ static_assert(kBestFitTableSize % 2 == 0, "the generator takes the rows in pairs
 inline constexpr uint32_t kBestFitTableEntries = kBestFitTableSize * (kBestFitTableSize + 1) / 2;
 inline constexpr uint32_t kBestFitTableBinding = 15;  // GBL_BEST_FIT_TABLE_BINDING in normal_encodings.glsl
 
-// Generated on first use (tests/encoding BestFitTableHoldsTheSearchAtTexelCentres generates it
-// twice, on 2 threads and on 1: 0.4-0.9 s measured on the loaded 2-core machine), deterministic: the same words on
-// every machine (IEEE single precision, no FMA contraction). Waits for a generation that
-// prefetchBestFitNormalTable started.
+// Generated on first use, about 0.1 s on the idle 2-core machine (0.4-0.9 s when it was loaded;
+// tests/encoding BestFitTableHoldsTheSearchAtTexelCentres generates it again on 1 and 3 threads),
+// deterministic: the same words on every machine and thread count (IEEE single precision, no FMA
+// contraction). Waits for a generation that prefetchBestFitNormalTable started.
 const std::vector<uint32_t>& bestFitNormalTable();
 // Starts generating the table on a thread of its own (once per process; later calls do nothing),
 // so that a command that will need it (a layout with best-fit normals) does not wait for it:
