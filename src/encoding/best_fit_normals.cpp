@@ -2,6 +2,7 @@
 
 #include <future>
 #include <stdexcept>
+#include <system_error>
 
 #include "encodings.h"
 #include "encodings_fast.h"
@@ -36,10 +37,17 @@ std::vector<uint32_t> generateBestFitNormalTable(int threads) {
 namespace {
 
 // The one generation of the process: started by the first of prefetchBestFitNormalTable and
-// bestFitNormalTable, on its own thread; the shared state outlives every caller (static).
+// bestFitNormalTable, on its own thread; the shared state outlives every caller (static). With no
+// thread to be had it runs in the first get() instead (as parallelFor does its chunks).
 const std::shared_future<std::vector<uint32_t>>& tableGeneration() {
-    static const std::shared_future<std::vector<uint32_t>> table =
-        std::async(std::launch::async, [] { return generateBestFitNormalTable(); }).share();
+    static const std::shared_future<std::vector<uint32_t>> table = [] {
+        auto generate = [] { return generateBestFitNormalTable(); };
+        try {
+            return std::async(std::launch::async, generate).share();
+        } catch (const std::system_error&) {
+            return std::async(std::launch::deferred, generate).share();
+        }
+    }();
     return table;
 }
 
