@@ -139,7 +139,7 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
                          writerNiceness());
     imageOutput_ = ImageOutput{&*imageWriter_, o.exrType};
     setInterruptAction([this](int signal) { writeInterruptedReport(signal); });
-    interruptActionSet_ = true;
+    interruptGuard_.set = true;
     timedSetup.reset();
 
     std::optional<HostScope> rendererScope(std::in_place, "set-up: renderer and IBL");
@@ -149,10 +149,8 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
     preparePipelines();
 }
 
-CompareSession::~CompareSession() {
-    // The action uses this session's members: cleared on every way out (an exception included),
-    // before they are destroyed.
-    if (interruptActionSet_) setInterruptAction({});
+CompareSession::InterruptActionGuard::~InterruptActionGuard() {
+    if (set) setInterruptAction({});
 }
 
 // Every run renders the same way but for the IBL mode and the camera, and decodes its G-buffer
@@ -287,7 +285,7 @@ int CompareSession::finish() {
         reportComplete_ = true;
     }
     setInterruptAction({});
-    interruptActionSet_ = false;
+    interruptGuard_.set = false;
     hostProfileAdd("compare: up to the report (then teardown)", StageClock::global().read().totalMs / 1e3);
     std::printf("report: %s\n", (outDir / "report.html").string().c_str());
     // A file that could not be written is an error of the command, one line each, never lost.

@@ -40,7 +40,6 @@ inline constexpr int kExitRunsFailed = 4;
 class CompareSession {
 public:
     explicit CompareSession(const CompareOptions& options);
-    ~CompareSession();  // clears the interrupt action before anything it uses is destroyed
     CompareSession(const CompareSession&) = delete;
     CompareSession& operator=(const CompareSession&) = delete;
 
@@ -84,12 +83,18 @@ private:
     bool reportComplete_ = false;
     std::optional<BackgroundWriter> imageWriter_;
     ImageOutput imageOutput_;
-    bool interruptActionSet_ = false;
     double gpuPassMs_ = 0.0;  // timestamps of every frame rendered
     std::optional<Renderer> renderer_;
     GBufferWiring referenceWiring_;
     size_t runIndex_ = 0;  // the row of the next run recorded in this view
     size_t bandedReferenceMode_ = 0;  // in bands: the mode whose reference statistics the evaluator holds
+    // The interrupt action (set by the constructor) uses the members above: this clears it before
+    // any of them is destroyed, on every way out, a constructor that throws included (a member
+    // declared last is destroyed first; a destructor's body would not run then).
+    struct InterruptActionGuard {
+        bool set = false;
+        ~InterruptActionGuard();
+    } interruptGuard_;
 };
 
 }  // namespace gbl::compare
