@@ -270,7 +270,7 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
                                        srgbFloatTo8(maps->testSrgb), heat);
                         }});
     };
-    // Named by the run's file prefix: a failure is matched back to its run (cmd_compare.cpp).
+    // Named by the run's file prefix: a failure is matched back to its run (failRunsOfWriteFailures).
     HostScope enqueue("run: queue its files (waits when full)");
     if (output.writer) output.writer->enqueue(prefix, std::move(write));
     else write();

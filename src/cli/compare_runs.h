@@ -1,6 +1,6 @@
 #pragma once
 // compare, one run: its metrics against the reference into the report model, and its error
-// images, EXR render and worst-region crops (cmd_compare.cpp drives the runs).
+// images, EXR render and worst-region crops (compare_session_view.cpp drives the runs).
 #include <filesystem>
 #include <functional>
 #include <memory>
