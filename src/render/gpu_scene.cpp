@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "texture_mip_cache.h"
+
 namespace gbl {
 
 std::vector<gpu::GpuMaterial> packMaterials(const Scene& scene) {
@@ -71,7 +73,7 @@ GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
         d.mipLevels = mipCountFor(d.width, d.height);
         d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         GpuImage img = createImage(ctx, d);
-        uploadImage(ctx, img, rgba, VkDeviceSize(w) * h * 4, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, true);
+        uploadTextureWithMips(ctx, img, rgba);  // blits, or on a CPU device their stored result
         g.textures.push_back(img);
     };
     for (const Texture& t : scene.textures) addTexture(t.width, t.height, t.rgba.data(), t.srgb);
