@@ -12,24 +12,16 @@
 #include "file_io.h"
 #include "shader_cache.h"
 #include "shader_compiler.h"
+#include "temp_cache_dir.h"
 
 namespace gbl {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Points GBL_CACHE_DIR at a fresh folder for the test's lifetime.
-struct TempCacheDir {
-    fs::path dir;
-    TempCacheDir() {
-        dir = fs::temp_directory_path() / ("gbl-shader-cache-test-" + std::to_string(::getpid()));
-        fs::remove_all(dir);
-        ::setenv("GBL_CACHE_DIR", dir.c_str(), 1);
-    }
-    ~TempCacheDir() {
-        ::unsetenv("GBL_CACHE_DIR");
-        fs::remove_all(dir);
-    }
+// GBL_CACHE_DIR at a fresh folder for the test's lifetime.
+struct TempCacheDir : test::TempCacheDir {
+    TempCacheDir() : test::TempCacheDir("gbl-shader-cache-test") {}
 };
 
 ShaderSource shader() {
@@ -121,7 +113,7 @@ TEST(PipelineCacheHeader, AcceptsOnlyThisDevicesVersionOneHeader) {
     VkPhysicalDeviceProperties p{};
     p.vendorID = 0x10005;
     p.deviceID = 0x42;
-    for (int i = 0; i < VK_UUID_SIZE; ++i) p.pipelineCacheUUID[i] = uint8_t(i * 7 + 1);
+    for (uint32_t i = 0; i < VK_UUID_SIZE; ++i) p.pipelineCacheUUID[i] = uint8_t(i * 7 + 1);
     std::vector<unsigned char> data(32 + 8, 0xAB);
     const uint32_t header[4] = {32, VK_PIPELINE_CACHE_HEADER_VERSION_ONE, p.vendorID, p.deviceID};
     std::memcpy(data.data(), header, 16);

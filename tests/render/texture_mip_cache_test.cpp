@@ -13,6 +13,7 @@
 #include "procedural_sky.h"
 #include "renderer.h"
 #include "scene.h"
+#include "temp_cache_dir.h"
 #include "texture_mip_cache.h"
 #include "vk_test_support.h"
 #include "wiring_codegen.h"
@@ -22,18 +23,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// GBL_CACHE_DIR at a fresh folder for the test's lifetime.
-struct TempCacheDir {
-    fs::path dir;
-    TempCacheDir() {
-        dir = fs::temp_directory_path() / ("gbl-mip-cache-test-" + std::to_string(::getpid()));
-        fs::remove_all(dir);
-        ::setenv("GBL_CACHE_DIR", dir.c_str(), 1);
-    }
-    ~TempCacheDir() {
-        ::unsetenv("GBL_CACHE_DIR");
-        fs::remove_all(dir);
-    }
+// GBL_CACHE_DIR at a fresh folder for the test's lifetime, and the mip files in it.
+struct TempCacheDir : test::TempCacheDir {
+    TempCacheDir() : test::TempCacheDir("gbl-mip-cache-test") {}
     std::vector<fs::path> mipFiles() const {
         std::vector<fs::path> out;
         if (!fs::exists(dir)) return out;
