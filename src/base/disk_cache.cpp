@@ -1,5 +1,7 @@
 #include "disk_cache.h"
 
+#include <cstdio>
+
 #include <cstdlib>
 #include <cstring>
 
@@ -14,6 +16,12 @@ fs::path cacheDirectory() {
     if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "gbufferlab";
     if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "gbufferlab";
     return fs::temp_directory_path() / "gbufferlab-cache";
+}
+
+fs::path cacheFileFor(const std::string& kind, uint64_t key) {
+    char hex[17];
+    std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(key));
+    return cacheDirectory() / (kind + "-" + hex + ".bin");
 }
 
 std::optional<std::vector<unsigned char>> readCacheEnvelope(const fs::path& file, const char magic[8],

@@ -17,6 +17,8 @@
 namespace gbl {
 
 std::filesystem::path cacheDirectory();
+// cacheDirectory() / "<kind>-<key as 16 hex digits>.bin", the name every cache file has.
+std::filesystem::path cacheFileFor(const std::string& kind, uint64_t key);
 
 // FNV-1a 64.
 struct Fnv64 {

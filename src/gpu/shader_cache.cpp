@@ -25,12 +25,6 @@ constexpr char kPipelineMagic[8] = {'G', 'B', 'L', 'P', 'C', 'H', '0', '1'};
 constexpr uint32_t kSpirvFormatVersion = 1;
 constexpr uint32_t kPipelineFormatVersion = 1;
 
-std::string hex16(uint64_t key) {
-    char s[17];
-    std::snprintf(s, sizeof(s), "%016llx", static_cast<unsigned long long>(key));
-    return s;
-}
-
 // Every `#include "x"` / `#include <x>` in `text`, conditional or not (hashing a file that the
 // preprocessor then skips costs a miss at worst, never a stale hit).
 void hashIncludes(const std::string& text, const ShaderSource& src, Fnv64& f, std::set<std::string>& seen) {
@@ -79,7 +73,7 @@ uint64_t spirvCacheKey(const ShaderSource& src) {
     return f.h;
 }
 
-fs::path spirvCacheFile(uint64_t key) { return cacheDirectory() / ("spv-" + hex16(key) + ".bin"); }
+fs::path spirvCacheFile(uint64_t key) { return cacheFileFor("spv", key); }
 
 std::optional<std::vector<uint32_t>> readSpirvCache(const fs::path& file, uint64_t key, std::string* why) {
     auto payload = readCacheEnvelope(file, kSpirvMagic, kSpirvFormatVersion, key, why);
@@ -136,7 +130,7 @@ uint64_t pipelineCacheKey(const VkPhysicalDeviceProperties& p) {
 }
 
 fs::path pipelineCacheFile(const VkPhysicalDeviceProperties& p) {
-    return cacheDirectory() / ("pipelines-" + hex16(pipelineCacheKey(p)) + ".bin");
+    return cacheFileFor("pipelines", pipelineCacheKey(p));
 }
 
 void PersistentPipelineCache::open(VkDevice device, const VkPhysicalDeviceProperties& properties) {

@@ -19,13 +19,6 @@ VkDeviceSize levelBytes(const GpuImage& image, uint32_t mip) {
     return VkDeviceSize(std::max(image.extent.width >> mip, 1u)) * std::max(image.extent.height >> mip, 1u) * 4u;
 }
 
-std::filesystem::path cacheFile(uint64_t key) {
-    static const char* digits = "0123456789abcdef";
-    std::string hex(16, '0');
-    for (int i = 0; i < 16; ++i) hex[size_t(15 - i)] = digits[(key >> (4 * i)) & 0xF];
-    return cacheDirectory() / ("mips-" + hex + ".bin");
-}
-
 // Mip 0 from `rgba` and mips 1.. from `rest` (their bytes one after another), one copy per level.
 void uploadLevels(const VulkanContext& ctx, GpuImage& image, const uint8_t* rgba, const unsigned char* rest,
                   VkDeviceSize restBytes) {
@@ -88,7 +81,7 @@ void uploadTextureWithMips(const VulkanContext& ctx, GpuImage& image, const uint
     VkDeviceSize restBytes = 0;
     for (uint32_t m = 1; m < image.mipLevels; ++m) restBytes += levelBytes(image, m);
     const uint64_t key = textureMipCacheKey(ctx, image, rgba);
-    const std::filesystem::path file = cacheFile(key);
+    const std::filesystem::path file = cacheFileFor("mips", key);
     std::string why;
     if (auto rest = readCacheEnvelope(file, kMagic, kFormatVersion, key, &why); rest && rest->size() == restBytes) {
         uploadLevels(ctx, image, rgba, rest->data(), restBytes);
