@@ -9,7 +9,7 @@ layout(set = 0, binding = 1) readonly buffer Materials { GpuMaterial materials[]
 layout(set = 0, binding = 2) uniform sampler2D textures[TEXTURE_COUNT];
 layout(push_constant) uniform Draw { DrawConstants draw; };
 
-#define GBL_SAMPLE_TEXTURE(index, uv) texture(textures[index], uv)
+#define GBL_SAMPLE_TEXTURE_SLOT(slot, index, uv) texture(textures[index], uv)
 #include "material_eval.glsl"
 
 bool alphaTestDiscards(vec2 uv) { return materialAlphaTestDiscards(materials[draw.material.x], uv); }

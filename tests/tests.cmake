@@ -29,7 +29,7 @@ gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_reads_test LABELS unit DEPS gbl_layout)  # encodings that read another attribute (niagara)
 gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout)
-gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu)  # what `check` accepts compiles
+gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
 gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec)

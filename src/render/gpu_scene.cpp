@@ -33,6 +33,21 @@ std::vector<gpu::GpuMaterial> packMaterials(const Scene& scene) {
     return out;
 }
 
+MaterialTextureSlots materialTextureSlots(const std::vector<gpu::GpuMaterial>& materials, uint32_t textureCount) {
+    MaterialTextureSlots slots;
+    for (const gpu::GpuMaterial& m : materials) {
+        const int indices[kMaterialTextureSlotCount] = {m.textures0.x, m.textures0.y, m.textures0.z, m.textures0.w,
+                                                        m.textures1.x, m.textures1.y, m.textures1.z};
+        for (size_t k = 0; k < kMaterialTextureSlotCount; ++k)
+            if (indices[k] >= 0 && uint32_t(indices[k]) < textureCount) slots[k].push_back(uint32_t(indices[k]));
+    }
+    for (std::vector<uint32_t>& s : slots) {
+        std::sort(s.begin(), s.end());
+        s.erase(std::unique(s.begin(), s.end()), s.end());
+    }
+    return slots;
+}
+
 std::vector<gpu::GpuLight> packLights(const Scene& scene) {
     std::vector<gpu::GpuLight> out;
     for (const Light& l : scene.lights) {
@@ -81,6 +96,7 @@ GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
         const uint8_t white[4] = {255, 255, 255, 255};
         addTexture(1, 1, white, false);
     }
+    g.texturesBySlot = materialTextureSlots(materials, uint32_t(g.textures.size()));
     // Trilinear, no anisotropy: identical for every layout, and anisotropy is an optional feature.
     g.textureSampler = createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
                                      VK_SAMPLER_ADDRESS_MODE_REPEAT);

@@ -1,6 +1,8 @@
 #pragma once
 // A Scene uploaded to the device: geometry buffers, textures (sRGB ones as *_SRGB formats, all
 // with mip chains), the material table and the light list, in the shared_types.h layouts.
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "scene.h"
@@ -9,6 +11,20 @@
 
 namespace gbl {
 
+// The seven texture slots of a GpuMaterial, in material_eval.glsl's order: textures0.xyzw (base
+// colour, metallic-roughness, normal, occlusion), then textures1.xyz (emissive, specular,
+// specular colour). The names are the shader's (GBL_RESOLVE_SLOT_<name>, visibility_resolve.glsl).
+inline constexpr size_t kMaterialTextureSlotCount = 7;
+inline constexpr std::array<const char*, kMaterialTextureSlotCount> kMaterialTextureSlotNames = {
+    "BASE_COLOR", "METALLIC_ROUGHNESS", "NORMAL", "OCCLUSION", "EMISSIVE", "SPECULAR", "SPECULAR_COLOR"};
+// Per slot, the textures some material binds there: ascending, each in [0, textureCount) (an index
+// outside it samples nothing in the resolve, as before these lists). Why: a visibility buffer's
+// resolve on a device without non-uniform texture indexing picks a pixel's texture by testing
+// candidates, and lavapipe samples every candidate for every pixel (both sides of a branch run
+// under a lane mask), so testing only these, not every texture in every slot, is what makes it fast.
+using MaterialTextureSlots = std::array<std::vector<uint32_t>, kMaterialTextureSlotCount>;
+MaterialTextureSlots materialTextureSlots(const std::vector<gpu::GpuMaterial>& materials, uint32_t textureCount);
+
 struct GpuScene {
     Buffer vertices;
     Buffer indices;
@@ -16,6 +32,7 @@ struct GpuScene {
     Buffer lights;     // GpuLight[] (at least one element, so the binding is never empty)
     uint32_t lightCount = 0;
     std::vector<GpuImage> textures;  // at least one (a white 1x1) so the array binding is valid
+    MaterialTextureSlots texturesBySlot;  // materialTextureSlots of the uploaded materials
     VkSampler textureSampler = VK_NULL_HANDLE;
     // Per draw: model, normal matrix, material = (material index, draw index, firstIndex,
     // vertexOffset): pushed per draw by the G-buffer pass, and read whole by the visibility

@@ -25,13 +25,14 @@ TargetReadScene targetReadScene(const GBufferPass& pass) {
         s.visibility = true;
         s.textureCount = uint32_t(scene->textures.size());
         s.nonUniformIndexing = pass.nonUniformTextureIndexing;
+        s.texturesBySlot = scene->texturesBySlot;
     }
     return s;
 }
 
 TargetReadScene targetReadScene(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene) {
     if (!wiring.visibilityBuffer) return {};
-    return {true, uint32_t(scene.textures.size()), ctx.nonUniformSampledImageIndexing};
+    return {true, uint32_t(scene.textures.size()), ctx.nonUniformSampledImageIndexing, scene.texturesBySlot};
 }
 
 std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
@@ -62,7 +63,17 @@ void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene) {
     s.defines.push_back({"GBL_CODEC_TABLES_BINDING", std::to_string(enc::kCodecTablesBinding)});
     if (!scene.visibility) return;
     s.defines.push_back({"TEXTURE_COUNT", std::to_string(scene.textureCount)});
-    if (scene.nonUniformIndexing) s.defines.push_back({"GBL_NONUNIFORM_TEXTURE_INDEXING", "1"});
+    if (scene.nonUniformIndexing) {
+        s.defines.push_back({"GBL_NONUNIFORM_TEXTURE_INDEXING", "1"});
+        return;
+    }
+    // The waterfall's candidates, a test per texture some material binds to the slot
+    // (visibility_resolve.glsl); an empty list leaves the slot's texel zero, as no pixel reads it.
+    for (size_t k = 0; k < kMaterialTextureSlotCount; ++k) {
+        std::string tries;
+        for (uint32_t i : scene.texturesBySlot[k]) tries += "GBL_RESOLVE_TRY(" + std::to_string(i) + ") ";
+        s.defines.push_back({std::string("GBL_RESOLVE_SLOT_") + kMaterialTextureSlotNames[k], tries});
+    }
 }
 
 namespace {

@@ -19,6 +19,7 @@ struct TargetReadScene {
     bool visibility = false;
     uint32_t textureCount = 0;
     bool nonUniformIndexing = false;
+    MaterialTextureSlots texturesBySlot;  // the resolve's candidates per slot (without non-uniform indexing)
 };
 
 struct GBufferPass {
@@ -192,7 +193,8 @@ TargetReadScene targetReadScene(const VulkanContext& ctx, const GBufferWiring& w
 void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBufferPass& pass, VkSampler nearestSampler);
 // What a pass reading a G-buffer compiles with: GBL_CODEC_TABLES_SET / _BINDING (the tables from
 // the storage buffer of targetReadBindings); for a visibility buffer also TEXTURE_COUNT for its
-// resolve, and GBL_NONUNIFORM_TEXTURE_INDEXING where the device has it.
+// resolve, and GBL_NONUNIFORM_TEXTURE_INDEXING where the device has it, else the candidate
+// textures of each material slot (GBL_RESOLVE_SLOT_<name>: the scene's texturesBySlot).
 void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene);
 
 // in.gbuffer and in.materialPass must be the wiring's (their target counts are the set layouts').

@@ -12,6 +12,7 @@
 
 #include "layout.h"
 #include "layout_catalog.h"
+#include "renderer_passes.h"
 #include "shader_compiler.h"
 #include "wiring_codegen.h"
 
@@ -102,7 +103,17 @@ std::string withoutCommentText(const std::string& glsl) {
 
 void compiles(const std::string& shader, const GBufferWiring& w, const std::string& mutant) {
     ShaderSource s = loadShaderFile(shader);
-    s.defines.push_back({"TEXTURE_COUNT", "4"});
+    if (w.visibilityBuffer && shader == "decode_pass.comp.glsl") {
+        // What the renderer compiles a visibility buffer's resolve with on lavapipe: 4 textures,
+        // each a candidate in every material slot.
+        TargetReadScene scene;
+        scene.visibility = true;
+        scene.textureCount = 4;
+        for (std::vector<uint32_t>& slot : scene.texturesBySlot) slot = {0, 1, 2, 3};
+        addTargetReadDefines(s, scene);
+    } else {
+        s.defines.push_back({"TEXTURE_COUNT", "4"});
+    }
     s.virtualFiles["gbuffer_wiring.glsl"] = w.glsl;
     s.name = shader + " (mutant of layout " + w.layoutName + ")";
     EXPECT_NO_THROW(compileGlsl(s)) << "layout text accepted by check:\n" << mutant;

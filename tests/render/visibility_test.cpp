@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gpu_scene.h"
 #include "layout.h"
 #include "layout_catalog.h"
 #include "procedural_sky.h"
@@ -235,6 +236,30 @@ TEST_F(VisibilityTest, TheForgesIdsRefuseWhatTheyCannotHoldAndSixtyFourBitsDoNot
     Renderer renderer(ctx(), huge, sky);
     expectOneLine([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
                   {"layout 'visibility-32'", "8388609 triangles", "23-bit triangle ids hold 8388608", "visibility-64"});
+}
+
+// The resolve's candidates per material slot (visibility_resolve.glsl without non-uniform
+// indexing): every texture a material binds to the slot, once, in order; none that is out of
+// range or absent. A texture missing here would resolve to zero texels on lavapipe.
+TEST(MaterialTextureSlots, EachSlotListsTheTexturesItsMaterialsBindThere) {
+    auto material = [](glm::ivec4 t0, glm::ivec4 t1) {
+        gpu::GpuMaterial m{};
+        m.textures0 = t0;
+        m.textures1 = t1;
+        return m;
+    };
+    const int none = kNoTexture;
+    const std::vector<gpu::GpuMaterial> materials = {
+        material({4, 2, none, 2}, {none, none, none, none}),  // one texture in two slots (ORM-style)
+        material({1, none, 0, none}, {3, none, 5, 6}),       // 6: past the 6 textures, left out
+        material({4, 2, 0, none}, {3, 5, none, 1}),          // textures1.w is no slot
+        material({-7, none, none, none}, {none, 4, none, none}),
+    };
+    const MaterialTextureSlots slots = materialTextureSlots(materials, 6);
+    const MaterialTextureSlots expected = {std::vector<uint32_t>{1, 4}, {2}, {0}, {2}, {3}, {4, 5}, {5}};
+    for (size_t k = 0; k < kMaterialTextureSlotCount; ++k)
+        EXPECT_EQ(slots[k], expected[k]) << "slot " << kMaterialTextureSlotNames[k];
+    EXPECT_TRUE(materialTextureSlots({}, 6)[0].empty());
 }
 
 // The resolve's Surface against the reference layout's decoded G-buffer (float32 everything) on
