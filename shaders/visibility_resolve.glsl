@@ -11,7 +11,7 @@
 // the renderer: gpu_scene.h's texturesBySlot), not every texture: lavapipe runs both sides of a
 // branch under a lane mask, so every candidate is sampled for every pixel. On the built-in scene
 // (6 textures, 7 slots) that is 6 samples per pixel instead of 42: its lighting pass at 1080p
-// took 645 -> 385 ms (visibility-32), with the same pixels.
+// took 615-620 -> 277-321 ms (visibility-32), with the same pixels.
 //
 // 1. Fetch the triangle's three vertices and transform them as gbuffer_pass.vert.glsl does.
 // 2. Intersect the camera ray through the pixel's centre with the triangle's plane: the hit's
