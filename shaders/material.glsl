@@ -9,7 +9,15 @@ layout(set = 0, binding = 1) readonly buffer Materials { GpuMaterial materials[]
 layout(set = 0, binding = 2) uniform sampler2D textures[TEXTURE_COUNT];
 layout(push_constant) uniform Draw { DrawConstants draw; };
 
+// What a slot samples: with GBL_MATERIAL_SLOTS, the renderer's GBL_MATERIAL_SLOT_<slot> (nothing
+// where no material of the scene binds a texture to the slot, else the bound one by a constant
+// index, or the material's index where several are bound: src/render/gbuffer_pass.cpp
+// addMaterialSlotDefines says why); without it, the material's index in every slot.
+#ifdef GBL_MATERIAL_SLOTS
+#define GBL_SAMPLE_TEXTURE_SLOT(slot, index, uv) GBL_MATERIAL_SLOT_##slot(index, uv)
+#else
 #define GBL_SAMPLE_TEXTURE_SLOT(slot, index, uv) texture(textures[index], uv)
+#endif
 #include "material_eval.glsl"
 
 bool alphaTestDiscards(vec2 uv) { return materialAlphaTestDiscards(materials[draw.material.x], uv); }

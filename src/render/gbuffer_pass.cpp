@@ -191,13 +191,34 @@ std::vector<Binding> gbufferBindings(uint32_t textureCount) {
 }
 constexpr VkShaderStageFlags kGBufferStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
+// What each material slot samples in the G-buffer pass (material.glsl's GBL_MATERIAL_SLOT_<slot>):
+// nothing where no material binds a texture to the slot, the one texture by a constant index
+// where one is bound there, the material's index where several are. Why: lavapipe runs a
+// branch's both sides under a lane mask, so a slot's sample ran for every pixel, bound or not;
+// on the built-in scene (4 of 7 slots bound, 3 of them to one texture) ue4's G-buffer pass took
+// 268-315 ms at 1080p with every slot sampled, 247-259 ms so (gpu_pass_bench, alternated; the
+// material's index in single-texture slots too: 254-287 ms). Every material's index in a slot is
+// one of its listed textures or GBL_NO_TEXTURE (then the fallback is taken): the same texels.
+void addMaterialSlotDefines(ShaderSource& fs, const MaterialTextureSlots& slots) {
+    fs.defines.push_back({"GBL_MATERIAL_SLOTS", "1"});
+    for (size_t k = 0; k < kMaterialTextureSlotCount; ++k) {
+        const std::vector<uint32_t>& t = slots[k];
+        const std::string sample = t.empty()       ? "vec4(0.0)"
+                                   : t.size() == 1 ? "texture(textures[" + std::to_string(t[0]) + "], uv)"
+                                                   : "texture(textures[index], uv)";
+        fs.defines.push_back({std::string("GBL_MATERIAL_SLOT_") + kMaterialTextureSlotNames[k] + "(index, uv)", sample});
+    }
+}
+
 }  // namespace
 
-PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t textureCount,
+PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
                                  PipelineMemo& memo) {
+    const uint32_t textureCount = uint32_t(scene.textures.size());
     const ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
     ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
     fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
+    addMaterialSlotDefines(fs, scene.texturesBySlot);
     // The encoders' threshold tables from GBufferPass::codecTables, not constant arrays: llvmpipe
     // JIT-compiles their binary searches far faster so (codec_tables.glsl).
     fs.defines.push_back({"GBL_CODEC_TABLES_SET", "0"});
@@ -234,7 +255,7 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
                               const CodecTableBuffers& tables) {
     GBufferPass pass;
     const uint32_t textureCount = uint32_t(scene.textures.size());
-    const PassPipeline pipeline = gbufferPassPipeline(ctx, wiring, textureCount, memo);
+    const PassPipeline pipeline = gbufferPassPipeline(ctx, wiring, scene, memo);
     pass.setLayout = pipeline.entry->setLayouts.at(0);
     pass.pipelineLayout = pipeline.entry->layout;
     pass.pipeline = pipeline.entry->pipeline;

@@ -196,7 +196,6 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const
                                  const std::vector<IblMode>& iblModes) {
     const int fresnelMode = settings.fresnelMode;
     ScopedStage timed(Stage::ShaderCompile);
-    const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
     std::vector<GBufferWiring> materials(wirings.size());
     std::vector<std::function<void()>> tasks;
     // One mode: its specialised lighting pipelines; several: one generic pipeline per wiring
@@ -205,10 +204,10 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const
     const std::vector<IblMode> lightingModes =
         specialiseLighting_ ? iblModes : std::vector<IblMode>{iblModes.front()};
     for (size_t i = 0; i < wirings.size(); ++i) {
-        tasks.push_back([&, i] { gbufferPassPipeline(ctx_, wirings[i], textureCount, pipelines_); });
+        tasks.push_back([&, i] { gbufferPassPipeline(ctx_, wirings[i], gpuScene_, pipelines_); });
         if (wirings[i].materialPass) {
             materials[i] = materialPassWiring(wirings[i]);
-            tasks.push_back([&, i] { gbufferPassPipeline(ctx_, materials[i], textureCount, pipelines_); });
+            tasks.push_back([&, i] { gbufferPassPipeline(ctx_, materials[i], gpuScene_, pipelines_); });
         }
         const TargetReadScene readScene = targetReadScene(ctx_, wirings[i], gpuScene_);
         for (IblMode mode : lightingModes)
@@ -261,9 +260,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     frame.band = glm::uvec4(band.first, band.rows, 0u, 0u);
     // Every pipeline this render needs, first (from the memo, or built now): a shader that does not
     // compile fails the render before anything is allocated for it.
-    const uint32_t textureCount = uint32_t(gpuScene_.textures.size());
-    gbufferPassPipeline(ctx_, wiring, textureCount, pipelines_);
-    if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), textureCount, pipelines_);
+    gbufferPassPipeline(ctx_, wiring, gpuScene_, pipelines_);
+    if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), gpuScene_, pipelines_);
     const TargetReadScene readScene = targetReadScene(ctx_, wiring, gpuScene_);
     const LightingVariant variant{settings.specularIbl, settings.fresnelMode, specialiseLighting_};
     lightingPassPipeline(ctx_, wiring, readScene, variant, pipelines_);

@@ -100,8 +100,9 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
                               const CodecTableBuffers& tables);
 // The pipelines of a wiring's passes alone (no images, no submission), from `memo` or built into
 // it: what createGBufferPass and createLightingPass use, callable from several threads at once
-// (Renderer::preparePipelines). `textureCount`: the scene's (GpuScene::textures).
-PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, uint32_t textureCount,
+// (Renderer::preparePipelines). The G-buffer pass compiles against the scene's texture count and
+// what each material slot samples (GpuScene::texturesBySlot; material.glsl).
+PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene,
                                  PipelineMemo& memo);
 // What a lighting pipeline is built for besides its wiring. Specialised: the specular IBL mode
 // and the direct lights' Fresnel compiled in as defines (GBL_IBL_MODE, GBL_FRESNEL_MODE), so the
