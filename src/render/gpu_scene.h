@@ -13,15 +13,17 @@ namespace gbl {
 
 // The seven texture slots of a GpuMaterial, in material_eval.glsl's order: textures0.xyzw (base
 // colour, metallic-roughness, normal, occlusion), then textures1.xyz (emissive, specular,
-// specular colour). The names are the shader's (GBL_RESOLVE_SLOT_<name>, visibility_resolve.glsl).
+// specular colour). The names are the shaders' (material_eval.glsl's slot names, pasted into
+// GBL_RESOLVE_SLOT_<name> and GBL_MATERIAL_SLOT_<name>).
 inline constexpr size_t kMaterialTextureSlotCount = 7;
 inline constexpr std::array<const char*, kMaterialTextureSlotCount> kMaterialTextureSlotNames = {
     "BASE_COLOR", "METALLIC_ROUGHNESS", "NORMAL", "OCCLUSION", "EMISSIVE", "SPECULAR", "SPECULAR_COLOR"};
 // Per slot, the textures some material binds there: ascending, each in [0, textureCount) (an index
-// outside it samples nothing in the resolve, as before these lists). Why: a visibility buffer's
-// resolve on a device without non-uniform texture indexing picks a pixel's texture by testing
-// candidates, and lavapipe samples every candidate for every pixel (both sides of a branch run
-// under a lane mask), so testing only these, not every texture in every slot, is what makes it fast.
+// outside it samples nothing in the resolve, as before these lists). Why: lavapipe runs both sides
+// of a branch under a lane mask, so a slot's texture calls ran for every pixel. A visibility
+// buffer's resolve (no non-uniform texture indexing there) tested every texture in every slot,
+// and the G-buffer pass sampled every slot, bound or not; both now compile each slot to these
+// (visibility_resolve.glsl, gbuffer_pass.cpp addMaterialSlotDefines).
 using MaterialTextureSlots = std::array<std::vector<uint32_t>, kMaterialTextureSlotCount>;
 MaterialTextureSlots materialTextureSlots(const std::vector<gpu::GpuMaterial>& materials, uint32_t textureCount);
 
