@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -98,10 +99,24 @@ Image* mapOrNull(RunErrorMaps* maps, Image RunErrorMaps::*member, int width, int
     return &image;
 }
 
+// Per-pixel CIEDE2000 values already computed for another colour attribute (`ref`, `test`): a
+// pixel whose pair is bit for bit that attribute's pair takes its value (pixelDeltaE is a pure
+// function of the bits, as pair_memo.h relies on) instead of computing it again.
+struct KnownDeltaE {
+    const Image* ref = nullptr;
+    const Image* test = nullptr;
+    const std::vector<double>* value = nullptr;  // per pixel, where measured
+};
+
+bool sameBits(const float* x, const float* y) { return std::memcmp(x, y, 3 * sizeof(float)) == 0; }
+
+// `record`: when set, receives each measured pixel's value (for a later KnownDeltaE).
 AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask& measured, const Mask& metal,
-                                Image* map, const char* what) {
+                                Image* map, const char* what, std::vector<double>* record = nullptr,
+                                const KnownDeltaE* known = nullptr) {
     if (!usable(ref, test, 3, what)) return {};
     const size_t rc = size_t(ref.channels), tc = size_t(test.channels);
+    if (record) record->resize(measured.size());
     PairMemo<double> memo;
     return measure(measured, metal, map, true, [&](size_t i, bool& ok, double& sq) {
         const float* a = &ref.pixels[i * rc];
@@ -110,11 +125,34 @@ AttributeMetrics colorAttribute(const Image& ref, const Image& test, const Mask&
             const double d = double(b[c]) - double(a[c]);
             sq += d * d;
         }
-        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) return 0.0;  // common (stored exactly); saves the costly path
-        const double e = memo.get(a, b, pixelDeltaE);  // pairs repeat (pair_memo.h)
+        double e = 0.0;
+        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) {
+            e = 0.0;  // common (stored exactly); saves the costly path
+        } else if (known && sameBits(a, &known->ref->pixels[i * size_t(known->ref->channels)]) &&
+                   sameBits(b, &known->test->pixels[i * size_t(known->test->channels)])) {
+            e = (*known->value)[i];
+        } else {
+            e = memo.get(a, b, pixelDeltaE);  // pairs repeat (pair_memo.h)
+        }
         ok = std::isfinite(e);
+        if (record) (*record)[i] = e;
         return e;
     });
+}
+
+// Base and diffuse colour in one task. Diffuse = base (1 - metallic) is the base colour itself
+// wherever metallic is 0 on both sides (every dielectric, in most layouts), so most diffuse pixels
+// take the base colour's value (KnownDeltaE); the rest compute theirs. Each is the value the
+// attribute alone would give: the same numbers, about 40 % less of the two attributes' time.
+void baseAndDiffuseColor(const SurfaceImages& reference, const SurfaceImages& test, const Mask& measured,
+                         const Mask& metal, Image* baseMap, Image* diffuseMap, AttributeMetrics& base,
+                         AttributeMetrics& diffuse) {
+    std::vector<double> baseValues;
+    base = colorAttribute(reference.baseColor, test.baseColor, measured, metal, baseMap, "base colour", &baseValues);
+    const bool reuse = !reference.baseColor.empty() && !test.baseColor.empty();
+    const KnownDeltaE known{&reference.baseColor, &test.baseColor, &baseValues};
+    diffuse = colorAttribute(reference.diffuseColor, test.diffuseColor, measured, metal, diffuseMap, "diffuse colour",
+                             nullptr, reuse ? &known : nullptr);
 }
 
 AttributeMetrics scalarAttribute(const Image& ref, const Image& test, const Mask& measured, const Mask& metal,
@@ -238,12 +276,9 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
                              });
     });
     tasks.push_back([&] {
-        out.baseColor = colorAttribute(reference.baseColor, test.baseColor, measured, metal,
-                                   mapOrNull(maps, &RunErrorMaps::baseColorDe, w, h, true), "base colour");
-    });
-    tasks.push_back([&] {
-        out.diffuseColor = colorAttribute(reference.diffuseColor, test.diffuseColor, measured, metal,
-                                      mapOrNull(maps, &RunErrorMaps::diffuseColorDe, w, h, true), "diffuse colour");
+        baseAndDiffuseColor(reference, test, measured, metal, mapOrNull(maps, &RunErrorMaps::baseColorDe, w, h, true),
+                            mapOrNull(maps, &RunErrorMaps::diffuseColorDe, w, h, true), out.baseColor,
+                            out.diffuseColor);
     });
     tasks.push_back([&] {
         out.specularColor = colorAttribute(reference.specularColor, test.specularColor, measured, metal,

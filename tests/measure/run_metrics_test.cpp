@@ -9,6 +9,7 @@
 #include <random>
 
 #include "error.h"
+#include "metrics.h"
 #include "run_metrics.h"
 
 namespace {
@@ -247,6 +248,47 @@ TEST(RunMetrics, ColourErrorsDeltaEAndRmse) {
     EXPECT_LT(r.diffuseColor.all.error.mean, 20.0);
     expectZero(r.baseColor, "base");
     expectZero(r.specularColor, "specular");
+}
+
+// The diffuse colour takes the base colour's CIEDE2000 where its pair (reference, test) is the
+// base colour's bit for bit, as every dielectric's is (run_metrics.cpp baseAndDiffuseColor); each
+// pixel must still get its own pair's value. Here the test's base colour is off everywhere, its
+// diffuse colour is that base colour on dielectric pixels but for every third one, which is off
+// by another step: per pixel the map must be pixelDeltaE of the diffuse pair itself, and the
+// statistics those values'.
+TEST(RunMetrics, DiffuseColourEqualToBaseColourTakesItsValueAndNoOtherPixelDoes) {
+    const int w = 40, h = 36;
+    const SurfaceImages ref = makeSurface(w, h);
+    SurfaceImages test = ref;
+    size_t own = 0, shared = 0;
+    for (size_t i = 0; i < ref.coverage.size(); ++i) {
+        for (int c = 0; c < 3; ++c) test.baseColor.pixels[i * 3 + c] += 0.03f * float(c + 1);
+        if (ref.metallic.pixels[i] > 0.5f) continue;  // metal: diffuse 0 on both sides
+        const bool differs = i % 3 == 0;
+        for (int c = 0; c < 3; ++c)
+            test.diffuseColor.pixels[i * 3 + c] = test.baseColor.pixels[i * 3 + c] + (differs ? 0.05f : 0.0f);
+        if (ref.coverage[i]) ++(differs ? own : shared);
+    }
+    ASSERT_GT(own, 100u);
+    ASSERT_GT(shared, 200u);
+    const Image hdr = makeHdr(w, h);
+    gbl::RunErrorMaps maps;
+    gbl::RunMetricsOptions options;
+    options.maps = &maps;
+    const gbl::RunMetrics r = gbl::computeRunMetrics(ref, test, hdr, hdr, 1.0f, options);
+    double sum = 0.0, max = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < ref.coverage.size(); ++i) {
+        if (!ref.coverage[i]) continue;
+        const double e = gbl::pixelDeltaE(&ref.diffuseColor.pixels[i * 3], &test.diffuseColor.pixels[i * 3]);
+        ASSERT_EQ(maps.diffuseColorDe.pixels[i], float(e)) << "pixel " << i;
+        sum += e;
+        max = std::max(max, e);
+        ++n;
+    }
+    EXPECT_EQ(r.diffuseColor.all.error.count, n);
+    EXPECT_EQ(r.diffuseColor.all.error.max, max);
+    EXPECT_NEAR(r.diffuseColor.all.error.mean, sum / double(n), 1e-12 * sum / double(n));
 }
 
 // Independent tone map for the hand computation: Narkowicz ACES fit, then the sRGB OETF.
