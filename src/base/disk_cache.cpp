@@ -1,7 +1,6 @@
 #include "disk_cache.h"
 
 #include <cstdio>
-
 #include <cstdlib>
 #include <cstring>
 

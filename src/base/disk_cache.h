@@ -9,6 +9,7 @@
 // src/base/file_io.h), so concurrent writers cannot leave half a file: the last rename wins.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -29,6 +30,19 @@ struct Fnv64 {
             h ^= b[i];
             h *= 1099511628211ull;
         }
+    }
+    // The FNV-1a step over 8-byte words (the tail byte by byte): for large buffers (a texture's
+    // texels), where byte steps cost 4 ms a 1024^2 texture. XOR and multiplication by an odd
+    // number are bijections, so buffers that differ in one word differ. Not the same hash as bytes().
+    void words(const void* p, size_t n) {
+        const auto* b = static_cast<const unsigned char*>(p);
+        size_t i = 0;
+        for (; i + 8 <= n; i += 8) {
+            uint64_t w;
+            std::memcpy(&w, b + i, 8);
+            h = (h ^ w) * 1099511628211ull;
+        }
+        for (; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
     }
     template <class T> void value(const T& v) { bytes(&v, sizeof(v)); }
     // Length-prefixed, so that ("ab", "c") and ("a", "bc") differ.
