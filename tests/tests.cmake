@@ -5,6 +5,7 @@ gbl_test(base/stage_clock_test LABELS unit DEPS gbl_base)
 gbl_test(base/parallel_for_test LABELS unit DEPS gbl_base)
 gbl_test(base/background_writer_test LABELS unit DEPS gbl_base)
 gbl_test(base/host_heap_test LABELS unit DEPS gbl_base)
+gbl_test(base/disk_cache_test LABELS unit DEPS gbl_base)
 gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads environment maps too
 gbl_test(image/exr_half_test LABELS unit DEPS gbl_image)
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
