@@ -33,6 +33,12 @@
 #            fills: what a user's first and second run see). GBL_BENCH_COLD_ARGS: more compare
 #            flags (e.g. "--layouts ue4,crysis2-slim --views 1"). Wall times and both timings.json
 #            in results/coldwarm_<WxH>_<mesa>_*; e.g. bench/run.sh coldwarm:480x270 coldwarm:1920x1080
+#   ratio    issue 14's lavapipe goal (warm 1080p compare <= 1.5x its GPU passes): the default
+#            comparison after a warm-up run, GBL_BENCH_REPETITIONS times alternating the files'
+#            encoders at nice 0 (the default) and at nice 19 (GBL_WRITER_NICE), where they take the
+#            time the passes leave and no longer stretch the passes' timestamps (lavapipe renders on
+#            the same cores); wall, CPU and peak memory per run in results/ratio_nice<N>_<i>.txt,
+#            and both ratios printed
 # environment:
 #   GBL_BENCH_REPETITIONS (default 3; medians are reported), GBL_BENCH_BUILD_DIR (default build-bench),
 #   GBL_BENCH_FILTER (a --benchmark_filter regex), GBL_BENCH_4K, GBL_BENCH_LAYOUTS, GBL_BENCH_DEVICE,
@@ -54,7 +60,7 @@ for w in "${what[@]}"; do
         gpu) targets+=(gpu_pass_bench) ;;
         compare) targets+=(compare_bench) ;;
         png) targets+=(png_bench) ;;
-        e2e | coldwarm | search | mem4k | gpu4k) targets+=(gbufferlab) ;;
+        e2e | coldwarm | search | mem4k | gpu4k | ratio) targets+=(gbufferlab) ;;
     esac
 done
 
@@ -144,6 +150,29 @@ for w in "${what[@]}"; do
                     --device "${GBL_BENCH_DEVICE:-cpu}" --size 3840x2160 "${band[@]}" --out "$results/render-4k-$rows" \
                     --force >/dev/null
                 cmp "$results/render-4k-0/reference.exr" "$results/render-4k-$rows/reference.exr"  # bit for bit
+            done
+            ;;
+        ratio)
+            out="$results/compare-ratio"
+            echo "== gbufferlab compare (warm-up run)"
+            "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force >/dev/null 2>&1
+            for ((i = 1; i <= reps; ++i)); do
+                for nice in 0 19; do
+                    echo "== gbufferlab compare, the files' encoders at nice $nice ($i of $reps)"
+                    GBL_WRITER_NICE=$nice /usr/bin/time -f '%e %U %S %M' -o "$results/ratio_nice${nice}_$i.time" \
+                        "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force \
+                        >"$results/ratio_nice${nice}_$i.log" 2>&1
+                    python3 - "$out/timings.json" "$results/ratio_nice${nice}_$i.time" "$nice" \
+                        > "$results/ratio_nice${nice}_$i.txt" <<'PY'
+import json, sys
+t = json.load(open(sys.argv[1]))
+wall, user, system, rss = open(sys.argv[2]).read().split()[-4:]
+print(f"nice {sys.argv[3]}: total {t['total_ms'] / 1000:.2f} s, GPU passes {t['gpu_pass_ms'] / 1000:.2f} s, "
+      f"ratio {t['total_over_gpu_passes']:.2f}x (goal <= 1.5x); wall {wall} s, user {user} s, sys {system} s, "
+      f"peak {rss} KiB")
+PY
+                    cat "$results/ratio_nice${nice}_$i.txt"
+                done
             done
             ;;
         mem4k) run_mem4k ;;
