@@ -16,6 +16,6 @@ void printTable(const ReportModel& model);
 
 // Where the time went, stage by stage (stage_clock.h), against the GPU passes' own time (the
 // timestamp queries of every frame rendered): printed, and written as timings.json for bench/.
-void reportStageTimes(const std::filesystem::path& outDir, const StageTimes& t, double gpuPassMs);
+void reportStageTimes(const std::filesystem::path& outDir, const StageTimes& t, double gpuPassMs, bool cpuDevice);
 
 }  // namespace gbl::compare

@@ -279,7 +279,7 @@ int CompareSession::finish() {
         writeErrors = failRunsOfWriteFailures(model_, failures);
         writeReport(outDir, model_);
         printTable(model_);
-        reportStageTimes(outDir, StageClock::global().read(), gpuPassMs_);
+        reportStageTimes(outDir, StageClock::global().read(), gpuPassMs_, ctx_->info.type == VK_PHYSICAL_DEVICE_TYPE_CPU);
         std::error_code ec;
         fs::remove(incompleteMarker_, ec);
         reportComplete_ = true;
