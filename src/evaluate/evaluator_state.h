@@ -62,6 +62,9 @@ struct GpuEvaluator::State {
     evaluate::GpuFlip flip;
     // The reference's statistics, from setReference or from the reference bands.
     DeviceRender reference;  // setReference's (whole frames); null after reference bands
+    // Which images `reference` was (GpuImage::serial: hdr, then the surfaces; 0 where null), so a
+    // new view's reference is told from the last one even where its structs reuse their addresses.
+    std::array<uint64_t, 5> referenceSerials{};
     float exposure = 1.0f;
     float floorY = 1e-6f;
     bool noise = false;

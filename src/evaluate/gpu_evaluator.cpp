@@ -248,12 +248,16 @@ void GpuEvaluator::setReference(const DeviceRender& reference, float exposure, c
     EvalDevice& d = s.device;
     requireWholeFrames(d, "setReference");
     checkRender(reference, d.width, d.height, "reference");
-    if (s.statsReady && s.reference.hdr == reference.hdr && s.reference.surfaces == reference.surfaces &&
-        s.exposure == exposure && s.noiseSource == noise)
+    std::array<uint64_t, 5> serials{reference.hdr->serial};
+    for (size_t k = 0; k < 4; ++k) serials[k + 1] = reference.surfaces[k] ? reference.surfaces[k]->serial : 0;
+    if (s.statsReady && s.referenceSerials == serials && s.exposure == exposure && s.noiseSource == noise) {
+        s.reference = reference;  // the same images (their structs may have moved)
         return;
+    }
     HostScope scope("evaluate: set reference (new view)");
     s.noiseSource = noise;
     s.reference = reference;
+    s.referenceSerials = serials;
     s.exposure = exposure;
     s.noise = noise && !noise->empty();
     if (s.noise) {

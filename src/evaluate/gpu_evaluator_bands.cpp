@@ -63,6 +63,7 @@ void GpuEvaluator::beginReferenceBands(float exposure) {
     State& s = *s_;
     if (s.run.active) misuse("beginReferenceBands during a run");
     s.reference = {};
+    s.referenceSerials = {};
     s.noise = false;
     s.noiseSource = nullptr;
     s.statsReady = false;

@@ -1,6 +1,7 @@
 #include "vk_resources.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <stdexcept>
 
@@ -77,7 +78,9 @@ uint32_t mipCountFor(uint32_t width, uint32_t height) {
 }
 
 GpuImage createImage(const VulkanContext& ctx, const ImageDesc& desc) {
+    static std::atomic<uint64_t> nextSerial{1};
     GpuImage img;
+    img.serial = nextSerial.fetch_add(1, std::memory_order_relaxed);
     img.format = desc.format;
     img.extent = {desc.width, desc.height};
     img.mipLevels = desc.mipLevels;

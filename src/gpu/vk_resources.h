@@ -18,6 +18,11 @@ struct Buffer {
     void* mapped = nullptr;  // non-null when host visible
     uint32_t memoryType = 0;  // of `memory` (its size: allocationSize), for the recycler
     VkDeviceSize allocationSize = 0;
+    // Unique per createImage in this process, never 0 for a created image: the image's identity.
+    // Neither its address nor its handles are one: a freed image's struct and VkImage come back
+    // for the next image of its size (the evaluator kept view 0's reference statistics for view 1
+    // when they did; compare_bands_cli_test caught it under load).
+    uint64_t serial = 0;
 };
 
 struct GpuImage {
@@ -31,6 +36,11 @@ struct GpuImage {
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     uint32_t memoryType = 0;  // of `memory` (its size: allocationSize), for the recycler
     VkDeviceSize allocationSize = 0;
+    // Unique per createImage in this process, never 0 for a created image: the image's identity.
+    // Neither its address nor its handles are one: a freed image's struct and VkImage come back
+    // for the next image of its size (the evaluator kept view 0's reference statistics for view 1
+    // when they did; compare_bands_cli_test caught it under load).
+    uint64_t serial = 0;
 };
 
 Buffer createBuffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <tuple>
 
 #include "color_map.h"
@@ -238,6 +239,45 @@ TEST_F(GpuEvaluatorTest, TinyCaseByHand) {
     EXPECT_NEAR(m.normal.all.error.p99, 10.0, 10.0 / 1024.0);
     // Identical tone-mapped pixels but one: FLIP is 0 away from it (its filters spread the change).
     EXPECT_GT(m.image.flipMean, 0.0);
+}
+
+// A new reference is measured as new even where its images reuse the last one's structs (and
+// perhaps their handles): compare renders each view's reference after freeing the last, so
+// allocators hand the same addresses back. The evaluator once told references apart by address
+// and kept view 0's luminance floor and HDR-FLIP exposures for view 1 (compare_bands_cli_test
+// failed under load, when the addresses happened to repeat). Here they repeat by construction:
+// one slot, a bright reference and then a dim one, each against a test that differs by 0.002 at
+// one pixel; the floor (1e-2 x the mean luminance: 0.04 bright, 0.0001 dim) decides its error.
+TEST_F(GpuEvaluatorTest, ANewReferenceInTheLastOnesPlaceIsMeasuredAsNew) {
+    const int w = 8, h = 8;
+    const Image bright(w, h, 4, 4.0f), dim(w, h, 4, 0.01f);
+    Image dimTest = dim;
+    for (int c = 0; c < 3; ++c) dimTest.pixels[size_t(c)] = 0.012f;
+    const SurfaceImages surfaces = flatSurfaces(w, h);
+    GpuEvalOptions o;
+    o.hdrFlip = true;
+
+    GpuEvaluator fresh(ctx(), w, h);  // the dim reference alone: what the answer must be
+    UploadedRender dimAlone(ctx(), dim, &surfaces), test(ctx(), dimTest, &surfaces);
+    fresh.setReference(dimAlone.view(), 1.0f);
+    const RunMetrics expected = fresh.evaluate(test.view(), o);
+    // |0.012 - 0.01| / max(0.01, floor 1e-4) at one pixel of 64 (luminance weights sum to 1).
+    EXPECT_NEAR(expected.image.covered.relLuminanceMean, 0.2 / 64.0, 1e-5);
+
+    GpuEvaluator reused(ctx(), w, h);
+    std::optional<UploadedRender> slot(std::in_place, ctx(), bright, &surfaces);
+    reused.setReference(slot->view(), 1.0f);
+    (void)reused.evaluate(test.view(), o);
+    const GpuImage* brightHdr = slot->view().hdr;
+    slot.reset();
+    slot.emplace(ctx(), dim, &surfaces);
+    ASSERT_EQ(slot->view().hdr, brightHdr) << "the slot did not give the same address back";
+    reused.setReference(slot->view(), 1.0f);
+    const RunMetrics got = reused.evaluate(test.view(), o);
+    EXPECT_EQ(got.image.covered.relLuminanceMean, expected.image.covered.relLuminanceMean);
+    EXPECT_EQ(got.image.hdrFlipExposures, expected.image.hdrFlipExposures);
+    EXPECT_EQ(got.image.hdrFlipMean, expected.image.hdrFlipMean);
+    EXPECT_EQ(got.image.flipMean, expected.image.flipMean);
 }
 
 // FLIP's separable passes compute eight outputs per invocation over 512-column row segments and
