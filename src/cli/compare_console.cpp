@@ -125,7 +125,8 @@ void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPas
     j["gpu_passes_share_host_cores"] = cpuDevice;
     std::printf("\ntotal %.2f s = %.2fx the GPU passes' own %.2f s (timestamps%s)\n", t.totalMs / 1000.0,
                 gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0, gpuPassMs / 1000.0,
-                cpuDevice ? "; on this CPU device the passes share the cores with the file encoders, which can lengthen them"
+                cpuDevice ? "; on this CPU device the passes share the cores with the file encoders, which can "
+                            "lengthen them"
                           : "");
     writeFileAtomic(outDir / "timings.json", j.dump(2) + "\n");
 }

@@ -18,11 +18,6 @@ struct Buffer {
     void* mapped = nullptr;  // non-null when host visible
     uint32_t memoryType = 0;  // of `memory` (its size: allocationSize), for the recycler
     VkDeviceSize allocationSize = 0;
-    // Unique per createImage in this process, never 0 for a created image: the image's identity.
-    // Neither its address nor its handles are one: a freed image's struct and VkImage come back
-    // for the next image of its size (the evaluator kept view 0's reference statistics for view 1
-    // when they did; compare_bands_cli_test caught it under load).
-    uint64_t serial = 0;
 };
 
 struct GpuImage {
@@ -37,9 +32,9 @@ struct GpuImage {
     uint32_t memoryType = 0;  // of `memory` (its size: allocationSize), for the recycler
     VkDeviceSize allocationSize = 0;
     // Unique per createImage in this process, never 0 for a created image: the image's identity.
-    // Neither its address nor its handles are one: a freed image's struct and VkImage come back
-    // for the next image of its size (the evaluator kept view 0's reference statistics for view 1
-    // when they did; compare_bands_cli_test caught it under load).
+    // Its address is not one (the next image's struct can land where a freed one was: the
+    // evaluator then kept view 0's reference statistics for view 1; compare_bands_cli_test caught
+    // it under load), nor are its handles (a driver may hand a freed handle's value out again).
     uint64_t serial = 0;
 };
 

@@ -64,7 +64,8 @@ std::vector<unsigned char> fileBytes(const fs::path& p) {
 }
 
 void writeBytes(const fs::path& p, const std::vector<unsigned char>& bytes) {
-    std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream out(p, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 class DiskCacheTest : public ::testing::Test {
