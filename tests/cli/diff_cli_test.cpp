@@ -194,6 +194,16 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
             EXPECT_NEAR(num(g["flip_mean"]), num(c["flip_mean"]), 1e-4);
             const double relCpu = num(c["by_class"]["covered"]["rel_luminance_mean"]);
             EXPECT_NEAR(num(g["by_class"]["covered"]["rel_luminance_mean"]), relCpu, 1e-6 * relCpu);
+            // The attributes too, as gpu_evaluator_test holds one render (float angles and
+            // CIEDE2000 against the oracle's double: means within 1e-4 relative).
+            const auto& ca = cpuRuns[r]["views"][v]["attribute_errors"];
+            const auto& ga = gpuRuns[r]["views"][v]["attribute_errors"];
+            ASSERT_EQ(ga.size(), ca.size());
+            for (const auto& [name, attribute] : ca.items()) {
+                EXPECT_EQ(ga[name]["all"]["count"], attribute["all"]["count"]) << name;
+                const double mean = num(attribute["all"]["mean"]);
+                EXPECT_NEAR(num(ga[name]["all"]["mean"]), mean, 1e-4 * mean + 1e-9) << name;
+            }
         }
     const RunResult bad = run("compare --size 32x32 --layouts ue4 --eval fpga --out rep-bad");
     expectOneLineError(bad, {"--eval fpga", "auto, gpu or cpu"});
