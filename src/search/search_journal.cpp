@@ -9,6 +9,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "disk_cache.h"
 #include "error.h"
 #include "file_io.h"
 
@@ -50,12 +51,9 @@ bool parseLine(const std::string& line, JournalEntry& e) {
 }  // namespace
 
 uint64_t textHash(const std::string& text) {
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 0x100000001b3ull;
-    }
-    return h;
+    Fnv64 f;
+    f.bytes(text.data(), text.size());
+    return f.h;
 }
 
 Journal::Journal(const std::filesystem::path& path, const std::string& key) : path_(path) {

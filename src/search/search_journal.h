@@ -43,7 +43,8 @@ private:
     int fd_ = -1;
 };
 
-// FNV-1a, 64 bits, of the layout text (the journal's check that a replayed candidate is the same).
+// FNV-1a, 64 bits (Fnv64::bytes), of the layout text (the journal's check that a replayed candidate
+// is the same).
 uint64_t textHash(const std::string& text);
 
 }  // namespace gbl::search
