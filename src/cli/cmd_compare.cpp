@@ -13,9 +13,9 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const std::optional<compare::CompareOptions> options = compare::parseCompareOptions(args);
     if (!options) return 0;  // --help
     StageClock::global().start();
-    compare::CompareSession session(*options);
-    for (int view = 0; view < session.viewCount(); ++view) session.runView(view);
-    return session.finish();
+    compare::CompareSession comparison(*options);
+    for (int view = 0; view < comparison.viewCount(); ++view) comparison.runView(view);
+    return comparison.finish();
 }
 
 }  // namespace gbl

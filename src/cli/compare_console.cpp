@@ -121,7 +121,7 @@ void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPas
     j["total_over_gpu_passes"] = gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0;
     // A CPU device renders on the cores that encode the files meanwhile, and its timestamps are
     // wall-clock time: the encoders lengthen the passes and flatter the ratio (bench/RESULTS.md,
-    // eleventh session: 1.64x printed, 2.06x with the encoders at nice 19; bench/run.sh ratio).
+    // 2026-11-25: 1.64x printed, 2.06x with the encoders at nice 19; bench/run.sh ratio).
     j["gpu_passes_share_host_cores"] = cpuDevice;
     std::printf("\ntotal %.2f s = %.2fx the GPU passes' own %.2f s (timestamps%s)\n", t.totalMs / 1000.0,
                 gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0, gpuPassMs / 1000.0,

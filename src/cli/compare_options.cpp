@@ -47,6 +47,8 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
         {"no-hdr-flip", "", "skip HDR-FLIP (the default; kept for older scripts)"},
         {"float32-exr", "", "write the EXR files (renders, errors.exr) as 32-bit float instead of half (16-bit "
                             "float: half the bytes; values within 2^-11 relative, clamped to +-65504)"},
+        {"error-exr", "", "also write each run's per-pixel errors as float channels (runs/<layout>/<mode>/errors.exr; "
+                          "16 MB a run at 1080p); needs the CPU evaluation, which --eval auto then picks"},
         {"eval", "WHERE", "where the metrics are computed: auto (default: gpu on a GPU, cpu on a CPU device such as "
                           "lavapipe), gpu (compute passes beside the render, only numbers and 8-bit images come "
                           "back, no errors.exr) or cpu (the measure library, the oracle)"},
@@ -100,8 +102,18 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.evalWhere = parsed.get("eval", "auto");
     if (o.evalWhere != "gpu" && o.evalWhere != "cpu" && o.evalWhere != "auto")
         throwUserError("gbufferlab compare: --eval " + o.evalWhere + ": give auto, gpu or cpu");
+    // errors.exr holds the CPU oracle's float maps; the device evaluator keeps its maps on the device.
+    o.errorExr = parsed.has("error-exr");
+    if (o.errorExr && o.evalWhere == "gpu")
+        throwUserError("gbufferlab compare: --error-exr needs the CPU evaluation (the device evaluator keeps its "
+                       "float maps on the device); give --eval cpu or auto, or drop --error-exr");
     o.groundTruthAsked = std::find(o.modes.begin(), o.modes.end(), IblMode::GroundTruth) != o.modes.end();
     o.bandRowsGiven = parseBandRowsFlag(parsed.get("band-rows", "auto"), o.evalWhere == "cpu", o.groundTruthAsked);
+    if (o.errorExr && o.bandRowsGiven.value_or(0) > 0)
+        throwUserError("gbufferlab compare: --error-exr with --band-rows " + parsed.get("band-rows") +
+                       ": bands are measured on the device evaluator, which keeps its float maps on the device; "
+                       "give --band-rows 0, or drop --error-exr");
+    if (o.errorExr) o.evalWhere = "cpu";
     o.device = parsed.get("device");
     o.validation = parsed.has("validation");
     o.nativeFormats = parsed.has("native-formats");

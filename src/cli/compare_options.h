@@ -39,6 +39,7 @@ struct CompareOptions {
     bool nativeFormats = false;
     bool hdrFlip = false;
     ExrPixelType exrType = ExrPixelType::Half;
+    bool errorExr = false;  // --error-exr: each run's errors.exr (CPU evaluation only)
     std::string evalWhere = "auto";  // auto, gpu or cpu
     bool groundTruthAsked = false;   // ground-truth among the modes
     std::optional<uint32_t> bandRowsGiven;  // unset: --band-rows auto

@@ -237,8 +237,9 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
     ErrorImageOptions imageOptions;
     imageOptions.label = run.layout + " / " + run.iblMode;
     imageOptions.exrType = output.exrType;
+    imageOptions.writeErrorExr = output.errorExr;
     // Every path is known before any file is written: the report lists them now.
-    const ErrorImagePaths paths = errorImagePaths(prefix, *maps);
+    const ErrorImagePaths paths = errorImagePaths(prefix, *maps, output.errorExr);
     run.images.render = paths.render;
     // The linear HDR render the image metrics (and HDR-FLIP) were computed on (ImageOutput::exrType).
     run.images.renderExr = prefix + "render.exr";

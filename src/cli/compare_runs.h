@@ -36,6 +36,7 @@ void fillMetrics(RunReport& run, const RunMetrics& m);
 struct ImageOutput {
     BackgroundWriter* writer = nullptr;
     ExrPixelType exrType = ExrPixelType::Float32;
+    bool errorExr = false;  // errors.exr (--error-exr; the CPU evaluation only)
 };
 
 // The comparison of one rendered run against its reference: metrics, images, crops. `test` is

@@ -134,10 +134,10 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
     // lavapipe they share the cores with the passes and stretch the passes' timestamps. At 19 the
     // default comparison's passes took 27.4 s against 32.9-33.2 s, for 1-3% less wall time and
     // 0.63 GB more peak memory (the writer falls behind and its queue holds images), so the
-    // default stays 0 (bench/RESULTS.md, eighth session).
+    // default stays 0 (bench/RESULTS.md, 2026-11-25).
     imageWriter_.emplace(bandPlan_.banded() || hardwareThreads() < 8 ? 1 : 2, bandPlan_.banded() ? 1 : 2,
                          writerNiceness());
-    imageOutput_ = ImageOutput{&*imageWriter_, o.exrType};
+    imageOutput_ = ImageOutput{&*imageWriter_, o.exrType, o.errorExr};
     setInterruptAction([this](int signal) { writeInterruptedReport(signal); });
     interruptGuard_.set = true;
     timedSetup.reset();

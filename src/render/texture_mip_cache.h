@@ -5,7 +5,7 @@
 // above, as every driver defines them. On lavapipe every blit is a rasterised pass of its own:
 // about 2.6 ms a level whatever its size, 125-140 ms for the built-in scene's six textures and
 // about 240 ms for WaterBottle's four 2048^2 ones, the largest part of a small compare's set-up
-// (bench/RESULTS.md, ninth session). On a CPU device the levels the blits made are read back once
+// (bench/RESULTS.md, 2026-11-25). On a CPU device the levels the blits made are read back once
 // and stored (base/disk_cache.h); a later run uploads them as they are, byte for byte what the
 // same driver's blits make: the key holds the driver's identity (vendor, device, driver version,
 // pipelineCacheUUID) and the texture's format, size and texels. A GPU blits every time (a few

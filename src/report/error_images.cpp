@@ -225,14 +225,14 @@ void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& m, Exr
     });
 }
 
-ErrorImagePaths errorImagePaths(const std::string& prefix, const RunErrorMaps& maps) {
+ErrorImagePaths errorImagePaths(const std::string& prefix, const RunErrorMaps& maps, bool errorExr) {
     ErrorImagePaths p;
     p.render = prefix + "render.png";
     p.heatmap = prefix + "error_heatmap.png";
     p.flip = prefix + "flip.png";
     if (!maps.normalDeg.empty()) p.normalError = prefix + "normal_error.png";
     p.difference = prefix + "difference.png";
-    p.errorsExr = prefix + "errors.exr";
+    if (errorExr) p.errorsExr = prefix + "errors.exr";
     return p;
 }
 
@@ -269,10 +269,11 @@ ErrorImagePaths writeErrorImages(const std::filesystem::path& dir, const std::st
                                                                differenceTitle(o)));
     });
 
-    writes.push_back([&] {
-        writeErrorExr(dir / (prefix + "errors.exr"), maps, o.exrType);
-        paths.errorsExr = prefix + "errors.exr";
-    });
+    if (o.writeErrorExr)
+        writes.push_back([&] {
+            writeErrorExr(dir / (prefix + "errors.exr"), maps, o.exrType);
+            paths.errorsExr = prefix + "errors.exr";
+        });
     parallelInvoke(writes);
     return paths;
 }

@@ -32,6 +32,9 @@ struct ErrorImageOptions {
     float normalMinScaleDeg = 1.0f;  // the normal map's top is max(this, p99)
     std::string label;               // e.g. the layout's name, prefixed to every title ("" = none)
     ExrPixelType exrType = ExrPixelType::Float32;  // of errors.exr (image_io.h: half's precision)
+    // errors.exr is a float dump of every map (16 MB a 1080p run in half): written on request only
+    // by compare (--error-exr), since every reported number is recomputable from the PNGs and EXRs.
+    bool writeErrorExr = true;
 };
 
 // Paths relative to `dir` (prefix + file name); "" when not written.
@@ -68,7 +71,7 @@ std::vector<std::string> errorExrChannels(const RunErrorMaps& maps);
 void writeErrorExr(const std::filesystem::path& path, const RunErrorMaps& maps,
                    ExrPixelType type = ExrPixelType::Float32);
 // The paths writeErrorImages(dir, prefix, maps, ...) writes, without writing them.
-ErrorImagePaths errorImagePaths(const std::string& prefix, const RunErrorMaps& maps);
+ErrorImagePaths errorImagePaths(const std::string& prefix, const RunErrorMaps& maps, bool errorExr = true);
 
 // ---- Building blocks (in memory) --------------------------------------------------------------
 

@@ -33,8 +33,8 @@ struct Candidate {
 struct SearchProgress {
     int evaluated = 0, total = 0;
     int resumed = 0;          // of evaluated, read from the journal
-    double seconds = 0.0;     // wall time of this session's evaluations
-    double perMinute = 0.0;   // this session's rate (0 until something was evaluated)
+    double seconds = 0.0;     // wall time of this process's evaluations (a resumed search counts anew)
+    double perMinute = 0.0;   // this process's rate (0 until something was evaluated)
     double etaSeconds = 0.0;
     const Candidate* bestAtBudget = nullptr;  // lowest error of the front
 };
@@ -59,7 +59,7 @@ struct SearchResult {
     int rejectedByValidation = 0;  // always expected 0: the packer only writes valid layouts
     std::vector<std::string> validationMessages;
     int resumed = 0;
-    double seconds = 0.0;     // this session's evaluation wall time
+    double seconds = 0.0;     // this process's evaluation wall time
     double cpuSeconds = 0.0;  // ... and the process's CPU time over it (all threads): on a loaded
                               // machine, what the evaluations cost regardless of the other work
 };

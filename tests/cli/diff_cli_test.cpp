@@ -140,7 +140,8 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
         SCOPED_TRACE("--eval " + eval);
         const bool exact = eval == "cpu";
         const std::string dir = "rep-" + eval + "/";
-        const RunResult c = run("compare --size 96x54 --layouts crysis2-slim,ue4 --hdr-flip --float32-exr --eval " + eval + " --out " + dir);
+        const RunResult c = run("compare --size 96x54 --layouts crysis2-slim,ue4 --hdr-flip --float32-exr --eval " + eval +
+                              (exact ? " --error-exr" : "") + " --out " + dir);
         ASSERT_EQ(c.exitCode, 0) << c.err;
         const auto& report = reports[eval] = nlohmann::json::parse(slurp(scratch() / dir / "report.json"));
         EXPECT_EQ(report["run"]["exr_precision"], "float32");
@@ -174,7 +175,7 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
             same(num(j["psnr_db"]), num(e["psnr_linear_db"]), 1e-6, layout + " psnr linear");
             EXPECT_NEAR(num(j["rmse"]), num(e["rmse_linear"]), 1e-9 * num(e["rmse_linear"]));
         }
-        // The GPU's float maps stay on the device: no errors.exr; the oracle writes one.
+        // The GPU's float maps stay on the device: no errors.exr; the oracle writes one (--error-exr).
         const std::string errorsExr = report["runs"][0]["images"]["errors_exr"];
         EXPECT_EQ(errorsExr.empty(), !exact);
     }
@@ -210,6 +211,35 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
     EXPECT_FALSE(fs::exists(scratch() / "rep-bad"));
 }
 
+// errors.exr (a float dump of every per-pixel error, 16 MB a 1080p run) only on request: a default
+// run names and writes none, yet every number stays recomputable (the test above); --error-exr
+// writes it, and is refused where no float maps exist (the device evaluator, bands).
+TEST(Diff, ErrorExrIsWrittenOnlyOnRequest) {
+    const RunResult c = run("compare --size 96x54 --layouts ue4 --views 1 --eval cpu --out noerrexr");
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    const auto report = nlohmann::json::parse(slurp(scratch() / "noerrexr" / "report.json"));
+    EXPECT_EQ(report["runs"][0]["images"]["errors_exr"], "");
+    for (const auto& entry : fs::recursive_directory_iterator(scratch() / "noerrexr"))
+        EXPECT_NE(entry.path().filename(), "errors.exr") << entry.path();
+    ASSERT_FALSE(report["runs"][0]["images"]["render_exr"].get<std::string>().empty());
+
+    const RunResult w = run("compare --size 96x54 --layouts ue4 --views 1 --error-exr --out errexr");
+    ASSERT_EQ(w.exitCode, 0) << w.err;
+    const auto withExr = nlohmann::json::parse(slurp(scratch() / "errexr" / "report.json"));
+    const std::string path = withExr["runs"][0]["images"]["errors_exr"];
+    ASSERT_FALSE(path.empty());
+    EXPECT_TRUE(fs::is_regular_file(scratch() / "errexr" / path)) << path;
+    // The numbers do not depend on it.
+    EXPECT_EQ(withExr["runs"][0]["image_errors"].dump(), report["runs"][0]["image_errors"].dump());
+
+    expectOneLineError(run("compare --size 96x54 --layouts ue4 --error-exr --eval gpu --out errexr-gpu"),
+                       {"--error-exr", "--eval cpu"});
+    expectOneLineError(run("compare --size 96x54 --layouts ue4 --error-exr --band-rows 16 --out errexr-bands"),
+                       {"--error-exr", "--band-rows 0"});
+    EXPECT_FALSE(fs::exists(scratch() / "errexr-gpu"));
+    EXPECT_FALSE(fs::exists(scratch() / "errexr-bands"));
+}
+
 // The default half-float EXRs: the report says so, the files are half, and the linear numbers
 // recomputed from them stay within what half's rounding allows. Each value read back is within
 // 2^-11 of the float one (relative, normal range) or 2^-25 (absolute, subnormal), so by the
@@ -217,7 +247,7 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
 // <= 2^-11 (RMS(t) + RMS(r)) + 2^-24. PSNR = 20 log10(peak / RMSE) moves with the RMSE and the
 // peak (the reference's maximum, also rounded). The PNG numbers do not depend on the EXRs: exact.
 TEST(Diff, HalfExrsReproduceTheReportWithinHalfsRounding) {
-    const RunResult c = run("compare --size 96x54 --layouts ue4 --views 1 --out half");
+    const RunResult c = run("compare --size 96x54 --layouts ue4 --views 1 --error-exr --out half");
     ASSERT_EQ(c.exitCode, 0) << c.err;
     const auto report = nlohmann::json::parse(slurp(scratch() / "half" / "report.json"));
     EXPECT_EQ(report["run"]["exr_precision"], "half");
