@@ -74,7 +74,7 @@ mkdir -p "$results"
 # repetitions are spread over the run instead of back to back, so a disturbance of a few seconds
 # (another process, a VM neighbour) touches one repetition of several benchmarks, not every
 # repetition of one. The medians, and the ratios of benchmarks measured side by side, then no
-# longer swing with it (bench/RESULTS.md: the codec goal's verdict, eighth and ninth sessions).
+# longer swing with it (bench/RESULTS.md: the codec goal's verdict, 2026-11-25).
 run_bench() {  # name
     local args=(--benchmark_repetitions="$reps" --benchmark_enable_random_interleaving=true
                 --benchmark_report_aggregates_only=true

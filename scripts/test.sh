@@ -3,6 +3,6 @@
 # validation layers on (any validation error fails the test that caused it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh build
+scripts/setup.sh --tests build
 cd build
 ctest --output-on-failure -j"$(nproc)" "$@"
