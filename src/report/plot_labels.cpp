@@ -31,6 +31,10 @@ constexpr int kAdvance[95] = {
 
 PlotBox padded(const PlotBox& b, double by) { return {b.x0 - by, b.y0 - by, b.x1 + by, b.y1 + by}; }
 
+double distanceTo(const PlotBox& b, double x, double y) {
+    return std::hypot(std::max({b.x0 - x, 0.0, x - b.x1}), std::max({b.y0 - y, 0.0, y - b.y1}));
+}
+
 // Whether the segment (ax, ay)-(bx, by) passes through `box` (Liang-Barsky clipping).
 bool segmentHits(double ax, double ay, double bx, double by, const PlotBox& box) {
     double t0 = 0, t1 = 1;
@@ -129,6 +133,16 @@ struct Placer {
         for (const PlotLine& l : lines) taken.mark(l, kGap);
     }
     bool free(const PlotBox& b) { return taken.free(b); }
+    // A label without a leader names the marker nearest to it: no other marker may be as close.
+    bool unambiguous(const PlotBox& b, const LabelRequest& own) const {
+        const double mine = distanceTo(b, own.anchorX, own.anchorY);
+        for (const PlotBox& m : markers) {
+            const double cx = (m.x0 + m.x1) / 2, cy = (m.y0 + m.y1) / 2;
+            if (std::hypot(cx - own.anchorX, cy - own.anchorY) < 1.0) continue;  // its own (or one on top of it)
+            if (distanceTo(b, cx, cy) <= mine) return false;
+        }
+        return true;
+    }
     // A leader that passes near no other marker and crosses no label or leader: it reads unambiguously.
     bool clearLeader(const Segment& s, const LabelRequest& own) const {
         for (const PlotBox& m : markers) {
@@ -162,7 +176,8 @@ std::vector<PlacedLabel> placeLabels(const std::vector<LabelRequest>& labels, co
     Placer placer(markers, lines, area);
     std::vector<PlacedLabel> out(labels.size());
     std::vector<bool> done(labels.size(), false);
-    // First every label that fits beside its marker, so the sparse points keep their labels close.
+    // First every label that fits beside its marker, nearer to it than to any other, so the sparse
+    // points keep their labels close.
     for (size_t i = 0; i < labels.size(); ++i) {
         const LabelRequest& r = labels[i];
         const double x = r.anchorX, y = r.anchorY, w = r.width, h = r.height, d = kBeside, o = kBeside / 2;
@@ -172,7 +187,7 @@ std::vector<PlacedLabel> placeLabels(const std::vector<LabelRequest>& labels, co
             {x - o - w, y - d - h, x - o, y - d},     {x - o - w, y + d, x - o, y + d + h},
             {x - w / 2, y - d - h, x + w / 2, y - d}, {x - w / 2, y + d, x + w / 2, y + d + h}};
         for (const PlotBox& b : beside)
-            if (area.contains(b) && placer.free(b)) {
+            if (area.contains(b) && placer.free(b) && placer.unambiguous(b, r)) {
                 placer.take(out[i], b, r, false);
                 done[i] = true;
                 break;
@@ -224,7 +239,8 @@ std::vector<PlacedLabel> placeLabels(const std::vector<LabelRequest>& labels, co
             chosen = {INFINITY, PlotBox{area.x0, overflowY, area.x0 + r.width, overflowY + r.height}};
             overflowY = chosen->second.y1 + kGap * 2;
         }
-        placer.take(out[i], chosen->second, r, chosen->first > kBeside + kGridStep);
+        const bool near = chosen->first <= kBeside + kGridStep && placer.unambiguous(chosen->second, r);
+        placer.take(out[i], chosen->second, r, !near);
     }
     return out;
 }

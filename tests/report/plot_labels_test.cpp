@@ -104,6 +104,28 @@ TEST(PlotLabels, ALonePointKeepsItsLabelBesideIt) {
     EXPECT_LT(std::hypot(dx, dy), 12.0);
 }
 
+// Two markers 35 units apart on one line (a visibility buffer's and its neighbour's): the first
+// label cannot go right (the second marker is there) nor above or below on the right, where it
+// would be as near the second marker as its own, so it goes left.
+TEST(PlotLabels, ALabelWithoutLeaderIsNearerItsMarkerThanAnyOther) {
+    Scene s;
+    addPoint(s, 200, 300, "visibility-32");
+    addPoint(s, 235, 300, "visibility-64");
+    s.lines = {{206, 300, 900, 300}};
+    const auto placed = placeLabels(s.labels, s.markers, s.lines, {76, 18, 1060, 456});
+    for (size_t i = 0; i < 2; ++i) {
+        SCOPED_TRACE(i);
+        ASSERT_FALSE(placed[i].leader);
+        const PlotBox& b = placed[i].box;
+        const auto distance = [&](const LabelRequest& r) {
+            return std::hypot(std::max({b.x0 - r.anchorX, 0.0, r.anchorX - b.x1}),
+                              std::max({b.y0 - r.anchorY, 0.0, r.anchorY - b.y1}));
+        };
+        EXPECT_LT(distance(s.labels[i]), distance(s.labels[1 - i]));
+    }
+    EXPECT_LE(placed[0].box.x1, 200.0);  // left of its marker
+}
+
 TEST(PlotLabels, SameInputSamePlacement) {
     const Scene s = crowd();
     const auto a = placeLabels(s.labels, s.markers, s.lines, {76, 18, 1060, 456});
