@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "budget_verdict.h"
 #include "file_io.h"
 #include "shader_cache.h"
 #include "view_stats.h"
@@ -70,6 +71,14 @@ void printTable(const ReportModel& model) {
         }
     }
     if (const auto v = gbufferOrVisibility(model)) std::printf("\nG-buffer or visibility buffer? %s\n", v->answer.c_str());
+    printVerdict(model);
+}
+
+void printVerdict(const ReportModel& model) {
+    const auto v = budgetVerdict(model);
+    if (!v) return;
+    std::printf("\nVerdict. %s\n", v->basis.c_str());
+    for (const BudgetLine& line : v->lines) std::printf("  %s\n", line.sentence.c_str());
 }
 
 void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPassMs, bool cpuDevice) {

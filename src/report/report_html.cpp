@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <map>
 #include <optional>
 
@@ -13,9 +11,10 @@
 #include "file_io.h"
 #include "report_atlas.h"
 #include "report_csv.h"
+#include "budget_verdict.h"
 #include "report_html_plot.h"
+#include "report_html_table.h"
 #include "report_html_template.h"
-#include "view_stats.h"
 #include "visibility_verdict.h"
 #include "report_json.h"
 #include "tone_map.h"
@@ -106,66 +105,6 @@ std::vector<size_t> paretoFront(const std::vector<std::pair<double, double>>& po
 
 namespace {
 
-// Full precision for data-v (sorting) attributes; JavaScript's Number() reads "Infinity".
-std::string dataNumber(double v) {
-    if (std::isnan(v)) return "NaN";
-    if (std::isinf(v)) return v > 0 ? "Infinity" : "-Infinity";
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-    return std::string(buffer, result.ptr);
-}
-
-std::optional<double> attributeMean(const RunReport& r, ErrorAttribute a) {
-    const auto& all = r.attributes[a].all;
-    return all ? std::optional<double>(all->error.mean) : std::nullopt;
-}
-
-// ---- The summary table -------------------------------------------------------------------------
-
-struct TableColumn {
-    const char* key;       // data-key, for sorting and #sort=
-    const char* header;    // HTML (already escaped)
-    const char* tooltip;
-    bool numeric;
-    const char* firstDir;  // the first click's direction: the better end first
-    std::function<std::optional<double>(const RunReport&)> value;  // numeric columns
-    std::function<std::string(double)> format;
-};
-
-std::vector<TableColumn> numericColumns() {
-    const auto sig3 = [](double v) { return formatSignificant(v, 3); };
-    const auto imageValue = [](double ImageErrors::*field) {
-        return [field](const RunReport& r) { return r.image ? std::optional<double>(*r.image.*field) : std::nullopt; };
-    };
-    return {
-        {"bpp", "Bytes/px", "G-buffer bytes per pixel: targets + depth-stencil + light buffers", true, "ascending",
-         [](const RunReport& r) { return std::optional<double>(r.bytesPerPixel.total); },
-         [](double v) { return formatFixed(v, 0); }},
-        {"gbps", "GB/s 1080p60", "Render-target traffic at 1920x1080, 1 sample, 60 frames/s (model: src/measure/bandwidth.h; a "
-                                    "visibility buffer's adds its resolve's vertex fetches, modelled with no cache reuse)",
-         true, "ascending", [](const RunReport& r) { return r.gigabytesPerSecond1080p60(); },
-         [](double v) { return formatFixed(v, 2); }},
-        {"normal_mean", "Normal mean&nbsp;&deg;", "Mean angle between stored and reference normals, degrees", true,
-         "ascending", [](const RunReport& r) { return attributeMean(r, ErrorAttribute::Normal); }, sig3},
-        {"normal_p99", "Normal p99&nbsp;&deg;", "99th percentile of the normal angle error, degrees", true, "ascending",
-         [](const RunReport& r) {
-             const auto& all = r.attributes[ErrorAttribute::Normal].all;
-             return all ? std::optional<double>(all->error.p99) : std::nullopt;
-         },
-         sig3},
-        {"albedo_de", "Albedo &Delta;E", "Base colour, mean CIEDE2000", true, "ascending",
-         [](const RunReport& r) { return attributeMean(r, ErrorAttribute::BaseColor); }, sig3},
-        {"specular_de", "Specular &Delta;E", "Specular colour (F0), mean CIEDE2000", true, "ascending",
-         [](const RunReport& r) { return attributeMean(r, ErrorAttribute::SpecularColor); }, sig3},
-        {"roughness", "Roughness err", "Roughness, mean absolute error", true, "ascending",
-         [](const RunReport& r) { return attributeMean(r, ErrorAttribute::Roughness); }, sig3},
-        {"psnr", "PSNR dB", "PSNR of the tone-mapped sRGB image, peak 1 (&#8734; = identical to the reference)", true,
-         "descending", imageValue(&ImageErrors::psnrToneMapped), [](double v) { return formatFixed(v, 2); }},
-        {"flip", "FLIP mean", "Mean LDR-FLIP error, 0 (identical) to 1", true, "ascending",
-         imageValue(&ImageErrors::flipMean), [](double v) { return formatFixed(v, 4); }},
-    };
-}
-
 struct Ids {
     std::map<std::string, int> used;
     std::string make(const std::string& text) {
@@ -179,42 +118,6 @@ struct Ids {
         return n == 1 ? id : id + "-" + std::to_string(n);
     }
 };
-
-void writeTable(std::string& out, const ReportModel& model, const std::vector<std::string>& ids) {
-    const std::vector<TableColumn> columns = numericColumns();
-    out += "<table id=\"layouts\" class=\"data sortable\">\n<thead><tr>"
-           "<th data-key=\"layout\" data-dir=\"ascending\" title=\"Layout name\">Layout</th>"
-           "<th data-key=\"ibl\" data-dir=\"ascending\" title=\"Image-based lighting mode\">IBL</th>";
-    for (const TableColumn& c : columns)
-        out += std::string("<th class=\"num\" data-key=\"") + c.key + "\" data-dir=\"" + c.firstDir + "\" title=\"" +
-               c.tooltip + "\">" + c.header + "</th>";
-    out += "<th data-key=\"status\" data-dir=\"ascending\">Status</th></tr></thead>\n<tbody>\n";
-    for (size_t i = 0; i < model.runs.size(); ++i) {
-        const RunReport& r = model.runs[i];
-        const bool failed = r.status == RunStatus::Failed;
-        out += failed ? "<tr class=\"failed\">" : "<tr>";
-        out += "<td><a href=\"#" + ids[i] + "\" title=\"" + htmlEscape(r.title) + "\">" + htmlEscape(r.layout) +
-               "</a></td><td>" + htmlEscape(r.iblMode) + "</td>";
-        for (const TableColumn& c : columns) {
-            const std::optional<double> v = c.value(r);
-            if (v && r.views.size() > 1 && std::string(c.key) != "bpp" && std::string(c.key) != "gbps") {
-                // compare --views: the mean over the views, and under it their range and deviation.
-                const ViewSpread sp = viewSpread(r, c.value);
-                out += "<td class=\"num\" data-v=\"" + dataNumber(*v) + "\">" + c.format(*v) +
-                       "<br><small class=\"spread\" title=\"over " + std::to_string(sp.n) +
-                       " views: min .. max, standard deviation\">" + c.format(sp.min) + "&ndash;" + c.format(sp.max) +
-                       " &sigma;" + formatSignificant(sp.stddev, 2) + "</small></td>";
-            } else if (v) {
-                out += "<td class=\"num\" data-v=\"" + dataNumber(*v) + "\">" + c.format(*v) + "</td>";
-            }
-            else out += "<td class=\"num\"></td>";
-        }
-        if (failed) out += "<td>failed<div class=\"errtext\">" + htmlEscape(r.error) + "</div></td>";
-        else out += "<td class=\"status-ok\">ok</td>";
-        out += "</tr>\n";
-    }
-    out += "</tbody>\n</table>\n";
-}
 
 // ---- Per-run sections ----------------------------------------------------------------------------
 
@@ -407,6 +310,17 @@ void writeVisibilityVerdict(std::string& out, const ReportModel& model) {
            "texels, so they are in neither figure.</p>\n</section>\n";
 }
 
+// The verdict per byte budget (budget_verdict.h): what the run concluded, before any detail.
+void writeBudgetVerdict(std::string& out, const ReportModel& model) {
+    const auto v = budgetVerdict(model);
+    if (!v) return;
+    out += "<section id=\"verdict\">\n<h2>Verdict</h2>\n<ul class=\"verdict-lines\">\n";
+    for (const BudgetLine& line : v->lines)
+        out += "<li data-budget=\"" + (line.budget ? std::to_string(*line.budget) : std::string("unlimited")) + "\"" +
+               (line.best ? "" : " class=\"none-fits\"") + ">" + htmlEscape(line.sentence) + "</li>\n";
+    out += "</ul>\n<p class=\"hint\">" + htmlEscape(v->basis) + "</p>\n</section>\n";
+}
+
 }  // namespace
 
 std::string reportHtml(const ReportModel& model) {
@@ -451,6 +365,8 @@ std::string reportHtml(const ReportModel& model) {
     std::vector<std::string> ids;
     for (const RunReport& r : model.runs) ids.push_back(idMaker.make(r.layout + "-" + r.iblMode));
 
+    writeBudgetVerdict(out, model);
+
     if (model.iblFigure) {
         const IblFigure& f = *model.iblFigure;
         out += "<section id=\"ibl-figure\">\n<h2>IBL modes against ground truth</h2>\n<figure><img src=\"" +
@@ -470,7 +386,7 @@ std::string reportHtml(const ReportModel& model) {
             out += (i ? "; " : "") + std::to_string(i) + ": " + htmlEscape(model.run.views[i]);
         out += ". Images and crops are the first view's.</p>\n";
     }
-    writeTable(out, model, ids);
+    writeLayoutsTable(out, model, ids);
     out += "<p class=\"hint\">Click a column header to sort (again to reverse). Errors are against the float "
            "reference; means are over covered pixels. Also in <a href=\"report.csv\">report.csv</a> and "
            "<a href=\"report.json\">report.json</a>.</p>\n</section>\n";
@@ -479,13 +395,14 @@ std::string reportHtml(const ReportModel& model) {
     writeAtlasHtml(out, model);
 
     out += "<section id=\"plots\">\n<h2>Error against bytes per pixel</h2>\n<div class=\"toggle\" role=\"group\">"
-           "<button type=\"button\" data-plot=\"flip\" aria-pressed=\"true\">FLIP mean</button>"
+           "<button type=\"button\" data-plot=\"flip\" aria-pressed=\"true\">FLIP mean, log axis</button>"
+           "<button type=\"button\" data-plot=\"flip-linear\" aria-pressed=\"false\">FLIP mean, linear axis</button>"
            "<button type=\"button\" data-plot=\"psnr\" aria-pressed=\"false\">PSNR</button></div>\n";
-    writePlot(out, model, {"flip", "FLIP mean", false, true, &ImageErrors::flipMean,
-                           [](double v) { return formatFixed(v, 4); }},
-              false);
-    writePlot(out, model, {"psnr", "PSNR dB (tone-mapped)", true, false, &ImageErrors::psnrToneMapped,
-                           [](double v) { return formatFixed(v, 2); }},
+    const auto flip4 = [](double v) { return formatFixed(v, 4); };
+    writePlot(out, model, ids, {"flip", "FLIP mean", false, true, true, &ImageErrors::flipMean, flip4}, false);
+    writePlot(out, model, ids, {"flip-linear", "FLIP mean", false, true, false, &ImageErrors::flipMean, flip4}, true);
+    writePlot(out, model, ids, {"psnr", "PSNR dB (tone-mapped)", true, false, false, &ImageErrors::psnrToneMapped,
+                                [](double v) { return formatFixed(v, 2); }},
               true);
     out += "</section>\n";
 

@@ -5,14 +5,17 @@
 #include <cstdio>
 #include <vector>
 
+#include "budget_verdict.h"
+#include "plot_labels.h"
 #include "report_html.h"
 
 namespace gbl {
 namespace {
 
-// ---- The plot ------------------------------------------------------------------------------------
-
 const char* kSeriesColors[] = {"#1f5fa8", "#c0392b", "#218c4b", "#7b3fa0", "#d9730d", "#6b4f3a", "#0f8a8a"};
+constexpr const char* kVisibilityPipeline = "visibility-buffer";
+constexpr double kLabelFont = 11;
+constexpr double kMarkerHalf = 5;  // a marker's box, around its centre
 
 struct Axis {
     double lo = 0, hi = 1, step = 0.2;
@@ -41,30 +44,71 @@ Axis niceAxis(double lo, double hi, int count, bool fromZero) {
     return a;
 }
 
-struct Box {
-    double x0, y0, x1, y1;
-    bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+// A logarithmic axis from the largest 1, 2 or 5 x 10^k at or below `lo` to the smallest at or
+// above `hi`, with a tick at each of them in between.
+struct LogAxis {
+    double lo = 1e-3, hi = 1;
+    std::vector<double> ticks;
 };
 
+LogAxis logAxis(double lo, double hi) {
+    if (!(lo > 0)) lo = hi > 0 ? hi / 10 : 1e-3;
+    if (!(hi > lo)) hi = lo * 10;
+    const auto nice = [](int k, int i) { return double(i == 0 ? 1 : i == 1 ? 2 : 5) * std::pow(10.0, k); };
+    LogAxis a;
+    a.lo = a.hi = 0;
+    for (int k = int(std::floor(std::log10(lo))) - 1; k <= int(std::ceil(std::log10(hi))) + 1; ++k)
+        for (int i = 0; i < 3; ++i) {
+            const double t = nice(k, i);
+            if (t <= lo * (1 + 1e-9)) a.lo = t;
+            if (t >= hi * (1 - 1e-9) && a.hi == 0) a.hi = t;
+        }
+    for (int k = int(std::floor(std::log10(a.lo))); k <= int(std::ceil(std::log10(a.hi))); ++k)
+        for (int i = 0; i < 3; ++i) {
+            const double t = nice(k, i);
+            if (t >= a.lo * (1 - 1e-9) && t <= a.hi * (1 + 1e-9)) a.ticks.push_back(t);
+        }
+    return a;
+}
 
+struct Point {
+    double x = 0;        // the table's bytes per pixel
+    double counted = 0;  // the verdict's counted bytes (differs for a visibility buffer)
+    double y = 0;
+    bool visibility = false;
+    size_t series = 0;
+    size_t run = 0;  // index into model.runs
+};
+
+// A label to place: the text, the marker it names and the run it links to.
+struct LabelText {
+    std::string text;
+    double anchorX, anchorY;
+    size_t run;
+    size_t point;  // the marker's data-pt
+};
+
+struct Front {
+    size_t series;
+    bool visibility;
+    std::vector<std::pair<double, double>> points;  // in the picture, by increasing bytes
+};
+
+std::string f1(double v) { return formatFixed(v, 1); }
 
 }  // namespace
 
-void writePlot(std::string& out, const ReportModel& model, const PlotSpec& spec, bool hidden) {
-
+void writePlot(std::string& out, const ReportModel& model, const std::vector<std::string>& runIds,
+               const PlotSpec& spec, bool hidden) {
     // Series: one per IBL mode, in the run info's order, then any others the runs name.
     std::vector<std::string> modes = model.run.iblModes;
     for (const RunReport& r : model.runs)
         if (std::find(modes.begin(), modes.end(), r.iblMode) == modes.end()) modes.push_back(r.iblMode);
-    struct Point {
-        double x, y;
-        const RunReport* run;
-    };
-    std::vector<std::vector<Point>> series(modes.size());
+    std::vector<Point> points;
     double xMax = 0, yMin = INFINITY, yMax = -INFINITY;
-    bool anyInfinite = false;
-    bool skippedLighting = false;
-    for (const RunReport& r : model.runs) {
+    bool anyInfinite = false, anyZero = false, skippedLighting = false, anyVisibility = false;
+    for (size_t i = 0; i < model.runs.size(); ++i) {
+        const RunReport& r = model.runs[i];
         if (r.status != RunStatus::Ok || !r.image) continue;
         // Errors against ground truth, not against the float reference: not a point of this plot
         // (and never on a layout's Pareto front). The IBL figure and the table show them.
@@ -74,124 +118,239 @@ void writePlot(std::string& out, const ReportModel& model, const PlotSpec& spec,
         }
         const double y = *r.image.*spec.field;
         if (std::isnan(y)) continue;
-        const size_t s = size_t(std::find(modes.begin(), modes.end(), r.iblMode) - modes.begin());
-        series[s].push_back({double(r.bytesPerPixel.total), y, &r});
-        xMax = std::max(xMax, double(r.bytesPerPixel.total));
+        Point p;
+        p.x = r.bytesPerPixel.total;
+        p.visibility = r.pipeline == kVisibilityPipeline;
+        p.counted = p.visibility ? verdictCountedBytes(r) : p.x;
+        p.y = y;
+        p.series = size_t(std::find(modes.begin(), modes.end(), r.iblMode) - modes.begin());
+        p.run = i;
+        points.push_back(p);
+        anyVisibility = anyVisibility || p.visibility;
+        xMax = std::max({xMax, p.x, p.counted});
         if (std::isinf(y)) {
             anyInfinite = true;
+        } else if (spec.logY && y <= 0) {
+            anyZero = true;
         } else {
             yMin = std::min(yMin, y);
             yMax = std::max(yMax, y);
         }
     }
     out += std::string("<figure class=\"plot\" id=\"plot-") + spec.id + "\"" + (hidden ? " hidden" : "") + ">\n";
-    const double W = 900, H = 460, left = 70, right = 150, top = anyInfinite ? 46 : 24, bottom = 52;
-    const double plotW = W - left - right, plotH = H - top - bottom;
-    out += "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + formatFixed(W, 0) + " " + formatFixed(H, 0) +
-           "\" role=\"img\" aria-label=\"" + htmlEscape(spec.yLabel) + " against bytes per pixel\" "
-           "font-family=\"system-ui, 'DejaVu Sans', Arial, sans-serif\" font-size=\"12\">\n";
-    size_t pointCount = 0;
-    for (const auto& s : series) pointCount += s.size();
-    if (pointCount == 0) {
-        out += "<text x=\"" + formatFixed(W / 2, 0) + "\" y=\"" + formatFixed(H / 2, 0) +
-               "\" text-anchor=\"middle\" fill=\"#5b6672\">No measured runs to plot.</text>\n</svg>\n</figure>\n";
+    const double W = 1080, left = 74, right = 18;
+    const double topLane = anyInfinite ? 26 : 0, zeroLane = anyZero ? 24 : 0;
+    const double top = 16 + topLane, plotH = 440, plotW = W - left - right;
+    const double axisBottom = top + plotH, xTickY = axisBottom + zeroLane + 16, xTitleY = xTickY + 22;
+    const std::string scaleName = spec.logY ? " (log scale)" : "";
+    if (points.empty()) {
+        out += "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 1080 200\" role=\"img\" aria-label=\"" +
+               htmlEscape(spec.yLabel) + " against bytes per pixel\" font-family=\"system-ui, 'DejaVu Sans', Arial, "
+               "sans-serif\" font-size=\"12\">\n<text x=\"540\" y=\"100\" text-anchor=\"middle\" fill=\"#5b6672\">"
+               "No measured runs to plot.</text>\n</svg>\n</figure>\n";
         return;
     }
-    if (yMin > yMax) yMin = 0, yMax = 1;  // every value infinite
-    const Axis xa = niceAxis(0, xMax * 1.05, 6, true);
-    const Axis ya = niceAxis(spec.yFromZero ? 0 : yMin - (yMax - yMin) * 0.05, yMax + (yMax - yMin) * 0.05, 5,
+    if (yMin > yMax) yMin = spec.logY ? 1e-3 : 0, yMax = 1;  // every value infinite (or zero)
+    const Axis xa = niceAxis(0, xMax * 1.05, 8, true);
+    const Axis ya = niceAxis(spec.yFromZero ? 0 : yMin - (yMax - yMin) * 0.05, yMax + (yMax - yMin) * 0.05, 6,
                              spec.yFromZero);
+    const LogAxis la = logAxis(yMin, yMax);
     const auto px = [&](double x) { return left + (x - xa.lo) / (xa.hi - xa.lo) * plotW; };
     const auto py = [&](double y) {
-        if (std::isinf(y)) return y > 0 ? top - 22 : top + plotH;  // +inf: the "∞" lane above the axes
-        return top + plotH - (y - ya.lo) / (ya.hi - ya.lo) * plotH;
+        if (std::isinf(y)) return y > 0 ? top - topLane / 2 : axisBottom;  // +inf: the "∞" lane above the axes
+        if (!spec.logY) return axisBottom - (y - ya.lo) / (ya.hi - ya.lo) * plotH;
+        if (y <= 0) return axisBottom + zeroLane / 2 + 2;  // the "0" lane under a log axis
+        return axisBottom - (std::log10(y) - std::log10(la.lo)) / (std::log10(la.hi) - std::log10(la.lo)) * plotH;
     };
-    const auto f1 = [](double v) { return formatFixed(v, 1); };
+    std::vector<double> yTicks;
+    if (spec.logY) yTicks = la.ticks;
+    else
+        for (double y = ya.lo; y <= ya.hi + ya.step * 1e-6; y += ya.step) yTicks.push_back(y);
+    const auto yTickText = [&](double y) { return spec.logY ? formatSignificant(y, 1) : formatFixed(y, ya.decimals); };
+
+    // Pareto fronts: per IBL mode and per pipeline kind.
+    std::vector<Front> fronts;
+    std::vector<PlotLine> lines;  // what the labels must not cover: the fronts and the connectors
+    for (size_t s = 0; s < modes.size(); ++s)
+        for (bool visibility : {false, true}) {
+            std::vector<const Point*> group;
+            std::vector<std::pair<double, double>> xy;
+            for (const Point& p : points)
+                if (p.series == s && p.visibility == visibility) {
+                    group.push_back(&p);
+                    xy.push_back({p.counted, p.y});
+                }
+            const std::vector<size_t> front = paretoFront(xy, spec.higherIsBetter);
+            if (front.size() < 2) continue;
+            Front f{s, visibility, {}};
+            for (size_t i : front) f.points.push_back({px(group[i]->counted), py(group[i]->y)});
+            for (size_t i = 1; i < f.points.size(); ++i)
+                lines.push_back({f.points[i - 1].first, f.points[i - 1].second, f.points[i].first, f.points[i].second});
+            fronts.push_back(std::move(f));
+        }
+    for (const Point& p : points)
+        if (p.visibility) lines.push_back({px(p.x), py(p.y), px(p.counted), py(p.y)});
+
+    // The labels next: where they land decides the picture's height.
+    std::vector<LabelText> texts;
+    std::vector<PlotBox> markers;
+    for (size_t k = 0; k < points.size(); ++k) {
+        const Point& p = points[k];
+        const RunReport& r = model.runs[p.run];
+        texts.push_back({r.layout, px(p.x), py(p.y), p.run, k});
+        markers.push_back({px(p.x) - kMarkerHalf, py(p.y) - kMarkerHalf, px(p.x) + kMarkerHalf, py(p.y) + kMarkerHalf});
+        if (p.visibility) {
+            texts.push_back({r.layout + " + fetches", px(p.counted), py(p.y), p.run, k});
+            markers.push_back({px(p.counted) - kMarkerHalf, py(p.y) - kMarkerHalf, px(p.counted) + kMarkerHalf,
+                               py(p.y) + kMarkerHalf});
+        }
+    }
+    // Isolated markers first: they keep their labels beside them, and the crowded ones take the
+    // space that is left, with leader lines.
+    std::vector<size_t> order(texts.size());
+    std::vector<int> neighbours(texts.size(), 0);
+    for (size_t i = 0; i < texts.size(); ++i) {
+        order[i] = i;
+        for (const LabelText& t : texts)
+            neighbours[i] += std::hypot(t.anchorX - texts[i].anchorX, t.anchorY - texts[i].anchorY) < 60;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        if (neighbours[a] != neighbours[b]) return neighbours[a] < neighbours[b];
+        if (texts[a].anchorX != texts[b].anchorX) return texts[a].anchorX < texts[b].anchorX;
+        return texts[a].anchorY < texts[b].anchorY;
+    });
+    std::vector<LabelRequest> requests;
+    for (size_t i : order)
+        requests.push_back({texts[i].anchorX, texts[i].anchorY, labelTextWidth(texts[i].text, kLabelFont),
+                            kLabelFont * (kLabelAscent + kLabelDescent)});
+    const PlotBox area{left + 2, top - topLane + 2, left + plotW - 2, axisBottom + zeroLane};
+    std::vector<PlacedLabel> placed = placeLabels(requests, markers, lines, area);
+    // A label with no room in the plot went under it: move that column below the axis title.
+    double H = xTitleY + 12;
+    const double overflowShift = xTitleY + 12 - area.y1;
+    for (PlacedLabel& l : placed)
+        if (l.box.y0 >= area.y1) {
+            l.box.y0 += overflowShift, l.box.y1 += overflowShift, l.leaderY += overflowShift;
+            H = std::max(H, l.box.y1 + 6);
+        }
+
+    out += "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + formatFixed(W, 0) + " " + formatFixed(H, 0) +
+           "\" role=\"img\" aria-label=\"" + htmlEscape(spec.yLabel) + scaleName + " against bytes per pixel\" "
+           "font-family=\"system-ui, 'DejaVu Sans', Arial, sans-serif\" font-size=\"12\">\n";
     // Grid and ticks.
     out += "<g stroke=\"#e3e7eb\" stroke-width=\"1\">\n";
     for (double x = xa.lo; x <= xa.hi + xa.step * 1e-6; x += xa.step)
-        out += "<line x1=\"" + f1(px(x)) + "\" y1=\"" + f1(top) + "\" x2=\"" + f1(px(x)) + "\" y2=\"" +
-               f1(top + plotH) + "\"/>\n";
-    for (double y = ya.lo; y <= ya.hi + ya.step * 1e-6; y += ya.step)
+        out += "<line x1=\"" + f1(px(x)) + "\" y1=\"" + f1(top) + "\" x2=\"" + f1(px(x)) + "\" y2=\"" + f1(axisBottom) +
+               "\"/>\n";
+    for (double y : yTicks)
         out += "<line x1=\"" + f1(left) + "\" y1=\"" + f1(py(y)) + "\" x2=\"" + f1(left + plotW) + "\" y2=\"" +
                f1(py(y)) + "\"/>\n";
     out += "</g>\n<rect x=\"" + f1(left) + "\" y=\"" + f1(top) + "\" width=\"" + f1(plotW) + "\" height=\"" + f1(plotH) +
            "\" fill=\"none\" stroke=\"#9aa5b1\"/>\n<g fill=\"#5b6672\">\n";
     for (double x = xa.lo; x <= xa.hi + xa.step * 1e-6; x += xa.step)
-        out += "<text x=\"" + f1(px(x)) + "\" y=\"" + f1(top + plotH + 16) + "\" text-anchor=\"middle\">" +
+        out += "<text x=\"" + f1(px(x)) + "\" y=\"" + f1(xTickY) + "\" text-anchor=\"middle\">" +
                formatFixed(x, xa.decimals) + "</text>\n";
-    for (double y = ya.lo; y <= ya.hi + ya.step * 1e-6; y += ya.step)
-        out += "<text x=\"" + f1(left - 6) + "\" y=\"" + f1(py(y) + 4) + "\" text-anchor=\"end\">" +
-               formatFixed(y, ya.decimals) + "</text>\n";
+    for (double y : yTicks)
+        out += "<text x=\"" + f1(left - 6) + "\" y=\"" + f1(py(y) + 4) + "\" text-anchor=\"end\">" + yTickText(y) +
+               "</text>\n";
     if (anyInfinite)
         out += "<text x=\"" + f1(left - 6) + "\" y=\"" + f1(py(INFINITY) + 5) + "\" text-anchor=\"end\" font-size=\"15\">" +
                kInfinity + "</text>\n<line x1=\"" + f1(left) + "\" y1=\"" + f1(py(INFINITY)) + "\" x2=\"" +
                f1(left + plotW) + "\" y2=\"" + f1(py(INFINITY)) + "\" stroke=\"#e3e7eb\" stroke-dasharray=\"3 3\"/>\n";
-    out += "<text x=\"" + f1(left + plotW / 2) + "\" y=\"" + f1(H - 10) +
-           "\" text-anchor=\"middle\" fill=\"#1d232b\">G-buffer bytes per pixel (targets + depth + light buffers)</text>\n";
+    if (anyZero)
+        out += "<text x=\"" + f1(left - 6) + "\" y=\"" + f1(py(0) + 4) + "\" text-anchor=\"end\">0</text>\n<line x1=\"" +
+               f1(left) + "\" y1=\"" + f1(py(0)) + "\" x2=\"" + f1(left + plotW) + "\" y2=\"" + f1(py(0)) +
+               "\" stroke=\"#e3e7eb\" stroke-dasharray=\"3 3\"/>\n";
+    out += "<text x=\"" + f1(left + plotW / 2) + "\" y=\"" + f1(xTitleY) +
+           "\" text-anchor=\"middle\" fill=\"#1d232b\">Bytes per pixel: targets + depth + light buffers" +
+           (anyVisibility ? "; a visibility buffer also at what the verdict counts (hollow diamond)" : "") + "</text>\n";
     out += "<text transform=\"translate(16 " + f1(top + plotH / 2) + ") rotate(-90)\" text-anchor=\"middle\" "
-           "fill=\"#1d232b\">" + htmlEscape(spec.yLabel) + "</text>\n</g>\n";
-    // Pareto fronts, then points, then labels (placed to avoid each other and the points).
-    std::vector<Box> taken;
-    for (size_t s = 0; s < series.size(); ++s) {
-        std::vector<std::pair<double, double>> xy;
-        for (const Point& p : series[s]) xy.push_back({p.x, p.y});
-        const std::vector<size_t> front = paretoFront(xy, spec.higherIsBetter);
-        if (front.size() >= 2) {
-            std::string points;
-            for (size_t i : front) points += f1(px(series[s][i].x)) + "," + f1(py(series[s][i].y)) + " ";
-            points.pop_back();
-            out += std::string("<polyline class=\"pareto\" fill=\"none\" stroke=\"") + kSeriesColors[s % 7] +
-                   "\" stroke-width=\"2\" stroke-opacity=\"0.75\" points=\"" + points + "\"/>\n";
-        }
-        for (const Point& p : series[s]) taken.push_back({px(p.x) - 5, py(p.y) - 5, px(p.x) + 5, py(p.y) + 5});
+           "fill=\"#1d232b\">" + htmlEscape(spec.yLabel) + scaleName + "</text>\n</g>\n";
+
+    for (const Front& f : fronts) {
+        std::string line;
+        for (const auto& [x, y] : f.points) line += f1(x) + "," + f1(y) + " ";
+        line.pop_back();
+        out += std::string("<polyline class=\"pareto\" data-kind=\"") + (f.visibility ? "visibility" : "gbuffer") +
+               "\" fill=\"none\" stroke=\"" + kSeriesColors[f.series % 7] + "\" stroke-width=\"2\" stroke-opacity=\"0.75\"" +
+               (f.visibility ? " stroke-dasharray=\"7 4\"" : "") + " points=\"" + line + "\"/>\n";
     }
-    for (size_t s = 0; s < series.size(); ++s) {
-        const char* color = kSeriesColors[s % 7];
-        for (const Point& p : series[s]) {
-            const std::string tip = p.run->layout + " (" + p.run->iblMode + "): " + formatFixed(p.x, 0) + " B/px, " +
+    // Markers: each a link to its run's section, named on hover by the page's script (and its title).
+    for (size_t k = 0; k < points.size(); ++k) {
+        const Point& p = points[k];
+        const RunReport& r = model.runs[p.run];
+        const char* color = kSeriesColors[p.series % 7];
+        const std::string cx = f1(px(p.x)), cy = f1(py(p.y)), id = runIds[p.run];
+        const std::string info = r.layout + " (IBL " + r.iblMode + "): " + formatFixed(p.x, 0) + " B/px, " +
+                                 spec.yLabel + " " + spec.format(p.y);
+        const std::string link = "<a class=\"pt\" href=\"#" + id + "\" data-pt=\"" + std::to_string(k) + "\" data-info=\"";
+        if (!p.visibility) {
+            out += link + htmlEscape(info) + "\"><circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"4.5\" fill=\"" + color +
+                   "\" stroke=\"#fff\" stroke-width=\"1\"><title>" + htmlEscape(info) + "</title></circle></a>\n";
+            continue;
+        }
+        const std::string counted = r.layout + " (IBL " + r.iblMode + ") counted with half its modelled vertex "
+                                    "fetches (no cache reuse): " + formatSignificant(p.counted, 3) + " B/px, " +
                                     spec.yLabel + " " + spec.format(p.y);
-            out += "<circle cx=\"" + f1(px(p.x)) + "\" cy=\"" + f1(py(p.y)) + "\" r=\"4.5\" fill=\"" + color +
-                   "\" stroke=\"#fff\" stroke-width=\"1\"><title>" + htmlEscape(tip) + "</title></circle>\n";
-        }
+        const auto shape = [&](bool hollow) {
+            const double cxv = px(hollow ? p.counted : p.x), cyv = py(p.y);
+            return "<polygon points=\"" + f1(cxv) + "," + f1(cyv - 5.5) + " " + f1(cxv + 5.5) + "," + f1(cyv) + " " +
+                   f1(cxv) + "," + f1(cyv + 5.5) + " " + f1(cxv - 5.5) + "," + f1(cyv) + "\" fill=\"" +
+                   (hollow ? "#fff" : color) + "\" stroke=\"" + (hollow ? color : "#fff") + "\" stroke-width=\"" +
+                   (hollow ? "2" : "1") + "\">";
+        };
+        out += "<line class=\"fetches\" x1=\"" + f1(px(p.x) + 6) + "\" y1=\"" + cy + "\" x2=\"" + f1(px(p.counted) - 6) +
+               "\" y2=\"" + cy + "\" stroke=\"" + color + "\" stroke-width=\"1.5\" stroke-dasharray=\"4 3\"/>\n";
+        out += link + htmlEscape(info + " of ids and depth") + "\">" + shape(false) + "<title>" +
+               htmlEscape(info + " of ids and depth") + "</title></polygon></a>\n";
+        out += link + htmlEscape(counted) + "\">" + shape(true) + "<title>" + htmlEscape(counted) +
+               "</title></polygon></a>\n";
     }
-    out += "<g font-size=\"11\" fill=\"#1d232b\">\n";
-    for (size_t s = 0; s < series.size(); ++s)
-        for (const Point& p : series[s]) {
-            const double cx = px(p.x), cy = py(p.y);
-            const double w = 6.4 * double(p.run->layout.size()) + 2, h = 13;
-            struct Candidate {
-                double x, y;  // text anchor (start) and baseline
-            };
-            const Candidate candidates[] = {{cx + 7, cy + 4},      {cx + 7, cy - 7},      {cx + 7, cy + 15},
-                                            {cx - 7 - w, cy + 4},  {cx - w / 2, cy - 9},  {cx - w / 2, cy + 18},
-                                            {cx - 7 - w, cy - 7},  {cx - 7 - w, cy + 15}, {cx + 7, cy - 18},
-                                            {cx + 7, cy + 26}};
-            const Candidate* chosen = &candidates[0];
-            for (const Candidate& c : candidates) {
-                const Box b{c.x, c.y - h + 3, c.x + w, c.y + 3};
-                const bool inside = b.x0 >= 2 && b.x1 <= W - 2 && b.y0 >= 2 && b.y1 <= H - bottom + 14;
-                if (inside && std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(b); })) {
-                    chosen = &c;
-                    break;
-                }
-            }
-            taken.push_back({chosen->x, chosen->y - h + 3, chosen->x + w, chosen->y + 3});
-            out += "<text x=\"" + f1(chosen->x) + "\" y=\"" + f1(chosen->y) + "\">" + htmlEscape(p.run->layout) +
-                   "</text>\n";
-        }
-    out += "</g>\n</svg>\n<div class=\"legend\">";
-    for (size_t s = 0; s < series.size(); ++s) {
-        if (series[s].empty()) continue;
+    // Leader lines under the labels, then the labels, each pinned to the width it was placed with.
+    out += "<g stroke=\"#8a949e\" stroke-width=\"0.8\">\n";
+    for (size_t j = 0; j < order.size(); ++j) {
+        const PlacedLabel& l = placed[j];
+        if (!l.leader) continue;
+        const LabelText& t = texts[order[j]];
+        const double dx = l.leaderX - t.anchorX, dy = l.leaderY - t.anchorY, d = std::hypot(dx, dy);
+        if (d <= kMarkerHalf + 1) continue;
+        out += "<line class=\"leader\" x1=\"" + f1(t.anchorX + dx / d * (kMarkerHalf + 1)) + "\" y1=\"" +
+               f1(t.anchorY + dy / d * (kMarkerHalf + 1)) + "\" x2=\"" + f1(l.leaderX) + "\" y2=\"" + f1(l.leaderY) +
+               "\"/>\n";
+    }
+    out += "</g>\n<g font-size=\"11\" fill=\"#1d232b\">\n";
+    for (size_t j = 0; j < order.size(); ++j) {
+        const PlacedLabel& l = placed[j];
+        const LabelText& t = texts[order[j]];
+        out += "<a href=\"#" + runIds[t.run] + "\"><text class=\"label\" data-pt=\"" + std::to_string(t.point) +
+               "\" x=\"" + formatFixed(l.box.x0, 2) + "\" y=\"" + formatFixed(l.box.y0 + kLabelFont * kLabelAscent, 2) +
+               "\" textLength=\"" + formatFixed(l.box.x1 - l.box.x0, 2) + "\">" + htmlEscape(t.text) + "</text></a>\n";
+    }
+    out += "</g>\n</svg>\n<p class=\"plot-readout\" aria-live=\"polite\">Point at a marker to name it; click it (or its "
+           "label) to open its section.</p>\n<div class=\"legend\">";
+    for (size_t s = 0; s < modes.size(); ++s) {
+        if (std::none_of(points.begin(), points.end(), [&](const Point& p) { return p.series == s; })) continue;
         out += std::string("<span><svg width=\"12\" height=\"12\" viewBox=\"0 0 12 12\"><circle cx=\"6\" cy=\"6\" "
                            "r=\"4.5\" fill=\"") +
                kSeriesColors[s % 7] + "\"/></svg>layouts, IBL " + htmlEscape(modes[s]) + "</span>";
     }
+    const char* better = spec.higherIsBetter ? "higher" : "lower";
     out += std::string("<span><svg width=\"26\" height=\"12\" viewBox=\"0 0 26 12\"><line x1=\"1\" y1=\"6\" x2=\"25\" "
-                       "y2=\"6\" stroke=\"#5b6672\" stroke-width=\"2\"/></svg>Pareto front, per IBL mode (no layout is "
-                       "both smaller and ") +
-           (spec.higherIsBetter ? "higher" : "lower") + ")</span>";
+                       "y2=\"6\" stroke=\"#5b6672\" stroke-width=\"2\"/></svg>Pareto front of the G-buffer layouts "
+                       "(deferred shading and deferred lighting), per IBL mode: no such layout is both smaller and ") +
+           better + "</span>";
+    if (anyVisibility)
+        out += std::string("<span><svg width=\"26\" height=\"12\" viewBox=\"0 0 26 12\"><line x1=\"1\" y1=\"6\" x2=\"25\" "
+                           "y2=\"6\" stroke=\"#5b6672\" stroke-width=\"2\" stroke-dasharray=\"7 4\"/></svg>Pareto front "
+                           "of the visibility buffers, at their counted bytes</span><span><svg width=\"40\" height=\"12\" "
+                           "viewBox=\"0 0 40 12\"><polygon points=\"6,0.5 11.5,6 6,11.5 0.5,6\" fill=\"#5b6672\"/>"
+                           "<line x1=\"13\" y1=\"6\" x2=\"27\" y2=\"6\" stroke=\"#5b6672\" stroke-dasharray=\"4 3\"/>"
+                           "<polygon points=\"34,1 39,6 34,11 29,6\" fill=\"#fff\" stroke=\"#5b6672\" stroke-width=\"2\"/>"
+                           "</svg>visibility buffer: its ids and depth, then those plus half its resolve's modelled "
+                           "vertex fetches (no cache reuse), the G-buffer size that moves as many bytes: what the "
+                           "verdict counts</span>");
     if (anyInfinite) out += std::string("<span>") + kInfinity + ": identical to the reference</span>";
+    if (anyZero) out += "<span>0 (under the log axis): identical to the reference</span>";
     if (skippedLighting)
         out += "<span>the lighting comparisons (reference (&lt;mode&gt; vs ground-truth)) are not plotted: their "
                "errors are against ground truth</span>";

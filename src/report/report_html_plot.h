@@ -1,8 +1,17 @@
 #pragma once
-// The report page's error-against-bytes plot (an inline SVG per image metric, with the Pareto
-// front), written by report_html_plot.cpp for report_html.cpp. Internal to the report library.
+// The report page's error-against-bytes plot (an inline SVG per image metric and axis scale),
+// written by report_html_plot.cpp for report_html.cpp. Internal to the report library.
+//
+// Each point is a layout run, coloured by IBL mode, linked to its section. The Pareto fronts are
+// drawn per IBL mode and per pipeline kind: deferred shading and deferred lighting share one
+// (both store a G-buffer), visibility buffers have their own, so that a visibility buffer's few
+// bytes of ids cannot hide the G-buffer layouts' front. A visibility buffer shows two markers:
+// its ids and depth, and, joined by a dashed line, the bytes the verdict counts for it
+// (budget_verdict.h: half its modelled vertex fetches added); its front runs through the second.
+// Labels are placed by plot_labels.h: none overlaps another or a marker.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "report_model.h"
 
@@ -12,12 +21,15 @@ struct PlotSpec {
     const char* id;          // figure id: plot-<id>
     const char* yLabel;
     bool higherIsBetter;
-    bool yFromZero;
+    bool yFromZero;          // linear scale only
+    bool logY;               // a logarithmic error axis; values <= 0 go to a "0" lane under it
     double ImageErrors::*field;
     std::function<std::string(double)> format;
 };
 
-// Appends the plot of `spec.field` against bytes per pixel, one series per IBL mode.
-void writePlot(std::string& out, const ReportModel& model, const PlotSpec& spec, bool hidden);
+// Appends the plot of `spec.field` against bytes per pixel. `runIds` are the runs' section ids,
+// parallel to model.runs (each point links to its run).
+void writePlot(std::string& out, const ReportModel& model, const std::vector<std::string>& runIds,
+               const PlotSpec& spec, bool hidden);
 
 }  // namespace gbl

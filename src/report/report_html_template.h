@@ -1,7 +1,8 @@
 #pragma once
 // The fixed parts of report.html: its style sheet and script. The page is self-contained (no
 // external scripts, fonts or CDNs: it must work offline, from file://), and readable without
-// the script (which only sorts the table and switches the plot).
+// the script (which only sorts the table, switches the plot and names the point under the
+// pointer; the table's folded columns open with a checkbox and CSS alone).
 namespace gbl::report_template {
 
 inline constexpr const char* kCss = R"CSS(
@@ -58,8 +59,26 @@ tr.failed td a { color: var(--bad); }
 .toggle button[aria-pressed="true"] { background: var(--accent); color: #fff; }
 figure.plot { margin: 0; }
 figure.plot[hidden] { display: none; }
-figure.plot > svg { width: 100%; max-width: 900px; height: auto; display: block; background: #fff;
+figure.plot > svg { width: 100%; max-width: 1080px; height: auto; display: block; background: #fff;
                   border: 1px solid var(--line); border-radius: 6px; }
+figure.plot a.pt { cursor: pointer; }
+figure.plot a.pt:hover > *, figure.plot a.pt:focus > * { stroke: var(--fg); stroke-width: 2; }
+figure.plot text.label.hot { fill: var(--accent); text-decoration: underline; }
+.plot-readout { min-height: 1.45em; margin: 6px 0 0; font-size: 13px; }
+ul.verdict-lines { margin: 0; padding-left: 20px; }
+ul.verdict-lines li { margin: 2px 0; }
+ul.verdict-lines li.none-fits { color: var(--muted); }
+.fold > label { display: inline-block; margin: 0 0 6px 4px; font-size: 13px; color: var(--muted); cursor: pointer; }
+#all-columns:not(:checked) ~ table .secondary, #all-columns:not(:checked) ~ table .spread,
+#all-columns:not(:checked) ~ table .g-all, #all-columns:checked ~ table .g-folded { display: none; }
+/* A spread may break between its range and its deviation, never inside either: all columns
+   then still fit a 1600-pixel window. */
+td.num small.spread { white-space: normal; }
+td.num small.spread span { white-space: nowrap; }
+table.data thead tr.groups th { position: static; text-align: center; background: #f1f4f7; color: var(--muted);
+                                font-weight: 600; cursor: default; }
+table.data thead tr.groups th:not(:empty) { border-left: 2px solid #fff; border-right: 2px solid #fff; }
+table.sortable thead tr.groups th::after { content: none; }
 .legend { display: flex; flex-wrap: wrap; gap: 6px 18px; margin: 8px 0 0; font-size: 13px; color: var(--muted); }
 .legend span { display: inline-flex; align-items: center; gap: 6px; }
 .legend svg { display: inline-block; flex: none; }
@@ -92,17 +111,19 @@ footer { margin-top: 40px; color: var(--muted); font-size: 12px; }
 .ab-stage img[hidden] { display: none; }
 )CSS";
 
-// Sorting: every sortable <th> has data-key and data-dir (the first click's direction); a
-// numeric cell has data-v (a number, "Infinity" for an infinite PSNR, absent when there is no
-// value: those rows stay last either way). The URL fragment "#sort=KEY:asc|desc&plot=psnr"
-// sorts and picks the plot on load, so a view can be linked.
+// Sorting: every sortable <th> (in the header's last row; the row above groups the columns) has
+// data-key and data-dir (the first click's direction); a numeric cell has data-v (a number,
+// "Infinity" for an infinite PSNR, absent when there is no value: those rows stay last either
+// way). The URL fragment "#sort=KEY:asc|desc&plot=flip|flip-linear|psnr" sorts and picks the
+// plot on load, so a view can be linked.
 inline constexpr const char* kScript = R"JS(
 (function () {
   'use strict';
   var table = document.getElementById('layouts');
+  function keyRow() { return table.tHead.rows[table.tHead.rows.length - 1]; }
   function sortTable(key, dir) {
     if (!table) return false;
-    var headers = table.tHead.rows[0].cells, col = -1, i;
+    var headers = keyRow().cells, col = -1, i;
     for (i = 0; i < headers.length; i++) if (headers[i].getAttribute('data-key') === key) col = i;
     if (col < 0) return false;
     var numeric = headers[col].classList.contains('num');
@@ -140,7 +161,7 @@ inline constexpr const char* kScript = R"JS(
       buttons[i].setAttribute('aria-pressed', buttons[i].getAttribute('data-plot') === name ? 'true' : 'false');
   }
   if (table) {
-    Array.prototype.forEach.call(table.tHead.rows[0].cells, function (th) {
+    Array.prototype.forEach.call(keyRow().cells, function (th) {
       if (!th.hasAttribute('data-key')) return;
       th.tabIndex = 0;
       function activate() {
@@ -157,6 +178,24 @@ inline constexpr const char* kScript = R"JS(
   }
   Array.prototype.forEach.call(document.querySelectorAll('.toggle button[data-plot]'), function (button) {
     button.addEventListener('click', function () { showPlot(button.getAttribute('data-plot')); });
+  });
+  /* The plot: pointing at (or focusing) a marker names it under the plot and marks its label. */
+  Array.prototype.forEach.call(document.querySelectorAll('figure.plot'), function (figure) {
+    var readout = figure.querySelector('.plot-readout');
+    function mark(point, on) {
+      var k = point.getAttribute('data-pt');
+      Array.prototype.forEach.call(figure.querySelectorAll('text.label[data-pt="' + k + '"]'), function (label) {
+        label.classList.toggle('hot', on);
+      });
+      if (on && readout) readout.textContent = point.getAttribute('data-info');
+    }
+    function pointOf(e) { return e.target.closest ? e.target.closest('a.pt') : null; }
+    ['mouseover', 'focusin'].forEach(function (type) {
+      figure.addEventListener(type, function (e) { var p = pointOf(e); if (p) mark(p, true); });
+    });
+    ['mouseout', 'focusout'].forEach(function (type) {
+      figure.addEventListener(type, function (e) { var p = pointOf(e); if (p) mark(p, false); });
+    });
   });
   var hash = window.location.hash.replace(/^#/, '');
   hash.split('&').forEach(function (part) {

@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "budget_verdict.h"
 #include "report_atlas.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
@@ -113,6 +114,33 @@ Json iblFigureJson(const IblFigure& f) {
         rows.push_back(std::move(row));
     }
     return Json{{"png", f.png}, {"columns", f.columns}, {"rows", std::move(rows)}};
+}
+
+Json verdictEntryJson(const VerdictEntry& e) {
+    return Json{{"layout", e.layout},
+                {"bytes_per_pixel", e.bytesPerPixel},
+                {"counted_bytes_per_pixel", number(e.countedBytes)},
+                {"flip_mean", number(e.flipMean)}};
+}
+
+// The verdict per byte budget (budget_verdict.h); derived from the runs, not read back.
+Json verdictJson(const BudgetVerdict& v) {
+    Json budgets = Json::array();
+    for (const BudgetLine& line : v.lines) {
+        Json b{{"budget_bytes_per_pixel", line.budget ? Json(*line.budget) : number(INFINITY)}};
+        if (line.best) b["best"] = verdictEntryJson(*line.best);
+        Json tied = Json::array();
+        for (const VerdictEntry& e : line.tiedWith) tied.push_back(verdictEntryJson(e));
+        b["tied_with"] = std::move(tied);
+        if (line.smallest) b["smallest"] = verdictEntryJson(*line.smallest);
+        b["sentence"] = line.sentence;
+        budgets.push_back(std::move(b));
+    }
+    return Json{{"ibl_mode", v.iblMode},
+                {"metric", "flip_mean"},
+                {"views", v.views},
+                {"basis", v.basis},
+                {"budgets", std::move(budgets)}};
 }
 
 // The atlas table (report_atlas.h), flat in its grouped order: one object per layout.
@@ -489,6 +517,7 @@ Json reportToJson(const ReportModel& model) {
             {"answer", v->answer}};
     }
     if (!model.atlas.empty()) j["atlas"] = atlasJson(model);
+    if (const auto v = budgetVerdict(model)) j["verdict"] = verdictJson(*v);
     return j;
 }
 

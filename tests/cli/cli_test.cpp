@@ -131,6 +131,17 @@ TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
         EXPECT_TRUE(run["image_errors"].contains("flip_mean")) << run["layout"];
         EXPECT_FALSE(run["image_errors"].contains("hdr_flip_mean")) << "HDR-FLIP is opt-in";
     }
+    // After the table, the verdict: report.json's sentences, one line per budget, in order.
+    ASSERT_TRUE(report.contains("verdict"));
+    ASSERT_EQ(report["verdict"]["budgets"].size(), 6u);
+    size_t at = r.out.find("\ncrysis3-thin ");  // the table's last row
+    ASSERT_NE(at, std::string::npos) << r.out;
+    at = r.out.find("\nVerdict. " + report["verdict"]["basis"].get<std::string>() + "\n", at);
+    EXPECT_NE(at, std::string::npos) << r.out;
+    for (const auto& budget : report["verdict"]["budgets"]) {
+        at = r.out.find("\n  " + budget["sentence"].get<std::string>() + "\n", at);
+        EXPECT_NE(at, std::string::npos) << budget["sentence"] << "\n" << r.out;
+    }
     // The stages are exclusive: they add up to the total, and the frames' own GPU time is known.
     const nlohmann::json t = nlohmann::json::parse(slurp(scratch() / "cmp" / "timings.json"));
     double sum = 0.0;

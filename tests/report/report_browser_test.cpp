@@ -24,6 +24,8 @@
 #include "file_io.h"
 #include "image_io.h"
 #include "report_html.h"
+#include "crowded_report_sample.h"
+#include "report_json.h"
 #include "report_sample.h"
 #include "tone_map.h"
 
@@ -58,7 +60,8 @@ struct BrowserRun {
 };
 
 // Runs headless Chromium on `url` with a fresh profile; `mode` is "--screenshot=<png>" or "--dump-dom".
-BrowserRun runChromium(const fs::path& work, const std::string& url, const std::string& mode) {
+BrowserRun runChromium(const fs::path& work, const std::string& url, const std::string& mode,
+                       const std::string& windowSize = "1400,1000") {
     static int runs = 0;
     const fs::path profile = work / ("profile" + std::to_string(++runs));
     const fs::path out = work / ("chromium" + std::to_string(runs) + ".out");
@@ -68,7 +71,7 @@ BrowserRun runChromium(const fs::path& work, const std::string& url, const std::
         "timeout 120 " + std::string(kChromium) +
         " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking"
         " --disable-component-update --disable-sync --user-data-dir=" + shellQuote(profile.string()) +
-        " --enable-logging=stderr --v=0 " + mode + " --window-size=1400,1000 " + shellQuote(url) + " >" +
+        " --enable-logging=stderr --v=0 " + mode + " --window-size=" + windowSize + " " + shellQuote(url) + " >" +
         shellQuote(out.string()) + " 2>" + shellQuote(err.string()) + " </dev/null";
     const auto start = std::chrono::steady_clock::now();
     const int status = std::system(command.c_str());
@@ -367,6 +370,135 @@ TEST(ReportBrowser, AbViewerFlipsZoomsPansAndExposes) {
     ASSERT_EQ(table.substr(0, 4), "256:");
     EXPECT_NEAR(std::stod(table.substr(4)), expected, 2e-5);
     EXPECT_EQ(f["ev0"], "png/reference/split-sum/render.png");
+}
+
+// The page at a glance, at 1600x1000 as the issue measured it, on a report crowded like a real
+// one (crowded_report_sample.h). A script appended to a copy of the page measures, on load, what
+// the browser drew: every label's and marker's box in each of the three plots, the table's width
+// folded and with all columns, the verdict's lines, and what pointing at a marker shows; its
+// findings come back as JSON in an attribute of the dumped DOM.
+const char* kGlanceDriver = R"JS(
+<script>
+window.addEventListener('load', function () {
+  var f = {};
+  function hit(a, b) { return a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom; }
+  function rects(list) { return Array.prototype.map.call(list, function (e) { return e.getBoundingClientRect(); }); }
+  try {
+    var root = document.documentElement, table = document.getElementById('layouts');
+    f.innerWidth = window.innerWidth;
+    f.viewport = root.clientWidth;
+    f.scrollWidth = root.scrollWidth;
+    f.tableRight = table.getBoundingClientRect().right;
+    f.tableWidth = table.getBoundingClientRect().width;
+    f.columnsShown = Array.prototype.filter.call(table.tHead.rows[1].cells, function (c) { return c.offsetWidth > 0; }).length;
+    var all = document.getElementById('all-columns');
+    all.checked = true;
+    f.allTableWidth = table.getBoundingClientRect().width;
+    f.allScrollWidth = root.scrollWidth;
+    f.allColumnsShown = Array.prototype.filter.call(table.tHead.rows[1].cells, function (c) { return c.offsetWidth > 0; }).length;
+    all.checked = false;
+    f.verdict = Array.prototype.map.call(document.querySelectorAll('#verdict li'), function (li) { return li.textContent; });
+    f.plots = {};
+    var figures = document.querySelectorAll('figure.plot');
+    Array.prototype.forEach.call(figures, function (figure) {
+      Array.prototype.forEach.call(figures, function (other) { other.hidden = other !== figure; });
+      var labels = figure.querySelectorAll('text.label'), names = Array.prototype.map.call(labels, function (l) { return l.textContent; });
+      var boxes = rects(labels), markers = rects(figure.querySelectorAll('a.pt > circle, a.pt > polygon'));
+      var p = { labels: boxes.length, markers: markers.length, leaders: figure.querySelectorAll('line.leader').length,
+                labelOverlaps: [], markerOverlaps: [], empty: 0, widthError: 0 };
+      for (var i = 0; i < boxes.length; i++) {
+        if (!(boxes[i].width > 0 && boxes[i].height > 0)) p.empty++;
+        var pinned = Number(labels[i].getAttribute('textLength'));
+        p.widthError = Math.max(p.widthError, Math.abs(boxes[i].width - pinned));
+        for (var j = i + 1; j < boxes.length; j++)
+          if (hit(boxes[i], boxes[j])) p.labelOverlaps.push(names[i] + ' / ' + names[j]);
+        for (var k = 0; k < markers.length; k++)
+          if (hit(boxes[i], markers[k])) p.markerOverlaps.push(names[i] + ' / marker ' + k);
+      }
+      f.plots[figure.id] = p;
+    });
+    Array.prototype.forEach.call(figures, function (other) { other.hidden = other.id !== 'plot-flip'; });
+    var flip = document.getElementById('plot-flip'), point = flip.querySelector('a.pt[href="#run-visibility-32-split-sum"]');
+    point.firstElementChild.dispatchEvent(new MouseEvent('mouseover', { bubbles: true }));
+    f.readout = flip.querySelector('.plot-readout').textContent;
+    f.info = point.getAttribute('data-info');
+    f.hot = Array.prototype.map.call(flip.querySelectorAll('text.label.hot'), function (l) { return l.textContent; });
+  } catch (e) { f.exception = e.message; }
+  document.body.setAttribute('data-findings', encodeURIComponent(JSON.stringify(f)));
+});
+</script>
+)JS";
+
+std::string percentDecoded(const std::string& text) {
+    std::string out;
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '%' && i + 2 < text.size()) {
+            out += char(std::stoi(text.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += text[i];
+        }
+    }
+    return out;
+}
+
+TEST(ReportBrowser, AtAGlanceAt1600LabelsApartTableFitsVerdictIsReportJsons) {
+    GBL_REQUIRE_CHROMIUM();
+    TempDir dir("glance");
+    const fs::path reportDir = dir.path / "report";
+    const ReportModel model = test::crowdedReport();
+    test::writeSampleImages(reportDir, model);
+    writeReport(reportDir, model);
+    std::string page = readTextFile(reportDir / "report.html");
+    page.insert(page.rfind("</body>"), kGlanceDriver);
+    writeFileAtomic(reportDir / "driven.html", page);
+    const BrowserRun run = runChromium(dir.path, fileUrl(reportDir / "driven.html"), "--dump-dom", "1600,1000");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    EXPECT_TRUE(consoleProblems(run.stderrText).empty()) << joined(consoleProblems(run.stderrText));
+    const size_t at = run.stdoutText.find("data-findings=\"");
+    ASSERT_NE(at, std::string::npos) << "the driver did not run";
+    const size_t begin = at + 15;
+    const auto f = nlohmann::json::parse(percentDecoded(run.stdoutText.substr(begin, run.stdoutText.find('"', begin) - begin)));
+    ASSERT_FALSE(f.contains("exception")) << f["exception"];
+    std::printf("[ info ] at 1600 px: table %.1f px in a %d px viewport (all columns %.1f px), page %d px wide\n",
+                f["tableWidth"].get<double>(), f["viewport"].get<int>(), f["allTableWidth"].get<double>(),
+                f["scrollWidth"].get<int>());
+    ASSERT_EQ(f["innerWidth"], 1600);
+
+    // The table fits the window, folded (the default) and with every column shown.
+    const double viewport = f["viewport"].get<double>();
+    EXPECT_LE(f["tableRight"].get<double>(), viewport);
+    EXPECT_LE(f["scrollWidth"].get<double>(), viewport) << "the page scrolls sideways";
+    EXPECT_LE(f["allTableWidth"].get<double>(), viewport);
+    EXPECT_LE(f["allScrollWidth"].get<double>(), viewport);
+    EXPECT_EQ(f["columnsShown"], 11);     // layout, IBL, 9 numeric columns less the normal p99, status
+    EXPECT_EQ(f["allColumnsShown"], 12);  // the p99 unfolded
+
+    // No two labels and no label and marker intersect, in any plot. 19 layouts, two of them
+    // visibility buffers with a second marker each; the crowd needs leader lines.
+    for (const char* id : {"plot-flip", "plot-flip-linear", "plot-psnr"}) {
+        SCOPED_TRACE(id);
+        const auto& p = f["plots"][id];
+        EXPECT_EQ(p["labels"], 21);
+        EXPECT_EQ(p["markers"], 21);
+        EXPECT_EQ(p["empty"], 0) << "a label was not drawn";
+        EXPECT_LT(p["widthError"].get<double>(), 1.0) << "a label is not as wide as it was placed";
+        EXPECT_TRUE(p["labelOverlaps"].empty()) << p["labelOverlaps"].dump();
+        EXPECT_TRUE(p["markerOverlaps"].empty()) << p["markerOverlaps"].dump();
+    }
+    EXPECT_GT(f["plots"]["plot-flip"]["leaders"].get<int>(), 0);
+
+    // The verdict's lines are report.json's, in order.
+    const auto json = nlohmann::json::parse(readTextFile(reportDir / "report.json"));
+    std::vector<std::string> expected;
+    for (const auto& b : json["verdict"]["budgets"]) expected.push_back(b["sentence"]);
+    EXPECT_EQ(f["verdict"].get<std::vector<std::string>>(), expected);
+    EXPECT_EQ(expected.size(), 6u);
+
+    // Pointing at a marker names it under the plot and marks its labels.
+    EXPECT_EQ(f["readout"], f["info"]);
+    EXPECT_EQ(f["info"].get<std::string>().rfind("visibility-32 (IBL split-sum): 8 B/px", 0), 0u) << f["info"];
+    EXPECT_EQ(f["hot"], nlohmann::json({"visibility-32", "visibility-32 + fetches"}));
 }
 
 TEST(ReportBrowser, MissingImageIsReported) {

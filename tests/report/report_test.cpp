@@ -421,7 +421,7 @@ TEST(ReportHtml, HoldsEveryRunTheTableAndThePlots) {
     const size_t tableAt = html.find("<table id=\"layouts\" class=\"data sortable\">");
     ASSERT_NE(tableAt, std::string::npos);
     const std::string table = html.substr(tableAt, html.find("</table>", tableAt) - tableAt);
-    EXPECT_EQ(countOf(table, "<tr"), model.runs.size() + 1);
+    EXPECT_EQ(countOf(table, "<tr"), model.runs.size() + 2);  // the group row, the header row, one per run
     for (const char* key : {"layout", "ibl", "bpp", "gbps", "normal_mean", "normal_p99", "albedo_de", "specular_de",
                             "roughness", "psnr", "flip", "status"})
         EXPECT_NE(table.find(std::string("data-key=\"") + key + "\""), std::string::npos) << key;
@@ -453,12 +453,14 @@ TEST(ReportHtml, HoldsEveryRunTheTableAndThePlots) {
                              "crop0_reference.png", "crop0_layout.png", "crop0_heat.png"})
         EXPECT_NE(html.find(std::string("src=\"runs/ue4-split-sum/") + file + "\""), std::string::npos) << file;
     EXPECT_NE(html.find("href=\"runs/ue4-split-sum/errors.exr\""), std::string::npos);
-    // Two plots (FLIP shown, PSNR hidden) with Pareto fronts, labelled points and a legend.
+    // Three plots (FLIP on a log axis shown; FLIP on a linear axis and PSNR hidden) with Pareto
+    // fronts, labelled points and a legend.
     EXPECT_NE(html.find("<figure class=\"plot\" id=\"plot-flip\">"), std::string::npos);
+    EXPECT_NE(html.find("<figure class=\"plot\" id=\"plot-flip-linear\" hidden>"), std::string::npos);
     EXPECT_NE(html.find("<figure class=\"plot\" id=\"plot-psnr\" hidden>"), std::string::npos);
-    EXPECT_EQ(countOf(html, "<svg xmlns"), 2u);
-    EXPECT_EQ(countOf(html, "class=\"pareto\""), 4u);  // per plot, per IBL mode
-    EXPECT_EQ(countOf(html, "</title></circle>"), 2u * 6u);  // points; the failed run is not plotted
+    EXPECT_EQ(countOf(html, "<svg xmlns"), 3u);
+    EXPECT_EQ(countOf(html, "class=\"pareto\""), 6u);  // per plot, per IBL mode (no visibility buffer here)
+    EXPECT_EQ(countOf(html, "</title></circle>"), 3u * 6u);  // points; the failed run is not plotted
     EXPECT_NE(html.find(">compact-octahedral</text>"), std::string::npos);
     EXPECT_NE(html.find("Pareto front"), std::string::npos);
     EXPECT_NE(html.find("layouts, IBL split-sum"), std::string::npos);

@@ -1,0 +1,117 @@
+#include "budget_verdict.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace gbl {
+namespace {
+
+constexpr const char* kVisibilityPipeline = "visibility-buffer";
+
+bool counts(const RunReport& r, const std::string& reference) {
+    return r.status == RunStatus::Ok && r.image && !r.isLightingComparison() && r.layout != reference;
+}
+
+// Per pixel, not per sample: the resolve shades once per pixel whatever the MSAA.
+double vertexFetchBytesPerPixel(const RunReport& r) {
+    for (const FrameTraffic& f : r.bandwidth)
+        if (f.width > 0 && f.height > 0) return f.vertexFetchBytes / (double(f.width) * double(f.height));
+    return kVisibilityVertexBytes;  // no frame recorded: the model's constant
+}
+
+std::string printed(const char* format, double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, format, v);
+    return buffer;
+}
+
+std::string bytesText(const VerdictEntry& e) {
+    if (!e.visibilityBuffer) return std::to_string(e.bytesPerPixel) + " B/px";
+    return std::to_string(e.bytesPerPixel) + " B/px of ids and depth, " + printed("%g", e.countedBytes) +
+           " counting its modelled vertex fetches";
+}
+
+std::string budgetText(const std::optional<int>& budget) {
+    return budget ? "Up to " + std::to_string(*budget) + " B/px" : std::string("Unlimited");
+}
+
+std::string sentenceOf(const BudgetLine& line, int views) {
+    std::string s = budgetText(line.budget) + ": ";
+    if (!line.best) {
+        s += "no layout fits";
+        if (line.smallest)
+            s += "; the smallest, " + line.smallest->layout + ", counts " + printed("%g", line.smallest->countedBytes) +
+                 " B/px";
+        return s + ".";
+    }
+    s += line.best->layout + " (" + bytesText(*line.best) + ") has the lowest mean FLIP over " +
+         std::to_string(views) + (views == 1 ? " view, " : " views, ") + printed("%.4f", line.best->flipMean);
+    for (size_t i = 0; i < line.tiedWith.size(); ++i)
+        s += (i == 0 ? ", tied with " : i + 1 == line.tiedWith.size() ? " and " : ", ") + line.tiedWith[i].layout +
+             " (" + bytesText(line.tiedWith[i]) + ")";
+    return s + ".";
+}
+
+}  // namespace
+
+double verdictCountedBytes(const RunReport& run) {
+    double bytes = run.bytesPerPixel.total;
+    if (run.pipeline == kVisibilityPipeline) bytes += vertexFetchBytesPerPixel(run) / 2.0;
+    return bytes;
+}
+
+std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model) {
+    std::vector<std::string> modes = model.run.iblModes;
+    for (const RunReport& r : model.runs)
+        if (std::find(modes.begin(), modes.end(), r.iblMode) == modes.end()) modes.push_back(r.iblMode);
+    for (const std::string& mode : modes) {
+        std::vector<VerdictEntry> entries;
+        int views = 1;
+        for (const RunReport& r : model.runs) {
+            if (r.iblMode != mode || !counts(r, model.reference.layout)) continue;
+            entries.push_back({r.layout, r.bytesPerPixel.total, verdictCountedBytes(r), r.pipeline == kVisibilityPipeline,
+                               r.image->flipMean});
+            views = std::max(views, int(r.views.size()));
+        }
+        if (entries.empty()) continue;
+        // Best first; among equal means the fewer counted bytes, then the name, so ties read the same
+        // way in every run.
+        std::stable_sort(entries.begin(), entries.end(), [](const VerdictEntry& a, const VerdictEntry& b) {
+            if (a.flipMean != b.flipMean) return a.flipMean < b.flipMean;
+            if (a.countedBytes != b.countedBytes) return a.countedBytes < b.countedBytes;
+            return a.layout < b.layout;
+        });
+        const VerdictEntry smallest = *std::min_element(
+            entries.begin(), entries.end(),
+            [](const VerdictEntry& a, const VerdictEntry& b) { return a.countedBytes < b.countedBytes; });
+        BudgetVerdict v;
+        v.iblMode = mode;
+        v.views = views;
+        v.basis = "The best layout per byte budget, under IBL " + mode +
+                  ": the lowest mean FLIP (LDR) over " + std::to_string(views) + (views == 1 ? " view" : " views") +
+                  " among the measured layouts whose bytes per pixel fit the budget. Bytes per pixel are the "
+                  "table's (targets + depth + light buffers); a visibility buffer also counts half of its "
+                  "resolve's modelled vertex fetches (no cache reuse), since the bandwidth model moves a stored "
+                  "byte twice (written, then read) and a fetched byte once. Differences are not tested for "
+                  "significance yet: a tie is an exactly equal mean.";
+        std::vector<std::optional<int>> budgets(std::begin(kVerdictBudgets), std::end(kVerdictBudgets));
+        budgets.push_back(std::nullopt);
+        for (const std::optional<int>& budget : budgets) {
+            BudgetLine line;
+            line.budget = budget;
+            for (const VerdictEntry& e : entries) {
+                if (budget && e.countedBytes > *budget) continue;
+                if (!line.best) line.best = e;
+                else if (e.flipMean == line.best->flipMean) line.tiedWith.push_back(e);
+                else break;
+            }
+            if (!line.best) line.smallest = smallest;
+            line.sentence = sentenceOf(line, views);
+            v.lines.push_back(std::move(line));
+        }
+        return v;
+    }
+    return std::nullopt;
+}
+
+}  // namespace gbl

@@ -1,0 +1,57 @@
+#pragma once
+// The report's conclusion in one line per byte budget (8, 12, 16, 24, 32 B/px and unlimited):
+// the layout with the lowest mean FLIP among those that fit. Written at the top of report.html,
+// into report.json ("verdict") and after compare's console table, from this one function, so
+// the three cannot disagree.
+//
+// What "fits" means is stated in BudgetVerdict::basis and here: a run counts the table's bytes
+// per pixel (targets + depth + light buffers); a visibility buffer adds half of its resolve's
+// modelled vertex fetches per pixel (src/measure/bandwidth.h, no cache reuse). Half, because the
+// bandwidth model moves a stored byte twice (written by the geometry pass, read by the lighting
+// pass) and a fetched byte once: the half is the G-buffer size that moves as many bytes. Without
+// it a visibility buffer would read as its 8 B/px of ids and depth and win every budget.
+//
+// Ties: the lines name every layout tied with the best. No significance test exists yet, so a
+// tie is an exactly equal mean; a test over the views can widen `tiedWith` without changing the
+// shape of the verdict or of its JSON.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "report_model.h"
+
+namespace gbl {
+
+inline constexpr int kVerdictBudgets[] = {8, 12, 16, 24, 32};
+
+struct VerdictEntry {
+    std::string layout;
+    int bytesPerPixel = 0;       // the table's: targets + depth + light buffers
+    double countedBytes = 0;     // what the budget is held against (see above)
+    bool visibilityBuffer = false;  // countedBytes includes modelled vertex fetches
+    double flipMean = 0;         // LDR-FLIP, mean over the views
+};
+
+struct BudgetLine {
+    std::optional<int> budget;  // bytes per pixel; nullopt: unlimited
+    std::optional<VerdictEntry> best;  // nullopt: no measured layout fits
+    std::vector<VerdictEntry> tiedWith;
+    std::optional<VerdictEntry> smallest;  // when nothing fits: the layout of fewest counted bytes
+    std::string sentence;
+};
+
+struct BudgetVerdict {
+    std::string iblMode;  // the first IBL mode with a measured layout run
+    int views = 1;        // the FLIP means are over this many views
+    std::string basis;    // how the lines are decided, one paragraph
+    std::vector<BudgetLine> lines;  // kVerdictBudgets in order, then unlimited
+};
+
+// Bytes per pixel a run is held against a budget (see the file comment).
+double verdictCountedBytes(const RunReport& run);
+
+// nullopt when no layout run was measured (failed runs, the reference itself and the lighting
+// comparisons never count).
+std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model);
+
+}  // namespace gbl
