@@ -125,23 +125,82 @@ uint encodeGamma22(float x) {
 
 float decodeGamma22(uint code) { return GBL_CODEC_TABLE(kGamma22Decode, GBL_CODEC_TABLE_GAMMA22_DECODE, code & 255u); }
 
-// Octahedral normals stored as unorm of p * 0.5 + 0.5 (p = octEncode(n) in [-1,1]^2), quantised
-// by TRUNCATION with scale s, decoded as code / (2^bits - 1):
-// - Bevy (pbr_deferred_types.wgsl, pack_24bit_nor_and_flags): u32(saturate(u) * 4095), s = 2^bits - 1;
-// - Unity (core Packing.hlsl, PackFloat2To888; HDRP's normal buffer, URP's accurate G-buffer
-//   normals): uint(u * 4095.5), s = 2^bits - 0.5.
-// Truncation, not rounding: a code's error is up to one whole step (not half) in each of u, v.
-// Error (angle, mean / max, 12 bits; `gbufferlab encodings`): Bevy 0.042 / 0.118 deg, Unity
-// 0.029 / 0.107 (rounding normal_octahedral: 0.021 / 0.059).
-uvec2 encodeNormalOctahedralTrunc(vec3 n, uint bits, float scaleAdd) {
-    vec2 p = octEncode(n);
-    precise float s = float((1u << bits) - 1u) + scaleAdd;
-    precise vec2 u = clamp(vec2(p.x * 0.5 + 0.5, p.y * 0.5 + 0.5), vec2(0.0), vec2(1.0));
-    precise vec2 q = floor(u * s);
-    return min(uvec2(uint(q.x), uint(q.y)), uvec2((1u << bits) - 1u));
+// Octahedral normals stored as two unorm codes of u = p * 0.5 + 0.5, p the octahedral point in
+// [-1,1]^2, each engine's float arithmetic written out in its order (the engines' code is not
+// copied; float32, no contraction), decoded by decodeNormalOctahedralUnorm (code / (2^bits - 1),
+// unfolded as Cigolle et al. 2014; Bevy's octahedral_decode, Unity's UnpackNormalOctQuadEncode and
+// niagara's decodeOct write the same unfold otherwise, so their directions agree up to rounding).
+// tests/encoding/engine_packings_test.cpp holds each to a reimplementation from the engine's source.
+//
+// Bevy (bevyengine/bevy v0.16.0 e9418b38, the same since v0.12.0 bf30a25e):
+//   octahedral_encode, crates/bevy_pbr/src/render/utils.wgsl:48-53: n / |n|_1 (divided), the
+//   lower hemisphere (n.z < 0; -0 is kept) wrapped to (1 - |n.y|, 1 - |n.x|) times
+//   select(-1, 1, n.xy > 0): a zero component wraps to -1 (octEncode's signNotZero gives +1,
+//   so (0, 0, -1) is codes (0, 0) here, (2^b - 1, 2^b - 1) there); then n_xy * 0.5 + 0.5.
+//   pack_24bit_normal_and_flags, crates/bevy_pbr/src/deferred/pbr_deferred_types.wgsl:39-43:
+//   u32(saturate(u) * 4095 + 0.5), ROUNDED (= quantizeUnorm at 12 bits), u in bits 0-11, v in
+//   12-23, flags in 24-31. (An unreleased commit of the PR, 08303b7a, truncated; 84c2913f,
+//   before the merge, added the + 0.5.)
+// Unity (needle-mirror/com.unity.render-pipelines.core 13.0.0 6363fa25, ShaderLibrary/Packing.hlsl):
+//   PackNormalOctQuadEncode (:57-69): n *= rcp(|n.x| + |n.y| + |n.z|) (a multiply by the
+//   reciprocal), t = saturate(-n.z), p = n.xy + (n.xy >= 0 ? t : -t); PackFloat2To888 (:543-552):
+//   (uint2)(saturate(p * 0.5 + 0.5) * 4095.5), TRUNCATED, low bytes in R and G, the high nibbles
+//   in B (u's low, v's high). URP's accurate G-buffer normals (com.unity.render-pipelines.universal
+//   13.0.0 830d6315, ShaderLibrary/UnityGBuffer.hlsl:94-99, PackNormal) use exactly this.
+// HDRP (needle-mirror/com.unity.render-pipelines.high-definition 13.0.0 c667268a,
+//   Runtime/Material/NormalBuffer.hlsl:27-33, EncodeIntoNormalBuffer): first
+//   n.z = CopySign(max(1/1024, |n.z|), n.z) (core Common.hlsl:697-702: -0 counts as +), n not
+//   renormalised, then Unity's encoding: normals within 1/1024 of the equator move off it, e.g.
+//   (0, 1, 0) is (2047, 4093) here and (2047, 4095) in URP's.
+// Error (angle, mean / max, 12 bits, 300000 random normals; engine_encodings_test): Bevy (rounding)
+// 0.021 / 0.058 deg, as normal_octahedral; Unity (truncation: up to a whole step in each of u, v)
+// 0.029 / 0.105; HDRP as Unity, and max 0.113 within 1/1024 of the equator (the clamp's own shift
+// of up to 1/1024 rad, partly cancelled).
+vec2 octEncodeBevy(vec3 n) {
+    precise float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    precise float x = n.x / l1;
+    precise float y = n.y / l1;
+    precise float z = n.z / l1;
+    float sx = x > 0.0 ? 1.0 : -1.0;
+    float sy = y > 0.0 ? 1.0 : -1.0;
+    precise vec2 wrap = vec2((1.0 - abs(y)) * sx, (1.0 - abs(x)) * sy);
+    return z >= 0.0 ? vec2(x, y) : wrap;
 }
 
-vec3 decodeNormalOctahedralTrunc(uvec2 code, uint bits) {
+uvec2 encodeNormalOctahedralBevy(vec3 n, uint bits) {
+    vec2 p = octEncodeBevy(n);
+    precise float ux = p.x * 0.5 + 0.5;
+    precise float uy = p.y * 0.5 + 0.5;
+    return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
+}
+
+vec2 octEncodeUnity(vec3 n) {
+    precise float r = 1.0 / (abs(n.x) + abs(n.y) + abs(n.z));
+    precise float x = n.x * r;
+    precise float y = n.y * r;
+    precise float z = n.z * r;
+    precise float t = clamp(-z, 0.0, 1.0);
+    precise vec2 p = vec2(x + (x >= 0.0 ? t : -t), y + (y >= 0.0 ? t : -t));
+    return p;
+}
+
+uvec2 encodeNormalOctahedralUnity(vec3 n, uint bits) {
+    vec2 p = octEncodeUnity(n);
+    precise float s = float((1u << bits) - 1u) + 0.5;
+    precise float ux = clamp(p.x * 0.5 + 0.5, 0.0, 1.0);
+    precise float uy = clamp(p.y * 0.5 + 0.5, 0.0, 1.0);
+    precise float qx = floor(ux * s);
+    precise float qy = floor(uy * s);
+    return min(uvec2(uint(qx), uint(qy)), uvec2((1u << bits) - 1u));
+}
+
+uvec2 encodeNormalOctahedralHdrp(vec3 n, uint bits) {
+    float az = max(1.0 / 1024.0, abs(n.z));
+    float z = n.z >= 0.0 ? az : -az;
+    return encodeNormalOctahedralUnity(vec3(n.x, n.y, z), bits);
+}
+
+vec3 decodeNormalOctahedralUnorm(uvec2 code, uint bits) {
     vec2 u = vec2(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits));
     return normalize(octDecode(u * 2.0 - 1.0));
 }

@@ -230,8 +230,9 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
         case Codec::NormalOctahedralDithered:
         case Codec::NormalOctahedralBevy:
         case Codec::NormalOctahedralUnity:
+        case Codec::NormalOctahedralHdrp:
             map3(n, c0, c1, c1, x, y, z,
-                 [bits](uint a, uint b1, uint) { return decodeNormalOctahedralTrunc(uvec2(a, b1), bits); });
+                 [bits](uint a, uint b1, uint) { return decodeNormalOctahedralUnorm(uvec2(a, b1), bits); });
             return;
         case Codec::NormalXyFloat16:
             map3(n, c0, c1, c1, x, y, z, [](uint a, uint b1, uint) { return decodeNormalXyFloat16(uvec2(a, b1)); });

@@ -375,10 +375,13 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
             return;
         }
         case Codec::NormalOctahedralBevy:
-            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralTrunc(v, bits, 0.0f); });
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralBevy(v, bits); });
             return;
         case Codec::NormalOctahedralUnity:
-            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralTrunc(v, bits, 0.5f); });
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralUnity(v, bits); });
+            return;
+        case Codec::NormalOctahedralHdrp:
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralHdrp(v, bits); });
             return;
         case Codec::NormalXyFloat16:
             map3to2(n, x, yv, z, c0, c1, [](vec3 v, int) { return encodeNormalXyFloat16(v); });

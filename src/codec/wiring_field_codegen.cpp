@@ -145,9 +145,11 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
     } else if (e == "rgb9e5") {
         o << ind << "uvec4 " << id << " = encodeRgb9e5(" << v << ");\n";
         for (int i = 0; i < 4; ++i) codes.push_back(id + "." + kComp[i]);
-    } else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity") {
-        o << ind << "uvec2 " << id << " = encodeNormalOctahedralTrunc(" << v << ", " << b << ", "
-          << (e == "normal_octahedral_bevy" ? "0.0" : "0.5") << ");\n";
+    } else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp") {
+        const std::string fn = e == "normal_octahedral_bevy"    ? "encodeNormalOctahedralBevy("
+                               : e == "normal_octahedral_unity" ? "encodeNormalOctahedralUnity("
+                                                                : "encodeNormalOctahedralHdrp(";
+        o << ind << "uvec2 " << id << " = " << fn << v << ", " << b << ");\n";
         for (int i = 0; i < 2; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "normal_xy_float16") {
         o << ind << "uvec2 " << id << " = encodeNormalXyFloat16(" << v << ");\n";
@@ -210,8 +212,9 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
     if (e == "rgb9e5") return "decodeRgb9e5(uvec4(" + c[0] + ", " + c[1] + ", " + c[2] + ", " + c[3] + "))";
     if (e == "emissive_albedo_ratio")
         return "decodeEmissiveAlbedoRatio(" + c[0] + ", " + b + ", " + readsExpr(encodingOf(f)) + ")";
-    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_dithered")
-        return "decodeNormalOctahedralTrunc(uvec2(" + c[0] + ", " + c[1] + "), " + b + ")";
+    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp" ||
+        e == "normal_octahedral_dithered")
+        return "decodeNormalOctahedralUnorm(uvec2(" + c[0] + ", " + c[1] + "), " + b + ")";
     if (e == "normal_xy_float16") return "decodeNormalXyFloat16(uvec2(" + c[0] + ", " + c[1] + "))";
     if (e == "luma") return "vec3(dequantizeUnorm(" + c[0] + ", " + b + "))";
     if (colorTransform(e, fwd, inv))

@@ -562,17 +562,62 @@ inline uint encodeGamma22(float x) {
 
 inline float decodeGamma22(uint code) { return kGamma22Decode[code & 255u]; }
 
-// Octahedral, unorm of p * 0.5 + 0.5 truncated with scale 2^bits - 1 + scaleAdd (Bevy: 0,
-// Unity's PackFloat2To888: 0.5), decoded as code / (2^bits - 1).
-inline uvec2 encodeNormalOctahedralTrunc(vec3 n, uint bits, float scaleAdd) {
-    vec2 p = octEncode(n);
-    float s = float((1u << bits) - 1u) + scaleAdd;
-    vec2 u = clamp(vec2(p.x * 0.5f + 0.5f, p.y * 0.5f + 0.5f), vec2(0.0f), vec2(1.0f));
-    vec2 q = floor(u * s);
-    return min(uvec2(uint(q.x), uint(q.y)), uvec2((1u << bits) - 1u));
+// Octahedral normals as two unorm codes of u = p * 0.5 + 0.5, each engine's arithmetic written out
+// (float only, in its order), decoded by decodeNormalOctahedralUnorm. Sources and error bounds:
+// shaders/engine_encodings.glsl.
+
+// octEncodeBevy: Bevy's octahedral_encode, without its final * 0.5 + 0.5.
+inline vec2 octEncodeBevy(vec3 n) {
+    float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    float x = n.x / l1;
+    float y = n.y / l1;
+    float z = n.z / l1;
+    float sx = x > 0.0f ? 1.0f : -1.0f;
+    float sy = y > 0.0f ? 1.0f : -1.0f;
+    vec2 wrap = vec2((1.0f - abs(y)) * sx, (1.0f - abs(x)) * sy);
+    return z >= 0.0f ? vec2(x, y) : wrap;
 }
 
-inline vec3 decodeNormalOctahedralTrunc(uvec2 code, uint bits) {
+// encodeNormalOctahedralBevy: octEncodeBevy, then u32(saturate(u) * (2^bits - 1) + 0.5).
+inline uvec2 encodeNormalOctahedralBevy(vec3 n, uint bits) {
+    vec2 p = octEncodeBevy(n);
+    float ux = p.x * 0.5f + 0.5f;
+    float uy = p.y * 0.5f + 0.5f;
+    return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
+}
+
+// octEncodeUnity: Unity's PackNormalOctQuadEncode.
+inline vec2 octEncodeUnity(vec3 n) {
+    float r = 1.0f / (abs(n.x) + abs(n.y) + abs(n.z));
+    float x = n.x * r;
+    float y = n.y * r;
+    float z = n.z * r;
+    float t = clamp(-z, 0.0f, 1.0f);
+    return vec2(x + (x >= 0.0f ? t : -t), y + (y >= 0.0f ? t : -t));
+}
+
+// encodeNormalOctahedralUnity: octEncodeUnity, saturate(p * 0.5 + 0.5), truncated with the scale
+// 2^bits - 0.5 (PackFloat2To888's 4095.5 at 12 bits).
+inline uvec2 encodeNormalOctahedralUnity(vec3 n, uint bits) {
+    vec2 p = octEncodeUnity(n);
+    float s = float((1u << bits) - 1u) + 0.5f;
+    float ux = clamp(p.x * 0.5f + 0.5f, 0.0f, 1.0f);
+    float uy = clamp(p.y * 0.5f + 0.5f, 0.0f, 1.0f);
+    float qx = floor(ux * s);
+    float qy = floor(uy * s);
+    return min(uvec2(uint(qx), uint(qy)), uvec2((1u << bits) - 1u));
+}
+
+// encodeNormalOctahedralHdrp: HDRP's normal buffer, |n.z| raised to at least 1/1024 (its sign
+// kept, -0 counting as +) before encodeNormalOctahedralUnity; n is not renormalised.
+inline uvec2 encodeNormalOctahedralHdrp(vec3 n, uint bits) {
+    float az = max(1.0f / 1024.0f, abs(n.z));
+    float z = n.z >= 0.0f ? az : -az;
+    return encodeNormalOctahedralUnity(vec3(n.x, n.y, z), bits);
+}
+
+// decodeNormalOctahedralUnorm: code / (2^bits - 1) * 2 - 1, octahedral unfold, normalise.
+inline vec3 decodeNormalOctahedralUnorm(uvec2 code, uint bits) {
     vec2 u = vec2(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits));
     return normalize(octDecode(u * 2.0f - 1.0f));
 }

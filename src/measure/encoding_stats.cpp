@@ -125,11 +125,13 @@ glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n, glm::ive
     if (info.name == "normal_octahedral_precise")
         return enc::decodeNormalOctahedralPrecise(enc::encodeNormalOctahedralPrecise(n, b), b);
     if (info.name == "normal_octahedral_bevy")
-        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralTrunc(n, b, 0.0f), b);
+        return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralBevy(n, b), b);
     if (info.name == "normal_octahedral_unity")
-        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralTrunc(n, b, 0.5f), b);
+        return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralUnity(n, b), b);
+    if (info.name == "normal_octahedral_hdrp")
+        return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralHdrp(n, b), b);
     if (info.name == "normal_octahedral_dithered")
-        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralDithered(n, b, pixel), b);
+        return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralDithered(n, b, pixel), b);
     // No sign bit: over the whole sphere, the half facing away (z < 0) comes back mirrored.
     if (info.name == "normal_xy_float16") return enc::decodeNormalXyFloat16(enc::encodeNormalXyFloat16(n));
     throwUserError("encoding '" + info.name + "' has no normal round trip");
