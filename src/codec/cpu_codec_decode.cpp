@@ -201,6 +201,11 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
             map1(n, c1, y, [](uint c) { return decodeGamma22(c); });
             map1(n, c2, z, [](uint c) { return decodeGamma22(c); });
             return;
+        case Codec::Srgb8FastHdrp:
+            map1(n, c0, x, [](uint c) { return decodeSrgb8FastHdrp(c); });
+            map1(n, c1, y, [](uint c) { return decodeSrgb8FastHdrp(c); });
+            map1(n, c2, z, [](uint c) { return decodeSrgb8FastHdrp(c); });
+            return;
         case Codec::Float111110:
             map1(n, c0, x, [](uint c) { return decodeFloat11(c); });
             map1(n, c1, y, [](uint c) { return decodeFloat11(c); });

@@ -358,6 +358,11 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
             srgb8Row(n, yv, c1, gamma22EncodeTable());
             srgb8Row(n, z, c2, gamma22EncodeTable());
             return;
+        case Codec::Srgb8FastHdrp:
+            map1(n, x, c0, [](float v) { return encodeSrgb8FastHdrp(v); });
+            map1(n, yv, c1, [](float v) { return encodeSrgb8FastHdrp(v); });
+            map1(n, z, c2, [](float v) { return encodeSrgb8FastHdrp(v); });
+            return;
         case Codec::Float111110:
             map1(n, x, c0, [](float v) { return encodeFloat11Fast(v); });
             map1(n, yv, c1, [](float v) { return encodeFloat11Fast(v); });

@@ -69,6 +69,12 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"gamma22", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
                  "gamma 2.2 (not sRGB): code = round(255 x^(1/2.2)), exact via 255 thresholds; decodes code^2.2",
                  "Bevy 0.12+ deferred G-buffer (pbr_deferred_functions.wgsl: pow(base_color, 1/2.2) in pack4x8unorm)"});
+    v.push_back({"srgb8_fast_hdrp", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
+                 "HDRP's fast sRGB for fresnel0 in a UNORM target: code = round(255 saturate(1.055 |x|^(1/2.4) - "
+                 "0.055)) (no linear toe), exact via 255 thresholds; decoded with HDRP's cubic x (x (0.305306011 x + "
+                 "0.682171111) + 0.012522878)",
+                 "Unity HDRP Lit.hlsl EncodeIntoGBuffer (GBuffer2.rgb = FastLinearToSRGB(fresnel0)); core Color.hlsl "
+                 "FastLinearToSRGB, FastSRGBToLinear (HDRP / core 13.0.0 c667268a / 6363fa25)"});
     v.push_back({"float11_11_10", K::Color, 2, 11, 11, 11, 10, false, "[0, 65024]^3 (HDR)",
                  "B10G11R11's three unsigned floats as one colour: r, g float11 (5e6m), b float10 (5e5m)",
                  "Vulkan spec, 'Unsigned 11-Bit / 10-Bit Floating-Point Numbers'; HDRP GBuffer3 (Lit.hlsl)"});

@@ -562,6 +562,27 @@ inline uint encodeGamma22(float x) {
 
 inline float decodeGamma22(uint code) { return kGamma22Decode[code & 255u]; }
 
+// sRGB 8-bit as HDRP writes fresnel0 into its UNORM GBuffer2: the power segment without the linear
+// toe, decoded with HDRP's cubic (the GLSL twin carries the sources). Table based like srgb8: the
+// code = number of thresholds <= |x| (tables in encodings.cpp).
+extern const float kSrgbFastHdrpEncodeThresholds[255];
+inline uint encodeSrgb8FastHdrp(float x) {
+    float a = abs(x);
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kSrgbFastHdrpEncodeThresholds[mid] <= a) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+inline float decodeSrgb8FastHdrp(uint code) {
+    float c = dequantizeUnorm(code & 255u, 8u);
+    float l = c * (c * (c * 0.305306011f + 0.682171111f) + 0.012522878f);
+    return l;
+}
+
 // Octahedral normals as two unorm codes of u = p * 0.5 + 0.5, each engine's arithmetic written out
 // (float only, in its order), decoded by decodeNormalOctahedralUnorm. Sources and error bounds:
 // shaders/engine_encodings.glsl.

@@ -157,6 +157,9 @@ glm::vec3 roundTripColor(std::string_view name, int bits, glm::vec3 c) {
     if (info.name == "gamma22")
         return vec3(enc::decodeGamma22(enc::encodeGamma22(c.x)), enc::decodeGamma22(enc::encodeGamma22(c.y)),
                     enc::decodeGamma22(enc::encodeGamma22(c.z)));
+    if (info.name == "srgb8_fast_hdrp")
+        return vec3(enc::decodeSrgb8FastHdrp(enc::encodeSrgb8FastHdrp(c.x)), enc::decodeSrgb8FastHdrp(enc::encodeSrgb8FastHdrp(c.y)),
+                    enc::decodeSrgb8FastHdrp(enc::encodeSrgb8FastHdrp(c.z)));
     if (info.name == "float11_11_10")
         return vec3(enc::decodeFloat11(enc::encodeFloat11(c.x)), enc::decodeFloat11(enc::encodeFloat11(c.y)),
                     enc::decodeFloat10(enc::encodeFloat10(c.z)));

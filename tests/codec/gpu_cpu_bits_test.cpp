@@ -325,8 +325,8 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
 }
 
 // Engine encodings that no seed layout stores yet, so that their GLSL twins are held to the CPU's
-// words all the same: HDRP's normal buffer (normal_octahedral_hdrp; hdrp-lit.toml still names
-// normal_octahedral_unity), in HDRP's GBuffer1 places.
+// words all the same: HDRP's normal buffer (normal_octahedral_hdrp) and fresnel0 (srgb8_fast_hdrp)
+// in HDRP's GBuffer1 and GBuffer2 places (hdrp-lit.toml still names normal_octahedral_unity and srgb8).
 const char* kEngineEncodingsLayout = R"(name = "engine-encodings"
 title = "engine encodings no seed layout stores"
 pipeline = "deferred-shading"
@@ -340,14 +340,26 @@ field = [
   { attribute = "normal",    encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"] },
   { attribute = "roughness", encoding = "unorm", at = "a" },
 ]
+[[target]]
+name = "GBuffer2"
+format = "R8G8B8A8_UNORM"
+field = [
+  { attribute = "specular_color", encoding = "srgb8_fast_hdrp", at = ["r", "g", "b"] },
+]
 [fallback]
 base_color = 0.5
 metallic = 0.0
 specular = 0.5
-specular_color = "from_metallic"
 diffuse_color = "from_base_color"
 occlusion = 1.0
 emissive = 0.0
+[space]
+normal = "world"
+up = "y"
+[clear]
+normal = [0.0, 0.0, 1.0]
+roughness = 1.0
+specular_color = 0.0
 )";
 
 TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
@@ -356,6 +368,8 @@ TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
     // A quarter of the normals within HDRP's 1/1024 of the equator (its clamp acts), +-0 included.
     const float zs[] = {0.0f, -0.0f, 1.0f / 1024.0f, -1.0f / 1024.0f, 3e-4f, -3e-4f, 1e-30f, -1e-7f};
     for (size_t i = 0; i < surfaces.size(); i += 4) surfaces[i].normal.z = zs[(i / 4) % 8];
+    // and a third of the F0 channels below sRGB's linear toe, where HDRP's curve is its own
+    for (size_t i = 1; i < surfaces.size(); i += 3) surfaces[i].specularColor *= 0.004f;
     checkWordsAndDecodes(ctx(), layout, surfaces);
 }
 

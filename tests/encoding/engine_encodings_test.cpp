@@ -97,6 +97,47 @@ TEST(Gamma22, TablesAndCodesEqualTheFormula) {
     }
 }
 
+// HDRP's fast sRGB: the thresholds hold the formula (in long double here: ((k + 0.5)/255 + 0.055)
+// / 1.055)^2.4), so the code is round(255 FastLinearToSRGB(x)) exactly; the decode is HDRP's
+// cubic, evaluated in float.
+TEST(Srgb8FastHdrp, ThresholdsEqualTheFormulaAndDecodeIsTheCubic) {
+    for (int k = 0; k < 255; ++k) {
+        const long double v = std::pow(((k + 0.5L) / 255.0L + 0.055L) / 1.055L, 2.4L);
+        ASSERT_GE((long double)kSrgbFastHdrpEncodeThresholds[k], v) << k;
+        ASSERT_LT((long double)std::nextafter(kSrgbFastHdrpEncodeThresholds[k], 0.0f), v) << k;
+    }
+    Rng rng(94);
+    int checked = 0;
+    for (int i = 0; i < 1000000; ++i) {
+        const float x = i < 1000 ? float(i) / 999.0f * 0.004f : float(rng.u01());
+        const double g = 255.0 * std::clamp(1.055 * std::pow(double(x), 1.0 / 2.4) - 0.055, 0.0, 1.0);
+        if (std::abs(g - std::floor(g) - 0.5) < 1e-9) continue;  // a tie: either code is right
+        ASSERT_EQ(encodeSrgb8FastHdrp(x), unsigned(std::floor(g + 0.5))) << x;
+        ++checked;
+    }
+    EXPECT_GT(checked, 999000);
+    EXPECT_EQ(encodeSrgb8FastHdrp(-0.001f), 1u);  // PositivePow: pow(|x|, 1/2.4)
+    EXPECT_EQ(encodeSrgb8FastHdrp(-0.0f), 0u);
+    EXPECT_EQ(encodeSrgb8FastHdrp(0.0f), 0u);
+    EXPECT_EQ(encodeSrgb8FastHdrp(2.0f), 255u);
+    // No linear toe: 0.001 is code 1 (srgb8: 3); above the toe both are sRGB's power segment.
+    EXPECT_EQ(encodeSrgb8FastHdrp(0.001f), 1u);
+    EXPECT_EQ(encodeSrgb8(0.001f), 3u);
+    for (int i = 0; i <= 10000; ++i) {
+        const float x = 0.0032f + float(i) / 10000.0f * 0.9968f;
+        ASSERT_EQ(encodeSrgb8FastHdrp(x), encodeSrgb8(x)) << x;
+    }
+    for (unsigned k = 0; k < 256; ++k) {
+        const float c = float(k) / 255.0f;
+        const float a = c * 0.305306011f;
+        const float b = a + 0.682171111f;
+        const float d = c * b + 0.012522878f;
+        ASSERT_EQ(bitsOf(decodeSrgb8FastHdrp(k)), bitsOf(c * d)) << k;
+    }
+    EXPECT_NEAR(decodeSrgb8FastHdrp(56u), 0.038883f, 1e-6f);  // the dielectric F0 0.04's code
+    EXPECT_EQ(decodeSrgb8FastHdrp(255u), 0.305306011f + 0.682171111f + 0.012522878f);
+}
+
 // Octahedral encoding as Bevy's octahedral_encode and Unity's PackNormalOctQuadEncode write it, in
 // double: p = n / |n|_1, the lower hemisphere wrapped, then u = p * 0.5 + 0.5. (The bit-exact
 // float32 reimplementations of each engine are in engine_packings_test.cpp; this one is the

@@ -558,6 +558,98 @@ TEST(EnginePackings, HdrpNormalBufferEqualsEncodeIntoNormalBuffer) {
 
 TEST(EnginePackings, UrpAccurateNormalsEqualPackNormal) { checkUnityNormalBuffer(false); }
 
+// HDRP's GBuffer2.rgb: fresnel0 through FastLinearToSRGB into a UNORM target (HDRP 13.0.0
+// Runtime/Material/Lit/Lit.hlsl:661), read back by FastSRGBToLinear (:839); core 13.0.0
+// ShaderLibrary/Color.hlsl:166-179: saturate(1.055 * PositivePow(c, 0.416666667) - 0.055), and
+// :151-159: c * (c * (c * 0.305306011 + 0.682171111) + 0.012522878).
+double hdrpFastLinearToSrgb(float c) {  // in double: a GPU's pow is not correctly rounded
+    return std::clamp(1.055 * std::pow(double(std::fabs(c)), double(0.416666667f)) - 0.055, 0.0, 1.0);
+}
+float hdrpFastSrgbToLinear(float c) { return c * (c * (c * 0.305306011f + 0.682171111f) + 0.012522878f); }
+
+const char* kHdrpFresnelLayout = R"(name = "hdrp-fresnel0"
+title = "HDRP's GBuffer1 and GBuffer2"
+pipeline = "deferred-shading"
+source = { engine = "Unity HDRP", talk = "unit test", year = 2021 }
+[depth]
+format = "D32_SFLOAT"
+[[target]]
+name = "GBuffer1"
+format = "R8G8B8A8_UNORM"
+field = [
+  { attribute = "normal",    encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"] },
+  { attribute = "roughness", encoding = "unorm", at = "a" },
+]
+[[target]]
+name = "GBuffer2"
+format = "R8G8B8A8_UNORM"
+field = [
+  { attribute = "specular_color", encoding = "srgb8_fast_hdrp", at = ["r", "g", "b"] },
+]
+[fallback]
+base_color = 0.5
+metallic = 0.0
+specular = 0.5
+diffuse_color = "from_base_color"
+occlusion = 1.0
+emissive = 0.0
+[space]
+normal = "world"
+up = "y"
+[clear]
+normal = [0.0, 0.0, 1.0]
+roughness = 1.0
+specular_color = 0.0
+)";
+
+TEST(EnginePackings, HdrpFresnel0EqualsFastLinearToSrgbAndItsCubic) {
+    const Layout layout = gbl::parseLayout(kHdrpFresnelLayout, "hdrp-fresnel0.toml");
+    const CpuCodec codec(layout);
+    Rng rng(2808);
+    std::vector<Surface> surfaces(kImage), decoded;
+    CpuGBuffer g;
+    size_t compared = 0, nearTies = 0, mismatches = 0, decodeMismatches = 0;
+    for (size_t first = 0; first < kInputs; first += kImage) {
+        for (size_t j = 0; j < kImage; ++j) {
+            Surface& s = surfaces[j];
+            // F0 from 0 to 1, a third of it below sRGB's toe (0.0031308) where HDRP's curve is its own.
+            for (int k = 0; k < 3; ++k) {
+                const double u = rng.u01();
+                s.specularColor[k] = j % 3 == 0 ? float(u * 0.004) : float(u * 1.1 - 0.05);
+            }
+            if (first == 0 && j < 256) s.specularColor = glm::vec3(float(j) / 255.0f, 0.0f, -0.0f);
+        }
+        codec.encode(surfaces, kWidth, kHeight, g);
+        codec.decode(g, decoded);
+        for (size_t j = 0; j < kImage; ++j) {
+            const uint32_t w = g.targetWords.at(1)[j];
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t code = (w >> (8 * k)) & 255u;
+                const double v = 255.0 * hdrpFastLinearToSrgb(surfaces[j].specularColor[k]);
+                ++compared;
+                if (std::fabs(v - std::floor(v) - 0.5) < 1e-4) {
+                    ++nearTies;  // HDRP's pow lands on either side
+                    if (code != uint32_t(std::floor(v)) && code != uint32_t(std::floor(v)) + 1u) ++mismatches;
+                } else if (code != uint32_t(std::floor(v + 0.5)) && mismatches++ < 8) {
+                    ADD_FAILURE() << "F0 " << surfaces[j].specularColor[k] << ": gbufferlab code " << code << ", HDRP "
+                                  << std::floor(v + 0.5);
+                }
+                // The decode: the UNORM texel read as float (code / 255, correctly rounded) through the cubic.
+                const float want = hdrpFastSrgbToLinear(float(code) / 255.0f);
+                if (std::bit_cast<uint32_t>(decoded[j].specularColor[k]) != std::bit_cast<uint32_t>(want) &&
+                    decodeMismatches++ < 8)
+                    ADD_FAILURE() << "code " << code << ": gbufferlab decodes " << decoded[j].specularColor[k] << ", HDRP "
+                                  << want;
+            }
+            if ((w >> 24) != 0u && mismatches++ < 8) ADD_FAILURE() << "alpha of GBuffer2 written: " << hex(w);
+        }
+    }
+    std::printf("[ hdrp f0  ] %zu codes (%zu within 1e-4 of a tie), decoded by the cubic\n", compared, nearTies);
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_EQ(decodeMismatches, 0u);
+    EXPECT_LT(nearTies, compared / 1000);
+}
+
 // ==================================================================================================
 // URP without accurate normals (urp-deferred): GBuffer2 R8G8B8A8_SNORM holds PackNormal(n) = n
 // itself (UnityGBuffer.hlsl:109-110, universal 13.0.0 830d63151c83) and smoothness in alpha
