@@ -125,23 +125,148 @@ uint encodeGamma22(float x) {
 
 float decodeGamma22(uint code) { return GBL_CODEC_TABLE(kGamma22Decode, GBL_CODEC_TABLE_GAMMA22_DECODE, code & 255u); }
 
-// Octahedral normals stored as unorm of p * 0.5 + 0.5 (p = octEncode(n) in [-1,1]^2), quantised
-// by TRUNCATION with scale s, decoded as code / (2^bits - 1):
-// - Bevy (pbr_deferred_types.wgsl, pack_24bit_nor_and_flags): u32(saturate(u) * 4095), s = 2^bits - 1;
-// - Unity (core Packing.hlsl, PackFloat2To888; HDRP's normal buffer, URP's accurate G-buffer
-//   normals): uint(u * 4095.5), s = 2^bits - 0.5.
-// Truncation, not rounding: a code's error is up to one whole step (not half) in each of u, v.
-// Error (angle, mean / max, 12 bits; `gbufferlab encodings`): Bevy 0.042 / 0.118 deg, Unity
-// 0.029 / 0.107 (rounding normal_octahedral: 0.021 / 0.059).
-uvec2 encodeNormalOctahedralTrunc(vec3 n, uint bits, float scaleAdd) {
-    vec2 p = octEncode(n);
-    precise float s = float((1u << bits) - 1u) + scaleAdd;
-    precise vec2 u = clamp(vec2(p.x * 0.5 + 0.5, p.y * 0.5 + 0.5), vec2(0.0), vec2(1.0));
-    precise vec2 q = floor(u * s);
-    return min(uvec2(uint(q.x), uint(q.y)), uvec2((1u << bits) - 1u));
+// sRGB 8-bit as HDRP writes fresnel0 (specular colour) into GBuffer2, a UNORM target, "a fast
+// encode/decode sRGB to keep precision" (HDRP 13.0.0 c667268a Runtime/Material/Lit/Lit.hlsl:660-661;
+// decoded at :839): FastLinearToSRGB(c) = saturate(1.055 c^0.416666667 - 0.055), sRGB's power
+// segment without its linear toe (needle-mirror/com.unity.render-pipelines.core 13.0.0 6363fa25
+// ShaderLibrary/Color.hlsl:166-179), and FastSRGBToLinear(x) = x (x (x 0.305306011 + 0.682171111)
+// + 0.012522878), a cubic fit (:151-159), not the inverse: code 56 (F0 0.04) reads back 0.038883
+// where srgb8 reads 0.039546. Encoded exactly, table based like srgb8 (HDRP's pow on a GPU is not
+// correctly rounded; GPU and CPU agree here): code = round(255 FastLinearToSRGB(x)) in exact
+// arithmetic, ties up, = the number of thresholds <= |x| (FastLinearToSRGB's PositivePow is
+// pow(abs(x), y), core Common.hlsl:648: a negative input encodes as its magnitude, as in HDRP),
+// kSrgbFastHdrpEncodeThresholds[i] = the
+// smallest float >= (((i + 0.5)/255 + 0.055) / 1.055)^2.4. Below the toe (x < 0.0031308) the codes
+// differ from srgb8's, by up to 3 (x = 0.001: 1 here, 3 in srgb8); above it they are srgb8's. The
+// decode is the cubic in float, no contraction. Error of the round trip over [0,1]: max abs 0.0049
+// (at 0.835: the cubic's own misfit plus half a code; srgb8: 0.0045).
+const float kSrgbFastHdrpEncodeThresholds[255] = float[255](
+    0.00090693554, 0.0010640782, 0.0012360533, 0.0014232361, 0.0016259883, 0.0018446593, 0.002079588, 0.002331102,
+    0.0025995201, 0.0028851526, 0.003188301, 0.0035092595, 0.003848315, 0.0042057484, 0.004581833, 0.0049768374,
+    0.0053910245, 0.005824651, 0.0062779696, 0.0067512277, 0.0072446684, 0.007758531, 0.0082930485, 0.008848454,
+    0.009424971, 0.0100228265, 0.010642237, 0.011283422, 0.0119465925, 0.01263196, 0.013339732, 0.014070112,
+    0.014823304, 0.015599503, 0.01639891, 0.017221717, 0.018068116, 0.018938296, 0.019832443, 0.020750746,
+    0.021693384, 0.022660539, 0.023652392, 0.024669116, 0.025710888, 0.026777884, 0.027870271, 0.028988222,
+    0.030131903, 0.031301484, 0.032497123, 0.03371899, 0.034967244, 0.036242045, 0.037543554, 0.03887193,
+    0.04022732, 0.04160989, 0.043019786, 0.044457164, 0.045922175, 0.047414966, 0.04893569, 0.050484486,
+    0.05206151, 0.0536669, 0.055300802, 0.05696336, 0.058654718, 0.060375012, 0.062124386, 0.063902974,
+    0.06571092, 0.06754836, 0.06941541, 0.07131224, 0.07323896, 0.07519571, 0.07718262, 0.07919982,
+    0.08124745, 0.083325624, 0.08543449, 0.08757416, 0.08974477, 0.091946445, 0.0941793, 0.09644348,
+    0.098739095, 0.10106628, 0.10342514, 0.105815805, 0.10823841, 0.11069305, 0.11317987, 0.11569897,
+    0.11825049, 0.12083452, 0.1234512, 0.12610064, 0.12878296, 0.13149826, 0.13424668, 0.1370283,
+    0.13984329, 0.14269169, 0.14557366, 0.14848931, 0.15143874, 0.15442206, 0.1574394, 0.16049084,
+    0.1635765, 0.1666965, 0.16985095, 0.17303993, 0.17626357, 0.17952198, 0.18281525, 0.1861435,
+    0.18950684, 0.19290535, 0.19633916, 0.19980836, 0.20331305, 0.20685335, 0.21042934, 0.21404114,
+    0.21768886, 0.22137257, 0.2250924, 0.22884843, 0.23264077, 0.23646952, 0.24033478, 0.24423665,
+    0.24817522, 0.2521506, 0.25616285, 0.26021212, 0.2642985, 0.26842204, 0.2725829, 0.2767811,
+    0.28101683, 0.2852901, 0.28960103, 0.29394975, 0.2983363, 0.3027608, 0.30722338, 0.31172407,
+    0.31626296, 0.3208402, 0.32545584, 0.33011, 0.33480275, 0.3395342, 0.34430438, 0.34911346,
+    0.3539615, 0.35884857, 0.3637748, 0.36874023, 0.373745, 0.37878916, 0.38387278, 0.388996,
+    0.3941589, 0.39936155, 0.40460402, 0.40988642, 0.41520885, 0.42057136, 0.42597407, 0.43141705,
+    0.43690038, 0.44242412, 0.44798842, 0.45359334, 0.45923892, 0.46492532, 0.47065255, 0.47642073,
+    0.48222995, 0.48808026, 0.49397177, 0.49990457, 0.50587875, 0.51189435, 0.5179514, 0.5240502,
+    0.5301906, 0.5363727, 0.54259676, 0.5488627, 0.55517066, 0.5615207, 0.56791294, 0.5743474,
+    0.58082414, 0.58734334, 0.59390503, 0.6005093, 0.60715616, 0.61384577, 0.62057817, 0.6273534,
+    0.63417166, 0.64103293, 0.6479373, 0.6548849, 0.66187567, 0.66890985, 0.6759874, 0.68310845,
+    0.6902731, 0.6974814, 0.7047334, 0.71202916, 0.7193689, 0.72675246, 0.7341801, 0.74165183,
+    0.74916774, 0.7567279, 0.7643323, 0.7719812, 0.7796745, 0.78741235, 0.7951948, 0.8030219,
+    0.81089383, 0.8188106, 0.8267722, 0.83477885, 0.84283054, 0.8509273, 0.8590693, 0.8672565,
+    0.8754891, 0.8837671, 0.89209056, 0.9004596, 0.9088742, 0.91733456, 0.9258407, 0.9343926,
+    0.9429904, 0.9516342, 0.96032405, 0.96906, 0.97784215, 0.98667055, 0.99554527);
+
+uint encodeSrgb8FastHdrp(float x) {
+    float a = abs(x);
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (GBL_CODEC_TABLE(kSrgbFastHdrpEncodeThresholds, GBL_CODEC_TABLE_SRGB_FAST_HDRP_ENCODE, mid) <= a) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
 }
 
-vec3 decodeNormalOctahedralTrunc(uvec2 code, uint bits) {
+float decodeSrgb8FastHdrp(uint code) {
+    precise float c = dequantizeUnorm(code & 255u, 8u);
+    precise float l = c * (c * (c * 0.305306011 + 0.682171111) + 0.012522878);
+    return l;
+}
+
+// Octahedral normals stored as two unorm codes of u = p * 0.5 + 0.5, p the octahedral point in
+// [-1,1]^2, each engine's float arithmetic written out in its order (the engines' code is not
+// copied; float32, no contraction), decoded by decodeNormalOctahedralUnorm (code / (2^bits - 1),
+// unfolded as Cigolle et al. 2014; Bevy's octahedral_decode, Unity's UnpackNormalOctQuadEncode and
+// niagara's decodeOct write the same unfold otherwise, so their directions agree up to rounding).
+// tests/encoding/engine_packings_test.cpp holds each to a reimplementation from the engine's source.
+//
+// Bevy (bevyengine/bevy v0.16.0 e9418b38, the same since v0.12.0 bf30a25e):
+//   octahedral_encode, crates/bevy_pbr/src/render/utils.wgsl:48-53: n / |n|_1 (divided), the
+//   lower hemisphere (n.z < 0; -0 is kept) wrapped to (1 - |n.y|, 1 - |n.x|) times
+//   select(-1, 1, n.xy > 0): a zero component wraps to -1 (octEncode's signNotZero gives +1,
+//   so (0, 0, -1) is codes (0, 0) here, (2^b - 1, 2^b - 1) there); then n_xy * 0.5 + 0.5.
+//   pack_24bit_normal_and_flags, crates/bevy_pbr/src/deferred/pbr_deferred_types.wgsl:39-43:
+//   u32(saturate(u) * 4095 + 0.5), ROUNDED (= quantizeUnorm at 12 bits), u in bits 0-11, v in
+//   12-23, flags in 24-31. (An unreleased commit of the PR, 08303b7a, truncated; 84c2913f,
+//   before the merge, added the + 0.5.)
+// Unity (needle-mirror/com.unity.render-pipelines.core 13.0.0 6363fa25, ShaderLibrary/Packing.hlsl):
+//   PackNormalOctQuadEncode (:57-69): n *= rcp(|n.x| + |n.y| + |n.z|) (a multiply by the
+//   reciprocal), t = saturate(-n.z), p = n.xy + (n.xy >= 0 ? t : -t); PackFloat2To888 (:543-552):
+//   (uint2)(saturate(p * 0.5 + 0.5) * 4095.5), TRUNCATED, low bytes in R and G, the high nibbles
+//   in B (u's low, v's high). URP's accurate G-buffer normals (com.unity.render-pipelines.universal
+//   13.0.0 830d6315, ShaderLibrary/UnityGBuffer.hlsl:94-99, PackNormal) use exactly this.
+// HDRP (needle-mirror/com.unity.render-pipelines.high-definition 13.0.0 c667268a,
+//   Runtime/Material/NormalBuffer.hlsl:27-33, EncodeIntoNormalBuffer): first
+//   n.z = CopySign(max(1/1024, |n.z|), n.z) (core Common.hlsl:697-702: -0 counts as +), n not
+//   renormalised, then Unity's encoding: normals within 1/1024 of the equator move off it, e.g.
+//   (0, 1, 0) is (2047, 4093) here and (2047, 4095) in URP's.
+// Error (angle, mean / max, 12 bits, 300000 random normals; engine_encodings_test): Bevy (rounding)
+// 0.021 / 0.058 deg, as normal_octahedral; Unity (truncation: up to a whole step in each of u, v)
+// 0.029 / 0.105; HDRP as Unity, and max 0.113 within 1/1024 of the equator (the clamp's own shift
+// of up to 1/1024 rad, partly cancelled).
+vec2 octEncodeBevy(vec3 n) {
+    precise float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    precise float x = n.x / l1;
+    precise float y = n.y / l1;
+    precise float z = n.z / l1;
+    float sx = x > 0.0 ? 1.0 : -1.0;
+    float sy = y > 0.0 ? 1.0 : -1.0;
+    precise vec2 wrap = vec2((1.0 - abs(y)) * sx, (1.0 - abs(x)) * sy);
+    return z >= 0.0 ? vec2(x, y) : wrap;
+}
+
+uvec2 encodeNormalOctahedralBevy(vec3 n, uint bits) {
+    vec2 p = octEncodeBevy(n);
+    precise float ux = p.x * 0.5 + 0.5;
+    precise float uy = p.y * 0.5 + 0.5;
+    return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
+}
+
+vec2 octEncodeUnity(vec3 n) {
+    precise float r = 1.0 / (abs(n.x) + abs(n.y) + abs(n.z));
+    precise float x = n.x * r;
+    precise float y = n.y * r;
+    precise float z = n.z * r;
+    precise float t = clamp(-z, 0.0, 1.0);
+    precise vec2 p = vec2(x + (x >= 0.0 ? t : -t), y + (y >= 0.0 ? t : -t));
+    return p;
+}
+
+uvec2 encodeNormalOctahedralUnity(vec3 n, uint bits) {
+    vec2 p = octEncodeUnity(n);
+    precise float s = float((1u << bits) - 1u) + 0.5;
+    precise float ux = clamp(p.x * 0.5 + 0.5, 0.0, 1.0);
+    precise float uy = clamp(p.y * 0.5 + 0.5, 0.0, 1.0);
+    precise float qx = floor(ux * s);
+    precise float qy = floor(uy * s);
+    return min(uvec2(uint(qx), uint(qy)), uvec2((1u << bits) - 1u));
+}
+
+uvec2 encodeNormalOctahedralHdrp(vec3 n, uint bits) {
+    float az = max(1.0 / 1024.0, abs(n.z));
+    float z = n.z >= 0.0 ? az : -az;
+    return encodeNormalOctahedralUnity(vec3(n.x, n.y, z), bits);
+}
+
+vec3 decodeNormalOctahedralUnorm(uvec2 code, uint bits) {
     vec2 u = vec2(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits));
     return normalize(octDecode(u * 2.0 - 1.0));
 }

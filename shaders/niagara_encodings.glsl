@@ -71,8 +71,19 @@ float gradientNoise(ivec2 pixel) {
     return r;
 }
 
+// niagara's encodeOct (math.h:52-58): a multiply by the reciprocal of |n|_1.
+vec2 octEncodeNiagara(vec3 n) {
+    precise float r = 1.0 / (abs(n.x) + abs(n.y) + abs(n.z));
+    precise float px = n.x * r;
+    precise float py = n.y * r;
+    float sx = n.x >= 0.0 ? 1.0 : -1.0;
+    float sy = n.y >= 0.0 ? 1.0 : -1.0;
+    precise vec2 folded = vec2((1.0 - abs(py)) * sx, (1.0 - abs(px)) * sy);
+    return n.z <= 0.0 ? folded : vec2(px, py);
+}
+
 uvec2 encodeNormalOctahedralDithered(vec3 n, uint bits, ivec2 pixel) {
-    vec2 p = octEncode(n);
+    vec2 p = octEncodeNiagara(n);
     precise float s = float((1u << bits) - 1u);
     precise float d = (gradientNoise(pixel) * 2.0 - 1.0) * (0.5 / s);
     precise float ux = p.x * 0.5 + 0.5 + d;

@@ -31,8 +31,14 @@ float dequantizeUnorm(uint code, uint bits) {
 // [0, 2^bits - 2]; bits 2..16. The codes are spread over 2^bits - 2 steps, so that the neutral
 // chroma 0.5 has a code of its own, the midpoint 2^(bits-1) - 1 (127 at 8 bits), and decodes to
 // exactly 0.5: grey (and every metal's diffuse colour, 0) reads back without a tint. The top code
-// 2^bits - 1 is unused (it decodes to just above 1). This is CryEngine's MIDPOINT_8_BIT =
-// 127/255 (its DecodeColorYCC: chroma = code / MIDPOINT_8_BIT - 1, i.e. 2 Cb in [-1, 1]).
+// 2^bits - 1 is unused (it decodes to just above 1). The midpoint 127 is CryEngine's
+// MIDPOINT_8_BIT = 127/255, but not its range: CryEngine V (CRYTEK/CRYENGINE @232227c5
+// Engine/Shaders/HWScripts/CryFX/CommonMath.cfi:4,138-163) stores Cb * MIDPOINT_8_BIT +
+// MIDPOINT_8_BIT, Cb in [-0.5, 0.5], i.e. 127 (1 + Cb) / 255: codes 63.5 .. 190.5, about half the
+// chroma codes used here, and its DecodeColorYCC (value / MIDPOINT_8_BIT - 1) gives back Cb.
+// CryEngine V is a later engine than Crysis 3, whose code is not public: the crysis3 and ryse
+// rows follow the talk (Sousa et al., GDC 2013), which names no quantiser; spreading Cb + 0.5
+// over 2^bits - 2 steps is gbufferlab's choice.
 // quantizeUnorm's 0.5 falls between codes 127 and 128 and rounds to 128: +0.002 of chroma.
 // Error: |dequantizeChroma(code) - x| <= (0.5 + 2^(bits-24)) / (2^bits - 2).
 uint quantizeChroma(float x, uint bits) {

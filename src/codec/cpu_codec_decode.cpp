@@ -201,6 +201,11 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
             map1(n, c1, y, [](uint c) { return decodeGamma22(c); });
             map1(n, c2, z, [](uint c) { return decodeGamma22(c); });
             return;
+        case Codec::Srgb8FastHdrp:
+            map1(n, c0, x, [](uint c) { return decodeSrgb8FastHdrp(c); });
+            map1(n, c1, y, [](uint c) { return decodeSrgb8FastHdrp(c); });
+            map1(n, c2, z, [](uint c) { return decodeSrgb8FastHdrp(c); });
+            return;
         case Codec::Float111110:
             map1(n, c0, x, [](uint c) { return decodeFloat11(c); });
             map1(n, c1, y, [](uint c) { return decodeFloat11(c); });
@@ -230,8 +235,9 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
         case Codec::NormalOctahedralDithered:
         case Codec::NormalOctahedralBevy:
         case Codec::NormalOctahedralUnity:
+        case Codec::NormalOctahedralHdrp:
             map3(n, c0, c1, c1, x, y, z,
-                 [bits](uint a, uint b1, uint) { return decodeNormalOctahedralTrunc(uvec2(a, b1), bits); });
+                 [bits](uint a, uint b1, uint) { return decodeNormalOctahedralUnorm(uvec2(a, b1), bits); });
             return;
         case Codec::NormalXyFloat16:
             map3(n, c0, c1, c1, x, y, z, [](uint a, uint b1, uint) { return decodeNormalXyFloat16(uvec2(a, b1)); });

@@ -358,6 +358,11 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
             srgb8Row(n, yv, c1, gamma22EncodeTable());
             srgb8Row(n, z, c2, gamma22EncodeTable());
             return;
+        case Codec::Srgb8FastHdrp:
+            map1(n, x, c0, [](float v) { return encodeSrgb8FastHdrp(v); });
+            map1(n, yv, c1, [](float v) { return encodeSrgb8FastHdrp(v); });
+            map1(n, z, c2, [](float v) { return encodeSrgb8FastHdrp(v); });
+            return;
         case Codec::Float111110:
             map1(n, x, c0, [](float v) { return encodeFloat11Fast(v); });
             map1(n, yv, c1, [](float v) { return encodeFloat11Fast(v); });
@@ -375,10 +380,13 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
             return;
         }
         case Codec::NormalOctahedralBevy:
-            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralTrunc(v, bits, 0.0f); });
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralBevy(v, bits); });
             return;
         case Codec::NormalOctahedralUnity:
-            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralTrunc(v, bits, 0.5f); });
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralUnity(v, bits); });
+            return;
+        case Codec::NormalOctahedralHdrp:
+            map3to2(n, x, yv, z, c0, c1, [bits](vec3 v, int) { return encodeNormalOctahedralHdrp(v, bits); });
             return;
         case Codec::NormalXyFloat16:
             map3to2(n, x, yv, z, c0, c1, [](vec3 v, int) { return encodeNormalXyFloat16(v); });

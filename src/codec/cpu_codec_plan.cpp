@@ -48,6 +48,8 @@ Codec resolveCodec(const std::string& e) {
         {"float11_11_10", Codec::Float111110},
         {"normal_octahedral_bevy", Codec::NormalOctahedralBevy},
         {"normal_octahedral_unity", Codec::NormalOctahedralUnity},
+        {"normal_octahedral_hdrp", Codec::NormalOctahedralHdrp},
+        {"srgb8_fast_hdrp", Codec::Srgb8FastHdrp},
         {"normal_xy_float16", Codec::NormalXyFloat16},
         {"emissive_albedo_ratio", Codec::EmissiveAlbedoRatio},
         {"normal_octahedral_dithered", Codec::NormalOctahedralDithered},
@@ -68,6 +70,7 @@ size_t codeCount(Codec c) {
         case Codec::NormalBestFit:
         case Codec::NormalXyZSign:
         case Codec::Gamma22:
+        case Codec::Srgb8FastHdrp:
         case Codec::Float111110: return 3;
         case Codec::Rgb9e5: return 4;
         case Codec::Luma:
@@ -80,6 +83,7 @@ size_t codeCount(Codec c) {
         case Codec::NormalOctahedralPrecise:
         case Codec::NormalOctahedralBevy:
         case Codec::NormalOctahedralUnity:
+        case Codec::NormalOctahedralHdrp:
         case Codec::NormalXyFloat16:
         case Codec::NormalOctahedralDithered: return 2;
         default: return 0;

@@ -58,6 +58,8 @@ enum class Codec : uint8_t {
     NormalXyFloat16,
     EmissiveAlbedoRatio,       // reads base colour (FieldPlan::reads)
     NormalOctahedralDithered,  // reads the pixel coordinate (gradient noise)
+    NormalOctahedralHdrp,
+    Srgb8FastHdrp,
 };
 
 // Per component of the attribute (one code each) or the whole vec3 (Color and Normal kinds).

@@ -135,8 +135,8 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
     const std::string b = ulit(uint64_t(f.bitsOfCode(0)));
     const std::string v = wholeExpr(f);
     std::string fwd, inv;
-    if (e == "srgb8" || e == "gamma22") {
-        const std::string fn = e == "srgb8" ? "encodeSrgb8(" : "encodeGamma22(";
+    if (e == "srgb8" || e == "gamma22" || e == "srgb8_fast_hdrp") {
+        const std::string fn = e == "srgb8" ? "encodeSrgb8(" : e == "gamma22" ? "encodeGamma22(" : "encodeSrgb8FastHdrp(";
         for (int i = 0; i < 3; ++i) codes.push_back(fn + v + "." + kComp[i] + ")");
     } else if (e == "float11_11_10") {
         codes.push_back("encodeFloat11(" + v + ".x)");
@@ -145,9 +145,11 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
     } else if (e == "rgb9e5") {
         o << ind << "uvec4 " << id << " = encodeRgb9e5(" << v << ");\n";
         for (int i = 0; i < 4; ++i) codes.push_back(id + "." + kComp[i]);
-    } else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity") {
-        o << ind << "uvec2 " << id << " = encodeNormalOctahedralTrunc(" << v << ", " << b << ", "
-          << (e == "normal_octahedral_bevy" ? "0.0" : "0.5") << ");\n";
+    } else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp") {
+        const std::string fn = e == "normal_octahedral_bevy"    ? "encodeNormalOctahedralBevy("
+                               : e == "normal_octahedral_unity" ? "encodeNormalOctahedralUnity("
+                                                                : "encodeNormalOctahedralHdrp(";
+        o << ind << "uvec2 " << id << " = " << fn << v << ", " << b << ");\n";
         for (int i = 0; i < 2; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "normal_xy_float16") {
         o << ind << "uvec2 " << id << " = encodeNormalXyFloat16(" << v << ");\n";
@@ -205,13 +207,17 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
     if (e == "srgb8") return "vec3(decodeSrgb8(" + c[0] + "), decodeSrgb8(" + c[1] + "), decodeSrgb8(" + c[2] + "))";
     if (e == "gamma22")
         return "vec3(decodeGamma22(" + c[0] + "), decodeGamma22(" + c[1] + "), decodeGamma22(" + c[2] + "))";
+    if (e == "srgb8_fast_hdrp")
+        return "vec3(decodeSrgb8FastHdrp(" + c[0] + "), decodeSrgb8FastHdrp(" + c[1] + "), decodeSrgb8FastHdrp(" + c[2] +
+               "))";
     if (e == "float11_11_10")
         return "vec3(decodeFloat11(" + c[0] + "), decodeFloat11(" + c[1] + "), decodeFloat10(" + c[2] + "))";
     if (e == "rgb9e5") return "decodeRgb9e5(uvec4(" + c[0] + ", " + c[1] + ", " + c[2] + ", " + c[3] + "))";
     if (e == "emissive_albedo_ratio")
         return "decodeEmissiveAlbedoRatio(" + c[0] + ", " + b + ", " + readsExpr(encodingOf(f)) + ")";
-    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_dithered")
-        return "decodeNormalOctahedralTrunc(uvec2(" + c[0] + ", " + c[1] + "), " + b + ")";
+    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp" ||
+        e == "normal_octahedral_dithered")
+        return "decodeNormalOctahedralUnorm(uvec2(" + c[0] + ", " + c[1] + "), " + b + ")";
     if (e == "normal_xy_float16") return "decodeNormalXyFloat16(uvec2(" + c[0] + ", " + c[1] + "))";
     if (e == "luma") return "vec3(dequantizeUnorm(" + c[0] + ", " + b + "))";
     if (colorTransform(e, fwd, inv))

@@ -19,6 +19,8 @@ const std::vector<float>& codecTableFloats() {
         put(kCodecTableCryGlossEncode, std::begin(kCryGlossEncodeThresholds), std::end(kCryGlossEncodeThresholds));
         put(kCodecTableGamma22Decode, std::begin(kGamma22Decode), std::end(kGamma22Decode));
         put(kCodecTableGamma22Encode, std::begin(kGamma22EncodeThresholds), std::end(kGamma22EncodeThresholds));
+        put(kCodecTableSrgbFastHdrpEncode, std::begin(kSrgbFastHdrpEncodeThresholds),
+            std::end(kSrgbFastHdrpEncodeThresholds));
         return f;
     }();
     return floats;

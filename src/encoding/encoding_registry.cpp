@@ -69,6 +69,12 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"gamma22", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
                  "gamma 2.2 (not sRGB): code = round(255 x^(1/2.2)), exact via 255 thresholds; decodes code^2.2",
                  "Bevy 0.12+ deferred G-buffer (pbr_deferred_functions.wgsl: pow(base_color, 1/2.2) in pack4x8unorm)"});
+    v.push_back({"srgb8_fast_hdrp", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
+                 "HDRP's fast sRGB for fresnel0 in a UNORM target: code = round(255 saturate(1.055 |x|^(1/2.4) - "
+                 "0.055)) (no linear toe), exact via 255 thresholds; decoded with HDRP's cubic x (x (0.305306011 x + "
+                 "0.682171111) + 0.012522878)",
+                 "Unity HDRP Lit.hlsl EncodeIntoGBuffer (GBuffer2.rgb = FastLinearToSRGB(fresnel0)); core Color.hlsl "
+                 "FastLinearToSRGB, FastSRGBToLinear (HDRP / core 13.0.0 c667268a / 6363fa25)"});
     v.push_back({"float11_11_10", K::Color, 2, 11, 11, 11, 10, false, "[0, 65024]^3 (HDR)",
                  "B10G11R11's three unsigned floats as one colour: r, g float11 (5e6m), b float10 (5e5m)",
                  "Vulkan spec, 'Unsigned 11-Bit / 10-Bit Floating-Point Numbers'; HDRP GBuffer3 (Lit.hlsl)"});
@@ -98,11 +104,21 @@ std::vector<EncodingInfo> makeRegistry() {
                  "octahedral, best of the 4 floor/ceil neighbours by decoded dot product",
                  "Cigolle et al., JCGT 3(2) 2014, 'oct*P' precise variant"});
     v.push_back({"normal_octahedral_bevy", K::Normal, 2, 12, 2, 16, 0, false, "unit vector",
-                 "octahedral, unorm of p*0.5+0.5 truncated: floor(u * (2^b - 1)) (Bevy's oct24 normal)",
-                 "Bevy pbr_deferred_types.wgsl (pack_24bit_nor_and_flags); Cigolle et al., JCGT 2014"});
+                 "octahedral as Bevy's octahedral_encode (n / |n|_1; fold for z < 0 with sign(0) = -1), unorm of "
+                 "p*0.5+0.5 rounded: u32(saturate(u) * (2^b - 1) + 0.5) (Bevy's oct24 normal)",
+                 "Bevy 0.12+ (bevyengine/bevy v0.16.0 e9418b38): crates/bevy_pbr/src/deferred/"
+                 "pbr_deferred_types.wgsl:39-43 (pack_24bit_normal_and_flags), crates/bevy_pbr/src/render/"
+                 "utils.wgsl:48-53 (octahedral_encode); Cigolle et al., JCGT 2014"});
     v.push_back({"normal_octahedral_unity", K::Normal, 2, 12, 2, 16, 0, false, "unit vector",
-                 "octahedral, unorm of p*0.5+0.5 truncated: floor(u * (2^b - 0.5)), decoded code / (2^b - 1)",
-                 "Unity core Packing.hlsl PackFloat2To888 (HDRP normal buffer, URP accurate G-buffer normals)"});
+                 "octahedral as Unity's PackNormalOctQuadEncode (n * rcp(|n|_1), p = n.xy +- saturate(-n.z)), "
+                 "unorm of saturate(p*0.5+0.5) truncated: uint(u * (2^b - 0.5)), decoded code / (2^b - 1)",
+                 "Unity core Packing.hlsl PackNormalOctQuadEncode, PackFloat2To888 (URP accurate G-buffer "
+                 "normals, UnityGBuffer.hlsl PackNormal; core 13.0.0 6363fa25 Packing.hlsl:57-69, 543-552)"});
+    v.push_back({"normal_octahedral_hdrp", K::Normal, 2, 12, 2, 16, 0, false, "unit vector",
+                 "normal_octahedral_unity after HDRP's seam clamp: |n.z| raised to at least 1/1024, its sign kept "
+                 "(-0 as +), not renormalised",
+                 "Unity HDRP NormalBuffer.hlsl EncodeIntoNormalBuffer (HDRP 13.0.0 c667268a "
+                 "Runtime/Material/NormalBuffer.hlsl:27-33); core Packing.hlsl PackNormalOctQuadEncode, PackFloat2To888"});
     v.push_back({"normal_xy_float16", K::Normal, 2, 16, 16, 16, 0, false, "unit vector, view space",
                  "x, y as IEEE half floats; z = +sqrt(1 - x^2 - y^2) (facing the camera), no sign bit",
                  "Valient, 'Deferred Rendering in Killzone 2', Develop Conference 2007 (RT1: FP16 normal X, Y)"});
@@ -115,9 +131,11 @@ std::vector<EncodingInfo> makeRegistry() {
     ratio.reads = "base_color";
     v.push_back(ratio);
     EncodingInfo dither{"normal_octahedral_dithered", K::Normal, 2, 10, 2, 16, 0, false, "unit vector",
-                        "octahedral, unorm of p*0.5+0.5 plus interleaved gradient noise of the pixel "
-                        "* 0.5 / (2^b - 1) before rounding (niagara's deband); error up to one step",
-                        "zeux/niagara mesh.frag.glsl (gbuffer[1].rg); Jimenez, SIGGRAPH 2014 (gradient noise)"};
+                        "octahedral as niagara's encodeOct (n.xy * (1 / |n|_1)), unorm of p*0.5+0.5 plus "
+                        "interleaved gradient noise of the pixel * 0.5 / (2^b - 1) before rounding (niagara's "
+                        "deband); error up to one step",
+                        "zeux/niagara @95f289b7 src/shaders/mesh.frag.glsl:60,86 (gbuffer[1].rg), math.h:52-58 "
+                        "(encodeOct), 99-102 (gradientNoise); Jimenez, SIGGRAPH 2014 (gradient noise)"};
     dither.dithered = true;
     v.push_back(dither);
     return v;

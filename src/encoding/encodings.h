@@ -84,8 +84,14 @@ inline float dequantizeUnorm(uint code, uint bits) {
 // [0, 2^bits - 2]; bits 2..16. The codes are spread over 2^bits - 2 steps, so that the neutral
 // chroma 0.5 has a code of its own, the midpoint 2^(bits-1) - 1 (127 at 8 bits), and decodes to
 // exactly 0.5: grey (and every metal's diffuse colour, 0) reads back without a tint. The top code
-// 2^bits - 1 is unused (it decodes to just above 1). This is CryEngine's MIDPOINT_8_BIT =
-// 127/255 (its DecodeColorYCC: chroma = code / MIDPOINT_8_BIT - 1, i.e. 2 Cb in [-1, 1]).
+// 2^bits - 1 is unused (it decodes to just above 1). The midpoint 127 is CryEngine's
+// MIDPOINT_8_BIT = 127/255, but not its range: CryEngine V (CRYTEK/CRYENGINE @232227c5
+// Engine/Shaders/HWScripts/CryFX/CommonMath.cfi:4,138-163) stores Cb * MIDPOINT_8_BIT +
+// MIDPOINT_8_BIT, Cb in [-0.5, 0.5], i.e. 127 (1 + Cb) / 255: codes 63.5 .. 190.5, about half the
+// chroma codes used here, and its DecodeColorYCC (value / MIDPOINT_8_BIT - 1) gives back Cb.
+// CryEngine V is a later engine than Crysis 3, whose code is not public: the crysis3 and ryse
+// rows follow the talk (Sousa et al., GDC 2013), which names no quantiser; spreading Cb + 0.5
+// over 2^bits - 2 steps is gbufferlab's choice.
 // quantizeUnorm's 0.5 falls between codes 127 and 128 and rounds to 128: +0.002 of chroma.
 // Error: |dequantizeChroma(code) - x| <= (0.5 + 2^(bits-24)) / (2^bits - 2).
 inline uint quantizeChroma(float x, uint bits) {
@@ -556,17 +562,83 @@ inline uint encodeGamma22(float x) {
 
 inline float decodeGamma22(uint code) { return kGamma22Decode[code & 255u]; }
 
-// Octahedral, unorm of p * 0.5 + 0.5 truncated with scale 2^bits - 1 + scaleAdd (Bevy: 0,
-// Unity's PackFloat2To888: 0.5), decoded as code / (2^bits - 1).
-inline uvec2 encodeNormalOctahedralTrunc(vec3 n, uint bits, float scaleAdd) {
-    vec2 p = octEncode(n);
-    float s = float((1u << bits) - 1u) + scaleAdd;
-    vec2 u = clamp(vec2(p.x * 0.5f + 0.5f, p.y * 0.5f + 0.5f), vec2(0.0f), vec2(1.0f));
-    vec2 q = floor(u * s);
-    return min(uvec2(uint(q.x), uint(q.y)), uvec2((1u << bits) - 1u));
+// sRGB 8-bit as HDRP writes fresnel0 into its UNORM GBuffer2: the power segment without the linear
+// toe, decoded with HDRP's cubic (the GLSL twin carries the sources). Table based like srgb8: the
+// code = number of thresholds <= |x| (tables in encodings.cpp).
+extern const float kSrgbFastHdrpEncodeThresholds[255];
+inline uint encodeSrgb8FastHdrp(float x) {
+    float a = abs(x);
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kSrgbFastHdrpEncodeThresholds[mid] <= a) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
 }
 
-inline vec3 decodeNormalOctahedralTrunc(uvec2 code, uint bits) {
+inline float decodeSrgb8FastHdrp(uint code) {
+    float c = dequantizeUnorm(code & 255u, 8u);
+    float l = c * (c * (c * 0.305306011f + 0.682171111f) + 0.012522878f);
+    return l;
+}
+
+// Octahedral normals as two unorm codes of u = p * 0.5 + 0.5, each engine's arithmetic written out
+// (float only, in its order), decoded by decodeNormalOctahedralUnorm. Sources and error bounds:
+// shaders/engine_encodings.glsl.
+
+// octEncodeBevy: Bevy's octahedral_encode, without its final * 0.5 + 0.5.
+inline vec2 octEncodeBevy(vec3 n) {
+    float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    float x = n.x / l1;
+    float y = n.y / l1;
+    float z = n.z / l1;
+    float sx = x > 0.0f ? 1.0f : -1.0f;
+    float sy = y > 0.0f ? 1.0f : -1.0f;
+    vec2 wrap = vec2((1.0f - abs(y)) * sx, (1.0f - abs(x)) * sy);
+    return z >= 0.0f ? vec2(x, y) : wrap;
+}
+
+// encodeNormalOctahedralBevy: octEncodeBevy, then u32(saturate(u) * (2^bits - 1) + 0.5).
+inline uvec2 encodeNormalOctahedralBevy(vec3 n, uint bits) {
+    vec2 p = octEncodeBevy(n);
+    float ux = p.x * 0.5f + 0.5f;
+    float uy = p.y * 0.5f + 0.5f;
+    return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
+}
+
+// octEncodeUnity: Unity's PackNormalOctQuadEncode.
+inline vec2 octEncodeUnity(vec3 n) {
+    float r = 1.0f / (abs(n.x) + abs(n.y) + abs(n.z));
+    float x = n.x * r;
+    float y = n.y * r;
+    float z = n.z * r;
+    float t = clamp(-z, 0.0f, 1.0f);
+    return vec2(x + (x >= 0.0f ? t : -t), y + (y >= 0.0f ? t : -t));
+}
+
+// encodeNormalOctahedralUnity: octEncodeUnity, saturate(p * 0.5 + 0.5), truncated with the scale
+// 2^bits - 0.5 (PackFloat2To888's 4095.5 at 12 bits).
+inline uvec2 encodeNormalOctahedralUnity(vec3 n, uint bits) {
+    vec2 p = octEncodeUnity(n);
+    float s = float((1u << bits) - 1u) + 0.5f;
+    float ux = clamp(p.x * 0.5f + 0.5f, 0.0f, 1.0f);
+    float uy = clamp(p.y * 0.5f + 0.5f, 0.0f, 1.0f);
+    float qx = floor(ux * s);
+    float qy = floor(uy * s);
+    return min(uvec2(uint(qx), uint(qy)), uvec2((1u << bits) - 1u));
+}
+
+// encodeNormalOctahedralHdrp: HDRP's normal buffer, |n.z| raised to at least 1/1024 (its sign
+// kept, -0 counting as +) before encodeNormalOctahedralUnity; n is not renormalised.
+inline uvec2 encodeNormalOctahedralHdrp(vec3 n, uint bits) {
+    float az = max(1.0f / 1024.0f, abs(n.z));
+    float z = n.z >= 0.0f ? az : -az;
+    return encodeNormalOctahedralUnity(vec3(n.x, n.y, z), bits);
+}
+
+// decodeNormalOctahedralUnorm: code / (2^bits - 1) * 2 - 1, octahedral unfold, normalise.
+inline vec3 decodeNormalOctahedralUnorm(uvec2 code, uint bits) {
     vec2 u = vec2(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits));
     return normalize(octDecode(u * 2.0f - 1.0f));
 }

@@ -78,7 +78,7 @@ inline vec3 decodeEmissiveAlbedoRatio(uint code, uint bits, vec3 albedo) {
 }
 
 // Jimenez's interleaved gradient noise at the pixel's centre (gl_FragCoord.xy = pixel + 0.5, as
-// niagara's mesh.frag.glsl calls gradientNoise(gl_FragCoord.xy)), in [0, 1).
+// niagara's mesh.frag.glsl:60 calls gradientNoise(gl_FragCoord.xy); math.h:99-102), in [0, 1).
 inline float gradientNoise(ivec2 pixel) {
     float x = float(pixel.x) + 0.5f;
     float y = float(pixel.y) + 0.5f;
@@ -88,13 +88,29 @@ inline float gradientNoise(ivec2 pixel) {
     return g - floor(g);
 }
 
-// normal_octahedral_dithered (niagara mesh.frag.glsl: encodeOct(nrm) * 0.5 + 0.5 + deband *
-// (0.5 / 1023) into A2B10G10R10_UNORM's r, g). Decoded as normal_octahedral_bevy / _unity are:
-// decodeNormalOctahedralTrunc (code / (2^bits - 1) * 2 - 1, octahedral unfold, normalise), the
-// same direction as niagara's decodeOct (its Stubbesaurus unfold is the same fold written as
-// v.xy -= sign(v.xy) * max(-v.z, 0)).
+// octEncodeNiagara: niagara's encodeOct (math.h:52-58): p = n.xy * (1 / |n|_1) -- a multiply by
+// the reciprocal, where octEncode divides, so a last-ulp difference can move a code (about 1 in
+// 10^5 normals at 10 bits) -- folded for n.z <= 0 to (1 - |p.y|, 1 - |p.x|) with the signs of
+// n.x, n.y (+1 for >= 0, -0 included), as octEncode.
+inline vec2 octEncodeNiagara(vec3 n) {
+    float r = 1.0f / (abs(n.x) + abs(n.y) + abs(n.z));
+    float px = n.x * r;
+    float py = n.y * r;
+    float sx = n.x >= 0.0f ? 1.0f : -1.0f;
+    float sy = n.y >= 0.0f ? 1.0f : -1.0f;
+    vec2 folded = vec2((1.0f - abs(py)) * sx, (1.0f - abs(px)) * sy);
+    return n.z <= 0.0f ? folded : vec2(px, py);
+}
+
+// normal_octahedral_dithered (niagara mesh.frag.glsl:60,86: encodeOct(nrm) * 0.5 + 0.5 + deband *
+// (0.5 / 1023) into A2B10G10R10_UNORM's r, g, deband = gradientNoise(gl_FragCoord.xy) * 2 - 1).
+// Decoded as normal_octahedral_bevy / _unity are: decodeNormalOctahedralUnorm (code / (2^bits - 1)
+// * 2 - 1, octahedral unfold, normalise), the same direction as niagara's decodeOct (math.h:60-67:
+// its Stubbesaurus unfold is the same fold written as v.xy -= sign(v.xy) * max(-v.z, 0)).
+// The UNORM conversion is modelled as quantizeUnorm (round to nearest, ties up: Vulkan leaves
+// the tie open).
 inline uvec2 encodeNormalOctahedralDithered(vec3 n, uint bits, ivec2 pixel) {
-    vec2 p = octEncode(n);
+    vec2 p = octEncodeNiagara(n);
     float s = float((1u << bits) - 1u);
     float d = (gradientNoise(pixel) * 2.0f - 1.0f) * (0.5f / s);
     float ux = p.x * 0.5f + 0.5f + d;

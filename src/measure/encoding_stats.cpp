@@ -125,11 +125,13 @@ glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n, glm::ive
     if (info.name == "normal_octahedral_precise")
         return enc::decodeNormalOctahedralPrecise(enc::encodeNormalOctahedralPrecise(n, b), b);
     if (info.name == "normal_octahedral_bevy")
-        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralTrunc(n, b, 0.0f), b);
+        return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralBevy(n, b), b);
     if (info.name == "normal_octahedral_unity")
-        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralTrunc(n, b, 0.5f), b);
+        return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralUnity(n, b), b);
+    if (info.name == "normal_octahedral_hdrp")
+        return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralHdrp(n, b), b);
     if (info.name == "normal_octahedral_dithered")
-        return enc::decodeNormalOctahedralTrunc(enc::encodeNormalOctahedralDithered(n, b, pixel), b);
+        return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralDithered(n, b, pixel), b);
     // No sign bit: over the whole sphere, the half facing away (z < 0) comes back mirrored.
     if (info.name == "normal_xy_float16") return enc::decodeNormalXyFloat16(enc::encodeNormalXyFloat16(n));
     throwUserError("encoding '" + info.name + "' has no normal round trip");
@@ -155,6 +157,9 @@ glm::vec3 roundTripColor(std::string_view name, int bits, glm::vec3 c) {
     if (info.name == "gamma22")
         return vec3(enc::decodeGamma22(enc::encodeGamma22(c.x)), enc::decodeGamma22(enc::encodeGamma22(c.y)),
                     enc::decodeGamma22(enc::encodeGamma22(c.z)));
+    if (info.name == "srgb8_fast_hdrp")
+        return vec3(enc::decodeSrgb8FastHdrp(enc::encodeSrgb8FastHdrp(c.x)), enc::decodeSrgb8FastHdrp(enc::encodeSrgb8FastHdrp(c.y)),
+                    enc::decodeSrgb8FastHdrp(enc::encodeSrgb8FastHdrp(c.z)));
     if (info.name == "float11_11_10")
         return vec3(enc::decodeFloat11(enc::encodeFloat11(c.x)), enc::decodeFloat11(enc::encodeFloat11(c.y)),
                     enc::decodeFloat10(enc::encodeFloat10(c.z)));

@@ -142,13 +142,17 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
         c = {encodeSrgb8(v.x), encodeSrgb8(v.y), encodeSrgb8(v.z)};
     } else if (e == "gamma22") {
         c = {encodeGamma22(v.x), encodeGamma22(v.y), encodeGamma22(v.z)};
+    } else if (e == "srgb8_fast_hdrp") {
+        c = {encodeSrgb8FastHdrp(v.x), encodeSrgb8FastHdrp(v.y), encodeSrgb8FastHdrp(v.z)};
     } else if (e == "float11_11_10") {
         c = {encodeFloat11(v.x), encodeFloat11(v.y), encodeFloat10(v.z)};
     } else if (e == "rgb9e5") {
         const uvec4 u = encodeRgb9e5(v);
         c = {u.x, u.y, u.z, u.w};
-    } else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity") {
-        const uvec2 u = encodeNormalOctahedralTrunc(v, b, e == "normal_octahedral_bevy" ? 0.0f : 0.5f);
+    } else if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp") {
+        const uvec2 u = e == "normal_octahedral_bevy"    ? encodeNormalOctahedralBevy(v, b)
+                        : e == "normal_octahedral_unity" ? encodeNormalOctahedralUnity(v, b)
+                                                         : encodeNormalOctahedralHdrp(v, b);
         c = {u.x, u.y};
     } else if (e == "normal_xy_float16") {
         const uvec2 u = encodeNormalXyFloat16(v);
@@ -195,10 +199,13 @@ vec3 decodeField(const Field& f, const std::vector<uint>& c, const Surface& s) {
     ColorFn fwd = nullptr, inv = nullptr;
     if (e == "srgb8") return vec3(decodeSrgb8(c[0]), decodeSrgb8(c[1]), decodeSrgb8(c[2]));
     if (e == "gamma22") return vec3(decodeGamma22(c[0]), decodeGamma22(c[1]), decodeGamma22(c[2]));
+    if (e == "srgb8_fast_hdrp")
+        return vec3(decodeSrgb8FastHdrp(c[0]), decodeSrgb8FastHdrp(c[1]), decodeSrgb8FastHdrp(c[2]));
     if (e == "float11_11_10") return vec3(decodeFloat11(c[0]), decodeFloat11(c[1]), decodeFloat10(c[2]));
     if (e == "rgb9e5") return decodeRgb9e5(uvec4(c[0], c[1], c[2], c[3]));
-    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_dithered")
-        return decodeNormalOctahedralTrunc(uvec2(c[0], c[1]), b);
+    if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp" ||
+        e == "normal_octahedral_dithered")
+        return decodeNormalOctahedralUnorm(uvec2(c[0], c[1]), b);
     if (e == "emissive_albedo_ratio") return decodeEmissiveAlbedoRatio(c[0], b, s.baseColor);
     if (e == "normal_xy_float16") return decodeNormalXyFloat16(uvec2(c[0], c[1]));
     if (e == "luma") return vec3(dequantizeUnorm(c[0], b));

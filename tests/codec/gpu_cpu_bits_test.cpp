@@ -238,20 +238,12 @@ bool near(float a, float b) {
     return std::abs(a - b) <= 4.0f * std::numeric_limits<float>::epsilon() * std::max(1.0f, std::abs(b));
 }
 
-class GpuCpuBits : public test::VulkanTest {};
-
-TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
-    VulkanContext& c = ctx();
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    const std::vector<std::string> names = listLayoutNames(dir);
-    ASSERT_GE(names.size(), 7u);
-    uint32_t seed = 1;
-    for (const std::string& name : names) {
-        SCOPED_TRACE(name);
-        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
-        if (layout.pipeline == Pipeline::VisibilityBuffer) continue;  // ids, not attributes: render/visibility_test
+// Random Surfaces written by the generated writeGBuffer of `layout` and by the CPU mirror: the
+// words must be equal, and their decodes equal within 4 ulp.
+void checkWordsAndDecodes(VulkanContext& c, const Layout& layout, const std::vector<Surface>& surfaces) {
+    {
+        const std::string& name = layout.name;
         const GBufferWiring w = generateWiring(layout);
-        const std::vector<Surface> surfaces = randomSurfaces(seed++);
         CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
         cpu.covered = coveredMask();  // decode: as gblHasGeometry in decodeSource
         const std::vector<float> packed = packSurfaces(surfaces);
@@ -315,6 +307,70 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
         destroyGBufferPass(c, materialPass);
         destroyBuffer(c, ssbo);
     }
+}
+
+class GpuCpuBits : public test::VulkanTest {};
+
+TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    const std::vector<std::string> names = listLayoutNames(dir);
+    ASSERT_GE(names.size(), 7u);
+    uint32_t seed = 1;
+    for (const std::string& name : names) {
+        SCOPED_TRACE(name);
+        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
+        if (layout.pipeline == Pipeline::VisibilityBuffer) continue;  // ids, not attributes: render/visibility_test
+        checkWordsAndDecodes(ctx(), layout, randomSurfaces(seed++));
+    }
+}
+
+// Engine encodings that no seed layout stores yet, so that their GLSL twins are held to the CPU's
+// words all the same: HDRP's normal buffer (normal_octahedral_hdrp) and fresnel0 (srgb8_fast_hdrp)
+// in HDRP's GBuffer1 and GBuffer2 places (hdrp-lit.toml still names normal_octahedral_unity and srgb8).
+const char* kEngineEncodingsLayout = R"(name = "engine-encodings"
+title = "engine encodings no seed layout stores"
+pipeline = "deferred-shading"
+source = { engine = "Unity HDRP", talk = "unit test", year = 2021 }
+[depth]
+format = "D32_SFLOAT"
+[[target]]
+name = "GBuffer1"
+format = "R8G8B8A8_UNORM"
+field = [
+  { attribute = "normal",    encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"] },
+  { attribute = "roughness", encoding = "unorm", at = "a" },
+]
+[[target]]
+name = "GBuffer2"
+format = "R8G8B8A8_UNORM"
+field = [
+  { attribute = "specular_color", encoding = "srgb8_fast_hdrp", at = ["r", "g", "b"] },
+]
+[fallback]
+base_color = 0.5
+metallic = 0.0
+specular = 0.5
+diffuse_color = "from_base_color"
+occlusion = 1.0
+emissive = 0.0
+[space]
+normal = "world"
+up = "y"
+[clear]
+normal = [0.0, 0.0, 1.0]
+roughness = 1.0
+specular_color = 0.0
+)";
+
+TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
+    const Layout layout = parseLayout(kEngineEncodingsLayout, "engine-encodings.toml");
+    std::vector<Surface> surfaces = randomSurfaces(900);
+    // A quarter of the normals within HDRP's 1/1024 of the equator (its clamp acts), +-0 included.
+    const float zs[] = {0.0f, -0.0f, 1.0f / 1024.0f, -1.0f / 1024.0f, 3e-4f, -3e-4f, 1e-30f, -1e-7f};
+    for (size_t i = 0; i < surfaces.size(); i += 4) surfaces[i].normal.z = zs[(i / 4) % 8];
+    // and a third of the F0 channels below sRGB's linear toe, where HDRP's curve is its own
+    for (size_t i = 1; i < surfaces.size(); i += 3) surfaces[i].specularColor *= 0.004f;
+    checkWordsAndDecodes(ctx(), layout, surfaces);
 }
 
 // Issue 11 item 3: a pixel without geometry holds the layout's [clear] values through its own
@@ -413,6 +469,101 @@ TEST_F(GpuCpuBits, NativeFormatsRenderAndDecodeNearTheBitExactPath) {
         destroyGBufferPass(c, materialPass);
         destroyBuffer(c, ssbo);
     }
+}
+
+// The Forge's packVisBufData, written out here from its source (ConfettiFX/The-Forge @19cf606b,
+// Examples_3/Visibility_Buffer/src/Shaders/Metal/visibilityBuffer_pass.frag.metal; the D3D12
+// visibilityBuffer_pass.frag @36383240 calls it calculateOutputVBID):
+// ((drawId << 23) & 0x7F800000) | (triangleId & 0x007FFFFF), | 1 << 31 for alpha-tested geometry;
+// its shade pass (visibilityBuffer_shade.frag.metal @a36471d0) reads draw = (w >> 23) & 0xFF,
+// triangle = w & 0x7FFFFF, flag = w >> 31.
+uint32_t theForgePackVisBufData(bool opaque, uint32_t drawId, uint32_t triangleId) {
+    const uint32_t packed = ((drawId << 23) & 0x7F800000u) | (triangleId & 0x007FFFFFu);
+    return opaque ? packed : (1u << 31) | packed;
+}
+
+// visibility-32's ids as the generated wiring packs them (shaders/visibility_buffer.glsl,
+// packVisibilityIds, run in a compute shader) against The Forge's packVisBufData, on 2^20 random
+// (draw, triangle, alpha) triples, ids wider than their fields and the fields' edges included
+// (The Forge masks the excess away, and so must gbufferlab), then unpacked as its shade pass does.
+TEST_F(GpuCpuBits, VisibilityIdsEqualTheForgesPackVisBufData) {
+    VulkanContext& c = ctx();
+    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-32.toml");
+    ASSERT_EQ(layout.pipeline, Pipeline::VisibilityBuffer);
+    const GBufferWiring w = generateWiring(layout);
+    constexpr uint32_t kIds = 1u << 20;
+    std::vector<uint32_t> in(size_t(kIds) * 4);
+    std::mt19937 rng(2807);
+    const uint32_t edges[] = {0u, 1u, 254u, 255u, 256u, 511u, 0x7FFFFEu, 0x7FFFFFu, 0x800000u, 0x800001u,
+                              0xFFFFFFu, 0x1000000u, 0x7FFFFFFFu, 0x80000000u, 0xFFFFFFFEu, 0xFFFFFFFFu};
+    for (uint32_t i = 0; i < kIds; ++i) {
+        uint32_t draw = rng(), tri = rng();
+        if (i % 4 == 1) draw &= 0xFFu;      // in range, as a scene's ids are
+        if (i % 4 == 2) tri &= 0x7FFFFFu;
+        if (i < 16u * 16u * 2u) {           // every pair of edges, both flags
+            draw = edges[i % 16];
+            tri = edges[(i / 16) % 16];
+        }
+        in[size_t(i) * 4] = draw;
+        in[size_t(i) * 4 + 1] = tri;
+        in[size_t(i) * 4 + 2] = (i / 512u) % 2u;  // alpha-tested
+        in[size_t(i) * 4 + 3] = 0u;
+    }
+    Buffer input = createBufferWithData(c, in.data(), in.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    Buffer out = createBuffer(c, size_t(kIds) * 4 * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    const std::vector<Binding> set = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    VkDescriptorSetLayout setLayout = createSetLayout(c.device, set, VK_SHADER_STAGE_COMPUTE_BIT);
+    VkPipelineLayout pipelineLayout = createPipelineLayout(c.device, {setLayout}, 0, 0);
+    VkDescriptorPool pool = createPoolFor(c.device, {set});
+    VkDescriptorSet ds = allocateSet(c.device, pool, setLayout);
+    DescriptorWriter()
+        .buffer(ds, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, input.buffer)
+        .buffer(ds, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.buffer)
+        .flush(c.device);
+    const char* source = R"(#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "gbuffer_wiring.glsl"
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0, std430) readonly buffer In { uvec4 ids[]; };
+layout(set = 0, binding = 1, std430) writeonly buffer Out { uvec4 words[]; };
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    uvec4 v = ids[i];
+    uint packed = packVisibilityIds(v.x, v.y, v.z != 0u).x;
+    words[i] = uvec4(packed, unpackVisibilityIds(uvec2(packed, 0u)));
+}
+)";
+    ShaderSource cs{"visibility_ids.comp (test)", source, VK_SHADER_STAGE_COMPUTE_BIT, {}, {{"gbuffer_wiring.glsl", w.glsl}}};
+    VkShaderModule module = createShaderModule(c.device, compileGlsl(cs));
+    VkPipeline pipeline = createComputePipeline(c, pipelineLayout, module);
+    vkDestroyShaderModule(c.device, module, nullptr);
+    c.submitAndWait([&](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, 1, &ds, 0, nullptr);
+        vkCmdDispatch(cmd, kIds / 64, 1, 1);
+        fullBarrier(cmd);
+    });
+    const uint32_t* got = static_cast<const uint32_t*>(out.mapped);
+    size_t mismatches = 0;
+    for (uint32_t i = 0; i < kIds; ++i) {
+        const uint32_t draw = in[size_t(i) * 4], tri = in[size_t(i) * 4 + 1];
+        const bool alpha = in[size_t(i) * 4 + 2] != 0u;
+        const uint32_t want = theForgePackVisBufData(!alpha, draw, tri);
+        const uint32_t* g = got + size_t(i) * 4;
+        // The shade pass's reading of the word: draw, triangle, flag.
+        const bool ok = g[0] == want && g[1] == ((want >> 23) & 0xFFu) && g[2] == (want & 0x7FFFFFu) && g[3] == want >> 31;
+        if (!ok && mismatches++ < 5)
+            ADD_FAILURE() << std::hex << "draw 0x" << draw << " triangle 0x" << tri << " alpha " << alpha << ": gbufferlab 0x"
+                          << g[0] << " (" << g[1] << ", " << g[2] << ", " << g[3] << "), The Forge 0x" << want;
+    }
+    EXPECT_EQ(mismatches, 0u);
+    std::printf("[ ids      ] visibility-32: %u ids packed as packVisBufData, %zu mismatches\n", kIds, mismatches);
+    vkDestroyPipeline(c.device, pipeline, nullptr);
+    vkDestroyPipelineLayout(c.device, pipelineLayout, nullptr);
+    vkDestroyDescriptorPool(c.device, pool, nullptr);
+    vkDestroyDescriptorSetLayout(c.device, setLayout, nullptr);
+    destroyBuffer(c, input);
+    destroyBuffer(c, out);
 }
 
 }  // namespace

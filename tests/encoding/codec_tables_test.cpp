@@ -52,6 +52,7 @@ TEST(CodecTables, OffsetsMatchTheShader) {
         {"SRGB_DECODE", enc::kCodecTableSrgbDecode},          {"SRGB_ENCODE", enc::kCodecTableSrgbEncode},
         {"CRY_GLOSS_DECODE", enc::kCodecTableCryGlossDecode}, {"CRY_GLOSS_ENCODE", enc::kCodecTableCryGlossEncode},
         {"GAMMA22_DECODE", enc::kCodecTableGamma22Decode},    {"GAMMA22_ENCODE", enc::kCodecTableGamma22Encode},
+        {"SRGB_FAST_HDRP_ENCODE", enc::kCodecTableSrgbFastHdrpEncode},
     };
     for (const auto& [name, offset] : expected) {
         std::smatch m;
@@ -75,6 +76,7 @@ TEST(CodecTables, BufferHoldsTheShadersConstantArrays) {
         {"color_encodings.glsl", "kCryGlossEncodeThresholds", enc::kCodecTableCryGlossEncode, 255},
         {"engine_encodings.glsl", "kGamma22Decode", enc::kCodecTableGamma22Decode, 256},
         {"engine_encodings.glsl", "kGamma22EncodeThresholds", enc::kCodecTableGamma22Encode, 255},
+        {"engine_encodings.glsl", "kSrgbFastHdrpEncodeThresholds", enc::kCodecTableSrgbFastHdrpEncode, 255},
     };
     const std::vector<float>& buffer = enc::codecTableFloats();
     for (const Table& t : tables) {

@@ -1,5 +1,5 @@
 // Tests for the packings of shipped engines (section 8 of src/encoding/encodings.h, mirror of
-// shaders/encodings.glsl): RGB9E5, gamma 2.2, the truncating octahedral normals of Bevy and Unity,
+// shaders/encodings.glsl): RGB9E5, gamma 2.2, the octahedral normals of Bevy, Unity and HDRP,
 // Killzone 2's FP16 normal XY, and the Filament / Bevy reflectance. Each is checked against a
 // formula written independently here, in double, from its published source.
 #include "encodings_test_support.h"
@@ -97,8 +97,52 @@ TEST(Gamma22, TablesAndCodesEqualTheFormula) {
     }
 }
 
-// Octahedral encoding as Bevy's octa_encode and Unity's PackNormalOctQuadEncode write it, in double:
-// p = n / |n|_1, the lower hemisphere wrapped, then u = p * 0.5 + 0.5.
+// HDRP's fast sRGB: the thresholds hold the formula (in long double here: ((k + 0.5)/255 + 0.055)
+// / 1.055)^2.4), so the code is round(255 FastLinearToSRGB(x)) exactly; the decode is HDRP's
+// cubic, evaluated in float.
+TEST(Srgb8FastHdrp, ThresholdsEqualTheFormulaAndDecodeIsTheCubic) {
+    for (int k = 0; k < 255; ++k) {
+        const long double v = std::pow(((k + 0.5L) / 255.0L + 0.055L) / 1.055L, 2.4L);
+        ASSERT_GE((long double)kSrgbFastHdrpEncodeThresholds[k], v) << k;
+        ASSERT_LT((long double)std::nextafter(kSrgbFastHdrpEncodeThresholds[k], 0.0f), v) << k;
+    }
+    Rng rng(94);
+    int checked = 0;
+    for (int i = 0; i < 1000000; ++i) {
+        const float x = i < 1000 ? float(i) / 999.0f * 0.004f : float(rng.u01());
+        const double g = 255.0 * std::clamp(1.055 * std::pow(double(x), 1.0 / 2.4) - 0.055, 0.0, 1.0);
+        if (std::abs(g - std::floor(g) - 0.5) < 1e-9) continue;  // a tie: either code is right
+        ASSERT_EQ(encodeSrgb8FastHdrp(x), unsigned(std::floor(g + 0.5))) << x;
+        ++checked;
+    }
+    EXPECT_GT(checked, 999000);
+    EXPECT_EQ(encodeSrgb8FastHdrp(-0.001f), 1u);  // PositivePow: pow(|x|, 1/2.4)
+    EXPECT_EQ(encodeSrgb8FastHdrp(-0.0f), 0u);
+    EXPECT_EQ(encodeSrgb8FastHdrp(0.0f), 0u);
+    EXPECT_EQ(encodeSrgb8FastHdrp(2.0f), 255u);
+    // No linear toe: 0.001 is code 1 (srgb8: 3); above the toe both are sRGB's power segment.
+    EXPECT_EQ(encodeSrgb8FastHdrp(0.001f), 1u);
+    EXPECT_EQ(encodeSrgb8(0.001f), 3u);
+    for (int i = 0; i <= 10000; ++i) {
+        const float x = 0.0032f + float(i) / 10000.0f * 0.9968f;
+        ASSERT_EQ(encodeSrgb8FastHdrp(x), encodeSrgb8(x)) << x;
+    }
+    for (unsigned k = 0; k < 256; ++k) {
+        const float c = float(k) / 255.0f;
+        const float a = c * 0.305306011f;
+        const float b = a + 0.682171111f;
+        const float d = c * b + 0.012522878f;
+        ASSERT_EQ(bitsOf(decodeSrgb8FastHdrp(k)), bitsOf(c * d)) << k;
+    }
+    EXPECT_NEAR(decodeSrgb8FastHdrp(56u), 0.038883f, 1e-6f);  // the dielectric F0 0.04's code
+    EXPECT_EQ(decodeSrgb8FastHdrp(255u), 0.305306011f + 0.682171111f + 0.012522878f);
+}
+
+// Octahedral encoding as Bevy's octahedral_encode and Unity's PackNormalOctQuadEncode write it, in
+// double: p = n / |n|_1, the lower hemisphere wrapped, then u = p * 0.5 + 0.5. (The bit-exact
+// float32 reimplementations of each engine are in engine_packings_test.cpp; this one is the
+// real-number formula, which the float codes may miss by one where float and double fall on
+// either side of a code boundary.)
 glm::dvec2 octUnit(glm::dvec3 n) {
     n /= std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
     glm::dvec2 p(n.x, n.y);
@@ -107,42 +151,72 @@ glm::dvec2 octUnit(glm::dvec3 n) {
     return p * 0.5 + 0.5;
 }
 
-TEST(OctahedralTrunc, BevyAndUnityCodesEqualTheirFormulas) {
+TEST(OctahedralUnorm, BevyRoundsUnityTruncates) {
     Rng rng(92);
     int exact = 0, total = 0;
-    double worstBevy = 0.0, worstUnity = 0.0;
+    double worst[3] = {0.0, 0.0, 0.0}, sum[3] = {0.0, 0.0, 0.0};  // Bevy, Unity, HDRP
     for (int i = 0; i < 300000; ++i) {
         const glm::dvec3 n = randomUnit(rng);
         const glm::vec3 nf(n);
         const glm::dvec2 u = octUnit(glm::dvec3(nf));
-        for (int unity = 0; unity < 2; ++unity) {
-            const double s = unity ? 4095.5 : 4095.0;  // PackFloat2To888 / U12MAXF
-            const glm::uvec2 code = encodeNormalOctahedralTrunc(nf, 12u, unity ? 0.5f : 0.0f);
-            for (int k = 0; k < 2; ++k) {
-                const double want = std::floor(std::clamp(u[k], 0.0, 1.0) * s);
-                const double diff = std::abs(double(code[k]) - want);
-                // float and double may fall on either side of an integer; never more than one code.
-                ASSERT_LE(diff, 1.0) << n.x << " " << n.y << " " << n.z;
+        const glm::uvec2 codes[3] = {encodeNormalOctahedralBevy(nf, 12u), encodeNormalOctahedralUnity(nf, 12u),
+                                     encodeNormalOctahedralHdrp(nf, 12u)};
+        for (int k = 0; k < 2; ++k) {
+            const double c = std::clamp(u[k], 0.0, 1.0);
+            // Bevy: u32(saturate(u) * 4095 + 0.5), rounding. Unity: uint(u * 4095.5), truncation.
+            const double want[2] = {std::floor(c * 4095.0 + 0.5), std::floor(c * 4095.5)};
+            for (int e = 0; e < 2; ++e) {
+                const double diff = std::abs(double(codes[e][k]) - want[e]);
+                ASSERT_LE(diff, 1.0) << e << ": " << n.x << " " << n.y << " " << n.z;
                 exact += diff == 0.0 ? 1 : 0;
                 ++total;
             }
-            const double a = angleDeg(n, glm::dvec3(decodeNormalOctahedralTrunc(code, 12u)));
-            (unity ? worstUnity : worstBevy) = std::max(unity ? worstUnity : worstBevy, a);
+        }
+        // HDRP differs from Unity only where |z| < 1/1024 (its seam clamp).
+        if (std::abs(nf.z) >= 1.0f / 1024.0f) {
+            ASSERT_EQ(codes[2], codes[1]) << n.x << " " << n.y << " " << n.z;
+        }
+        for (int e = 0; e < 3; ++e) {
+            const double a = angleDeg(n, glm::dvec3(decodeNormalOctahedralUnorm(codes[e], 12u)));
+            worst[e] = std::max(worst[e], a);
+            sum[e] += a;
         }
     }
     EXPECT_GT(double(exact) / total, 0.999);
-    // Truncation costs up to a whole step in u and v (a step is 2/4095 of the octahedron), twice
-    // rounding's half step: `gbufferlab encodings` measures max 0.118 (Bevy) and 0.107 (Unity)
-    // degrees; rounding (normal_octahedral at 12 bits) has 0.059.
-    EXPECT_LT(worstBevy, 0.13);
-    EXPECT_LT(worstUnity, 0.13);
-    EXPECT_GT(worstBevy, 0.059);
-    // +z: u = v = 0.5: Bevy floor(2047.5) = 2047; Unity floor(2047.75) = 2047, which
+    // HDRP within its 1/1024 band around the equator, where the clamp moves the normal first.
+    double worstBand = 0.0;
+    for (int i = 0; i < 100000; ++i) {
+        glm::dvec3 n = randomUnit(rng);
+        n.z = (rng.u01() * 2.0 - 1.0) / 1024.0;
+        n = glm::normalize(n);
+        const glm::uvec2 c = encodeNormalOctahedralHdrp(glm::vec3(n), 12u);
+        worstBand = std::max(worstBand, angleDeg(n, glm::dvec3(decodeNormalOctahedralUnorm(c, 12u))));
+    }
+    std::printf("[ octa 12  ] mean / max angle: Bevy %.4f / %.4f deg, Unity %.4f / %.4f, HDRP %.4f / %.4f (max %.4f "
+                "within 1/1024 of z = 0)\n",
+                sum[0] / 300000, worst[0], sum[1] / 300000, worst[1], sum[2] / 300000, worst[2], worstBand);
+    EXPECT_LT(worstBand, 0.12 + 0.056);
+    EXPECT_GT(worstBand, 0.07);
+    // Rounding: half a step in u and v (a step is 2/4095 of the octahedron), as normal_octahedral
+    // at 12 bits (0.059 degrees); truncation: up to a whole step, `gbufferlab encodings` measures
+    // max 0.107 (Unity). HDRP adds the clamp's own shift near the equator, at most 1/1024 rad.
+    EXPECT_LT(worst[0], 0.062);
+    EXPECT_GT(worst[0], 0.045);
+    EXPECT_LT(worst[1], 0.12);
+    EXPECT_GT(worst[1], 0.062);
+    EXPECT_LT(worst[2], 0.12 + 0.056);
+    // +z: u = v = 0.5: Bevy round(2047.5) = 2048; Unity floor(2047.75) = 2047, which
     // PackFloat2To888 writes as R = G = 0xFF (low bytes), B = 0x77 (high nibbles 7 | 7 << 4).
-    EXPECT_EQ(encodeNormalOctahedralTrunc(glm::vec3(0, 0, 1), 12u, 0.0f), glm::uvec2(2047u, 2047u));
-    EXPECT_EQ(encodeNormalOctahedralTrunc(glm::vec3(0, 0, 1), 12u, 0.5f), glm::uvec2(2047u, 2047u));
-    // +x: u = 1: Bevy 4095, Unity floor(4095.5) = 4095.
-    EXPECT_EQ(encodeNormalOctahedralTrunc(glm::vec3(1, 0, 0), 12u, 0.5f), glm::uvec2(4095u, 2047u));
+    EXPECT_EQ(encodeNormalOctahedralBevy(glm::vec3(0, 0, 1), 12u), glm::uvec2(2048u, 2048u));
+    EXPECT_EQ(encodeNormalOctahedralUnity(glm::vec3(0, 0, 1), 12u), glm::uvec2(2047u, 2047u));
+    // +x: u = 1: Bevy 4095, Unity floor(4095.5) = 4095; HDRP's clamp moves it to z = 1/1024:
+    // u = (1 + 1/1024)^-1 * 0.5 + 0.5, floor(4093.5..) = 4093.
+    EXPECT_EQ(encodeNormalOctahedralBevy(glm::vec3(1, 0, 0), 12u), glm::uvec2(4095u, 2048u));
+    EXPECT_EQ(encodeNormalOctahedralUnity(glm::vec3(1, 0, 0), 12u), glm::uvec2(4095u, 2047u));
+    EXPECT_EQ(encodeNormalOctahedralHdrp(glm::vec3(1, 0, 0), 12u), glm::uvec2(4093u, 2047u));
+    // -z: Bevy's wrap takes sign(0) = -1 (codes 0, 0), Unity's +1 (the top codes).
+    EXPECT_EQ(encodeNormalOctahedralBevy(glm::vec3(0, 0, -1), 12u), glm::uvec2(0u, 0u));
+    EXPECT_EQ(encodeNormalOctahedralUnity(glm::vec3(0, 0, -1), 12u), glm::uvec2(4095u, 4095u));
 }
 
 // Killzone 2's RT1: x, y as half floats, z rebuilt facing the camera.
