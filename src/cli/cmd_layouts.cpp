@@ -15,8 +15,9 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: gbufferlab layouts check [FILE...]   validate layout files (default: all in the layouts dir)\n"
-    "       gbufferlab layouts list              the atlas: layouts by family, with year, bytes per pixel, title\n"
-    "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel\n"
+    "       gbufferlab layouts list              the atlas: layouts by family, with year, bytes per pixel,\n"
+    "                                            provenance (how much is verified in the engine's source), title\n"
+    "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel, each entry's provenance\n"
     "       gbufferlab layouts glsl NAME|FILE [--native-formats]\n"
     "                                            print the generated GLSL wiring (writeGBuffer / readGBuffer)\n";
 
@@ -290,12 +291,18 @@ int listLayoutsCommand(std::ostream& out, std::ostream& err) {
         }
     }
     // Grouped as the report's atlas table (layout_atlas.h): family, then its layouts by year.
-    out << pad("family / layout", 26) << pad("year", 6) << pad("bytes/px", 16) << "title\n";
+    // Provenance: how many of the layout's entries are verified in the engine's source (layout.h);
+    // its column is as wide as its longest text.
+    size_t provenanceWidth = std::string("provenance").size();
+    for (const AtlasEntry& e : entries) provenanceWidth = std::max(provenanceWidth, e.provenance.text().size());
+    provenanceWidth += 2;
+    out << pad("family / layout", 26) << pad("year", 6) << pad("bytes/px", 16) << pad("provenance", provenanceWidth)
+        << "title\n";
     for (const AtlasGroup& g : groupAtlas(std::move(entries))) {
         out << g.family << "\n";
         for (const AtlasEntry& e : g.entries)
-            out << "  " << pad(e.layout, 24) << pad(std::to_string(e.year), 6) << pad(atlasBytesText(e), 16) << e.title
-                << "\n";
+            out << "  " << pad(e.layout, 24) << pad(std::to_string(e.year), 6) << pad(atlasBytesText(e), 16)
+                << pad(e.provenance.text(), provenanceWidth) << e.title << "\n";
     }
     if (!invalid.empty()) {
         out << "(invalid: run `gbufferlab layouts check`)\n";

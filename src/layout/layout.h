@@ -146,6 +146,8 @@ enum class ProvenanceStatus : uint8_t {
     None,      // not given
     Verified,  // "verified": read in the engine's source code, at a pinned commit
     Talk,      // "talk": stated by a talk, paper or article (slides, pages), not code
+    Lineage,   // "lineage": read in the code of a later version of the same engine, not the one
+               // the layout describes (CryENGINE V's source for the CryENGINE 3 talks' rows)
     Assumed,   // "assumed": neither states it; the layout assumes it (say why in a comment)
     Own,       // "own": gbufferlab's own choice; the entry claims no engine (synthetic layouts)
 };
@@ -165,7 +167,10 @@ struct Citation {
     bool pages = false;  // talk: locators count pages (unit = "page"), not slides
     int slide = 0, page = 0;  // talk: the one slide or page it cites (0: none; the locator says)
     std::string version;  // optional: what the commit is, e.g. "UE 5.3.2" or "HDRP 13.0.0"
-    FilePlace place;
+    std::string in;       // code: the citation whose repository and commit this file is read at
+    FilePlace place, inPlace;
+    bool incomplete = false;  // a parse error was reported for it: entries citing it are not checked
+                              // against it again (never in a Layout that parseLayout returns)
     std::string text() const;  // one line: "Mephisto1024/Toon_Engine@1a10ef19 Engine/.../GBufferInfo.cpp (UE 5.3.2)"
 };
 
@@ -429,7 +434,7 @@ std::vector<ProvenanceEntry> provenanceEntries(const Layout& layout);
 // How much of a layout is verified: entries by status, and those with a known difference.
 struct ProvenanceCounts {
     int entries = 0;
-    int verified = 0, talk = 0, assumed = 0, own = 0, missing = 0;
+    int verified = 0, talk = 0, lineage = 0, assumed = 0, own = 0, missing = 0;
     int differs = 0;
     // "verified 14/18, talk 2, assumed 2" (zero counts left out; "differs 3" when any; "none"
     // when no entry has provenance)

@@ -69,6 +69,7 @@ const char* provenanceStatusName(ProvenanceStatus s) {
     switch (s) {
         case ProvenanceStatus::Verified: return "verified";
         case ProvenanceStatus::Talk: return "talk";
+        case ProvenanceStatus::Lineage: return "lineage";
         case ProvenanceStatus::Assumed: return "assumed";
         case ProvenanceStatus::Own: return "own";
         case ProvenanceStatus::None: break;
@@ -126,6 +127,7 @@ ProvenanceCounts provenanceCounts(const Layout& layout) {
         switch (e.provenance->status) {
             case ProvenanceStatus::Verified: ++c.verified; break;
             case ProvenanceStatus::Talk: ++c.talk; break;
+            case ProvenanceStatus::Lineage: ++c.lineage; break;
             case ProvenanceStatus::Assumed: ++c.assumed; break;
             case ProvenanceStatus::Own: ++c.own; break;
             case ProvenanceStatus::None: ++c.missing; break;
@@ -142,6 +144,7 @@ std::string ProvenanceCounts::text() const {
         if (n > 0) s += std::string(", ") + name + " " + std::to_string(n);
     };
     add("talk", talk);
+    add("lineage", lineage);
     add("assumed", assumed);
     add("own", own);
     add("missing", missing);
@@ -179,11 +182,27 @@ void Parser::parseSources(const toml::table& root, Layout& layout) {
         }
         const FilePlace at = placeOf(value);
         const std::string where = "citation " + squote(name);
-        checkKeys(*c, {"repo", "commit", "path", "version", "title", "authors", "venue", "url", "unit", "slide", "page"},
+        checkKeys(*c, {"repo", "commit", "path", "in", "version", "title", "authors", "venue", "url", "unit", "slide",
+                       "page"},
                   where.c_str());
         Citation cite;
         cite.key = name;
         cite.place = at;
+        if (const toml::node* in = c->get("in")) {
+            // a file of a repository another citation pins: { in = "ue532", path = "..." }
+            cite.kind = CitationKind::Code;
+            if (c->get("repo") || c->get("commit"))
+                error(placeOf(*in), where + " has 'in' and its own repo or commit: keep one (in = \"key\" takes "
+                                            "the repository and commit of that citation)");
+            if (auto base = getString(*c, "in", false, at, where)) {
+                cite.in = *base;
+                cite.inPlace = placeOf(*in);
+            }
+            if (auto path = getString(*c, "path", true, at, where)) cite.path = *path;
+            cite.version = getString(*c, "version", false, at, where).value_or("");
+            layout.citations.push_back(std::move(cite));
+            continue;
+        }
         const bool code = c->get("repo") || c->get("commit") || c->get("path");
         const bool talk = c->get("title") || c->get("venue") || c->get("authors") || c->get("unit") ||
                           c->get("slide") || c->get("page");
@@ -192,6 +211,8 @@ void Parser::parseSources(const toml::table& root, Layout& layout) {
         if (code && talk) {
             error(at, where + " mixes code keys (repo, commit, path) with talk keys (title, venue, authors, unit, "
                               "slide, page): cite code and a talk as two citations");
+            cite.incomplete = true;  // kept, so that entries citing it are not also "unknown citation"
+            layout.citations.push_back(std::move(cite));
             continue;
         }
         if (code) {
@@ -215,7 +236,7 @@ void Parser::parseSources(const toml::table& root, Layout& layout) {
                                                           " must be a commit hash, 7 to 40 hexadecimal digits");
                 cite.commit = *commit;
             }
-            if (auto path = getString(*c, "path", true, at, where)) {
+            if (auto path = getString(*c, "path", false, at, where)) {  // none: a repository that others cite `in`
                 if (path->empty()) error(placeOf(*c->get("path")), where + ": 'path' is empty");
                 cite.path = *path;
             }
@@ -248,13 +269,32 @@ void Parser::parseSources(const toml::table& root, Layout& layout) {
         } else {
             error(at, where + " is neither code ({ repo = \"owner/name\", commit = \"...\", path = \"...\" }) nor a "
                               "talk ({ title = \"...\", venue = \"...\" })");
-            continue;
+            cite.incomplete = true;
         }
         layout.citations.push_back(std::move(cite));
     }
     std::stable_sort(layout.citations.begin(), layout.citations.end(), [](const Citation& a, const Citation& b) {
         return a.place.line != b.place.line ? a.place.line < b.place.line : a.place.column < b.place.column;
     });
+    // `in`: the repository and commit (and version, unless the file names its own) of another citation.
+    for (Citation& c : layout.citations) {
+        if (c.in.empty()) continue;
+        const Citation* base = layout.findCitation(c.in);
+        if (base && base->incomplete) {
+            c.incomplete = true;
+            continue;
+        }
+        if (!base || base->kind != CitationKind::Code || !base->in.empty() || base->repo.empty()) {
+            c.incomplete = true;
+            error(c.inPlace, "citation " + squote(c.key) + ": 'in' names " + squote(c.in) +
+                                 ", which is not a repository citation of [sources] ({ repo = \"owner/name\", "
+                                 "commit = \"...\" })");
+            continue;
+        }
+        c.repo = base->repo;
+        c.commit = base->commit;
+        if (c.version.empty()) c.version = base->version;
+    }
 }
 
 // `from`, `status` and `differs` of one entry (its keys are checked by the caller's checkKeys).
@@ -269,6 +309,8 @@ void Parser::readProvenance(const toml::table& t, Provenance& p, FilePlace entry
                 p.status = ProvenanceStatus::Verified;
             else if (*status == "talk")
                 p.status = ProvenanceStatus::Talk;
+            else if (*status == "lineage")
+                p.status = ProvenanceStatus::Lineage;
             else if (*status == "assumed")
                 p.status = ProvenanceStatus::Assumed;
             else if (*status == "own")
@@ -276,7 +318,8 @@ void Parser::readProvenance(const toml::table& t, Provenance& p, FilePlace entry
             else
                 error(p.statusPlace, "unknown status " + squote(*status) +
                                          " (known: verified, read in source code; talk, a talk, paper or article; "
-                                         "assumed; own, gbufferlab's own choice)");
+                                         "lineage, read in a later version's code; assumed; own, gbufferlab's own "
+                                         "choice)");
         }
     }
     if (const toml::node* f = t.get("from")) {
@@ -346,10 +389,17 @@ void validateProvenance(const Layout& layout, std::vector<LayoutDiagnostic>& out
     for (const Citation& c : layout.citations) known += (known.empty() ? "" : ", ") + c.key;
     for (const ProvenanceEntry& e : provenanceEntries(layout)) {
         const Provenance& p = *e.provenance;
-        bool cites = false, citesCode = false, citesTalk = false;
+        // A citation that is wrong itself (reported where it is) or cited wrongly (reported here)
+        // makes the status checks below moot: one message per mistake.
+        bool citesCode = false, citesTalk = false, refError = false;
         for (const CitationRef& r : p.refs) {
             const Citation* c = layout.findCitation(r.key);
+            if (c && c->incomplete) {
+                refError = true;
+                continue;
+            }
             if (!c) {
+                refError = true;
                 if (!layout.sourcesDeclared)
                     error(r.place, "'from' cites " + squote(r.key) +
                                        " but the layout has no [sources] table: add [sources] with " + r.key +
@@ -360,8 +410,13 @@ void validateProvenance(const Layout& layout, std::vector<LayoutDiagnostic>& out
                                        (known.empty() ? std::string("none") : known) + "): add it to [sources]");
                 continue;
             }
-            cites = true;
             if (c->kind == CitationKind::Code) {
+                if (c->path.empty()) {
+                    error(r.place, "citation " + squote(r.key) + " names a repository, not a file: cite a file of it "
+                                                                "({ in = \"" + r.key + "\", path = \"...\" })");
+                    refError = true;
+                    continue;
+                }
                 citesCode = true;
                 if (!r.locator.empty() && !isNumberList(r.locator) && !isSymbol(r.locator))
                     error(r.place, "locator " + squote(r.locator) + " of " + squote(r.key) +
@@ -376,20 +431,22 @@ void validateProvenance(const Layout& layout, std::vector<LayoutDiagnostic>& out
         }
         if (!p.refs.empty() && p.status == ProvenanceStatus::None && p.statusPlace.line == 0)
             error(p.fromPlace, e.what + " has 'from' but no 'status': add status = \"verified\" (source code), "
-                                        "\"talk\" (a talk, paper or article), \"assumed\" or \"own\"");
-        if (p.status == ProvenanceStatus::Verified && !citesCode && (cites || p.refs.empty()))
-            error(p.statusPlace, e.what + " is \"verified\" but 'from' cites no code: " +
+                                        "\"talk\" (a talk, paper or article), \"lineage\", \"assumed\" or \"own\"");
+        const bool needsCode = p.status == ProvenanceStatus::Verified || p.status == ProvenanceStatus::Lineage;
+        if (needsCode && !citesCode && !refError)
+            error(p.statusPlace, e.what + " is \"" + provenanceStatusName(p.status) + "\" but 'from' cites no code: " +
                                      (p.refs.empty() ? std::string("add from = \"key:line\" naming the source file in [sources]")
                                                      : std::string("cite the source file (repo, commit, path), or say "
                                                                    "status = \"talk\"")));
-        if (p.status == ProvenanceStatus::Talk && !citesTalk && (cites || p.refs.empty()))
+        if (p.status == ProvenanceStatus::Talk && !citesTalk && !refError)
             error(p.statusPlace, e.what + " is \"talk\" but 'from' cites no talk: " +
                                      (p.refs.empty() ? std::string("add from = \"key:slide\" naming the talk in [sources]")
                                                      : std::string("cite the talk (title, venue), or say status = "
                                                                    "\"verified\" for code")));
         if (layout.sourcesDeclared && !p.given() && p.refs.empty() && p.statusPlace.line == 0)
             error(p.place.line > 0 ? p.place : FilePlace{1, 1},
-                  e.what + " has no provenance: add status = \"verified\", \"talk\", \"assumed\" or \"own\" and "
+                  e.what + " has no provenance: add status = \"verified\", \"talk\", \"lineage\", \"assumed\" or "
+                           "\"own\" and "
                            "from = \"key:line\" (a layout with [sources] gives it on every entry)");
     }
 }

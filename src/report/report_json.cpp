@@ -136,8 +136,8 @@ Json atlasJson(const ReportModel& model) {
             if (e.provenance.entries > 0) {
                 const ProvenanceCounts& p = e.provenance;
                 row["provenance"] = Json{{"entries", p.entries}, {"verified", p.verified}, {"talk", p.talk},
-                                         {"assumed", p.assumed}, {"own", p.own},           {"missing", p.missing},
-                                         {"differs", p.differs}, {"text", p.text()}};
+                                         {"lineage", p.lineage}, {"assumed", p.assumed},  {"own", p.own},
+                                         {"missing", p.missing}, {"differs", p.differs}, {"text", p.text()}};
             }
             if (!r.iblMode.empty()) row["ibl_mode"] = r.iblMode;
             if (r.flipMean) row["flip_mean"] = number(*r.flipMean);
@@ -553,12 +553,13 @@ ReportModel reportFromJson(const Json& json) {
                 c.entries = p["entries"].i32();
                 c.verified = p["verified"].i32();
                 c.talk = p["talk"].i32();
+                c.lineage = p["lineage"].i32();
                 c.assumed = p["assumed"].i32();
                 c.own = p["own"].i32();
                 c.missing = p["missing"].i32();
                 c.differs = p["differs"].i32();
-                if (c.verified + c.talk + c.assumed + c.own + c.missing != c.entries)
-                    p.fail("verified + talk + assumed + own + missing must equal entries");
+                if (c.verified + c.talk + c.lineage + c.assumed + c.own + c.missing != c.entries)
+                    p.fail("verified + talk + lineage + assumed + own + missing must equal entries");
             }
             model.atlas.push_back(std::move(e));
         }
