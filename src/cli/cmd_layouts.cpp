@@ -15,8 +15,9 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: gbufferlab layouts check [FILE...]   validate layout files (default: all in the layouts dir)\n"
-    "       gbufferlab layouts list              the atlas: layouts by family, with year, bytes per pixel, title\n"
-    "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel\n"
+    "       gbufferlab layouts list              the atlas: layouts by family, with year, bytes per pixel,\n"
+    "                                            provenance (how much is verified in the engine's source), title\n"
+    "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel, each entry's provenance\n"
     "       gbufferlab layouts glsl NAME|FILE [--native-formats]\n"
     "                                            print the generated GLSL wiring (writeGBuffer / readGBuffer)\n";
 
@@ -91,6 +92,40 @@ std::string unusedText(const std::vector<Channel>& channels, const std::vector<F
     return s.empty() ? "none" : s + " (" + std::to_string(total) + " bits)";
 }
 
+// An entry's provenance on one line: "verified  gbi:418-421; sgu:528"; "" when it has none.
+std::string provenanceText(const Provenance& p) {
+    if (!p.given()) return "";
+    std::string s = provenanceStatusName(p.status);
+    if (!p.from.empty()) s += "  " + p.from;
+    return s;
+}
+
+// " [verified  gbi:335]" after a one-line entry, and its known difference on the next line.
+void provenanceSuffix(std::ostream& o, const Provenance& p, const std::string& indent) {
+    const std::string t = provenanceText(p);
+    if (!t.empty()) o << "  [" << t << "]";
+    o << "\n";
+    if (!p.differs.empty()) o << indent << "differs: " << p.differs << "\n";
+}
+
+// The provenance of each field of a target (or the stencil), one line each, under its table.
+void describeFieldProvenance(std::ostream& o, const std::vector<Field>& fields) {
+    bool any = false;
+    for (const Field& f : fields) any = any || f.provenance.given();
+    if (!any) return;
+    o << "  provenance:\n";
+    for (const Field& f : fields) {
+        o << "    " << pad(attributeName(f.attribute), 24) << provenanceText(f.provenance) << "\n";
+        if (!f.provenance.differs.empty()) o << "      differs: " << f.provenance.differs << "\n";
+    }
+}
+
+std::string valuesText(const std::vector<double>& v) {
+    std::string s;
+    for (double x : v) s += (s.empty() ? "" : ", ") + number(x);
+    return v.size() > 1 ? "(" + s + ")" : s;
+}
+
 void describeFields(std::ostream& o, const std::vector<Field>& fields, const std::vector<Channel>& channels) {
     o << "  " << pad("bits", 18) << pad("attribute", 28) << pad("code", 8) << pad("encoding", 28) << "width\n";
     for (const Field& f : fields) {
@@ -105,6 +140,7 @@ void describeFields(std::ostream& o, const std::vector<Field>& fields, const std
         }
     }
     o << "  unused: " << unusedText(channels, fields) << "\n";
+    describeFieldProvenance(o, fields);
 }
 
 }  // namespace
@@ -119,24 +155,30 @@ std::string describeLayout(const Layout& layout) {
     } else {
         o << "space:    normals " << storedSpaceName(layout.space.normal);
         if (layout.stores(Attribute::Position)) o << ", position " << storedSpaceName(layout.space.position);
-        o << "\n";
+        provenanceSuffix(o, layout.space.provenance, "          ");
     }
     o << "file:     " << layout.sourceFile << "\n";
+    const ProvenanceCounts counts = provenanceCounts(layout);
+    if (counts.missing < counts.entries)
+        o << "provenance: " << counts.text() << " (entries: depth, targets, fields, fallbacks, clear values, ...)\n";
     int targetBytes = 0;
     for (const Target& t : layout.targets) {
         targetBytes += t.bytes();
-        o << "\ntarget " << t.name << "  " << t.format << "  " << t.bytes() << " bytes\n";
+        o << "\ntarget " << t.name << "  " << t.format << "  " << t.bytes() << " bytes";
+        provenanceSuffix(o, t.provenance, "  ");
         describeFields(o, t.fields, t.channels);
     }
     if (const VisibilityIds& ids = layout.ids; ids.declared) {
         targetBytes += ids.bytes();
         o << "\nids " << ids.format << "  " << ids.bytes() << " bytes  triangle bits 0.." << ids.triangleBits - 1
           << ", draw bits " << ids.triangleBits << ".." << ids.triangleBits + ids.drawBits - 1
-          << (ids.alphaMaskBit ? ", alpha-mask flag bit " + std::to_string(ids.bits - 1) : std::string()) << "\n";
+          << (ids.alphaMaskBit ? ", alpha-mask flag bit " + std::to_string(ids.bits - 1) : std::string());
+        provenanceSuffix(o, ids.provenance, "  ");
     }
     const Depth& d = layout.depth;
     o << "\ndepth " << d.format << "  " << d.bytes << " bytes  " << d.depthBits << "-bit "
-      << (d.floatDepth ? "float" : "unorm") << (d.reversedZ ? ", reversed Z" : "") << "\n";
+      << (d.floatDepth ? "float" : "unorm") << (d.reversedZ ? ", reversed Z" : "");
+    provenanceSuffix(o, d.provenance, "  ");
     if (d.stencilBits > 0) {
         const std::vector<Channel> channels = {{"s", d.stencilBits, 0, ChannelType::Uint}};
         describeFields(o, d.stencil, channels);
@@ -146,8 +188,17 @@ std::string describeLayout(const Layout& layout) {
         o << "  " << pad(attributeName(ab.attribute), 24) << ab.bits << "\n";
     if (!layout.fallbacks.empty()) {
         o << "\nfallbacks (not stored):\n";
-        for (const Fallback& f : layout.fallbacks)
-            o << "  " << pad(attributeName(f.attribute), 24) << fallbackText(f) << "\n";
+        for (const Fallback& f : layout.fallbacks) {
+            o << "  " << pad(attributeName(f.attribute), 24) << fallbackText(f);
+            provenanceSuffix(o, f.provenance, "    ");
+        }
+    }
+    if (!layout.clears.empty()) {
+        o << "\nclear (a pixel without geometry):\n";
+        for (const ClearValue& c : layout.clears) {
+            o << "  " << pad(attributeName(c.attribute), 24) << valuesText(c.value);
+            provenanceSuffix(o, c.provenance, "    ");
+        }
     }
     if (!layout.lightBuffers.empty()) {
         o << "\nlight buffers:\n";
@@ -161,15 +212,24 @@ std::string describeLayout(const Layout& layout) {
                 encoding += std::string(" (range ") + range + ")";
             }
             o << "  " << pad(b.name, 16) << pad(b.format, 26) << pad(std::to_string(b.bytes) + " bytes", 10)
-              << pad(encoding, 20) << holds << "\n";
+              << pad(encoding, 20) << holds;
+            provenanceSuffix(o, b.provenance, "    ");
         }
         o << "  material pass: fresnel "
-          << (layout.materialPass.fresnel == MaterialFresnel::SchlickNv ? "schlick_nv" : "none") << "\n";
+          << (layout.materialPass.fresnel == MaterialFresnel::SchlickNv ? "schlick_nv" : "none");
+        provenanceSuffix(o, layout.materialPass.provenance, "    ");
     }
     o << "\nbytes per pixel: " << bytesPerPixel(layout) << " (targets " << targetBytes << " + depth-stencil " << d.bytes
       << ")";
     if (!layout.lightBuffers.empty()) o << "; light buffers " << lightBufferBytesPerPixel(layout);
     o << "\n";
+    if (!layout.citations.empty()) {
+        o << "\nsources (" << (layout.citations.size() == 1 ? "1 citation" : std::to_string(layout.citations.size()) + " citations")
+          << "; \"key:N\" cites line N of a file, or slide N of a talk):\n";
+        size_t width = 0;
+        for (const Citation& c : layout.citations) width = std::max(width, c.key.size());
+        for (const Citation& c : layout.citations) o << "  " << pad(c.key, width + 2) << c.text() << "\n";
+    }
     return o.str();
 }
 
@@ -231,12 +291,18 @@ int listLayoutsCommand(std::ostream& out, std::ostream& err) {
         }
     }
     // Grouped as the report's atlas table (layout_atlas.h): family, then its layouts by year.
-    out << pad("family / layout", 26) << pad("year", 6) << pad("bytes/px", 16) << "title\n";
+    // Provenance: how many of the layout's entries are verified in the engine's source (layout.h);
+    // its column is as wide as its longest text.
+    size_t provenanceWidth = std::string("provenance").size();
+    for (const AtlasEntry& e : entries) provenanceWidth = std::max(provenanceWidth, e.provenance.text().size());
+    provenanceWidth += 2;
+    out << pad("family / layout", 26) << pad("year", 6) << pad("bytes/px", 16) << pad("provenance", provenanceWidth)
+        << "title\n";
     for (const AtlasGroup& g : groupAtlas(std::move(entries))) {
         out << g.family << "\n";
         for (const AtlasEntry& e : g.entries)
-            out << "  " << pad(e.layout, 24) << pad(std::to_string(e.year), 6) << pad(atlasBytesText(e), 16) << e.title
-                << "\n";
+            out << "  " << pad(e.layout, 24) << pad(std::to_string(e.year), 6) << pad(atlasBytesText(e), 16)
+                << pad(e.provenance.text(), provenanceWidth) << e.title << "\n";
     }
     if (!invalid.empty()) {
         out << "(invalid: run `gbufferlab layouts check`)\n";

@@ -16,11 +16,12 @@ int runLayoutsCommand(const std::vector<std::string>& args, std::ostream& out, s
 // file is invalid. With no files, checks every layout in the layouts directory.
 int checkLayoutsCommand(const std::vector<std::string>& files, std::ostream& out, std::ostream& err);
 
-// One line per layout in the layouts directory: name, bytes per pixel, title.
+// One line per layout in the layouts directory: name, year, bytes per pixel, provenance counts, title.
 int listLayoutsCommand(std::ostream& out, std::ostream& err);
 
 // A readable table of one layout (name or path): targets and their bits, stencil, bits per
-// attribute, fallbacks, light buffers, bytes per pixel.
+// attribute, fallbacks, clear values, light buffers, bytes per pixel, and each entry's provenance
+// (status and citations, known differences) with the citations in full.
 int showLayoutCommand(const std::string& nameOrPath, std::ostream& out, std::ostream& err);
 std::string describeLayout(const Layout& layout);
 

@@ -75,6 +75,15 @@ const std::vector<AttributeInfo>& attributeTable() {
          "UE GBufferB.a in a float target: (ShadingModelID | SelectiveOutputMask) / 255 (r.GBufferFormat=5)"},
         {Attribute::LightIntensity, "light_intensity", 1, AC::Extra, VT::Float, VD::Unit,
          "intensity channel of a light accumulation target (Killzone 2 RT0.a)"},
+        {Attribute::PrecomputedIrradiance, "precomputed_irradiance", 1, AC::Extra, VT::Float, VD::Unit,
+         "UE GBufferC.a with static lighting allowed: log2(baked irradiance * AO + 2^-8) / 16 + 0.5 plus a dither "
+         "below half a code; 0 where nothing is baked, and lighting then reads AO = 1"},
+        {Attribute::Opacity, "opacity", 1, AC::Extra, VT::Float, VD::Unit,
+         "opacity or decal mask (UE4 Elemental demo 2012, GBufferC.a)"},
+        {Attribute::SubsurfaceColor, "subsurface_color", 3, AC::Extra, VT::Float, VD::Unit,
+         "subsurface colour (UE4 Elemental demo 2012, GBufferD.gba)"},
+        {Attribute::IsLightmap, "is_lightmap", 1, AC::Extra, VT::Integer, VD::Id,
+         "1 when the object is lightmapped (HDRP with probe volumes, GBuffer0.a bit 7)"},
     };
     return table;
 }

@@ -59,6 +59,10 @@ enum class Attribute : uint8_t {
     SunOcclusion,
     ShadingModelFloat,
     LightIntensity,
+    PrecomputedIrradiance,
+    Opacity,
+    SubsurfaceColor,
+    IsLightmap,
 };
 
 enum class AttributeClass : uint8_t { Shading, Geometry, Extra };
@@ -130,6 +134,63 @@ struct FilePlace {
     int column = 0;
 };
 
+// ---------------------------------------------------------------------------------------------
+// Provenance (layouts/README.md, "Provenance"): where each entry of a layout comes from. A file
+// names its citations once, in a top-level [sources] table (a repository path at a pinned commit,
+// or a talk, paper or article), and every entry (depth, each target, field, fallback, clear value,
+// [space], [ids], light buffer, [material_pass]) says `from = "key:line"` and `status`. A layout
+// that declares [sources] (every file in layouts/) must give it on every entry; a user's own
+// layout without [sources] need not cite anything.
+
+enum class ProvenanceStatus : uint8_t {
+    None,      // not given
+    Verified,  // "verified": read in the engine's source code, at a pinned commit
+    Talk,      // "talk": stated by a talk, paper or article (slides, pages), not code
+    Lineage,   // "lineage": read in the code of a later version of the same engine, not the one
+               // the layout describes (CryENGINE V's source for the CryENGINE 3 talks' rows)
+    Assumed,   // "assumed": neither states it; the layout assumes it (say why in a comment)
+    Own,       // "own": gbufferlab's own choice; the entry claims no engine (synthetic layouts)
+};
+const char* provenanceStatusName(ProvenanceStatus s);  // "verified", ..., "" for None
+
+enum class CitationKind : uint8_t {
+    Code,  // a file of a repository at a commit: locators are line numbers or a symbol
+    Talk,  // a talk, paper or article: locators are slides (or pages, `unit = "page"`)
+};
+
+// One entry of [sources].
+struct Citation {
+    std::string key;  // the name entries cite it by
+    CitationKind kind = CitationKind::Code;
+    std::string repo, commit, path;  // code: "owner/name", 7..40 hex digits, a path in the repository
+    std::string title, authors, venue, url;  // talk
+    bool pages = false;  // talk: locators count pages (unit = "page"), not slides
+    int slide = 0, page = 0;  // talk: the one slide or page it cites (0: none; the locator says)
+    std::string version;  // optional: what the commit is, e.g. "UE 5.3.2" or "HDRP 13.0.0"
+    std::string in;       // code: the citation whose repository and commit this file is read at
+    FilePlace place, inPlace;
+    bool incomplete = false;  // a parse error was reported for it: entries citing it are not checked
+                              // against it again (never in a Layout that parseLayout returns)
+    std::string text() const;  // one line: "Mephisto1024/Toon_Engine@1a10ef19 Engine/.../GBufferInfo.cpp (UE 5.3.2)"
+};
+
+// One citation in an entry's `from`: the key and what of it ("705", "686-705", "EncodeGBuffer").
+struct CitationRef {
+    std::string key;
+    std::string locator;  // "" when the entry cites the whole source
+    FilePlace place;      // of the key, inside the `from` string
+};
+
+struct Provenance {
+    ProvenanceStatus status = ProvenanceStatus::None;
+    std::string from;                // as written: "gbi:427; sgu:1833"
+    std::vector<CitationRef> refs;   // from, parsed
+    std::string differs;             // a known difference between the engine and this entry ("" none)
+    FilePlace place;                 // the entry (a missing provenance is reported here)
+    FilePlace statusPlace, fromPlace;
+    bool given() const { return status != ProvenanceStatus::None; }
+};
+
 // One contiguous run of bits inside one channel: bits [first, first + count) of channel `channel`.
 struct BitRange {
     int channel = 0;  // index into Target::channels (or the stencil channel, index 0)
@@ -156,6 +217,7 @@ struct Field {
     FilePlace place;               // the field's table
     FilePlace encodingPlace;       // the "encoding" value (or the field when implicit)
     FilePlace atPlace;             // the "at" value
+    Provenance provenance;
     bool incomplete = false;       // a parse error was reported for it: validation skips it
                                    // (never set in a Layout that parseLayout returns)
 
@@ -173,6 +235,7 @@ struct Target {
     FilePlace place;
     FilePlace formatPlace;
     int bits() const;
+    Provenance provenance;
     int bytes() const { return bits() / 8; }
     int usedBits() const;
 };
@@ -185,6 +248,7 @@ struct Depth {
     int bytes = 0;
     bool reversedZ = false;
     std::vector<Field> stencil;  // integer extras placed in channel "s"
+    Provenance provenance;
     FilePlace place;
     FilePlace formatPlace;
 };
@@ -206,6 +270,7 @@ struct VisibilityIds {
     int drawBits = 0;           // 1..32
     bool alphaMaskBit = false;  // the top bit (bits - 1)
     FilePlace place, formatPlace, triangleBitsPlace, drawBitsPlace;
+    Provenance provenance;
     int bytes() const { return bits / 8; }
 };
 
@@ -227,6 +292,7 @@ struct Fallback {
     FallbackKind kind = FallbackKind::Constant;
     std::vector<double> value;  // Constant: one per component
     FilePlace place;
+    Provenance provenance;
     bool incomplete = false;  // a parse error was reported for it (never in a returned Layout)
 };
 
@@ -236,6 +302,7 @@ struct ClearValue {
     Attribute attribute = Attribute::Normal;
     std::vector<double> value;  // one per component
     FilePlace place;
+    Provenance provenance;
 };
 
 enum class LightQuantity : uint8_t { DiffuseRgb, SpecularRgb, SpecularLuminance };
@@ -263,6 +330,7 @@ struct LightBuffer {
     FilePlace place;
     FilePlace encodingPlace;
     int bytes = 0;
+    Provenance provenance;
 };
 
 // Deferred lighting's material pass: how the light buffers are combined with the material.
@@ -274,6 +342,7 @@ enum class MaterialFresnel : uint8_t {
 struct MaterialPassOptions {
     MaterialFresnel fresnel = MaterialFresnel::None;
     FilePlace place;
+    Provenance provenance;
     bool declared = false;
 };
 
@@ -297,6 +366,7 @@ struct SpaceDecl {
     StoredSpace position = StoredSpace::View;
     FilePlace place;          // the [space] table (1:1 when absent)
     FilePlace positionPlace;  // its `position` key
+    Provenance provenance;
 };
 
 struct Source {
@@ -327,10 +397,14 @@ struct Layout {
     std::vector<ClearValue> clears;  // [clear], in file order
     bool clearDeclared = false;      // the layout has a [clear] table
     FilePlace clearPlace;            // the [clear] table (1:1 when absent)
+    std::vector<Citation> citations;  // [sources], in file order
+    bool sourcesDeclared = false;     // the layout has a [sources] table: provenance on every entry
+    FilePlace sourcesPlace;
 
     const Field* findField(Attribute a) const;  // in targets or stencil; nullptr when not stored
     const Fallback* findFallback(Attribute a) const;
     const ClearValue* findClear(Attribute a) const;  // nullptr when [clear] does not list it
+    const Citation* findCitation(std::string_view key) const;  // nullptr when [sources] has no such key
     bool stores(Attribute a) const { return findField(a) != nullptr; }
 };
 
@@ -346,6 +420,27 @@ struct AttributeBits {
 };
 // Bits each stored attribute takes (all its codes, stencil included), in attribute order.
 std::vector<AttributeBits> bitsPerAttribute(const Layout& layout);
+
+// Every entry of a layout that carries provenance, in file order of sections: depth and its
+// stencil fields, each target then its fields, [ids], light buffers, [material_pass], fallbacks,
+// clear values, [space]. `what` names it for messages and `layouts show` ("field 'normal' of
+// target 'GBufferA'").
+struct ProvenanceEntry {
+    std::string what;
+    const Provenance* provenance = nullptr;
+};
+std::vector<ProvenanceEntry> provenanceEntries(const Layout& layout);
+
+// How much of a layout is verified: entries by status, and those with a known difference.
+struct ProvenanceCounts {
+    int entries = 0;
+    int verified = 0, talk = 0, lineage = 0, assumed = 0, own = 0, missing = 0;
+    int differs = 0;
+    // "verified 14/18, talk 2, assumed 2" (zero counts left out; "differs 3" when any; "none"
+    // when no entry has provenance)
+    std::string text() const;
+};
+ProvenanceCounts provenanceCounts(const Layout& layout);
 
 // A code's name within its field: "x", "y", "z_sign", "Y", "Cb", "r", ... ("code N" if unnamed).
 std::string codeLabel(const Field& field, size_t code);

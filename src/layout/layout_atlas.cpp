@@ -52,6 +52,7 @@ AtlasEntry atlasEntryOf(const Layout& layout) {
         layout.pipeline == Pipeline::DeferredShading || layout.pipeline == Pipeline::DeferredLighting;
     e.bytesKind = attributeTargets ? "attributes" : "ids";
     e.lightBufferBytesPerPixel = lightBufferBytesPerPixel(layout);
+    e.provenance = provenanceCounts(layout);
     for (const AttributeBits& ab : bitsPerAttribute(layout))
         e.attributes.push_back({attributeName(ab.attribute), ab.bits, encodingsOf(layout, ab.attribute)});
     for (const AttributeInfo& info : listAttributes()) {

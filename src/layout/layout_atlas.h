@@ -33,6 +33,10 @@ struct AtlasEntry {
     std::string bytesKind;           // "attributes" or "ids" (see above)
     int lightBufferBytesPerPixel = 0;  // deferred lighting's light buffers, separately
     std::vector<AtlasAttribute> attributes;  // stored ones first (layout order), then the derived shading ones
+    // How much of the layout is verified in the engine's source, from a talk, assumed or
+    // gbufferlab's own: its entries counted by provenance status (layout.h, provenanceCounts).
+    // Entries 0: unknown (a report written before provenance existed).
+    ProvenanceCounts provenance;
 };
 
 // The layout's family: Source::family, else Source::engine, else Source::game.

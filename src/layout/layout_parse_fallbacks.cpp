@@ -60,7 +60,7 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
         error(placeOf(*n), "'fallback' must be a table ([fallback]), not " + std::string(typeName(*n)));
         return;
     }
-    for (auto&& [key, value] : *t) {
+    for (auto&& [key, entry] : *t) {
         const FilePlace keyPlace = placeOf(key.source());
         const AttributeInfo* attr = findAttribute(key.str());
         if (!attr) {
@@ -80,6 +80,15 @@ void Parser::parseFallbacks(const toml::table& root, Layout& layout) {
         }
         Fallback fb;
         fb.attribute = attr->id;
+        // `occlusion = 1.0`, or with its provenance `occlusion = { value = 1.0, from = "...", status = "..." }`
+        const toml::node* valueNode = entryValue(entry, fb.provenance, "fallback " + squote(attr->name));
+        if (!valueNode) {
+            fb.place = placeOf(entry);
+            fb.incomplete = true;
+            layout.fallbacks.push_back(std::move(fb));
+            continue;
+        }
+        const toml::node& value = *valueNode;
         fb.place = placeOf(value);
         const std::vector<FallbackKind> allowed = allowedFallbacks(attr->id);
         auto allowedList = [&] {
@@ -143,13 +152,18 @@ void Parser::parseClear(const toml::table& root, Layout& layout) {
         error(placeOf(*n), "'clear' must be a table ([clear]), not " + std::string(typeName(*n)));
         return;
     }
-    for (auto&& [key, value] : *t) {
+    for (auto&& [key, entry] : *t) {
         const FilePlace keyPlace = placeOf(key.source());
         const AttributeInfo* attr = findAttribute(key.str());
         if (!attr) {
             error(keyPlace, "unknown attribute " + squote(key.str()) + " in [clear] (known: " + knownAttributeNames() + ")");
             continue;
         }
+        // `roughness = 1.0`, or with its provenance `roughness = { value = 1.0, from = "...", status = "..." }`
+        Provenance provenance;
+        const toml::node* valueNode = entryValue(entry, provenance, "clear value of " + squote(attr->name));
+        if (!valueNode) continue;
+        const toml::node& value = *valueNode;
         auto values = getNumbers(value, "clear value of " + squote(attr->name));
         if (!values) continue;
         if (values->size() == 1 && attr->components > 1) values->assign(size_t(attr->components), values->front());
@@ -176,6 +190,7 @@ void Parser::parseClear(const toml::table& root, Layout& layout) {
         c.attribute = attr->id;
         c.value = *values;
         c.place = placeOf(value);
+        c.provenance = std::move(provenance);
         layout.clears.push_back(std::move(c));
     }
     std::stable_sort(layout.clears.begin(), layout.clears.end(), [](const ClearValue& a, const ClearValue& b) {
@@ -238,7 +253,8 @@ void Parser::parseMaterialPass(const toml::table& root, Layout& layout) {
     }
     layout.materialPass.place = placeOf(*n);
     layout.materialPass.declared = true;
-    checkKeys(*t, {"fresnel"}, "[material_pass]");
+    checkKeys(*t, {"fresnel", "from", "status", "differs"}, "[material_pass]");
+    readProvenance(*t, layout.materialPass.provenance, layout.materialPass.place);
     if (auto f = getString(*t, "fresnel", true, layout.materialPass.place, "[material_pass]")) {
         if (*f == "none")
             layout.materialPass.fresnel = MaterialFresnel::None;
@@ -266,7 +282,8 @@ void Parser::parseLightBuffers(const toml::table& root, Layout& layout) {
         }
         LightBuffer lb;
         lb.place = placeOf(node);
-        checkKeys(*t, {"name", "format", "encoding", "range", "holds"}, "[[light_buffer]]");
+        checkKeys(*t, {"name", "format", "encoding", "range", "holds", "from", "status", "differs"}, "[[light_buffer]]");
+        readProvenance(*t, lb.provenance, lb.place);
         lb.name = getString(*t, "name", true, lb.place, "[[light_buffer]]").value_or("");
         const TargetFormatInfo* info = nullptr;
         if (auto format = getString(*t, "format", true, lb.place, "[[light_buffer]]")) {

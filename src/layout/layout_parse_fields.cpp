@@ -44,9 +44,11 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
     Field field;
     field.place = placeOf(node);
     if (stencil)
-        checkKeys(*t, {"attribute", "encoding", "at", "bits", "value"}, "a stencil field");
+        checkKeys(*t, {"attribute", "encoding", "at", "bits", "value", "from", "status", "differs"}, "a stencil field");
     else
-        checkKeys(*t, {"attribute", "encoding", "transform", "interleave", "at", "bits", "value"}, "a field");
+        checkKeys(*t, {"attribute", "encoding", "transform", "interleave", "at", "bits", "value", "from", "status", "differs"},
+                  "a field");
+    readProvenance(*t, field.provenance, field.place);
 
     auto attrName = getString(*t, "attribute", true, field.place, "the field");
     if (!attrName) return std::nullopt;

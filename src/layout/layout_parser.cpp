@@ -30,8 +30,9 @@ Layout Parser::parse(std::string_view text) {
     }
     const FilePlace top{1, 1};
     checkKeys(root, {"name", "title", "source", "pipeline", "depth", "target", "fallback", "clear", "light_buffer",
-                     "material_pass", "space", "ids"},
+                     "material_pass", "space", "ids", "sources"},
               "the layout");
+    parseSources(root, layout);
 
     if (auto name = getString(root, "name", true, top, "the layout")) {
         const bool ok = !name->empty() && std::all_of(name->begin(), name->end(), [](char c) {
@@ -95,7 +96,8 @@ void Parser::parseSpace(const toml::table& root, Layout& layout) {
     }
     sp.declared = true;
     sp.place = placeOf(*n);
-    checkKeys(*t, {"normal", "up", "position"}, "[space]");
+    checkKeys(*t, {"normal", "up", "position", "from", "status", "differs"}, "[space]");
+    readProvenance(*t, sp.provenance, sp.place);
     bool zUp = false, upGiven = false;
     if (const toml::node* u = t->get("up")) {
         upGiven = true;
@@ -181,7 +183,8 @@ void Parser::parseDepth(const toml::table& root, Layout& layout) {
     }
     Depth& d = layout.depth;
     d.place = placeOf(*n);
-    checkKeys(*t, {"format", "reversed_z", "stencil"}, "[depth]");
+    checkKeys(*t, {"format", "reversed_z", "stencil", "from", "status", "differs"}, "[depth]");
+    readProvenance(*t, d.provenance, d.place);
     if (auto format = getString(*t, "format", true, d.place, "[depth]")) {
         d.formatPlace = placeOf(*t->get("format"));
         if (const DepthFormatInfo* info = findDepthFormat(*format)) {
@@ -228,7 +231,8 @@ void Parser::parseTarget(const toml::node& node, Layout& layout) {
     }
     Target target;
     target.place = placeOf(node);
-    checkKeys(*t, {"name", "format", "field"}, "[[target]]");
+    checkKeys(*t, {"name", "format", "field", "from", "status", "differs"}, "[[target]]");
+    readProvenance(*t, target.provenance, target.place);
     target.name = getString(*t, "name", true, target.place, "[[target]]").value_or("");
     const std::string where = target.name.empty() ? "[[target]]" : "target " + squote(target.name);
     if (auto format = getString(*t, "format", true, target.place, where)) {

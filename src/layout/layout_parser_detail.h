@@ -176,6 +176,10 @@ private:
     void parseMaterialPass(const toml::table& root, Layout& layout);
     void parseSpace(const toml::table& root, Layout& layout);
     void parseIds(const toml::table& root, Layout& layout);  // layout_visibility.cpp
+    // layout_provenance.cpp: [sources], and the from / status / differs keys of one entry.
+    void parseSources(const toml::table& root, Layout& layout);
+    void readProvenance(const toml::table& table, Provenance& out, FilePlace entry);
+    const toml::node* entryValue(const toml::node& node, Provenance& out, const std::string& what);
 
     std::string file_;
     std::vector<LayoutDiagnostic>& out_;

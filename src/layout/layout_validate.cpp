@@ -511,7 +511,11 @@ private:
 // layout_visibility.cpp: [ids] and the visibility buffer's rules.
 void validateVisibilityLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out);
 
+// layout_provenance.cpp: citations, statuses, provenance on every entry of a layout with [sources].
+void validateProvenance(const Layout& layout, std::vector<LayoutDiagnostic>& out);
+
 void validateLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out) {
+    validateProvenance(layout, out);
     validateVisibilityLayout(layout, out);
     if (layout.pipeline == Pipeline::VisibilityBuffer) return;  // no attributes, so none of the checks below
     Validator v(layout, out);

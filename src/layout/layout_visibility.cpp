@@ -22,7 +22,8 @@ void Parser::parseIds(const toml::table& root, Layout& layout) {
         error(ids.place, "'ids' must be a table ([ids]), not " + std::string(typeName(*n)));
         return;
     }
-    checkKeys(*t, {"format", "triangle_bits", "draw_bits", "alpha_mask_bit"}, "[ids]");
+    checkKeys(*t, {"format", "triangle_bits", "draw_bits", "alpha_mask_bit", "from", "status", "differs"}, "[ids]");
+    readProvenance(*t, ids.provenance, ids.place);
     if (auto format = getString(*t, "format", true, ids.place, "[ids]")) {
         ids.formatPlace = placeOf(*t->get("format"));
         if (*format == "R32_UINT" || *format == "R32G32_UINT") {

@@ -62,12 +62,16 @@ void writeAtlasHtml(std::string& out, const ReportModel& model) {
            "<p class=\"hint\">Every layout compared, grouped by engine family, oldest first. Bytes per pixel: the "
            "G-buffer's targets and depth-stencil (light buffers after +); a layout whose targets hold ids, not "
            "attributes, says so. Bits: what each stored attribute occupies, with its encoding; attributes not "
-           "stored say how they are obtained. Errors: the run under " +
+           "stored say how they are obtained. Provenance: the layout's entries (depth, targets, fields, fallbacks, "
+           "clear values, ...) by where the file says each comes from: verified in the engine's source, from a talk, "
+           "assumed, or gbufferlab's own; \"differs\" counts the entries that state a known difference from the "
+           "engine. Errors: the run under " +
            htmlEscape(mode.empty() ? std::string("-") : mode) + " against the float reference.</p>\n";
     out += "<table class=\"atlas\">\n<thead><tr><th>Layout</th><th>Engine</th><th>Year</th><th>Bytes/px</th>"
-           "<th>Attributes: bits, encoding</th><th>FLIP mean</th><th>PSNR dB</th></tr></thead>\n<tbody>\n";
+           "<th>Attributes: bits, encoding</th><th>Provenance</th><th>FLIP mean</th><th>PSNR dB</th></tr></thead>\n"
+           "<tbody>\n";
     for (const AtlasRowGroup& g : groups) {
-        out += "<tr class=\"family\"><th colspan=\"7\">" + htmlEscape(g.family) + "</th></tr>\n";
+        out += "<tr class=\"family\"><th colspan=\"8\">" + htmlEscape(g.family) + "</th></tr>\n";
         for (const AtlasRow& r : g.rows) {
             const AtlasEntry& e = r.entry;
             std::string bytes = std::to_string(e.bytesPerPixel);
@@ -82,6 +86,8 @@ void writeAtlasHtml(std::string& out, const ReportModel& model) {
             out += "<tr><td title=\"" + htmlEscape(e.title) + "\">" + htmlEscape(e.layout) + "</td><td>" +
                    htmlEscape(e.engine) + "</td><td class=\"num\">" + std::to_string(e.year) +
                    "</td><td class=\"num\">" + bytes + "</td><td class=\"attrs\">" + attrs +
+                   "</td><td class=\"provenance\">" +
+                   (e.provenance.entries > 0 ? htmlEscape(e.provenance.text()) : std::string("&ndash;")) +
                    "</td><td class=\"num\">" + (r.flipMean ? fixed(*r.flipMean, 4) : "&ndash;") +
                    "</td><td class=\"num\">" + (r.psnrToneMapped ? fixed(*r.psnrToneMapped, 2) : "&ndash;") +
                    "</td></tr>\n";

@@ -161,6 +161,12 @@ Json atlasJson(const ReportModel& model) {
                      {"bytes_kind", e.bytesKind},
                      {"light_buffer_bytes_per_pixel", e.lightBufferBytesPerPixel},
                      {"attributes", std::move(attributes)}};
+            if (e.provenance.entries > 0) {
+                const ProvenanceCounts& p = e.provenance;
+                row["provenance"] = Json{{"entries", p.entries}, {"verified", p.verified}, {"talk", p.talk},
+                                         {"lineage", p.lineage}, {"assumed", p.assumed},  {"own", p.own},
+                                         {"missing", p.missing}, {"differs", p.differs}, {"text", p.text()}};
+            }
             if (!r.iblMode.empty()) row["ibl_mode"] = r.iblMode;
             if (r.flipMean) row["flip_mean"] = number(*r.flipMean);
             if (r.psnrToneMapped) row["psnr_tonemapped_db"] = number(*r.psnrToneMapped);
@@ -569,6 +575,20 @@ ReportModel reportFromJson(const Json& json) {
             for (size_t k = 0; k < attributes.array().size(); ++k) {
                 const Node at = attributes.at(k);
                 e.attributes.push_back({at["name"].str(), at["bits"].i32(), at["encoding"].str()});
+            }
+            if (a.has("provenance")) {  // absent in reports written before provenance existed
+                const Node p = a["provenance"];
+                ProvenanceCounts& c = e.provenance;
+                c.entries = p["entries"].i32();
+                c.verified = p["verified"].i32();
+                c.talk = p["talk"].i32();
+                c.lineage = p["lineage"].i32();
+                c.assumed = p["assumed"].i32();
+                c.own = p["own"].i32();
+                c.missing = p["missing"].i32();
+                c.differs = p["differs"].i32();
+                if (c.verified + c.talk + c.lineage + c.assumed + c.own + c.missing != c.entries)
+                    p.fail("verified + talk + lineage + assumed + own + missing must equal entries");
             }
             model.atlas.push_back(std::move(e));
         }

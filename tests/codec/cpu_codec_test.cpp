@@ -569,3 +569,37 @@ TEST(CpuCodec, CheckerboardChromaSkipsPixelsWithoutGeometry) {
 
 }  // namespace
 }  // namespace gbl
+
+
+namespace gbl {
+// The engines' own clear colours, as the layouts declare them ([clear]): the words a target is
+// cleared with are the engine's. niagara clears both colour targets to (135, 206, 250, 15) / 255
+// (zeux/niagara @95f289b7 src/niagara.cpp:1762): RGBA8 codes 135, 206, 250 and the emissive ratio
+// 15; in A2B10G10R10 the 10-bit codes 542, 826, 1003 and 0 (its normal's dither at pixel (0, 0)
+// keeps 542 and 826). HDRP's GBuffer1 clear is Color.black = (0, 0, 0, 1): octahedral codes (0, 0)
+// and roughness code 255; URP's accurate-normals GBuffer2 clears to 0 (RenderGraph).
+TEST(CpuCodec, EngineClearWordsAreTheEnginesClearColours) {
+    const std::filesystem::path dir(GBL_SOURCE_LAYOUT_DIR);
+    const auto niagara = clearWords(loadLayoutFile(dir / "niagara.toml"));
+    ASSERT_EQ(niagara.size(), 2u);
+    EXPECT_EQ(niagara[0][0], 135u | 206u << 8 | 250u << 16 | 15u << 24);
+    EXPECT_EQ(niagara[1][0], 542u | 826u << 10 | 1003u << 20);
+    const auto hdrp = clearWords(loadLayoutFile(dir / "hdrp-lit.toml"));
+    ASSERT_EQ(hdrp.size(), 4u);
+    EXPECT_EQ(hdrp[1][0], 0xFF000000u);  // GBuffer1: R = G = B = 0 (codes (0, 0)), A = 255
+    EXPECT_EQ(hdrp[0][0], 0u);
+    EXPECT_EQ(hdrp[2][0], 0u);
+    EXPECT_EQ(hdrp[3][0], 0u);
+    const auto urp = clearWords(loadLayoutFile(dir / "urp-deferred-accurate.toml"));
+    ASSERT_EQ(urp.size(), 3u);
+    EXPECT_EQ(urp[2][0], 0u);  // GBuffer2: octahedral codes (0, 0), smoothness 0
+    // UE clears every G-buffer code to 0; its extras (shading model, mask, per-object, precomputed
+    // shadow) are the one documented difference: gbufferlab writes their values in every pixel.
+    const auto ue5 = clearWords(loadLayoutFile(dir / "ue5.toml"));
+    ASSERT_EQ(ue5.size(), 5u);
+    EXPECT_EQ(ue5[0][0], 1u << 30);           // GBufferA: normal codes 0, per-object code 1
+    EXPECT_EQ(ue5[1][0], 0x81u << 24);        // GBufferB: B8G8R8A8, alpha = 1 | 8 << 4
+    EXPECT_EQ(ue5[2][0], 0u);                 // GBufferC: base colour 0, precomputed irradiance 0
+}
+
+}  // namespace gbl

@@ -79,13 +79,21 @@ TEST(LayoutFiles, BytesPerPixel) {
 // The atlas of shipped engines (issue 15), hand-computed from each engine's formats.
 TEST(LayoutFiles, AtlasBytesPerPixel) {
     const std::map<std::string, int> expected = {
-        {"ue5", 4 + 5 * 4 + 4 + 5},            // GBufferA (10:10:10:2) + B..F (RGBA8) + velocity (RG16) + D32S8
-        {"ue5-16bit", 6 * 8 + 4 + 5},          // A..F as RGBA16F + velocity + D32S8
+        // UE 5.3.2's base pass: GBufferA (10:10:10:2) + B..E (RGBA8) + D32S8; no GBufferF (a separate
+        // anisotropy pass) and no velocity (the depth pass) by default.
+        {"ue5", 4 + 4 * 4 + 5},
+        {"ue5-velocity", 4 + 2 * 4 + 8 + 2 * 4 + 5},  // A, B, C, velocity (RGBA16 UNORM), D, E + D32S8
+        {"ue5-nostatic", 4 + 3 * 4 + 5},              // no GBufferE without static lighting
+        {"ue5-16bit", 3 * 8 + 2 * 4 + 5},             // A..C RGBA16F, D and E stay RGBA8
+        {"ue5-16bit-unorm", 3 * 8 + 2 * 4 + 5},       // UE 5.0.x: A..C RGBA16 UNORM
+        {"ue4-elemental", 4 * 4 + 4},                 // Mittring 2012: four 32-bit targets + D24S8
+        {"hdrp-lit-apv", 4 * 4 + 5},                  // hdrp-lit's targets; probe volumes change bits only
         {"hdrp-lit", 4 * 4 + 5},               // GBuffer0..2 RGBA8 + GBuffer3 B10G11R11 + D32S8
         {"urp-deferred", 3 * 4 + 5},           // GBuffer0..2 RGBA8 + D32S8
         {"urp-deferred-accurate", 3 * 4 + 5},  // the same targets, GBuffer2 UNORM
         {"bevy-deferred", 16 + 1 + 4},         // Rgba32Uint + R8Uint pass id + Depth32Float
         {"granite", 4 + 4 + 4 + 2 + 4},        // B10G11R11 + RGBA8 + A2B10G10R10 + RG8 + D24S8
+        {"granite-2025", 4 + 4 + 4 + 2 + 4},   // the same targets + D32_SFLOAT (no stencil)
         // Valient, Develop 2007: four RGBA8 + D24S8 = 20 bytes; the talk's "36 MB" is this at
         // 1280x720 with 2x MSAA: 20 * 1280 * 720 * 2 = 36.9e6 bytes.
         {"killzone2", 4 * 4 + 4},
@@ -93,7 +101,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
     };
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     EXPECT_NEAR(bytesPerPixel(load("killzone2")) * 1280.0 * 720.0 * 2.0 / 1e6, 36.0, 1.0);
-    EXPECT_GE(listLayoutNames(layoutsDir()).size(), 15u);
+    EXPECT_GE(listLayoutNames(layoutsDir()).size(), 25u);  // issue 28: at least 24 layouts + the reference
 }
 
 // Where the atlas layouts put their bits (each engine's source, as the layout files cite it).
@@ -123,9 +131,26 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(bitsOf(hdrp, Attribute::CoatMask), 5);
     EXPECT_EQ(bitsOf(load("killzone2"), Attribute::Normal), 32);  // two FP16
     EXPECT_EQ(bitsOf(load("urp-deferred"), Attribute::Roughness), 7);  // smoothness in an SNORM byte
-    EXPECT_EQ(bitsOf(load("ue5"), Attribute::Tangent), 24);
-    EXPECT_EQ(bitsOf(load("ue5"), Attribute::Velocity), 32);
+    // UE 5's default base pass writes neither GBufferF nor velocity; r.VelocityOutputPass = 1 adds
+    // velocity after GBufferC; GBufferC.a holds the precomputed irradiance, not occlusion.
+    const Layout ue5 = load("ue5");
+    EXPECT_EQ(bitsOf(ue5, Attribute::Tangent), 0);
+    EXPECT_EQ(bitsOf(ue5, Attribute::Velocity), 0);
+    EXPECT_EQ(bitsOf(ue5, Attribute::Occlusion), 0);
+    EXPECT_EQ(ue5.findFallback(Attribute::Occlusion)->value, std::vector<double>{1.0});
+    EXPECT_EQ(bitsOf(ue5, Attribute::PrecomputedIrradiance), 8);
+    EXPECT_EQ(ue5.findField(Attribute::SelectiveOutputMask)->value, std::vector<double>{8.0});  // SKIP_VELOCITY
+    const Layout velocity = load("ue5-velocity");
+    EXPECT_EQ(bitsOf(velocity, Attribute::Velocity), 32);
+    ASSERT_EQ(velocity.targets.size(), 6u);
+    EXPECT_EQ(velocity.targets[3].name, "Velocity");  // after GBufferC, before GBufferD
+    EXPECT_EQ(velocity.findField(Attribute::SelectiveOutputMask)->value, std::vector<double>{0.0});
     EXPECT_EQ(bitsOf(load("ue5-16bit"), Attribute::BaseColor), 48);
+    EXPECT_EQ(bitsOf(load("ue5-16bit-unorm"), Attribute::Normal), 48);  // n * 0.5 + 0.5 in UNORM16
+    EXPECT_EQ(bitsOf(load("hdrp-lit-apv"), Attribute::Occlusion), 7);   // PackFloatInt8bit(so, isLightmap, 2)
+    EXPECT_EQ(bitsOf(load("hdrp-lit-apv"), Attribute::IsLightmap), 1);
+    EXPECT_TRUE(load("granite-2025").depth.reversedZ);
+    EXPECT_FALSE(load("granite").depth.reversedZ);
     // niagara: emissive is one 8-bit ratio to the albedo's luminance, read after the albedo.
     const Layout niagara = load("niagara");
     EXPECT_EQ(bitsOf(niagara, Attribute::Emissive), 8);
@@ -188,7 +213,7 @@ TEST(LayoutFiles, ListGroupsByFamily) {
     // The same facts as the atlas entry of each file.
     const AtlasEntry ue5 = atlasEntryOf(load("ue5"));
     EXPECT_EQ(ue5.family, "Unreal Engine");
-    EXPECT_EQ(ue5.bytesPerPixel, 33);
+    EXPECT_EQ(ue5.bytesPerPixel, 25);
     EXPECT_EQ(ue5.bytesKind, "attributes");
     EXPECT_EQ(atlasAttributeSummary(atlasEntryOf(load("killzone2"))).find("normal 32 normal_xy_float16"), 0u);
 }

@@ -388,7 +388,7 @@ TEST(LayoutParser, LightBufferEncodingMustFitItsFormat) {
 
 TEST(LayoutParser, MaterialPassTableIsDeclaredForDeferredLighting) {
     const std::string c2 = lightingLayoutText("crysis2-slim");
-    std::string t = edit(c2, "[material_pass]\nfresnel = \"none\"\n", "");
+    std::string t = edit(c2, "[material_pass]\nfresnel = \"none\"\nstatus = \"assumed\"\n", "");
     expectOnlyError(t, std::string(kFile) + ":1:1", {"[material_pass]", "schlick_nv"});
     t = edit(c2, "[material_pass]\nfresnel = \"none\"", "[material_pass]\nfresnel = \"per_light\"");
     expectOnlyError(t, placeOf(t, "\"per_light\""), {"unknown fresnel 'per_light'"});

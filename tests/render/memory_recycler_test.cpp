@@ -59,7 +59,7 @@ TEST_F(MemoryRecyclerTest, RendersOnPoisonedRecycledMemoryEqualRendersOnFreshMem
         << "the recycler must be off on a CPU device (its 4K peak memory)";
     const Scene scene = makeSphereGridScene();
     const EnvironmentMap sky = makeProceduralSky(64);
-    const std::vector<std::string> names = {"crysis2-slim", "crysis3-thin", "visibility-32", "ue5", "reference"};
+    const std::vector<std::string> names = {"crysis2-slim", "crysis3-thin", "visibility-32", "ue5-velocity", "reference"};
     std::vector<GBufferWiring> wirings;
     for (const std::string& n : names) wirings.push_back(generateWiring(loadLayout(n)));
     Renderer renderer(c, scene, sky);

@@ -39,6 +39,21 @@ ReportModel atlasModel() {
         // A pipeline whose targets hold ids (a visibility buffer): no attributes, no run.
         entry("visbuffer", "gbufferlab", 2024, 8, {}, "ids"),
     };
+    // Provenance counts (layout.h, provenanceCounts): ue4's as its file has them; ryse's talk-based
+    // mix; visbuffer's none (a layout written before provenance, or a user's without [sources]).
+    ProvenanceCounts& ue4 = m.atlas[0].provenance;
+    ue4.entries = 27;
+    ue4.verified = 25;
+    ue4.assumed = 2;
+    ue4.differs = 3;
+    ProvenanceCounts& ryse = m.atlas[1].provenance;
+    ryse.entries = 19;
+    ryse.verified = 0;
+    ryse.talk = 3;
+    ryse.lineage = 6;
+    ryse.assumed = 7;
+    ryse.own = 3;
+    ryse.differs = 6;
     return m;
 }
 
@@ -101,6 +116,55 @@ TEST(ReportAtlas, ReadsBackAndWritesTheSameJson) {
     }
 }
 
+// Each row carries how much of its layout is verified; a row without provenance carries none; the
+// counts read back and must add up.
+TEST(ReportAtlas, RowsCarryProvenanceCounts) {
+    const ReportModel model = atlasModel();
+    const Json j = reportToJson(model);
+    const Json* ue4 = nullptr;
+    const Json* visbuffer = nullptr;
+    for (const Json& row : j["atlas"]) {
+        if (row["layout"] == "ue4") ue4 = &row;
+        if (row["layout"] == "visbuffer") visbuffer = &row;
+    }
+    ASSERT_TRUE(ue4 && visbuffer);
+    EXPECT_EQ((*ue4)["provenance"], (Json{{"entries", 27}, {"verified", 25}, {"talk", 0}, {"lineage", 0}, {"assumed", 2},
+                                          {"own", 0}, {"missing", 0}, {"differs", 3},
+                                          {"text", "verified 25/27, assumed 2, differs 3"}}));
+    EXPECT_FALSE(visbuffer->contains("provenance"));
+    // Back from JSON: the same counts.
+    const ReportModel back = reportFromJson(Json::parse(j.dump()));
+    for (const AtlasEntry& e : back.atlas) {
+        if (e.layout != "ryse") continue;
+        EXPECT_EQ(e.provenance.text(), "verified 0/19, talk 3, lineage 6, assumed 7, own 3, differs 6");
+    }
+    // Counts that do not add up to the entries are refused, with the path.
+    Json bad = j;
+    for (Json& row : bad["atlas"])
+        if (row["layout"] == "ue4") row["provenance"]["verified"] = 24;
+    try {
+        (void)reportFromJson(bad);
+        ADD_FAILURE() << "accepted provenance counts that do not add up";
+    } catch (const UserError& e) {
+        EXPECT_NE(std::string(e.what()).find(".provenance: verified + talk + lineage + assumed + own + missing must "
+                                             "equal entries"),
+                  std::string::npos)
+            << e.what();
+    }
+    // report.html: the provenance column of each row, "-" without.
+    const std::string html = reportHtml(model);
+    const size_t at = html.find("<section id=\"atlas\">");
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_NE(html.find("<th>Provenance</th>", at), std::string::npos);
+    const size_t ue4Row = html.find(">ue4</td>", at);
+    ASSERT_NE(ue4Row, std::string::npos);
+    const std::string row = html.substr(ue4Row, html.find("</tr>", ue4Row) - ue4Row);
+    EXPECT_NE(row.find("<td class=\"provenance\">verified 25/27, assumed 2, differs 3</td>"), std::string::npos) << row;
+    const size_t visRow = html.find(">visbuffer</td>", at);
+    const std::string vis = html.substr(visRow, html.find("</tr>", visRow) - visRow);
+    EXPECT_NE(vis.find("<td class=\"provenance\">&ndash;</td>"), std::string::npos) << vis;
+}
+
 TEST(ReportAtlas, HtmlTableShowsTheSameRows) {
     const ReportModel model = atlasModel();
     const std::string html = reportHtml(model);
@@ -108,7 +172,7 @@ TEST(ReportAtlas, HtmlTableShowsTheSameRows) {
     ASSERT_NE(at, std::string::npos);
     const std::string section = html.substr(at, html.find("</section>", at) - at);
     for (const char* family : {"early deferred", "CryENGINE", "Unreal Engine", "gbufferlab"})
-        EXPECT_NE(section.find(std::string("<tr class=\"family\"><th colspan=\"7\">") + family + "</th>"), std::string::npos)
+        EXPECT_NE(section.find(std::string("<tr class=\"family\"><th colspan=\"8\">") + family + "</th>"), std::string::npos)
             << family;
     // Rows in the JSON's order, each with its FLIP and PSNR as report.json has them.
     size_t last = 0;
