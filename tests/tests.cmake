@@ -6,6 +6,9 @@ gbl_test(base/parallel_for_test LABELS unit DEPS gbl_base)
 gbl_test(base/background_writer_test LABELS unit DEPS gbl_base)
 gbl_test(base/host_heap_test LABELS unit DEPS gbl_base)
 gbl_test(base/disk_cache_test LABELS unit DEPS gbl_base)
+gbl_test(base/memory_budget_test LABELS unit DEPS gbl_base)
+gbl_test(base/escape_text_test LABELS unit DEPS gbl_base)
+gbl_test(base/output_over_input_test LABELS unit DEPS gbl_base)
 gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads environment maps too
 gbl_test(image/exr_half_test LABELS unit DEPS gbl_image)
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
@@ -58,6 +61,7 @@ gbl_test(evaluate/gpu_evaluator_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_
 gbl_test(evaluate/gpu_evaluator_band_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_layout)
 gbl_test(measure/metrics_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/flip_test LABELS unit DEPS gbl_measure)
+gbl_test(measure/flip_mean_test LABELS unit DEPS gbl_measure)  # the mean against an exact sum, and NVIDIA's float sum
 gbl_test(measure/run_metrics_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/float_sort_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
@@ -80,4 +84,9 @@ gbl_test(cli/cli_test LABELS gpu DEPS gbufferlab gbl_report gbl_image nlohmann_j
 gbl_test(cli/compare_bands_test LABELS unit DEPS gbl_cli)
 gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
 gbl_test(cli/diff_cli_test LABELS gpu DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
+# Hostile input, run as the executable and measured (peak memory, time); refusals need no driver.
+gbl_test(cli/diff_bounds_cli_test LABELS unit DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
+gbl_test(cli/input_bounds_cli_test LABELS unit DEPS gbufferlab gbl_render gbl_image)
+gbl_test(cli/run_names_cli_test LABELS unit DEPS gbufferlab gbl_base)
+gbl_test(cli/messages_cli_test LABELS unit DEPS gbufferlab gbl_base)
 include(tests/layering/layering.cmake)

@@ -1,5 +1,8 @@
 #include "error.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace gbl {
 
 std::string formatPlace(const std::string& file, int line, int column) {
@@ -13,32 +16,79 @@ std::string formatPlace(const std::string& file, int line, int column) {
 
 void throwUserError(const std::string& message) { throw UserError(message); }
 
-std::string escapeText(std::string_view text) {
+namespace {
+
+void appendByteEscape(std::string& out, unsigned char c) {
     static const char* hex = "0123456789abcdef";
+    out += "\\x";
+    out += hex[c >> 4];
+    out += hex[c & 15];
+}
+
+// The length of the well-formed UTF-8 sequence at text[i] (2 to 4) and its code point, or 0.
+size_t utf8Sequence(std::string_view text, size_t i, uint32_t& cp) {
+    const auto b = [&](size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char c = b(i);
+    size_t n = 0;
+    if (c >= 0xC2 && c <= 0xDF) n = 2, cp = c & 0x1Fu;
+    else if (c >= 0xE0 && c <= 0xEF) n = 3, cp = c & 0x0Fu;
+    else if (c >= 0xF0 && c <= 0xF4) n = 4, cp = c & 0x07u;
+    else return 0;
+    if (i + n > text.size()) return 0;
+    for (size_t k = 1; k < n; ++k) {
+        if ((b(i + k) & 0xC0) != 0x80) return 0;
+        cp = (cp << 6) | (b(i + k) & 0x3Fu);
+    }
+    const uint32_t least[5] = {0, 0, 0x80, 0x800, 0x10000};
+    if (cp < least[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;  // overlong, surrogate
+    return n;
+}
+
+// Code points printed escaped although well formed: they break the line or hide text.
+bool hidesOrBreaks(uint32_t cp) {
+    return (cp >= 0x80 && cp <= 0x9F) || cp == 0xAD || (cp >= 0x200B && cp <= 0x200F) ||
+           (cp >= 0x2028 && cp <= 0x202E) || (cp >= 0x2060 && cp <= 0x206F) || cp == 0xFEFF;
+}
+
+std::string escape(std::string_view text, bool keepUtf8) {
     std::string out;
     out.reserve(text.size());
-    for (const char ch : text) {
-        const auto c = static_cast<unsigned char>(ch);
+    for (size_t i = 0; i < text.size();) {
+        const auto c = static_cast<unsigned char>(text[i]);
         switch (c) {
-            case '\n': out += "\\n"; continue;
-            case '\r': out += "\\r"; continue;
-            case '\t': out += "\\t"; continue;
-            case '\\': out += "\\\\"; continue;
-            case '\'': out += "\\'"; continue;
+            case '\n': out += "\\n"; ++i; continue;
+            case '\r': out += "\\r"; ++i; continue;
+            case '\t': out += "\\t"; ++i; continue;
+            case '\\': out += "\\\\"; ++i; continue;
+            case '\'': out += "\\'"; ++i; continue;
             default: break;
         }
-        if (c < 0x20 || c >= 0x7f) {
-            out += "\\x";
-            out += hex[c >> 4];
-            out += hex[c & 15];
-        } else {
-            out += ch;
+        if (c >= 0x20 && c < 0x7f) {
+            out += char(c);
+            ++i;
+            continue;
         }
+        uint32_t cp = 0;
+        const size_t n = keepUtf8 && c >= 0x80 ? utf8Sequence(text, i, cp) : 0;
+        if (n > 0 && !hidesOrBreaks(cp)) {
+            out.append(text.substr(i, n));
+        } else {
+            for (size_t k = 0; k < std::max<size_t>(n, 1); ++k) appendByteEscape(out, static_cast<unsigned char>(text[i + k]));
+        }
+        i += std::max<size_t>(n, 1);
     }
     return out;
 }
 
+}  // namespace
+
+std::string escapeText(std::string_view text) { return escape(text, true); }
+
 std::string quoteName(std::string_view text) { return "'" + escapeText(text) + "'"; }
+
+std::string escapeBytes(std::string_view text) { return escape(text, false); }
+
+std::string quoteBytes(std::string_view text) { return "'" + escapeBytes(text) + "'"; }
 
 std::string jsonParseErrorMessage(const std::string& file, std::string_view text, size_t byte, const std::string& what) {
     int line = 1, column = 1;

@@ -1,7 +1,11 @@
 #include "file_io.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <mutex>
+#include <set>
+#include <utility>
 #include <ctime>
 #include <fstream>
 #include <system_error>
@@ -71,7 +75,84 @@ fs::path temporaryPathFor(const fs::path& path) {
                                  std::to_string(serial.fetch_add(1)));
 }
 
+namespace {
+
+struct InputRegistry {
+    std::mutex mutex;
+    std::set<std::pair<dev_t, ino_t>> files;
+};
+
+InputRegistry& inputs() {
+    static InputRegistry r;
+    return r;
+}
+
+bool fileIdentity(const fs::path& path, std::pair<dev_t, ino_t>& id) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return false;
+    id = {st.st_dev, st.st_ino};
+    return true;
+}
+
+// Canonical where possible (a path that does not exist yet is made absolute and normalised).
+fs::path absoluteNormal(const fs::path& path) {
+    std::error_code ec;
+    fs::path p = fs::weakly_canonical(path, ec);
+    if (ec) p = fs::absolute(path, ec).lexically_normal();
+    return p;
+}
+
+bool sameFile(const fs::path& a, const fs::path& b) {
+    std::error_code ec;
+    return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec) && !ec;
+}
+
+}  // namespace
+
+void registerInput(const fs::path& path) {
+    std::pair<dev_t, ino_t> id;
+    if (!fileIdentity(path, id)) return;
+    std::lock_guard<std::mutex> lock(inputs().mutex);
+    inputs().files.insert(id);
+}
+
+bool isRegisteredInput(const fs::path& path) {
+    std::pair<dev_t, ino_t> id;
+    if (!fileIdentity(path, id)) return false;
+    std::lock_guard<std::mutex> lock(inputs().mutex);
+    return inputs().files.count(id) != 0;
+}
+
+void refuseOutputOverInput(const fs::path& output, const std::vector<std::string>& inputList, const std::string& flagName) {
+    for (const std::string& in : inputList)
+        if (!in.empty() && sameFile(output, in))
+            throwUserError(flagName + " " + escapeText(output.string()) + ": is the input " + escapeText(in) +
+                           "; an output never replaces an input, with or without --force: choose another name");
+}
+
+void refuseInputsInsideDirectory(const fs::path& dir, const std::vector<std::string>& inputList,
+                                 const std::string& flagName) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return;
+    const fs::path root = absoluteNormal(dir);
+    for (const std::string& in : inputList) {
+        if (in.empty() || !fs::exists(in, ec)) continue;
+        const fs::path file = absoluteNormal(in);
+        if (std::mismatch(root.begin(), root.end(), file.begin(), file.end()).first == root.end())
+            throwUserError(flagName + " " + escapeText(dir.string()) + ": holds the input " + escapeText(in) +
+                           ", and its files may be replaced; an output never replaces an input: choose another " +
+                           flagName + " directory");
+    }
+}
+
 void commitTemporary(const fs::path& tmp, const fs::path& path) {
+    // The last line of defence of "outputs never replace inputs": whatever check a command made
+    // before its work, a write over a file it read as input is refused here.
+    if (isRegisteredInput(path)) {
+        discardTemporary(tmp);
+        throwUserError(escapeText(path.string()) + ": is an input of this command; an output never replaces an "
+                       "input: choose another output path");
+    }
     std::error_code ec;
     fs::rename(tmp, path, ec);
     unregisterTemporary(tmp);
@@ -99,14 +180,14 @@ void writeFileAtomic(const fs::path& path, const void* bytes, size_t size) {
 
 void writeFileAtomic(const fs::path& path, const std::string& text) { writeFileAtomic(path, text.data(), text.size()); }
 
-void checkOutputDirectory(const fs::path& dir, bool force, const std::string& flagName) {
+void checkOutputDirectory(const fs::path& dir, bool force, const std::string& flagName, const std::string& reuse) {
     std::error_code ec;
     if (!fs::exists(dir, ec)) return;
     if (!fs::is_directory(dir, ec))
-        throwUserError(flagName + " " + dir.string() + ": exists and is not a directory; choose another path");
+        throwUserError(flagName + " " + escapeText(dir.string()) + ": exists and is not a directory; choose another path");
     if (!fs::is_empty(dir, ec) && !force)
-        throwUserError(flagName + " " + dir.string() +
-                       ": directory exists and is not empty; choose a new directory or pass --force to overwrite");
+        throwUserError(flagName + " " + escapeText(dir.string()) + ": directory exists and is not empty; choose a new "
+                       "directory, or " + reuse);
 }
 
 fs::path defaultOutputDirectory(const std::string& prefix) {
@@ -137,8 +218,8 @@ void lockOutputDirectory(const fs::path& dir, const std::string& flagName) {
     // fd stays open (and locked) for the rest of the process.
 }
 
-void prepareOutputDirectory(const fs::path& dir, bool force, const std::string& flagName) {
-    checkOutputDirectory(dir, force, flagName);
+void prepareOutputDirectory(const fs::path& dir, bool force, const std::string& flagName, const std::string& reuse) {
+    checkOutputDirectory(dir, force, flagName, reuse);
     std::error_code ec;
     if (!fs::exists(dir, ec)) {
         fs::create_directories(dir, ec);
@@ -147,7 +228,7 @@ void prepareOutputDirectory(const fs::path& dir, bool force, const std::string& 
     lockOutputDirectory(dir, flagName);
     // Checked again under the lock: a run that finished between the first check and the lock has
     // filled the directory, and that is refused unless --force, as always.
-    checkOutputDirectory(dir, force, flagName);
+    checkOutputDirectory(dir, force, flagName, reuse);
 }
 
 }  // namespace gbl

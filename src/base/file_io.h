@@ -29,14 +29,35 @@ std::filesystem::path temporaryPathFor(const std::filesystem::path& path);
 void commitTemporary(const std::filesystem::path& tmp, const std::filesystem::path& path);
 void discardTemporary(const std::filesystem::path& tmp) noexcept;
 
+// Outputs never replace inputs. A command registers the files the user gave it to read (images,
+// scenes and the files they name, environment maps, layout files) as they are read; every
+// atomic write above refuses to rename over one of them (the same file by device and inode, so
+// a symbolic or hard link to an input is caught too), whatever --force says. Caches and a
+// command's own earlier outputs (a resumed search's journal) are not registered: they are
+// meant to be rewritten.
+void registerInput(const std::filesystem::path& path);
+// Whether `path` exists and is a registered input.
+bool isRegisteredInput(const std::filesystem::path& path);
+// Checks made before the work, so that a clash fails fast: `output` (a file) must not be one of
+// `inputs`; with --force an output directory must not hold any of them (its files may be
+// replaced). Each names the flag, the input and the fix.
+void refuseOutputOverInput(const std::filesystem::path& output, const std::vector<std::string>& inputs,
+                           const std::string& flagName);
+void refuseInputsInsideDirectory(const std::filesystem::path& dir, const std::vector<std::string>& inputs,
+                                 const std::string& flagName);
+
 // Prepares an output directory: creates it, or accepts it when empty; a non-empty directory
 // is accepted only with `force` (its files are then replaced one by one, atomically). The
 // directory is then locked for the rest of the process: a second run into it is refused.
 // `flagName` is the CLI flag named in the error ("--out").
-void prepareOutputDirectory(const std::filesystem::path& dir, bool force, const std::string& flagName);
+void prepareOutputDirectory(const std::filesystem::path& dir, bool force, const std::string& flagName,
+                            const std::string& reuse = "add --force to replace files in it");
 void lockOutputDirectory(const std::filesystem::path& dir, const std::string& flagName);
 // The same checks without creating anything: run before the work, so bad flags fail fast.
-void checkOutputDirectory(const std::filesystem::path& dir, bool force, const std::string& flagName);
+// `reuse` is how the command lets a non-empty directory be used, for the message ("add --force
+// to replace its files"; search: resuming).
+void checkOutputDirectory(const std::filesystem::path& dir, bool force, const std::string& flagName,
+                          const std::string& reuse = "add --force to replace files in it");
 // out/<prefix>-YYYYmmdd-HHMMSS (with -2, -3... when taken): a fresh directory, never one in use.
 std::filesystem::path defaultOutputDirectory(const std::string& prefix);
 

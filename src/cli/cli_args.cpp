@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "error.h"
 
@@ -91,11 +92,18 @@ int parseIntFlag(const ParsedArgs& args, const std::string& flag, int fallback, 
 float parsePositiveFloatFlag(const ParsedArgs& args, const std::string& flag, float fallback) {
     if (!args.has(flag)) return fallback;
     const std::string text = args.get(flag);
+    // Read as a double, so that a positive value a float cannot hold (1e-300, 1e39) is told apart
+    // from one that is not positive: strtof turns both into 0 or infinity.
     char* end = nullptr;
-    const float v = std::strtof(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || !(v > 0.0f))
-        throwUserError("--" + flag + " " + text + ": expected a positive number, e.g. 1.5");
-    return v;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || std::isnan(v) || !(v > 0.0))
+        throwUserError("--" + flag + " " + quoteName(text) + ": expected a positive number, e.g. 1.5");
+    if (v > double(std::numeric_limits<float>::max()))
+        throwUserError("--" + flag + " " + quoteName(text) + ": too large; the largest value a float holds is about 3.4e38");
+    if (v < double(std::numeric_limits<float>::min()))
+        throwUserError("--" + flag + " " + quoteName(text) +
+                       ": too small; the smallest value a float holds at full precision is about 1.2e-38");
+    return float(v);
 }
 
 std::vector<std::string> splitFlagList(const std::string& text, const std::string& flag) {

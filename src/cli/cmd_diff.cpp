@@ -13,7 +13,11 @@
 #include "commands.h"
 #include "error.h"
 #include "image_diff.h"
+#include "file_io.h"
+#include "flip.h"
 #include "image_io.h"
+#include "json_number.h"
+#include "memory_budget.h"
 
 namespace gbl {
 
@@ -27,16 +31,27 @@ float parseFloatFlag(const ParsedArgs& args, const std::string& flag) {
     errno = 0;
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || end != text.c_str() + text.size() || errno != 0 || !std::isfinite(v))
-        throwUserError("--" + flag + " " + text + ": not a number; give e.g. --" + flag + " -2.5");
+        throwUserError("--" + flag + " " + quoteName(text) + ": not a number; give e.g. --" + flag + " -2.5");
+    if (!std::isfinite(float(v)))
+        throwUserError("--" + flag + " " + quoteName(text) + ": beyond the range of a float (about 3.4e38); give e.g. --" +
+                       flag + " -2.5");
     return float(v);
 }
 
-// JSON has no infinity: "inf" as report.json writes it (docs/report-schema.md).
-nlohmann::ordered_json number(double v) {
-    if (std::isnan(v)) return nullptr;
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+double parsePixelsPerDegree(const ParsedArgs& args) {
+    const std::string text = args.get("ppd");
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || errno != 0 || !(v > 0.0) ||
+        !(v <= kMaxFlipPixelsPerDegree))
+        throwUserError("--ppd " + quoteName(text) + ": give pixels per degree above 0 and at most " +
+                       std::to_string(int(kMaxFlipPixelsPerDegree)) +
+                       " (FLIP's filters widen with it); the default, 67.02, is 0.7 m from a 0.7 m wide 3840-pixel screen");
     return v;
 }
+
+std::string sizeText(const ImageFileInfo& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
 
 }  // namespace
 
@@ -48,7 +63,7 @@ int runDiffCommand(const std::vector<std::string>& args) {
         {"start-exposure", "C", "HDR-FLIP: first exposure, log2 scale (default: from the reference)"},
         {"stop-exposure", "C", "HDR-FLIP: last exposure, log2 scale (default: from the reference)"},
         {"num-exposures", "N", "HDR-FLIP: exposures (default max(2, ceil(stop - start)))"},
-        {"ppd", "X", "FLIP's pixels per degree (default 67.02: 0.7 m from a 0.7 m wide 3840-pixel screen)"},
+        {"ppd", "X", "FLIP's pixels per degree, at most 1000 (default 67.02: 0.7 m from a 0.7 m wide 3840-pixel screen)"},
         {"help", "", "show this help"},
     };
     const ParsedArgs parsed = parseArgs("diff", args, specs);
@@ -57,7 +72,10 @@ int runDiffCommand(const std::vector<std::string>& args) {
                                      "Compares TEST with REFERENCE: RMSE, PSNR, max |difference| and FLIP.\n"
                                      "8-bit PNG/JPEG inputs are sRGB and get LDR-FLIP (PSNR peak 1); EXR/HDR inputs are "
                                      "linear and get\nHDR-FLIP (PSNR peak = the reference's largest value). Both files "
-                                     "must have the same kind, size and channels.",
+                                     "must have the same kind, size and channels, and finite values (a NaN or infinity is refused, naming\n"
+                                     "its pixel). A pair whose comparison would not fit the memory budget "
+                                     "(GBL_MEMORY_BUDGET, default 3/4 of\nthe machine's memory) is refused "
+                                     "before it is read.",
                                      specs)
                                .c_str());
         return 0;
@@ -70,26 +88,46 @@ int runDiffCommand(const std::vector<std::string>& args) {
     if (parsed.has("start-exposure")) options.startExposure = parseFloatFlag(parsed, "start-exposure");
     if (parsed.has("stop-exposure")) options.stopExposure = parseFloatFlag(parsed, "stop-exposure");
     if (parsed.has("num-exposures")) options.numExposures = parseIntFlag(parsed, "num-exposures", 2, 2, 1000);
-    if (parsed.has("ppd")) options.pixelsPerDegree = parsePositiveFloatFlag(parsed, "ppd", 67.0f);
+    if (parsed.has("ppd")) options.pixelsPerDegree = parsePixelsPerDegree(parsed);
     std::string outPath = parsed.get("out");
+    std::string outExt;
     if (parsed.has("out")) {
-        std::string ext = fs::path(outPath).extension().string();
-        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-        if (ext != ".png" && ext != ".exr")
-            throwUserError("--out " + outPath + ": give a .png or .exr file name for the error map");
+        outExt = fs::path(outPath).extension().string();
+        for (char& c : outExt) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (outExt != ".png" && outExt != ".exr")
+            throwUserError("--out " + escapeText(outPath) + ": give a .png or .exr file name for the error map");
+        refuseOutputOverInput(outPath, {refPath, testPath}, "--out");
         if (fs::exists(outPath) && !parsed.has("force"))
-            throwUserError("--out " + outPath + ": file exists; choose another name or add --force to replace it");
+            throwUserError("--out " + escapeText(outPath) +
+                           ": file exists; choose another name or add --force to replace it");
     }
+
+    // From the headers alone: a pair that cannot be compared, or that would not fit in memory, is
+    // refused before a pixel is decoded.
+    for (const std::string& p : {refPath, testPath})
+        if (!fs::exists(p)) throwUserError(escapeText(p) + ": no such file");
+    const ImageFileInfo refInfo = probeImageFile(refPath), testInfo = probeImageFile(testPath);
+    if (refInfo.width != testInfo.width || refInfo.height != testInfo.height)
+        throwUserError(escapeText(testPath) + ": is " + sizeText(testInfo) + " but the reference " + escapeText(refPath) +
+                       " is " + sizeText(refInfo) + "; give images of the same size");
+    requireMemory(diffMemoryBytes(refInfo, testInfo),
+                  "gbufferlab diff " + escapeText(refPath) + " " + escapeText(testPath) + " (" + sizeText(refInfo) +
+                      (refInfo.hdr ? ", HDR-FLIP" : ", LDR-FLIP") + ")",
+                  "compare crops of them (e.g. four halves of the size), or raise GBL_MEMORY_BUDGET on a machine "
+                  "with more memory");
+    registerInput(refPath);
+    registerInput(testPath);
 
     const DiffInput reference = readDiffInput(refPath);
     const DiffInput test = readDiffInput(testPath);
     const bool hdr = reference.kind == DiffKind::Hdr;
     if (!hdr && (options.startExposure || options.stopExposure || options.numExposures))
-        throwUserError(refPath + ": exposure flags are for HDR-FLIP, but the inputs are 8-bit (LDR-FLIP); drop them");
-    const DiffResult r = diffImages(reference, test, refPath, testPath, options);
+        throwUserError(escapeText(refPath) +
+                       ": exposure flags are for HDR-FLIP, but the inputs are 8-bit (LDR-FLIP); drop them");
+    const DiffResult r = diffImages(reference, test, escapeText(refPath), escapeText(testPath), options);
 
     if (parsed.has("out")) {
-        if (fs::path(outPath).extension() == ".png" || fs::path(outPath).extension() == ".PNG")
+        if (outExt == ".png")
             writePng(outPath, applyColorMap(r.flipMap, 0.0f, 1.0f));
         else
             writeExr(outPath, r.flipMap, {"Y"});
@@ -104,19 +142,19 @@ int runDiffCommand(const std::vector<std::string>& args) {
         j["height"] = r.height;
         j["channels"] = r.channels;
         j["flip"] = hdr ? "hdr-flip" : "ldr-flip";
-        j["flip_mean"] = number(r.flip.mean);
-        j["flip_weighted_median"] = number(r.flip.weightedMedian);
-        j["flip_weighted_q1"] = number(r.flip.weightedQ1);
-        j["flip_weighted_q3"] = number(r.flip.weightedQ3);
-        j["flip_max"] = number(r.flip.max);
-        j["psnr_db"] = number(r.psnrDb);
-        j["psnr_peak"] = number(r.peak);
-        j["rmse"] = number(r.rmse);
-        j["max_abs"] = number(r.maxAbs);
+        j["flip_mean"] = jsonNumber(r.flip.mean);
+        j["flip_weighted_median"] = jsonNumber(r.flip.weightedMedian);
+        j["flip_weighted_q1"] = jsonNumber(r.flip.weightedQ1);
+        j["flip_weighted_q3"] = jsonNumber(r.flip.weightedQ3);
+        j["flip_max"] = jsonNumber(r.flip.max);
+        j["psnr_db"] = jsonNumber(r.psnrDb);
+        j["psnr_peak"] = jsonNumber(r.peak);
+        j["rmse"] = jsonNumber(r.rmse);
+        j["max_abs"] = jsonNumber(r.maxAbs);
         j["pixels_per_degree"] = options.pixelsPerDegree;
         if (hdr) {
-            j["start_exposure"] = number(r.exposures.start);
-            j["stop_exposure"] = number(r.exposures.stop);
+            j["start_exposure"] = jsonNumber(r.exposures.start);
+            j["stop_exposure"] = jsonNumber(r.exposures.stop);
             j["num_exposures"] = r.exposures.count;
         }
         if (parsed.has("out")) j["error_map"] = outPath;

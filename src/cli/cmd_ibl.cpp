@@ -85,6 +85,7 @@ int runIblCommand(const std::vector<std::string>& args) {
     if (parsed.has("brdf-lut")) applyBrdfLutVariant(parsed.get("brdf-lut"), settings);
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("ibl");
     checkOutputDirectory(outDir, parsed.has("force"), "--out");
+    if (parsed.has("force")) refuseInputsInsideDirectory(outDir, {parsed.get("env")}, "--out");
 
     const EnvironmentMap env = parsed.has("env") ? loadEnvironmentMap(parsed.get("env")) : makeProceduralSky();
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});

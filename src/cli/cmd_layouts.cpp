@@ -325,7 +325,8 @@ int printLayoutGlslCommand(const std::string& nameOrPath, bool nativeFormats, st
     try {
         WiringOptions options;
         options.nativeFormats = nativeFormats;
-        out << generateWiringGlsl(loadLayout(nameOrPath), options);
+        const Layout layout = loadLayout(nameOrPath);
+        out << "// file: " << escapeText(layout.sourceFile) << "\n" << generateWiringGlsl(layout, options);
         return 0;
     } catch (const UserError& e) {
         err << e.what() << "\n";

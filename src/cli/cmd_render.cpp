@@ -73,6 +73,10 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("render");
     // Refuse a non-empty output directory before any work, but create it only once all succeeded.
     checkOutputDirectory(outDir, parsed.has("force"), "--out");
+    if (parsed.has("force")) refuseInputsInsideDirectory(outDir, {parsed.get("scene"), parsed.get("env")}, "--out");
+    // The frame (and, in bands, the band) against the memory budget before anything is loaded or
+    // allocated: in bands only the HDR image and its PNG are frame-sized.
+    requireRenderMemory(width, height, bandRows >= height ? 0u : bandRows, "--size");
 
     const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
                                                 GltfLoadOptions{parsed.has("allow-outside-scene")});

@@ -16,6 +16,7 @@
 #include "flip.h"
 #include "ibl_cache.h"
 #include "layout_catalog.h"
+#include "layout_packer.h"
 #include "layout_search.h"
 #include "parallel_for.h"
 #include "renderer.h"
@@ -72,7 +73,9 @@ void reshadeAgreement(const search::FastEvaluator& eval, const SearchReference& 
 
 int runSearchCommand(const std::vector<std::string>& args) {
     const std::vector<FlagSpec> specs = {
-        {"budget", "B", "bytes per pixel, render targets and depth-stencil included (required; 4..64)"},
+        {"budget", "B", "bytes per pixel, render targets and depth-stencil included (required; " +
+                            std::to_string(search::smallestPackedBytes()) + "..64: the smallest layout the search "
+                            "packs takes " + std::to_string(search::smallestPackedBytes()) + ")"},
         {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in scene"},
         {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
         {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
@@ -104,6 +107,11 @@ int runSearchCommand(const std::vector<std::string>& args) {
         throwUserError("gbufferlab search: unexpected argument '" + parsed.positional[0] + "' (see --help)");
     if (!parsed.has("budget")) throwUserError("gbufferlab search: --budget B is required (bytes per pixel, e.g. 16)");
     const int budget = parseIntFlag(parsed, "budget", 16, 4, 64);
+    if (budget < search::smallestPackedBytes())
+        throwUserError("--budget " + std::to_string(budget) + ": no layout fits in " + std::to_string(budget) +
+                       " bytes per pixel: the smallest the search can pack (fewest bits of every encoding, the "
+                       "smallest depth format) takes " + std::to_string(search::smallestPackedBytes()) +
+                       "; give --budget " + std::to_string(search::smallestPackedBytes()) + " or more");
     const auto [width, height] = parseSize(parsed.get("size", "480x270"), "--size");
     const int viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
     const search::Objective objective = search::parseObjective(parsed.get("objective", "flip"));
@@ -113,7 +121,10 @@ int runSearchCommand(const std::vector<std::string>& args) {
     const bool confirm = !parsed.has("no-confirm");
     const fs::path outDir = parsed.has("out") ? fs::path(parsed.get("out")) : defaultOutputDirectory("search");
     const bool resuming = fs::exists(outDir / kJournal);
-    checkOutputDirectory(outDir, resuming, "--out");
+    const std::string reuse = "give the --out of an earlier search (a directory holding " + std::string(kJournal) +
+                              ") to resume it";
+    checkOutputDirectory(outDir, resuming, "--out", reuse);
+    if (resuming) refuseInputsInsideDirectory(outDir, {parsed.get("scene"), parsed.get("env")}, "--out");
     // The command as the front files quote it: without what does not change the result (--out,
     // --threads, --device, --no-confirm), so two runs with one seed write the same bytes.
     std::string commandLine = "gbufferlab search";
@@ -129,7 +140,7 @@ int runSearchCommand(const std::vector<std::string>& args) {
                                                 GltfLoadOptions{parsed.has("allow-outside-scene")});
     VulkanContext ctx(DeviceOptions{parsed.get("device"), false});
     validateResolution(ctx, width, height, "--size");
-    prepareOutputDirectory(outDir, resuming, "--out");
+    prepareOutputDirectory(outDir, resuming, "--out", reuse);
 
     const IblMaps ibl = loadOrComputeIbl(ctx, inputs.environment, IblSettings{});
     Renderer renderer(ctx, inputs.scene, inputs.environment, ibl);
@@ -185,6 +196,10 @@ int runSearchCommand(const std::vector<std::string>& args) {
         throwUserError("search: " + std::to_string(result.rejectedByValidation) +
                        " packed candidates failed validation (a bug in src/search/layout_packer.cpp): " +
                        result.validationMessages.front());
+    if (result.front.empty())
+        std::printf("search: no candidate fits in %d B/px (%d proposals over budget, %d unpackable, %d duplicates): "
+                    "the front is empty; give a larger --budget\n",
+                    budget, result.overBudget, result.unpackable, result.duplicates);
     const double evaluatedHere = double(result.evaluated.size()) - double(result.resumed);
     const double perMinute = result.seconds > 0 ? 60.0 * evaluatedHere / result.seconds : 0.0;
 

@@ -43,9 +43,12 @@ std::optional<uint32_t> parseBandRowsFlag(const std::string& value, bool cpuEval
     if (value == "auto") return std::nullopt;
     uint32_t n = 0;
     const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
-    if (ec != std::errc() || end != value.data() + value.size() || n > 65536)
+    if ((ec != std::errc() && ec != std::errc::result_out_of_range) || end != value.data() + value.size())
         throwUserError("--band-rows " + quoteName(value) + ": give a number of rows (a multiple of 8), 0 for whole "
                        "frames, or auto");
+    if (ec == std::errc::result_out_of_range || n > 65536)
+        throwUserError("--band-rows " + quoteName(value) + ": at most 65536 rows (the largest --size is 16384 rows, "
+                       "and a band as tall as the frame is the whole frame: give 0)");
     if (n % 8 != 0)
         throwUserError("--band-rows " + value + ": give a multiple of 8 (the worst regions' tiles are 8 rows), 0 for "
                        "whole frames, or auto");

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include "cli_args.h"
 #include "compare_bands.h"
@@ -87,7 +88,15 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     o.viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
     o.modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
-    for (const auto& n : o.modeNames) o.modes.push_back(parseIblMode(n));
+    for (size_t i = 0; i < o.modeNames.size(); ++i) {
+        o.modes.push_back(parseIblMode(o.modeNames[i]));
+        // Each mode's runs go to runs/<layout>/<mode>/: a mode given twice would write its runs
+        // twice over the same files and give the table duplicate rows.
+        for (size_t k = 0; k < i; ++k)
+            if (o.modes[k] == o.modes[i])
+                throwUserError("--ibl " + quoteName(parsed.get("ibl")) + ": " + quoteName(o.modeNames[i]) +
+                               " is given twice; give each mode once");
+    }
     o.splitSumShaderSamples = parseIntFlag(parsed, "samples", 1024, 1, 65536);
     o.gtBatchSamples = parseIntFlag(parsed, "gt-batch-samples", 64, 1, 65536);
     o.gtMaxBatches = parseIntFlag(parsed, "gt-max-batches", 256, 8, 65536);
@@ -128,6 +137,24 @@ std::string joinList(const std::vector<std::string>& items) {
     return out;
 }
 
+// A run's files go to runs/<layout name>/<mode>/ and its row is named by the layout: two layouts
+// of one name (the same file given twice, or two files whose `name` agrees) would overwrite each
+// other's files and leave two rows that cannot be told apart, so they are refused before rendering.
+void requireDistinctRunNames(const std::vector<Layout>& layouts) {
+    for (size_t i = 0; i < layouts.size(); ++i)
+        for (size_t k = 0; k < i; ++k) {
+            if (layouts[k].name != layouts[i].name) continue;
+            std::error_code ec;
+            const std::string a = layouts[k].sourceFile, b = layouts[i].sourceFile;
+            if (a == b || std::filesystem::equivalent(a, b, ec))
+                throwUserError("--layouts: the layout " + quoteName(layouts[i].name) + " (" + escapeText(a) +
+                               ") is given twice; give each layout once");
+            throwUserError("--layouts: " + escapeText(a) + " and " + escapeText(b) + " are both named " +
+                           quoteName(layouts[i].name) + ", so their runs would share runs/" +
+                           escapeText(layouts[i].name) + "/; give one of them another name (its `name` key)");
+        }
+}
+
 // "all" (or no flag) = every file in layouts/ but the reference; otherwise names or paths. Every
 // file is parsed and validated here, before any rendering.
 std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec) {
@@ -149,6 +176,7 @@ std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec) {
             throwUserError("--layouts: unknown layout " + quoteName(n) + " (known: " + joinList(known) + ", or all)");
         layouts.push_back(loadLayout(n));
     }
+    requireDistinctRunNames(layouts);
     return layouts;
 }
 

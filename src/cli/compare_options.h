@@ -54,8 +54,11 @@ struct CompareOptions {
 // Throws UserError for anything the user must fix.
 std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args);
 
-// --layouts: names in layouts/ or .toml paths, or all (unset: all), loaded and validated.
+// --layouts: names in layouts/ or .toml paths, or all (unset: all), loaded and validated; two of
+// one name (requireDistinctRunNames) are a UserError.
 std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec);
+// Throws a UserError naming both files when two layouts share a name (their runs' folder).
+void requireDistinctRunNames(const std::vector<Layout>& layouts);
 
 std::string joinList(const std::vector<std::string>& items);
 

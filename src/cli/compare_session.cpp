@@ -8,6 +8,7 @@
 #include "bandwidth.h"
 #include "best_fit_normals.h"
 #include "compare_console.h"
+#include "compare_memory.h"
 #include "env_flag.h"
 #include "error.h"
 #include "file_io.h"
@@ -17,6 +18,7 @@
 #include "interrupt.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "memory_budget.h"
 #include "parallel_for.h"
 #include "report_html.h"
 #include "stage_clock.h"
@@ -48,6 +50,11 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
 
     // Everything the user gave is read and validated before the first pixel is rendered.
     layouts_ = resolveLayouts(o.layoutsSpec);
+    if (o.force) {
+        std::vector<std::string> inputs = {o.scenePath, o.envPath};
+        for (const Layout& l : layouts_) inputs.push_back(l.sourceFile);
+        refuseInputsInsideDirectory(o.outDir, inputs, "--out");
+    }
     // The best-fit normal table (best_fit_normals.h), if a layout writes with it, is generated
     // while the scene loads and the device starts.
     if (std::any_of(layouts_.begin(), layouts_.end(), [](const Layout& l) { return usesBestFitTable(l); }))
@@ -78,7 +85,14 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
     retainHostBlocks(!bandPlan_.banded());
     gpuEval_ = bandPlan_.banded() || o.evalWhere == "gpu" ||
                (o.evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
-    validateResolution(ctx, o.width, o.height, "--size");
+    validateResolution(ctx, o.width, o.height, "--size", bandPlan_.banded() ? bandPlan_.maxImageRows() : 0u);
+    const uint32_t bandImageRows = bandPlan_.banded() ? bandPlan_.maxImageRows() : 0u;
+    requireMemory(compareMemoryBytes(o.width, o.height, bandImageRows, layouts_.size(), o.viewCount),
+                  "--size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                      (bandImageRows ? " in bands of " + std::to_string(bandPlan_.bandRows) + " rows" : "") + " with " +
+                      std::to_string(layouts_.size()) + " layout" + (layouts_.size() == 1 ? "" : "s"),
+                  bandImageRows ? "give a smaller --size or fewer --layouts"
+                                : "give a smaller --size, or compare in bands (--band-rows 64)");
     wiringOptions_.nativeFormats = o.nativeFormats;
 
     model_.run.scene = inputs_.scene.source;

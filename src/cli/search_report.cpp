@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "json_number.h"
 #include "layout_packer.h"
 
 namespace gbl {
@@ -81,9 +82,10 @@ void readConfirmation(const fs::path& reportJson, std::vector<SearchRow>& rows) 
     for (const auto& run : report["runs"]) {
         if (run.value("ibl_mode", "") != "split-sum" || run.value("status", "") != "ok") continue;
         const auto& ie = run.value("image_errors", nlohmann::json::object());
-        if (!ie.contains("flip_mean")) continue;
+        double flip = 0.0;
+        if (!ie.contains("flip_mean") || !readJsonNumber(ie["flip_mean"], flip)) continue;
         for (SearchRow& r : rows)
-            if (r.name == run.value("layout", "")) r.fullFlip = ie["flip_mean"].get<double>();
+            if (r.name == run.value("layout", "")) r.fullFlip = flip;
     }
 }
 
@@ -152,18 +154,22 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
     j["seed"] = s.seed;
     j["candidates"] = s.candidates;
     j["resumed"] = s.resumed;
-    j["candidates_per_minute"] = s.perMinute;
-    j["cpu_seconds_per_candidate"] = s.cpuSecondsPerCandidate;
+    j["candidates_per_minute"] = jsonNumber<nlohmann::json>(s.perMinute);
+    j["cpu_seconds_per_candidate"] = jsonNumber<nlohmann::json>(s.cpuSecondsPerCandidate);
     j["threads"] = s.threads;
-    j["reshade_flip"] = s.reshadeFlip;
-    j["reshade_mean_relative_luminance_error"] = s.reshadeMeanRelative;
-    if (!std::isnan(rho)) j["spearman_fast_vs_full"] = rho;
+    j["reshade_flip"] = jsonNumber<nlohmann::json>(s.reshadeFlip);
+    j["reshade_mean_relative_luminance_error"] = jsonNumber<nlohmann::json>(s.reshadeMeanRelative);
+    if (!std::isnan(rho)) j["spearman_fast_vs_full"] = jsonNumber<nlohmann::json>(rho);
     j["layouts"] = nlohmann::json::array();
     for (const SearchRow& r : s.rows) {
-        nlohmann::json o{{"name", r.name},          {"found", r.found},     {"bytes_per_pixel", r.bytes},
-                         {"fast_psnr_db", r.fast.psnr}, {"fast_score", r.fast.error}, {"how", r.how}};
-        if (r.fast.flip >= 0) o["fast_flip"] = r.fast.flip;
-        if (r.fullFlip) o["full_flip"] = *r.fullFlip;
+        nlohmann::json o{{"name", r.name},
+                         {"found", r.found},
+                         {"bytes_per_pixel", r.bytes},
+                         {"fast_psnr_db", jsonNumber<nlohmann::json>(r.fast.psnr)},
+                         {"fast_score", jsonNumber<nlohmann::json>(r.fast.error)},
+                         {"how", r.how}};
+        if (r.fast.flip >= 0) o["fast_flip"] = jsonNumber<nlohmann::json>(r.fast.flip);
+        if (r.fullFlip) o["full_flip"] = jsonNumber<nlohmann::json>(*r.fullFlip);
         if (!r.file.empty()) o["file"] = r.file;
         j["layouts"].push_back(o);
     }

@@ -129,8 +129,8 @@ void accumulateLight(const Layout& layout, std::vector<glm::vec4>& ch, uint32_t*
 std::string generateLightBufferGlsl(const Layout& layout) {
     if (layout.pipeline != Pipeline::DeferredLighting || layout.lightBuffers.empty()) return "";
     std::ostringstream o;
-    o << "// generated from layouts/" << glslCommentText(layout.name)
-      << ".toml by gbufferlab -- do not edit: the light buffers (src/codec/light_buffer_wiring.h)\n";
+    o << "// generated from the layout '" << glslCommentText(layout.name)
+      << "' by gbufferlab -- do not edit: the light buffers (src/codec/light_buffer_wiring.h)\n";
     o << "#include \"light_buffer_encodings.glsl\"\n";
     o << "#define LIGHT_BUFFER_COUNT " << layout.lightBuffers.size() << "\n";
     o << "#define LIGHT_BUFFER_WORDS " << lightBufferWordsPerPixel(layout) << "\n";

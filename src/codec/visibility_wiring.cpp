@@ -17,7 +17,7 @@ unsigned long long idCapacity(int bits) { return 1ull << bits; }
 std::string generateVisibilityWiringGlsl(const Layout& layout) {
     const VisibilityIds& ids = layout.ids;
     std::ostringstream o;
-    o << "// generated from layouts/" << glslCommentText(layout.name) << ".toml by gbufferlab -- do not edit\n";
+    o << "// generated from the layout '" << glslCommentText(layout.name) << "' by gbufferlab -- do not edit\n";
     o << "// " << glslCommentText(layout.title) << " (" << pipelineName(layout.pipeline) << ")\n";
     o << "#define GBL_VISIBILITY_BUFFER 1\n";
     o << "#define GBL_VIS_ID_WORDS " << ids.bits / 32 << "\n";

@@ -144,7 +144,7 @@ std::string nativeFormatObstacle(const Target& target) {
 std::string generateWiringGlsl(const Layout& layout, const WiringOptions& options) {
     if (layout.pipeline == Pipeline::VisibilityBuffer) return generateVisibilityWiringGlsl(layout);
     std::ostringstream o;
-    o << "// generated from layouts/" << glslCommentText(layout.name) << ".toml by gbufferlab -- do not edit\n";
+    o << "// generated from the layout '" << glslCommentText(layout.name) << "' by gbufferlab -- do not edit\n";
     o << "// " << glslCommentText(layout.title) << " (" << pipelineName(layout.pipeline) << ")\n";
     o << "// Integer-only wiring: every code is placed with shifts and masks; src/codec/cpu_codec.cpp mirrors it.\n";
     if (!layout.depth.stencil.empty())

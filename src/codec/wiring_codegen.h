@@ -43,7 +43,9 @@ GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options 
 // A field of `layout` is encoded with normal_bestfit: writing its G-buffer needs the best-fit
 // table (GBufferWiring::bestFitTable; compare starts generating it early, prefetchBestFitNormalTable).
 bool usesBestFitTable(const Layout& layout);
-// The GLSL alone, with a "generated from layouts/NAME.toml by gbufferlab -- do not edit" header.
+// The GLSL alone, with a "generated from the layout 'NAME' by gbufferlab -- do not edit" header
+// (the name, not a file: the same layout read from anywhere gives the same text, and the same
+// shader cache entries).
 std::string generateWiringGlsl(const Layout& layout, const WiringOptions& options = {});
 
 // "" when `target` can render with its native format in nativeFormats mode, else why not.

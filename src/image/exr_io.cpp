@@ -17,8 +17,10 @@
 #include <Imath/half.h>
 
 #include "error.h"
+#include "exr_probe.h"
 #include "file_io.h"
 #include "image_io.h"
+#include "memory_budget.h"
 #include "parallel_for.h"
 
 namespace gbl {
@@ -50,23 +52,64 @@ Image guardedRead(const std::string& path, Fn&& read) {
     }
 }
 
-Image readFloatChannels(Imf::InputFile& file, const std::vector<std::string>& names) {
+// The file is opened only after probeExr has held its header against its size, and the frame
+// buffer is checked against the memory budget before it exists.
+void requireDecodeMemory(const std::string& path, const ExrProbe& p, double bytesPerPixel) {
+    requireMemory(double(p.width) * double(p.height) * bytesPerPixel,
+                  escapeText(path) + ": reading its " + std::to_string(p.width) + "x" + std::to_string(p.height) +
+                      " pixels",
+                  "give a smaller image (crop or scale it), or raise GBL_MEMORY_BUDGET on a machine with more memory");
+}
+
+void requireComplete(const std::string& path, Imf::InputFile& file, const ExrProbe& p) {
+    if (!file.isComplete())
+        throwUserError(escapeText(path) + ": its header claims " + std::to_string(p.width) + "x" +
+                       std::to_string(p.height) + " pixels, but pixel data is missing (a truncated file, or a "
+                       "header that does not match it); re-export it");
+}
+
+// Read band by band into memory reserved up front: the image's pages are touched only as rows
+// arrive, so a file whose chunks run out (or lie) fails after using what it really held, not the
+// whole frame its header claimed.
+Image readFloatChannels(Imf::InputFile& file, const std::vector<std::string>& names, const ExrProbe& p) {
     const Imath::Box2i window = file.header().dataWindow();
     const int width = window.max.x - window.min.x + 1;
     const int height = window.max.y - window.min.y + 1;
-    Image image(width, height, int(names.size()));
-    Imf::FrameBuffer frame;
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.channels = int(names.size());
+    const size_t rowFloats = size_t(width) * names.size();
+    image.pixels.reserve(rowFloats * size_t(height));
     const size_t xStride = sizeof(float) * names.size();
-    for (size_t c = 0; c < names.size(); ++c)
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, window, xStride, xStride * size_t(width)));
-    file.setFrameBuffer(frame);
-    file.readPixels(window.min.y, window.max.y);
+    // Bands of whole chunks, about 16 MiB each: a chunk decoded twice would cost its time twice.
+    const int chunkLines = std::max(p.linesPerChunk, 1);
+    const int wanted = int(std::clamp<size_t>((size_t(16) << 20) / (rowFloats * sizeof(float)), 1, size_t(height)));
+    const int bandRows = (wanted + chunkLines - 1) / chunkLines * chunkLines;
+    for (int first = 0; first < height; first += bandRows) {
+        const int rows = std::min(bandRows, height - first);
+        const size_t offset = image.pixels.size();
+        image.pixels.resize(offset + rowFloats * size_t(rows));
+        const Imath::Box2i band(Imath::V2i(window.min.x, window.min.y + first),
+                                Imath::V2i(window.max.x, window.min.y + first + rows - 1));
+        Imf::FrameBuffer frame;
+        for (size_t c = 0; c < names.size(); ++c)
+            frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + offset + c, band, xStride,
+                                                    xStride * size_t(width)));
+        file.setFrameBuffer(frame);
+        file.readPixels(band.min.y, band.max.y);
+    }
     return image;
 }
 
 // Luminance/chroma files (Y, RY, BY) need OpenEXR's RGBA conversion; it yields half precision.
-Image readViaRgba(const std::string& path) {
+Image readViaRgba(const std::string& path, const ExrProbe& p) {
+    requireDecodeMemory(path, p, sizeof(Imf::Rgba) + 3 * sizeof(float));
     Imf::RgbaInputFile file(path.c_str());
+    if (!file.isComplete())
+        throwUserError(escapeText(path) + ": its header claims " + std::to_string(p.width) + "x" +
+                       std::to_string(p.height) + " pixels, but pixel data is missing (a truncated file, or a "
+                       "header that does not match it); re-export it");
     const Imath::Box2i window = file.dataWindow();
     const int width = window.max.x - window.min.x + 1;
     const int height = window.max.y - window.min.y + 1;
@@ -90,46 +133,52 @@ Image readViaRgba(const std::string& path) {
 
 Image readExr(const std::string& path) {
     return guardedRead(path, [&]() -> Image {
-        requireRegularFile(path);  // OpenEXR would block on a FIFO
+        const ExrProbe p = probeExr(path);
         {
             Imf::InputFile file(path.c_str());
             const auto& channels = file.header().channels();
             const auto has = [&](const char* name) { return channels.findChannel(name) != nullptr; };
-            if (has("R") && has("G") && has("B")) return readFloatChannels(file, {"R", "G", "B"});
+            if (has("R") && has("G") && has("B")) {
+                requireDecodeMemory(path, p, 3 * sizeof(float));
+                requireComplete(path, file, p);
+                return readFloatChannels(file, {"R", "G", "B"}, p);
+            }
             if (!has("Y"))
                 throwUserError(path + ": OpenEXR file has channels " + channelList(channels) +
                                " but no R,G,B or Y; export a flat RGB .exr (no layers)");
             if (!has("RY") && !has("BY")) {  // plain grayscale: shown as gray, at full precision
-                const Image gray = readFloatChannels(file, {"Y"});
+                requireDecodeMemory(path, p, 4 * sizeof(float));
+                requireComplete(path, file, p);
+                const Image gray = readFloatChannels(file, {"Y"}, p);
                 Image rgb(gray.width, gray.height, 3);
                 for (size_t i = 0; i < gray.pixels.size(); ++i)
                     rgb.pixels[i * 3] = rgb.pixels[i * 3 + 1] = rgb.pixels[i * 3 + 2] = gray.pixels[i];
                 return rgb;
             }
         }
-        return readViaRgba(path);  // luminance + chroma
+        return readViaRgba(path, p);  // luminance + chroma
     });
 }
 
 Image readExrChannels(const std::string& path, const std::vector<std::string>& channelNames) {
     return guardedRead(path, [&]() -> Image {
-        requireRegularFile(path);
+        const ExrProbe p = probeExr(path);
         Imf::InputFile file(path.c_str());
         const auto& channels = file.header().channels();
         for (const auto& name : channelNames)
             if (!channels.findChannel(name))
                 throwUserError(path + ": OpenEXR file has no channel '" + name + "' (it has " + channelList(channels) +
                                "); write it with that channel or ask for another");
-        return readFloatChannels(file, channelNames);
+        requireDecodeMemory(path, p, double(channelNames.size()) * sizeof(float));
+        requireComplete(path, file, p);
+        return readFloatChannels(file, channelNames, p);
     });
 }
 
 std::vector<std::string> readExrChannelNames(const std::string& path) {
     std::vector<std::string> names;
     guardedRead(path, [&]() -> Image {
-        Imf::InputFile file(path.c_str());
-        const auto& channels = file.header().channels();
-        for (auto it = channels.begin(); it != channels.end(); ++it) names.push_back(it.name());
+        names = probeExr(path).channels;
         return Image();
     });
     return names;
@@ -144,13 +193,9 @@ float roundToHalf(float v) { return float(half(clampToHalfRange(v))); }
 ExrPixelType readExrPixelType(const std::string& path) {
     bool allHalf = true, any = false;
     guardedRead(path, [&]() -> Image {
-        requireRegularFile(path);
-        Imf::InputFile file(path.c_str());
-        const auto& channels = file.header().channels();
-        for (auto it = channels.begin(); it != channels.end(); ++it) {
-            any = true;
-            allHalf = allHalf && it.channel().type == Imf::HALF;
-        }
+        const ExrProbe p = probeExr(path);
+        any = !p.channels.empty();
+        allHalf = p.bytesPerPixel == 2 * int(p.channels.size());
         return Image();
     });
     return any && allHalf ? ExrPixelType::Half : ExrPixelType::Float32;

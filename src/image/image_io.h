@@ -1,12 +1,32 @@
 #pragma once
 // Reading and writing the image files gbufferlab uses. Every writer is atomic
 // (temporary name + rename); every reader throws UserError naming the file on bad input.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "image.h"
 
 namespace gbl {
+
+// What an image file's header says, read without decoding its pixels, by extension: .png,
+// .jpg/.jpeg, .hdr, .exr (others are a UserError). The readers below hold the same numbers
+// against the file and the memory budget (memory_budget.h) before they allocate; a caller that
+// needs more than the decoded image (diff) checks its own estimate from these first.
+struct ImageFileInfo {
+    int width = 0, height = 0;
+    int channels = 0;   // as stored: PNG/JPEG 1-4, HDR 3, EXR the file's channel count
+    bool hdr = false;   // linear float (EXR, HDR) rather than 8-bit sRGB (PNG, JPEG)
+};
+ImageFileInfo probeImageFile(const std::string& path);
+// The same from a PNG, JPEG or Radiance .hdr file's bytes (a glTF image); nullopt when stb_image
+// cannot read the header (its reason in *whyNot: an unknown format, or a frame over 2^30 bytes,
+// which stb_image refuses to decode).
+struct ImageMemoryInfo {
+    int width = 0, height = 0, channels = 0;
+    bool sixteenBit = false;
+};
+std::optional<ImageMemoryInfo> probeImageMemory(const unsigned char* bytes, size_t size, std::string* whyNot = nullptr);
 
 // Radiance .hdr (RGBE, flat or RLE) -> RGB float image.
 Image readHdr(const std::string& path);

@@ -1,6 +1,7 @@
 #include "layout_catalog.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <system_error>
 
@@ -45,7 +46,12 @@ fs::path findLayoutFile(const std::string& nameOrPath) {
     std::error_code ec;
     if (isPath) {
         // Anything that exists is returned: reading it refuses directories and FIFOs by name.
-        if (!fs::exists(nameOrPath, ec)) throwUserError(escapeText(nameOrPath) + ": no such layout file");
+        const bool exists = fs::exists(nameOrPath, ec);
+        if (ec && ec.value() == ELOOP)
+            throwUserError(escapeText(nameOrPath) + ": a symbolic link that loops (" + ec.message() +
+                           "); point it at a layout file");
+        if (ec) throwUserError(escapeText(nameOrPath) + ": cannot be read (" + ec.message() + "); check the path");
+        if (!exists) throwUserError(escapeText(nameOrPath) + ": no such layout file");
         return nameOrPath;
     }
     const fs::path dir = layoutDirectory();

@@ -325,6 +325,7 @@ std::vector<LayoutDiagnostic> checkLayoutFile(const std::filesystem::path& path)
 
 Layout loadLayoutFile(const std::filesystem::path& path) {
     const std::string text = readTextFile(path);
+    registerInput(path);  // no output may replace it (file_io.h)
     std::vector<LayoutDiagnostic> out;
     Layout layout = readAndCheck(text, path.string(), &path, out);
     if (!out.empty()) throw LayoutError(std::move(out));

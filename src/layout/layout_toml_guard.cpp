@@ -80,9 +80,9 @@ private:
         if (c == '\n' || c == '\r') {
             saw = "the end of the line";
         } else {
-            size_t end = p + 1;  // the whole UTF-8 sequence, escaped by quoteName
+            size_t end = p + 1;  // the whole UTF-8 sequence, escaped by quoteBytes
             while (end < text_.size() && (static_cast<unsigned char>(text_[end]) & 0xC0) == 0x80 && end - p < 4) ++end;
-            saw = quoteName(text_.substr(p, end - p));
+            saw = quoteBytes(text_.substr(p, end - p));
         }
         return std::make_pair(placeAt(p), "TOML syntax error: a table header must start with a key (a bare name or a "
                                           "quoted string) after '[', saw " +
@@ -124,7 +124,7 @@ private:
             // follows: '}' ("l=[}") and the Unicode line breaks U+0085, U+2028, U+2029 do.
             if (inArray && c == '}') return refuse(pos_, "'}' in an array (expected a value, ',' or ']')");
             if (inArray && isUnicodeLineBreak(pos_))
-                return refuse(pos_, quoteName(text_.substr(pos_, text_[pos_] == '\xC2' ? 2 : 3)) +
+                return refuse(pos_, quoteBytes(text_.substr(pos_, text_[pos_] == '\xC2' ? 2 : 3)) +
                                         " (a Unicode line break) in an array: TOML allows only spaces, tabs and "
                                         "\\n or \\r\\n between values");
             if (static_cast<unsigned char>(c) >= 0x80) return refuse(pos_, nonAsciiOutsideStrings(pos_));
@@ -144,7 +144,7 @@ private:
     // a multi-line basic string of the first character after a line-ending backslash. Outside
     // strings and comments TOML is ASCII anyway, so every non-ASCII character there is refused.
     std::string nonAsciiOutsideStrings(size_t at) const {
-        return "non-ASCII character " + quoteName(codepointText(at)) +
+        return "non-ASCII character " + quoteBytes(codepointText(at)) +
                " outside a string or comment (TOML keys and non-string values are ASCII)";
     }
     std::string_view codepointText(size_t at) const {
@@ -188,7 +188,7 @@ private:
                     size_t p = pos_ + 1;
                     while (p < text_.size() && (isSpace(text_[p]) || text_[p] == '\n' || text_[p] == '\r')) ++p;
                     if (p < text_.size() && isInUnreachableRange(p)) {
-                        const std::string ch = quoteName(codepointText(p));
+                        const std::string ch = quoteBytes(codepointText(p));
                         refuse(p, ch + " right after a line-ending backslash in a multi-line string: toml++ 3.3.0 "
                                        "cannot read it there; write it as a \\u escape");
                         return false;

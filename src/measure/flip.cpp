@@ -419,6 +419,13 @@ void checkPair(const Image& ref, const Image& test, const char* what) {
         throwUserError(std::string(what) + ": the images are empty; give images of at least 1x1 pixels");
 }
 
+void checkPixelsPerDegree(double ppd, const char* what) {
+    if (!(ppd > 0.0) || !(ppd <= kMaxFlipPixelsPerDegree))
+        throwUserError(std::string(what) + ": pixels per degree is " + std::to_string(ppd) +
+                       "; give a value above 0 and at most " + std::to_string(int(kMaxFlipPixelsPerDegree)) +
+                       " (default 67.02)");
+}
+
 enum class Input { Srgb, Linear01 };
 
 // srgbToLinearF of the 256 values an 8-bit image holds (code / 255.0f, as image files are read and
@@ -487,9 +494,7 @@ void combine(const Prepared& r, const Prepared& t, float cMax, float* out, size_
 
 Image flipLdrImpl(const Image& ref, const Image& test, double ppd, Input mode, const char* what) {
     checkPair(ref, test, what);
-    if (!(ppd > 0.0) || !std::isfinite(ppd))
-        throwUserError(std::string(what) + ": pixels per degree is " + std::to_string(ppd) +
-                       "; give a positive value (default 67.02)");
+    checkPixelsPerDegree(ppd, what);
     const int w = ref.width, h = ref.height;
     const Kernels k = makeKernels(ppd);
     Workspace ws(ref.pixelCount());
@@ -524,9 +529,7 @@ struct LdrFlipReference::State {
 
 LdrFlipReference::LdrFlipReference(const Image& referenceSrgb, double pixelsPerDegree) : state_(new State) {
     checkPair(referenceSrgb, referenceSrgb, "LdrFlipReference");
-    if (!(pixelsPerDegree > 0.0) || !std::isfinite(pixelsPerDegree))
-        throwUserError("LdrFlipReference: pixels per degree is " + std::to_string(pixelsPerDegree) +
-                       "; give a positive value (default 67.02)");
+    checkPixelsPerDegree(pixelsPerDegree, "LdrFlipReference");
     State& s = *state_;
     s.shape.width = referenceSrgb.width;
     s.shape.height = referenceSrgb.height;

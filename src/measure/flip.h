@@ -27,6 +27,12 @@ namespace gbl {
 double flipPixelsPerDegree(double distanceMeters = 0.7, double monitorWidthPixels = 3840.0,
                            double monitorWidthMeters = 0.7);
 
+// The largest pixels per degree FLIP accepts (a UserError beyond). Its filters widen with it: the
+// CSF filter's radius is 0.135 p pixels, the feature filter's 0.123 p, and their taps, time and
+// scratch rows grow alike (--ppd 1e9 asked for 12 GB of kernels). 1000 is a 3840-pixel screen
+// 0.7 m wide seen from 10 m, farther than any viewing FLIP is meant for.
+inline constexpr double kMaxFlipPixelsPerDegree = 1000.0;
+
 // LDR-FLIP of two sRGB-encoded images: a 1-channel map, every value in [0,1].
 Image flipLdr(const Image& referenceSrgb, const Image& testSrgb, double pixelsPerDegree = flipPixelsPerDegree());
 
@@ -69,6 +75,11 @@ struct FlipExposureRange {
 // If every reference pixel is black, start = stop = 0. If the median is 0 but some pixel is
 // not, the median of the positive luminances is used (the paper does not cover that case).
 FlipExposureRange flipExposureRange(const Image& referenceLinear);
+
+// The most exposures HDR-FLIP runs (a UserError beyond): each is a whole LDR-FLIP of the pair.
+// The reference's own range needs at most about 280 (the span of float luminances); more come
+// only from hand-given exposures, e.g. --start-exposure -1e30 --stop-exposure 1e30.
+inline constexpr int kMaxFlipExposures = 1000;
 
 struct HdrFlipResult {
     Image flip;            // 1 channel, in [0,1]: per-pixel max over the exposures

@@ -78,9 +78,12 @@ FlipExposureRange flipExposureRange(const Image& ref) {
 
 HdrFlipResult flipHdr(const Image& ref, const Image& test, double ppd, FlipExposureRange range) {
     checkPair(ref, test, "flipHdr");
-    if (!(ppd > 0.0) || !std::isfinite(ppd))
-        throwUserError("flipHdr: pixels per degree is " + std::to_string(ppd) + "; give a positive value");
+    checkPixelsPerDegree(ppd, "flipHdr");
     if (range.count <= 0) range = flipExposureRange(ref);
+    if (range.count > kMaxFlipExposures || !std::isfinite(range.start) || !std::isfinite(range.stop))
+        throwUserError("flipHdr: " + std::to_string(range.count) + " exposures from " + std::to_string(range.start) +
+                       " to " + std::to_string(range.stop) + "; give finite exposures and at most " +
+                       std::to_string(kMaxFlipExposures));
     const int w = ref.width, h = ref.height;
     const size_t n = ref.pixelCount();
     const Kernels k = makeKernels(ppd);

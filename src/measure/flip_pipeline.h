@@ -67,6 +67,8 @@ Prepared prepare(const Plane rgb[3], int w, int h, const Kernels& k, Workspace& 
 void combine(const Prepared& r, const Prepared& t, float cMax, float* out, size_t n);
 // Throws a UserError (naming `what`) unless the two images can be compared.
 void checkPair(const Image& ref, const Image& test, const char* what);
+// Throws a UserError (naming `what`) unless 0 < ppd <= kMaxFlipPixelsPerDegree.
+void checkPixelsPerDegree(double ppd, const char* what);
 // v clamped to [0,1]; NaN -> 0.
 inline float clamp01(float v) { return v >= 0.0f ? (v <= 1.0f ? v : 1.0f) : 0.0f; }
 

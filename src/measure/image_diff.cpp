@@ -61,6 +61,31 @@ DiffInput readDiffInput(const std::string& path) {
     throwUserError(path + ": unknown image type '" + ext + "'; give a .png, .jpg, .exr or .hdr file");
 }
 
+double diffMemoryBytes(const ImageFileInfo& reference, const ImageFileInfo& test) {
+    const double pixels = std::max(double(reference.width) * double(reference.height),
+                                   double(test.width) * double(test.height));
+    const int colour = std::max(reference.channels, test.channels) >= 3 ? 3 : 1;
+    const double perPixel = (reference.hdr || test.hdr ? 104.0 : 84.0) + 8.0 * colour;
+    return pixels * perPixel * 1.1 + double(64 << 20);
+}
+
+void requireFinite(const Image& image, const std::string& path) {
+    size_t count = 0, first = 0;
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        if (!std::isfinite(image.pixels[i]) && count++ == 0) first = i;
+    if (count == 0) return;
+    const size_t ch = size_t(std::max(image.channels, 1));
+    const size_t pixel = first / ch;
+    const int x = int(pixel % size_t(image.width)), y = int(pixel / size_t(image.width));
+    static const char* rgb[] = {"R", "G", "B", "A"};
+    const std::string channel = image.channels == 1 ? "Y" : rgb[std::min<size_t>(first % ch, 3)];
+    const float v = image.pixels[first];
+    throwUserError(path + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " + channel +
+                   " is " + (std::isnan(v) ? "NaN" : v > 0 ? "+inf" : "-inf") + " (" + std::to_string(count) +
+                   " non-finite value" + (count == 1 ? "" : "s") + " in all); diff measures finite images only: "
+                   "replace them in the file (e.g. with 0) or compare a crop without them");
+}
+
 DiffResult diffImages(const DiffInput& reference, const DiffInput& test, const std::string& referencePath,
                       const std::string& testPath, const DiffOptions& options) {
     if (reference.kind != test.kind)
@@ -79,6 +104,8 @@ DiffResult diffImages(const DiffInput& reference, const DiffInput& test, const s
     if (reference.kind == DiffKind::Hdr &&
         (options.startExposure.has_value() != options.stopExposure.has_value()))
         throwUserError("gbufferlab diff: give both --start-exposure and --stop-exposure, or neither");
+    requireFinite(r, referencePath);
+    requireFinite(t, testPath);
 
     DiffResult out;
     out.kind = reference.kind;
@@ -104,9 +131,15 @@ DiffResult diffImages(const DiffInput& reference, const DiffInput& test, const s
                     throwUserError("gbufferlab diff: --stop-exposure " + std::to_string(range.stop) +
                                    " is below --start-exposure " + std::to_string(range.start));
             }
-            // NVIDIA's tool: N = max(2, ceil(stop - start)) unless given.
-            range.count = options.numExposures ? *options.numExposures
-                                               : std::max(2, int(std::ceil(range.stop - range.start)));
+            // NVIDIA's tool: N = max(2, ceil(stop - start)) unless given; counted in double, as
+            // hand-given exposures can span more stops than an int holds.
+            const double span = std::ceil(double(range.stop) - double(range.start));
+            if (!options.numExposures && !(span <= double(kMaxFlipExposures)))
+                throwUserError("gbufferlab diff: --start-exposure " + std::to_string(range.start) +
+                               " to --stop-exposure " + std::to_string(range.stop) + " is " + std::to_string(span) +
+                               " stops, one HDR-FLIP exposure each, more than " +
+                               std::to_string(kMaxFlipExposures) + "; narrow the range or give --num-exposures N");
+            range.count = options.numExposures ? *options.numExposures : std::max(2, int(span));
         }
         HdrFlipResult h = flipHdr(r, t, options.pixelsPerDegree, range);
         out.flipMap = std::move(h.flip);

@@ -18,11 +18,20 @@
 //                        reference unless given), as NVIDIA's tool: --start-exposure,
 //                        --stop-exposure, --num-exposures.
 // The error map is the FLIP map.
+//
+// Non-finite pixels (NaN, +-inf: only an EXR can hold them) are refused, never dropped: a
+// UserError names the file, the first such pixel in row order, its channel and value, and how
+// many there are. A metric that skipped them would disagree with one that clamps them (FLIP
+// reads NaN as 0), so no number is given for such a pair.
+//
+// Memory: diffMemoryBytes is the peak, from the headers alone; a pair beyond the budget
+// (memory_budget.h) is refused before a pixel is decoded.
 #include <optional>
 #include <string>
 
 #include "flip.h"
 #include "image.h"
+#include "image_io.h"
 
 namespace gbl {
 
@@ -36,6 +45,20 @@ struct DiffInput {
 
 // Reads one input; bad files (unreadable, unknown extension) are a UserError naming the file.
 DiffInput readDiffInput(const std::string& path);
+
+// The peak memory of reading a pair of images of this size and kind and diffing them, in
+// bytes. Per pixel, with c colour channels (1 or 3): the two float inputs 8c; LDR-FLIP's
+// scratch planes 28, linear planes 12, the two prepared images 40 and the map 4 (LDR: 84 + 8c);
+// HDR-FLIP's two sets of tone-mapped planes 24, scratch 28, prepared images 40, the running
+// maximum 4 and the map and exposure map 8 (HDR: 104 + 8c). 10 % on top for the allocator and
+// the filters' rows, and 64 MiB for the program. Measured (peak resident memory, /usr/bin/time -v,
+// commit dff3d2c's diff): a 4096x4096 LDR pair 1737 MiB, estimated 1965; diff_bounds_cli_test
+// holds a 2048x2048 pair below its estimate.
+double diffMemoryBytes(const ImageFileInfo& reference, const ImageFileInfo& test);
+
+// Throws a UserError naming `path`, the first non-finite value's pixel and channel, and their
+// count, if the image holds any.
+void requireFinite(const Image& image, const std::string& path);
 
 struct DiffOptions {
     double pixelsPerDegree = flipPixelsPerDegree();

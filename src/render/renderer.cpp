@@ -15,6 +15,7 @@
 
 #include "error.h"
 #include "host_profile.h"
+#include "memory_budget.h"
 #include "ibl_cache.h"
 #include "parallel_invoke.h"
 #include "renderer_passes.h"
@@ -66,7 +67,8 @@ std::vector<uint32_t> downloadWords(const VulkanContext& ctx, const GpuImage& im
 
 }  // namespace
 
-void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag) {
+void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag,
+                        uint32_t bandRows) {
     const uint32_t maxDim = ctx.properties.limits.maxImageDimension2D;
     if (width == 0 || height == 0)
         throwUserError(flag + " " + std::to_string(width) + "x" + std::to_string(height) +
@@ -74,12 +76,14 @@ void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t heigh
     if (width > maxDim || height > maxDim)
         throwUserError(flag + " " + std::to_string(width) + "x" + std::to_string(height) + ": the device '" +
                        ctx.info.name + "' allows at most " + std::to_string(maxDim) + " pixels per side");
-    // Read-back keeps a few float copies of the frame: refuse what cannot fit in 8 GiB.
-    const double bytes = double(width) * height * 16.0 * 8.0;
-    if (bytes > 8.0 * 1024 * 1024 * 1024)
-        throwUserError(flag + " " + std::to_string(width) + "x" + std::to_string(height) +
-                       ": too large (needs about " + std::to_string(int(bytes / 1073741824.0)) +
-                       " GiB); use at most 7680x4320");
+    requireRenderMemory(width, height, bandRows, flag);
+}
+
+void requireRenderMemory(uint32_t width, uint32_t height, uint32_t bandRows, const std::string& flag) {
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    requireMemory(renderMemoryBytes(width, height, bandRows),
+                  flag + " " + size + (bandRows ? " in bands of " + std::to_string(bandRows) + " rows" : ""),
+                  bandRows ? "give a smaller --size" : "give a smaller --size, or render in bands (--band-rows 64)");
 }
 
 RenderBand renderBand(const RenderSettings& settings) {
@@ -233,7 +237,7 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const
 
 RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings& settings) {
     ScopedStage timedRender(Stage::Render);  // pass set-up and the frame; compiles and read-back nest
-    validateResolution(ctx_, settings.width, settings.height, "--size");
+    validateResolution(ctx_, settings.width, settings.height, "--size", settings.bandRows);
     if (wiring.visibilityBuffer) checkVisibilityBufferSupport(ctx_, wiring, gpuScene_);
     const uint32_t w = settings.width, h = settings.height;
     const RenderBand band = renderBand(settings);

@@ -125,8 +125,20 @@ struct RenderOutput {
 // Mean of noise / max(Y(hdr), floor) over the pixels where hdr's alpha >= 0.5 (GroundTruthStats).
 double meanRelativeNoise(const Image& hdr, const Image& noise);
 
-// Checks a requested resolution against the device's limits; throws UserError naming `flag`.
-void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag);
+// The host memory a width x height render takes at its peak, whole (bandRows 0) or in bands of
+// bandRows rows (RenderSettings::bandRows), on a CPU device, whose device memory is host memory:
+// in bands, what stays frame-sized (the HDR result and the PNG made from it) per pixel of the
+// frame, the rest per pixel of a band. (A band's G-buffer targets are the frame's size, but only
+// the band's rows of them are ever touched.) Constants measured in renderer_memory.cpp.
+double renderMemoryBytes(uint32_t width, uint32_t height, uint32_t bandRows);
+
+// Checks a requested resolution against the device's limits, and the render's memory
+// (renderMemoryBytes, with `bandRows`) against the budget (memory_budget.h); throws UserError
+// naming `flag`.
+void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag,
+                        uint32_t bandRows = 0);
+// The budget half alone, before a device exists (render checks it before loading anything).
+void requireRenderMemory(uint32_t width, uint32_t height, uint32_t bandRows, const std::string& flag);
 
 class Renderer {
 public:

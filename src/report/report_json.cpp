@@ -8,6 +8,7 @@
 #include "error.h"
 #include "file_io.h"
 #include "budget_verdict.h"
+#include "json_number.h"
 #include "report_atlas.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
@@ -18,11 +19,7 @@ using Json = nlohmann::ordered_json;
 
 // ---- Writing ------------------------------------------------------------------------------------
 
-Json number(double v) {
-    if (std::isfinite(v)) return v;
-    if (std::isnan(v)) return nullptr;
-    return v > 0 ? "inf" : "-inf";
-}
+Json number(double v) { return jsonNumber(v); }
 
 Json statsJson(const ScalarStats& s) {
     return Json{{"count", s.count}, {"mean", number(s.mean)}, {"rms", number(s.rms)},
@@ -192,7 +189,7 @@ Json imagesJson(const RunImages& images) {
 void collectLeaves(const Json& j, const std::string& path, std::vector<std::string>& paths) {
     if (j.is_object()) {
         for (const auto& [k, v] : j.items()) collectLeaves(v, path + "/" + k, paths);
-    } else if (j.is_number() || (j.is_string() && (j == "inf" || j == "-inf"))) {
+    } else if (j.is_number() || (j.is_string() && (j == "inf" || j == "-inf" || j == "nan"))) {
         paths.push_back(path);
     }
 }
@@ -217,9 +214,7 @@ Json viewSpreadJson(const Json& views) {
         for (const Json& v : views) {
             if (!v.contains(ptr)) continue;
             const Json& x = v.at(ptr);
-            if (x.is_number()) values.push_back(x.get<double>());
-            else if (x == "inf") values.push_back(std::numeric_limits<double>::infinity());
-            else if (x == "-inf") values.push_back(-std::numeric_limits<double>::infinity());
+            if (double d; !x.is_null() && readJsonNumber(x, d)) values.push_back(d);
         }
         const ViewSpread s = spreadOf(values);
         out[ptr] = Json{{"mean", number(s.mean)}, {"min", number(s.min)}, {"max", number(s.max)},
@@ -295,14 +290,8 @@ struct Node {
         return j.get<std::string>();
     }
     double num() const {
-        if (j.is_number()) return j.get<double>();
-        if (j.is_null()) return std::nan("");
-        if (j.is_string()) {
-            const std::string s = j.get<std::string>();
-            if (s == "inf") return INFINITY;
-            if (s == "-inf") return -INFINITY;
-        }
-        fail("expected a number (or \"inf\", \"-inf\", null)");
+        if (double v; readJsonNumber(j, v)) return v;
+        fail("expected a number (or \"inf\", \"-inf\", \"nan\"; null from older reports)");
     }
     long long integer(long long lo, long long hi) const {
         if (!j.is_number_integer()) fail("expected an integer");

@@ -1,11 +1,15 @@
 #include "environment_map.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "error.h"
+#include "file_io.h"
 #include "image_io.h"
+#include "memory_budget.h"
 
 namespace gbl {
 namespace {
@@ -102,7 +106,19 @@ size_t clampEnvironmentRinging(Image& image) {
 }
 
 EnvironmentMap loadEnvironmentMap(const std::string& path) {
+    // Beside the image (12 bytes a pixel), the map's texture on the device and its mips (16 bytes
+    // and a third more) and the importance-sampling tables (a float a pixel, twice): checked from
+    // the header, before the file is decoded.
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".hdr" && ext != ".exr") return {path, readEnvironmentFile(path)};  // refuses it, naming the fix
+    const ImageFileInfo info = probeImageFile(path);
+    requireMemory(double(info.width) * double(info.height) * (12.0 + 16.0 * 4.0 / 3.0 + 8.0),
+                  escapeText(path) + ": an environment map of " + std::to_string(info.width) + "x" +
+                      std::to_string(info.height) + " pixels",
+                  "give a smaller map (e.g. 4096x2048 is plenty for the IBL), or raise GBL_MEMORY_BUDGET");
     EnvironmentMap map{path, readEnvironmentFile(path)};
+    registerInput(path);  // no output may replace it (file_io.h)
     validateEnvironmentImage(map.image, path);
     map.clampedNegativeTexels = clampEnvironmentRinging(map.image);
     return map;

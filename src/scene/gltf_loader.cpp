@@ -10,6 +10,7 @@
 #include "file_io.h"
 #include "scene.h"
 #include "scene_gltf_files.h"
+#include "scene_gltf_images.h"
 #include "scene_gltf_json_check.h"
 #include "scene_gltf_camera_lights.h"
 #include "scene_gltf_context.h"
@@ -53,11 +54,14 @@ std::string oneLine(std::string text) {
 // through GltfFileAccess (regular files inside the scene's folder).
 tinygltf::Model parseFile(const std::string& path, const GltfLoadOptions& options) {
     const std::vector<unsigned char> bytes = readBinaryFile(path);
+    registerInput(path);  // no output may replace it (file_io.h)
     const bool glb = startsWithGlbMagic(bytes);
     checkGltfJson(path, bytes);
     GltfFileAccess files(path, options.allowOutsideScene);
     tinygltf::TinyGLTF parser;
     parser.SetFsCallbacks(files.callbacks());
+    GltfImageBudget images(path);
+    images.install(parser);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
@@ -72,6 +76,7 @@ tinygltf::Model parseFile(const std::string& path, const GltfLoadOptions& option
     }
     // A refused URI fails the load even where tinygltf would carry on without the file (images).
     if (!files.refusal().empty()) throwUserError(files.refusal());
+    if (!images.refusal().empty()) throwUserError(images.refusal());
     if (!ok && mentionsDraco(bytes))  // tinygltf fails on Draco's missing bufferViews first
         throwUserError(formatPlace(escapeText(path)) +
                        ": extensionsRequired: uses Draco compression, which gbufferlab does not support; "

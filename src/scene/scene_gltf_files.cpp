@@ -61,6 +61,7 @@ bool GltfFileAccess::readWholeFile(std::vector<unsigned char>* out, std::string*
     }
     try {
         *out = readBinaryFile(path);
+        registerInput(path);  // no output may replace it (file_io.h)
     } catch (const UserError& e) {
         access->refuse(formatPlace(escapeText(access->scenePath_)) + ": a URI of the scene: " + e.what());
         if (err) *err = e.what();

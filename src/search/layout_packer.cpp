@@ -115,6 +115,33 @@ std::vector<PlannedField> plannedFields(const Genome& g) {
     return out;
 }
 
+int smallestPackedBytes() {
+    static const int smallest = [] {
+        int best = 0;
+        Genome g;
+        g.workflow = Workflow::Metallic;
+        g.metallicBits = 0;
+        g.specularMode = SpecularMode::FromMetallic;
+        g.occlusionBits = 0;
+        for (size_t n = 0; n < normalEncodings().size(); ++n)
+            for (size_t r = 0; r < roughnessEncodings().size(); ++r)
+                for (size_t c = 0; c < colourEncodings().size(); ++c)
+                    for (size_t d = 0; d < depthFormats().size(); ++d) {
+                        g.normalEncoding = int(n);
+                        g.normalBits = normalEncodings()[n].minBits;
+                        g.roughnessEncoding = int(r);
+                        g.roughnessBits = roughnessEncodings()[r].minBits;
+                        g.colourEncoding = int(c);
+                        g.colourBits = colourEncodings()[c].minBits;
+                        g.depthFormat = int(d);
+                        const int bytes = packGenome(g, 0).bytesPerPixel;  // 0 when unpackable
+                        if (bytes > 0 && (best == 0 || bytes < best)) best = bytes;
+                    }
+        return best;
+    }();
+    return smallest;
+}
+
 PackResult packGenome(const Genome& g, int budgetBytes) {
     PackResult r;
     const std::vector<PlannedField> fields = plannedFields(g);

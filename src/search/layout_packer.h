@@ -34,6 +34,12 @@ struct PackResult {
 // without splitting one across channels. Fails over `budgetBytes` or past 8 targets.
 PackResult packGenome(const Genome& g, int budgetBytes);
 
+// The fewest bytes per pixel a genome packs into: every encoding at its fewest bits, the
+// smallest depth format, and nothing stored that a fallback can supply (metallic, occlusion,
+// specular), over every choice of normal, roughness and colour encoding. A budget below it
+// admits no layout at all (search refuses it before rendering).
+int smallestPackedBytes();
+
 // The whole file: `comment` (each line prefixed "# "), then name, then body.
 std::string layoutText(const std::string& name, const std::string& comment, const std::string& body);
 

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "disk_cache.h"
 #include "error.h"
@@ -48,6 +50,46 @@ bool parseLine(const std::string& line, JournalEntry& e) {
            number(parts[6], e.eval.attributes);
 }
 
+// The key's fields ("budget=16 scene=... seed=1") by name.
+std::vector<std::pair<std::string, std::string>> keyFields(const std::string& key) {
+    std::vector<std::pair<std::string, std::string>> fields;
+    std::istringstream in(key);
+    std::string word;
+    while (in >> word) {
+        const size_t eq = word.find('=');
+        if (eq != std::string::npos) fields.emplace_back(word.substr(0, eq), word.substr(eq + 1));
+        else if (!fields.empty()) fields.back().second += " " + word;  // a value with spaces (a path)
+    }
+    return fields;
+}
+
+// Why the first line is not this search's header, in the words the user can act on.
+std::string headerProblem(const std::filesystem::path& path, const std::string& text, const std::string& key) {
+    const std::string where = escapeText(path.string()) + ":1: ";
+    const std::string restart = "remove the file to start the search again, or give another --out";
+    if (text.empty()) return where + "the journal is empty (a search stopped before its first line); " + restart;
+    const size_t nl = text.find('\n');
+    const std::string line = text.substr(0, nl);
+    if (!line.empty() && line.back() == '\r')
+        return where + "the journal has Windows line endings (CRLF), which gbufferlab never writes; convert it back "
+                       "(e.g. dos2unix) or " + restart;
+    if (nl == std::string::npos) return where + "the journal's first line is cut off (no line end); " + restart;
+    if (line.compare(0, std::strlen(kMagic), kMagic) != 0 || line.size() <= std::strlen(kMagic) ||
+        line[std::strlen(kMagic)] != '\t')
+        return where + "not a gbufferlab search journal (it does not start with '" + kMagic + "'); " + restart;
+    const auto theirs = keyFields(line.substr(std::strlen(kMagic) + 1)), ours = keyFields(key);
+    for (const auto& [name, value] : ours) {
+        std::string recorded = "(none)";
+        for (const auto& [n, v] : theirs)
+            if (n == name) recorded = v;
+        if (recorded != value)
+            return where + "this journal is of a search with " + name + "=" + escapeText(recorded) + ", not " + name +
+                   "=" + escapeText(value) + "; resume with the same arguments, or give another --out";
+    }
+    return where + "this journal is of a search with other arguments (" + escapeText(line) +
+           "); resume with the same arguments, or give another --out";
+}
+
 }  // namespace
 
 uint64_t textHash(const std::string& text) {
@@ -61,9 +103,7 @@ Journal::Journal(const std::filesystem::path& path, const std::string& key) : pa
     std::string valid = header;
     if (std::filesystem::exists(path)) {
         const std::string text = readTextFile(path);
-        if (text.compare(0, header.size(), header) != 0)
-            throwUserError(path.string() + ":1: this journal is of a search with other arguments; resume with the "
-                           "same arguments, or give another --out");
+        if (text.compare(0, header.size(), header) != 0) throwUserError(headerProblem(path, text, key));
         size_t pos = header.size();
         while (pos < text.size()) {
             const size_t nl = text.find('\n', pos);

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include "compare_bands.h"
+#include "compare_memory.h"
 #include "error.h"
+#include "gpu_evaluator.h"
 
 namespace {
 
@@ -66,6 +68,26 @@ TEST(CompareBands, FlagValuesAndConflicts) {
         EXPECT_THROW(parseBandRowsFlag(bad, false, false), gbl::UserError) << bad;
     EXPECT_THROW(parseBandRowsFlag("64", true, false), gbl::UserError);   // --eval cpu
     EXPECT_THROW(parseBandRowsFlag("64", false, true), gbl::UserError);   // ground truth
+}
+
+// compare's memory estimate, checked before its first render: bands bound it, layouts and views
+// add to it, and it stays above the measured peaks it was fitted to (compare_memory.cpp).
+TEST(CompareBands, TheMemoryEstimateCountsBandsLayoutsAndViews) {
+    using gbl::compare::compareMemoryBytes;
+    constexpr double MiB = 1 << 20;
+    const uint32_t bandImageRows = 64 + 2 * gbl::flipHaloRows();
+    EXPECT_LT(compareMemoryBytes(3840, 2160, bandImageRows, 3, 3), 0.7 * compareMemoryBytes(3840, 2160, 0, 3, 3));
+    EXPECT_LT(compareMemoryBytes(1024, 1024, 0, 3, 1), compareMemoryBytes(1024, 1024, 0, 19, 1));
+    EXPECT_LT(compareMemoryBytes(1024, 1024, 0, 19, 1), compareMemoryBytes(1024, 1024, 0, 19, 3));
+    EXPECT_EQ(compareMemoryBytes(1024, 1024, 1024, 3, 1), compareMemoryBytes(1024, 1024, 0, 3, 1));
+    // Measured peaks (MiB): 3 layouts, 1 view: 664 / 1604 whole at 1024 / 2048 px a side, 321 / 627 in
+    // 64-row bands; 19 layouts at 1024: 997 (1 view), 1082 (3 views).
+    EXPECT_GT(compareMemoryBytes(1024, 1024, 0, 3, 1), 664 * MiB);
+    EXPECT_GT(compareMemoryBytes(2048, 2048, 0, 3, 1), 1604 * MiB);
+    EXPECT_GT(compareMemoryBytes(1024, 1024, bandImageRows, 3, 1), 321 * MiB);
+    EXPECT_GT(compareMemoryBytes(2048, 2048, bandImageRows, 3, 1), 627 * MiB);
+    EXPECT_GT(compareMemoryBytes(1024, 1024, 0, 19, 1), 997 * MiB);
+    EXPECT_GT(compareMemoryBytes(1024, 1024, 0, 19, 3), 1082 * MiB);
 }
 
 }  // namespace

@@ -60,7 +60,7 @@ TEST(SearchCli, SmallSearchIsDeterministicResumableAndItsFrontPassesCheck) {
     EXPECT_EQ(frontFiles(dir / "a" / "front"), fa);
     // Another budget is another search: its journal refuses the folder.
     const RunResult d = runGbufferlab(dir, "search --budget 16 --size 96x54 --views 1 --candidates 4 --no-confirm --out a");
-    expectOneLineError(d, {"search-journal.tsv", "other arguments"});
+    expectOneLineError(d, {"search-journal.tsv", "budget=12, not budget=16"});
     fs::remove_all(dir);
 }
 

@@ -87,7 +87,7 @@ TEST(WiringCodegen, GeneratedGlslCompilesForEveryLayout) {
         for (bool native : {false, true}) {
             SCOPED_TRACE(l.name + (native ? " (native formats)" : ""));
             const GBufferWiring w = generateWiring(l, WiringOptions{native});
-            EXPECT_NE(w.glsl.find("generated from layouts/" + l.name + ".toml by gbufferlab"), std::string::npos);
+            EXPECT_NE(w.glsl.find("generated from the layout '" + l.name + "' by gbufferlab"), std::string::npos);
             EXPECT_EQ(w.targetFormats.size(), l.targets.size());
             compileWith("gbuffer_pass.frag.glsl", w);
             compileWith("lighting_pass.comp.glsl", w);
@@ -152,7 +152,8 @@ TEST(WiringCodegen, BestFitTableFlagFollowsTheGeneratedGlsl) {
 TEST(WiringCodegen, LayoutsGlslCommandPrintsTheWiring) {
     std::ostringstream out, err;
     EXPECT_EQ(runLayoutsCommand({"glsl", "crysis3-thin"}, out, err), 0) << err.str();
-    EXPECT_NE(out.str().find("generated from layouts/crysis3-thin.toml"), std::string::npos);
+    EXPECT_NE(out.str().find("generated from the layout 'crysis3-thin'"), std::string::npos);
+    EXPECT_NE(out.str().find("// file: " + (layoutDirectory() / "crysis3-thin.toml").string() + "\n"), std::string::npos);
     EXPECT_NE(out.str().find("void writeGBuffer(Surface s, ivec2 pixel)"), std::string::npos);
     std::ostringstream out2, err2;
     EXPECT_EQ(runLayoutsCommand({"glsl", "no-such-layout"}, out2, err2), 1);

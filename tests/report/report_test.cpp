@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <unistd.h>
 
 #include "error.h"
@@ -172,17 +173,34 @@ TEST(ReportJson, FieldNamesUnitsAndSpecialValues) {
     const Json& frame = ue4["bandwidth"][1];
     EXPECT_EQ(frame["width"], 1920);
     EXPECT_DOUBLE_EQ(frame["gb_per_s_at_60fps"].get<double>(), frame["total_bytes"].get<double>() * 60 / 1e9);
-    // +inf (identical images) is the string "inf"; NaN is null; both read back.
+    // Non-finite numbers are strings, one representation for each (docs/report-schema.md): +inf
+    // (identical images) "inf", -inf "-inf", NaN "nan"; all read back, and so does the null that
+    // reports written before "nan" held.
     EXPECT_EQ(j["runs"][2]["image_errors"]["psnr_tonemapped_db"], "inf");
     ReportModel withNan = model;
     withNan.runs[0].image->flipMedian = std::nan("");
     withNan.runs[0].image->psnrLinear = -INFINITY;
-    const Json k = reportToJson(withNan);
-    EXPECT_TRUE(k["runs"][0]["image_errors"]["flip_median"].is_null());
+    Json k = reportToJson(withNan);
+    EXPECT_EQ(k["runs"][0]["image_errors"]["flip_median"], "nan");
+    EXPECT_EQ(k["runs"][0]["image_errors"]["psnr_linear_db"], "-inf");
     const ReportModel back = reportFromJson(Json::parse(k.dump()));
     EXPECT_TRUE(std::isnan(back.runs[0].image->flipMedian));
     EXPECT_EQ(back.runs[0].image->psnrLinear, -INFINITY);
     EXPECT_EQ(back.runs[2].image->psnrToneMapped, INFINITY);
+    k["runs"][0]["image_errors"]["flip_median"] = nullptr;
+    EXPECT_TRUE(std::isnan(reportFromJson(Json::parse(k.dump())).runs[0].image->flipMedian));
+    // Every double of a run goes through one writer: no number of the runs is null (null means
+    // "not measured", in the visibility verdict only).
+    std::vector<std::string> nulls;
+    std::function<void(const Json&, const std::string&)> walk = [&](const Json& v, const std::string& at) {
+        if (v.is_null()) nulls.push_back(at);
+        if (v.is_object())
+            for (const auto& [key, value] : v.items()) walk(value, at + "/" + key);
+        if (v.is_array())
+            for (size_t i = 0; i < v.size(); ++i) walk(v[i], at + "/" + std::to_string(i));
+    };
+    walk(reportToJson(withNan)["runs"], "/runs");
+    EXPECT_TRUE(nulls.empty()) << nulls.front();
     // A failed run: no image errors, no times, no attributes.
     const Json& failed = j["runs"][6];
     EXPECT_EQ(failed["status"], "failed");

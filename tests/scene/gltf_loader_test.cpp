@@ -1,11 +1,18 @@
 // The glTF loader on small generated files, each pinning down one rule: what the spec forbids,
 // where files may live, types and bounds, geometry, node transforms, cameras, lights, materials.
+#include <sys/resource.h>
+
+#include "hostile_images.h"
 #include "scene_test_support.h"
 
 namespace gbl {
 namespace {
 
 using namespace scene_test;
+
+// The memory budget is read once per process: a fixed one here, so that the refusal below does
+// not depend on the machine's memory.
+const bool kBudgetSet = ::setenv("GBL_MEMORY_BUDGET", "1G", 1) == 0;
 
 TEST(GltfSpec, ViolationsTinygltfAcceptsAreRefused) {
     struct Case {
@@ -482,6 +489,32 @@ TEST(GltfMaterials, ImagesOfAnyChannelCountAndDepthBecomeRgba8) {
     EXPECT_THROW(convertImageToRgba8(ctx, 4, false), UserError);
 }
 
+double peakMiB() {
+    rusage usage{};
+    ::getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0;
+}
+
+// A 1 MB PNG of 16384x16384 black pixels: decoded, copied to RGBA8 and uploaded it would take
+// about 4.8 GB. Refused from its header, naming the scene, the image and the fix, with the
+// process's peak memory unmoved.
+TEST(GltfImages, AnImageBeyondTheBudgetIsRefusedFromItsHeader) {
+    ASSERT_TRUE(kBudgetSet);
+    test::writeFile((scratchDir() / "huge.png").string(), test::blackPng(16384, 16384));
+    GltfBuilder b = quad();
+    b.doc["images"] = json::array({{{"uri", "huge.png"}}});
+    b.doc["textures"] = json::array({{{"source", 0}}});
+    b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    b.primitive()["material"] = 0;
+    const fs::path path = b.write("huge_texture.gltf");
+    const double before = peakMiB();
+    expectErrorNames(path, {"images[0] 'huge.png'", "16384x16384", "GBL_MEMORY_BUDGET=1G", "smaller textures"});
+    EXPECT_LT(peakMiB() - before, 200.0);
+    // A header stb_image will not describe (a frame over 2^30 bytes) is still measured, not
+    // reported as an unknown format.
+    test::writeFile((scratchDir() / "huge.png").string(), test::blackPng(60000, 60000));
+    expectErrorNames(path, {"images[0] 'huge.png'", "60000x60000", "GBL_MEMORY_BUDGET=1G"});
+}
 
 }  // namespace
 }  // namespace gbl

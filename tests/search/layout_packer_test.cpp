@@ -2,6 +2,7 @@
 // real formats, and stores exactly the bits the genome asked for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -140,6 +141,39 @@ TEST(LayoutPacker, EqualGenomesGiveEqualTextAndTheCommentIsComments) {
     EXPECT_EQ(pa.body, pb.body);
     const std::string text = layoutText("found-9b", "line one\n\nline three", pa.body);
     EXPECT_EQ(text.rfind("# line one\n#\n# line three\nname = \"found-9b\"\n", 0), 0u) << text;
+}
+
+// The floor search refuses budgets below: no genome the search proposes packs into fewer bytes,
+// and some genome packs into exactly that many.
+TEST(LayoutPacker, SmallestPackedBytesIsTheFloorOfWhatTheSearchProposes) {
+    const int smallest = smallestPackedBytes();
+    ASSERT_GT(smallest, 0);
+    SplitMix64 rng(17);
+    int least = 1 << 20;
+    for (int i = 0; i < 20000; ++i) {
+        Genome g = i % 2 ? randomGenome(rng) : mutateGenome(randomGenome(rng), rng);
+        const PackResult r = packGenome(g, 1 << 20);
+        if (r.ok) least = std::min(least, r.bytesPerPixel);
+    }
+    EXPECT_GE(least, smallest);
+    // Octahedral normal at 6 + 6 bits, roughness and luma at 3, nothing else stored, 16-bit depth:
+    // 18 bits take a 4-byte target, plus 2 bytes of depth.
+    Genome g;
+    g.normalEncoding = 0;
+    g.normalBits = 6;
+    g.roughnessEncoding = 0;
+    g.roughnessBits = 3;
+    g.colourEncoding = int(colourEncodings().size()) - 1;  // luma
+    g.colourBits = 3;
+    g.metallicBits = 0;
+    g.specularMode = SpecularMode::FromMetallic;
+    g.occlusionBits = 0;
+    g.depthFormat = 0;  // D16
+    ASSERT_STREQ(colourEncodings()[size_t(g.colourEncoding)].name, "luma");
+    ASSERT_STREQ(depthFormats()[0].format, "D16_UNORM");
+    EXPECT_EQ(packGenome(g, smallest).bytesPerPixel, smallest);
+    EXPECT_TRUE(packGenome(g, smallest).ok) << packGenome(g, smallest).why;
+    EXPECT_FALSE(packGenome(g, smallest - 1).ok);
 }
 
 }  // namespace

@@ -128,6 +128,40 @@ TEST(LayoutSearch, AJournalOfOtherArgumentsIsRefusedWithItsFileName) {
     fs::remove_all(dir);
 }
 
+// Each way a journal can fail to be this search's is said as what it is: an empty or CRLF file
+// was reported as "a search with other arguments".
+TEST(LayoutSearch, AJournalsProblemIsNamedForWhatItIs) {
+    const fs::path dir = scratch("journal-text");
+    const std::string key = "budget=12 scene=built-in size=32x18 seed=1";
+    const std::pair<std::string, std::string> cases[] = {
+        {"", "the journal is empty"},
+        {"gbufferlab-search-journal 1\tbudget=12 scene=built-in size=32x18 seed=1\r\n", "Windows line endings (CRLF)"},
+        {"gbufferlab-search-journal 1\tbudget=12", "first line is cut off"},
+        {"hello\n", "not a gbufferlab search journal"},
+        {"gbufferlab-search-journal 1\tbudget=16 scene=built-in size=32x18 seed=1\n", "budget=16, not budget=12"},
+        {"gbufferlab-search-journal 1\tbudget=12 scene=built-in size=64x36 seed=1\n", "size=64x36, not size=32x18"},
+    };
+    for (const auto& [text, needle] : cases) {
+        SCOPED_TRACE(needle);
+        const fs::path path = dir / "journal.tsv";
+        { std::ofstream(path, std::ios::binary | std::ios::trunc) << text; }
+        try {
+            Journal journal(path, key);
+            FAIL() << "expected a UserError";
+        } catch (const UserError& e) {
+            const std::string m = e.what();
+            EXPECT_EQ(m.rfind(path.string() + ":1: ", 0), 0u) << m;
+            EXPECT_NE(m.find(needle), std::string::npos) << m;
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+            if (needle.find(", not ") == std::string::npos) EXPECT_EQ(m.find("other arguments"), std::string::npos) << m;
+        }
+        std::ifstream in(path, std::ios::binary);
+        EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), text)
+            << "a refused journal is left as it was";
+    }
+    fs::remove_all(dir);
+}
+
 TEST(LayoutSearch, ParetoFrontMatchesBruteForceDominance) {
     SplitMix64 rng(11);
     std::vector<Candidate> cands(200);

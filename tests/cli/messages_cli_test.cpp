@@ -1,0 +1,96 @@
+// Messages that said something other than what was wrong, each now naming the real problem;
+// all are refusals before any device work, run as the real executable.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cli_runner.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using namespace gbl::test;
+
+fs::path scratch() {
+    static const fs::path dir = scratchFolder("gbl_messages_test_");
+    return dir;
+}
+
+RunResult run(const std::string& args) { return runGbufferlab(scratch(), args); }
+
+void expectAbsent(const RunResult& r, const std::string& text) {
+    EXPECT_EQ(r.err.find(text), std::string::npos) << "'" << text << "' in: " << r.err;
+}
+
+}  // namespace
+
+// search --budget 4 ran a whole search and ended "0 layouts on the front"; only its report said why.
+TEST(Messages, SearchRefusesABudgetNoLayoutFits) {
+    const RunResult r = run("search --budget 4 --out s4");
+    expectOneLineError(r, {"--budget 4", "no layout fits", "smallest", "or more"});
+    EXPECT_FALSE(fs::exists(scratch() / "s4"));
+}
+
+// search has no --force; its refusal of a used folder named one.
+TEST(Messages, SearchNamesWhatItHasForAUsedFolder) {
+    fs::create_directories(scratch() / "used");
+    { std::ofstream(scratch() / "used" / "notes.txt") << "x"; }
+    const RunResult r = run("search --budget 12 --out used");
+    expectOneLineError(r, {"used", "search-journal.tsv", "resume"});
+    expectAbsent(r, "--force");
+}
+
+// 1e-300 is positive; a float cannot hold it.
+TEST(Messages, AFloatFlagSaysTooSmallOrTooLarge) {
+    const RunResult small = run("compare --gt-noise 1e-300 --out gt");
+    expectOneLineError(small, {"--gt-noise", "1e-300", "too small"});
+    expectAbsent(small, "positive");
+    expectOneLineError(run("compare --gt-noise 1e39 --out gt"), {"--gt-noise", "too large"});
+    expectOneLineError(run("compare --gt-noise -1 --out gt"), {"--gt-noise", "positive"});
+}
+
+// 99992 is a multiple of 8; what is wrong is its size.
+TEST(Messages, BandRowsSaysTheLimitItBreaks) {
+    const RunResult r = run("compare --band-rows 99992 --out br");
+    expectOneLineError(r, {"--band-rows", "99992", "at most 65536"});
+    expectAbsent(r, "multiple of 8");
+    expectOneLineError(run("compare --band-rows 99999999999 --out br"), {"at most 65536"});
+    expectOneLineError(run("compare --band-rows 12 --out br"), {"multiple of 8"});
+}
+
+// A symbolic link that loops is not a missing file.
+TEST(Messages, ALayoutSymlinkLoopIsNamedAsOne) {
+    fs::create_symlink("loop_b.toml", scratch() / "loop_a.toml");
+    fs::create_symlink("loop_a.toml", scratch() / "loop_b.toml");
+    const RunResult r = run("layouts show loop_a.toml");
+    expectOneLineError(r, {"loop_a.toml", "loops"});
+    expectAbsent(r, "no such");
+    expectOneLineError(run("compare --layouts loop_a.toml --out lp"), {"loop_a.toml", "loops"});
+}
+
+// layouts glsl PATH said "generated from layouts/ue4.toml" for a file elsewhere.
+TEST(Messages, LayoutsGlslNamesTheFileItRead) {
+    fs::create_directories(scratch() / "elsewhere-\xc3\xbc");
+    fs::copy_file(fs::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml", scratch() / "elsewhere-\xc3\xbc" / "ue4.toml",
+                  fs::copy_options::overwrite_existing);
+    const RunResult r = run("layouts glsl elsewhere-\xc3\xbc/ue4.toml");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("// file: elsewhere-\xc3\xbc/ue4.toml\n", 0), 0u) << r.out.substr(0, 200);
+    EXPECT_EQ(r.out.find("layouts/"), std::string::npos);
+    EXPECT_NE(r.out.find("generated from the layout 'ue4'"), std::string::npos);
+}
+
+// Paths in UTF-8 printed as \xc3\xbc escapes; they print as themselves.
+TEST(Messages, UnicodePathsPrintAsUtf8) {
+    fs::create_directories(scratch() / "\xc3\xbc");
+    fs::copy_file(fs::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml", scratch() / "\xc3\xbc" / "\xc3\xbc" "ber.toml",
+                  fs::copy_options::overwrite_existing);
+    const RunResult r = run("layouts show \xc3\xbc/\xc3\xbc" "ber.toml");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("\xc3\xbc/\xc3\xbc" "ber.toml:13:8: layout name 'ue4' differs from the file name '\xc3\xbc" "ber'"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("\\x"), std::string::npos) << r.err;
+}
