@@ -225,7 +225,7 @@ std::string describeLayout(const Layout& layout) {
     o << "\n";
     if (!layout.citations.empty()) {
         o << "\nsources (" << (layout.citations.size() == 1 ? "1 citation" : std::to_string(layout.citations.size()) + " citations")
-          << "; \"key:N\" cites line N of a file, or slide N of a talk):\n";
+          << "; \"key:N\" cites line N of a file, or slide N of a talk, page N where it says unit = \"page\"):\n";
         size_t width = 0;
         for (const Citation& c : layout.citations) width = std::max(width, c.key.size());
         for (const Citation& c : layout.citations) o << "  " << pad(c.key, width + 2) << c.text() << "\n";

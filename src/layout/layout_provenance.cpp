@@ -80,7 +80,8 @@ const char* provenanceStatusName(ProvenanceStatus s) {
 std::string Citation::text() const {
     std::string s;
     if (kind == CitationKind::Code) {
-        s = repo + "@" + commit.substr(0, 8) + " " + path;
+        // A file: the short pin, then the path; a repository (cited by its files' `in`): the full pin.
+        s = path.empty() ? repo + "@" + commit : repo + "@" + commit.substr(0, 8) + " " + path;
     } else {
         s = (authors.empty() ? "" : authors + ": ") + title + ", " + venue;
         if (slide > 0) s += ", slide " + std::to_string(slide);

@@ -40,9 +40,12 @@ void compileWith(const std::string& shader, const GBufferWiring& w,
     EXPECT_NO_THROW(compileGlsl(s)) << w.glsl;
 }
 
-float angleDeg(glm::vec3 a, glm::vec3 b) {
-    const float c = glm::dot(glm::normalize(a), glm::normalize(b));
-    return std::acos(std::min(1.0f, std::max(-1.0f, c))) * 57.2957795f;
+// The angle between two directions in degrees, as 2 atan2(|x - y|, |x + y|) of the unit vectors
+// in double: acos of a float dot product cannot resolve less than sqrt(2 * 2^-24) rad = 0.0198
+// degrees, above the step of a 16-bit normal_xyz (ue5-16bit-unorm's, 0.0017 degrees).
+double angleDeg(glm::vec3 a, glm::vec3 b) {
+    const glm::dvec3 x = glm::normalize(glm::dvec3(a)), y = glm::normalize(glm::dvec3(b));
+    return 2.0 * std::atan2(glm::length(x - y), glm::length(x + y)) * 57.29577951308232;
 }
 
 // Smooth random fields (checkerboard chroma reconstructs from neighbours) plus per-pixel noise
