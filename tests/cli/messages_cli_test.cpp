@@ -2,6 +2,8 @@
 // all are refusals before any device work, run as the real executable.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include <filesystem>
 #include <fstream>
 
@@ -89,8 +91,8 @@ TEST(Messages, UnicodePathsPrintAsUtf8) {
                   fs::copy_options::overwrite_existing);
     const RunResult r = run("layouts show \xc3\xbc/\xc3\xbc" "ber.toml");
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.err.find("\xc3\xbc/\xc3\xbc" "ber.toml:13:8: layout name 'ue4' differs from the file name '\xc3\xbc" "ber'"),
-              std::string::npos)
-        << r.err;
+    // The place is ue4.toml's `name` line, wherever the file has it.
+    const std::regex said("\xc3\xbc/\xc3\xbc" "ber\\.toml:[0-9]+:8: layout name 'ue4' differs from the file name '\xc3\xbc" "ber'");
+    EXPECT_TRUE(std::regex_search(r.err, said)) << r.err;
     EXPECT_EQ(r.err.find("\\x"), std::string::npos) << r.err;
 }
