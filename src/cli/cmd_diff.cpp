@@ -113,7 +113,7 @@ int runDiffCommand(const std::vector<std::string>& args) {
     requireMemory(diffMemoryBytes(refInfo, testInfo),
                   "gbufferlab diff " + escapeText(refPath) + " " + escapeText(testPath) + " (" + sizeText(refInfo) +
                       (refInfo.hdr ? ", HDR-FLIP" : ", LDR-FLIP") + ")",
-                  "compare crops of them (e.g. four halves of the size), or raise GBL_MEMORY_BUDGET on a machine "
+                  "compare crops of them (e.g. their four quarters), or raise GBL_MEMORY_BUDGET on a machine "
                   "with more memory");
     registerInput(refPath);
     registerInput(testPath);

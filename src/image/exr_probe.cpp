@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "memory_budget.h"
 
 namespace gbl {
 namespace {
@@ -101,8 +102,8 @@ ExrProbe probeExr(const std::string& path) {
     if (compression == EXR_COMPRESSION_NONE) least = std::max(least, double(w) * double(h) * p.bytesPerPixel);
     if (p.fileBytes > 0 && least > double(p.fileBytes))
         throwUserError(name + ": its header claims " + size(p.width, p.height) + " pixels in " +
-                       std::to_string(p.chunks) + " chunks, which take at least " + std::to_string(uint64_t(least)) +
-                       " bytes, but the file has " + std::to_string(p.fileBytes) +
+                       std::to_string(p.chunks) + " chunks, which take at least " + formatBytes(least) +
+                       ", but the file has " + formatBytes(double(p.fileBytes)) +
                        "; it is truncated or its header is wrong: re-export it");
     return p;
 }
