@@ -89,8 +89,8 @@ TEST(Messages, UnicodePathsPrintAsUtf8) {
                   fs::copy_options::overwrite_existing);
     const RunResult r = run("layouts show \xc3\xbc/\xc3\xbc" "ber.toml");
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.err.find("\xc3\xbc/\xc3\xbc" "ber.toml:13:8: layout name 'ue4' differs from the file name '\xc3\xbc" "ber'"),
-              std::string::npos)
+    const std::string place = "\xc3\xbc/\xc3\xbc" "ber.toml:13:8: ";
+    EXPECT_NE(r.err.find(place + "layout name 'ue4' differs from the file name '\xc3\xbc" "ber'"), std::string::npos)
         << r.err;
     EXPECT_EQ(r.err.find("\\x"), std::string::npos) << r.err;
 }
