@@ -73,7 +73,8 @@ std::string escape(std::string_view text, bool keepUtf8) {
         if (n > 0 && !hidesOrBreaks(cp)) {
             out.append(text.substr(i, n));
         } else {
-            for (size_t k = 0; k < std::max<size_t>(n, 1); ++k) appendByteEscape(out, static_cast<unsigned char>(text[i + k]));
+            for (size_t k = 0; k < std::max<size_t>(n, 1); ++k)
+                appendByteEscape(out, static_cast<unsigned char>(text[i + k]));
         }
         i += std::max<size_t>(n, 1);
     }

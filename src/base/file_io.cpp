@@ -123,7 +123,8 @@ bool isRegisteredInput(const fs::path& path) {
     return inputs().files.count(id) != 0;
 }
 
-void refuseOutputOverInput(const fs::path& output, const std::vector<std::string>& inputList, const std::string& flagName) {
+void refuseOutputOverInput(const fs::path& output, const std::vector<std::string>& inputList,
+                           const std::string& flagName) {
     for (const std::string& in : inputList)
         if (!in.empty() && sameFile(output, in))
             throwUserError(flagName + " " + escapeText(output.string()) + ": is the input " + escapeText(in) +

@@ -99,7 +99,8 @@ float parsePositiveFloatFlag(const ParsedArgs& args, const std::string& flag, fl
     if (text.empty() || end != text.c_str() + text.size() || std::isnan(v) || !(v > 0.0))
         throwUserError("--" + flag + " " + quoteName(text) + ": expected a positive number, e.g. 1.5");
     if (v > double(std::numeric_limits<float>::max()))
-        throwUserError("--" + flag + " " + quoteName(text) + ": too large; the largest value a float holds is about 3.4e38");
+        throwUserError("--" + flag + " " + quoteName(text) +
+                       ": too large; the largest value a float holds is about 3.4e38");
     if (v < double(std::numeric_limits<float>::min()))
         throwUserError("--" + flag + " " + quoteName(text) +
                        ": too small; the smallest value a float holds at full precision is about 1.2e-38");

@@ -70,12 +70,12 @@ int runDiffCommand(const std::vector<std::string>& args) {
     if (parsed.has("help")) {
         std::printf("%s", formatHelp("gbufferlab diff REFERENCE TEST [--json] [--out MAP]",
                                      "Compares TEST with REFERENCE: RMSE, PSNR, max |difference| and FLIP.\n"
-                                     "8-bit PNG/JPEG inputs are sRGB and get LDR-FLIP (PSNR peak 1); EXR/HDR inputs are "
-                                     "linear and get\nHDR-FLIP (PSNR peak = the reference's largest value). Both files "
-                                     "must have the same kind, size and channels, and finite values (a NaN or infinity is refused, naming\n"
-                                     "its pixel). A pair whose comparison would not fit the memory budget "
-                                     "(GBL_MEMORY_BUDGET, default 3/4 of\nthe machine's memory) is refused "
-                                     "before it is read.",
+                                     "8-bit PNG/JPEG inputs are sRGB and get LDR-FLIP (PSNR peak 1); EXR/HDR inputs "
+                                     "are linear and get\nHDR-FLIP (PSNR peak = the reference's largest value). Both "
+                                     "files must have the same kind, size and\nchannels, and finite values (a NaN or "
+                                     "infinity is refused, naming its pixel). A pair whose comparison\nwould not fit "
+                                     "the memory budget (GBL_MEMORY_BUDGET, default 3/4 of the machine's memory) is "
+                                     "refused\nbefore it is read.",
                                      specs)
                                .c_str());
         return 0;
@@ -113,7 +113,7 @@ int runDiffCommand(const std::vector<std::string>& args) {
     requireMemory(diffMemoryBytes(refInfo, testInfo),
                   "gbufferlab diff " + escapeText(refPath) + " " + escapeText(testPath) + " (" + sizeText(refInfo) +
                       (refInfo.hdr ? ", HDR-FLIP" : ", LDR-FLIP") + ")",
-                  "compare crops of them (e.g. four halves of the size), or raise GBL_MEMORY_BUDGET on a machine "
+                  "compare crops of them (e.g. their four quarters), or raise GBL_MEMORY_BUDGET on a machine "
                   "with more memory");
     registerInput(refPath);
     registerInput(testPath);

@@ -9,6 +9,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "memory_budget.h"
 
 namespace gbl {
 namespace {
@@ -73,10 +74,13 @@ ExrProbe probeExr(const std::string& path) {
     p.minY = window.min.y;
     p.chunks = uint64_t(std::max(chunks, 0));
     p.tiled = storage == EXR_STORAGE_TILED;
+    double storedBytesPerPixel = 0.0;  // subsampled channels (luminance/chroma files) store fewer
     for (int i = 0; channels && i < channels->num_channels; ++i) {
         const exr_attr_chlist_entry_t& e = channels->entries[i];
         p.channels.emplace_back(e.name.str, size_t(e.name.length));
-        p.bytesPerPixel += e.pixel_type == EXR_PIXEL_HALF ? 2 : 4;
+        const int bytes = e.pixel_type == EXR_PIXEL_HALF ? 2 : 4;
+        p.bytesPerPixel += bytes;
+        storedBytesPerPixel += double(bytes) / double(std::max(e.x_sampling, 1)) / double(std::max(e.y_sampling, 1));
     }
     if (p.tiled) {
         uint32_t tw = 0, th = 0;
@@ -98,11 +102,11 @@ ExrProbe probeExr(const std::string& path) {
     // of data; without compression, every pixel's bytes. Computed in double: hostile counts.
     const double chunkHeader = p.tiled ? 20.0 : 8.0;
     double least = double(p.chunks) * (8.0 + chunkHeader + 1.0);
-    if (compression == EXR_COMPRESSION_NONE) least = std::max(least, double(w) * double(h) * p.bytesPerPixel);
+    if (compression == EXR_COMPRESSION_NONE) least = std::max(least, double(w) * double(h) * storedBytesPerPixel);
     if (p.fileBytes > 0 && least > double(p.fileBytes))
         throwUserError(name + ": its header claims " + size(p.width, p.height) + " pixels in " +
-                       std::to_string(p.chunks) + " chunks, which take at least " + std::to_string(uint64_t(least)) +
-                       " bytes, but the file has " + std::to_string(p.fileBytes) +
+                       std::to_string(p.chunks) + " chunks, which take at least " + formatBytes(least) +
+                       ", but the file has " + formatBytes(double(p.fileBytes)) +
                        "; it is truncated or its header is wrong: re-export it");
     return p;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "error.h"
@@ -16,6 +17,12 @@ std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
+}
+
+std::string shortNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
 }
 
 const char* kindName(DiffKind k) { return k == DiffKind::Ldr ? "8-bit sRGB (PNG/JPEG)" : "HDR float (EXR/HDR)"; }
@@ -135,10 +142,10 @@ DiffResult diffImages(const DiffInput& reference, const DiffInput& test, const s
             // hand-given exposures can span more stops than an int holds.
             const double span = std::ceil(double(range.stop) - double(range.start));
             if (!options.numExposures && !(span <= double(kMaxFlipExposures)))
-                throwUserError("gbufferlab diff: --start-exposure " + std::to_string(range.start) +
-                               " to --stop-exposure " + std::to_string(range.stop) + " is " + std::to_string(span) +
-                               " stops, one HDR-FLIP exposure each, more than " +
-                               std::to_string(kMaxFlipExposures) + "; narrow the range or give --num-exposures N");
+                throwUserError("gbufferlab diff: --start-exposure " + shortNumber(range.start) + " to --stop-exposure " +
+                               shortNumber(range.stop) + " spans " + shortNumber(span) +
+                               " stops, one HDR-FLIP exposure each, more than " + std::to_string(kMaxFlipExposures) +
+                               "; narrow the range or give --num-exposures N");
             range.count = options.numExposures ? *options.numExposures : std::max(2, int(span));
         }
         HdrFlipResult h = flipHdr(r, t, options.pixelsPerDegree, range);

@@ -92,9 +92,12 @@ TEST(DiffBounds, TheEstimateBoundsTheMeasuredPeak) {
     gbl::writePng(at("mid_b.png"), b);
     const MeasuredRun m = diff({"mid_a.png", "mid_b.png", "--json"});
     ASSERT_EQ(m.result.exitCode, 0) << m.result.err;
-    const double estimate = gbl::diffMemoryBytes(gbl::probeImageFile(at("mid_a.png")), gbl::probeImageFile(at("mid_b.png")));
+    const double estimate =
+        gbl::diffMemoryBytes(gbl::probeImageFile(at("mid_a.png")), gbl::probeImageFile(at("mid_b.png")));
     std::printf("2048x2048 LDR pair: peak %.1f MiB, estimate %.1f MiB\n", m.peakMiB, estimate / 1048576.0);
-    if (!kSanitized) EXPECT_LT(m.peakMiB * 1048576.0, estimate);
+    if (!kSanitized) {
+        EXPECT_LT(m.peakMiB * 1048576.0, estimate);
+    }
 }
 
 // --ppd sets FLIP's filter radius (0.135 px per pixel per degree): --ppd 1e9 asked for 12 GB of
@@ -162,7 +165,8 @@ TEST(DiffBounds, NonFinitePixelsAreRefusedNamingTheFirst) {
     ASSERT_EQ(same.result.exitCode, 0) << same.result.err;
     const auto j = nlohmann::json::parse(same.result.out);
     EXPECT_EQ(j["psnr_db"], "inf");
-    for (const char* key : {"rmse", "max_abs", "flip_mean", "flip_max", "psnr_peak"}) EXPECT_TRUE(j[key].is_number()) << key;
+    for (const char* key : {"rmse", "max_abs", "flip_mean", "flip_max", "psnr_peak"})
+        EXPECT_TRUE(j[key].is_number()) << key;
 }
 
 // The error map never replaces an input, with or without --force, by name or through a link

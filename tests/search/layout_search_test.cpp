@@ -153,7 +153,9 @@ TEST(LayoutSearch, AJournalsProblemIsNamedForWhatItIs) {
             EXPECT_EQ(m.rfind(path.string() + ":1: ", 0), 0u) << m;
             EXPECT_NE(m.find(needle), std::string::npos) << m;
             EXPECT_EQ(m.find('\n'), std::string::npos) << m;
-            if (needle.find(", not ") == std::string::npos) EXPECT_EQ(m.find("other arguments"), std::string::npos) << m;
+            if (needle.find(", not ") == std::string::npos) {
+                EXPECT_EQ(m.find("other arguments"), std::string::npos) << m;
+            }
         }
         std::ifstream in(path, std::ios::binary);
         EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), text)
