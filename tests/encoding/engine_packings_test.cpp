@@ -136,6 +136,10 @@ std::vector<glm::vec3> edgeNormals() {
                 for (bool lower : {false, true}) {
                     v.push_back(onL1Sphere(e, y, lower));
                     v.push_back(onL1Sphere(-y, e, lower));
+                    // Scaled, so |n|_1 is not 1: n / |n|_1 and n * (1 / |n|_1) may differ in the last
+                    // bit here, next to a boundary, where that moves a code.
+                    for (float scale : {0.6f, 0.77f, 1.3f})
+                        v.push_back(onL1Sphere(e, y, lower) * scale);
                 }
             }
     }
