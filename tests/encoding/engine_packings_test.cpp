@@ -725,7 +725,7 @@ TEST(EnginePackings, UrpSnormNormalsEqualTheHardwareConversion) {
     EXPECT_EQ(t.mismatches, 0u);
     // An eighth of the x components are placed on SNORM ties (a few of them clamp at 1).
     EXPECT_GT(t.nearTies, kInputs / 9);
-    EXPECT_LT(t.nearTies, kInputs / 8 + kInputs / 500);
+    EXPECT_LT(t.nearTies, kInputs / 8 + edges.size() + kInputs / 500);
 }
 
 // ==================================================================================================
@@ -881,9 +881,9 @@ TEST(EnginePackings, GraniteNormalsEqualHalfNormalPlusHalf) {
              });
     std::printf("[ granite  ] %zu words, %zu codes near a tie\n", t.compared, t.nearTies);
     EXPECT_EQ(t.mismatches, 0u);
-    // An eighth of the y components are placed on 10-bit ties.
+    // An eighth of the y components are placed on 10-bit ties, and some edge values are on them.
     EXPECT_GT(t.nearTies, kInputs / 9);
-    EXPECT_LT(t.nearTies, kInputs / 8 + kInputs / 500);
+    EXPECT_LT(t.nearTies, kInputs / 8 + edges.size() + kInputs / 500);
 }
 
 }  // namespace
