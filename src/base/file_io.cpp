@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "error.h"
+#include "memory_budget.h"
 
 namespace gbl {
 namespace fs = std::filesystem;
@@ -38,6 +39,9 @@ std::vector<unsigned char> readBinaryFile(const fs::path& path) {
     if (S_ISDIR(st.st_mode)) throwUserError(name + ": is a directory, not a file; give the path of a file");
     if (!S_ISREG(st.st_mode))
         throwUserError(name + ": is not a regular file (a FIFO, socket or device); copy the data to a file and give that");
+    // The file's size is the first allocation an input sizes: held to the budget like the rest.
+    requireMemory(double(st.st_size), name + " (a file of " + formatBytes(double(st.st_size)) + ")",
+                  "give a smaller file, or raise GBL_MEMORY_BUDGET on a machine with more memory");
     std::vector<unsigned char> bytes(size_t(std::max<off_t>(st.st_size, 0)));
     size_t done = 0;
     while (done < bytes.size()) {

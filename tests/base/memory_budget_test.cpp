@@ -2,9 +2,14 @@
 // refusal prints.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "error.h"
+#include "file_io.h"
 #include "memory_budget.h"
 
 namespace gbl {
@@ -68,6 +73,20 @@ TEST(MemoryBudget, ARefusalIsOneLineNamingWhatTheBudgetAndTheFix) {
         EXPECT_NE(m.find("; give a smaller image"), std::string::npos) << m;
         EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     }
+    // A file's size is held to the budget before it is read: a sparse 2 GiB file (no disk used).
+    const std::filesystem::path big = std::filesystem::temp_directory_path() /
+                                      ("gbl_memory_budget_test_" + std::to_string(::getpid()) + ".bin");
+    { std::ofstream(big.string()) << ""; }
+    std::filesystem::resize_file(big, 2 * kGiB);
+    try {
+        readBinaryFile(big);
+        ADD_FAILURE() << "expected a UserError";
+    } catch (const UserError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find(big.filename().string() + " (a file of 2.0 GiB): needs about 2.0 GiB"), std::string::npos) << m;
+        EXPECT_NE(m.find("GBL_MEMORY_BUDGET=1G"), std::string::npos) << m;
+    }
+    std::filesystem::remove(big);
 }
 
 }  // namespace

@@ -96,3 +96,14 @@ TEST(Messages, UnicodePathsPrintAsUtf8) {
     EXPECT_TRUE(std::regex_search(r.err, said)) << r.err;
     EXPECT_EQ(r.err.find("\\x"), std::string::npos) << r.err;
 }
+
+// --force lets render and compare replace files in --out, never an input kept there.
+TEST(Messages, ForceIntoAFolderHoldingAnInputIsRefused) {
+    fs::create_directories(scratch() / "kept");
+    { std::ofstream(scratch() / "kept" / "sky.hdr") << "the user's sky"; }
+    for (const std::string command : {"render --size 32x32", "compare --size 32x32 --layouts ue4", "ibl"}) {
+        const RunResult r = run(command + " --env kept/sky.hdr --out kept --force");
+        expectOneLineError(r, {"--out kept", "holds the input kept/sky.hdr"});
+    }
+    EXPECT_EQ(slurp(scratch() / "kept" / "sky.hdr"), "the user's sky");
+}
