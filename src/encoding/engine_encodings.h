@@ -1,0 +1,140 @@
+#pragma once
+// Packings of shipped engines (Bevy, Unity; niagara's are in niagara_encodings.h): the C++
+// twin of shaders/engine_encodings.glsl, split from encodings.h, which includes it at its end so
+// that every includer of encodings.h still sees them. Same contract as encodings.h: the same names,
+// expressions and order as the GLSL; encoders agree with the GPU to the bit.
+#include "encodings.h"
+
+namespace gbl::enc {
+
+// ---------------------------------------------------------------------------------------------
+// 8. Packings of shipped engines (the GLSL twin carries the sources and error bounds).
+// ---------------------------------------------------------------------------------------------
+
+// encodeRgb9e5: RGB >= 0 -> (9-bit mantissas r, g, b; 5-bit shared exponent), Vulkan's
+// E5B9G9R9_UFLOAT_PACK32 ("Shared Exponent", N = 9, B = 15), as Bevy stores emissive.
+inline uvec4 encodeRgb9e5(vec3 c) {
+    vec3 rgb = clamp(c, vec3(0.0f), vec3(65408.0f));
+    float m = max(rgb.x, max(rgb.y, rgb.z));
+    int e = max(-16, int((floatBitsToUint(m) >> 23u) & 0xffu) - 127) + 16;
+    float scale = uintBitsToFloat(uint(151 - e) << 23u);  // 2^(B + N - exp)
+    float top = floor(m * scale + 0.5f);
+    if (top >= 512.0f) {
+        e += 1;
+        scale *= 0.5f;
+    }
+    vec3 q = floor(rgb * scale + 0.5f);
+    return uvec4(uint(q.x), uint(q.y), uint(q.z), uint(e));
+}
+
+// decodeRgb9e5: mantissa * 2^(exp - B - N); exact.
+inline vec3 decodeRgb9e5(uvec4 code) {
+    float scale = uintBitsToFloat(uint(int(code.w & 31u) + 103) << 23u);
+    return vec3(float(code.x & 511u), float(code.y & 511u), float(code.z & 511u)) * scale;
+}
+
+// Gamma 2.2 (not sRGB), 8 bits, table based (tables in encodings.cpp): Bevy's base colour.
+inline uint encodeGamma22(float x) {
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kGamma22EncodeThresholds[mid] <= x) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+inline float decodeGamma22(uint code) { return kGamma22Decode[code & 255u]; }
+
+// sRGB 8-bit as HDRP writes fresnel0 into its UNORM GBuffer2: the power segment without the linear
+// toe, decoded with HDRP's cubic (the GLSL twin carries the sources). Table based like srgb8: the
+// code = number of thresholds <= |x| (tables in encodings.cpp).
+extern const float kSrgbFastHdrpEncodeThresholds[255];
+inline uint encodeSrgb8FastHdrp(float x) {
+    float a = abs(x);
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kSrgbFastHdrpEncodeThresholds[mid] <= a) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+inline float decodeSrgb8FastHdrp(uint code) {
+    float c = dequantizeUnorm(code & 255u, 8u);
+    float l = c * (c * (c * 0.305306011f + 0.682171111f) + 0.012522878f);
+    return l;
+}
+
+// Octahedral normals as two unorm codes of u = p * 0.5 + 0.5, each engine's arithmetic written out
+// (float only, in its order), decoded by decodeNormalOctahedralUnorm. Sources and error bounds:
+// shaders/engine_encodings.glsl.
+
+// octEncodeBevy: Bevy's octahedral_encode, without its final * 0.5 + 0.5.
+inline vec2 octEncodeBevy(vec3 n) {
+    float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    float x = n.x / l1;
+    float y = n.y / l1;
+    float z = n.z / l1;
+    float sx = x > 0.0f ? 1.0f : -1.0f;
+    float sy = y > 0.0f ? 1.0f : -1.0f;
+    vec2 wrap = vec2((1.0f - abs(y)) * sx, (1.0f - abs(x)) * sy);
+    return z >= 0.0f ? vec2(x, y) : wrap;
+}
+
+// encodeNormalOctahedralBevy: octEncodeBevy, then u32(saturate(u) * (2^bits - 1) + 0.5).
+inline uvec2 encodeNormalOctahedralBevy(vec3 n, uint bits) {
+    vec2 p = octEncodeBevy(n);
+    float ux = p.x * 0.5f + 0.5f;
+    float uy = p.y * 0.5f + 0.5f;
+    return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
+}
+
+// octEncodeUnity: Unity's PackNormalOctQuadEncode.
+inline vec2 octEncodeUnity(vec3 n) {
+    float r = 1.0f / (abs(n.x) + abs(n.y) + abs(n.z));
+    float x = n.x * r;
+    float y = n.y * r;
+    float z = n.z * r;
+    float t = clamp(-z, 0.0f, 1.0f);
+    return vec2(x + (x >= 0.0f ? t : -t), y + (y >= 0.0f ? t : -t));
+}
+
+// encodeNormalOctahedralUnity: octEncodeUnity, saturate(p * 0.5 + 0.5), truncated with the scale
+// 2^bits - 0.5 (PackFloat2To888's 4095.5 at 12 bits).
+inline uvec2 encodeNormalOctahedralUnity(vec3 n, uint bits) {
+    vec2 p = octEncodeUnity(n);
+    float s = float((1u << bits) - 1u) + 0.5f;
+    float ux = clamp(p.x * 0.5f + 0.5f, 0.0f, 1.0f);
+    float uy = clamp(p.y * 0.5f + 0.5f, 0.0f, 1.0f);
+    float qx = floor(ux * s);
+    float qy = floor(uy * s);
+    return min(uvec2(uint(qx), uint(qy)), uvec2((1u << bits) - 1u));
+}
+
+// encodeNormalOctahedralHdrp: HDRP's normal buffer, |n.z| raised to at least 1/1024 (its sign
+// kept, -0 counting as +) before encodeNormalOctahedralUnity; n is not renormalised.
+inline uvec2 encodeNormalOctahedralHdrp(vec3 n, uint bits) {
+    float az = max(1.0f / 1024.0f, abs(n.z));
+    float z = n.z >= 0.0f ? az : -az;
+    return encodeNormalOctahedralUnity(vec3(n.x, n.y, z), bits);
+}
+
+// decodeNormalOctahedralUnorm: code / (2^bits - 1) * 2 - 1, octahedral unfold, normalise.
+inline vec3 decodeNormalOctahedralUnorm(uvec2 code, uint bits) {
+    vec2 u = vec2(dequantizeUnorm(code.x, bits), dequantizeUnorm(code.y, bits));
+    return normalize(octDecode(u * 2.0f - 1.0f));
+}
+
+// View-space x, y as half floats, z = +sqrt(1 - x^2 - y^2) (Killzone 2's RT1).
+inline uvec2 encodeNormalXyFloat16(vec3 n) { return uvec2(encodeFloat16(n.x), encodeFloat16(n.y)); }
+
+inline vec3 decodeNormalXyFloat16(uvec2 code) {
+    float x = decodeFloat16(code.x);
+    float y = decodeFloat16(code.y);
+    float z = sqrt(max(0.0f, 1.0f - x * x - y * y));
+    return normalize(vec3(x, y, z));
+}
+
+}  // namespace gbl::enc
