@@ -33,17 +33,15 @@ out=build-fuzz
 mkdir -p "$out"
 flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize=vptr -ffp-contract=off
        -Ishaders -DGLM_FORCE_DEPTH_ZERO_TO_ONE -DGLM_FORCE_RADIANS
-       -DGBL_SOURCE_SHADER_DIR="\"$PWD/shaders\"" -DGBL_SOURCE_LAYOUT_DIR="\"$PWD/layouts\"")
-for folder in base encoding layout scene; do flags+=("-Isrc/$folder"); done
-base=(src/base/error.cpp src/base/file_io.cpp src/base/interrupt.cpp)
-# The whole layout library (a list by hand missed a file added later and broke this build), and
-# the one encoding file it uses.
+       -DGBL_SOURCE_SHADER_DIR="\"$PWD/shaders\"" -DGBL_SOURCE_LAYOUT_DIR="\"$PWD/layouts\"" $(pkg-config --cflags OpenEXR))
+for folder in base encoding image layout scene; do flags+=("-Isrc/$folder"); done
+# The whole base and layout libraries (a list by hand missed a file added later and broke this
+# build twice), and the one encoding file the layout library uses.
+base=(src/base/*.cpp)
 layout_sources=(src/layout/*.cpp src/encoding/encoding_registry.cpp)
-scene_sources=(src/scene/scene.cpp src/scene/gltf_loader.cpp src/scene/tangents.cpp src/scene/camera.cpp
-               src/scene/scene_normals.cpp src/scene/scene_gltf_accessor.cpp src/scene/scene_gltf_geometry.cpp
-               src/scene/scene_gltf_textures.cpp src/scene/scene_gltf_materials.cpp src/scene/scene_gltf_nodes.cpp
-               src/scene/scene_gltf_camera_lights.cpp src/scene/scene_shapes.cpp src/scene/scene_gltf_files.cpp
-               src/scene/scene_gltf_json_check.cpp)
+# The glTF loader needs the whole scene library and the image library (it probes every texture's
+# dimensions before it decodes one).
+scene_sources=(src/image/*.cpp src/scene/*.cpp)
 # Each source is compiled once into $out/obj (in parallel; again when it or any header changed) and
 # shared by both targets.
 object() { local src=${1//\//_}; echo "$out/obj/${src%.cpp}.o"; }
@@ -62,7 +60,7 @@ link() {  # link NAME SOURCES...
   for src in "${objs[@]}"; do [ "$src" -nt "$out/$name" ] && newer=1; done
   ((newer)) || [ ! -e "$out/$name" ] || return 0
   echo "fuzz: linking $out/$name"
-  clang++ "${flags[@]}" "${objs[@]}" -o "$out/$name" -ltinygltf -lpthread
+  clang++ "${flags[@]}" "${objs[@]}" -o "$out/$name" -ltinygltf $(pkg-config --libs OpenEXR zlib) -lpthread
 }
 mkdir -p "$out/obj"
 failed=0
