@@ -40,7 +40,9 @@ gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli)  # [sources], f
 gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec)
 gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec)
+gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec)  # Nanite's and Bevy's 64-bit ids, reimplemented, vs the packing
 gbl_test(codec/gpu_cpu_bits_test LABELS gpu DEPS gbl_codec gbl_render)
+gbl_test(codec/visibility_bits_test LABELS gpu DEPS gbl_codec gbl_render)  # the ids' GLSL vs its C++ twin
 gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render)
 gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ibl_math_test LABELS unit DEPS gbl_shading)

@@ -381,8 +381,12 @@ const ClearValue* Layout::findClear(Attribute a) const {
     return nullptr;
 }
 
+int depthAttachmentBytes(const Layout& layout) {
+    return layout.pipeline == Pipeline::VisibilityBuffer && layout.ids.depthWord >= 0 ? 0 : layout.depth.bytes;
+}
+
 int bytesPerPixel(const Layout& layout) {
-    int bytes = layout.depth.bytes + layout.ids.bytes();
+    int bytes = depthAttachmentBytes(layout) + layout.ids.bytes();
     for (const Target& t : layout.targets) bytes += t.bytes();
     return bytes;
 }

@@ -535,7 +535,7 @@ layout(set = 0, binding = 1, std430) writeonly buffer Out { uvec4 words[]; };
 void main() {
     uint i = gl_GlobalInvocationID.x;
     uvec4 v = ids[i];
-    uint packed = packVisibilityIds(v.x, v.y, v.z != 0u).x;
+    uint packed = packVisibilityIds(v.x, v.y, v.z != 0u, 0.0).x;
     words[i] = uvec4(packed, unpackVisibilityIds(uvec2(packed, 0u)));
 }
 )";

@@ -98,10 +98,15 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
         // 1280x720 with 2x MSAA: 20 * 1280 * 720 * 2 = 36.9e6 bytes.
         {"killzone2", 4 * 4 + 4},
         {"niagara", 4 + 4 + 4},                // zeux/niagara: RGBA8 + A2B10G10R10 + D32
+        // 64-bit ids with depth in word 1, and no depth attachment in the raster pass (Nanite's
+        // render pass has no targets; Bevy's raster pass has depth_stencil_attachment None).
+        {"nanite-visbuffer", 8},
+        {"bevy-meshlet-visbuffer", 8},
     };
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     EXPECT_NEAR(bytesPerPixel(load("killzone2")) * 1280.0 * 720.0 * 2.0 / 1e6, 36.0, 1.0);
     EXPECT_GE(listLayoutNames(layoutsDir()).size(), 25u);  // issue 28: at least 24 layouts + the reference
+    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 28u);  // 27 and the reference: layouts/README.md's atlas
 }
 
 // Where the atlas layouts put their bits (each engine's source, as the layout files cite it).
