@@ -428,7 +428,8 @@ std::vector<std::string> wholeValueCodeNames(const std::string& encoding) {
     if (encoding == "normal_xy_float16") return {"x", "y"};
     if (encoding == "rgb9e5") return {"r", "g", "b", "e"};
     if (encoding == "gamma22" || encoding == "float11_11_10") return {"r", "g", "b"};
-    if (encoding == "float11_11_10_hdrp_ao_tag") return {"r", "g", "b"};
+    // Emissive's codes, or where emissive is 0 HDRP's AO tag: (2048, occlusion, 1024).
+    if (encoding == "float11_11_10_hdrp_ao_tag") return {"r|2048", "g|AO", "b|1024"};
     if (encoding.rfind("normal_", 0) == 0) return {"u", "v"};
     if (encoding == "srgb8") return {"r", "g", "b"};
     if (encoding == "ycbcr" || encoding == "ycbcr_sqrt") return {"Y", "Cb", "Cr"};
