@@ -5,6 +5,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "encoding_registry.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
 #include "wiring_codegen.h"
@@ -192,6 +193,12 @@ std::string describeLayout(const Layout& layout) {
     o << "\nbits per attribute:\n";
     for (const AttributeBits& ab : bitsPerAttribute(layout))
         o << "  " << pad(attributeName(ab.attribute), 24) << ab.bits << "\n";
+    // What an encoding stores besides its attribute (HDRP's AO tag: occlusion in the g code).
+    for (const Target& t : layout.targets)
+        for (const Field& f : t.fields)
+            if (const EncodingInfo* e = findEncoding(f.encoding); e && !e->carries.empty() && f.codes.size() > 1)
+                o << "  " << pad(e->carries, 24) << f.codes[1].bits() << " (in " << attributeName(f.attribute)
+                  << "'s " << f.encoding << ", where " << attributeName(f.attribute) << " is 0)\n";
     if (!layout.fallbacks.empty()) {
         o << "\nfallbacks (not stored):\n";
         for (const Fallback& f : layout.fallbacks) {

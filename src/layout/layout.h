@@ -63,6 +63,7 @@ enum class Attribute : uint8_t {
     Opacity,
     SubsurfaceColor,
     IsLightmap,
+    SpecularOcclusion,
 };
 
 enum class AttributeClass : uint8_t { Shading, Geometry, Extra };
