@@ -83,6 +83,7 @@ gbl_test(search/cpu_reshade_test LABELS unit DEPS gbl_search)
 gbl_test(search/layout_search_test LABELS unit DEPS gbl_search)
 gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_cli)  # fast evaluation vs full renders
 gbl_test(cli/search_cli_test LABELS gpu DEPS gbufferlab)
+gbl_test(cli/search_report_test LABELS unit DEPS gbl_cli nlohmann_json::nlohmann_json)  # confirmation over several scenes
 gbl_test(cli/cli_test LABELS gpu DEPS gbufferlab gbl_report gbl_image nlohmann_json::nlohmann_json)
 gbl_test(cli/compare_bands_test LABELS unit DEPS gbl_cli)
 gbl_test(cli/scene_suite_test LABELS unit DEPS gbl_cli)  # --scene and suite files, refused before rendering
