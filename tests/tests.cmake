@@ -35,14 +35,14 @@ gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_reads_test LABELS unit DEPS gbl_layout)  # encodings that read another attribute (niagara)
 gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout)
-gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
+gbl_test(layout/layout_mutants_test LABELS unit TIMEOUT 900 DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
 gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli)  # [sources], from / status, `layouts show`
 gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec)
 gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec)
 gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec)  # Nanite's and Bevy's 64-bit ids, reimplemented, vs the packing
-gbl_test(codec/gpu_cpu_bits_test LABELS gpu DEPS gbl_codec gbl_render)
+gbl_test(codec/gpu_cpu_bits_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render)  # every layout on the GPU: 150 s alone
 gbl_test(codec/visibility_bits_test LABELS gpu DEPS gbl_codec gbl_render)  # the ids' GLSL vs its C++ twin
 gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render)
 gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
