@@ -81,7 +81,7 @@ std::vector<CompareView> compareViews(const Scene& scene, int count, float aspec
         }
         const glm::vec3 foot = centre - up * (glm::dot(centre, up) - low);
         // A framed object (a glTF without a camera) has no ground to graze: the low view looks at the
-        // bounding sphere's centre, which keeps the object in frame.
+        // centre of its bounds, then is fitted to it like the others.
         if (base.framed)
             views.push_back({fitted(place(-30.0f, 6.0f, centre)), "low view of the object: 6 deg above its centre, azimuth -30 deg"});
         else
