@@ -191,7 +191,7 @@ int runSearchCommand(const std::vector<std::string>& args) {
         if (!scene->spec.cameras.empty())
             for (const auto& v : compare::placedViews(inputs.scene, scene->spec.cameras)) cameras.push_back(v.camera);
         else
-            for (const auto& v : compare::compareViews(inputs.scene, viewCount)) cameras.push_back(v.camera);
+            for (const auto& v : compare::compareViews(inputs.scene, viewCount, float(width) / float(height))) cameras.push_back(v.camera);
         std::printf("search: rendering the reference%s (%d view%s, %ux%u) on %s\n",
                     severalScenes ? (" of " + scene->spec.name).c_str() : "", int(cameras.size()),
                     cameras.size() > 1 ? "s" : "", width, height, ctx.info.name.c_str());

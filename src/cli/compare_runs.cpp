@@ -42,6 +42,7 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
     run.attributes[ErrorAttribute::SpecularColor] = toReport(m.specularColor, true);
     run.attributes[ErrorAttribute::Roughness] = toReport(m.roughness, false);
     run.attributes[ErrorAttribute::Metallic] = toReport(m.metallic, false);
+    run.attributes[ErrorAttribute::Occlusion] = toReport(m.occlusion, false);
     run.attributes[ErrorAttribute::Depth] = toReport(m.depth, false);
     ImageErrors e;
     e.rmseLinear = m.image.rmseLinear;

@@ -136,7 +136,7 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
             "times are the layout's own, summed over its bands");
     }
 
-    views_ = o.cameras.empty() ? compareViews(inputs_.scene, o.viewCount) : placedViews(inputs_.scene, o.cameras);
+    views_ = o.cameras.empty() ? compareViews(inputs_.scene, o.viewCount, float(o.width) / float(o.height)) : placedViews(inputs_.scene, o.cameras);
     for (const CompareView& v : views_) model_.run.views.push_back(v.description);
     viewExposures_.assign(views_.size(), o.exposure);
     if (o.viewCount > 1)

@@ -31,13 +31,13 @@ std::vector<CompareView> placedViews(const Scene& scene, const std::vector<Camer
     return views;
 }
 
-std::vector<CompareView> compareViews(const Scene& scene, int count) {
+std::vector<CompareView> compareViews(const Scene& scene, int count, float aspect) {
     std::vector<CompareView> views;
     const Camera& base = scene.camera;
     views.push_back({base, "scene camera"});
     if (count <= 1) return views;
     const glm::vec3 up = glm::normalize(base.up);
-    const glm::vec3 centre = base.fromFile ? 0.5f * (scene.bounds.min + scene.bounds.max) : base.target;
+    const glm::vec3 centre = base.fromFile || base.framed ? 0.5f * (scene.bounds.min + scene.bounds.max) : base.target;
     float distance = glm::length(base.position - centre);
     if (!(distance > 0.0f) || !std::isfinite(distance)) distance = 1.0f;
     // The scene camera's horizontal direction from the centre (any horizontal one when it looks straight down).
@@ -55,6 +55,13 @@ std::vector<CompareView> compareViews(const Scene& scene, int count) {
         c.fromFile = false;
         return c;
     };
+    // A framed object is fitted from each view's direction: the orbit's distance would leave a
+    // tall object small when seen from above.
+    const std::vector<glm::vec3> points = base.framed ? drawnPoints(scene) : std::vector<glm::vec3>{};
+    auto fitted = [&](Camera c) {
+        if (!base.framed || points.empty()) return c;
+        return fitPointsInView(points, c.position - c.target, up, aspect, base.yFovRadians);
+    };
     const bool grazing = count >= 3;
     const int orbits = count - 1 - (grazing ? 1 : 0);
     char buf[160];
@@ -62,7 +69,7 @@ std::vector<CompareView> compareViews(const Scene& scene, int count) {
         const float azimuth = 40.0f + 120.0f * float(k);
         std::snprintf(buf, sizeof(buf), "orbit about the scene's centre: azimuth %+.0f deg, elevation 35 deg",
                       double(azimuth));
-        views.push_back({place(azimuth, 35.0f, centre), buf});
+        views.push_back({fitted(place(azimuth, 35.0f, centre)), buf});
     }
     if (grazing) {
         // The ground: the plane through the bounds' lowest point along up.
@@ -74,9 +81,9 @@ std::vector<CompareView> compareViews(const Scene& scene, int count) {
         }
         const glm::vec3 foot = centre - up * (glm::dot(centre, up) - low);
         // A framed object (a glTF without a camera) has no ground to graze: the low view looks at the
-        // bounding sphere's centre, which keeps the object in frame.
+        // centre of its bounds, then is fitted to it like the others.
         if (base.framed)
-            views.push_back({place(-30.0f, 6.0f, centre), "low view of the object: 6 deg above its centre, azimuth -30 deg"});
+            views.push_back({fitted(place(-30.0f, 6.0f, centre)), "low view of the object: 6 deg above its centre, azimuth -30 deg"});
         else
             views.push_back({place(-30.0f, 6.0f, foot), "grazing view of the ground: 6 deg above it, azimuth -30 deg"});
     }

@@ -18,13 +18,16 @@ namespace gbl::compare {
 // azimuths +40, +160, +280, ... degrees from the scene camera's; with 3 or more views the last is a
 // grazing view of the ground: 6 degrees above the plane through the bounds' lowest point, at the
 // same distance, azimuth -30 degrees, looking at the centre's foot on that plane. Same field of
-// view, near and far planes as the scene camera. Up is the scene camera's up.
+// view, near and far planes as the scene camera. Up is the scene camera's up. A framed scene (a
+// glTF without a camera, Camera::framed) has no ground: its last view looks at the centre from 6
+// degrees up, and each view is fitted to the drawn vertices from its direction (fitPointsInView,
+// for `aspect`), so the object fills the frame from every side.
 struct CompareView {
     Camera camera;
     std::string description;
 };
 
-std::vector<CompareView> compareViews(const Scene& scene, int count);
+std::vector<CompareView> compareViews(const Scene& scene, int count, float aspect);
 
 // A suite's cameras (scene_suite.h) as the views, as given, with near and far planes that hug the
 // scene's bounding sphere from each position (as frameBounds places them).

@@ -80,16 +80,16 @@ inline BytesPerPixel bytesPerPixelOf(const BandwidthReport& bandwidth) {
 }
 
 // The G-buffer attributes whose error is measured, in report order.
-enum class ErrorAttribute : uint8_t { Normal, BaseColor, DiffuseColor, SpecularColor, Roughness, Metallic, Depth };
-constexpr size_t kErrorAttributeCount = 7;
+enum class ErrorAttribute : uint8_t { Normal, BaseColor, DiffuseColor, SpecularColor, Roughness, Metallic, Occlusion, Depth };
+constexpr size_t kErrorAttributeCount = 8;
 constexpr std::array<ErrorAttribute, kErrorAttributeCount> kErrorAttributes = {
     ErrorAttribute::Normal,        ErrorAttribute::BaseColor, ErrorAttribute::DiffuseColor,
     ErrorAttribute::SpecularColor, ErrorAttribute::Roughness, ErrorAttribute::Metallic,
-    ErrorAttribute::Depth};
+    ErrorAttribute::Occlusion,     ErrorAttribute::Depth};
 // "normal", "base_color", ... (the JSON / CSV keys)
 inline const char* errorAttributeName(ErrorAttribute a) {
     constexpr const char* kNames[] = {"normal",    "base_color", "diffuse_color", "specular_color",
-                                      "roughness", "metallic",   "depth"};
+                                      "roughness", "metallic",   "occlusion",     "depth"};
     return kNames[size_t(a)];
 }
 // "degrees" (angle), "delta_e_2000" (CIEDE2000), "absolute" (|test - reference|),

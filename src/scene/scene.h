@@ -74,8 +74,8 @@ struct Camera {
     float zNear = 0.01f;
     float zFar = 100.0f;  // finite; the renderer may use reversed or infinite Z
     bool fromFile = false;
-    // Placed by frameBounds (a glTF without a camera): the view frames the bounding sphere, and
-    // compare's other views (compare_views.h) keep it in frame.
+    // Placed by frameScene (a glTF without a camera): the view is fitted to the drawn vertices,
+    // and compare's other views (compare_views.h) are fitted the same way from their directions.
     bool framed = false;
 };
 
@@ -128,8 +128,19 @@ Scene makeDefaultScene();
 // a ground with detail normals): the material balls of the IBL comparison.
 Scene makeSphereGridScene();
 
-// A camera looking at the bounds from the front (+Z), framing them for the given aspect.
+// The closest camera looking along -towardCamera (up as given, then made orthogonal) whose
+// frame, shrunk by 5% on each axis, holds every point's projection: the points' projected
+// extent touches that margin on both sides of one axis and is centred on the other. Near and far hug the
+// points. The default field of view unless given.
+Camera fitPointsInView(const std::vector<glm::vec3>& points, glm::vec3 towardCamera, glm::vec3 up, float aspect,
+                       float yFovRadians);
+// A camera from the front (+Z), a little above, fitted to the bounds' eight corners.
 Camera frameBounds(const Bounds& bounds, float aspect);
+// Every drawn vertex in world space (through the indices and each draw's model matrix).
+std::vector<glm::vec3> drawnPoints(const Scene& scene);
+// A glTF without a camera: the view from the front, fitted to the drawn vertices (tighter than
+// the bounds when the object is not box-shaped).
+Camera frameScene(const Scene& scene, float aspect);
 
 // A light used when the scene has none: a warm sun from the upper left front.
 Light defaultSun();

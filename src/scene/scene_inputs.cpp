@@ -10,7 +10,7 @@ SceneInputs loadSceneInputs(const std::string& scenePath, const std::string& env
     // A file the user named is read before anything is built in code, so bad input fails fast.
     if (!environmentPath.empty()) in.environment = loadEnvironmentMap(environmentPath);
     in.scene = scenePath.empty() ? makeDefaultScene() : loadGltfScene(scenePath, gltf);
-    if (!in.scene.camera.fromFile && !scenePath.empty()) in.scene.camera = frameBounds(in.scene.bounds, aspect);
+    if (!in.scene.camera.fromFile && !scenePath.empty()) in.scene.camera = frameScene(in.scene, aspect);
     if (environmentPath.empty()) in.environment = makeProceduralSky();
     return in;
 }

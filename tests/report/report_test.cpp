@@ -349,10 +349,10 @@ TEST(ReportCsv, HeaderAndOneRowPerRun) {
         attributeColumns += name.find("_all_") != std::string::npos || name.find("_metal_") != std::string::npos ||
                             name.find("_dielectric_") != std::string::npos;
     }
-    EXPECT_EQ(attributeColumns, 7u * 3u * 3u + 3u * 3u);
+    EXPECT_EQ(attributeColumns, 8u * 3u * 3u + 3u * 3u);  // 8 attributes x 3 classes x 3 stats, 3 colour RMSEs
     EXPECT_EQ(imageClassColumns, 3u * 4u);
     // 8 image metrics + HDR-FLIP + the class and attribute columns, each with 3 spread columns.
-    EXPECT_EQ(spreadColumns, 3u * (8u + 1u + 3u * 4u + 7u * 3u * 3u + 3u * 3u));
+    EXPECT_EQ(spreadColumns, 3u * (8u + 1u + 3u * 4u + 8u * 3u * 3u + 3u * 3u));
     const auto column = [&](const std::string& name) {
         const auto it = std::find(header.begin(), header.end(), name);
         EXPECT_NE(it, header.end()) << name;

@@ -103,6 +103,42 @@ TEST(Camera, FrameBoundsSeesEveryCornerAndScalesNearFarWithTheScene) {
     EXPECT_GT(point.zFar, point.zNear);
 }
 
+// The tightest fit of a perspective frame to points along a fixed direction: every point inside
+// the frame shrunk by the 5% margin, the binding axis touching that margin on both sides (so no
+// camera closer, or moved sideways, holds them all), the other axis centred in the image. Checked through glm's own projection, on random clouds, shapes and views.
+TEST(Camera, FitPointsInViewIsTheTightestCentredFit) {
+    uint32_t state = 12345u;
+    auto uniform = [&] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    for (int trial = 0; trial < 40; ++trial) {
+        const glm::vec3 stretch(0.02f + 3.0f * uniform(), 0.02f + 3.0f * uniform(), 0.02f + 3.0f * uniform());
+        const glm::vec3 offset(100.0f * (uniform() - 0.5f), 10.0f * uniform(), -50.0f * uniform());
+        std::vector<glm::vec3> points;
+        for (int i = 0; i < 200; ++i)
+            points.push_back(offset + stretch * glm::vec3(uniform() - 0.5f, uniform() - 0.5f, uniform() - 0.5f));
+        const glm::vec3 toward(uniform() - 0.5f, uniform(), uniform() - 0.5f);
+        const float aspect = trial % 3 == 0 ? 16.0f / 9.0f : trial % 3 == 1 ? 1.0f : 0.5f;
+        SCOPED_TRACE("trial " + std::to_string(trial));
+        const Camera c = fitPointsInView(points, toward, glm::vec3(0, 1, 0), aspect, 0.7f);
+        EXPECT_NEAR(glm::dot(glm::normalize(c.position - c.target), glm::normalize(toward)), 1.0f, 1e-4f);
+        float loX = 1e9f, hiX = -1e9f, loY = 1e9f, hiY = -1e9f;
+        for (const glm::vec3& p : points) {
+            const glm::vec4 clip = toClip(c, aspect, p);
+            ASSERT_TRUE(insideFrustum(clip));
+            loX = std::min(loX, clip.x / clip.w), hiX = std::max(hiX, clip.x / clip.w);
+            loY = std::min(loY, clip.y / clip.w), hiY = std::max(hiY, clip.y / clip.w);
+        }
+        const float edge = 1.0f / 1.05f;
+        EXPECT_LE(std::max({hiX, -loX, hiY, -loY}), edge + 1e-4f);
+        const bool xBinds = hiX - loX > hiY - loY;
+        EXPECT_NEAR(xBinds ? hiX : hiY, edge, 2e-3f);
+        EXPECT_NEAR(xBinds ? loX : loY, -edge, 2e-3f);
+        EXPECT_NEAR(xBinds ? hiY + loY : hiX + loX, 0.0f, 2e-3f);
+    }
+}
+
 TEST(SceneBounds, WorldBoundsAppliesEachDrawsModelMatrix) {
     Scene s;
     const ShapeMesh sphere = makeUvSphere(1.0f, 16, 8);

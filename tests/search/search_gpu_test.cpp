@@ -31,7 +31,7 @@ struct Fixture {
     SearchReference reference;
     std::unique_ptr<search::FastEvaluator> evaluator;
     Fixture() {
-        for (const auto& v : compare::compareViews(inputs.scene, 2)) cameras.push_back(v.camera);
+        for (const auto& v : compare::compareViews(inputs.scene, 2, float(kW) / float(kH))) cameras.push_back(v.camera);
         // As cmd_search: the reference under every depth format the tested layouts use.
         reference = renderSearchReference(renderer, cameras, kW, kH,
                                           {{"D16_UNORM", false}, {"D24_UNORM_S8_UINT", false}, {"D32_SFLOAT", true},
