@@ -39,6 +39,27 @@ double metricLoss(const Evaluation& e, int m) {
     return metricInfo(m).higherIsBetter ? -v : v;
 }
 
+Evaluation meanEvaluation(const std::vector<Evaluation>& each) {
+    Evaluation m;
+    if (each.empty()) return m;
+    const double n = double(each.size());
+    m.flip = 0.0;
+    for (const Evaluation& e : each) {
+        m.error += e.error / n;
+        m.psnr += e.psnr / n;
+        m.attributes += e.attributes / n;
+        m.flip = e.flip < 0 || m.flip < 0 ? -1.0 : m.flip + e.flip / n;
+        m.normalDeg += e.normalDeg / n;
+        m.baseColorDe += e.baseColorDe / n;
+        m.diffuseColorDe += e.diffuseColorDe / n;
+        m.specularColorDe += e.specularColorDe / n;
+        m.roughness += e.roughness / n;
+        m.metallic += e.metallic / n;
+        m.occlusion += e.occlusion / n;
+    }
+    return m;
+}
+
 bool noWorseOnAll(const Evaluation& a, const Evaluation& b) {
     for (int m = 0; m < kMetricCount; ++m)
         if (metricLoss(a, m) > metricLoss(b, m)) return false;

@@ -3,6 +3,7 @@
 // of them, a found layout "beats" a published one only when it is no worse on any, and otherwise
 // the report states the trade ("FLIP -30 %, PSNR -13.0 dB").
 #include <string>
+#include <vector>
 
 #include "fast_eval.h"
 
@@ -23,6 +24,9 @@ const MetricInfo& metricInfo(int m);
 double metricValue(const Evaluation& e, int m);
 // Lower is better (minus the PSNR).
 double metricLoss(const Evaluation& e, int m);
+
+// The mean of several evaluations (of one layout over several scenes), member by member.
+Evaluation meanEvaluation(const std::vector<Evaluation>& each);
 
 // a no worse than b on every metric.
 bool noWorseOnAll(const Evaluation& a, const Evaluation& b);
