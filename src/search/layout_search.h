@@ -2,8 +2,9 @@
 // The layout search: a seeded evolutionary search over Genomes (search_space.h) under a byte
 // budget, keeping a Pareto archive over bytes per pixel and every error (search_metrics.h).
 //
-// Each round proposes a batch of candidates from the current archive (a fresh random genome with
-// probability 0.15 and for the first rounds, else a mutation of a parent drawn from the pool: the
+// Each round proposes a batch of candidates from the current archive (a fresh random genome, shrunk
+// to a random size between the smallest packable and the budget, with probability 0.15 and for
+// the first rounds, else a mutation of a parent drawn from the pool: the
 // archive's 3 best at each byte count by the objective), brings it inside the engine constraints
 // (search_constraints.h), packs each into a layout (layout_packer.h), drops those
 // over the budget or already seen (same canonical text), parses and validates the rest with the

@@ -104,8 +104,8 @@ std::string tradeText(const Evaluation& found, const Evaluation& published) {
         if (f == p) continue;
         const MetricInfo& info = metricInfo(m);
         if (info.higherIsBetter) {
-            std::snprintf(buf, sizeof buf, "%s %+.1f dB", info.label, f - p);
-        } else if (p > 0.0) {
+            std::snprintf(buf, sizeof buf, std::abs(f - p) >= 0.095 ? "%s %+.1f dB" : "%s %+.2f dB", info.label, f - p);
+        } else if (p > 0.0 && f < 100.0 * p) {
             const double percent = 100.0 * (f - p) / p;
             std::snprintf(buf, sizeof buf, std::abs(percent) >= 9.95 ? "%s %+.0f %%" : "%s %+.1f %%", info.label, percent);
         } else {

@@ -44,8 +44,9 @@ Verdict verdictOf(const Evaluation& found, const Evaluation& published);
 const char* verdictName(Verdict v);  // "beats", "equal", "trade", "loses"
 
 // The metrics on which they differ, in metric order, as found's change from published: relative
-// for errors ("FLIP -30 %", or the absolute change where published's is 0: "occlusion +0.031"),
-// in dB for PSNR ("PSNR -13.0 dB"). "" when equal on all.
+// for errors ("FLIP -30 %"; the absolute change where published's is 0 or found's is 100 times
+// it, as a rounding-level error against a real one: "metallic +0.0140"), in dB for PSNR
+// ("PSNR -13.0 dB", two decimals under 0.1 dB). "" when equal on all.
 std::string tradeText(const Evaluation& found, const Evaluation& published);
 
 }  // namespace gbl::search

@@ -284,6 +284,12 @@ TEST(SearchMetrics, VerdictAndTradeText) {
     found.occlusion = 0.0312;  // the published one's is 0: an absolute change
     found.normalDeg = 0.52;    // +4 %: one decimal under 10 %
     EXPECT_EQ(tradeText(found, pub), "FLIP -30 %, PSNR -13.0 dB, normal +4.0 %, occlusion +0.0312");
+    Evaluation tiny = found;  // a rounding-level error against a real one: absolute, not +1e9 %
+    tiny.metallic = 0.014;
+    Evaluation roundingOnly = pub;
+    roundingOnly.metallic = 7e-12;
+    roundingOnly.psnr = 44.25;
+    EXPECT_EQ(tradeText(tiny, roundingOnly), "FLIP -30 %, PSNR -0.05 dB, normal +4.0 %, metallic +0.0140, occlusion +0.0312");
     found.flip = 0.01;
     EXPECT_EQ(verdictOf(found, pub), Verdict::Loses);
     EXPECT_TRUE(dominates(12, pub, 12, found));
