@@ -1,5 +1,6 @@
 #include "search_front.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -239,29 +240,38 @@ std::string metricsNote(const SearchSummary& s) {
     std::ostringstream note;
     note << "  front: " << s.front.size()
          << " layouts, over bytes and every metric, under the engine constraints (search-report.md lists them)\n";
-    std::map<int, bool> anyBeats;  // per comparator budget
+    // Per comparator: the byte counts set beside it, and which found layouts beat it.
+    struct Group {
+        int lo = 1 << 30, hi = 0;
+        std::vector<std::string> beating;
+        bool full = true;
+    };
+    std::map<std::string, Group> groups;
+    std::vector<std::string> order;
     for (const SearchRow& r : s.rows) {
         const SearchRow* c = r.found ? namedRow(s.rows, r.comparator) : nullptr;
         if (!c) continue;
+        if (!groups.count(c->name)) order.push_back(c->name);
+        Group& g = groups[c->name];
+        g.lo = std::min(g.lo, r.bytes);
+        g.hi = std::max(g.hi, r.bytes);
         const bool full = bothFull(r, *c);
+        g.full = g.full && full;
         const search::Verdict v = search::verdictOf(full ? *r.full : r.fast, full ? *c->full : c->fast);
-        note << "  " << r.name << " vs " << c->name << " (" << c->bytes << " B/px): " << search::verdictName(v);
-        const std::string trade = search::tradeText(full ? *r.full : r.fast, full ? *c->full : c->fast);
-        if (!trade.empty()) note << " (" << trade << ")";
-        if (r.flipPValue) note << "; FLIP difference p = " << fixed(*r.flipPValue, 4);
-        note << (full ? " [full renders]" : " [fast evaluation]") << "\n";
+        if (v == search::Verdict::Beats || v == search::Verdict::Equal) g.beating.push_back(r.name);
     }
-    for (const SearchRow& r : s.rows) {
-        const SearchRow* c = r.found ? namedRow(s.rows, r.comparator) : nullptr;
-        if (!c) continue;
-        const bool full = bothFull(r, *c);
-        const search::Verdict v = search::verdictOf(full ? *r.full : r.fast, full ? *c->full : c->fast);
-        anyBeats[c->bytes] = anyBeats[c->bytes] || v == search::Verdict::Beats || v == search::Verdict::Equal;
+    for (const std::string& name : order) {
+        const Group& g = groups[name];
+        const SearchRow* c = namedRow(s.rows, name);
+        note << "  at " << g.lo << (g.hi > g.lo ? "-" + std::to_string(g.hi) : "") << " B/px: ";
+        if (g.beating.empty()) {
+            note << "no found layout is no worse than " << name << " (" << c->bytes << " B/px) on every metric";
+        } else {
+            for (size_t i = 0; i < g.beating.size(); ++i) note << (i ? ", " : "") << g.beating[i];
+            note << (g.beating.size() > 1 ? " beat " : " beats ") << name << " (" << c->bytes << " B/px) on every metric";
+        }
+        note << (g.full ? " (full renders)" : " (fast evaluation)") << "\n";
     }
-    for (const auto& [bytes, beats] : anyBeats)
-        if (!beats)
-            note << "  no found layout up to " << bytes << " B/px is no worse than the best published layout at "
-                 << bytes << " B/px on every metric\n";
     return note.str();
 }
 
