@@ -240,6 +240,18 @@ std::string metricsNote(const SearchSummary& s) {
     std::ostringstream note;
     note << "  front: " << s.front.size()
          << " layouts, over bytes and every metric, under the engine constraints (search-report.md lists them)\n";
+    for (const SearchRow& r : s.rows) {
+        const SearchRow* c = r.found ? namedRow(s.rows, r.comparator) : nullptr;
+        if (!c) continue;
+        const bool full = bothFull(r, *c);
+        const search::Evaluation& a = full ? *r.full : r.fast;
+        const search::Evaluation& b = full ? *c->full : c->fast;
+        note << "  " << r.name << " vs " << c->name << " (" << c->bytes
+             << " B/px): " << search::verdictName(search::verdictOf(a, b));
+        if (!search::tradeText(a, b).empty()) note << " (" << search::tradeText(a, b) << ")";
+        if (r.flipPValue) note << "; FLIP difference p = " << fixed(*r.flipPValue, 4);
+        note << (full ? " [full renders]" : " [fast evaluation]") << "\n";
+    }
     // Per comparator: the byte counts set beside it, and which found layouts beat it.
     struct Group {
         int lo = 1 << 30, hi = 0;
