@@ -83,6 +83,7 @@ gbl_test(report/error_images_test LABELS unit DEPS gbl_report)
 gbl_test(search/layout_packer_test LABELS unit DEPS gbl_search gbl_measure)
 gbl_test(search/cpu_reshade_test LABELS unit DEPS gbl_search)
 gbl_test(search/layout_search_test LABELS unit DEPS gbl_search)
+gbl_test(search/search_constraints_test LABELS unit DEPS gbl_search)  # constraints, --min-bits, the every-metric front, trades
 gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_cli)  # fast evaluation vs full renders
 gbl_test(cli/search_cli_test LABELS gpu DEPS gbufferlab)
 gbl_test(cli/search_report_test LABELS unit DEPS gbl_cli nlohmann_json::nlohmann_json)  # confirmation over several scenes

@@ -23,6 +23,8 @@
 #include "parallel_for.h"
 #include "renderer.h"
 #include "scene_inputs.h"
+#include "search_front.h"
+#include "search_metrics.h"
 #include "search_reference.h"
 #include "search_report.h"
 #include "search_space.h"
@@ -76,8 +78,9 @@ void reshadeAgreement(const search::FastEvaluator& eval, const SearchReference& 
 int runSearchCommand(const std::vector<std::string>& args) {
     const std::vector<FlagSpec> specs = {
         {"budget", "B", "bytes per pixel, render targets and depth-stencil included (required; " +
-                            std::to_string(search::smallestPackedBytes()) + "..64: the smallest layout the search "
-                            "packs takes " + std::to_string(search::smallestPackedBytes()) + ")"},
+                            std::to_string(search::smallestPackedBytes(search::EngineConstraints{})) +
+                            "..64: the smallest layout the search packs under the default constraints takes " +
+                            std::to_string(search::smallestPackedBytes(search::EngineConstraints{})) + ")"},
         {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb), builtin (the default) or a scene suite .toml; give it "
                           "several times to minimise the mean error over the scenes (as compare --scene)", true},
         {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
@@ -90,6 +93,11 @@ int runSearchCommand(const std::vector<std::string>& args) {
         {"threads", "N", "candidates evaluated at once (default: every core); does not change the result"},
         {"out", "DIR", "output directory (default out/search-<time>); a directory holding a search journal "
                        "is resumed"},
+        {"search-depth", "", "let the search choose the depth format too (D16 included); by default depth keeps a "
+                             "layout family's format (D24S8 or D32): it serves shadows, SSAO, SSR, fog and decals, "
+                             "which gbufferlab does not model"},
+        {"min-bits", "LIST", "minimum bits of each stored attribute, e.g. occlusion=4,roughness=6 (defaults: normal 8, "
+                             "roughness 7, base/diffuse/specular colour, metallic and specular 8, occlusion 4; 0: none)"},
         {"no-confirm", "", "skip the full GPU renders of the front and the published layouts"},
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
         {"help", "", "show this help"},
@@ -97,10 +105,11 @@ int runSearchCommand(const std::vector<std::string>& args) {
     const ParsedArgs parsed = parseArgs("search", args, specs);
     if (parsed.has("help")) {
         std::printf("%s", formatHelp("gbufferlab search --budget B [--scene F] [--env F] [--size WxH] [--views N] "
-                                     "[--objective flip|psnr|attributes] [--seed S] [--out DIR]",
+                                     "[--objective flip|psnr|attributes] [--seed S] [--out DIR] [--min-bits LIST] "
+                                     "[--search-depth]",
                                      "Searches G-buffer layouts within B bytes per pixel (encodings, bits, fallbacks, "
                                      "packing into real\nformats), writes the Pareto front of error against bytes as "
-                                     "layout files and a report beside\nthe published layouts. Resumable: rerun with "
+                                     "layout files and a report beside\nthe published layouts. The front is over bytes and every metric, under engine constraints\n(depth family, minimum bits, free stencil). Resumable: rerun with "
                                      "the same arguments and --out.",
                                      specs)
                                .c_str());
@@ -110,11 +119,16 @@ int runSearchCommand(const std::vector<std::string>& args) {
         throwUserError("gbufferlab search: unexpected argument '" + parsed.positional[0] + "' (see --help)");
     if (!parsed.has("budget")) throwUserError("gbufferlab search: --budget B is required (bytes per pixel, e.g. 16)");
     const int budget = parseIntFlag(parsed, "budget", 16, 4, 64);
-    if (budget < search::smallestPackedBytes())
+    search::EngineConstraints constraints;
+    constraints.searchDepth = parsed.has("search-depth");
+    if (parsed.has("min-bits")) search::parseMinBits(parsed.get("min-bits"), constraints);
+    const int smallest = search::smallestPackedBytes(constraints);
+    if (budget < smallest)
         throwUserError("--budget " + std::to_string(budget) + ": no layout fits in " + std::to_string(budget) +
-                       " bytes per pixel: the smallest the search can pack (fewest bits of every encoding, the "
-                       "smallest depth format) takes " + std::to_string(search::smallestPackedBytes()) +
-                       "; give --budget " + std::to_string(search::smallestPackedBytes()) + " or more");
+                       " bytes per pixel: the smallest the search can pack (fewest bits of every encoding within "
+                       "the engine constraints, the smallest depth format they allow) takes " +
+                       std::to_string(smallest) + "; give --budget " + std::to_string(smallest) +
+                       " or more (or loosen --min-bits / give --search-depth)");
     const auto [width, height] = parseSize(parsed.get("size", "480x270"), "--size");
     const int viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
     const search::Objective objective = search::parseObjective(parsed.get("objective", "flip"));
@@ -215,18 +229,7 @@ int runSearchCommand(const std::vector<std::string>& args) {
                                            : scene->evaluator->evaluate(layout));
         return each;
     };
-    auto meanOf = [](const std::vector<search::Evaluation>& each) {
-        search::Evaluation m;
-        m.flip = 0.0;
-        for (const search::Evaluation& e : each) {
-            m.error += e.error / double(each.size());
-            m.psnr += e.psnr / double(each.size());
-            m.attributes += e.attributes / double(each.size());
-            if (e.flip < 0 || m.flip < 0) m.flip = -1.0;
-            else m.flip += e.flip / double(each.size());
-        }
-        return m;
-    };
+    auto meanOf = [](const std::vector<search::Evaluation>& each) { return search::meanEvaluation(each); };
 
     // Everything the result depends on is in the journal's key; --threads and --no-confirm are not.
     search::SearchOptions options;
@@ -246,7 +249,9 @@ int runSearchCommand(const std::vector<std::string>& args) {
     }
     options.journalKey = "budget=" + std::to_string(budget) + sceneKey + " size=" + std::to_string(width) + "x" +
                          std::to_string(height) + " views=" + std::to_string(viewCount) +
-                         " objective=" + search::objectiveName(objective) + " seed=" + std::to_string(seed);
+                         " objective=" + search::objectiveName(objective) + " seed=" + std::to_string(seed) + " " +
+                         search::constraintsKey(constraints);
+    options.constraints = constraints;
     options.progress = [&](const search::SearchProgress& p) {
         std::fprintf(stderr, "search: %d/%d candidates (%d from the journal), %.0f/min, ETA %s", p.evaluated, p.total,
                      p.resumed, p.perMinute, duration(p.etaSeconds).c_str());
@@ -265,6 +270,10 @@ int runSearchCommand(const std::vector<std::string>& args) {
         throwUserError("search: " + std::to_string(result.rejectedByValidation) +
                        " packed candidates failed validation (a bug in src/search/layout_packer.cpp): " +
                        result.validationMessages.front());
+    if (result.rejectedByConstraints)
+        throwUserError("search: " + std::to_string(result.rejectedByConstraints) +
+                       " packed candidates broke the engine constraints (a bug in src/search/search_constraints.cpp): " +
+                       result.constraintMessages.front());
     if (result.front.empty())
         std::printf("search: no candidate fits in %d B/px (%d proposals over budget, %d unpackable, %d duplicates): "
                     "the front is empty; give a larger --budget\n",
@@ -289,13 +298,12 @@ int runSearchCommand(const std::vector<std::string>& args) {
     summary.counts = std::to_string(result.overBudget) + " proposals over budget, " +
                      std::to_string(result.duplicates) + " duplicates, " + std::to_string(result.unpackable) +
                      " unpackable, " + std::to_string(result.rejectedByValidation) + " rejected by validation";
-    summary.rows = writeFront(result, outDir / "front", commandLine, summary.objective, uint64_t(seed));
-    if (severalScenes) {
-        for (const auto& scene : scenes) summary.sceneNames.push_back(scene->spec.name);
-        for (SearchRow& row : summary.rows) row.fastPerScene = evaluatePerScene(loadLayoutFile(row.file), threads);
-    }
+    summary.constraints = search::describeConstraints(constraints);
+    for (int i : result.front) summary.front.push_back(result.evaluated[size_t(i)]);
 
-    // The published deferred-shading layouts, beside the found ones (deferred lighting is not modelled).
+    // The published deferred-shading layouts, beside the found ones (deferred lighting is not
+    // modelled); first, as the front's files name the one each is set beside.
+    std::vector<SearchRow> publishedRows;
     for (const Layout& l : publishedLayouts) {
         SearchRow row;
         row.name = l.name;
@@ -307,8 +315,15 @@ int runSearchCommand(const std::vector<std::string>& args) {
             row.fast = scenes[0]->evaluator->evaluate(l, threads);
         }
         row.how = "published";
-        summary.rows.push_back(row);
+        publishedRows.push_back(row);
     }
+    summary.rows = writeFront(result, outDir / "front", commandLine, summary.objective, uint64_t(seed),
+                              summary.constraints, publishedRows);
+    if (severalScenes) {
+        for (const auto& scene : scenes) summary.sceneNames.push_back(scene->spec.name);
+        for (SearchRow& row : summary.rows) row.fastPerScene = evaluatePerScene(loadLayoutFile(row.file), threads);
+    }
+    summary.rows.insert(summary.rows.end(), publishedRows.begin(), publishedRows.end());
 
     if (confirm) {
         std::vector<std::string> compareArgs = {"--size", summary.size, "--views", std::to_string(viewCount),
@@ -329,10 +344,13 @@ int runSearchCommand(const std::vector<std::string>& args) {
         const int rc = runCompareCommand(compareArgs);
         if (rc != 0 && rc != 4) throwUserError("search: the confirming compare failed with status " + std::to_string(rc));
         readConfirmation(outDir / "compare" / "report.json", summary.rows);
+        readFullMetrics(outDir / "compare" / "report.json", summary.rows);
     }
     const std::string note = writeSearchReport(summary, outDir);
-    std::printf("search: %zu layouts on the front written to %s\n%s", result.front.size(),
-                (outDir / "front").string().c_str(), note.c_str());
+    size_t written = 0;
+    for (const SearchRow& r : summary.rows) written += r.found ? 1 : 0;
+    std::printf("search: %zu layouts on the front (bytes and every metric); %zu written to %s\n%s", result.front.size(),
+                written, (outDir / "front").string().c_str(), note.c_str());
     std::printf("search: report %s\n", (outDir / "search-report.md").string().c_str());
     return 0;
 }

@@ -12,6 +12,7 @@
 #include "file_io.h"
 #include "json_number.h"
 #include "layout_packer.h"
+#include "search_front.h"
 
 namespace gbl {
 
@@ -44,37 +45,6 @@ const SearchRow* named(const std::vector<SearchRow>& rows, const std::string& na
 }
 
 }  // namespace
-
-std::vector<SearchRow> writeFront(const search::SearchResult& result, const fs::path& dir, const std::string& commandLine,
-                                  const std::string& objective, uint64_t seed) {
-    fs::create_directories(dir);
-    std::vector<SearchRow> rows;
-    for (int i : result.front) {
-        const search::Candidate& c = result.evaluated[size_t(i)];
-        SearchRow row;
-        row.name = "found-" + std::to_string(c.bytes) + "b";
-        row.found = true;
-        row.bytes = c.bytes;
-        row.fast = c.eval;
-        row.how = c.how;
-        std::ostringstream comment;
-        comment << "Found by `gbufferlab search` (src/search): candidate #" << c.index << " of "
-                << result.evaluated.size() << ", " << c.how << ", seed " << seed << ".\n"
-                << "Command: " << commandLine << "\n"
-                << "Objective " << objective << "; fast evaluation (CPU codec + CPU re-shade, mean over views): "
-                << (c.eval.flip >= 0 ? "FLIP " + fixed(c.eval.flip, 5) + ", " : "")
-                << (objective == "attributes" ? "attribute error " + fixed(c.eval.attributes, 5)
-                                              : "tone-mapped PSNR " + fixed(c.eval.psnr, 2) + " dB")
-                << ", score " << fixed(c.eval.error, 6) << ".\n"
-                << c.bytes << " bytes per pixel (targets + depth). On the Pareto front of error against bytes.\n"
-                << search::describeGenome(c.genome) << ".";
-        const fs::path file = dir / (row.name + ".toml");
-        writeFileAtomic(file, search::layoutText(row.name, comment.str(), c.body));
-        row.file = file.string();
-        rows.push_back(row);
-    }
-    return rows;
-}
 
 namespace {
 
@@ -193,6 +163,8 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
              << " layouts: " << fixed(rho, 3) << "\n";
     else
         note << "  ranking: not confirmed by full renders (--no-confirm)\n";
+    note << metricsNote(s);
+    md << metricsSection(s);
     md << "\n```\n" << note.str() << "```\n";
     writeFileAtomic(dir / "search-report.md", md.str());
 
@@ -237,6 +209,7 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
         }
         j["layouts"].push_back(o);
     }
+    addMetricsJson(j, s);
     writeFileAtomic(dir / "search.json", j.dump(2) + "\n");
     return note.str();
 }

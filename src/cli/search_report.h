@@ -22,6 +22,14 @@ struct SearchRow {
     std::vector<search::Evaluation> fastPerScene;
     std::vector<std::optional<double>> fullFlipPerScene;
     std::string how;
+    // Every metric (search_front.h): the full renders' (mean over scenes), when confirmed; for a
+    // found layout, its role on the front, the published layout it is set beside, and the
+    // significance of their FLIP difference (compare's sign-flip test on tiles).
+    std::optional<search::Evaluation> full;
+    std::string role;
+    std::string comparator;
+    std::optional<double> flipPValue;
+    int flipUnits = 0;
 };
 
 struct SearchSummary {
@@ -40,12 +48,9 @@ struct SearchSummary {
     std::string counts;             // over budget / duplicates / ...
     std::vector<SearchRow> rows;    // found, then published
     std::vector<std::string> sceneNames;  // several scenes only
+    std::vector<std::string> constraints;       // search_constraints.h describeConstraints
+    std::vector<search::Candidate> front;       // the whole front, by bytes then the objective
 };
-
-// Writes each front candidate as <dir>/found-<bytes>b.toml with a header comment (how it was
-// found, what it scored), and returns their rows.
-std::vector<SearchRow> writeFront(const search::SearchResult& result, const std::filesystem::path& dir,
-                                  const std::string& commandLine, const std::string& objective, uint64_t seed);
 
 // Reads compare's report.json: each layout's flip_mean (split-sum) into the rows; a report of
 // several scenes (schema gbufferlab-scene-suite): each scene's into fullFlipPerScene and their

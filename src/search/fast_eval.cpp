@@ -8,6 +8,7 @@
 #include "flip.h"
 #include "metrics.h"
 #include "normal_space.h"
+#include "pair_memo.h"
 #include "tone_map.h"
 
 namespace gbl::search {
@@ -69,7 +70,7 @@ FastEvaluator::FastEvaluator(std::vector<EvalView> views, std::vector<ShadeLight
         auto p = std::make_unique<Prepared>();
         p->referenceHdr = reshade(v.shade, v.shade.covered, v.reference, v.shade.position, lights_, ibl_, nullptr, 0);
         p->referenceSrgb = toneMapToSrgb8AsFloat(p->referenceHdr, exposure_);
-        if (objective_ == Objective::Flip) p->flip = std::make_unique<LdrFlipReference>(p->referenceSrgb);
+        p->flip = std::make_unique<LdrFlipReference>(p->referenceSrgb);  // every objective: FLIP is on the front
         prepared_.push_back(std::move(p));
     }
 }
@@ -79,6 +80,15 @@ FastEvaluator::~FastEvaluator() = default;
 const Image& FastEvaluator::referenceHdr(size_t v) const { return prepared_[v]->referenceHdr; }
 
 Image FastEvaluator::renderLayout(const Layout& layout, size_t vi, int threads) const {
+    return renderImpl(layout, vi, threads, nullptr);
+}
+
+namespace {
+void addAttributeErrors(const std::vector<Surface>& reference, const std::vector<Surface>& decoded,
+                        const std::vector<uint8_t>& covered, Evaluation& e);
+}  // namespace
+
+Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Evaluation* errors) const {
     if (layout.pipeline != Pipeline::DeferredShading)
         throwUserError("layout '" + layout.name + "': the fast evaluation models deferred shading only");
     const EvalView& v = views_[vi];
@@ -130,6 +140,7 @@ Image FastEvaluator::renderLayout(const Layout& layout, size_t vi, int threads) 
         decoded[i].normal = directionFromStored(decoded[i].normal, normalSpace, v.view);
         if (storesPosition) storedPositions[i] = pointFromStored(decoded[i].position, layout.space.position, v.view);
     }
+    if (errors) addAttributeErrors(input, decoded, covered, *errors);
     const Fallback* emissive = layout.findFallback(Attribute::Emissive);
     const bool forward = emissive && emissive->kind == FallbackKind::Forward;
     return reshade(v.shade, covered, decoded, storesPosition ? storedPositions : positions, lights_, ibl_,
@@ -140,24 +151,55 @@ Evaluation FastEvaluator::evaluate(const Layout& layout) const { return evaluate
 
 namespace {
 
-// Mean attribute error over covered pixels (the weights are fast_eval.h's).
-double attributeError(const std::vector<Surface>& reference, const std::vector<Surface>& decoded,
-                      const std::vector<uint8_t>& covered) {
-    double sum = 0.0;
-    size_t count = 0;
+// The decoded Surfaces against the reference's, over covered pixels, added to `e` as means: the
+// per-pixel errors of compare (run_metrics.h: normal angle, CIEDE2000 of the colours, absolute
+// scalars) and the `attributes` objective's weighted sum (fast_eval.h). CIEDE2000 is memoised on
+// the exact bits of each pair (pair_memo.h: the values are those of the unmemoised formula) and
+// skipped where the colours are equal; diffuse colour takes base colour's value where both sides'
+// diffuse equals their base (metallic 0), as compare does. Per-thread memos: a pair's value never
+// changes, so they stay valid from one candidate to the next.
+void addAttributeErrors(const std::vector<Surface>& reference, const std::vector<Surface>& decoded,
+                        const std::vector<uint8_t>& covered, Evaluation& e) {
+    thread_local PairMemo<double> baseMemo, diffuseMemo, specularMemo;
+    auto deltaE = [](PairMemo<double>& memo, const glm::vec3& a, const glm::vec3& b) {
+        if (a == b) return 0.0;
+        const double v = memo.get(&a.x, &b.x, pixelDeltaE);
+        return std::isfinite(v) ? v : 0.0;
+    };
+    double normal = 0.0, base = 0.0, diffuse = 0.0, specular = 0.0, rough = 0.0, metal = 0.0, occl = 0.0, attr = 0.0;
+    size_t count = 0, normalCount = 0;
     for (size_t i = 0; i < reference.size(); ++i) {
         if (!covered[i]) continue;
         const Surface& a = reference[i];
         const Surface& b = decoded[i];
-        const float c = std::clamp(glm::dot(glm::normalize(a.normal), glm::normalize(b.normal)), -1.0f, 1.0f);
-        const double angle = double(std::acos(c)) * 180.0 / 3.14159265358979323846;
+        bool ok = true;
+        const double angle = normalAngleDeg(&a.normal.x, &b.normal.x, ok);
+        if (ok) normal += angle, ++normalCount;
+        const double baseDe = deltaE(baseMemo, a.baseColor, b.baseColor);
+        base += baseDe;
+        diffuse += a.diffuseColor == a.baseColor && b.diffuseColor == b.baseColor
+                       ? baseDe
+                       : deltaE(diffuseMemo, a.diffuseColor, b.diffuseColor);
+        specular += deltaE(specularMemo, a.specularColor, b.specularColor);
+        const double dr = std::abs(double(a.roughness) - double(b.roughness));
+        rough += dr;
+        metal += std::abs(double(a.metallic) - double(b.metallic));
+        occl += std::abs(double(a.occlusion) - double(b.occlusion));
         const glm::vec3 dd = glm::abs(a.diffuseColor - b.diffuseColor);
         const glm::vec3 ds = glm::abs(a.specularColor - b.specularColor);
-        sum += angle / 10.0 + double(dd.x + dd.y + dd.z) / 3.0 + 4.0 * double(ds.x + ds.y + ds.z) / 3.0 +
-               double(std::abs(a.roughness - b.roughness));
+        attr += angle / 10.0 + double(dd.x + dd.y + dd.z) / 3.0 + 4.0 * double(ds.x + ds.y + ds.z) / 3.0 + dr;
         ++count;
     }
-    return count ? sum / double(count) : 0.0;
+    if (!count) return;
+    const double n = double(count);
+    e.normalDeg += normalCount ? normal / double(normalCount) : 0.0;
+    e.baseColorDe += base / n;
+    e.diffuseColorDe += diffuse / n;
+    e.specularColorDe += specular / n;
+    e.roughness += rough / n;
+    e.metallic += metal / n;
+    e.occlusion += occl / n;
+    e.attributes += attr / n;
 }
 
 // The mean of a FLIP map: flipStats' mean, without the sorts its quantiles need (7 % of a search).
@@ -185,35 +227,20 @@ double psnrOne(const Image& a, const Image& b) {
 
 Evaluation FastEvaluator::evaluate(const Layout& layout, int threads) const {
     Evaluation e;
-    double flip = 0.0, psnr = 0.0, attributes = 0.0;
+    double flip = 0.0, psnr = 0.0;
     for (size_t vi = 0; vi < views_.size(); ++vi) {
         const Prepared& p = *prepared_[vi];
-        if (objective_ == Objective::Attributes) {
-            // The decoded Surfaces only: no lighting needed.
-            const EvalView& v = views_[vi];
-            std::vector<Surface> stored(v.reference.size());
-            for (size_t i = 0; i < stored.size(); ++i) {
-                stored[i] = v.reference[i];
-                stored[i].normal = directionToStored(stored[i].normal, layout.space.normal, v.view);
-            }
-            CpuCodec codec(layout, CpuCodecOptions{std::max(threads, 1)});
-            CpuGBuffer gbuffer;
-            gbuffer.covered = v.shade.covered;
-            codec.encode(stored, v.shade.width, v.shade.height, gbuffer);
-            std::vector<Surface> decoded = codec.decode(gbuffer);
-            for (Surface& s : decoded) s.normal = directionFromStored(s.normal, layout.space.normal, v.view);
-            attributes += attributeError(v.reference, decoded, v.shade.covered);
-            continue;
-        }
-        const Image hdr = renderLayout(layout, vi, threads);
+        const Image hdr = renderImpl(layout, vi, threads, &e);
         const Image srgb = toneMapToSrgb8AsFloat(hdr, exposure_);
         psnr += psnrOne(p.referenceSrgb, srgb);
-        if (p.flip) flip += meanOf(p.flip->compare(srgb));
+        flip += meanOf(p.flip->compare(srgb));
     }
     const double nv = double(views_.size());
     e.psnr = psnr / nv;
-    e.attributes = attributes / nv;
-    if (objective_ == Objective::Flip) e.flip = flip / nv;
+    e.flip = flip / nv;
+    for (double* m : {&e.attributes, &e.normalDeg, &e.baseColorDe, &e.diffuseColorDe, &e.specularColorDe,
+                      &e.roughness, &e.metallic, &e.occlusion})
+        *m /= nv;
     e.error = objective_ == Objective::Flip ? e.flip : objective_ == Objective::Psnr ? -e.psnr : e.attributes;
     return e;
 }

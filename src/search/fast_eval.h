@@ -6,6 +6,8 @@
 // the CPU re-shade of the reference itself, so what is measured is what the layout's storage
 // loses. Full resolution, every view; no subsampling.
 //
+// Every candidate is measured on all of Evaluation's errors (the Pareto front is over all of
+// them); the objective only orders the front and picks the parents to mutate.
 // Objectives (lower is better; each the mean over views):
 //   flip:       mean LDR-FLIP of the 8-bit tone-mapped images (compare's flip_mean);
 //   psnr:       minus the tone-mapped PSNR in dB (compare's psnr_tonemapped_db);
@@ -61,11 +63,21 @@ struct EvalView {
     std::vector<DepthVariant> depthVariants;
 };
 
+// Every error the front is judged on (search_metrics.h names and orders them), each the mean over
+// views; the attribute errors are over covered pixels, in compare's units (run_metrics.h): the
+// decoded Surfaces against the reference's under the same depth format.
 struct Evaluation {
     double error = 0.0;  // the objective's value (lower is better)
-    double flip = -1.0;  // mean LDR-FLIP (-1: not computed, the objective is another)
+    double flip = -1.0;  // mean LDR-FLIP (-1: not computed)
     double psnr = 0.0;   // tone-mapped PSNR, dB
     double attributes = 0.0;
+    double normalDeg = 0.0;        // angle, degrees
+    double baseColorDe = 0.0;      // CIEDE2000
+    double diffuseColorDe = 0.0;   // CIEDE2000
+    double specularColorDe = 0.0;  // CIEDE2000 of F0
+    double roughness = 0.0;        // |decoded - reference|
+    double metallic = 0.0;
+    double occlusion = 0.0;
 };
 
 class FastEvaluator {
@@ -89,6 +101,9 @@ public:
 
 private:
     struct Prepared;
+    // The re-shade of view vi; with `errors`, the decoded Surfaces' attribute errors are added to it
+    // (normalDeg .. occlusion, attributes).
+    Image renderImpl(const Layout& layout, size_t vi, int threads, Evaluation* errors) const;
     std::vector<EvalView> views_;
     std::vector<ShadeLight> lights_;
     CpuIbl ibl_;

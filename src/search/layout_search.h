@@ -1,10 +1,12 @@
 #pragma once
 // The layout search: a seeded evolutionary search over Genomes (search_space.h) under a byte
-// budget, keeping a Pareto archive of error against bytes per pixel.
+// budget, keeping a Pareto archive over bytes per pixel and every error (search_metrics.h).
 //
-// Each round proposes a batch of candidates from the current archive (a fresh random genome with
-// probability 0.15 and for the first rounds, else a mutation of a parent drawn from the pool: the
-// 3 best candidates at each byte count), packs each into a layout (layout_packer.h), drops those
+// Each round proposes a batch of candidates from the current archive (a fresh random genome, shrunk
+// to a random size between the smallest packable and the budget, with probability 0.15 and for
+// the first rounds, else a mutation of a parent drawn from the pool: the
+// archive's 3 best at each byte count by the objective), brings it inside the engine constraints
+// (search_constraints.h), packs each into a layout (layout_packer.h), drops those
 // over the budget or already seen (same canonical text), parses and validates the rest with the
 // real parser, evaluates the batch in parallel, and only then updates the archive in candidate
 // order. Nothing depends on the thread count or timing, so a seed gives the same candidates,
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "fast_eval.h"
+#include "search_constraints.h"
 #include "search_space.h"
 
 namespace gbl::search {
@@ -49,6 +52,7 @@ struct SearchOptions {
     int threads = 0;        // evaluations at once (0: hardwareThreads()); does not change the result
     std::string journalPath;  // empty: no journal
     std::string journalKey;
+    EngineConstraints constraints;  // on by default (search_constraints.h)
     std::function<void(const SearchProgress&)> progress;  // after every round
 };
 
@@ -58,6 +62,8 @@ struct SearchResult {
     int overBudget = 0, duplicates = 0, unpackable = 0;
     int rejectedByValidation = 0;  // always expected 0: the packer only writes valid layouts
     std::vector<std::string> validationMessages;
+    int rejectedByConstraints = 0;  // always expected 0: genomes are constrained before packing
+    std::vector<std::string> constraintMessages;
     int resumed = 0;
     double seconds = 0.0;     // this process's evaluation wall time
     double cpuSeconds = 0.0;  // ... and the process's CPU time over it (all threads): on a loaded
@@ -67,8 +73,9 @@ struct SearchResult {
 // `evaluate` receives the whole layout text (name "candidate"); it is called concurrently.
 SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options);
 
-// The Pareto front of `cands` (error against bytes): indices, by bytes ascending; among equal
-// scores the earlier candidate wins.
+// The Pareto front of `cands` over bytes and every metric (search_metrics.h): the candidates no
+// other is at most as costly and no worse on any metric than, and better on one; of candidates
+// equal on all, the earliest. Indices by bytes ascending, then in the objective's order (error).
 std::vector<int> paretoFront(const std::vector<Candidate>& cands);
 
 // Spearman's rank correlation of two equally long series (average ranks for ties).

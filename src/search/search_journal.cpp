@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -19,7 +20,9 @@ namespace gbl::search {
 
 namespace {
 
-constexpr const char* kMagic = "gbufferlab-search-journal 1";
+constexpr const char* kMagic = "gbufferlab-search-journal 2";
+// Version 1 held one error (before the front was over every metric): its searches cannot resume.
+constexpr const char* kMagicV1 = "gbufferlab-search-journal 1";
 
 std::string hexFloat(double v) {
     char buf[64];
@@ -32,7 +35,7 @@ bool parseLine(const std::string& line, JournalEntry& e) {
     std::string part;
     std::istringstream in(line);
     while (std::getline(in, part, '\t')) parts.push_back(part);
-    if (parts.size() != 7) return false;
+    if (parts.size() != 14) return false;
     char* end = nullptr;
     auto number = [&](const std::string& s, double& out) {
         errno = 0;
@@ -46,8 +49,12 @@ bool parseLine(const std::string& line, JournalEntry& e) {
     errno = 0;
     e.hash = std::strtoull(parts[1].c_str(), &end, 16);
     if (parts[1].size() != 16 || *end != '\0') return false;
-    return number(parts[3], e.eval.error) && number(parts[4], e.eval.flip) && number(parts[5], e.eval.psnr) &&
-           number(parts[6], e.eval.attributes);
+    double* values[] = {&e.eval.error,       &e.eval.flip,        &e.eval.psnr,           &e.eval.attributes,
+                        &e.eval.normalDeg,   &e.eval.baseColorDe, &e.eval.diffuseColorDe, &e.eval.specularColorDe,
+                        &e.eval.roughness,   &e.eval.metallic,    &e.eval.occlusion};
+    for (size_t k = 0; k < std::size(values); ++k)
+        if (!number(parts[3 + k], *values[k])) return false;
+    return true;
 }
 
 // The key's fields ("budget=16 scene=... seed=1") by name.
@@ -74,6 +81,9 @@ std::string headerProblem(const std::filesystem::path& path, const std::string& 
         return where + "the journal has Windows line endings (CRLF), which gbufferlab never writes; convert it back "
                        "(e.g. dos2unix) or " + restart;
     if (nl == std::string::npos) return where + "the journal's first line is cut off (no line end); " + restart;
+    if (line.compare(0, std::strlen(kMagicV1), kMagicV1) == 0)
+        return where + "a journal of an older gbufferlab, whose search judged one error (this one judges every "
+                       "metric, under engine constraints); " + restart;
     if (line.compare(0, std::strlen(kMagic), kMagic) != 0 || line.size() <= std::strlen(kMagic) ||
         line[std::strlen(kMagic)] != '\t')
         return where + "not a gbufferlab search journal (it does not start with '" + kMagic + "'); " + restart;
@@ -134,7 +144,10 @@ void Journal::append(const JournalEntry& e) {
     std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(e.hash));
     const std::string line = std::to_string(e.index) + "\t" + hash + "\t" + std::to_string(e.bytes) + "\t" +
                              hexFloat(e.eval.error) + "\t" + hexFloat(e.eval.flip) + "\t" + hexFloat(e.eval.psnr) +
-                             "\t" + hexFloat(e.eval.attributes) + "\n";
+                             "\t" + hexFloat(e.eval.attributes) + "\t" + hexFloat(e.eval.normalDeg) + "\t" +
+                             hexFloat(e.eval.baseColorDe) + "\t" + hexFloat(e.eval.diffuseColorDe) + "\t" +
+                             hexFloat(e.eval.specularColorDe) + "\t" + hexFloat(e.eval.roughness) + "\t" +
+                             hexFloat(e.eval.metallic) + "\t" + hexFloat(e.eval.occlusion) + "\n";
     // One write of the whole line (O_APPEND), then fsync: a crash leaves whole lines or a torn last one.
     const ssize_t n = ::write(fd_, line.data(), line.size());
     if (n != ssize_t(line.size()) || ::fsync(fd_) != 0)

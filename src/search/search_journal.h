@@ -6,8 +6,11 @@
 // its layout text's hash) stands in for its evaluation. The run therefore ends exactly where an
 // uninterrupted one would. Scores are written as C99 hexadecimal floats: exact round trips.
 //
-//   gbufferlab-search-journal 1 <TAB> <key: every argument the result depends on>
-//   <index> <TAB> <hash of the layout text, 16 hex digits> <TAB> <bytes> <TAB> <error> <TAB> <flip> <TAB> <psnr> <TAB> <attributes>
+//   gbufferlab-search-journal 2 <TAB> <key: every argument the result depends on>
+//   <index> <TAB> <hash of the layout text, 16 hex digits> <TAB> <bytes> <TAB> <error> <TAB> <flip> <TAB> <psnr>
+//     <TAB> <attributes> <TAB> <normal> <TAB> <base ΔE> <TAB> <diffuse ΔE> <TAB> <specular ΔE> <TAB> <roughness>
+//     <TAB> <metallic> <TAB> <occlusion>     (one line; Evaluation's members in order)
+// Version 1 journals (one error per candidate) are refused with that reason.
 #include <cstdint>
 #include <filesystem>
 #include <string>

@@ -23,6 +23,9 @@ TEST(SearchCli, BadArgumentsAreOneLineErrors) {
     expectOneLineError(runGbufferlab(dir, "search --budget 12 --views 0"), {"--views"});
     expectOneLineError(runGbufferlab(dir, "search --budget 12 --candidates -3"), {"--candidates"});
     expectOneLineError(runGbufferlab(dir, "search --budget 12 extra"), {"extra"});
+    expectOneLineError(runGbufferlab(dir, "search --budget 12 --min-bits occlusion=x"), {"--min-bits", "occlusion=x"});
+    expectOneLineError(runGbufferlab(dir, "search --budget 12 --min-bits albedo=4"), {"--min-bits", "albedo"});
+    expectOneLineError(runGbufferlab(dir, "search --budget 12 --min-bits occlusion=9"), {"--min-bits", "to 8"});
     fs::create_directories(dir / "full");
     { std::ofstream(dir / "full" / "x.txt") << "x"; }
     expectOneLineError(runGbufferlab(dir, "search --budget 12 --out full"), {"full"});

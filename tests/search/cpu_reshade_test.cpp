@@ -116,6 +116,25 @@ TEST(FastEval, TheReferenceScoresZeroAndThinLayoutsScoreWorse) {
     }
 }
 
+// Every metric is measured whatever the objective: the reference's storage loses (almost)
+// nothing; Crysis 3's checkerboard chroma and 7-bit gloss lose more colour and roughness than
+// UE4's sRGB8 and 8-bit roughness.
+TEST(FastEval, EveryMetricWhateverTheObjective) {
+    const Layout reference = loadLayout("reference"), ue4 = loadLayout("ue4"), thin = loadLayout("crysis3-thin");
+    for (Objective o : {Objective::Flip, Objective::Psnr, Objective::Attributes}) {
+        const Evaluation r = evaluator(o).evaluate(reference), u = evaluator(o).evaluate(ue4),
+                         t = evaluator(o).evaluate(thin);
+        EXPECT_EQ(r.flip, 0.0);
+        EXPECT_LT(r.normalDeg, 0.01);
+        EXPECT_LT(r.baseColorDe + r.diffuseColorDe + r.specularColorDe, 1e-3);
+        EXPECT_LT(r.roughness + r.metallic + r.occlusion, 1e-5);
+        EXPECT_GT(u.flip, 0.0);
+        EXPECT_GT(t.diffuseColorDe, u.diffuseColorDe);
+        EXPECT_GT(t.roughness, u.roughness);
+        EXPECT_GT(u.psnr, t.psnr);
+    }
+}
+
 TEST(FastEval, DeferredLightingIsRefusedInOneLine) {
     const Layout slim = loadLayout("crysis2-slim");
     try {
