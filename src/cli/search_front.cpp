@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -142,6 +143,11 @@ void readRunMetrics(const nlohmann::json& report, const std::function<void(const
             ok = ae.contains(key) && ae[key].is_object() && ae[key].contains("all") && ae[key]["all"].contains("mean") &&
                  readJsonNumber(ae[key]["all"]["mean"], *out);
         }
+        // Reports before occlusion joined the attribute errors lack it: NaN, and the fast value stands in.
+        e.occlusion = std::numeric_limits<double>::quiet_NaN();
+        if (ae.contains("occlusion") && ae["occlusion"].is_object() && ae["occlusion"].contains("all") &&
+            ae["occlusion"]["all"].contains("mean"))
+            readJsonNumber(ae["occlusion"]["all"]["mean"], e.occlusion);
         if (ok) take(run.value("layout", ""), e);
     }
 }
@@ -182,7 +188,7 @@ void readFullMetrics(const fs::path& reportJson, std::vector<SearchRow>& rows) {
         const auto it = byLayout.find(r.name);
         if (it == byLayout.end() || it->second.size() != sceneCount) continue;  // measured on every scene only
         search::Evaluation full = search::meanEvaluation(it->second);
-        full.occlusion = r.fast.occlusion;  // not in compare's report; the CPU codec is the GPU's, bit for bit
+        if (std::isnan(full.occlusion)) full.occlusion = r.fast.occlusion;  // an older report: the fast value (the CPU codec is the GPU's, bit for bit)
         full.error = r.fast.error;
         r.full = full;
     }
@@ -204,7 +210,7 @@ std::string metricsSection(const SearchSummary& s) {
           "published comparator (the best published layout at the same or the next larger budget) on any metric, "
           "where that is another layout.\n\n"
        << "Values: the full renders' (compare at the same size, views and scenes, exposure 1) where confirmed, else "
-          "the fast evaluation's (marked *). Occlusion is always the fast evaluation's: compare does not report it. "
+          "the fast evaluation's (marked *). "
           "A found layout beats its comparator only when no worse on any metric; otherwise the trade lists each "
           "difference (relative for errors, dB for PSNR). Significance: for FLIP only, the p-value of compare's "
           "paired sign-flip permutation test on 16 x 9 tiles per view; the other metrics have none.\n\n"

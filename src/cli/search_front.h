@@ -27,8 +27,8 @@ std::vector<SearchRow> writeFront(const search::SearchResult& result, const std:
                                   const std::vector<std::string>& constraints, const std::vector<SearchRow>& published);
 
 // compare's report.json (one scene or a scene suite): every metric of each row's full renders
-// into `full` (means over scenes; occlusion is the fast evaluation's, as compare does not report
-// it), and for each found row the p-value of the FLIP sign-flip test against its comparator.
+// into `full` (means over scenes; occlusion the fast evaluation's where the report predates its
+// occlusion error), and for each found row the p-value of the FLIP sign-flip test against its comparator.
 void readFullMetrics(const std::filesystem::path& reportJson, std::vector<SearchRow>& rows);
 
 // The markdown section "Every metric" of search-report.md, and the closing note's lines on it.

@@ -74,7 +74,7 @@ TEST(SearchReport, ReadsEveryMetricAndTheFlipSignificance) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     auto attr = [](double mean) { return nlohmann::json{{"unit", "x"}, {"all", {{"mean", mean}}}}; };
-    auto run = [&](const char* layout, double flip, nlohmann::json psnr, double normal, double base) {
+    auto run = [&](const char* layout, double flip, nlohmann::json psnr, double normal, double base, double ao) {
         return nlohmann::json{
             {"layout", layout},
             {"ibl_mode", "split-sum"},
@@ -82,12 +82,13 @@ TEST(SearchReport, ReadsEveryMetricAndTheFlipSignificance) {
             {"image_errors", {{"flip_mean", flip}, {"psnr_tonemapped_db", psnr}}},
             {"attribute_errors",
              {{"normal", attr(normal)}, {"base_color", attr(base)}, {"diffuse_color", attr(base)},
-              {"specular_color", attr(0.2)}, {"roughness", attr(0.001)}, {"metallic", attr(0.0)}}}};
+              {"specular_color", attr(0.2)}, {"roughness", attr(0.001)}, {"metallic", attr(0.0)},
+              {"occlusion", attr(ao)}}}};
     };
     const nlohmann::json report = {
         {"runs",
-         {run("found-12b", 0.007, 44.2, 0.1, 0.5), run("crysis3-thin", 0.01, 57.2, 0.2, 1.0),
-          run("ue4", 0.009, "inf", 0.05, 0.3)}},
+         {run("found-12b", 0.007, 44.2, 0.1, 0.5, 0.004), run("crysis3-thin", 0.01, 57.2, 0.2, 1.0, 0.0),
+          run("ue4", 0.009, "inf", 0.05, 0.3, 0.1)}},
         {"significance",
          {{"pairs",
            {{{"better", "found-12b"}, {"worse", "crysis3-thin"}, {"ibl_mode", "split-sum"}, {"units", 432},
@@ -100,7 +101,7 @@ TEST(SearchReport, ReadsEveryMetricAndTheFlipSignificance) {
     rows[0].found = true;
     rows[0].bytes = 12;
     rows[0].comparator = "crysis3-thin";
-    rows[0].fast.occlusion = 0.004;  // compare does not report occlusion: the fast value stays
+    rows[0].fast.occlusion = 0.5;  // the full renders' occlusion (0.004) replaces the fast value
     rows[1].name = "crysis3-thin";
     rows[1].bytes = 12;
     rows[2].name = "ue4";
@@ -113,6 +114,7 @@ TEST(SearchReport, ReadsEveryMetricAndTheFlipSignificance) {
     EXPECT_EQ(rows[0].full->baseColorDe, 0.5);
     EXPECT_EQ(rows[0].full->specularColorDe, 0.2);
     EXPECT_EQ(rows[0].full->occlusion, 0.004);
+    EXPECT_EQ(rows[2].full->occlusion, 0.1);
     EXPECT_TRUE(std::isinf(rows[2].full->psnr));
     ASSERT_TRUE(rows[0].flipPValue);
     EXPECT_EQ(*rows[0].flipPValue, 0.0002) << "the pair with its comparator, not with ue4";
