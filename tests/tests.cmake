@@ -42,6 +42,8 @@ gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec)
 gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec)
 gbl_test(codec/gpu_cpu_bits_test LABELS gpu DEPS gbl_codec gbl_render)
 gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render)
+gbl_test(codec/layout_export_test LABELS unit DEPS gbl_codec gbl_gpu)  # HLSL / GLSL export: compiles, names, exact UNORM values
+gbl_test(codec/layout_export_gpu_test LABELS gpu DEPS gbl_codec gbl_render)  # the export on lavapipe: real formats vs the CPU mirror
 gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ibl_math_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ground_truth_mis_test LABELS unit DEPS gbl_shading)

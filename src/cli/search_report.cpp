@@ -10,7 +10,10 @@
 #include "error.h"
 #include "file_io.h"
 #include "json_number.h"
+#include "best_fit_normals.h"
+#include "layout_export.h"
 #include "layout_packer.h"
+#include "shader_compiler.h"
 
 namespace gbl {
 
@@ -68,8 +71,23 @@ std::vector<SearchRow> writeFront(const search::SearchResult& result, const fs::
                 << c.bytes << " bytes per pixel (targets + depth). On the Pareto front of error against bytes.\n"
                 << search::describeGenome(c.genome) << ".";
         const fs::path file = dir / (row.name + ".toml");
-        writeFileAtomic(file, search::layoutText(row.name, comment.str(), c.body));
+        const std::string text = search::layoutText(row.name, comment.str(), c.body);
+        writeFileAtomic(file, text);
         row.file = file.string();
+        // The layout as an engine takes it (layouts export): HLSL and GLSL next to its TOML.
+        const Layout layout = parseLayout(text, file.string());
+        for (ExportLanguage lang : {ExportLanguage::Hlsl, ExportLanguage::Glsl}) {
+            ExportOptions options;
+            options.language = lang;
+            const std::string ext = lang == ExportLanguage::Hlsl ? ".hlsl" : ".glsl";
+            writeFileAtomic(dir / (row.name + ext),
+                            exportLayout(layout, options, [](const std::string& n) { return resolveShaderInclude(n, {}); }));
+            row.exports.push_back(row.name + ext);
+        }
+        if (exportUsesBestFitTable(layout)) {
+            const std::vector<uint32_t>& table = enc::bestFitNormalTable();
+            writeFileAtomic(dir / (row.name + ".hlsl.bestfit.u32"), table.data(), table.size() * sizeof(uint32_t));
+        }
         rows.push_back(row);
     }
     return rows;
@@ -109,11 +127,18 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
           "CPU (split-sum IBL + direct lights), tone-mapped, LDR-FLIP against the CPU re-shade of the reference, "
           "full resolution, mean over views. The CPU re-shade of the reference against its GPU render: FLIP "
        << fixed(s.reshadeFlip, 5) << ", mean relative luminance error " << fixed(s.reshadeMeanRelative, 5) << ".\n\n"
-       << "| layout | kind | B/px | fast FLIP | full-render FLIP | fast PSNR dB | how |\n|---|---|---|---|---|---|---|\n";
-    for (const SearchRow& r : s.rows)
+       << "| layout | kind | B/px | fast FLIP | full-render FLIP | fast PSNR dB | how | engine code |\n"
+          "|---|---|---|---|---|---|---|---|\n";
+    for (const SearchRow& r : s.rows) {
         md << "| " << r.name << " | " << (r.found ? "found" : "published") << " | " << r.bytes << " | "
            << (r.fast.flip >= 0 ? fixed(r.fast.flip, 5) : "-") << " | " << (r.fullFlip ? fixed(*r.fullFlip, 5) : "-")
-           << " | " << (s.objective == "attributes" ? "-" : fixed(r.fast.psnr, 2)) << " | " << r.how << " |\n";
+           << " | " << (s.objective == "attributes" ? "-" : fixed(r.fast.psnr, 2)) << " | " << r.how << " | ";
+        // The exports lie in front/ beside the TOML (docs/export.md); published layouts: `layouts export NAME`.
+        for (size_t i = 0; i < r.exports.size(); ++i)
+            md << (i ? ", " : "") << "[" << r.exports[i].substr(r.exports[i].rfind('.') + 1) << "](front/" << r.exports[i] << ")";
+        if (r.exports.empty()) md << "-";
+        md << " |\n";
+    }
 
     std::ostringstream note;
     note << "search: closing note\n";
@@ -171,6 +196,7 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
         if (r.fast.flip >= 0) o["fast_flip"] = jsonNumber<nlohmann::json>(r.fast.flip);
         if (r.fullFlip) o["full_flip"] = jsonNumber<nlohmann::json>(*r.fullFlip);
         if (!r.file.empty()) o["file"] = r.file;
+        if (!r.exports.empty()) o["exports"] = r.exports;
         j["layouts"].push_back(o);
     }
     writeFileAtomic(dir / "search.json", j.dump(2) + "\n");

@@ -13,6 +13,7 @@ namespace gbl {
 struct SearchRow {
     std::string name;
     std::string file;       // the written .toml (found layouts), "" for published ones
+    std::vector<std::string> exports;  // found layouts: "found-12b.hlsl", "found-12b.glsl" beside the .toml
     bool found = false;
     int bytes = 0;
     search::Evaluation fast;  // the fast (CPU) evaluation
@@ -38,7 +39,8 @@ struct SearchSummary {
 };
 
 // Writes each front candidate as <dir>/found-<bytes>b.toml with a header comment (how it was
-// found, what it scored), and returns their rows.
+// found, what it scored), and beside it its `layouts export` in HLSL and GLSL (found-<bytes>b.hlsl,
+// .glsl; with best-fit normals also the table, found-<bytes>b.hlsl.bestfit.u32), and returns their rows.
 std::vector<SearchRow> writeFront(const search::SearchResult& result, const std::filesystem::path& dir,
                                   const std::string& commandLine, const std::string& objective, uint64_t seed);
 

@@ -13,6 +13,7 @@
 
 #include "layout.h"
 #include "layout_catalog.h"
+#include "layout_export.h"
 #include "renderer_passes.h"
 #include "shader_compiler.h"
 #include "wiring_codegen.h"
@@ -147,6 +148,21 @@ void compiles(const std::string& shader, const GBufferWiring& w, const std::stri
     EXPECT_NO_THROW(compileGlsl(s)) << "layout text accepted by check:\n" << mutant;
 }
 
+// `layouts export` of the mutant, in both languages with the kernel (which calls encode and
+// decode), compiled by glslang's GLSL and HLSL front ends.
+void exportCompiles(const Layout& layout, ExportLanguage lang, const std::string& text, const std::string& mutant) {
+    ShaderSource s{"export of mutant of " + layout.name, text, VK_SHADER_STAGE_COMPUTE_BIT, {}, {}};
+    if (lang == ExportLanguage::Glsl) EXPECT_NO_THROW(compileGlslUncached(s)) << "layout text accepted by check:\n" << mutant;
+    else EXPECT_NO_THROW(compileHlslUncached(s, "main")) << "layout text accepted by check:\n" << mutant;
+}
+
+std::string exportText(const Layout& layout, ExportLanguage lang) {
+    ExportOptions o;
+    o.language = lang;
+    o.kernel = true;
+    return exportLayout(layout, o, [](const std::string& n) { return resolveShaderInclude(n, {}); });
+}
+
 }  // namespace
 
 TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
@@ -158,7 +174,8 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
     // withoutCommentText) and, for hostile strings, once per hostile string: every hostile text
     // still reaches glslang inside the comments of every shipped layout's code, but the same code
     // is not compiled again for each of its comment variants (17 layouts: 1030 compiles -> far fewer).
-    std::set<std::string> seenGlsl;
+    std::set<std::string> seenGlsl, seenExports;
+    size_t exported = 0;
     const std::regex place(R"(^mutant\.toml:[0-9]+:[0-9]+: )");
     for (const std::string& name : names) {
         for (const Mutant& mutant : mutants(readAll(dir / (name + ".toml")))) {
@@ -182,14 +199,22 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
                 compiles("gbuffer_pass.frag.glsl", w, text);
                 compiles("decode_pass.comp.glsl", w, text);
             }
+            for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl}) {
+                const std::string e = exportText(layout, lang);
+                const std::string key = withoutCommentText(e) + "\n#" + std::to_string(mutant.hostileString);
+                if (!seenExports.insert(key).second) continue;
+                ++exported;
+                exportCompiles(layout, lang, e, text);
+            }
         }
     }
     // The mutants must exercise both sides: many refused, some accepted (e.g. hostile titles).
     EXPECT_GT(total, 1000u);
     EXPECT_GT(accepted, 50u);
     EXPECT_LT(accepted, total);
-    std::printf("layout mutants: %zu generated, %zu accepted by check, %zu distinct wirings compiled\n", total,
-                accepted, compiled);
+    EXPECT_GT(exported, 50u);
+    std::printf("layout mutants: %zu generated, %zu accepted by check, %zu distinct wirings compiled, %zu distinct "
+                "exports (HLSL and GLSL) compiled\n", total, accepted, compiled, exported);
 }
 
 TEST(LayoutMutants, NonFiniteAndOutOfRangeNumbersAreRefusedWithPlace) {
@@ -235,4 +260,10 @@ TEST(LayoutMutants, GeneratedGlslKeepsLayoutTextInComments) {
     EXPECT_EQ(w.glsl.find("\n#error injected"), std::string::npos) << w.glsl;
     EXPECT_EQ(w.glsl.find('\\'), std::string::npos) << w.glsl;
     compiles("gbuffer_pass.frag.glsl", w, "(hand-built layout)");
+    for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl}) {
+        const std::string e = exportText(l, lang);
+        EXPECT_EQ(e.find("\n#error"), std::string::npos) << e;
+        EXPECT_EQ(e.find('\\'), std::string::npos) << e;
+        exportCompiles(l, lang, e, "(hand-built layout)");
+    }
 }
