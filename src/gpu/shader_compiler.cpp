@@ -167,8 +167,9 @@ std::vector<uint32_t> compileUncached(const ShaderSource& src, const std::string
         shader.setSourceEntryPoint(hlslEntry->c_str());
     }
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
-    // SPIR-V 1.5: 1.6 would emit LocalSizeId, which needs maintenance4 for no gain here.
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+    // SPIR-V 1.5: 1.6 would emit LocalSizeId, which needs maintenance4 for no gain here. HLSL:
+    // 1.3, as glslang 12's HLSL front end decorates structured buffers BufferBlock (gone in 1.4).
+    shader.setEnvTarget(glslang::EShTargetSpv, hlslEntry ? glslang::EShTargetSpv_1_3 : glslang::EShTargetSpv_1_5);
 
     std::map<std::string, std::string> included;
     Includer includer(src.virtualFiles, included);
