@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -175,6 +176,7 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
     // still reaches glslang inside the comments of every shipped layout's code, but the same code
     // is not compiled again for each of its comment variants (17 layouts: 1030 compiles -> far fewer).
     std::set<std::string> seenGlsl, seenExports;
+    std::map<std::string, int> perLayout;
     size_t exported = 0;
     const std::regex place(R"(^mutant\.toml:[0-9]+:[0-9]+: )");
     for (const std::string& name : names) {
@@ -199,9 +201,16 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
                 compiles("gbuffer_pass.frag.glsl", w, text);
                 compiles("decode_pass.comp.glsl", w, text);
             }
+            // Exports: each distinct code once (hostile text lives only in comments, which the
+            // check below the loop and LayoutExport.LayoutTextIsEscapedAndNamesArePrefixed hold to
+            // that), at most 3 per layout and language (glslang takes ~50 ms per export).
             for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl}) {
                 const std::string e = exportText(layout, lang);
-                const std::string key = withoutCommentText(e) + "\n#" + std::to_string(mutant.hostileString);
+                for (const std::string& l : splitLines(e))
+                    if (l.rfind("//", 0) != 0 && l.find("//") == std::string::npos)
+                        ASSERT_TRUE(printableOnOneLine(l)) << l;
+                if (perLayout[name + (lang == ExportLanguage::Hlsl ? "h" : "g")]++ >= 3) continue;
+                const std::string key = withoutCommentText(e);
                 if (!seenExports.insert(key).second) continue;
                 ++exported;
                 exportCompiles(layout, lang, e, text);
@@ -212,7 +221,7 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
     EXPECT_GT(total, 1000u);
     EXPECT_GT(accepted, 50u);
     EXPECT_LT(accepted, total);
-    EXPECT_GT(exported, 50u);
+    EXPECT_GT(exported, 40u);
     std::printf("layout mutants: %zu generated, %zu accepted by check, %zu distinct wirings compiled, %zu distinct "
                 "exports (HLSL and GLSL) compiled\n", total, accepted, compiled, exported);
 }
