@@ -20,7 +20,16 @@ layout(set = 0, binding = 1) uniform sampler2D depthTexture;
 #include "visibility_resolve.glsl"
 #endif
 
-bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
+// The pixel's window depth: the depth attachment's, or where the ids hold it (a depth word:
+// Nanite, Bevy's meshlets, which rasterise without a depth attachment) word 1 of the ids.
+float gblSceneDepth(ivec2 p) {
+#ifdef GBL_VIS_DEPTH_WORD
+    return gblVisibilityDepth(p);
+#else
+    return texelFetch(depthTexture, p, 0).r;
+#endif
+}
+bool gblHasGeometry(ivec2 p) { return gblSceneDepth(p) != frame.shading.y; }
 
 struct DecodedPixel {
     vec4 normalRoughness;      // xyz normal, w roughness
@@ -55,7 +64,7 @@ void main() {
     if (outPixel.x >= int(frame.extent.x) || outPixel.y >= int(frame.band.y)) return;
     uint index = uint(outPixel.y - int(band.firstRow)) * frame.extent.x + uint(outPixel.x);
     ivec2 pixel = outPixel + ivec2(0, int(frame.band.x));
-    float depth = texelFetch(depthTexture, pixel, 0).r;
+    float depth = gblSceneDepth(pixel);
     DecodedPixel d;
     if (depth == frame.shading.y) {
         d.normalRoughness = vec4(0.0);

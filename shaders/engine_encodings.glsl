@@ -191,6 +191,36 @@ float decodeSrgb8FastHdrp(uint code) {
     return l;
 }
 
+// HDRP's GBuffer3 (B10G11R11_UFLOAT) with its AO tag. EncodeIntoGBuffer writes
+// (bakeDiffuseLighting * AO + emissive) * exposure there, and where that is exactly (0, 0, 0) it
+// writes AO_IN_GBUFFER3_TAG instead: r = 2048, g = surfaceData.ambientOcclusion, b = 1024; its
+// DecodeFromGBuffer reads AO from g where r, b hold (2048, 1024), else emissive (and AO = 1)
+// (HDRP 13.0.0 c667268a Runtime/Material/Lit/Lit.hlsl:686-705, 944-953; the same at
+// Unity-Technologies/Graphics 1390609c). gbufferlab bakes nothing and its exposure is 1, so the
+// test is on emissive alone. The tag's codes: 2048 = 2^11 is float11 exponent 11 + 15 = 26,
+// mantissa 0: 26 << 6 = 0x680; 1024 = 2^10 is float10 exponent 25: 25 << 5 = 0x320. With r in
+// bits 0..10, g in 11..21, b in 22..31 the word is 0xC8000680 | encodeFloat11(AO) << 11 (AO 1:
+// 0xC81E0680; AO 0: 0xC8000680). An emissive whose codes are (2048, g, 1024) reads as a tag, as in
+// HDRP (its comment: "Random TAG which we expect will never match provided emissive"). Error: as
+// float11_11_10 for emissive; occlusion float11 (6-bit mantissa: 2^-7 relative, 2^-20 absolute
+// below 2^-14), and occlusion reads 1 on emissive pixels.
+const uint kHdrpAoTagR = 0x680u;  // encodeFloat11(2048.0)
+const uint kHdrpAoTagB = 0x320u;  // encodeFloat10(1024.0)
+
+uvec3 encodeFloat111110HdrpAoTag(vec3 e, float ao) {
+    if (e.x == 0.0 && e.y == 0.0 && e.z == 0.0) return uvec3(kHdrpAoTagR, encodeFloat11(ao), kHdrpAoTagB);
+    return uvec3(encodeFloat11(e.x), encodeFloat11(e.y), encodeFloat10(e.z));
+}
+
+bool isHdrpAoTag(uvec3 code) { return (code.x & 2047u) == kHdrpAoTagR && (code.z & 1023u) == kHdrpAoTagB; }
+
+vec3 decodeFloat111110HdrpAoTag(uvec3 code) {
+    if (isHdrpAoTag(code)) return vec3(0.0);
+    return vec3(decodeFloat11(code.x), decodeFloat11(code.y), decodeFloat10(code.z));
+}
+
+float decodeHdrpAoTagOcclusion(uvec3 code) { return isHdrpAoTag(code) ? decodeFloat11(code.y) : 1.0; }
+
 // Octahedral normals stored as two unorm codes of u = p * 0.5 + 0.5, p the octahedral point in
 // [-1,1]^2, each engine's float arithmetic written out in its order (the engines' code is not
 // copied; float32, no contraction), decoded by decodeNormalOctahedralUnorm (code / (2^bits - 1),

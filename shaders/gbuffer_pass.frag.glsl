@@ -21,9 +21,10 @@ void main() {
     if (alphaTestDiscards(inUv)) discard;
 #ifdef GBL_VISIBILITY_BUFFER
     // gl_PrimitiveID counts the draw's triangles from its firstIndex (Vulkan: vkCmdDrawIndexed);
-    // draw.material.y is the draw's index in GpuScene::draws.
+    // draw.material.y is the draw's id: its index in GpuScene::draws, or with clusters its first
+    // cluster (recordGBufferPass). gl_FragCoord.z goes to a depth word where the layout has one.
     writeVisibilityIds(uint(draw.material.y), uint(gl_PrimitiveID),
-                       materials[draw.material.x].alphaMaskCutoff.x != 0.0);
+                       materials[draw.material.x].alphaMaskCutoff.x != 0.0, gl_FragCoord.z);
 #else
     Surface s = evaluateMaterial(inWorldPosition, inNormal, inTangent, inUv, gl_FrontFacing);
     writeGBuffer(gblSurfaceToStored(s), ivec2(gl_FragCoord.xy));  // into the layout's [space]

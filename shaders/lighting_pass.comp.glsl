@@ -39,7 +39,16 @@ layout(set = 0, binding = 8) uniform sampler2D sceneColorEmissive;
 #include "visibility_resolve.glsl"
 #endif
 
-bool gblHasGeometry(ivec2 p) { return texelFetch(depthTexture, p, 0).r != frame.shading.y; }
+// The pixel's window depth: the depth attachment's, or where the ids hold it (a depth word:
+// Nanite, Bevy's meshlets, which rasterise without a depth attachment) word 1 of the ids.
+float gblSceneDepth(ivec2 p) {
+#ifdef GBL_VIS_DEPTH_WORD
+    return gblVisibilityDepth(p);
+#else
+    return texelFetch(depthTexture, p, 0).r;
+#endif
+}
+bool gblHasGeometry(ivec2 p) { return gblSceneDepth(p) != frame.shading.y; }
 layout(std430, set = 0, binding = 10) readonly buffer EnvironmentSampling { float environmentSampling[]; };
 // Ground truth's progressive accumulation (Welford): rgb = mean radiance of the batches so far,
 // a = sum of squared deviations of the batch luminances from their mean (M2).
@@ -96,7 +105,7 @@ void main() {
     ivec2 outPixel = ivec2(gl_GlobalInvocationID.xy);
     if (outPixel.x >= int(frame.extent.x) || outPixel.y >= int(frame.band.y)) return;
     ivec2 pixel = outPixel + ivec2(0, int(frame.band.x));
-    float depth = texelFetch(depthTexture, pixel, 0).r;
+    float depth = gblSceneDepth(pixel);
     if (depth == frame.shading.y) {  // cleared: no geometry here
         vec3 viewDir = normalize(worldPositionFromDepth(pixel, 0.5) - frame.cameraPosition.xyz);
         imageStore(hdrOutput, outPixel, vec4(sampleEnvironment(viewDir), 0.0));

@@ -12,6 +12,7 @@ gbl_test(base/output_over_input_test LABELS unit DEPS gbl_base)
 gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads environment maps too
 gbl_test(image/exr_half_test LABELS unit DEPS gbl_image)
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
+gbl_test(image/auto_exposure_test LABELS unit DEPS gbl_image)  # UE4's histogram auto-exposure
 gbl_test(image/color_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/png_writer_test LABELS unit DEPS gbl_image)
 gbl_test(gpu/shader_compiler_test LABELS unit DEPS gbl_gpu)
@@ -34,13 +35,15 @@ gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_reads_test LABELS unit DEPS gbl_layout)  # encodings that read another attribute (niagara)
 gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout)
-gbl_test(layout/layout_mutants_test LABELS unit DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
+gbl_test(layout/layout_mutants_test LABELS unit TIMEOUT 900 DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
 gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli)  # [sources], from / status, `layouts show`
 gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec)
 gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec)
-gbl_test(codec/gpu_cpu_bits_test LABELS gpu DEPS gbl_codec gbl_render)
+gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec)  # Nanite's and Bevy's 64-bit ids, reimplemented, vs the packing
+gbl_test(codec/gpu_cpu_bits_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render)  # every layout on the GPU: 150 s alone
+gbl_test(codec/visibility_bits_test LABELS gpu DEPS gbl_codec gbl_render)  # the ids' GLSL vs its C++ twin
 gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render)
 gbl_test(codec/layout_export_test LABELS unit DEPS gbl_codec gbl_gpu)  # HLSL / GLSL export: compiles, names, exact UNORM values
 gbl_test(codec/layout_export_gpu_test LABELS gpu DEPS gbl_codec gbl_render)  # the export on lavapipe: real formats vs the CPU mirror
@@ -66,12 +69,14 @@ gbl_test(measure/flip_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/flip_mean_test LABELS unit DEPS gbl_measure)  # the mean against an exact sum, and NVIDIA's float sum
 gbl_test(measure/run_metrics_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/float_sort_test LABELS unit DEPS gbl_measure)
+gbl_test(measure/significance_test LABELS unit DEPS gbl_measure)  # the sign-flip test: Fisher's Zea mays
 gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/encoding_stats_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)
 gbl_test(report/report_test LABELS unit DEPS gbl_report)
 gbl_test(report/visibility_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/budget_verdict_test LABELS unit DEPS gbl_report)
+gbl_test(report/rank_agreement_test LABELS unit DEPS gbl_report)  # Kendall's tau, tied ranks
 gbl_test(report/plot_labels_test LABELS unit DEPS gbl_report)
 gbl_test(report/report_html_glance_test LABELS unit DEPS gbl_report)
 gbl_test(report/report_atlas_test LABELS unit DEPS gbl_report)
@@ -82,8 +87,11 @@ gbl_test(search/cpu_reshade_test LABELS unit DEPS gbl_search)
 gbl_test(search/layout_search_test LABELS unit DEPS gbl_search)
 gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_cli)  # fast evaluation vs full renders
 gbl_test(cli/search_cli_test LABELS gpu DEPS gbufferlab)
+gbl_test(cli/search_report_test LABELS unit DEPS gbl_cli nlohmann_json::nlohmann_json)  # confirmation over several scenes
 gbl_test(cli/cli_test LABELS gpu DEPS gbufferlab gbl_report gbl_image nlohmann_json::nlohmann_json)
 gbl_test(cli/compare_bands_test LABELS unit DEPS gbl_cli)
+gbl_test(cli/scene_suite_test LABELS unit DEPS gbl_cli)  # --scene and suite files, refused before rendering
+gbl_test(cli/compare_scenes_cli_test LABELS gpu DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)  # several scenes
 gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
 gbl_test(cli/diff_cli_test LABELS gpu DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
 # Hostile input, run as the executable and measured (peak memory, time); refusals need no driver.

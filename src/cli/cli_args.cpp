@@ -14,6 +14,11 @@ std::string ParsedArgs::get(const std::string& flag, const std::string& fallback
     return it == values.end() ? fallback : it->second;
 }
 
+std::vector<std::string> ParsedArgs::all(const std::string& flag) const {
+    auto it = repeated.find(flag);
+    return it == repeated.end() ? std::vector<std::string>{} : it->second;
+}
+
 ParsedArgs parseArgs(const std::string& command, const std::vector<std::string>& args,
                      const std::vector<FlagSpec>& specs) {
     ParsedArgs parsed;
@@ -57,6 +62,11 @@ ParsedArgs parseArgs(const std::string& command, const std::vector<std::string>&
                                ") but is followed by the flag " + escapeText(args[i + 1]) + "; give the value (or --" +
                                name + "=VALUE)");
             value = args[++i];
+        }
+        if (spec->repeatable) {
+            parsed.repeated[name].push_back(value);
+            parsed.values[name] = value;
+            continue;
         }
         if (parsed.values.count(name))
             throwUserError("gbufferlab " + command + ": --" + name + " is given twice (" +

@@ -1,7 +1,8 @@
 #pragma once
 // A small argument parser for subcommands: "--flag value", "--flag=value" and boolean
 // "--flag". Unknown flags are a UserError naming the flag and listing the known ones; so are a
-// value flag followed by another flag instead of its value, and a value flag given twice.
+// value flag followed by another flag instead of its value, and a value flag given twice (unless
+// its FlagSpec says it is repeatable).
 #include <map>
 #include <optional>
 #include <string>
@@ -13,11 +14,15 @@ struct FlagSpec {
     std::string name;  // without dashes
     std::string valueName;  // empty for boolean flags
     std::string help;
+    bool repeatable = false;  // a value flag that may be given several times (ParsedArgs::all)
 };
 
 struct ParsedArgs {
     std::map<std::string, std::string> values;
     std::vector<std::string> positional;
+    // Every value of a repeatable flag, in the order given (values[] holds the last).
+    std::map<std::string, std::vector<std::string>> repeated;
+    std::vector<std::string> all(const std::string& flag) const;
     bool has(const std::string& flag) const { return values.count(flag) != 0; }
     std::string get(const std::string& flag, const std::string& fallback = "") const;
 };

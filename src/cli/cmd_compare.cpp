@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "compare_options.h"
 #include "compare_session.h"
+#include "compare_suite.h"
 #include "stage_clock.h"
 
 namespace gbl {
@@ -13,6 +14,7 @@ int runCompareCommand(const std::vector<std::string>& args) {
     const std::optional<compare::CompareOptions> options = compare::parseCompareOptions(args);
     if (!options) return 0;  // --help
     StageClock::global().start();
+    if (compare::comparesSeveralScenes(*options)) return compare::runCompareSuite(*options);
     compare::CompareSession comparison(*options);
     for (int view = 0; view < comparison.viewCount(); ++view) comparison.runView(view);
     return comparison.finish();

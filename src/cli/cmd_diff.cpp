@@ -128,7 +128,7 @@ int runDiffCommand(const std::vector<std::string>& args) {
 
     if (parsed.has("out")) {
         if (outExt == ".png")
-            writePng(outPath, applyColorMap(r.flipMap, 0.0f, 1.0f));
+            writeColourMappedPng(outPath, applyColorMap(r.flipMap, 0.0f, 1.0f));
         else
             writeExr(outPath, r.flipMap, {"Y"});
     }

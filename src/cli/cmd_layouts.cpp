@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "encoding_registry.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
 #include "layout_export.h"
@@ -180,12 +181,18 @@ std::string describeLayout(const Layout& layout) {
         targetBytes += ids.bytes();
         o << "\nids " << ids.format << "  " << ids.bytes() << " bytes  triangle bits 0.." << ids.triangleBits - 1
           << ", draw bits " << ids.triangleBits << ".." << ids.triangleBits + ids.drawBits - 1
-          << (ids.alphaMaskBit ? ", alpha-mask flag bit " + std::to_string(ids.bits - 1) : std::string());
+          << (ids.clusterTriangles ? " (clusters of " + std::to_string(ids.clusterTriangles) + " triangles)"
+                                   : std::string())
+          << (ids.drawOffset ? " holding id + " + std::to_string(ids.drawOffset) + " (0 = none)" : std::string())
+          << (ids.alphaMaskBit ? ", alpha-mask flag bit " + std::to_string((ids.depthWord >= 0 ? 32 : ids.bits) - 1)
+                               : std::string())
+          << (ids.depthWord >= 0 ? ", word 1: the depth's float bits (resolved by a 64-bit max)" : std::string());
         provenanceSuffix(o, ids.provenance, "  ");
     }
     const Depth& d = layout.depth;
-    o << "\ndepth " << d.format << "  " << d.bytes << " bytes  " << d.depthBits << "-bit "
-      << (d.floatDepth ? "float" : "unorm") << (d.reversedZ ? ", reversed Z" : "");
+    o << "\ndepth " << d.format << "  " << depthAttachmentBytes(layout) << " bytes  " << d.depthBits << "-bit "
+      << (d.floatDepth ? "float" : "unorm") << (d.reversedZ ? ", reversed Z" : "")
+      << (layout.ids.depthWord >= 0 ? ", in the ids' word 1 (no depth attachment)" : "");
     provenanceSuffix(o, d.provenance, "  ");
     if (d.stencilBits > 0) {
         const std::vector<Channel> channels = {{"s", d.stencilBits, 0, ChannelType::Uint}};
@@ -194,6 +201,12 @@ std::string describeLayout(const Layout& layout) {
     o << "\nbits per attribute:\n";
     for (const AttributeBits& ab : bitsPerAttribute(layout))
         o << "  " << pad(attributeName(ab.attribute), 24) << ab.bits << "\n";
+    // What an encoding stores besides its attribute (HDRP's AO tag: occlusion in the g code).
+    for (const Target& t : layout.targets)
+        for (const Field& f : t.fields)
+            if (const EncodingInfo* e = findEncoding(f.encoding); e && !e->carries.empty() && f.codes.size() > 1)
+                o << "  " << pad(e->carries, 24) << f.codes[1].bits() << " (in " << attributeName(f.attribute)
+                  << "'s " << f.encoding << ", where " << attributeName(f.attribute) << " is 0)\n";
     if (!layout.fallbacks.empty()) {
         o << "\nfallbacks (not stored):\n";
         for (const Fallback& f : layout.fallbacks) {
@@ -227,7 +240,7 @@ std::string describeLayout(const Layout& layout) {
           << (layout.materialPass.fresnel == MaterialFresnel::SchlickNv ? "schlick_nv" : "none");
         provenanceSuffix(o, layout.materialPass.provenance, "    ");
     }
-    o << "\nbytes per pixel: " << bytesPerPixel(layout) << " (targets " << targetBytes << " + depth-stencil " << d.bytes
+    o << "\nbytes per pixel: " << bytesPerPixel(layout) << " (targets " << targetBytes << " + depth-stencil " << depthAttachmentBytes(layout)
       << ")";
     if (!layout.lightBuffers.empty()) o << "; light buffers " << lightBufferBytesPerPixel(layout);
     o << "\n";

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 
 #include "cli_args.h"
 #include "commands.h"
 #include "compare_views.h"
+#include "scene_suite.h"
 #include "error.h"
 #include "fast_eval.h"
 #include "file_io.h"
@@ -76,7 +78,8 @@ int runSearchCommand(const std::vector<std::string>& args) {
         {"budget", "B", "bytes per pixel, render targets and depth-stencil included (required; " +
                             std::to_string(search::smallestPackedBytes()) + "..64: the smallest layout the search "
                             "packs takes " + std::to_string(search::smallestPackedBytes()) + ")"},
-        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in scene"},
+        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb), builtin (the default) or a scene suite .toml; give it "
+                          "several times to minimise the mean error over the scenes (as compare --scene)", true},
         {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
         {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
         {"size", "WxH", "image size of the evaluation and the confirmation (default 480x270)"},
@@ -124,7 +127,15 @@ int runSearchCommand(const std::vector<std::string>& args) {
     const std::string reuse = "give the --out of an earlier search (a directory holding " + std::string(kJournal) +
                               ") to resume it";
     checkOutputDirectory(outDir, resuming, "--out", reuse);
-    if (resuming) refuseInputsInsideDirectory(outDir, {parsed.get("scene"), parsed.get("env")}, "--out");
+    const std::vector<std::string> sceneArgs = parsed.all("scene");
+    const std::vector<compare::SceneSpec> sceneSpecs = compare::resolveScenes(sceneArgs, parsed.get("env"));
+    const bool severalScenes = sceneSpecs.size() > 1;
+    if (resuming) {
+        std::vector<std::string> inputs = {parsed.get("env")};
+        for (const compare::SceneSpec& spec : sceneSpecs) inputs.insert(inputs.end(), {spec.gltfPath, spec.envPath});
+        for (const std::string& a : sceneArgs) inputs.push_back(a);
+        refuseInputsInsideDirectory(outDir, inputs, "--out");
+    }
     // The command as the front files quote it: without what does not change the result (--out,
     // --threads, --device, --no-confirm), so two runs with one seed write the same bytes.
     std::string commandLine = "gbufferlab search";
@@ -136,18 +147,26 @@ int runSearchCommand(const std::vector<std::string>& args) {
         if (args[i] != "--no-confirm") commandLine += " " + args[i];
     }
 
-    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
-                                                GltfLoadOptions{parsed.has("allow-outside-scene")});
+    // Every scene loaded before the device starts (bad input fails fast), then its reference
+    // rendered and its fast evaluator built; a search over several scenes minimises the mean.
+    struct SceneEval {
+        compare::SceneSpec spec;
+        SceneInputs inputs;
+        IblMaps ibl;
+        std::unique_ptr<search::FastEvaluator> evaluator;
+    };
+    std::vector<std::unique_ptr<SceneEval>> scenes;
+    for (const compare::SceneSpec& spec : sceneSpecs) {
+        auto scene = std::make_unique<SceneEval>();
+        scene->spec = spec;
+        scene->inputs = loadSceneInputs(spec.gltfPath, spec.envPath, float(width) / float(height),
+                                        GltfLoadOptions{parsed.has("allow-outside-scene")});
+        scenes.push_back(std::move(scene));
+    }
     VulkanContext ctx(DeviceOptions{parsed.get("device"), false});
     validateResolution(ctx, width, height, "--size");
     prepareOutputDirectory(outDir, resuming, "--out", reuse);
 
-    const IblMaps ibl = loadOrComputeIbl(ctx, inputs.environment, IblSettings{});
-    Renderer renderer(ctx, inputs.scene, inputs.environment, ibl);
-    std::vector<Camera> cameras;
-    for (const auto& v : compare::compareViews(inputs.scene, viewCount)) cameras.push_back(v.camera);
-    std::printf("search: rendering the reference (%d view%s, %ux%u) on %s\n", viewCount, viewCount > 1 ? "s" : "",
-                width, height, ctx.info.name.c_str());
     // The depth formats candidates and published layouts use: the reference is rendered under each
     // (visibility depends on depth precision; fast_eval.h DepthVariant).
     std::vector<DepthKey> depthKeys;
@@ -163,13 +182,51 @@ int runSearchCommand(const std::vector<std::string>& args) {
         addKey({l.depth.format, l.depth.reversedZ});
         publishedLayouts.push_back(std::move(l));
     }
-    SearchReference reference = renderSearchReference(renderer, cameras, width, height, depthKeys);
-    std::vector<search::EvalView> views = reference.views;
-    const search::FastEvaluator evaluator(std::move(views), search::shadeLights(inputs.scene.lights), ibl, objective);
     double reshadeFlip = 0.0, reshadeMeanRel = 0.0;
-    reshadeAgreement(evaluator, reference, reshadeFlip, reshadeMeanRel);
-    std::printf("search: CPU re-shade of the reference vs its GPU render: FLIP %.5f, mean relative luminance error %.5f\n",
-                reshadeFlip, reshadeMeanRel);
+    for (auto& scene : scenes) {
+        const SceneInputs& inputs = scene->inputs;
+        scene->ibl = loadOrComputeIbl(ctx, inputs.environment, IblSettings{});
+        Renderer renderer(ctx, inputs.scene, inputs.environment, scene->ibl);
+        std::vector<Camera> cameras;
+        if (!scene->spec.cameras.empty())
+            for (const auto& v : compare::placedViews(inputs.scene, scene->spec.cameras)) cameras.push_back(v.camera);
+        else
+            for (const auto& v : compare::compareViews(inputs.scene, viewCount)) cameras.push_back(v.camera);
+        std::printf("search: rendering the reference%s (%d view%s, %ux%u) on %s\n",
+                    severalScenes ? (" of " + scene->spec.name).c_str() : "", int(cameras.size()),
+                    cameras.size() > 1 ? "s" : "", width, height, ctx.info.name.c_str());
+        SearchReference reference = renderSearchReference(renderer, cameras, width, height, depthKeys);
+        std::vector<search::EvalView> views = reference.views;
+        scene->evaluator = std::make_unique<search::FastEvaluator>(
+            std::move(views), search::shadeLights(inputs.scene.lights), scene->ibl, objective);
+        double flip = 0.0, meanRel = 0.0;
+        reshadeAgreement(*scene->evaluator, reference, flip, meanRel);
+        std::printf("search: CPU re-shade of the reference%s vs its GPU render: FLIP %.5f, mean relative luminance "
+                    "error %.5f\n",
+                    severalScenes ? (" of " + scene->spec.name).c_str() : "", flip, meanRel);
+        reshadeFlip += flip / double(scenes.size());
+        reshadeMeanRel += meanRel / double(scenes.size());
+    }
+    // A candidate's evaluation: the mean over the scenes of each scene's (mean over its views).
+    auto evaluatePerScene = [&](const Layout& layout, int evalThreads) {
+        std::vector<search::Evaluation> each;
+        for (const auto& scene : scenes)
+            each.push_back(evalThreads > 1 ? scene->evaluator->evaluate(layout, evalThreads)
+                                           : scene->evaluator->evaluate(layout));
+        return each;
+    };
+    auto meanOf = [](const std::vector<search::Evaluation>& each) {
+        search::Evaluation m;
+        m.flip = 0.0;
+        for (const search::Evaluation& e : each) {
+            m.error += e.error / double(each.size());
+            m.psnr += e.psnr / double(each.size());
+            m.attributes += e.attributes / double(each.size());
+            if (e.flip < 0 || m.flip < 0) m.flip = -1.0;
+            else m.flip += e.flip / double(each.size());
+        }
+        return m;
+    };
 
     // Everything the result depends on is in the journal's key; --threads and --no-confirm are not.
     search::SearchOptions options;
@@ -178,8 +235,16 @@ int runSearchCommand(const std::vector<std::string>& args) {
     options.candidates = candidates;
     options.threads = threads;
     options.journalPath = (outDir / kJournal).string();
-    options.journalKey = "budget=" + std::to_string(budget) + " scene=" + inputs.scene.source +
-                         " env=" + inputs.environment.source + " size=" + std::to_string(width) + "x" +
+    std::string sceneKey;  // one scene: as before this key knew several
+    if (!severalScenes) {
+        sceneKey = " scene=" + scenes[0]->inputs.scene.source + " env=" + scenes[0]->inputs.environment.source;
+    } else {
+        sceneKey = " scenes=";
+        for (size_t i = 0; i < scenes.size(); ++i)
+            sceneKey += (i ? ";" : "") + scenes[i]->spec.name + ":" + scenes[i]->inputs.scene.source + ":" +
+                        scenes[i]->inputs.environment.source;
+    }
+    options.journalKey = "budget=" + std::to_string(budget) + sceneKey + " size=" + std::to_string(width) + "x" +
                          std::to_string(height) + " views=" + std::to_string(viewCount) +
                          " objective=" + search::objectiveName(objective) + " seed=" + std::to_string(seed);
     options.progress = [&](const search::SearchProgress& p) {
@@ -191,7 +256,11 @@ int runSearchCommand(const std::vector<std::string>& args) {
     };
     if (resuming) std::printf("search: resuming from %s\n", options.journalPath.c_str());
     const search::SearchResult result = runSearch(
-        [&](const std::string& text) { return evaluator.evaluate(parseLayout(text, "candidate.toml")); }, options);
+        [&](const std::string& text) {
+            const Layout layout = parseLayout(text, "candidate.toml");
+            return severalScenes ? meanOf(evaluatePerScene(layout, 1)) : scenes[0]->evaluator->evaluate(layout);
+        },
+        options);
     if (result.rejectedByValidation)
         throwUserError("search: " + std::to_string(result.rejectedByValidation) +
                        " packed candidates failed validation (a bug in src/search/layout_packer.cpp): " +
@@ -221,13 +290,22 @@ int runSearchCommand(const std::vector<std::string>& args) {
                      std::to_string(result.duplicates) + " duplicates, " + std::to_string(result.unpackable) +
                      " unpackable, " + std::to_string(result.rejectedByValidation) + " rejected by validation";
     summary.rows = writeFront(result, outDir / "front", commandLine, summary.objective, uint64_t(seed));
+    if (severalScenes) {
+        for (const auto& scene : scenes) summary.sceneNames.push_back(scene->spec.name);
+        for (SearchRow& row : summary.rows) row.fastPerScene = evaluatePerScene(loadLayoutFile(row.file), threads);
+    }
 
     // The published deferred-shading layouts, beside the found ones (deferred lighting is not modelled).
     for (const Layout& l : publishedLayouts) {
         SearchRow row;
         row.name = l.name;
         row.bytes = bytesPerPixel(l);
-        row.fast = evaluator.evaluate(l, threads);
+        if (severalScenes) {
+            row.fastPerScene = evaluatePerScene(l, threads);
+            row.fast = meanOf(row.fastPerScene);
+        } else {
+            row.fast = scenes[0]->evaluator->evaluate(l, threads);
+        }
         row.how = "published";
         summary.rows.push_back(row);
     }
@@ -235,7 +313,9 @@ int runSearchCommand(const std::vector<std::string>& args) {
     if (confirm) {
         std::vector<std::string> compareArgs = {"--size", summary.size, "--views", std::to_string(viewCount),
                                                 "--out", (outDir / "compare").string(), "--force"};
-        if (parsed.has("scene")) compareArgs.insert(compareArgs.end(), {"--scene", parsed.get("scene")});
+        // The search's fast evaluation tone-maps at exposure 1: the confirmation too.
+        compareArgs.insert(compareArgs.end(), {"--exposure", "1"});
+        for (const std::string& scene : sceneArgs) compareArgs.insert(compareArgs.end(), {"--scene", scene});
         if (parsed.has("env")) compareArgs.insert(compareArgs.end(), {"--env", parsed.get("env")});
         if (parsed.has("allow-outside-scene")) compareArgs.push_back("--allow-outside-scene");
         if (parsed.has("device")) compareArgs.insert(compareArgs.end(), {"--device", parsed.get("device")});

@@ -33,8 +33,8 @@ void printTable(const ReportModel& model) {
         std::printf("\nEvery metric is the mean over %d views; the row under each run gives its spread over them:\n"
                     "± standard deviation, PSNR as min..max dB.",
                     int(views));
-    std::printf("\n%-*s %-16s %6s %9s %9s %9s %10s %8s\n", w, "layout", "ibl", "B/px", "GB/s@1080", "normal°",
-                "albedoΔE", "PSNR(tm)", "FLIP");
+    std::printf("\n%-*s %-16s %6s %9s %9s %9s %10s %8s %6s\n", w, "layout", "ibl", "B/px", "GB/s@1080", "normal°",
+                "albedoΔE", "PSNR(tm)", "FLIP", "rank");
     for (const RunReport& r : model.runs) {
         if (r.status == RunStatus::Failed) {
             std::printf("%-*s %-16s FAILED: %s\n", w, r.layout.c_str(), r.iblMode.c_str(), r.error.c_str());
@@ -42,10 +42,11 @@ void printTable(const ReportModel& model) {
         }
         const auto& n = r.attributes[ErrorAttribute::Normal].all;
         const auto& a = r.attributes[ErrorAttribute::DiffuseColor].all;
-        std::printf("%-*s %-16s %6d %9.2f %9.3f %9.3f %10s %8.4f\n", w, r.layout.c_str(), r.iblMode.c_str(),
+        const RankRange* rank = model.significance ? model.significance->find(r.layout, r.iblMode) : nullptr;
+        std::printf("%-*s %-16s %6d %9.2f %9.3f %9.3f %10s %8.4f %6s\n", w, r.layout.c_str(), r.iblMode.c_str(),
                     r.bytesPerPixel.total, r.gigabytesPerSecond1080p60().value_or(0.0), n ? n->error.mean : 0.0,
                     a ? a->error.mean : 0.0, formatPsnr(r.image ? r.image->psnrToneMapped : 0.0).c_str(),
-                    r.image ? r.image->flipMean : 0.0);
+                    r.image ? r.image->flipMean : 0.0, rank ? rank->text().c_str() : "");
         if (views > 1 && r.views.size() > 1) {
             auto attr = [](ErrorAttribute which) {
                 return [which](const RunReport& v) -> std::optional<double> {
@@ -70,6 +71,9 @@ void printTable(const ReportModel& model) {
                         as.stddev, psnr, f.stddev);
         }
     }
+    if (model.significance && !model.significance->ranks.empty())
+        std::printf("rank: by mean FLIP; a range (4-6) where the differences are not significant (%s)\n",
+                    model.significance->method.c_str());
     if (const auto v = gbufferOrVisibility(model)) std::printf("\nG-buffer or visibility buffer? %s\n", v->answer.c_str());
     printVerdict(model);
 }

@@ -21,7 +21,9 @@ bool CompareOptions::compareLighting() const {
 
 std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args) {
     const std::vector<FlagSpec> specs = {
-        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb); default: the built-in scene (the sphere grid and its surroundings)"},
+        {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb), builtin (the built-in scene: the sphere grid and its "
+                          "surroundings; the default) or a scene-suite .toml; give it several times to compare "
+                          "every layout on every scene (docs/compare.md)", true},
         {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
         {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
         {"layouts", "A,B,...", "layouts to compare (names in layouts/ or .toml paths), or all (default)"},
@@ -41,7 +43,9 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
         {"out", "DIR", "output directory, new or empty (default: out/compare-<time>)"},
         {"force", "", "write into a non-empty --out directory, replacing files of the same name"},
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
-        {"exposure", "X", "exposure for tone-mapped images and their metrics (default 1)"},
+        {"exposure", "X", "exposure for tone-mapped images and their metrics; default: automatic, each view's from its "
+                           "reference as UE4's histogram auto-exposure meters it (80-98.3 percentile average luminance "
+                           "mapped to 1; docs/compare.md)"},
         {"native-formats", "", "render targets in their real UNORM/SRGB/float formats where the layout allows"},
         {"hdr-flip", "", "also compute HDR-FLIP over the linear images (costs one FLIP per exposure: 14 on the "
                          "built-in sky)"},
@@ -80,12 +84,15 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     CompareOptions o;
     o.scenePath = parsed.get("scene");
     o.envPath = parsed.get("env");
+    o.sceneArgs = parsed.all("scene");
+    if (o.sceneArgs.size() == 1 && o.sceneArgs[0] == "builtin") o.scenePath.clear();
     o.allowOutsideScene = parsed.has("allow-outside-scene");
     if (parsed.has("layouts")) o.layoutsSpec = parsed.get("layouts");
     const auto [width, height] = parseSize(parsed.get("size", "1920x1080"), "--size");
     o.width = width;
     o.height = height;
     o.exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
+    o.autoExposure = !parsed.has("exposure");
     o.viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
     o.modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
     for (size_t i = 0; i < o.modeNames.size(); ++i) {

@@ -11,6 +11,7 @@
 #include "image_io.h"
 #include "layout.h"
 #include "renderer.h"
+#include "scene.h"
 
 namespace gbl::compare {
 
@@ -19,6 +20,11 @@ inline constexpr const char* kGroundTruth = "ground-truth";  // the IBL mode's n
 
 struct CompareOptions {
     std::string scenePath;  // empty: the built-in scene
+    // Every --scene as given (glTF files, builtin, suite .toml files; scene_suite.h): more than
+    // one, or a suite, is a comparison over several scenes (compare_suite.h).
+    std::vector<std::string> sceneArgs;
+    // A suite scene's cameras (scene_suite.h): its views instead of --views' placement.
+    std::vector<Camera> cameras;
     std::string envPath;    // empty: the built-in sky
     bool allowOutsideScene = false;
     std::optional<std::string> layoutsSpec;  // --layouts as given; unset: all
@@ -35,7 +41,8 @@ struct CompareOptions {
     bool force = false;
     std::string device;  // --device; empty: lavapipe
     bool validation = false;
-    float exposure = 1.0f;
+    float exposure = 1.0f;      // --exposure X (or a suite scene's `exposure`)
+    bool autoExposure = true;   // no --exposure: each view's exposure metered from its reference (auto_exposure.h)
     bool nativeFormats = false;
     bool hdrFlip = false;
     ExrPixelType exrType = ExrPixelType::Half;

@@ -52,6 +52,7 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
     e.p99Abs = m.image.p99Abs;
     e.flipMean = m.image.flipMean;
     e.flipMedian = m.image.flipMedian;
+    e.flipTiles = m.image.flipTiles;
     auto cls = [](const ClassImageErrors& c) -> std::optional<ImageClassErrors> {
         if (c.pixels == 0) return std::nullopt;
         ImageClassErrors k;

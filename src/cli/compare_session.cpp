@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <ctime>
 
+#include "auto_exposure.h"
 #include "bandwidth.h"
 #include "best_fit_normals.h"
 #include "compare_console.h"
@@ -20,6 +21,7 @@
 #include "layout_catalog.h"
 #include "memory_budget.h"
 #include "parallel_for.h"
+#include "rank_significance.h"
 #include "report_html.h"
 #include "stage_clock.h"
 
@@ -43,7 +45,14 @@ std::string isoDate() {
 
 }  // namespace
 
-CompareSession::CompareSession(const CompareOptions& options) : options_(options) {
+CompareShared::~CompareShared() {
+    if (ctx) {
+        vkDeviceWaitIdle(ctx->device);
+        pipelines.destroy(ctx->device);
+    }
+}
+
+CompareSession::CompareSession(const CompareOptions& options, CompareShared* shared) : options_(options) {
     const CompareOptions& o = options_;
     std::optional<ScopedStage> timedSetup(std::in_place, Stage::Setup);
     checkOutputDirectory(o.outDir, o.force, "--out");
@@ -64,7 +73,9 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
                               GltfLoadOptions{o.allowOutsideScene});
 
     std::optional<HostScope> contextScope(std::in_place, "set-up: Vulkan context");
-    ctx_.emplace(DeviceOptions{o.device, o.validation});
+    std::optional<VulkanContext>& context = shared ? shared->ctx : ownCtx_;
+    if (!context) context.emplace(DeviceOptions{o.device, o.validation});
+    ctx_ = &*context;
     contextScope.reset();
     const VulkanContext& ctx = *ctx_;
     // --eval auto: the metrics run where the render ran. On a CPU device (lavapipe) that is the
@@ -104,6 +115,7 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
     model_.run.commandLine = o.commandLine;
     model_.run.iblModes = o.modeNames;
     model_.run.exposure = o.exposure;
+    model_.run.exposureMethod = o.autoExposure ? kAutoExposureMethod : "fixed";
     model_.run.exrPrecision = exrPixelTypeName(o.exrType);
     model_.reference.layout = kReferenceLayout;
     for (const Layout& l : layouts_) model_.atlas.push_back(atlasEntryOf(l));
@@ -124,8 +136,9 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
             "times are the layout's own, summed over its bands");
     }
 
-    views_ = compareViews(inputs_.scene, o.viewCount);
+    views_ = o.cameras.empty() ? compareViews(inputs_.scene, o.viewCount) : placedViews(inputs_.scene, o.cameras);
     for (const CompareView& v : views_) model_.run.views.push_back(v.description);
+    viewExposures_.assign(views_.size(), o.exposure);
     if (o.viewCount > 1)
         model_.run.notes.push_back("every metric is the mean over " + std::to_string(o.viewCount) +
                                    " views (--views); images and crops are the first view's (the scene camera)");
@@ -157,7 +170,14 @@ CompareSession::CompareSession(const CompareOptions& options) : options_(options
     timedSetup.reset();
 
     std::optional<HostScope> rendererScope(std::in_place, "set-up: renderer and IBL");
-    renderer_.emplace(ctx, inputs_.scene, inputs_.environment, loadOrComputeIbl(ctx, inputs_.environment, o.iblSettings));
+    if (shared) {  // one pre-computation per environment, whichever scenes it lights
+        auto ibl = shared->ibl.find(o.envPath);
+        if (ibl == shared->ibl.end())
+            ibl = shared->ibl.emplace(o.envPath, loadOrComputeIbl(ctx, inputs_.environment, o.iblSettings)).first;
+        renderer_.emplace(ctx, inputs_.scene, inputs_.environment, ibl->second, &shared->pipelines);
+    } else {
+        renderer_.emplace(ctx, inputs_.scene, inputs_.environment, loadOrComputeIbl(ctx, inputs_.environment, o.iblSettings));
+    }
     rendererScope.reset();
     referenceWiring_ = generateWiring(referenceLayout_, {});
     preparePipelines();
@@ -215,6 +235,29 @@ void CompareSession::preparePipelines() {
             "readGBuffer), not by the decode pass" +
             (onDevice.empty() ? std::string() : "; by the decode pass: " + joinList(onDevice)));
     }
+}
+
+// The same exposure for the reference and every layout of the view: the engine's, metered on the
+// reference (its first IBL mode) as UE4's histogram auto-exposure does (auto_exposure.h). The
+// covered fraction says how much of the view the scene fills (the rest is environment).
+void CompareSession::observeView(int view, const Image& referenceHdr, bool meter) {
+    size_t covered = 0;
+    const size_t n = referenceHdr.pixelCount();
+    if (referenceHdr.channels == 4)
+        for (size_t i = 0; i < n; ++i) covered += referenceHdr.pixels[i * 4 + 3] >= 0.5f ? 1 : 0;
+    const double fraction = n ? double(covered) / double(n) : 0.0;
+    std::optional<double> metered;
+    if (meter) {
+        metered = double(float(gbl::meterExposure(referenceHdr).exposure));
+        viewExposures_.at(size_t(view)) = float(*metered);
+    }
+    std::lock_guard lock(modelMutex_);
+    model_.run.viewCoverage.resize(views_.size(), 0.0);
+    model_.run.viewCoverage[size_t(view)] = fraction;
+    if (!metered) return;
+    model_.run.viewExposures.resize(views_.size(), 0.0);
+    model_.run.viewExposures[size_t(view)] = *metered;
+    if (view == 0) model_.run.exposure = *metered;  // the images' (view 0's)
 }
 
 RunReport CompareSession::makeRun(const Layout& layout, const std::string& mode) const {
@@ -277,6 +320,8 @@ int CompareSession::finish() {
     {
         std::lock_guard lock(modelMutex_);
         for (RunReport& r : model_.runs) finishViews(r);
+        ScopedStage timed(Stage::Report);
+        model_.significance = rankWithSignificance(model_);
     }
 
     std::vector<std::string> writeErrors;  // image files of no run (the references', the figure)

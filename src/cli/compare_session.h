@@ -37,9 +37,23 @@ namespace gbl::compare {
 // Exit status when the report was written but some runs failed (1: bad input, 2: usage, 3: bug).
 inline constexpr int kExitRunsFailed = 4;
 
+// What the scenes of one comparison share (compare --scene A --scene B, compare_suite.h): the
+// device, every pipeline (those that do not depend on the scene are built once) and the IBL
+// pre-computation of each environment. Destroyed after the scenes' sessions.
+struct CompareShared {
+    std::optional<VulkanContext> ctx;  // created by the first scene's session
+    PipelineMemo pipelines;
+    std::map<std::string, IblMaps> ibl;  // by environment file ("": the built-in sky)
+    CompareShared() = default;
+    CompareShared(const CompareShared&) = delete;
+    CompareShared& operator=(const CompareShared&) = delete;
+    ~CompareShared();
+};
+
 class CompareSession {
 public:
-    explicit CompareSession(const CompareOptions& options);
+    // `shared`: the device, pipelines and IBL maps of the other scenes of the comparison (null: its own).
+    explicit CompareSession(const CompareOptions& options, CompareShared* shared = nullptr);
     CompareSession(const CompareSession&) = delete;
     CompareSession& operator=(const CompareSession&) = delete;
 
@@ -50,11 +64,18 @@ public:
     // After the last view: waits for the image files, writes the report and prints the table.
     // Returns the exit status: 0, 1 (a file could not be written) or kExitRunsFailed.
     int finish();
+    // The report (complete after finish()).
+    const ReportModel& model() const { return model_; }
+    double gpuPassMs() const { return gpuPassMs_; }
 
 private:
     using References = std::map<std::string, ReferenceRender>;  // by IBL mode name
 
     RenderSettings settingsFor(IblMode mode, int view) const;
+    // The view's exposure: --exposure, or metered from the view's first reference (auto_exposure.h).
+    float exposure(int view) const { return viewExposures_.at(size_t(view)); }
+    // From the view's first reference: its covered fraction, and with `meter` its exposure.
+    void observeView(int view, const Image& referenceHdr, bool meter);
     void preparePipelines();
     References renderReferences(int view);
     void compareLightingModes(int view, References& references);
@@ -69,13 +90,15 @@ private:
     std::vector<Layout> layouts_;
     Layout referenceLayout_;
     SceneInputs inputs_;
-    std::optional<VulkanContext> ctx_;
+    std::optional<VulkanContext> ownCtx_;
+    const VulkanContext* ctx_ = nullptr;  // &*ownCtx_, or the shared one
     BandPlan bandPlan_;
     bool gpuEval_ = false;
     WiringOptions wiringOptions_;
     ReportModel model_;
     std::unique_ptr<GpuEvaluator> evaluator_;
     std::vector<CompareView> views_;
+    std::vector<float> viewExposures_;  // per view (compare --exposure: all the same)
     int steps_ = 0;  // progress steps: references, lighting comparisons and runs, every view
     std::optional<Progress> progress_;
     std::filesystem::path incompleteMarker_;

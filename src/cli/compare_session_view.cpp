@@ -33,20 +33,35 @@ CompareSession::References CompareSession::renderReferences(int view) {
     for (size_t m = 0; m < o.modes.size(); ++m) {
         progress_->begin("reference / " + o.modeNames[m] + viewLabel);
         ReferenceRender ref;
+        // The view's exposure (metered on its first reference unless --exposure) and covered fraction.
+        const bool observe = m == 0, meter = o.autoExposure && observe;
         if (bandPlan_.banded()) {  // its statistics into the evaluator, its HDR image for the files
+            if (meter) {  // the exposure is needed before the evaluator takes the reference's statistics
+                Image metered;
+                const PassTimings t = renderReferenceInBands(*renderer_, referenceWiring_, settingsFor(o.modes[m], view),
+                                                             bandPlan_, *evaluator_, 1.0f, &metered);
+                gpuPassMs_ += t.gbufferMs + t.lightingMs;
+                observeView(view, metered, true);
+            }
             ref.output.timings = renderReferenceInBands(*renderer_, referenceWiring_, settingsFor(o.modes[m], view),
-                                                        bandPlan_, *evaluator_, o.exposure,
-                                                        firstView ? &ref.output.hdr : nullptr);
+                                                        bandPlan_, *evaluator_, exposure(view),
+                                                        firstView || (observe && !meter) ? &ref.output.hdr : nullptr);
+            if (observe && !meter) observeView(view, ref.output.hdr, false);
+            if (!firstView) ref.output.hdr = Image{};
             bandedReferenceMode_ = m;
         } else {
             ref.output = renderer_->render(referenceWiring_, settingsFor(o.modes[m], view));
         }
         gpuPassMs_ += ref.output.timings.gbufferMs + ref.output.timings.lightingMs;
         // --eval gpu keeps the render on the device; its files (and the IBL figure) need it here.
-        const bool hostHdr = firstView || o.compareLighting();
+        const bool hostHdr = firstView || o.compareLighting() || observe;
         if (gpuEval_ && !bandPlan_.banded() && ref.output.hdr.empty() && hostHdr) {
             ScopedStage timed(Stage::Readback);
             ref.output.hdr = ref.output.device->downloadHdr();
+        }
+        if (observe && !bandPlan_.banded()) {
+            ScopedStage timed(Stage::Metrics);
+            observeView(view, ref.output.hdr, meter);
         }
         if (firstView) {
             ref.renderPng = "reference-" + o.modeNames[m] + ".png";
@@ -55,7 +70,7 @@ CompareSession::References CompareSession::renderReferences(int view) {
             const std::string preview = "reference-" + o.modeNames[m] + "-log.png";
             imageWriter_->enqueue("images of the reference / " + o.modeNames[m],
                                   [png = (o.outDir / ref.renderPng).string(), exr = (o.outDir / renderExr).string(),
-                                   log = (o.outDir / preview).string(), exposure = o.exposure, exrType = o.exrType,
+                                   log = (o.outDir / preview).string(), exposure = this->exposure(view), exrType = o.exrType,
                                    hdr = gpuEval_ && !o.compareLighting()  // the files are its last use
                                              ? std::make_shared<const Image>(std::move(ref.output.hdr))
                                              : std::make_shared<const Image>(ref.output.hdr)] {
@@ -89,7 +104,7 @@ CompareSession::References CompareSession::renderReferences(int view) {
             continue;
         }
         ScopedStage timedPrepare(Stage::Metrics);
-        stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, o.exposure);
+        stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, exposure(view));
     }
     return references;
 }
@@ -107,7 +122,7 @@ void CompareSession::compareLightingModes(int view, References& references) {
         run.layout = std::string(kReferenceLayout) + " (" + mode + " vs " + kGroundTruth + ")";
         ReferenceRender& approx = references.at(mode);
         run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx_->info.name};
-        measureRun(run, approx.output, truth, o.outDir, "lighting/" + mode + "/", o.exposure, o.hdrFlip, false,
+        measureRun(run, approx.output, truth, o.outDir, "lighting/" + mode + "/", exposure(view), o.hdrFlip, false,
                    firstView, imageOutput_);
         progress_->end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                        std::to_string(run.image->flipMean).substr(0, 6));
@@ -146,7 +161,7 @@ void CompareSession::addIblFigure(const References& references) {
         }
         row.caption = iblFigureCaption(row);
         captions.push_back(row.caption);
-        renders.push_back(toneMapToSrgb8(references.at(name).output.hdr, o.exposure));
+        renders.push_back(toneMapToSrgb8(references.at(name).output.hdr, exposure(0)));
         figure.rows.push_back(std::move(row));
     }
     imageWriter_->enqueue("the IBL figure",
@@ -167,7 +182,7 @@ void CompareSession::runLayouts(int view, const References& references) {
         const ReferenceRender& ref = references.at(o.modeNames[m]);
         if (bandPlan_.banded() && bandedReferenceMode_ != m) {  // the evaluator holds another mode's
             const PassTimings t = renderReferenceInBands(*renderer_, referenceWiring_, settingsFor(o.modes[m], view),
-                                                         bandPlan_, *evaluator_, o.exposure, nullptr);
+                                                         bandPlan_, *evaluator_, exposure(view), nullptr);
             gpuPassMs_ += t.gbufferMs + t.lightingMs;
             bandedReferenceMode_ = m;
         }
@@ -192,7 +207,7 @@ void CompareSession::runLayouts(int view, const References& references) {
                     RenderOutput out = renderer_->render(wiring, settingsFor(o.modes[m], view));
                     gpuPassMs_ += out.timings.gbufferMs + out.timings.lightingMs;
                     run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx_->info.name};
-                    measureRun(run, out, ref, o.outDir, prefix, o.exposure, o.hdrFlip, true, firstView, imageOutput_);
+                    measureRun(run, out, ref, o.outDir, prefix, exposure(view), o.hdrFlip, true, firstView, imageOutput_);
                 }
                 progress_->end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
                                std::to_string(run.image->flipMean).substr(0, 6));

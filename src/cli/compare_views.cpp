@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -10,6 +11,25 @@
 
 namespace gbl::compare {
 
+
+std::vector<CompareView> placedViews(const Scene& scene, const std::vector<Camera>& cameras) {
+    std::vector<CompareView> views;
+    const glm::vec3 centre = 0.5f * (scene.bounds.min + scene.bounds.max);
+    float radius = 0.5f * glm::length(scene.bounds.max - scene.bounds.min);
+    if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
+    for (size_t i = 0; i < cameras.size(); ++i) {
+        Camera c = cameras[i];
+        const float distance = glm::length(c.position - centre);
+        c.zNear = std::max(distance - radius, 1e-3f * std::max(distance, radius)) * 0.5f;
+        c.zFar = (distance + radius) * 2.0f;
+        char buf[200];
+        std::snprintf(buf, sizeof(buf), "suite camera %d: position (%g, %g, %g), target (%g, %g, %g)", int(i),
+                      double(c.position.x), double(c.position.y), double(c.position.z), double(c.target.x),
+                      double(c.target.y), double(c.target.z));
+        views.push_back({c, buf});
+    }
+    return views;
+}
 
 std::vector<CompareView> compareViews(const Scene& scene, int count) {
     std::vector<CompareView> views;
@@ -53,7 +73,12 @@ std::vector<CompareView> compareViews(const Scene& scene, int count) {
             low = std::min(low, glm::dot(p, up));
         }
         const glm::vec3 foot = centre - up * (glm::dot(centre, up) - low);
-        views.push_back({place(-30.0f, 6.0f, foot), "grazing view of the ground: 6 deg above it, azimuth -30 deg"});
+        // A framed object (a glTF without a camera) has no ground to graze: the low view looks at the
+        // bounding sphere's centre, which keeps the object in frame.
+        if (base.framed)
+            views.push_back({place(-30.0f, 6.0f, centre), "low view of the object: 6 deg above its centre, azimuth -30 deg"});
+        else
+            views.push_back({place(-30.0f, 6.0f, foot), "grazing view of the ground: 6 deg above it, azimuth -30 deg"});
     }
     return views;
 }

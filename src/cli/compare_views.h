@@ -26,6 +26,10 @@ struct CompareView {
 
 std::vector<CompareView> compareViews(const Scene& scene, int count);
 
+// A suite's cameras (scene_suite.h) as the views, as given, with near and far planes that hug the
+// scene's bounding sphere from each position (as frameBounds places them).
+std::vector<CompareView> placedViews(const Scene& scene, const std::vector<Camera>& cameras);
+
 // After the last view: a run's metrics become the mean over its views; one view: as before.
 void finishViews(RunReport& run);
 

@@ -1,6 +1,7 @@
 #include "search_report.h"
 
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -93,18 +94,48 @@ std::vector<SearchRow> writeFront(const search::SearchResult& result, const fs::
     return rows;
 }
 
-void readConfirmation(const fs::path& reportJson, std::vector<SearchRow>& rows) {
-    const nlohmann::json report = nlohmann::json::parse(readTextFile(reportJson), nullptr, false);
-    if (report.is_discarded() || !report.contains("runs"))
-        throwUserError(reportJson.string() + ": not a compare report (no runs); the confirmation failed");
+namespace {
+
+// Each split-sum run's flip_mean of one compare report (the schema of one scene), by layout.
+void readRunFlips(const nlohmann::json& report, const std::function<void(const std::string&, double)>& take) {
     for (const auto& run : report["runs"]) {
         if (run.value("ibl_mode", "") != "split-sum" || run.value("status", "") != "ok") continue;
         const auto& ie = run.value("image_errors", nlohmann::json::object());
         double flip = 0.0;
         if (!ie.contains("flip_mean") || !readJsonNumber(ie["flip_mean"], flip)) continue;
-        for (SearchRow& r : rows)
-            if (r.name == run.value("layout", "")) r.fullFlip = flip;
+        take(run.value("layout", ""), flip);
     }
+}
+
+}  // namespace
+
+void readConfirmation(const fs::path& reportJson, std::vector<SearchRow>& rows) {
+    const nlohmann::json report = nlohmann::json::parse(readTextFile(reportJson), nullptr, false);
+    if (!report.is_discarded() && report.value("schema", "") == "gbufferlab-scene-suite" && report.contains("scenes")) {
+        const auto& scenes = report["scenes"];
+        for (SearchRow& r : rows) r.fullFlipPerScene.assign(scenes.size(), std::nullopt);
+        for (size_t s = 0; s < scenes.size(); ++s) {
+            if (!scenes[s].contains("report") || !scenes[s]["report"].is_object()) continue;
+            readRunFlips(scenes[s]["report"], [&](const std::string& layout, double flip) {
+                for (SearchRow& r : rows)
+                    if (r.name == layout) r.fullFlipPerScene[s] = flip;
+            });
+        }
+        for (SearchRow& r : rows) {
+            double sum = 0.0;
+            int n = 0;
+            for (const auto& f : r.fullFlipPerScene)
+                if (f) sum += *f, ++n;
+            if (n == int(r.fullFlipPerScene.size()) && n > 0) r.fullFlip = sum / n;
+        }
+        return;
+    }
+    if (report.is_discarded() || !report.contains("runs"))
+        throwUserError(reportJson.string() + ": not a compare report (no runs); the confirmation failed");
+    readRunFlips(report, [&](const std::string& layout, double flip) {
+        for (SearchRow& r : rows)
+            if (r.name == layout) r.fullFlip = flip;
+    });
 }
 
 std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
@@ -138,6 +169,24 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
             md << (i ? ", " : "") << "[" << r.exports[i].substr(r.exports[i].rfind('.') + 1) << "](front/" << r.exports[i] << ")";
         if (r.exports.empty()) md << "-";
         md << " |\n";
+    }
+    if (!s.sceneNames.empty()) {
+        // Several scenes: the values above are means over them; each scene's here.
+        md << "\nPer scene (fast FLIP / full-render FLIP; the search minimised their mean):\n\n| layout | B/px |";
+        for (const std::string& name : s.sceneNames) md << " " << name << " |";
+        md << "\n|---|---|";
+        for (size_t i = 0; i < s.sceneNames.size(); ++i) md << "---|";
+        md << "\n";
+        for (const SearchRow& r : s.rows) {
+            md << "| " << r.name << " | " << r.bytes << " |";
+            for (size_t i = 0; i < s.sceneNames.size(); ++i) {
+                const bool hasFast = i < r.fastPerScene.size() && r.fastPerScene[i].flip >= 0;
+                const bool hasFull = i < r.fullFlipPerScene.size() && r.fullFlipPerScene[i];
+                md << " " << (hasFast ? fixed(r.fastPerScene[i].flip, 5) : "-") << " / "
+                   << (hasFull ? fixed(*r.fullFlipPerScene[i], 5) : "-") << " |";
+            }
+            md << "\n";
+        }
     }
 
     std::ostringstream note;
@@ -174,6 +223,7 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
 
     nlohmann::json j;
     j["command_line"] = s.commandLine;
+    if (!s.sceneNames.empty()) j["scenes"] = s.sceneNames;
     j["budget"] = s.budget;
     j["objective"] = s.objective;
     j["seed"] = s.seed;
@@ -197,6 +247,20 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
         if (r.fullFlip) o["full_flip"] = jsonNumber<nlohmann::json>(*r.fullFlip);
         if (!r.file.empty()) o["file"] = r.file;
         if (!r.exports.empty()) o["exports"] = r.exports;
+        if (!s.sceneNames.empty()) {
+            nlohmann::json perScene = nlohmann::json::array();
+            for (size_t i = 0; i < s.sceneNames.size(); ++i) {
+                nlohmann::json e{{"scene", s.sceneNames[i]}};
+                if (i < r.fastPerScene.size()) {
+                    e["fast_score"] = jsonNumber<nlohmann::json>(r.fastPerScene[i].error);
+                    if (r.fastPerScene[i].flip >= 0) e["fast_flip"] = jsonNumber<nlohmann::json>(r.fastPerScene[i].flip);
+                }
+                if (i < r.fullFlipPerScene.size() && r.fullFlipPerScene[i])
+                    e["full_flip"] = jsonNumber<nlohmann::json>(*r.fullFlipPerScene[i]);
+                perScene.push_back(e);
+            }
+            o["per_scene"] = perScene;
+        }
         j["layouts"].push_back(o);
     }
     writeFileAtomic(dir / "search.json", j.dump(2) + "\n");

@@ -18,6 +18,10 @@ struct SearchRow {
     int bytes = 0;
     search::Evaluation fast;  // the fast (CPU) evaluation
     std::optional<double> fullFlip;  // compare's flip_mean (mean over views) of the full GPU render
+    // Several scenes (search --scene A --scene B): each scene's fast evaluation and full-render FLIP
+    // (SearchSummary::sceneNames order); `fast` and `fullFlip` are then their means.
+    std::vector<search::Evaluation> fastPerScene;
+    std::vector<std::optional<double>> fullFlipPerScene;
     std::string how;
 };
 
@@ -36,6 +40,7 @@ struct SearchSummary {
     double reshadeMeanRelative = 0.0;  // ... and its mean relative luminance error
     std::string counts;             // over budget / duplicates / ...
     std::vector<SearchRow> rows;    // found, then published
+    std::vector<std::string> sceneNames;  // several scenes only
 };
 
 // Writes each front candidate as <dir>/found-<bytes>b.toml with a header comment (how it was
@@ -44,7 +49,9 @@ struct SearchSummary {
 std::vector<SearchRow> writeFront(const search::SearchResult& result, const std::filesystem::path& dir,
                                   const std::string& commandLine, const std::string& objective, uint64_t seed);
 
-// Reads compare's report.json: each layout's flip_mean (split-sum) into the rows.
+// Reads compare's report.json: each layout's flip_mean (split-sum) into the rows; a report of
+// several scenes (schema gbufferlab-scene-suite): each scene's into fullFlipPerScene and their
+// mean, over the scenes where it ran, into fullFlip.
 void readConfirmation(const std::filesystem::path& reportJson, std::vector<SearchRow>& rows);
 
 // search-report.md and search.json in `dir`; returns the closing note (also printed).

@@ -221,6 +221,19 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
             }
             return;
         }
+        case Codec::Float111110HdrpAoTag: {
+            // Emissive, and the occlusion the tag holds (1 where it holds emissive), as HDRP decodes.
+            float* __restrict ao = b.s[f.reads];
+            for (int j = 0; j < n; ++j) {
+                const uvec3 c(c0[j], c1[j], c2[j]);
+                const vec3 e = decodeFloat111110HdrpAoTag(c);
+                ao[j] = decodeHdrpAoTagOcclusion(c);
+                x[j] = e.x;
+                y[j] = e.y;
+                z[j] = e.z;
+            }
+            return;
+        }
         case Codec::EmissiveAlbedoRatio: {
             // From the decoded base colour: validation puts its field before this one.
             const float *ar = b.s[f.reads], *ag = b.s[f.reads + 1], *ab = b.s[f.reads + 2];

@@ -391,6 +391,17 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
         case Codec::NormalXyFloat16:
             map3to2(n, x, yv, z, c0, c1, [](vec3 v, int) { return encodeNormalXyFloat16(v); });
             return;
+        case Codec::Float111110HdrpAoTag: {
+            // The unquantised occlusion of the pixel, as HDRP writes surfaceData.ambientOcclusion.
+            const float* ao = b.s[f.reads];
+            for (int j = 0; j < n; ++j) {
+                const uvec3 c = encodeFloat111110HdrpAoTag(vec3(x[j], yv[j], z[j]), ao[j]);
+                c0[j] = c.x;
+                c1[j] = c.y;
+                c2[j] = c.z;
+            }
+            return;
+        }
         case Codec::EmissiveAlbedoRatio: {
             // The unquantised base colour of the pixel, as niagara's mesh.frag.glsl divides by albedo.
             const float *ar = b.s[f.reads], *ag = b.s[f.reads + 1], *ab = b.s[f.reads + 2];

@@ -46,6 +46,7 @@ Codec resolveCodec(const std::string& e) {
         {"gamma22", Codec::Gamma22},
         {"rgb9e5", Codec::Rgb9e5},
         {"float11_11_10", Codec::Float111110},
+        {"float11_11_10_hdrp_ao_tag", Codec::Float111110HdrpAoTag},
         {"normal_octahedral_bevy", Codec::NormalOctahedralBevy},
         {"normal_octahedral_unity", Codec::NormalOctahedralUnity},
         {"normal_octahedral_hdrp", Codec::NormalOctahedralHdrp},
@@ -71,6 +72,7 @@ size_t codeCount(Codec c) {
         case Codec::NormalXyZSign:
         case Codec::Gamma22:
         case Codec::Srgb8FastHdrp:
+        case Codec::Float111110HdrpAoTag:
         case Codec::Float111110: return 3;
         case Codec::Rgb9e5: return 4;
         case Codec::Luma:
@@ -125,6 +127,14 @@ FieldPlan planField(const Target& t, const Field& f, int words) {
         if (fp.reads < 0 || fp.source < 0)
             throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) + " (" + f.encoding +
                                    ") reads " + e->reads + ", not a Surface member, or is an extra");
+    }
+    if (const EncodingInfo* e = findEncoding(f.encoding); e && !e->carries.empty()) {
+        const AttributeInfo* r = findAttribute(e->carries);
+        fp.reads = r ? surfaceOffset(r->id) : -1;
+        fp.carries = true;
+        if (fp.reads < 0 || fp.source < 0)
+            throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) + " (" + f.encoding +
+                                   ") also stores " + e->carries + ", not a Surface member, or is an extra");
     }
     if (fp.source >= 0 && fp.source + fp.inputs > kSurfaceFloats)
         throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) +
@@ -220,7 +230,10 @@ CodecPlan compilePlan(const Layout& layout) {
         for (int c = 0; c < count; ++c) written.at(size_t(first + c)) = true;
     };
     for (const TargetPlan& t : plan.targets)
-        for (const FieldPlan& f : t.decodeFields) mark(f.source, f.components);
+        for (const FieldPlan& f : t.decodeFields) {
+            mark(f.source, f.components);
+            if (f.carries) mark(f.reads, 1);
+        }
     for (const MaterialSlotPlan& s : plan.materialSlots) mark(s.dest, s.components);
     for (const FallbackPlan& f : plan.fallbacks)
         if (f.kind != FallbackKind::MaterialPass) mark(f.dest, f.components);

@@ -72,6 +72,10 @@ struct GBufferWiring {
     struct VisibilityIds {
         int triangleBits = 0, drawBits = 0;
         bool alphaMaskBit = false;
+        int words = 1;                  // 1: R32_UINT, 2: R32G32_UINT
+        uint32_t drawOffset = 0;        // [ids] draw_offset: added to the draw (or cluster) field
+        uint32_t clusterTriangles = 0;  // [ids] cluster_triangles: 0 = the draw field holds the draw
+        bool depthWord = false;         // [ids] depth_word = 1: word 1 holds the depth's float bits
     };
     bool visibilityBuffer = false;
     VisibilityIds visibilityIds;

@@ -323,6 +323,8 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
             std::vector<std::string> codes;
             for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, "w" + ts));
             o << lhs << decodeFieldExpr(f, codes) << ";\n";
+            if (const std::string carried = decodeCarriedStatement(f, codes); !carried.empty())
+                o << "    " << carried << "\n";
         }
     }
     // Unstored attributes without a fallback (position: the lighting pass rebuilds it from depth).

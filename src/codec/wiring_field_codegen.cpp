@@ -56,6 +56,15 @@ std::string readsExpr(const EncodingInfo& e) {
     return std::string("s.") + m;
 }
 
+// The Surface member of the attribute an encoding also stores (float11_11_10_hdrp_ao_tag:
+// "s.occlusion"): at write time the unquantised value, at read time the one it sets.
+std::string carriesExpr(const EncodingInfo& e) {
+    const AttributeInfo* a = findAttribute(e.carries);
+    const char* m = a ? surfaceMemberName(a->id) : nullptr;
+    if (!m) throw std::logic_error("wiring: encoding " + e.name + " stores unknown attribute " + e.carries);
+    return std::string("s.") + m;
+}
+
 bool isScalarField(const Field& f) { return f.encoding == kIdEncoding || encodingOf(f).kind == AttributeKind::Scalar; }
 
 std::string scalarEncode(const std::string& enc, const std::string& x, int bits) {
@@ -164,6 +173,10 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
         codes.push_back("encodeFloat11(" + v + ".x)");
         codes.push_back("encodeFloat11(" + v + ".y)");
         codes.push_back("encodeFloat10(" + v + ".z)");
+    } else if (e == "float11_11_10_hdrp_ao_tag") {
+        o << ind << "uvec3 " << id << " = encodeFloat111110HdrpAoTag(" << v << ", " << carriesExpr(encodingOf(f))
+          << ");\n";
+        for (int i = 0; i < 3; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "rgb9e5") {
         o << ind << "uvec4 " << id << " = encodeRgb9e5(" << v << ");\n";
         for (int i = 0; i < 4; ++i) codes.push_back(id + "." + kComp[i]);
@@ -234,6 +247,8 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
                "))";
     if (e == "float11_11_10")
         return "vec3(decodeFloat11(" + c[0] + "), decodeFloat11(" + c[1] + "), decodeFloat10(" + c[2] + "))";
+    if (e == "float11_11_10_hdrp_ao_tag")
+        return "decodeFloat111110HdrpAoTag(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "))";
     if (e == "rgb9e5") return "decodeRgb9e5(uvec4(" + c[0] + ", " + c[1] + ", " + c[2] + ", " + c[3] + "))";
     if (e == "emissive_albedo_ratio")
         return "decodeEmissiveAlbedoRatio(" + c[0] + ", " + b + ", " + readsExpr(encodingOf(f)) + ")";
@@ -253,6 +268,15 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
                            : e == "normal_octahedral"    ? "decodeNormalOctahedral"
                                                          : "decodeNormalOctahedralPrecise";
     return fn + "(uvec2(" + c[0] + ", " + c[1] + "), " + b + ")";
+}
+
+// The statement that sets what a field's encoding also stores ("" when it stores nothing else).
+std::string decodeCarriedStatement(const Field& f, const std::vector<std::string>& c) {
+    const EncodingInfo* e = findEncoding(f.encoding);
+    if (!e || e->carries.empty()) return "";
+    if (f.encoding == "float11_11_10_hdrp_ao_tag")
+        return carriesExpr(*e) + " = decodeHdrpAoTagOcclusion(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "));";
+    throw std::logic_error("wiring: no decoder for what " + f.encoding + " also stores");
 }
 
 // Native formats: the float written for each code of a field, or {} when the field cannot go

@@ -34,6 +34,9 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
 std::string extraMemberName(Attribute a);
 // Decoded value of a (non-checkerboard) field from its code expressions; "" for extras.
 std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c);
+// The GLSL statement that sets the attribute a field's encoding also stores (EncodingInfo::carries,
+// e.g. "s.occlusion = ...;"), "" when it stores nothing else.
+std::string decodeCarriedStatement(const Field& f, const std::vector<std::string>& c);
 
 // Native formats: whether every code of `f` is one whole channel of `t` whose hardware encoding is
 // the field's own; the floats the shader writes for them (emitNativeEncode) and the decoded value

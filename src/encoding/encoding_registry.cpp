@@ -78,6 +78,16 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"float11_11_10", K::Color, 2, 11, 11, 11, 10, false, "[0, 65024]^3 (HDR)",
                  "B10G11R11's three unsigned floats as one colour: r, g float11 (5e6m), b float10 (5e5m)",
                  "Vulkan spec, 'Unsigned 11-Bit / 10-Bit Floating-Point Numbers'; HDRP GBuffer3 (Lit.hlsl)"});
+    EncodingInfo aoTag{"float11_11_10_hdrp_ao_tag", K::Color, 2, 11, 11, 11, 10, false,
+                       "[0, 65024]^3 emissive, with occlusion",
+                       "float11_11_10, except where emissive is exactly 0: HDRP's AO tag, the codes of (2048, "
+                       "occlusion, 1024) (word 0xC8000680 | float11(occlusion) << 11); decodes the tag to emissive 0 "
+                       "and occlusion = float11 g, anything else to the floats and occlusion 1",
+                       "Unity HDRP Lit.hlsl EncodeIntoGBuffer / DecodeFromGBuffer, AO_IN_GBUFFER3_TAG (HDRP 13.0.0 "
+                       "c667268a Runtime/Material/Lit/Lit.hlsl:686-705, 944-953; Unity-Technologies/Graphics "
+                       "1390609c)"};
+    aoTag.carries = "occlusion";
+    v.push_back(aoTag);
     v.push_back({"rgb9e5", K::Color, 3, 9, 9, 9, 5, false, "[0, 65408]^3 (HDR, e.g. emissive)",
                  "shared exponent: 9-bit mantissas r, g, b + 5-bit exponent (bias 15); error <= 2^-9 of max(r,g,b)",
                  "Vulkan spec, 'Shared Exponent' (E5B9G9R9_UFLOAT_PACK32); EXT_texture_shared_exponent; Bevy rgb9e5.wgsl"});

@@ -31,6 +31,10 @@ struct EncodingInfo {
     // the decoded base_color, so the layout must store base_color in a field before it.
     std::string reads = {};
     bool dithered = false;    // the encoder adds noise that is a function of the pixel coordinate
+    // Another attribute the encoding also stores (layout-language name, "" for none): the encoder
+    // reads its unquantised value, the decoder sets it, and the layout counts it as stored by this
+    // field. float11_11_10_hdrp_ao_tag stores occlusion in HDRP's AO tag where emissive is 0.
+    std::string carries = {};
 };
 
 // All encodings, in a stable order (scalars, colours, normals).

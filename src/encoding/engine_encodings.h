@@ -67,6 +67,27 @@ inline float decodeSrgb8FastHdrp(uint code) {
     return l;
 }
 
+// HDRP's GBuffer3 (R11G11B10F) with its AO tag: emissive as float11, float11, float10, except
+// where emissive is exactly (0, 0, 0): then the codes of (2048, ambient occlusion, 1024). The
+// decoders read the tag back: emissive 0 and occlusion from g, else the floats and occlusion 1.
+// Sources and the word it makes: shaders/engine_encodings.glsl.
+inline constexpr uint kHdrpAoTagR = 0x680u;  // encodeFloat11(2048.0f)
+inline constexpr uint kHdrpAoTagB = 0x320u;  // encodeFloat10(1024.0f)
+
+inline uvec3 encodeFloat111110HdrpAoTag(vec3 e, float ao) {
+    if (e.x == 0.0f && e.y == 0.0f && e.z == 0.0f) return uvec3(kHdrpAoTagR, encodeFloat11(ao), kHdrpAoTagB);
+    return uvec3(encodeFloat11(e.x), encodeFloat11(e.y), encodeFloat10(e.z));
+}
+
+inline bool isHdrpAoTag(uvec3 code) { return (code.x & 2047u) == kHdrpAoTagR && (code.z & 1023u) == kHdrpAoTagB; }
+
+inline vec3 decodeFloat111110HdrpAoTag(uvec3 code) {
+    if (isHdrpAoTag(code)) return vec3(0.0f);
+    return vec3(decodeFloat11(code.x), decodeFloat11(code.y), decodeFloat10(code.z));
+}
+
+inline float decodeHdrpAoTagOcclusion(uvec3 code) { return isHdrpAoTag(code) ? decodeFloat11(code.y) : 1.0f; }
+
 // Octahedral normals as two unorm codes of u = p * 0.5 + 0.5, each engine's arithmetic written out
 // (float only, in its order), decoded by decodeNormalOctahedralUnorm. Sources and error bounds:
 // shaders/engine_encodings.glsl.

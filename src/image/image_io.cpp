@@ -149,7 +149,9 @@ Image8 readImage8(const std::string& path) {
     return image;
 }
 
-void writePng(const std::string& path, const Image8& image) {
+namespace {
+
+void writeEncodedPng(const std::string& path, const Image8& image, bool colourMapped) {
     if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
         image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels))
         throw std::invalid_argument("writePng " + path + ": inconsistent image (" + std::to_string(image.width) + "x" +
@@ -158,12 +160,18 @@ void writePng(const std::string& path, const Image8& image) {
     // Encode in memory, then one atomic write: the file is complete or absent.
     std::vector<unsigned char> png;
     try {
-        png = encodePng(image);
+        png = colourMapped ? encodePngColourMapped(image) : encodePng(image);
     } catch (const std::runtime_error& e) {  // zlib out of memory: say which file it was
         throwUserError(path + ": PNG encoding failed (" + e.what() + "); free memory or write a smaller image");
     }
     writeFileAtomic(path, png.data(), png.size());
 }
+
+}  // namespace
+
+void writePng(const std::string& path, const Image8& image) { writeEncodedPng(path, image, false); }
+
+void writeColourMappedPng(const std::string& path, const Image8& image) { writeEncodedPng(path, image, true); }
 
 ImageFileInfo probeImageFile(const std::string& path) {
     const std::string ext = lowerExtension(path);

@@ -64,6 +64,9 @@ float clampToHalfRange(float v);
 float roundToHalf(float v);
 // Writes an 8-bit PNG (1..4 channels).
 void writePng(const std::string& path, const Image8& image);
+// Writes a colour-mapped image (the error maps) as encodePngColourMapped does: indexed when it
+// has at most 256 colours; the pixels read back are the same as writePng's.
+void writeColourMappedPng(const std::string& path, const Image8& image);
 // Reads a PNG / JPEG (8-bit) file.
 Image8 readImage8(const std::string& path);
 

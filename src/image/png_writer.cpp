@@ -37,6 +37,11 @@ namespace {
 // error heat maps and tone-mapped renders compare writes it was the best size/speed trade
 // (measured when the stb path was tuned, image_io.cpp's history).
 constexpr unsigned char kFilterSub = 1;
+// None (filter type 0) for indexed images: their bytes are palette indices, whose differences
+// mean nothing; the PNG specification recommends None for colour type 3 (12.8).
+constexpr unsigned char kFilterNone = 0;
+// IHDR colour type by channel count (11.2.2): Y, YA, RGB, RGBA.
+constexpr unsigned char kColourTypeByChannels[5] = {0, 0, 4, 2, 6};
 // PNG chunk data is at most 2^31 - 1 bytes (5.3).
 constexpr size_t kMaxChunkData = size_t(0x7fffffff);
 // zlib's counts are uInt: feed and drain at most this much per call.
@@ -58,14 +63,30 @@ unsigned char* putChunk(unsigned char* out, const char* type, const unsigned cha
     return out + 12 + size;
 }
 
-// Sub filter of rows [firstRow, endRow) into `out` (filter byte + row bytes per row):
-// Sub(x) = Raw(x) - Raw(x - bpp) mod 256, Raw of a byte left of the row's start being 0 (9.2).
-void filterRows(const Image8& image, int64_t firstRow, int64_t endRow, unsigned char* out) {
-    const size_t bpp = size_t(image.channels), rowBytes = size_t(image.width) * bpp;
+// What encodeRows writes: `height` rows of `width` pixels of `bpp` bytes each, as PNG colour type
+// `colourType` (with its PLTE when indexed), filtered by `filter` (Sub or None) and deflated at
+// `level`.
+struct RowSource {
+    const unsigned char* pixels = nullptr;
+    int width = 0, height = 0, bpp = 0;
+    unsigned char colourType = 0;
+    unsigned char filter = kFilterSub;
+    int level = 1;
+    const std::vector<unsigned char>* palette = nullptr;  // RGB triples, colour type 3 only
+};
+
+// Rows [firstRow, endRow) filtered into `out` (filter byte + row bytes per row). Sub(x) =
+// Raw(x) - Raw(x - bpp) mod 256, Raw of a byte left of the row's start being 0; None copies (9.2).
+void filterRows(const RowSource& src, int64_t firstRow, int64_t endRow, unsigned char* out) {
+    const size_t bpp = size_t(src.bpp), rowBytes = size_t(src.width) * bpp;
     for (int64_t y = firstRow; y < endRow; ++y) {
-        const unsigned char* __restrict in = image.pixels.data() + size_t(y) * rowBytes;
+        const unsigned char* __restrict in = src.pixels + size_t(y) * rowBytes;
         unsigned char* __restrict o = out + size_t(y - firstRow) * (rowBytes + 1);
-        *o++ = kFilterSub;
+        *o++ = src.filter;
+        if (src.filter == kFilterNone) {
+            std::memcpy(o, in, rowBytes);
+            continue;
+        }
         for (size_t i = 0; i < bpp; ++i) o[i] = in[i];
         for (size_t i = bpp; i < rowBytes; ++i) o[i] = (unsigned char)(in[i] - in[i - bpp]);
     }
@@ -84,11 +105,11 @@ struct Band {
                              (stream.msg ? std::string(", ") + stream.msg : std::string()) + ")");
 }
 
-// Level 1, 32 KiB window, memLevel 8, default strategy: the parameters compress2(..., 1) uses,
-// so a one-band image is deflated to the very bytes the old stb + compress2 path wrote.
-void deflateBand(Band& band, const unsigned char* data, size_t size, bool last) {
+// `level` (1 for RGB: the parameters compress2(..., 1) uses, so a one-band image is deflated to
+// the very bytes the old stb + compress2 path wrote), 32 KiB window, memLevel 8, default strategy.
+void deflateBand(Band& band, const unsigned char* data, size_t size, bool last, int level) {
     z_stream stream{};
-    int rc = deflateInit2(&stream, 1, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY);
+    int rc = deflateInit2(&stream, level, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY);
     if (rc != Z_OK) zlibFailed("deflateInit2", rc, stream);
     struct End {
         z_stream* s;
@@ -129,17 +150,11 @@ int pngChunkCount(const Image8& image) {
     return int(std::min<int64_t>(image.height, (image.height + rowsPerChunk - 1) / rowsPerChunk));
 }
 
-std::vector<unsigned char> encodePng(const Image8& image, int chunks, size_t maxIdatBytes) {
-    if (maxIdatBytes == 0 || maxIdatBytes > kMaxChunkData)
-        throw std::invalid_argument("encodePng: IDAT chunk limit " + std::to_string(maxIdatBytes) +
-                                    " is outside [1, 2^31 - 1]");
-    if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
-        image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels))
-        throw std::invalid_argument("encodePng: inconsistent image (" + std::to_string(image.width) + "x" +
-                                    std::to_string(image.height) + "x" + std::to_string(image.channels) + ", " +
-                                    std::to_string(image.pixels.size()) + " bytes)");
-    const size_t rowBytes = size_t(image.width) * size_t(image.channels) + 1;
-    const int count = std::clamp(chunks > 0 ? chunks : pngChunkCount(image), 1, image.height);
+namespace {
+
+std::vector<unsigned char> encodeRows(const RowSource& src, int chunks, size_t maxIdatBytes) {
+    const size_t rowBytes = size_t(src.width) * size_t(src.bpp) + 1;
+    const int count = std::clamp(chunks, 1, src.height);
 
     // Filter and deflate every band, side by side; a band's filtered rows live only while it is
     // deflated (1 MiB per thread at the default chunk size).
@@ -148,25 +163,26 @@ std::vector<unsigned char> encodePng(const Image8& image, int chunks, size_t max
     tasks.reserve(bands.size());
     for (int b = 0; b < count; ++b) {
         Band& band = bands[size_t(b)];
-        band.firstRow = int64_t(image.height) * b / count;
-        band.endRow = int64_t(image.height) * (b + 1) / count;
-        tasks.emplace_back([&image, &band, rowBytes, last = b == count - 1] {
+        band.firstRow = int64_t(src.height) * b / count;
+        band.endRow = int64_t(src.height) * (b + 1) / count;
+        tasks.emplace_back([&src, &band, rowBytes, last = b == count - 1] {
             band.filtered = size_t(band.endRow - band.firstRow) * rowBytes;
             const std::unique_ptr<unsigned char[]> filtered(new unsigned char[band.filtered]);  // every byte written
-            filterRows(image, band.firstRow, band.endRow, filtered.get());
+            filterRows(src, band.firstRow, band.endRow, filtered.get());
             band.adler = adler32_z(adler32_z(0, nullptr, 0), filtered.get(), band.filtered);
-            deflateBand(band, filtered.get(), band.filtered, last);
+            deflateBand(band, filtered.get(), band.filtered, last, src.level);
         });
     }
     parallelInvoke(tasks);
 
-    // The zlib header (RFC 1950 2.2): CMF 0x78 = deflate with a 32 KiB window; FLG 0x01 =
-    // FLEVEL 0 (zlib's "fastest", what level 1 writes) and FCHECK making CMF*256 + FLG a
-    // multiple of 31 (0x7801 = 30721 = 31 * 991). The trailer: Adler-32 of all the filtered data.
+    // The zlib header (RFC 1950 2.2): CMF 0x78 = deflate with a 32 KiB window; FLG = FLEVEL
+    // (what zlib writes: 0 "fastest" for level 1, 2 "default" for 6) and FCHECK making
+    // CMF*256 + FLG a multiple of 31: 0x7801 = 31 * 991, 0x789c = 31 * 996. The trailer:
+    // Adler-32 of all the filtered data.
     uLong adler = bands[0].adler;
     for (size_t b = 1; b < bands.size(); ++b)
         adler = adler32_combine(adler, bands[b].adler, z_off_t(bands[b].filtered));
-    const unsigned char zlibHeader[2] = {0x78, 0x01};
+    const unsigned char zlibHeader[2] = {0x78, (unsigned char)(src.level < 2 ? 0x01 : src.level < 6 ? 0x5e : src.level == 6 ? 0x9c : 0xda)};
     unsigned char zlibTrailer[4];
     putBigEndian32(zlibTrailer, uint32_t(adler));
 
@@ -179,9 +195,11 @@ std::vector<unsigned char> encodePng(const Image8& image, int chunks, size_t max
         return std::max<size_t>(1, (bytes + maxIdatBytes - 1) / maxIdatBytes);
     };
 
-    // Signature and IHDR (33 bytes), the bands' IDAT chunks, IEND (12 bytes): sized once.
+    // Signature and IHDR (33 bytes), PLTE when indexed, the bands' IDAT chunks, IEND (12 bytes):
+    // sized once.
+    const size_t plteBytes = src.palette ? 12 + src.palette->size() : 0;
     std::vector<size_t> offsets(bands.size());
-    size_t size = 33;
+    size_t size = 33 + plteBytes;
     for (size_t b = 0; b < bands.size(); ++b) {
         offsets[b] = size;
         size += payload(b) + 12 * idatCount(payload(b));
@@ -190,14 +208,15 @@ std::vector<unsigned char> encodePng(const Image8& image, int chunks, size_t max
     static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     std::memcpy(png.data(), kSignature, 8);
     // IHDR (11.2.2): width, height, bit depth 8, colour type, compression 0, filter 0, no interlace.
-    static const unsigned char kColourType[5] = {0, 0, 4, 2, 6};  // by channel count: Y, YA, RGB, RGBA
     unsigned char ihdr[13];
-    putBigEndian32(ihdr, uint32_t(image.width));
-    putBigEndian32(ihdr + 4, uint32_t(image.height));
+    putBigEndian32(ihdr, uint32_t(src.width));
+    putBigEndian32(ihdr + 4, uint32_t(src.height));
     ihdr[8] = 8;
-    ihdr[9] = kColourType[image.channels];
+    ihdr[9] = src.colourType;
     ihdr[10] = ihdr[11] = ihdr[12] = 0;
     putChunk(png.data() + 8, "IHDR", ihdr, sizeof ihdr);
+    // PLTE (11.2.3) follows IHDR and precedes the first IDAT.
+    if (src.palette) putChunk(png.data() + 33, "PLTE", src.palette->data(), src.palette->size());
     putChunk(png.data() + size, "IEND", nullptr, 0);
 
     // Copy each band into its IDAT chunk(s) and checksum them, side by side.
@@ -234,6 +253,109 @@ std::vector<unsigned char> encodePng(const Image8& image, int chunks, size_t max
     }
     parallelInvoke(tasks);
     return png;
+}
+
+}  // namespace
+
+std::vector<unsigned char> encodePng(const Image8& image, int chunks, size_t maxIdatBytes) {
+    if (maxIdatBytes == 0 || maxIdatBytes > kMaxChunkData)
+        throw std::invalid_argument("encodePng: IDAT chunk limit " + std::to_string(maxIdatBytes) +
+                                    " is outside [1, 2^31 - 1]");
+    if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
+        image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels))
+        throw std::invalid_argument("encodePng: inconsistent image (" + std::to_string(image.width) + "x" +
+                                    std::to_string(image.height) + "x" + std::to_string(image.channels) + ", " +
+                                    std::to_string(image.pixels.size()) + " bytes)");
+    RowSource src;
+    src.pixels = image.pixels.data();
+    src.width = image.width;
+    src.height = image.height;
+    src.bpp = image.channels;
+    src.colourType = kColourTypeByChannels[image.channels];
+    return encodeRows(src, chunks > 0 ? chunks : pngChunkCount(image), maxIdatBytes);
+}
+
+bool indexColours(const Image8& rgb, Image8& indices, std::vector<unsigned char>& palette) {
+    if (rgb.channels != 3 || rgb.width <= 0 || rgb.height <= 0 ||
+        rgb.pixels.size() != size_t(rgb.width) * size_t(rgb.height) * 3)
+        return false;
+    // Open addressing on the 24-bit colour, 1024 slots for at most 256 colours (load <= 1/4).
+    constexpr uint32_t kEmpty = 0xffffffffu;
+    uint32_t keys[1024];
+    unsigned char slotIndex[1024];
+    std::fill(std::begin(keys), std::end(keys), kEmpty);
+    std::vector<unsigned char> out(size_t(rgb.width) * size_t(rgb.height));
+    std::vector<unsigned char> table;
+    uint32_t lastKey = kEmpty;
+    unsigned char lastIndex = 0;
+    for (size_t i = 0; i < out.size(); ++i) {
+        const unsigned char* p = &rgb.pixels[i * 3];
+        const uint32_t key = uint32_t(p[0]) << 16 | uint32_t(p[1]) << 8 | p[2];
+        if (key != lastKey) {
+            uint32_t slot = (key * 2654435761u) >> 22;  // Knuth's multiplicative hash, top 10 bits
+            while (keys[slot] != kEmpty && keys[slot] != key) slot = (slot + 1) & 1023u;
+            if (keys[slot] == kEmpty) {
+                if (table.size() == 256 * 3) return false;
+                keys[slot] = key;
+                slotIndex[slot] = (unsigned char)(table.size() / 3);
+                table.insert(table.end(), p, p + 3);
+            }
+            lastKey = key;
+            lastIndex = slotIndex[slot];
+        }
+        out[i] = lastIndex;
+    }
+    indices = Image8{rgb.width, rgb.height, 1, std::move(out)};
+    palette = std::move(table);
+    return true;
+}
+
+std::vector<unsigned char> encodePngIndexed(const Image8& indices, const std::vector<unsigned char>& palette,
+                                            int chunks, size_t maxIdatBytes) {
+    if (maxIdatBytes == 0 || maxIdatBytes > kMaxChunkData)
+        throw std::invalid_argument("encodePngIndexed: IDAT chunk limit " + std::to_string(maxIdatBytes) +
+                                    " is outside [1, 2^31 - 1]");
+    if (indices.width <= 0 || indices.height <= 0 || indices.channels != 1 ||
+        indices.pixels.size() != size_t(indices.width) * size_t(indices.height))
+        throw std::invalid_argument("encodePngIndexed: the indices are not a consistent 1-channel image");
+    const size_t entries = palette.size() / 3;
+    if (palette.empty() || palette.size() % 3 != 0 || entries > 256)
+        throw std::invalid_argument("encodePngIndexed: a palette of " + std::to_string(palette.size()) +
+                                    " bytes is not 1 to 256 RGB triples");
+    for (unsigned char i : indices.pixels)
+        if (i >= entries)
+            throw std::invalid_argument("encodePngIndexed: index " + std::to_string(i) + " is beyond the palette's " +
+                                        std::to_string(entries) + " entries");
+    RowSource src;
+    src.pixels = indices.pixels.data();
+    src.width = indices.width;
+    src.height = indices.height;
+    src.bpp = 1;
+    src.colourType = 3;
+    src.filter = kFilterNone;
+    src.level = kPngIndexedLevel;
+    src.palette = &palette;
+    return encodeRows(src, chunks > 0 ? chunks : pngChunkCount(indices), maxIdatBytes);
+}
+
+std::vector<unsigned char> encodePngColourMapped(const Image8& image, int chunks) {
+    Image8 indices;
+    std::vector<unsigned char> palette;
+    if (indexColours(image, indices, palette)) return encodePngIndexed(indices, palette, chunks);
+    if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
+        image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels))
+        throw std::invalid_argument("encodePngColourMapped: inconsistent image (" + std::to_string(image.width) + "x" +
+                                    std::to_string(image.height) + "x" + std::to_string(image.channels) + ", " +
+                                    std::to_string(image.pixels.size()) + " bytes)");
+    RowSource src;
+    src.pixels = image.pixels.data();
+    src.width = image.width;
+    src.height = image.height;
+    src.bpp = image.channels;
+    src.colourType = kColourTypeByChannels[image.channels];
+    src.filter = kFilterNone;
+    src.level = kPngIndexedLevel;
+    return encodeRows(src, chunks > 0 ? chunks : pngChunkCount(image), kPngMaxIdatBytes);
 }
 
 }  // namespace gbl

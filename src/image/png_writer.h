@@ -36,4 +36,28 @@ int pngChunkCount(const Image8& image);
 inline constexpr size_t kPngMaxIdatBytes = size_t(1) << 30;
 std::vector<unsigned char> encodePng(const Image8& image, int chunks = 0, size_t maxIdatBytes = kPngMaxIdatBytes);
 
+// The indexed form of an RGB image: true, with `indices` (1 channel) and `palette` (RGB triples,
+// in order of first appearance) when it has at most 256 distinct colours; false, both untouched,
+// when it has more (it stops at the 257th) or is not a consistent 3-channel image. The colour-
+// mapped error images are such images: 256 table colours, a grey for NaN, and their legend text.
+bool indexColours(const Image8& rgb, Image8& indices, std::vector<unsigned char>& palette);
+
+// The deflate level of indexed images and of colour-mapped RGB ones: 1080p error maps are about
+// 60% smaller indexed at level 6 than as RGB at level 1 with the Sub filter, and a colour-mapped
+// map of more than 256 colours (the normal map over its dimmed backdrop) about 40% smaller as RGB
+// with the None filter at level 6 (bench/RESULTS.md, 2026-11-28).
+inline constexpr int kPngIndexedLevel = 6;
+
+// The PNG file (colour type 3, bit depth 8, filter None on every row) for 1-channel `indices`
+// into `palette` (1 to 256 RGB triples), split into bands as encodePng does, deflated at
+// kPngIndexedLevel. Throws std::invalid_argument for an inconsistent image or palette or an
+// index beyond the palette.
+std::vector<unsigned char> encodePngIndexed(const Image8& indices, const std::vector<unsigned char>& palette,
+                                            int chunks = 0, size_t maxIdatBytes = kPngMaxIdatBytes);
+
+// A colour-mapped RGB image (flat colours from a table, noise between them): indexed when it has
+// at most 256 colours, else RGB with the None filter (Sub's differences of unrelated table colours
+// compress worse) at kPngIndexedLevel. The pixels read back are `image`'s either way.
+std::vector<unsigned char> encodePngColourMapped(const Image8& image, int chunks = 0);
+
 }  // namespace gbl

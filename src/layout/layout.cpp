@@ -84,6 +84,8 @@ const std::vector<AttributeInfo>& attributeTable() {
          "subsurface colour (UE4 Elemental demo 2012, GBufferD.gba)"},
         {Attribute::IsLightmap, "is_lightmap", 1, AC::Extra, VT::Integer, VD::Id,
          "1 when the object is lightmapped (HDRP with probe volumes, GBuffer0.a bit 7)"},
+        {Attribute::SpecularOcclusion, "specular_occlusion", 1, AC::Extra, VT::Float, VD::Unit,
+         "specular occlusion (HDRP GBuffer0.a: 1 for a Lit material without a mask map); kept, not shaded"},
     };
     return table;
 }
@@ -364,6 +366,11 @@ const Field* Layout::findField(Attribute a) const {
     for (const Target& t : targets)
         for (const Field& f : t.fields)
             if (f.attribute == a) return &f;
+    // A field whose encoding also stores `a` (HDRP's AO tag stores occlusion with emissive).
+    for (const Target& t : targets)
+        for (const Field& f : t.fields)
+            if (const EncodingInfo* e = findEncoding(f.encoding); e && !e->carries.empty() && e->carries == attributeName(a))
+                return &f;
     for (const Field& f : depth.stencil)
         if (f.attribute == a) return &f;
     return nullptr;
@@ -381,8 +388,12 @@ const ClearValue* Layout::findClear(Attribute a) const {
     return nullptr;
 }
 
+int depthAttachmentBytes(const Layout& layout) {
+    return layout.pipeline == Pipeline::VisibilityBuffer && layout.ids.depthWord >= 0 ? 0 : layout.depth.bytes;
+}
+
 int bytesPerPixel(const Layout& layout) {
-    int bytes = layout.depth.bytes + layout.ids.bytes();
+    int bytes = depthAttachmentBytes(layout) + layout.ids.bytes();
     for (const Target& t : layout.targets) bytes += t.bytes();
     return bytes;
 }
@@ -421,6 +432,8 @@ std::vector<std::string> wholeValueCodeNames(const std::string& encoding) {
     if (encoding == "normal_xy_float16") return {"x", "y"};
     if (encoding == "rgb9e5") return {"r", "g", "b", "e"};
     if (encoding == "gamma22" || encoding == "float11_11_10") return {"r", "g", "b"};
+    // Emissive's codes, or where emissive is 0 HDRP's AO tag: (2048, occlusion, 1024).
+    if (encoding == "float11_11_10_hdrp_ao_tag") return {"r|2048", "g|AO", "b|1024"};
     if (encoding.rfind("normal_", 0) == 0) return {"u", "v"};
     if (encoding == "srgb8") return {"r", "g", "b"};
     if (encoding == "ycbcr" || encoding == "ycbcr_sqrt") return {"Y", "Cb", "Cr"};

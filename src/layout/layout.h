@@ -63,6 +63,7 @@ enum class Attribute : uint8_t {
     Opacity,
     SubsurfaceColor,
     IsLightmap,
+    SpecularOcclusion,
 };
 
 enum class AttributeClass : uint8_t { Shading, Geometry, Extra };
@@ -251,6 +252,7 @@ struct Depth {
     Provenance provenance;
     FilePlace place;
     FilePlace formatPlace;
+    FilePlace reversedZPlace;  // line 0 where reversed_z is not given
 };
 
 enum class Pipeline : uint8_t { DeferredShading, DeferredLighting, VisibilityBuffer };
@@ -269,7 +271,18 @@ struct VisibilityIds {
     int triangleBits = 0;       // 1..32
     int drawBits = 0;           // 1..32
     bool alphaMaskBit = false;  // the top bit (bits - 1)
-    FilePlace place, formatPlace, triangleBitsPlace, drawBitsPlace;
+    // Nanite's and Bevy's meshlet visibility buffers (layouts/README.md, "Visibility buffer"):
+    // drawOffset is added to the draw field (UE stores visible cluster + 1, so 0 = no geometry);
+    // clusterTriangles > 0 makes the draw field a cluster's index: every draw is split into
+    // clusters of that many triangles (cluster c of a draw holds its triangles [c n, c n + n)),
+    // and the triangle field is the triangle within its cluster; depthWord 1 puts the float bits
+    // of the window depth in word 1 (the 64-bit value's high half: what a 64-bit atomic max
+    // orders first), and the resolve reads depth from there. -1: no depth word.
+    uint32_t drawOffset = 0;
+    uint32_t clusterTriangles = 0;
+    int depthWord = -1;
+    FilePlace place, formatPlace, triangleBitsPlace, drawBitsPlace, drawOffsetPlace, clusterTrianglesPlace,
+        depthWordPlace;
     Provenance provenance;
     int bytes() const { return bits / 8; }
 };
@@ -411,6 +424,9 @@ struct Layout {
 // G-buffer bytes per pixel: all targets plus the depth-stencil attachment (a visibility buffer:
 // its id target plus depth).
 int bytesPerPixel(const Layout& layout);
+// The depth attachment's nominal bytes per pixel: the [depth] format's, except where the depth
+// lives in the ids' depth word (Nanite and Bevy's meshlet raster have no depth attachment): 0.
+int depthAttachmentBytes(const Layout& layout);
 // Light-buffer bytes per pixel (deferred lighting; 0 otherwise).
 int lightBufferBytesPerPixel(const Layout& layout);
 

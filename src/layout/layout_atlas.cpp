@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 
+#include "encoding_registry.h"
+
 namespace gbl {
 
 namespace {
@@ -55,6 +57,13 @@ AtlasEntry atlasEntryOf(const Layout& layout) {
     e.provenance = provenanceCounts(layout);
     for (const AttributeBits& ab : bitsPerAttribute(layout))
         e.attributes.push_back({attributeName(ab.attribute), ab.bits, encodingsOf(layout, ab.attribute)});
+    // What an encoding stores besides its attribute (HDRP's AO tag: occlusion, in the tag's g code).
+    for (const Target& t : layout.targets)
+        for (const Field& f : t.fields) {
+            const EncodingInfo* enc = findEncoding(f.encoding);
+            if (!enc || enc->carries.empty() || f.codes.size() < 2) continue;
+            e.attributes.push_back({enc->carries, f.codes[1].bits(), f.encoding + " (in " + attributeName(f.attribute) + ")"});
+        }
     for (const AttributeInfo& info : listAttributes()) {
         if (info.cls != AttributeClass::Shading || layout.stores(info.id)) continue;
         if (const Fallback* f = layout.findFallback(info.id)) e.attributes.push_back({info.name, 0, derivedText(*f)});

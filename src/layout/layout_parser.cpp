@@ -199,6 +199,7 @@ void Parser::parseDepth(const toml::table& root, Layout& layout) {
         }
     }
     if (const toml::node* r = t->get("reversed_z")) {
+        d.reversedZPlace = placeOf(*r);
         if (r->is_boolean())
             d.reversedZ = r->as_boolean()->get();
         else

@@ -62,6 +62,8 @@ private:
                     return e + " encodes RGB colours, not " + a;
                 if (!enc.reads.empty() && attr.id != Attribute::Emissive)
                     return e + " stores emissive relative to " + enc.reads + ", not " + a;
+                if (!enc.carries.empty() && attr.id != Attribute::Emissive)
+                    return e + " stores emissive (and " + enc.carries + " in its tag), not " + a;
                 return "";
             case AttributeKind::Scalar:
                 break;
@@ -168,7 +170,8 @@ private:
                     const std::string need = ch.type == ChannelType::Sfloat ? (ch.bits == 16 ? "float16" : "float32")
                                                                             : (ch.bits == 11 ? "float11" : "float10");
                     // float11_11_10 is B10G11R11's three codes as one colour field (r, g: float11; b: float10).
-                    const bool packedUfloat = f.encoding == "float11_11_10" && ch.type == ChannelType::Ufloat &&
+                    const bool packedUfloat = (f.encoding == "float11_11_10" || f.encoding == "float11_11_10_hdrp_ao_tag") &&
+                                              ch.type == ChannelType::Ufloat &&
                                               (ch.bits == 11) == (i < 2);
                     if (!whole || (f.encoding != need && !packedUfloat))
                         error(c.place, "channel " + squote(ch.name) + " of " + format +
@@ -307,6 +310,18 @@ private:
         for (const Target& t : layout_.targets)
             for (const Field& f : t.fields) visit(f);
         for (const Field& f : layout_.depth.stencil) visit(f);
+        // What an encoding stores besides its attribute (HDRP's AO tag: occlusion) counts too.
+        for (const Target& t : layout_.targets)
+            for (const Field& f : t.fields) {
+                const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
+                const AttributeInfo* c = enc && !enc->carries.empty() ? findAttribute(enc->carries) : nullptr;
+                if (!c) continue;
+                auto [it, fresh] = seen.emplace(c->id, &f);
+                if (!fresh)
+                    error(f.encodingPlace, "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) +
+                                               " also stores " + squote(enc->carries) + ", which is already stored (" +
+                                               lineText(it->second->place) + "); store each attribute once");
+            }
     }
 
     FilePlace fallbackTablePlace() const {
@@ -440,17 +455,32 @@ private:
             }
             bool inTarget = false;
             for (const Target& t : layout_.targets)
-                for (const Field& f : t.fields) inTarget = inTarget || f.attribute == c.attribute;
+                for (const Field& f : t.fields)
+                    inTarget = inTarget || f.attribute == c.attribute || carriedBy(f) == c.attribute;
             if (!inTarget)
                 error(c.place, "clear value for " + squote(attributeName(c.attribute)) +
                                    ", which no target stores (stencil extras are cleared to 0 with the depth)");
         }
         for (const Target& t : layout_.targets)
-            for (const Field& f : t.fields)
+            for (const Field& f : t.fields) {
                 if (attributeInfo(f.attribute).cls != AttributeClass::Extra && !seen.count(f.attribute))
                     error(layout_.clearPlace, "[clear] has no value for " + squote(attributeName(f.attribute)) +
                                                   ", which target " + squote(t.name) + " stores (" +
                                                   lineText(f.place) + ")");
+                const Attribute carried = carriedBy(f);
+                if (carried != f.attribute && !seen.count(carried))
+                    error(layout_.clearPlace, "[clear] has no value for " + squote(attributeName(carried)) +
+                                                  ", which the encoding " + squote(f.encoding) + " of " +
+                                                  squote(attributeName(f.attribute)) + " in target " + squote(t.name) +
+                                                  " also stores (" + lineText(f.place) + ")");
+            }
+    }
+
+    // The attribute a field's encoding stores besides its own (EncodingInfo::carries), else its own.
+    static Attribute carriedBy(const Field& f) {
+        const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
+        const AttributeInfo* c = enc && !enc->carries.empty() ? findAttribute(enc->carries) : nullptr;
+        return c ? c->id : f.attribute;
     }
 
     void checkPipeline() {

@@ -10,7 +10,8 @@ namespace gbl {
 namespace layout_parser {
 
 // [ids]: format = "R32_UINT" | "R32G32_UINT", triangle_bits, draw_bits (1..32 each),
-// alpha_mask_bit = true | false. Whether they fit is validation's (validateVisibilityLayout).
+// alpha_mask_bit = true | false, and Nanite's and Bevy's meshlet keys draw_offset,
+// cluster_triangles, depth_word. Whether they fit is validation's (validateVisibilityLayout).
 void Parser::parseIds(const toml::table& root, Layout& layout) {
     const toml::node* n = root.get("ids");
     if (!n) return;
@@ -22,7 +23,10 @@ void Parser::parseIds(const toml::table& root, Layout& layout) {
         error(ids.place, "'ids' must be a table ([ids]), not " + std::string(typeName(*n)));
         return;
     }
-    checkKeys(*t, {"format", "triangle_bits", "draw_bits", "alpha_mask_bit", "from", "status", "differs"}, "[ids]");
+    checkKeys(*t,
+              {"format", "triangle_bits", "draw_bits", "alpha_mask_bit", "draw_offset", "cluster_triangles",
+               "depth_word", "from", "status", "differs"},
+              "[ids]");
     readProvenance(*t, ids.provenance, ids.place);
     if (auto format = getString(*t, "format", true, ids.place, "[ids]")) {
         ids.formatPlace = placeOf(*t->get("format"));
@@ -56,6 +60,37 @@ void Parser::parseIds(const toml::table& root, Layout& layout) {
             ids.alphaMaskBit = a->as_boolean()->get();
         else
             error(placeOf(*a), "'alpha_mask_bit' must be true or false, not " + std::string(typeName(*a)));
+    }
+    // Optional integers; whether they fit the widths above is validation's. Read as 64-bit, so a
+    // value past 32 bits is an error here, never a silent wrap.
+    auto readOptional = [&](const char* key, FilePlace& place) -> std::optional<int64_t> {
+        const toml::node* k = t->get(key);
+        if (!k) return std::nullopt;
+        place = placeOf(*k);
+        return getInteger(*k, std::string("'") + key + "'");
+    };
+    if (auto v = readOptional("draw_offset", ids.drawOffsetPlace)) {
+        if (*v < 0 || *v > 0xFFFFFFFFll)
+            error(ids.drawOffsetPlace, "'draw_offset' " + std::to_string(*v) +
+                                           " must be 0 to 4294967295 (UE's Nanite stores visible cluster + 1: 1)");
+        else
+            ids.drawOffset = uint32_t(*v);
+    }
+    if (auto v = readOptional("cluster_triangles", ids.clusterTrianglesPlace)) {
+        if (*v < 1 || *v > 0xFFFFFFFFll)
+            error(ids.clusterTrianglesPlace, "'cluster_triangles' " + std::to_string(*v) +
+                                                 " must be 1 or more (Nanite's and Bevy's clusters: 128)");
+        else
+            ids.clusterTriangles = uint32_t(*v);
+    }
+    if (auto v = readOptional("depth_word", ids.depthWordPlace)) {
+        if (*v != 1)
+            error(ids.depthWordPlace, "'depth_word' " + std::to_string(*v) +
+                                          " must be 1: the depth's float bits go in word 1, the high half of the "
+                                          "64-bit value, so that a 64-bit max orders by depth first (the ids take "
+                                          "word 0)");
+        else
+            ids.depthWord = 1;
     }
 }
 
@@ -91,12 +126,42 @@ void validateVisibilityLayout(const Layout& layout, std::vector<LayoutDiagnostic
         error(layout.depth.stencil.front().place, std::string("remove the stencil fields") + why);
     if (ids.bits == 0 || ids.triangleBits == 0 || ids.drawBits == 0) return;  // reported while parsing
     const int need = ids.triangleBits + ids.drawBits + (ids.alphaMaskBit ? 1 : 0);
-    if (need > ids.bits)
+    const int room = ids.depthWord >= 0 ? 32 : ids.bits;  // a depth word leaves the ids word 0
+    if (ids.depthWord >= 0 && ids.bits != 64) {
+        error(ids.depthWordPlace, "'depth_word' needs a second word: set format = \"R32G32_UINT\" (Nanite's "
+                                  "R64_UINT / R32G32_UINT fallback, Bevy's R64Uint), not " + ids.format);
+    } else if (need > room) {
         error(ids.formatPlace, "ids need " + std::to_string(need) + " bits (" + std::to_string(ids.triangleBits) +
                                    " triangle + " + std::to_string(ids.drawBits) + " draw" +
                                    (ids.alphaMaskBit ? " + 1 alpha-mask flag" : "") + ") but " + ids.format +
-                                   " holds " + std::to_string(ids.bits) + " (" + std::to_string(need - ids.bits) +
-                                   " over)");
+                                   (ids.depthWord >= 0 ? " with depth in word 1 leaves word 0, " : " holds ") +
+                                   std::to_string(room) + " (" + std::to_string(need - room) + " over)");
+    }
+    const uint64_t fieldValues = 1ull << ids.drawBits;  // values the draw field holds
+    if (ids.drawOffset > 0 && ids.drawOffset >= fieldValues)
+        error(ids.drawOffsetPlace, "'draw_offset' " + std::to_string(ids.drawOffset) + " leaves no id: " +
+                                       std::to_string(ids.drawBits) + "-bit draw fields hold 0 to " +
+                                       std::to_string(fieldValues - 1) + "; use an offset below " +
+                                       std::to_string(fieldValues) + " (Nanite's: 1) or more draw_bits");
+    const uint64_t triangleValues = 1ull << ids.triangleBits;
+    if (ids.clusterTriangles > triangleValues)
+        error(ids.clusterTrianglesPlace, "'cluster_triangles' " + std::to_string(ids.clusterTriangles) +
+                                             " is more than " + std::to_string(ids.triangleBits) +
+                                             "-bit triangle ids hold (" + std::to_string(triangleValues) +
+                                             "): use at most " + std::to_string(triangleValues) +
+                                             " or more triangle_bits");
+    if (ids.depthWord >= 0) {
+        // The word holds the depth's float32 bits, resolved by a 64-bit atomic max: the largest
+        // value wins, which is the nearest surface only when near is 1 (reversed Z). Cleared to
+        // 0, which is then the far plane.
+        if (!layout.depth.format.empty() && layout.depth.format != "D32_SFLOAT")  // empty: unknown, reported
+            error(layout.depth.formatPlace, "with 'depth_word' the depth is the float32 in word 1 of the ids: set "
+                                            "format = \"D32_SFLOAT\", not '" + layout.depth.format + "'");
+        if (!layout.depth.reversedZ)
+            error(layout.depth.reversedZPlace.line > 0 ? layout.depth.reversedZPlace : layout.depth.place, "with 'depth_word' the ids are resolved by a 64-bit max, which keeps the "
+                                      "nearest surface only with reversed Z (near = 1, far = 0): set reversed_z = "
+                                      "true (Nanite and Bevy use reversed Z)");
+    }
 }
 
 }  // namespace gbl

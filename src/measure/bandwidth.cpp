@@ -11,7 +11,7 @@ FrameTraffic computeFrameTraffic(const Layout& layout, uint32_t width, uint32_t 
     double targetBytes = 0;
     for (const Target& t : layout.targets) targetBytes += t.bytes();
     targetBytes += layout.ids.bytes();  // a visibility buffer's one target
-    const double depthBytes = layout.depth.bytes;
+    const double depthBytes = depthAttachmentBytes(layout);  // none where depth is in the ids
     const double perSample = pixels * samples;
     f.geometryWriteBytes = perSample * (targetBytes + depthBytes);
     f.lightingReadBytes = perSample * (targetBytes + depthBytes);
@@ -21,7 +21,8 @@ FrameTraffic computeFrameTraffic(const Layout& layout, uint32_t width, uint32_t 
         f.lightBufferBytes = perSample * (lightBytes + lightBytes + depthBytes);
     }
     if (layout.pipeline == Pipeline::VisibilityBuffer) {
-        f.vertexFetchBytes = pixels * kVisibilityVertexBytes;
+        // With clusters the resolve also reads the cluster's (draw, first triangle) entry.
+        f.vertexFetchBytes = pixels * (kVisibilityVertexBytes + (layout.ids.clusterTriangles ? kVisibilityClusterBytes : 0));
         f.textureFetchBytes = pixels * kVisibilityTextureBytes;
     }
     f.totalBytes = f.geometryWriteBytes + f.lightingReadBytes + f.lightBufferBytes + f.vertexFetchBytes;
@@ -41,7 +42,7 @@ BandwidthReport computeBandwidth(const Layout& layout, uint32_t width, uint32_t 
         r.targetBytesPerPixel += layout.ids.bytes();
         r.visibilityBuffer = true;
     }
-    r.depthBytesPerPixel = layout.depth.bytes;
+    r.depthBytesPerPixel = depthAttachmentBytes(layout);
     r.lightBufferBytesPerPixel = lightBufferBytesPerPixel(layout);
     r.gbufferBytesPerPixel = r.targetBytesPerPixel + r.depthBytesPerPixel;
     r.deferredLighting = layout.pipeline == Pipeline::DeferredLighting;

@@ -36,6 +36,9 @@ constexpr int kLitOutputBytesPerPixel = 8;  // RGBA16F, the usual HDR scene colo
 // vertex: 12 position + 12 normal + 16 tangent + 8 uv, GpuScene's Vertex).
 constexpr int kVisibilityVertexBytes = 3 * (4 + 48);
 constexpr int kVisibilityTextureBytes = 5 * 8 * 4;
+// ... and with clusters ([ids] cluster_triangles: Nanite, Bevy's meshlets) the cluster table's
+// entry, (draw, first triangle) as two 32-bit words.
+constexpr int kVisibilityClusterBytes = 8;
 
 struct TargetBytes {
     std::string name;

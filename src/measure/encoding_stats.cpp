@@ -164,6 +164,9 @@ glm::vec3 roundTripColor(std::string_view name, int bits, glm::vec3 c) {
         return vec3(enc::decodeFloat11(enc::encodeFloat11(c.x)), enc::decodeFloat11(enc::encodeFloat11(c.y)),
                     enc::decodeFloat10(enc::encodeFloat10(c.z)));
     if (info.name == "rgb9e5") return enc::decodeRgb9e5(enc::encodeRgb9e5(c));
+    // Emissive alone (the tag only replaces an exact 0, which reads back 0).
+    if (info.name == "float11_11_10_hdrp_ao_tag")
+        return enc::decodeFloat111110HdrpAoTag(enc::encodeFloat111110HdrpAoTag(c, 1.0f));
     if (info.name == "emissive_albedo_ratio")
         return enc::decodeEmissiveAlbedoRatio(enc::encodeEmissiveAlbedoRatio(c, c, b), b, c);
     throwUserError("encoding '" + info.name + "' has no single-value colour round trip (it reads neighbours)");

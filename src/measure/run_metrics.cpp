@@ -10,6 +10,7 @@
 
 #include "error.h"
 #include "flip.h"
+#include "significance.h"
 #include "host_profile.h"
 #include "pair_memo.h"
 #include "parallel_invoke.h"
@@ -352,6 +353,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         const FlipStats fs = flipStats(flip);
         out.image.flipMean = fs.mean;
         out.image.flipMedian = fs.median;
+        out.image.flipTiles = tileMeans(flip);
     });
     tasks.push_back([&] {
         if (maps) rel = relativeLuminanceErrorImage(referenceHdr, testHdr, floor);

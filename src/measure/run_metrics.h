@@ -31,6 +31,7 @@
 // The reference against itself gives exactly 0 everywhere and PSNR = +infinity.
 #include <cstddef>
 #include <limits>
+#include <vector>
 #include <memory>
 
 #include "flip.h"
@@ -84,6 +85,7 @@ struct ShadedErrors {
     double meanAbs = 0.0;  // linear
     double flipMean = 0.0;    // LDR-FLIP
     double flipMedian = 0.0;  // LDR-FLIP, nearest-rank lower median
+    std::vector<float> flipTiles;  // LDR-FLIP's mean per tile of significance.h's grid (the test's units)
     double hdrFlipMean = 0.0; // HDR-FLIP (0 when not computed)
     bool hdrFlipComputed = false;
     int hdrFlipExposures = 0;  // how many exposures HDR-FLIP evaluated (its cost is ~ this x LDR-FLIP)

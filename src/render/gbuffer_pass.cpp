@@ -22,10 +22,14 @@ bool isStencilFormat(VkFormat f) {
 
 }  // namespace
 
+static std::vector<size_t> drawTriangleCounts(const GpuScene& scene) {
+    std::vector<size_t> triangles;
+    for (const Draw& d : scene.drawRanges) triangles.push_back(d.indexCount / 3);
+    return triangles;
+}
+
 void checkVisibilityBufferSupport(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene) {
-    size_t maxTriangles = 0;
-    for (const Draw& d : scene.drawRanges) maxTriangles = std::max<size_t>(maxTriangles, d.indexCount / 3);
-    const std::string problem = visibilityCapacityProblem(wiring, scene.drawRanges.size(), maxTriangles);
+    const std::string problem = visibilityCapacityProblem(wiring, drawTriangleCounts(scene));
     if (!problem.empty()) throwUserError(problem);
     if (!ctx.primitiveIdInFragment)
         throwUserError("layout '" + wiring.layoutName + "': the device '" + ctx.info.name +
@@ -288,6 +292,14 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
     if (wiring.visibilityBuffer) {
         pass.visibilityScene = &scene;
         pass.nonUniformTextureIndexing = ctx.nonUniformSampledImageIndexing;
+        if (const uint32_t n = wiring.visibilityIds.clusterTriangles) {
+            const std::vector<size_t> triangles = drawTriangleCounts(scene);
+            pass.drawFirstIds = visibilityFirstIds(wiring.visibilityIds, triangles);
+            std::vector<std::array<uint32_t, 2>> table = visibilityClusterTable(n, triangles);
+            if (table.empty()) table.push_back({0, 0});  // the binding is never empty
+            pass.clusterTable = createBufferWithData(ctx, table.data(), table.size() * sizeof(table[0]),
+                                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        }
     }
     return pass;
 }
@@ -364,8 +376,10 @@ void recordGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass, const GpuSc
     vkCmdBindVertexBuffers(cmd, 0, 1, &scene.vertices.buffer, &offset);
     vkCmdBindIndexBuffer(cmd, scene.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     for (size_t i = 0; i < scene.draws.size(); ++i) {
+        gpu::DrawConstants c = scene.draws[i];
+        if (i < pass.drawFirstIds.size()) c.material.y = int32_t(pass.drawFirstIds[i]);  // clusters: first cluster
         vkCmdPushConstants(cmd, pass.pipelineLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(gpu::DrawConstants), &scene.draws[i]);
+                           sizeof(gpu::DrawConstants), &c);
         const Draw& d = scene.drawRanges[i];
         if (pass.writesStencil) {
             static const std::vector<std::pair<std::string, uint32_t>> none;
@@ -420,6 +434,9 @@ void destroyGBufferPass(const VulkanContext& ctx, GBufferPass& pass) {
     pass.codecTables = Buffer{};
     for (auto& t : pass.targets) destroyImage(ctx, t);
     pass.targets.clear();
+    if (pass.clusterTable.buffer) destroyBuffer(ctx, pass.clusterTable);
+    pass.clusterTable = Buffer{};
+    pass.drawFirstIds.clear();
     if (pass.emissive.image) destroyImage(ctx, pass.emissive);
     destroyImage(ctx, pass.depth);
     if (!pass.pipelineFromMemo) {

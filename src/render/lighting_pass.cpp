@@ -15,6 +15,7 @@ std::vector<Binding> targetReadBindings(size_t targetCount, const TargetReadScen
     if (scene.visibility) {
         for (uint32_t b = 1; b <= 4; ++b) bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         bindings.push_back({5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene.textureCount});
+        if (scene.clusters) bindings.push_back({6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     }
     return bindings;
 }
@@ -26,13 +27,15 @@ TargetReadScene targetReadScene(const GBufferPass& pass) {
         s.textureCount = uint32_t(scene->textures.size());
         s.nonUniformIndexing = pass.nonUniformTextureIndexing;
         s.texturesBySlot = scene->texturesBySlot;
+        s.clusters = pass.clusterTable.buffer != VK_NULL_HANDLE;
     }
     return s;
 }
 
 TargetReadScene targetReadScene(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene) {
     if (!wiring.visibilityBuffer) return {};
-    return {true, uint32_t(scene.textures.size()), ctx.nonUniformSampledImageIndexing, scene.texturesBySlot};
+    return {true, uint32_t(scene.textures.size()), ctx.nonUniformSampledImageIndexing, scene.texturesBySlot,
+            wiring.visibilityIds.clusterTriangles > 0};
 }
 
 std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
@@ -52,6 +55,7 @@ void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBu
         .buffer(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene->indices.buffer)
         .buffer(set, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene->drawTable.buffer)
         .buffer(set, 4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, scene->materials.buffer);
+    if (pass.clusterTable.buffer) writer.buffer(set, 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.clusterTable.buffer);
     for (uint32_t i = 0; i < scene->textures.size(); ++i)  // sampled as the G-buffer pass samples them
         writer.image(set, 5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, scene->textures[i].view, scene->textureSampler,
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);

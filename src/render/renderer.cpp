@@ -132,14 +132,14 @@ CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool re
 }
 
 Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment)
-    : ctx_(ctx), scene_(scene) {
+    : ctx_(ctx), scene_(scene), pipelines_(ownPipelines_) {
     ScopedStage timed(Stage::Precompute);
     init(environment, loadOrComputeIbl(ctx, environment, IblSettings{}));
 }
 
 Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment,
-                   const IblMaps& ibl)
-    : ctx_(ctx), scene_(scene) {
+                   const IblMaps& ibl, PipelineMemo* sharedPipelines)
+    : ctx_(ctx), scene_(scene), pipelines_(sharedPipelines ? *sharedPipelines : ownPipelines_) {
     ScopedStage timed(Stage::Precompute);
     init(environment, ibl);
 }
@@ -186,7 +186,7 @@ Renderer::~Renderer() {
     vkDestroySampler(ctx_.device, nearestSampler_, nullptr);
     destroyCodecTableBuffers(ctx_, codecTables_);
     destroyBuffer(ctx_, bestFitPlaceholder_);
-    pipelines_.destroy(ctx_.device);
+    ownPipelines_.destroy(ctx_.device);  // a shared memo is its owner's to destroy
 }
 
 bool Renderer::decodesOnCpu(const GBufferWiring& wiring, const RenderSettings& settings) {

@@ -145,7 +145,12 @@ public:
     // Pre-computes the IBL of `environment` through the disk cache (ibl_cache.h, default settings).
     Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment);
     // Uses pre-computed IBL maps (from loadOrComputeIbl / computeIblMaps of the same environment).
-    Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment, const IblMaps& ibl);
+    // `sharedPipelines`, when given, holds the pipelines instead of the renderer's own memo: the
+    // renderers of several scenes (compare --scene A --scene B) then build each pipeline once,
+    // those that do not depend on the scene (lighting, decode; a G-buffer pass's key holds the
+    // scene's texture count) serving them all. Its owner destroys it after the renderers.
+    Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment, const IblMaps& ibl,
+             PipelineMemo* sharedPipelines = nullptr);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -186,7 +191,8 @@ private:
     VkSampler environmentSampler_ = VK_NULL_HANDLE;
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
     IblGpu ibl_;
-    PipelineMemo pipelines_;
+    PipelineMemo ownPipelines_;
+    PipelineMemo& pipelines_;  // ownPipelines_, or the memo shared by several renderers
     // The tables a G-buffer pass binds (tablesFor): the encodings' (uploaded at init) and the
     // best-fit normal table (uploaded at the first render of a wiring that reads it: generating it
     // is the largest part of a small compare's set-up, and most layouts never read it; compare

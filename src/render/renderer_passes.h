@@ -20,6 +20,7 @@ struct TargetReadScene {
     uint32_t textureCount = 0;
     bool nonUniformIndexing = false;
     MaterialTextureSlots texturesBySlot;  // the resolve's candidates per slot (without non-uniform indexing)
+    bool clusters = false;  // [ids] cluster_triangles: the cluster table at set 1, binding 6
 };
 
 struct GBufferPass {
@@ -59,6 +60,11 @@ struct GBufferPass {
     // ... and whether its resolve may index the textures per pixel (VulkanContext::
     // nonUniformSampledImageIndexing; without it, visibility_resolve.glsl loops over them).
     bool nonUniformTextureIndexing = false;
+    // ... and with clusters ([ids] cluster_triangles): each draw's id, pushed as its
+    // DrawConstants::material.y (its first cluster), and the cluster table the resolve reads
+    // (visibilityFirstIds, visibilityClusterTable: visibility_wiring.h). Owned by the pass.
+    std::vector<uint32_t> drawFirstIds;
+    Buffer clusterTable;
     // Built by createGBufferPass: a PipelineMemo owns setLayout, pipelineLayout and pipeline
     // (destroy leaves them). Passes put together by hand (the bit tests) own theirs.
     bool pipelineFromMemo = false;

@@ -80,7 +80,7 @@ std::vector<TableColumn> numericColumns() {
 // The group row: each run of columns under one group header, once with every column counted
 // (shown with "all columns") and once without the secondary ones, since a header spanning a
 // hidden cell would reach into the next group.
-void writeGroupRow(std::string& out, const std::vector<TableColumn>& columns) {
+void writeGroupRow(std::string& out, const std::vector<TableColumn>& columns, bool rankColumn) {
     out += "<tr class=\"groups\"><th colspan=\"2\"></th>";
     for (size_t i = 0; i < columns.size();) {
         size_t end = i, all = 0, folded = 0;
@@ -97,7 +97,7 @@ void writeGroupRow(std::string& out, const std::vector<TableColumn>& columns) {
         }
         i = end;
     }
-    out += "<th></th></tr>\n";
+    out += rankColumn ? "<th></th><th></th></tr>\n" : "<th></th></tr>\n";
 }
 
 }  // namespace
@@ -109,12 +109,17 @@ void writeLayoutsTable(std::string& out, const ReportModel& model, const std::ve
                        "All columns (the normal angle's p99") +
            (spreads ? ", each value's spread over the views" : "") + ")</label>\n";
     out += "<table id=\"layouts\" class=\"data sortable\">\n<thead>";
-    writeGroupRow(out, columns);
+    const bool ranks = model.significance && !model.significance->ranks.empty();
+    writeGroupRow(out, columns, ranks);
     out += "<tr><th data-key=\"layout\" data-dir=\"ascending\" title=\"Layout name\">Layout</th>"
            "<th data-key=\"ibl\" data-dir=\"ascending\" title=\"Image-based lighting mode\">IBL</th>";
     for (const TableColumn& c : columns)
         out += std::string("<th class=\"num") + (c.secondary ? " secondary" : "") + "\" data-key=\"" + c.key +
                "\" data-dir=\"" + c.firstDir + "\" title=\"" + c.tooltip + "\">" + c.header + "</th>";
+    if (ranks)
+        out += "<th class=\"num\" data-key=\"rank\" data-dir=\"ascending\" title=\"Rank by mean FLIP; a range "
+               "(4-6) where the differences to the neighbours are not significant: " +
+               htmlEscape(model.significance->method) + "\">Rank</th>";
     out += "<th data-key=\"status\" data-dir=\"ascending\">Status</th></tr></thead>\n<tbody>\n";
     for (size_t i = 0; i < model.runs.size(); ++i) {
         const RunReport& r = model.runs[i];
@@ -138,6 +143,13 @@ void writeLayoutsTable(std::string& out, const ReportModel& model, const std::ve
                        c.format(sp.max) + "</span> <span>&sigma;" + formatSignificant(sp.stddev, 2) + "</span></small>";
             }
             out += "</td>";
+        }
+        if (ranks) {
+            const RankRange* rank = model.significance->find(r.layout, r.iblMode);
+            if (rank && !failed && !r.isLightingComparison())
+                out += "<td class=\"num\" data-v=\"" + std::to_string(rank->low) + "\">" + rank->text() + "</td>";
+            else
+                out += "<td class=\"num\"></td>";
         }
         if (failed) out += "<td>failed<div class=\"errtext\">" + htmlEscape(r.error) + "</div></td>";
         else out += "<td class=\"status-ok\">ok</td>";

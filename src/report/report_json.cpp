@@ -141,6 +141,27 @@ Json verdictJson(const BudgetVerdict& v) {
 }
 
 // The atlas table (report_atlas.h), flat in its grouped order: one object per layout.
+Json significanceJson(const SignificanceReport& s) {
+    Json pairs = Json::array(), ranks = Json::array();
+    for (const PairSignificance& p : s.pairs)
+        pairs.push_back(Json{{"better", p.better},
+                             {"worse", p.worse},
+                             {"ibl_mode", p.iblMode},
+                             {"mean_difference", number(p.meanDifference)},
+                             {"units", p.units},
+                             {"p_value", number(p.pValue)},
+                             {"significant", p.significant}});
+    for (const RankRange& r : s.ranks)
+        ranks.push_back(Json{{"layout", r.layout},
+                             {"ibl_mode", r.iblMode},
+                             {"mean_error", number(r.meanError)},
+                             {"rank", r.rank},
+                             {"rank_low", r.low},
+                             {"rank_high", r.high},
+                             {"tied_rank", r.text()}});
+    return Json{{"method", s.method}, {"pairs", std::move(pairs)}, {"ranks", std::move(ranks)}};
+}
+
 Json atlasJson(const ReportModel& model) {
     Json rows = Json::array();
     for (const AtlasRowGroup& g : atlasRows(model))
@@ -486,6 +507,9 @@ Json reportToJson(const ReportModel& model) {
                              {"command_line", run.commandLine},
                              {"ibl_modes", run.iblModes},
                              {"exposure", run.exposure},
+                             {"exposure_method", run.exposureMethod},
+                             {"view_exposures", run.viewExposures},
+                             {"view_coverage", run.viewCoverage},
                              {"notes", run.notes},
                              {"views", run.views},
                              {"exr_precision", run.exrPrecision}}},
@@ -512,6 +536,7 @@ Json reportToJson(const ReportModel& model) {
             {"answer", v->answer}};
     }
     if (!model.atlas.empty()) j["atlas"] = atlasJson(model);
+    if (model.significance) j["significance"] = significanceJson(*model.significance);
     if (const auto v = budgetVerdict(model)) j["verdict"] = verdictJson(*v);
     return j;
 }
@@ -536,6 +561,13 @@ ReportModel reportFromJson(const Json& json) {
     model.run.iblModes = run["ibl_modes"].strings();
     model.run.notes = run["notes"].strings();
     if (run.has("exposure")) model.run.exposure = run["exposure"].num();
+    if (run.has("exposure_method")) model.run.exposureMethod = run["exposure_method"].str();
+    if (run.has("view_exposures"))
+        for (size_t i = 0; i < run["view_exposures"].array().size(); ++i)
+            model.run.viewExposures.push_back(run["view_exposures"].at(i).num());
+    if (run.has("view_coverage"))
+        for (size_t i = 0; i < run["view_coverage"].array().size(); ++i)
+            model.run.viewCoverage.push_back(run["view_coverage"].at(i).num());
     if (run.has("views")) model.run.views = run["views"].strings();
     if (run.has("exr_precision")) model.run.exrPrecision = run["exr_precision"].str();
     const Node reference = root["reference"];
@@ -547,6 +579,23 @@ ReportModel reportFromJson(const Json& json) {
                                           images.at(i).has("hdr_preview") ? images.at(i)["hdr_preview"].str() : ""});
     const Node runs = root["runs"];
     for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
+    if (root.has("significance")) {
+        const Node sig = root["significance"];
+        SignificanceReport sr;
+        sr.method = sig["method"].str();
+        for (size_t i = 0; i < sig["pairs"].array().size(); ++i) {
+            const Node p = sig["pairs"].at(i);
+            if (!p["significant"].j.is_boolean()) p["significant"].fail("expected true or false");
+            sr.pairs.push_back({p["better"].str(), p["worse"].str(), p["ibl_mode"].str(), p["mean_difference"].num(),
+                                p["units"].i32(), p["p_value"].num(), p["significant"].j.get<bool>()});
+        }
+        for (size_t i = 0; i < sig["ranks"].array().size(); ++i) {
+            const Node r = sig["ranks"].at(i);
+            sr.ranks.push_back({r["layout"].str(), r["ibl_mode"].str(), r["mean_error"].num(), r["rank"].i32(),
+                                r["rank_low"].i32(), r["rank_high"].i32()});
+        }
+        model.significance = std::move(sr);
+    }
     if (root.has("atlas")) {
         const Node atlas = root["atlas"];
         for (size_t i = 0; i < atlas.array().size(); ++i) {

@@ -32,7 +32,13 @@ struct ReportRunInfo {
     std::string date;         // when the comparison ran, ISO 8601 (e.g. 2024-05-01T12:00:00Z)
     std::string commandLine;  // the gbufferlab command line, as typed
     std::vector<std::string> iblModes;
-    double exposure = 1.0;    // the tone map's exposure (compare --exposure)
+    double exposure = 1.0;    // the tone map's exposure (compare --exposure), the first view's when metered
+    // "fixed" (compare --exposure) or "ue4-histogram" (each view's metered from its reference,
+    // auto_exposure.h); viewExposures: each view's (empty when fixed).
+    std::string exposureMethod = "fixed";
+    std::vector<double> viewExposures;
+    // Per view: the fraction of its pixels the scene's geometry covers (the reference's alpha).
+    std::vector<double> viewCoverage;
     std::vector<std::string> notes;  // free-form remarks (e.g. "12 ringing texels clamped to 0")
     std::vector<std::string> views;  // compare --views: how each camera was placed ("scene camera", ...)
     // The pixel type of the EXR files written (render.exr, errors.exr, the reference's):
@@ -155,6 +161,9 @@ struct ImageErrors {
     double p99Abs = 0.0;          // nearest-rank 0.99 of |test - reference|, linear HDR
     double flipMean = 0.0;        // LDR-FLIP, 0 (same) .. 1
     double flipMedian = 0.0;
+    // LDR-FLIP's mean per tile of measure/significance.h's grid: the units of the significance test
+    // (CPU evaluation only; not written to report.json).
+    std::vector<float> flipTiles;
     // HDR-FLIP over the linear images (absent with --no-hdr-flip) and the exposures it took.
     std::optional<double> hdrFlipMean;
     int hdrFlipExposures = 0;
@@ -243,6 +252,32 @@ struct IblFigure {
     std::vector<IblFigureRow> rows;
 };
 
+// Which layouts' error differences are significant, and the tied ranks that follow
+// (rank_significance.h computes it; absent in reports written before it existed).
+struct PairSignificance {
+    std::string better, worse;  // by mean error
+    std::string iblMode;
+    double meanDifference = 0.0;  // mean error of `worse` - of `better` (>= 0)
+    int units = 0;                // paired tiles (or views) the test ran on
+    double pValue = 1.0;
+    bool significant = false;     // pValue < kSignificanceAlpha
+};
+
+struct RankRange {
+    std::string layout, iblMode;
+    double meanError = 0.0;
+    int rank = 0;       // 1 + the layouts of lower mean error
+    int low = 0, high = 0;
+    std::string text() const { return low == high ? std::to_string(low) : std::to_string(low) + "-" + std::to_string(high); }
+};
+
+struct SignificanceReport {
+    std::string method;  // one sentence: the test, its units, alpha, resamples
+    std::vector<PairSignificance> pairs;
+    std::vector<RankRange> ranks;  // by mode, then rank
+    const RankRange* find(const std::string& layout, const std::string& iblMode) const;
+};
+
 struct ReportModel {
     ReportRunInfo run;
     ReportReference reference;
@@ -251,6 +286,7 @@ struct ReportModel {
     // The atlas (report_atlas.h): one entry per compared layout, from its file; empty in reports
     // written before it existed.
     std::vector<AtlasEntry> atlas;
+    std::optional<SignificanceReport> significance;
 };
 
 }  // namespace gbl

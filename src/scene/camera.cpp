@@ -31,6 +31,7 @@ Camera frameBounds(const Bounds& bounds, float aspect) {
     camera.zNear = std::max(distance - radius, 1e-3f * distance) * 0.5f;
     camera.zFar = (distance + radius) * 2.0f;
     camera.fromFile = false;
+    camera.framed = true;
     return camera;
 }
 

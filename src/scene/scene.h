@@ -74,6 +74,9 @@ struct Camera {
     float zNear = 0.01f;
     float zFar = 100.0f;  // finite; the renderer may use reversed or infinite Z
     bool fromFile = false;
+    // Placed by frameBounds (a glTF without a camera): the view frames the bounding sphere, and
+    // compare's other views (compare_views.h) keep it in frame.
+    bool framed = false;
 };
 
 enum class LightType : int { Directional = 0, Point = 1, Spot = 2 };

@@ -146,6 +146,9 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
         c = {encodeSrgb8FastHdrp(v.x), encodeSrgb8FastHdrp(v.y), encodeSrgb8FastHdrp(v.z)};
     } else if (e == "float11_11_10") {
         c = {encodeFloat11(v.x), encodeFloat11(v.y), encodeFloat10(v.z)};
+    } else if (e == "float11_11_10_hdrp_ao_tag") {  // HDRP: the AO tag where emissive is exactly 0
+        const uvec3 u = encodeFloat111110HdrpAoTag(v, s.occlusion);
+        c = {u.x, u.y, u.z};
     } else if (e == "rgb9e5") {
         const uvec4 u = encodeRgb9e5(v);
         c = {u.x, u.y, u.z, u.w};
@@ -202,6 +205,7 @@ vec3 decodeField(const Field& f, const std::vector<uint>& c, const Surface& s) {
     if (e == "srgb8_fast_hdrp")
         return vec3(decodeSrgb8FastHdrp(c[0]), decodeSrgb8FastHdrp(c[1]), decodeSrgb8FastHdrp(c[2]));
     if (e == "float11_11_10") return vec3(decodeFloat11(c[0]), decodeFloat11(c[1]), decodeFloat10(c[2]));
+    if (e == "float11_11_10_hdrp_ao_tag") return decodeFloat111110HdrpAoTag(uvec3(c[0], c[1], c[2]));
     if (e == "rgb9e5") return decodeRgb9e5(uvec4(c[0], c[1], c[2], c[3]));
     if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp" ||
         e == "normal_octahedral_dithered")
@@ -372,6 +376,8 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                     std::vector<uint> codes;
                     for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, w));
                     setMember(s, f.attribute, decodeField(f, codes, s));
+                    if (f.encoding == "float11_11_10_hdrp_ao_tag")  // what the AO tag also stores
+                        s.occlusion = decodeHdrpAoTagOcclusion(uvec3(codes[0], codes[1], codes[2]));
                 }
             }
             for (const MaterialSlot& slot : slots) {
@@ -587,9 +593,12 @@ TEST(CpuCodec, EngineClearWordsAreTheEnginesClearColours) {
     const auto hdrp = clearWords(loadLayoutFile(dir / "hdrp-lit.toml"));
     ASSERT_EQ(hdrp.size(), 4u);
     EXPECT_EQ(hdrp[1][0], 0xFF000000u);  // GBuffer1: R = G = B = 0 (codes (0, 0)), A = 255
-    EXPECT_EQ(hdrp[0][0], 0u);
+    // GBuffer0: diffuse 0; its alpha, specular occlusion, is an extra (1 in every pixel: the
+    // layout's documented difference from HDRP's 0).
+    EXPECT_EQ(hdrp[0][0], 0xFF000000u);
     EXPECT_EQ(hdrp[2][0], 0u);
-    EXPECT_EQ(hdrp[3][0], 0u);
+    EXPECT_EQ(hdrp[3][0], 0u);  // GBuffer3: Color.clear, the word 0, not the AO tag
+    EXPECT_EQ(clearWords(loadLayoutFile(dir / "hdrp-lit-apv.toml"))[3][0], 0u);
     const auto urp = clearWords(loadLayoutFile(dir / "urp-deferred-accurate.toml"));
     ASSERT_EQ(urp.size(), 3u);
     EXPECT_EQ(urp[2][0], 0u);  // GBuffer2: octahedral codes (0, 0), smoothness 0

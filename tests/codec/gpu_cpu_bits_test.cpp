@@ -324,9 +324,11 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
     }
 }
 
-// Engine encodings that no seed layout stores yet, so that their GLSL twins are held to the CPU's
-// words all the same: HDRP's normal buffer (normal_octahedral_hdrp) and fresnel0 (srgb8_fast_hdrp)
-// in HDRP's GBuffer1 and GBuffer2 places (hdrp-lit.toml still names normal_octahedral_unity and srgb8).
+// HDRP's engine encodings with inputs the random Surfaces rarely give, so that their GLSL twins are
+// held to the CPU's words on their edges: the normal buffer (normal_octahedral_hdrp) near its
+// 1/1024 clamp, fresnel0 (srgb8_fast_hdrp) below sRGB's toe, and GBuffer3's AO tag
+// (float11_11_10_hdrp_ao_tag) where emissive is exactly 0, with AO at 0, 1, float11's denormals
+// and its rounding ties, and emissive that quantises to 0 without being 0.
 const char* kEngineEncodingsLayout = R"(name = "engine-encodings"
 title = "engine encodings no seed layout stores"
 pipeline = "deferred-shading"
@@ -346,13 +348,17 @@ format = "R8G8B8A8_UNORM"
 field = [
   { attribute = "specular_color", encoding = "srgb8_fast_hdrp", at = ["r", "g", "b"] },
 ]
+[[target]]
+name = "GBuffer3"
+format = "B10G11R11_UFLOAT_PACK32"
+field = [
+  { attribute = "emissive", encoding = "float11_11_10_hdrp_ao_tag", at = ["r", "g", "b"] },
+]
 [fallback]
 base_color = 0.5
 metallic = 0.0
 specular = 0.5
 diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = 0.0
 [space]
 normal = "world"
 up = "y"
@@ -360,6 +366,8 @@ up = "y"
 normal = [0.0, 0.0, 1.0]
 roughness = 1.0
 specular_color = 0.0
+emissive = 0.0
+occlusion = 0.5
 )";
 
 TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
@@ -370,6 +378,16 @@ TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
     for (size_t i = 0; i < surfaces.size(); i += 4) surfaces[i].normal.z = zs[(i / 4) % 8];
     // and a third of the F0 channels below sRGB's linear toe, where HDRP's curve is its own
     for (size_t i = 1; i < surfaces.size(); i += 3) surfaces[i].specularColor *= 0.004f;
+    // Half the pixels without emissive (the tag), +-0 included; AO on float11's edges: 0, 1, its
+    // denormals (below 2^-14), ties between two codes (1 + 2.5 / 64: a tie to even), and beyond 1.
+    const float aos[] = {0.0f, 1.0f, 6.0e-5f, 1.0e-6f, 4.7e-7f, 1.0f + 2.5f / 64.0f, 0.5f + 1.0f / 256.0f, 0.999f};
+    for (size_t i = 0; i < surfaces.size(); i += 2) {
+        surfaces[i].emissive = (i / 2) % 3 == 0 ? glm::vec3(-0.0f, 0.0f, -0.0f) : glm::vec3(0.0f);
+        if ((i / 2) % 4 == 1) surfaces[i].occlusion = aos[(i / 8) % 8];
+    }
+    // and emissive that is not 0 but quantises to it (no tag: the word 0), or holds the tag's floats
+    for (size_t i = 1; i < surfaces.size(); i += 10) surfaces[i].emissive = glm::vec3(1e-30f, 0.0f, 0.0f);
+    for (size_t i = 3; i < surfaces.size(); i += 50) surfaces[i].emissive = glm::vec3(2048.0f, 0.25f, 1024.0f);
     checkWordsAndDecodes(ctx(), layout, surfaces);
 }
 
@@ -535,7 +553,7 @@ layout(set = 0, binding = 1, std430) writeonly buffer Out { uvec4 words[]; };
 void main() {
     uint i = gl_GlobalInvocationID.x;
     uvec4 v = ids[i];
-    uint packed = packVisibilityIds(v.x, v.y, v.z != 0u).x;
+    uint packed = packVisibilityIds(v.x, v.y, v.z != 0u, 0.0).x;
     words[i] = uvec4(packed, unpackVisibilityIds(uvec2(packed, 0u)));
 }
 )";

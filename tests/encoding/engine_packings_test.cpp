@@ -658,6 +658,176 @@ TEST(EnginePackings, HdrpFresnel0EqualsFastLinearToSrgbAndItsCubic) {
 }
 
 // ==================================================================================================
+// HDRP's GBuffer3 and its AO tag (HDRP 13.0.0 c667268ac58a Runtime/Material/Lit/Lit.hlsl; the same
+// at Unity-Technologies/Graphics 1390609c). EncodeIntoGBuffer (:686-705):
+//   outGBuffer3 = float4(bakeDiffuseLighting * ambientOcclusion + emissiveColor, 0.0);
+//   outGBuffer3.rgb *= GetCurrentExposureMultiplier();
+//   if (all(outGBuffer3.rgb == 0.0)) { outGBuffer3.xz = AO_IN_GBUFFER3_TAG.xz; outGBuffer3.y = ambientOcclusion; }
+// with AO_IN_GBUFFER3_TAG = float3(1 << 11, 1, 1 << 10); the hardware converts the floats into
+// B10G11R11_UFLOAT_PACK32. DecodeFromGBuffer (:944-953): if (all(gbuffer3.xz == tag.xz)) AO =
+// gbuffer3.y; else { gbuffer3 *= 1 / exposure; AO = 1; emissive (or baked + emissive) = gbuffer3 }.
+// gbufferlab's scenes: bakeDiffuseLighting = 0 and exposure 1.
+// ==================================================================================================
+
+// The hardware's float -> unsigned small float (Vulkan spec, "Unsigned 11-Bit / 10-Bit
+// Floating-Point Numbers": 5-bit exponent, bias 15, `mbits` of mantissa, no sign; D3D11's
+// conversion rules: round to nearest even, negative -> 0, denormals kept), computed in double from
+// the float's exact value. Values beyond the largest finite (65024, 64512) are not given here.
+uint32_t smallFloatRne(float x, int mbits) {
+    if (!(x > 0.0f)) return 0u;  // 0, -0 and negative
+    const double v = double(x);
+    int e2 = 0;
+    std::frexp(v, &e2);                                // v = f 2^e2, f in [0.5, 1)
+    const int e = std::max(e2 - 1, -14);               // the binade; denormals share 2^-14's step
+    const double q = std::nearbyint(std::ldexp(v, mbits - e));  // the mantissa with its leading 1, rounded to even
+    uint64_t m = uint64_t(q);
+    int field = e + 15;
+    if (m >= (uint64_t(2) << mbits)) {  // rounded up into the next binade
+        m >>= 1;
+        ++field;
+    }
+    if (m < (uint64_t(1) << mbits)) return uint32_t(m);  // a denormal (field 0)
+    return uint32_t(field) << mbits | uint32_t(m - (uint64_t(1) << mbits));
+}
+
+// The texel the lighting pass reads back: exact.
+float smallFloatValue(uint32_t code, int mbits) {
+    const uint32_t m = code & ((1u << mbits) - 1u), field = code >> mbits;
+    if (field == 0) return float(std::ldexp(double(m), -14 - mbits));
+    return float(std::ldexp(1.0 + std::ldexp(double(m), -mbits), int(field) - 15));
+}
+
+// EncodeIntoGBuffer's GBuffer3 word for emissive `e` and ambient occlusion `ao`.
+uint32_t hdrpGBuffer3(glm::vec3 e, float ao) {
+    glm::vec3 rgb = glm::vec3(0.0f) * ao + e;  // bakeDiffuseLighting = 0
+    rgb *= 1.0f;                               // GetCurrentExposureMultiplier() = 1
+    float x = rgb.x, y = rgb.y, z = rgb.z;
+    if (rgb.x == 0.0f && rgb.y == 0.0f && rgb.z == 0.0f) {
+        x = float(1 << 11);
+        y = ao;
+        z = float(1 << 10);
+    }
+    return smallFloatRne(x, 6) | smallFloatRne(y, 6) << 11 | smallFloatRne(z, 5) << 22;
+}
+
+const char* kHdrpGBuffer3Layout = R"(name = "hdrp-gbuffer3"
+title = "HDRP's GBuffer3 with its AO tag"
+pipeline = "deferred-shading"
+source = { engine = "Unity HDRP", talk = "unit test", year = 2021 }
+[depth]
+format = "D32_SFLOAT"
+[[target]]
+name = "GBuffer1"
+format = "R8G8B8A8_UNORM"
+field = [
+  { attribute = "normal",    encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"] },
+  { attribute = "roughness", encoding = "unorm", at = "a" },
+]
+[[target]]
+name = "GBuffer3"
+format = "B10G11R11_UFLOAT_PACK32"
+field = [
+  { attribute = "emissive", encoding = "float11_11_10_hdrp_ao_tag", at = ["r", "g", "b"] },
+]
+[fallback]
+base_color = 0.5
+metallic = 0.0
+specular = 0.5
+specular_color = "from_metallic"
+diffuse_color = "from_base_color"
+[space]
+normal = "world"
+up = "y"
+[clear]
+normal = [0.0, 0.0, 1.0]
+roughness = 1.0
+emissive = 0.0
+occlusion = 1.0
+)";
+
+// The i-th (emissive, AO): edges first, then a third with emissive exactly 0 (the tag), a third
+// small (float11's denormals, and values that quantise to 0 without being 0), a third wide.
+struct EmissiveAo {
+    glm::vec3 e;
+    float ao;
+};
+EmissiveAo hdrpGBuffer3Input(Rng& rng, size_t i) {
+    // AO edges: 0, -0, 1, float11's smallest denormal (2^-20) and half of it (a tie: to 0), the
+    // largest denormal and the first normal (2^-14), ties of the 6-bit mantissa, beyond 1.
+    static const float kAo[] = {0.0f, -0.0f, 1.0f, 0x1.0p-20f, 0x1.0p-21f, 0x1.8p-21f, 63.0f * 0x1.0p-20f,
+                                0x1.0p-14f, 0x1.fcp-15f, 1.0f + 0.5f / 64.0f, 1.0f + 1.5f / 64.0f, 0.5f + 0.25f / 64.0f,
+                                0.75f, 0.999f, 1e-7f, 2.0f};
+    static const glm::vec3 kE[] = {{0, 0, 0}, {-0.0f, 0, -0.0f}, {1e-30f, 0, 0}, {0, 0, 0x1.0p-21f},
+                                   {0, 0x1.0p-20f, 0}, {2048.0f, 0.0f, 1024.0f}, {2048.0f, 0.5f, 1024.0f},
+                                   {65024.0f, 65024.0f, 64512.0f}, {1.0f, 1.0f, 1.0f}, {-1.0f, 0.0f, 0.0f}};
+    constexpr size_t nAo = sizeof kAo / sizeof kAo[0], nE = sizeof kE / sizeof kE[0];
+    if (i < nAo * nE) return {kE[i / nAo], kAo[i % nAo]};
+    EmissiveAo in;
+    const double u = rng.u01();
+    in.ao = i % 7 == 0 ? kAo[i % nAo] : i % 5 == 0 ? float(std::ldexp(rng.u01(), -14 - int(i % 8))) : float(u);
+    switch (i % 3) {
+        case 0: in.e = glm::vec3(i % 2 ? -0.0f : 0.0f, 0.0f, 0.0f); break;
+        case 1:
+            for (int k = 0; k < 3; ++k) in.e[k] = float(std::ldexp(rng.u01(), -12 - int(rng.u01() * 12.0)));
+            break;
+        default:
+            for (int k = 0; k < 3; ++k) in.e[k] = float(std::exp2(rng.u01() * 29.9 - 14.0) * (k == 2 ? 0.98 : 1.0));
+            break;
+    }
+    return in;
+}
+
+TEST(EnginePackings, HdrpGBuffer3EqualsEncodeIntoGBufferWithItsAoTag) {
+    const Layout layout = gbl::parseLayout(kHdrpGBuffer3Layout, "hdrp-gbuffer3.toml");
+    const CpuCodec codec(layout);
+    Rng rng(2809);
+    std::vector<Surface> surfaces(kImage), decoded;
+    CpuGBuffer g;
+    size_t compared = 0, tags = 0, aoDenormals = 0, mismatches = 0, decodeMismatches = 0;
+    for (size_t first = 0; first < kInputs; first += kImage) {
+        for (size_t j = 0; j < kImage; ++j) {
+            const EmissiveAo in = hdrpGBuffer3Input(rng, first + j);
+            surfaces[j] = Surface{};
+            surfaces[j].normal = glm::vec3(0.0f, 1.0f, 0.0f);
+            surfaces[j].emissive = in.e;
+            surfaces[j].occlusion = in.ao;
+        }
+        codec.encode(surfaces, kWidth, kHeight, g);
+        codec.decode(g, decoded);
+        for (size_t j = 0; j < kImage; ++j) {
+            const Surface& s = surfaces[j];
+            const uint32_t w = g.targetWords.at(1)[j], want = hdrpGBuffer3(s.emissive, s.occlusion);
+            ++compared;
+            if (w != want && mismatches++ < 8)
+                ADD_FAILURE() << "emissive " << vec(s.emissive) << " AO " << s.occlusion << ": gbufferlab " << hex(w)
+                              << ", HDRP " << hex(want);
+            // DecodeFromGBuffer on the texel's floats.
+            const float r = smallFloatValue(want & 2047u, 6), gg = smallFloatValue((want >> 11) & 2047u, 6),
+                        b = smallFloatValue(want >> 22, 5);
+            const bool tag = r == float(1 << 11) && b == float(1 << 10);
+            tags += tag;
+            aoDenormals += tag && ((want >> 11) & 2047u) != 0 && ((want >> 11) & 2047u) < 64u;
+            const float ao = tag ? gg : 1.0f;
+            const glm::vec3 e = tag ? glm::vec3(0.0f) : glm::vec3(r, gg, b);  // * 1 / exposure
+            auto bits = [](float f) { return std::bit_cast<uint32_t>(f); };
+            if ((bits(decoded[j].occlusion) != bits(ao) || bits(decoded[j].emissive.x) != bits(e.x) ||
+                 bits(decoded[j].emissive.y) != bits(e.y) || bits(decoded[j].emissive.z) != bits(e.z)) &&
+                decodeMismatches++ < 8)
+                ADD_FAILURE() << "word " << hex(want) << ": gbufferlab decodes emissive " << vec(decoded[j].emissive)
+                              << " AO " << decoded[j].occlusion << ", HDRP " << vec(e) << " AO " << ao;
+        }
+    }
+    std::printf("[ hdrp gb3 ] %zu words (%zu AO tags, %zu of them with a denormal AO)\n", compared, tags, aoDenormals);
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_EQ(decodeMismatches, 0u);
+    EXPECT_GT(tags, kInputs / 4);  // the tag, with and without emissive's signed zeros, is a third of the inputs
+    EXPECT_GT(aoDenormals, kInputs / 100);
+    // The words the issue names: AO 1 -> 0xC81E0680, AO 0 -> 0xC8000680.
+    EXPECT_EQ(hdrpGBuffer3(glm::vec3(0.0f), 1.0f), 0xC81E0680u);
+    EXPECT_EQ(hdrpGBuffer3(glm::vec3(0.0f), 0.0f), 0xC8000680u);
+}
+
+// ==================================================================================================
 // URP without accurate normals (urp-deferred): GBuffer2 R8G8B8A8_SNORM holds PackNormal(n) = n
 // itself (UnityGBuffer.hlsl:109-110, universal 13.0.0 830d63151c83) and smoothness in alpha
 // (:210); the hardware's float -> SNORM8 conversion quantises both. Desktop half is float.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -281,6 +282,95 @@ TEST(PngWriter, BandsSplitOverSeveralIdatChunks) {
     }
     EXPECT_THROW(encodePng(image, 1, 0), std::invalid_argument);
     EXPECT_THROW(encodePng(image, 1, size_t(1) << 31), std::invalid_argument);
+}
+
+// An RGB image of exactly `colours` distinct colours (a 6x6x6 cube and greys, then noise
+// positions), in a pattern that has long runs and short ones.
+Image8 fewColourImage(int width, int height, int colours, unsigned seed) {
+    std::vector<std::array<unsigned char, 3>> table;
+    for (int i = 0; i < colours; ++i)
+        table.push_back({(unsigned char)(i * 37 % 256), (unsigned char)(i * 101 % 251), (unsigned char)(i % 7 * 40)});
+    Image8 image{width, height, 3, Bytes(size_t(width) * size_t(height) * 3)};
+    std::mt19937 rng(seed);
+    for (size_t i = 0; i < image.pixels.size() / 3; ++i) {
+        // Every colour at least once (the first `colours` pixels), then runs of a random colour.
+        const size_t c = i < size_t(colours) ? i : (rng() % 4 == 0 ? rng() % unsigned(colours) : (i / 17) % size_t(colours));
+        std::memcpy(&image.pixels[i * 3], table[c].data(), 3);
+    }
+    return image;
+}
+
+// Indexed: at most 256 colours become a palette in order of first appearance and 1-byte indices;
+// the file is IHDR (colour type 3), PLTE, IDATs whose rows are filter byte 0 then the indices
+// (inflated by zlib, compared with the test's own rows) and stb decodes it to the RGB pixels.
+TEST(PngWriter, IndexedFilesKeepThePixelsOfImagesWithFewColours) {
+    for (int colours : {1, 2, 255, 256}) {
+        const Image8 image = fewColourImage(301, 77, colours, unsigned(colours));
+        Image8 indices;
+        Bytes palette;
+        ASSERT_TRUE(indexColours(image, indices, palette)) << colours;
+        ASSERT_EQ(palette.size(), size_t(colours) * 3);
+        ASSERT_EQ(indices.channels, 1);
+        for (size_t i = 0; i < image.pixels.size() / 3; ++i)
+            ASSERT_EQ(0, std::memcmp(&palette[size_t(indices.pixels[i]) * 3], &image.pixels[i * 3], 3)) << i;
+        for (int bands : {1, 3, 77}) {
+            const std::string what = std::to_string(colours) + " colours, " + std::to_string(bands) + " bands";
+            const Bytes png = encodePngIndexed(indices, palette, bands);
+            const std::vector<Chunk> chunks = parseChunks(png);
+            ASSERT_GE(chunks.size(), 4u) << what;
+            EXPECT_EQ(chunks[0].type, "IHDR");
+            EXPECT_EQ(chunks[0].data[9], 3) << what;  // W3C PNG 11.2.2: indexed-colour
+            EXPECT_EQ(chunks[1].type, "PLTE");
+            EXPECT_TRUE(chunks[1].data == palette) << what;
+            std::vector<Bytes> idats;
+            for (size_t i = 2; i + 1 < chunks.size(); ++i) idats.push_back(chunks[i].data);
+            EXPECT_EQ(idats.size(), size_t(bands)) << what;
+            // RFC 1950: FLG 0x9c is FLEVEL 2 (zlib's default level 6) with its check bits.
+            EXPECT_EQ(idats.front()[0], 0x78);
+            EXPECT_EQ(idats.front()[1], 0x9c);
+            Bytes rows;
+            for (int y = 0; y < image.height; ++y) {
+                rows.push_back(0);
+                rows.insert(rows.end(), indices.pixels.begin() + long(y) * image.width,
+                            indices.pixels.begin() + long(y + 1) * image.width);
+            }
+            EXPECT_TRUE(inflateAll(idats, rows.size()) == rows) << what;
+            expectSameImage(decodeWithStb(png), image, what);
+        }
+    }
+}
+
+TEST(PngWriter, MoreThan256ColoursAreNotIndexed) {
+    const Image8 image = fewColourImage(64, 64, 257, 5);
+    Image8 indices{1, 1, 1, Bytes{7}};
+    Bytes palette{1, 2, 3};
+    EXPECT_FALSE(indexColours(image, indices, palette));
+    EXPECT_EQ(indices.pixels, Bytes{7});  // untouched
+    EXPECT_EQ(palette, (Bytes{1, 2, 3}));
+    EXPECT_FALSE(indexColours(Image8{2, 2, 4, Bytes(16)}, indices, palette));  // RGBA: not indexed
+    // The colour-mapped path falls back to RGB rows with filter byte 0 (None), pixels kept; with
+    // 256 colours it is the indexed file.
+    const Bytes rgb = encodePngColourMapped(image, 2);
+    const std::vector<Chunk> chunks = parseChunks(rgb);
+    ASSERT_GE(chunks.size(), 3u);
+    EXPECT_EQ(chunks[0].data[9], 2);  // RGB
+    std::vector<Bytes> idats;
+    for (size_t i = 1; i + 1 < chunks.size(); ++i) idats.push_back(chunks[i].data);
+    Bytes rows;
+    for (int y = 0; y < image.height; ++y) {
+        rows.push_back(0);
+        rows.insert(rows.end(), image.pixels.begin() + long(y) * image.width * 3,
+                    image.pixels.begin() + long(y + 1) * image.width * 3);
+    }
+    EXPECT_TRUE(inflateAll(idats, rows.size()) == rows);
+    expectSameImage(decodeWithStb(rgb), image, "257 colours");
+    const Image8 few = fewColourImage(64, 64, 256, 5);
+    ASSERT_TRUE(indexColours(few, indices, palette));
+    EXPECT_TRUE(encodePngColourMapped(few, 3) == encodePngIndexed(indices, palette, 3));
+    // Bad calls of the encoder: an index past the palette, a palette not of whole triples.
+    EXPECT_THROW(encodePngIndexed(Image8{2, 1, 1, Bytes{0, 1}}, Bytes{9, 9, 9}), std::invalid_argument);
+    EXPECT_THROW(encodePngIndexed(Image8{2, 1, 1, Bytes{0, 0}}, Bytes{9, 9}), std::invalid_argument);
+    EXPECT_THROW(encodePngIndexed(Image8{2, 1, 1, Bytes{0, 0}}, Bytes(257 * 3)), std::invalid_argument);
 }
 
 TEST(PngWriter, RejectsAnInconsistentImage) {

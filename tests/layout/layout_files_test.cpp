@@ -83,6 +83,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
         // anisotropy pass) and no velocity (the depth pass) by default.
         {"ue5", 4 + 4 * 4 + 5},
         {"ue5-velocity", 4 + 2 * 4 + 8 + 2 * 4 + 5},  // A, B, C, velocity (RGBA16 UNORM), D, E + D32S8
+        {"ue5-anisotropy", 4 + 5 * 4 + 5},            // A..E + GBufferF (RGBA8, the anisotropy pass's) + D32S8
         {"ue5-nostatic", 4 + 3 * 4 + 5},              // no GBufferE without static lighting
         {"ue5-16bit", 3 * 8 + 2 * 4 + 5},             // A..C RGBA16F, D and E stay RGBA8
         {"ue5-16bit-unorm", 3 * 8 + 2 * 4 + 5},       // UE 5.0.x: A..C RGBA16 UNORM
@@ -98,10 +99,15 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
         // 1280x720 with 2x MSAA: 20 * 1280 * 720 * 2 = 36.9e6 bytes.
         {"killzone2", 4 * 4 + 4},
         {"niagara", 4 + 4 + 4},                // zeux/niagara: RGBA8 + A2B10G10R10 + D32
+        // 64-bit ids with depth in word 1, and no depth attachment in the raster pass (Nanite's
+        // render pass has no targets; Bevy's raster pass has depth_stencil_attachment None).
+        {"nanite-visbuffer", 8},
+        {"bevy-meshlet-visbuffer", 8},
     };
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     EXPECT_NEAR(bytesPerPixel(load("killzone2")) * 1280.0 * 720.0 * 2.0 / 1e6, 36.0, 1.0);
     EXPECT_GE(listLayoutNames(layoutsDir()).size(), 25u);  // issue 28: at least 24 layouts + the reference
+    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 29u);  // 28 and the reference: layouts/README.md's atlas
 }
 
 // Where the atlas layouts put their bits (each engine's source, as the layout files cite it).
@@ -147,8 +153,26 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(velocity.findField(Attribute::SelectiveOutputMask)->value, std::vector<double>{0.0});
     EXPECT_EQ(bitsOf(load("ue5-16bit"), Attribute::BaseColor), 48);
     EXPECT_EQ(bitsOf(load("ue5-16bit-unorm"), Attribute::Normal), 48);  // n * 0.5 + 0.5 in UNORM16
-    EXPECT_EQ(bitsOf(load("hdrp-lit-apv"), Attribute::Occlusion), 7);   // PackFloatInt8bit(so, isLightmap, 2)
+    EXPECT_EQ(bitsOf(load("hdrp-lit-apv"), Attribute::SpecularOcclusion), 7);  // PackFloatInt8bit(so, isLightmap, 2)
     EXPECT_EQ(bitsOf(load("hdrp-lit-apv"), Attribute::IsLightmap), 1);
+    // HDRP keeps ambient occlusion in GBuffer3's AO tag: the emissive field stores it.
+    for (const char* name : {"hdrp-lit", "hdrp-lit-apv"}) {
+        const Layout l = load(name);
+        const Field* ao = l.findField(Attribute::Occlusion);
+        ASSERT_TRUE(ao) << name;
+        EXPECT_EQ(ao, l.findField(Attribute::Emissive)) << name;
+        EXPECT_EQ(ao->encoding, "float11_11_10_hdrp_ao_tag") << name;
+        EXPECT_EQ(l.targets[3].name, "GBuffer3") << name;
+        EXPECT_FALSE(l.findFallback(Attribute::Occlusion)) << name;
+    }
+    // r.AnisotropicMaterials = 1: GBufferF after E, tangent and anisotropy at their clear 0.5.
+    const Layout aniso = load("ue5-anisotropy");
+    ASSERT_EQ(aniso.targets.size(), 6u);
+    EXPECT_EQ(aniso.targets[5].name, "GBufferF");
+    EXPECT_EQ(bitsOf(aniso, Attribute::Tangent), 24);
+    EXPECT_EQ(bitsOf(aniso, Attribute::Anisotropy), 8);
+    EXPECT_EQ(aniso.findField(Attribute::Anisotropy)->value, std::vector<double>{0.5});
+    EXPECT_EQ(aniso.findField(Attribute::SelectiveOutputMask)->value, std::vector<double>{8.0});  // no HAS_ANISOTROPY
     EXPECT_TRUE(load("granite-2025").depth.reversedZ);
     EXPECT_FALSE(load("granite").depth.reversedZ);
     // niagara: emissive is one 8-bit ratio to the albedo's luminance, read after the albedo.

@@ -62,6 +62,20 @@ TEST(VisibilityLayout, ShippedLayoutsAreTheForgesAndSixtyFourBit) {
     EXPECT_EQ(v64.ids.drawBits, 32);
     EXPECT_FALSE(v64.ids.alphaMaskBit);
     EXPECT_EQ(bytesPerPixel(v64), 12);
+    // UE 5's Nanite: ((visible cluster + 1) << 7) | triangle in word 0, asuint(DeviceZ) in word 1;
+    // Bevy 0.16's meshlets: the same without the + 1. 128-triangle clusters, reversed Z, 8 bytes.
+    for (const char* name : {"nanite-visbuffer", "bevy-meshlet-visbuffer"}) {
+        const Layout l = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / (std::string(name) + ".toml"));
+        EXPECT_EQ(l.ids.format, "R32G32_UINT") << name;
+        EXPECT_EQ(l.ids.triangleBits, 7) << name;
+        EXPECT_EQ(l.ids.drawBits, 25) << name;
+        EXPECT_EQ(l.ids.clusterTriangles, 128u) << name;
+        EXPECT_EQ(l.ids.depthWord, 1) << name;
+        EXPECT_EQ(l.ids.drawOffset, std::string(name) == "nanite-visbuffer" ? 1u : 0u) << name;
+        EXPECT_FALSE(l.ids.alphaMaskBit) << name;
+        EXPECT_TRUE(l.depth.reversedZ) << name;
+        EXPECT_EQ(bytesPerPixel(l), 8) << name;
+    }
 }
 
 TEST(VisibilityLayout, IdsThatDoNotFitAreOneErrorAtTheFormat) {
@@ -86,6 +100,80 @@ TEST(VisibilityLayout, BadIdsAreErrorsAtTheirPlace) {
     expectOnlyError(t, placeOf(t, "[ids]"), {"[ids] has no 'draw_bits'"});
     t = edit(kVisibility, "alpha_mask_bit", "alpha_bit");
     expectError(t, placeOf(t, "alpha_bit"), {"unknown key 'alpha_bit' in [ids]"});
+}
+
+// Nanite's and Bevy's meshlet ids: a depth word, an offset on the draw (cluster) field, clusters.
+const std::string kNanite = R"(name = "vis"
+title = "Nanite-like ids"
+pipeline = "visibility-buffer"
+source = { engine = "none", talk = "unit test", year = 2024 }
+
+[depth]
+format = "D32_SFLOAT"
+reversed_z = true
+
+[ids]
+format = "R32G32_UINT"
+triangle_bits = 7
+draw_bits = 25
+draw_offset = 1
+cluster_triangles = 128
+depth_word = 1
+)";
+
+TEST(VisibilityLayout, DepthWordOffsetAndClustersReadAsWritten) {
+    EXPECT_TRUE(checkLayout(kNanite, kFile).empty()) << joined(checkLayout(kNanite, kFile));
+    const Layout l = parseLayout(kNanite, kFile);
+    EXPECT_EQ(l.ids.drawOffset, 1u);
+    EXPECT_EQ(l.ids.clusterTriangles, 128u);
+    EXPECT_EQ(l.ids.depthWord, 1);
+    // The ids' 8 bytes only: the depth lives in word 1, and the raster pass has no depth attachment.
+    EXPECT_EQ(depthAttachmentBytes(l), 0);
+    EXPECT_EQ(bytesPerPixel(l), 8);
+    // Without the new keys nothing changes: no offset, no clusters, no depth word, depth counted.
+    const Layout plain = parseLayout(kVisibility, kFile);
+    EXPECT_EQ(plain.ids.drawOffset, 0u);
+    EXPECT_EQ(plain.ids.clusterTriangles, 0u);
+    EXPECT_EQ(plain.ids.depthWord, -1);
+    EXPECT_EQ(depthAttachmentBytes(plain), 4);
+}
+
+// Each bad value is one error at its own file:line:col, naming the fix.
+TEST(VisibilityLayout, BadDepthWordOffsetAndClustersAreErrorsAtTheirPlace) {
+    std::string t = edit(kNanite, "depth_word = 1", "depth_word = 0");
+    expectOnlyError(t, placeOf(t, "0\n"), {"'depth_word' 0 must be 1", "high half", "word 0"});
+    t = edit(kNanite, "depth_word = 1", "depth_word = true");
+    expectOnlyError(t, placeOf(t, "true", 1), {"'depth_word' must be an integer"});
+    // A depth word needs the second word, and the ids must then fit word 0.
+    t = edit(edit(kNanite, "\"R32G32_UINT\"", "\"R32_UINT\""), "draw_bits = 25", "draw_bits = 20");
+    expectOnlyError(t, placeOf(t, "1\n", 1), {"'depth_word' needs a second word", "R32G32_UINT", "not R32_UINT"});
+    t = edit(kNanite, "draw_bits = 25", "draw_bits = 26");
+    expectOnlyError(t, placeOf(t, "\"R32G32_UINT\""),
+                    {"ids need 33 bits", "7 triangle + 26 draw", "depth in word 1 leaves word 0, 32", "1 over"});
+    // The depth in the word is a float32, and a 64-bit max keeps the nearest only with reversed Z.
+    t = edit(kNanite, "\"D32_SFLOAT\"", "\"D24_UNORM_S8_UINT\"");
+    expectOnlyError(t, placeOf(t, "\"D24_UNORM_S8_UINT\""), {"float32 in word 1", "D32_SFLOAT", "'D24_UNORM_S8_UINT'"});
+    t = edit(kNanite, "reversed_z = true", "reversed_z = false");
+    expectOnlyError(t, placeOf(t, "false"), {"64-bit max", "nearest surface only with reversed Z", "reversed_z = true"});
+    t = edit(kNanite, "reversed_z = true\n", "");
+    expectOnlyError(t, placeOf(t, "[depth]"), {"reversed_z = true"});
+    // The offset must leave ids in the field, and fit 32 bits at all.
+    t = edit(kNanite, "draw_bits = 25", "draw_bits = 1");
+    t = edit(t, "draw_offset = 1", "draw_offset = 2");
+    expectOnlyError(t, placeOf(t, "2\n"), {"'draw_offset' 2 leaves no id", "1-bit draw fields hold 0 to 1", "below 2"});
+    t = edit(kNanite, "draw_offset = 1", "draw_offset = -1");
+    expectOnlyError(t, placeOf(t, "-1"), {"'draw_offset' -1 must be 0 to 4294967295"});
+    t = edit(kNanite, "draw_offset = 1", "draw_offset = 4294967296");
+    expectOnlyError(t, placeOf(t, "4294967296"), {"'draw_offset' 4294967296 must be 0 to 4294967295"});
+    t = edit(kNanite, "draw_offset = 1", "draw_offset = 1.5");
+    expectOnlyError(t, placeOf(t, "1.5"), {"'draw_offset' must be an integer"});
+    // Clusters must fit the triangle field.
+    t = edit(kNanite, "cluster_triangles = 128", "cluster_triangles = 129");
+    expectOnlyError(t, placeOf(t, "129"), {"'cluster_triangles' 129 is more than 7-bit triangle ids hold (128)", "at most 128"});
+    t = edit(kNanite, "cluster_triangles = 128", "cluster_triangles = 0");
+    expectOnlyError(t, placeOf(t, "0\n"), {"'cluster_triangles' 0 must be 1 or more"});
+    t = edit(kNanite, "cluster_triangles", "cluster_tris");
+    expectError(t, placeOf(t, "cluster_tris"), {"unknown key 'cluster_tris' in [ids]"});
 }
 
 TEST(VisibilityLayout, PipelineRulesBothWays) {

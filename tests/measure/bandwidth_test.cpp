@@ -77,6 +77,19 @@ TEST(Bandwidth, VisibilityBufferIdsDepthAndModelledFetches) {
         // 4x MSAA: ids and depth per sample, the resolve still once per pixel.
         EXPECT_DOUBLE_EQ(r.frames.at(5).totalBytes, pixels * (4.0 * 2.0 * (ids + kD32) + vertexBytes)) << name;
     }
+    // Nanite's and Bevy's meshlet ids: 8 B with the depth in them and no depth attachment (neither
+    // raster pass has one), and with clusters the resolve also reads the cluster table's 8-byte
+    // entry (draw, first triangle).
+    for (const char* name : {"nanite-visbuffer", "bevy-meshlet-visbuffer"}) {
+        const BandwidthReport r = computeBandwidth(loadLayout(name), 1920, 1080);
+        EXPECT_EQ(r.targetBytesPerPixel, 8) << name;
+        EXPECT_EQ(r.depthBytesPerPixel, 0) << name;
+        EXPECT_EQ(r.gbufferBytesPerPixel, 8) << name;
+        const FrameTraffic& f = r.frames.at(3);
+        EXPECT_DOUBLE_EQ(f.geometryWriteBytes, pixels * 8) << name;
+        EXPECT_DOUBLE_EQ(f.vertexFetchBytes, pixels * (vertexBytes + 8)) << name;
+        EXPECT_DOUBLE_EQ(f.totalBytes, pixels * (2.0 * 8 + vertexBytes + 8)) << name;
+    }
     // A G-buffer layout has none of the visibility buffer's fetches.
     const FrameTraffic ue4 = computeBandwidth(loadLayout("ue4"), 1920, 1080).frames.at(3);
     EXPECT_EQ(ue4.vertexFetchBytes, 0.0);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <vector>
 
@@ -24,23 +25,23 @@ namespace {
 constexpr uint32_t kTinyW = 96, kTinyH = 64;
 constexpr int kGrid = 4;  // quads per side: 32 triangles per draw
 
-// A square grid of kGrid x kGrid quads in z = 0 spanning [-0.5, 0.5]^2, two triangles per quad.
-Draw appendGrid(Scene& scene) {
+// A square grid of `grid` x `grid` quads in z = 0 spanning [-0.5, 0.5]^2, two triangles per quad.
+Draw appendGrid(Scene& scene, int grid = kGrid) {
     Draw d;
     d.firstIndex = uint32_t(scene.indices.size());
     d.vertexOffset = int32_t(scene.vertices.size());
-    for (int y = 0; y <= kGrid; ++y)
-        for (int x = 0; x <= kGrid; ++x) {
+    for (int y = 0; y <= grid; ++y)
+        for (int x = 0; x <= grid; ++x) {
             Vertex v{};
-            v.position = glm::vec3(float(x) / kGrid - 0.5f, float(y) / kGrid - 0.5f, 0.0f);
+            v.position = glm::vec3(float(x) / grid - 0.5f, float(y) / grid - 0.5f, 0.0f);
             v.normal = glm::vec3(0, 0, 1);
             v.tangent = glm::vec4(1, 0, 0, 1);
-            v.uv = glm::vec2(float(x) / kGrid, float(y) / kGrid);
+            v.uv = glm::vec2(float(x) / grid, float(y) / grid);
             scene.vertices.push_back(v);
         }
-    for (int y = 0; y < kGrid; ++y)
-        for (int x = 0; x < kGrid; ++x) {
-            const uint32_t a = uint32_t(y * (kGrid + 1) + x), b = a + 1, c = a + kGrid + 1, e = c + 1;
+    for (int y = 0; y < grid; ++y)
+        for (int x = 0; x < grid; ++x) {
+            const uint32_t a = uint32_t(y * (grid + 1) + x), b = a + 1, c = a + grid + 1, e = c + 1;
             for (uint32_t i : {a, b, e, a, e, c}) scene.indices.push_back(i);
         }
     d.indexCount = uint32_t(scene.indices.size()) - d.firstIndex;
@@ -49,7 +50,7 @@ Draw appendGrid(Scene& scene) {
 
 // Two draws of their own grids (so the second has a non-zero firstIndex and vertexOffset), side by
 // side; the second's material is alpha-tested (glTF MASK) but keeps every fragment (alpha 1).
-Scene tinyScene() {
+Scene tinyScene(int grid = kGrid) {
     Scene s;
     s.source = "visibility test";
     Material opaque, masked;
@@ -59,7 +60,7 @@ Scene tinyScene() {
     masked.alphaCutoff = 0.5f;
     s.materials = {opaque, masked};
     for (int k = 0; k < 2; ++k) {
-        Draw d = appendGrid(s);
+        Draw d = appendGrid(s, grid);
         d.material = k;
         d.model = glm::translate(glm::mat4(1.0f), glm::vec3(k == 0 ? -0.55f : 0.55f, 0.0f, 0.0f));
         s.draws.push_back(d);
@@ -236,6 +237,114 @@ TEST_F(VisibilityTest, TheForgesIdsRefuseWhatTheyCannotHoldAndSixtyFourBitsDoNot
     Renderer renderer(ctx(), huge, sky);
     expectOneLine([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
                   {"layout 'visibility-32'", "8388609 triangles", "23-bit triangle ids hold 8388608", "visibility-64"});
+}
+
+uint32_t floatBits(float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+// Nanite's and Bevy's meshlet ids on draws of 288 triangles (12 x 12 quads), past their 7-bit
+// triangle field: each draw is split into 128-triangle clusters (288 = 128 + 128 + 32: clusters
+// 0..2 for draw 0, 3..5 for draw 1), and every covered pixel holds UE's ((cluster + 1) << 7) |
+// triangle or Bevy's cluster << 7 | triangle, written out here, with the window depth's float
+// bits in word 1: the very bits of the depth the rasteriser tested (the attachment), 0 where
+// nothing was drawn. Their resolve (through the cluster table) rebuilds exactly the Surfaces of
+// visibility-64's (the same triangles, another depth convention), and so the same lit pixels.
+TEST_F(VisibilityTest, NaniteAndBevyIdsSplitDrawsIntoClustersAndCarryTheirDepth) {
+    constexpr int kFineGrid = 12;
+    const Scene scene = tinyScene(kFineGrid);
+    ASSERT_EQ(scene.draws[0].indexCount / 3, 288u);
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(ctx(), scene, sky);
+    RenderSettings settings;
+    settings.width = kTinyW;
+    settings.height = kTinyH;
+    settings.decodeSurfaces = true;
+    const std::vector<Expected> expected = rasterise(scene, kTinyW, kTinyH);
+    const RenderOutput v64 = renderer.render(generateWiring(loadLayout("visibility-64")), settings);
+    for (const char* name : {"nanite-visbuffer", "bevy-meshlet-visbuffer"}) {
+        const bool nanite = std::string(name) == "nanite-visbuffer";
+        const RenderOutput out = renderer.render(generateWiring(loadLayout(name)), settings);
+        ASSERT_EQ(out.targetWords.size(), 1u) << name;
+        const std::vector<uint32_t>& words = out.targetWords[0];
+        ASSERT_EQ(words.size(), size_t(kTinyW) * kTinyH * 2) << name;
+        std::vector<bool> seenCluster(6, false);
+        size_t checked = 0, covered = 0, highTriangles = 0;
+        for (size_t i = 0; i < expected.size(); ++i) {
+            // Word 1 is the depth attachment's value bit for bit, everywhere; 0.0 (the clear, the
+            // reversed-Z far plane) exactly where nothing was drawn, and then word 0 is 0 too.
+            ASSERT_EQ(words[2 * i + 1], floatBits(out.depth[i])) << name << " pixel " << i;
+            if (out.depth[i] == 0.0f) {
+                ASSERT_EQ(words[2 * i], 0u) << name << " pixel " << i;
+            } else {
+                ++covered;
+            }
+            const Expected& e = expected[i];
+            if (e.draw < 0) continue;
+            const uint32_t cluster = uint32_t(e.draw) * 3u + uint32_t(e.triangle) / 128u;
+            const uint32_t triangle = uint32_t(e.triangle) % 128u;
+            const uint32_t want = nanite ? ((cluster + 1u) << 7) | triangle  // NaniteRasterizer.usf:1395
+                                         : (cluster << 7) | triangle;        // visibility_buffer_hardware_raster.wgsl:50
+            ASSERT_EQ(words[2 * i], want) << name << " pixel " << i << " draw " << e.draw << " triangle " << e.triangle;
+            ASSERT_GT(out.depth[i], 0.0f) << name << " pixel " << i;
+            seenCluster[cluster] = true;
+            highTriangles += e.triangle >= 256;
+            ++checked;
+        }
+        EXPECT_EQ(std::count(seenCluster.begin(), seenCluster.end(), true), 6) << name;
+        EXPECT_GT(highTriangles, 100u) << name;  // the third cluster of each draw
+        EXPECT_GT(checked, size_t(kTinyW) * kTinyH / 3) << name;
+        // The same covered pixels as visibility-64, the same Surfaces and the same lit image.
+        ASSERT_EQ(out.surfaces.coverage, v64.surfaces.coverage) << name;
+        EXPECT_EQ(std::count(out.surfaces.coverage.begin(), out.surfaces.coverage.end(), 1), long(covered)) << name;
+        EXPECT_EQ(out.surfaces.normal.pixels, v64.surfaces.normal.pixels) << name;
+        EXPECT_EQ(out.surfaces.baseColor.pixels, v64.surfaces.baseColor.pixels) << name;
+        EXPECT_EQ(out.surfaces.roughness.pixels, v64.surfaces.roughness.pixels) << name;
+        size_t hdrDiffers = 0;  // covered pixels only: the sky's direction comes from another projection
+        for (size_t i = 0; i < expected.size(); ++i)
+            if (out.surfaces.coverage[i])
+                hdrDiffers += std::memcmp(&out.hdr.pixels[i * 4], &v64.hdr.pixels[i * 4], 4 * sizeof(float)) != 0;
+        EXPECT_EQ(hdrDiffers, 0u) << name;
+    }
+}
+
+// Clusters count against the draw field: 2 draws of 32 triangles in 16-triangle clusters are 4
+// clusters, which 2-bit cluster ids with offset 1 cannot hold (3). One line naming the fix.
+TEST_F(VisibilityTest, TooManyClustersForTheIdsIsOneLineNamingTheFix) {
+    const Scene scene = tinyScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(ctx(), scene, sky);
+    const Layout narrow = parseLayout(R"(name = "narrow-clusters"
+title = "2-bit cluster ids"
+pipeline = "visibility-buffer"
+source = { engine = "none", talk = "unit test", year = 2024 }
+[depth]
+format = "D32_SFLOAT"
+reversed_z = true
+[ids]
+format = "R32G32_UINT"
+triangle_bits = 4
+draw_bits = 2
+draw_offset = 1
+cluster_triangles = 16
+depth_word = 1
+)",
+                                      "narrow-clusters.toml");
+    RenderSettings settings;
+    settings.width = kTinyW;
+    settings.height = kTinyH;
+    try {
+        renderer.render(generateWiring(narrow), settings);
+        FAIL() << "rendered 4 clusters through 2-bit cluster ids with offset 1";
+    } catch (const UserError& e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        for (const char* w : {"layout 'narrow-clusters'", "4 clusters of up to 16 triangles",
+                              "2-bit cluster ids (with draw_offset 1) hold 3", "visibility-64"})
+            EXPECT_NE(m.find(w), std::string::npos) << "missing [" << w << "] in: " << m;
+    }
 }
 
 // The resolve's candidates per material slot (visibility_resolve.glsl without non-uniform

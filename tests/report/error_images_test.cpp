@@ -11,6 +11,7 @@
 #include "error.h"
 #include "error_images.h"
 #include "image_io.h"
+#include "png_writer.h"
 #include "run_metrics.h"
 #include "worst_regions.h"
 
@@ -112,6 +113,21 @@ TEST(ErrorImages, UnmeasuredPixelsAreDimmedGrey) {
         EXPECT_LT(px(x, 0, 0), 128);  // dimmed
     }
     EXPECT_GT(px(5, 0, 0), px(6, 0, 0));  // follows the reference's brightness
+}
+
+// The error maps compare writes at 1080p, with every table colour in the map and the legend and
+// NaN pixels, fit an indexed PNG (at most 256 colours): png_writer.h's size figures rest on it.
+TEST(ErrorImages, HeatMapsAtFullSizeAreIndexed) {
+    Image e(1920, 1080, 1);
+    for (int y = 0; y < 1080; ++y)
+        for (int x = 0; x < 1920; ++x) e.at(x, y, 0) = (x + y) % 97 == 0 ? NAN : float(x) / 1919.0f;
+    const Image8 pic = gbl::heatMapImage(e, 0.0f, 1.0f, "FLIP 0.0123 (mean), 1920x1080");
+    Image8 indices;
+    std::vector<unsigned char> palette;
+    ASSERT_TRUE(gbl::indexColours(pic, indices, palette));
+    std::set<int> table;
+    for (const gbl::Rgb8& c : gbl::viridisTable()) table.insert(c.r << 16 | c.g << 8 | c.b);
+    EXPECT_GE(palette.size() / 3, table.size());  // every table colour, plus NaN grey and text
 }
 
 TEST(ErrorImages, AmplifiedDifference) {

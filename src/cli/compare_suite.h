@@ -1,0 +1,18 @@
+#pragma once
+// compare over several scenes (--scene given more than once, or a scene-suite .toml): every layout
+// rendered on every scene, each scene's full report under scenes/<name>/, and the summary across
+// them in the top folder's report.json / report.html and on the console (suite_report.h). The
+// scenes share one device, the pipelines and each environment's IBL pre-computation
+// (CompareShared). A scene that cannot be loaded fails alone: one line, the others still run, the
+// report lists it and the exit status is 4 (as for a failed run).
+#include "compare_options.h"
+
+namespace gbl::compare {
+
+// True when the options name several scenes or a suite file.
+bool comparesSeveralScenes(const CompareOptions& options);
+
+// Runs the comparison; returns the exit status (0, 1 a file not written, kExitRunsFailed).
+int runCompareSuite(const CompareOptions& options);
+
+}  // namespace gbl::compare
