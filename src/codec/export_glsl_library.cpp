@@ -1,6 +1,8 @@
 // The encodings' GLSL as a library of declarations, and its HLSL translation (export_glsl_library.h).
 #include "export_glsl_library.h"
 
+#include "export_tables.h"
+
 #include <cctype>
 #include <map>
 #include <regex>
@@ -300,6 +302,7 @@ GlslLibrary::GlslLibrary(const ShaderFileReader& read) {
         if (!text) throw std::runtime_error(file + ": shader file not found (set GBL_SHADER_DIR to the shaders/ directory)");
         for (GlslDeclaration& d : splitGlslDeclarations(*text)) decls_.push_back(std::move(d));
     }
+    rewriteCodecTables(decls_);
 }
 
 bool GlslLibrary::declares(const std::string& name) const {

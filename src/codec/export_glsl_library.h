@@ -6,9 +6,9 @@
 // each behind its own include guard (two exported layouts can share one shader), and, for HLSL,
 // translated token by token (translateGlslToHlsl).
 //
-// What is not carried over: include guards and #include lines, GBL_CODEC_TABLE (the table is
-// indexed directly), and resource declarations (the best-fit normal table's buffer: the export
-// declares its own, per language).
+// What is not carried over: include guards and #include lines, GBL_CODEC_TABLE (no table buffer:
+// the 8-bit tables become select trees, export_tables.h), and resource declarations (the best-fit
+// normal table's buffer: the export declares its own, per language).
 #include <functional>
 #include <optional>
 #include <set>

@@ -245,6 +245,9 @@ private:
                 const bool isUint = !sm && attributeInfo(f.attribute).type == ValueType::Integer;
                 const std::string e = decodeFieldExpr(f, codes);
                 o_ << lhs << (isUint ? "uint(" + e + ")" : e) << ";\n";
+                // What the encoding also stores (HDRP's AO tag: occlusion), as the renderer's decode sets it.
+                if (const std::string carried = decodeCarriedStatement(f, codes); !carried.empty())
+                    o_ << "    " << carried << "\n";
             }
         }
         for (const Fallback* fb : orderedFallbacks(l_))
@@ -532,9 +535,12 @@ float exportNormScale(int bits, bool isSigned) {
 }
 
 std::string exportLayout(const Layout& layout, const ExportOptions& options, const exporting::ShaderFileReader& read) {
+    return exportLayout(layout, options, exporting::GlslLibrary(read));
+}
+
+std::string exportLayout(const Layout& layout, const ExportOptions& options, const exporting::GlslLibrary& library) {
     const bool vis = layout.pipeline == Pipeline::VisibilityBuffer;
     std::string body = vis ? visibilityBody(layout, options) : Generator(layout, options).body();
-    const exporting::GlslLibrary library(read);
     const std::vector<const exporting::GlslDeclaration*> helpers = library.closure(exporting::identifiersOf(body));
     std::set<std::string> rename = {"bestFitNormalTable"};
     for (const exporting::GlslDeclaration* d : helpers)
@@ -551,7 +557,7 @@ std::string exportLayout(const Layout& layout, const ExportOptions& options, con
     o << exportHeaderComment(layout, options);
     const std::string guard = "GBL_EXPORT_" + exportIdentifier(layout.name);
     o << "#ifndef " << guard << "\n#define " << guard << "\n\n";
-    if (!helpers.empty()) o << "// ---- encoding helpers: shaders/*_encodings.glsl of gbufferlab, as the renderer compiles them ----\n";
+    if (!helpers.empty()) o << "// ---- encoding helpers: shaders/*_encodings.glsl of gbufferlab, as the renderer compiles them (the 8-bit tables as select trees: export_tables.h) ----\n";
     if (exportUsesBestFitTable(layout)) o << bestFitTableDeclaration(options.language);
     std::map<std::string, int> seen;
     for (const exporting::GlslDeclaration* d : helpers) {

@@ -64,5 +64,8 @@ float exportNormScale(int bits, bool isSigned);
 
 // Throws std::runtime_error when the encodings' GLSL cannot be read.
 std::string exportLayout(const Layout& layout, const ExportOptions& options, const exporting::ShaderFileReader& read);
+// The same with the encodings' library read once (a caller that exports many layouts: the mutant
+// and fuzz tests; reading and splitting the shader files is most of an export's time).
+std::string exportLayout(const Layout& layout, const ExportOptions& options, const exporting::GlslLibrary& library);
 
 }  // namespace gbl

@@ -42,7 +42,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         gbl::ExportOptions options;
         options.language = lang;
         options.kernel = true;
-        const std::string out = gbl::exportLayout(layout, options, shaderFile);
+        static const gbl::exporting::GlslLibrary library(shaderFile);
+        const std::string out = gbl::exportLayout(layout, options, library);
         for (const char c : out)
             if ((static_cast<unsigned char>(c) < 0x20 && c != '\n') || static_cast<unsigned char>(c) >= 0x7f)
                 __builtin_trap();
