@@ -45,6 +45,15 @@ gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec)  # Nanite's and B
 gbl_test(codec/gpu_cpu_bits_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render)  # every layout on the GPU: 150 s alone
 gbl_test(codec/visibility_bits_test LABELS gpu DEPS gbl_codec gbl_render)  # the ids' GLSL vs its C++ twin
 gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render)
+gbl_test(codec/layout_export_test LABELS unit DEPS gbl_codec gbl_gpu)  # HLSL / GLSL export: compiles, names, exact UNORM values
+gbl_test(codec/export_tables_test LABELS unit DEPS gbl_codec gbl_gpu)  # the tables as select trees vs the C++ twins
+gbl_test(codec/layout_export_gpu_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render)  # the export on lavapipe: real formats vs the CPU mirror
+if(TARGET layout_export_gpu_test)  # every shipped layout, in two halves that ctest -j2 runs side by side
+  set_tests_properties(layout_export_gpu_test PROPERTIES ENVIRONMENT "GBL_VALIDATION=1;GBL_EXPORT_TEST_SHARD=0/2")
+  add_test(NAME layout_export_gpu_test_2 COMMAND layout_export_gpu_test)
+  set_tests_properties(layout_export_gpu_test_2 PROPERTIES LABELS gpu TIMEOUT 900
+    ENVIRONMENT "GBL_VALIDATION=1;GBL_EXPORT_TEST_SHARD=1/2")
+endif()
 gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ibl_math_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ground_truth_mis_test LABELS unit DEPS gbl_shading)

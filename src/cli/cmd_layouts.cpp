@@ -1,6 +1,7 @@
 #include "cmd_layouts.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <cstdio>
 #include <ostream>
 #include <sstream>
@@ -8,6 +9,10 @@
 #include "encoding_registry.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "layout_export.h"
+#include "file_io.h"
+#include "shader_compiler.h"
+#include "best_fit_normals.h"
 #include "wiring_codegen.h"
 
 namespace gbl {
@@ -20,7 +25,10 @@ constexpr const char* kUsage =
     "                                            provenance (how much is verified in the engine's source), title\n"
     "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel, each entry's provenance\n"
     "       gbufferlab layouts glsl NAME|FILE [--native-formats]\n"
-    "                                            print the generated GLSL wiring (writeGBuffer / readGBuffer)\n";
+    "                                            print the generated GLSL wiring (writeGBuffer / readGBuffer)\n"
+    "       gbufferlab layouts export NAME|FILE --lang hlsl|glsl [--kernel] [--out FILE [--force]]\n"
+    "                                            one self-contained HLSL or GLSL file for an engine: Surface struct,\n"
+    "                                            encode to the real target formats, decode (docs/export.md)\n";
 
 std::string pad(std::string s, size_t width) {
     if (s.size() < width) s.append(width - s.size(), ' ');
@@ -347,6 +355,70 @@ int printLayoutGlslCommand(const std::string& nameOrPath, bool nativeFormats, st
     }
 }
 
+// `layouts export`: stdout, or --out FILE (never over an existing file without --force, never
+// over the layout read; written through a temporary, so a failure leaves no partial file).
+int exportLayoutCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    std::string input, lang, outPath;
+    bool kernel = false, force = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if ((a == "--lang" || a == "--out") && i + 1 < args.size()) {
+            (a == "--lang" ? lang : outPath) = args[++i];
+        } else if (a.rfind("--lang=", 0) == 0) {
+            lang = a.substr(7);
+        } else if (a.rfind("--out=", 0) == 0) {
+            outPath = a.substr(6);
+        } else if (a == "--kernel") {
+            kernel = true;
+        } else if (a == "--force") {
+            force = true;
+        } else if (a.rfind("--", 0) == 0 || !input.empty()) {
+            err << "gbufferlab layouts export: unexpected argument '" << escapeText(a) << "'\n" << kUsage;
+            return 2;
+        } else {
+            input = a;
+        }
+    }
+    if (input.empty() || (lang != "hlsl" && lang != "glsl")) {
+        err << "gbufferlab layouts export: give a layout and --lang hlsl or --lang glsl\n" << kUsage;
+        return 2;
+    }
+    try {
+        const Layout layout = loadLayout(input);
+        ExportOptions options;
+        options.language = lang == "hlsl" ? ExportLanguage::Hlsl : ExportLanguage::Glsl;
+        options.kernel = kernel;
+        const std::string text = exportLayout(layout, options, [](const std::string& name) {
+            return resolveShaderInclude(name, {});
+        });
+        if (outPath.empty()) {
+            out << text;
+            return 0;
+        }
+        const std::vector<std::string> inputs = {layout.sourceFile};
+        refuseOutputOverInput(outPath, inputs, "--out");
+        const std::string table = outPath + ".bestfit.u32";
+        const bool needsTable = exportUsesBestFitTable(layout);
+        for (const std::string& p : needsTable ? std::vector<std::string>{outPath, table} : std::vector<std::string>{outPath})
+            if (std::filesystem::exists(p) && !force)
+                throwUserError("--out " + escapeText(p) + ": file exists; choose another name or add --force to replace it");
+        if (needsTable) {
+            refuseOutputOverInput(table, inputs, "--out");
+            const std::vector<uint32_t>& words = enc::bestFitNormalTable();
+            writeFileAtomic(table, words.data(), words.size() * sizeof(uint32_t));
+        }
+        writeFileAtomic(outPath, text);
+        out << "wrote " << escapeText(outPath) << (needsTable ? " and " + escapeText(table) : "") << "\n";
+        return 0;
+    } catch (const UserError& e) {
+        err << e.what() << "\n";
+        return 1;
+    } catch (const std::runtime_error& e) {
+        err << "gbufferlab layouts export: " << e.what() << "\n";
+        return 1;
+    }
+}
+
 int runLayoutsCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     if (!args.empty() && args[0] == "glsl") {
         std::vector<std::string> rest(args.begin() + 1, args.end());
@@ -355,6 +427,8 @@ int runLayoutsCommand(const std::vector<std::string>& args, std::ostream& out, s
         if (native) rest.erase(flag);
         if (rest.size() == 1) return printLayoutGlslCommand(rest[0], native, out, err);
     }
+    if (!args.empty() && args[0] == "export")
+        return exportLayoutCommand(std::vector<std::string>(args.begin() + 1, args.end()), out, err);
     if (!args.empty() && args[0] == "check")
         return checkLayoutsCommand(std::vector<std::string>(args.begin() + 1, args.end()), out, err);
     if (args.size() == 1 && args[0] == "list") return listLayoutsCommand(out, err);

@@ -12,9 +12,12 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "best_fit_normals.h"
 #include "json_number.h"
+#include "layout_export.h"
 #include "layout_packer.h"
 #include "search_metrics.h"
+#include "shader_compiler.h"
 
 namespace gbl {
 
@@ -114,8 +117,23 @@ std::vector<SearchRow> writeFront(const search::SearchResult& result, const fs::
             for (const std::string& line : constraints) comment << "  " << line << "\n";
             comment << c.bytes << " bytes per pixel (targets + depth).\n" << search::describeGenome(c.genome) << ".";
             const fs::path file = dir / (row.name + ".toml");
-            writeFileAtomic(file, search::layoutText(row.name, comment.str(), c.body));
+            const std::string text = search::layoutText(row.name, comment.str(), c.body);
+            writeFileAtomic(file, text);
             row.file = file.string();
+            // The layout as an engine takes it (layouts export): HLSL and GLSL next to its TOML.
+            const Layout layout = parseLayout(text, file.string());
+            for (ExportLanguage lang : {ExportLanguage::Hlsl, ExportLanguage::Glsl}) {
+                ExportOptions options;
+                options.language = lang;
+                const std::string ext = lang == ExportLanguage::Hlsl ? ".hlsl" : ".glsl";
+                writeFileAtomic(dir / (row.name + ext),
+                                exportLayout(layout, options, [](const std::string& n) { return resolveShaderInclude(n, {}); }));
+                row.exports.push_back(row.name + ext);
+            }
+            if (exportUsesBestFitTable(layout)) {
+                const std::vector<uint32_t>& table = enc::bestFitNormalTable();
+                writeFileAtomic(dir / (row.name + ".hlsl.bestfit.u32"), table.data(), table.size() * sizeof(uint32_t));
+            }
             rows.push_back(row);
         }
     }

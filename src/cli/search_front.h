@@ -21,7 +21,9 @@ const SearchRow* comparatorFor(int bytes, const std::vector<SearchRow>& rows);
 // Writes the chosen front layouts as <dir>/found-<bytes>b.toml (per byte count, the first in the
 // objective's order) and <dir>/found-<bytes>b-allround.toml (the first that is no worse than its
 // comparator on any metric, when that is another), each with a header comment: how it was found,
-// every fast metric, the trade against its comparator and the engine constraints. Returns their rows.
+// every fast metric, the trade against its comparator and the engine constraints; beside each its
+// `layouts export` in HLSL and GLSL (found-<bytes>b.hlsl, .glsl; with best-fit normals also the
+// table, found-<bytes>b.hlsl.bestfit.u32). Returns their rows.
 std::vector<SearchRow> writeFront(const search::SearchResult& result, const std::filesystem::path& dir,
                                   const std::string& commandLine, const std::string& objective, uint64_t seed,
                                   const std::vector<std::string>& constraints, const std::vector<SearchRow>& published);

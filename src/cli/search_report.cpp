@@ -110,11 +110,18 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
           "CPU (split-sum IBL + direct lights), tone-mapped, LDR-FLIP against the CPU re-shade of the reference, "
           "full resolution, mean over views. The CPU re-shade of the reference against its GPU render: FLIP "
        << fixed(s.reshadeFlip, 5) << ", mean relative luminance error " << fixed(s.reshadeMeanRelative, 5) << ".\n\n"
-       << "| layout | kind | B/px | fast FLIP | full-render FLIP | fast PSNR dB | how |\n|---|---|---|---|---|---|---|\n";
-    for (const SearchRow& r : s.rows)
+       << "| layout | kind | B/px | fast FLIP | full-render FLIP | fast PSNR dB | how | engine code |\n"
+          "|---|---|---|---|---|---|---|---|\n";
+    for (const SearchRow& r : s.rows) {
         md << "| " << r.name << " | " << (r.found ? "found" : "published") << " | " << r.bytes << " | "
            << (r.fast.flip >= 0 ? fixed(r.fast.flip, 5) : "-") << " | " << (r.fullFlip ? fixed(*r.fullFlip, 5) : "-")
-           << " | " << (s.objective == "attributes" ? "-" : fixed(r.fast.psnr, 2)) << " | " << r.how << " |\n";
+           << " | " << (s.objective == "attributes" ? "-" : fixed(r.fast.psnr, 2)) << " | " << r.how << " | ";
+        // The exports lie in front/ beside the TOML (docs/export.md); published layouts: `layouts export NAME`.
+        for (size_t i = 0; i < r.exports.size(); ++i)
+            md << (i ? ", " : "") << "[" << r.exports[i].substr(r.exports[i].rfind('.') + 1) << "](front/" << r.exports[i] << ")";
+        if (r.exports.empty()) md << "-";
+        md << " |\n";
+    }
     if (!s.sceneNames.empty()) {
         // Several scenes: the values above are means over them; each scene's here.
         md << "\nPer scene (fast FLIP / full-render FLIP; the search minimised their mean):\n\n| layout | B/px |";
@@ -193,6 +200,7 @@ std::string writeSearchReport(const SearchSummary& s, const fs::path& dir) {
         if (r.fast.flip >= 0) o["fast_flip"] = jsonNumber<nlohmann::json>(r.fast.flip);
         if (r.fullFlip) o["full_flip"] = jsonNumber<nlohmann::json>(*r.fullFlip);
         if (!r.file.empty()) o["file"] = r.file;
+        if (!r.exports.empty()) o["exports"] = r.exports;
         if (!s.sceneNames.empty()) {
             nlohmann::json perScene = nlohmann::json::array();
             for (size_t i = 0; i < s.sceneNames.size(); ++i) {

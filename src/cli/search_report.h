@@ -13,6 +13,7 @@ namespace gbl {
 struct SearchRow {
     std::string name;
     std::string file;       // the written .toml (found layouts), "" for published ones
+    std::vector<std::string> exports;  // found layouts: "found-12b.hlsl", "found-12b.glsl" beside the .toml
     bool found = false;
     int bytes = 0;
     search::Evaluation fast;  // the fast (CPU) evaluation

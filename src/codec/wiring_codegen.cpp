@@ -22,7 +22,7 @@ namespace gbl {
 // The per-encoding expressions of a field (wiring_field_codegen.cpp).
 using namespace wiring;
 
-namespace {
+namespace wiring {
 
 std::string maskLit(int bits) { return bits >= 32 ? "0xffffffffu" : ulit((uint64_t(1) << bits) - 1); }
 
@@ -63,6 +63,10 @@ std::string extractCode(const Target& t, const CodePlace& cp, const std::string&
     return s.empty() ? "0u" : s;
 }
 
+}  // namespace wiring
+
+namespace {
+
 std::string outTypeOf(int words, int bits) {
     if (bits <= 32) return "uint";
     return words == 2 ? "uvec2" : "uvec4";
@@ -75,7 +79,9 @@ std::string wordsToOut(int words, int bits, const std::string& w) {
 
 std::string zeroOf(Attribute a) { return attributeComponents(a) == 1 ? "0.0" : "vec3(0.0)"; }
 
-void emitFallback(std::ostream& o, const Fallback& fb, const Layout& layout) {
+}  // namespace
+
+void wiring::emitFallback(std::ostream& o, const Fallback& fb, const Layout& layout) {
     const char* m = surfaceMemberName(fb.attribute);
     if (!m) return;
     const std::string lhs = std::string("    s.") + m + " = ";
@@ -127,8 +133,6 @@ void emitFallback(std::ostream& o, const Fallback& fb, const Layout& layout) {
         }
     }
 }
-
-}  // namespace
 
 std::string nativeFormatObstacle(const Target& target) {
     bool anyUint = false;

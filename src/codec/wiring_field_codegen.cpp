@@ -5,6 +5,7 @@
 #include "wiring_field_codegen.h"
 
 #include <algorithm>
+#include <cctype>
 #include <stdexcept>
 
 #include "encoding_registry.h"
@@ -17,10 +18,14 @@ namespace {
 
 
 // Value of component `i` of a field's attribute: a Surface member or the extra's constant.
-std::string componentExpr(const Field& f, int i) {
+std::string componentExpr(const Field& f, int i, bool extrasFromSurface = false) {
     const int n = attributeComponents(f.attribute);
     if (const char* m = surfaceMemberName(f.attribute)) {
         std::string e = std::string("s.") + m;
+        return n == 1 ? e : e + "." + kComp[i];
+    }
+    if (extrasFromSurface) {
+        const std::string e = "s." + extraMemberName(f.attribute);
         return n == 1 ? e : e + "." + kComp[i];
     }
     const double v = f.value.empty() ? 0.0 : f.value[std::min<size_t>(size_t(i), f.value.size() - 1)];
@@ -29,9 +34,11 @@ std::string componentExpr(const Field& f, int i) {
 }
 
 // The whole value (vec3) of a field's attribute.
-std::string wholeExpr(const Field& f) {
+std::string wholeExpr(const Field& f, bool extrasFromSurface = false) {
     if (const char* m = surfaceMemberName(f.attribute)) return std::string("s.") + m;
-    return "vec3(" + componentExpr(f, 0) + ", " + componentExpr(f, 1) + ", " + componentExpr(f, 2) + ")";
+    if (extrasFromSurface && attributeComponents(f.attribute) == 3) return "s." + extraMemberName(f.attribute);
+    return "vec3(" + componentExpr(f, 0, extrasFromSurface) + ", " + componentExpr(f, 1, extrasFromSurface) + ", " +
+           componentExpr(f, 2, extrasFromSurface) + ")";
 }
 
 const EncodingInfo& encodingOf(const Field& f) {
@@ -133,16 +140,31 @@ std::string chromaDequantize(const std::string& enc) {
 }
 
 // Emits the encoder of a field: setup lines, returns one uint expression per code.
-std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind, const Field& f, const std::string& id) {
+std::string extraMemberName(Attribute a) {
+    std::string out;
+    bool upper = false;
+    for (const char* c = attributeName(a); *c; ++c) {
+        if (*c == '_') {
+            upper = true;
+            continue;
+        }
+        out += upper ? char(std::toupper(static_cast<unsigned char>(*c))) : *c;
+        upper = false;
+    }
+    return out;
+}
+
+std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind, const Field& f, const std::string& id,
+                                         bool extrasFromSurface) {
     std::vector<std::string> codes;
     if (isScalarField(f)) {
         for (size_t i = 0; i < f.codes.size(); ++i)
-            codes.push_back(scalarEncode(f.encoding, componentExpr(f, int(i)), f.bitsOfCode(i)));
+            codes.push_back(scalarEncode(f.encoding, componentExpr(f, int(i), extrasFromSurface), f.bitsOfCode(i)));
         return codes;
     }
     const std::string& e = f.encoding;
     const std::string b = ulit(uint64_t(f.bitsOfCode(0)));
-    const std::string v = wholeExpr(f);
+    const std::string v = wholeExpr(f, extrasFromSurface);
     std::string fwd, inv;
     if (e == "srgb8" || e == "gamma22" || e == "srgb8_fast_hdrp") {
         const std::string fn = e == "srgb8" ? "encodeSrgb8(" : e == "gamma22" ? "encodeGamma22(" : "encodeSrgb8FastHdrp(";

@@ -25,8 +25,13 @@ bool colorTransform(const std::string& enc, std::string& fwd, std::string& inv);
 // The GLSL function that dequantises an encoding's chroma codes.
 std::string chromaDequantize(const std::string& enc);
 
-// Emits the encoder of a field: setup lines, returns one uint expression per code.
-std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind, const Field& f, const std::string& id);
+// Emits the encoder of a field: setup lines, returns one uint expression per code. An extra's
+// value is the layout's constant, or, with extrasFromSurface (layouts export), the Surface member
+// extraMemberName(attribute).
+std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind, const Field& f, const std::string& id,
+                                         bool extrasFromSurface = false);
+// The member an extra takes in an exported Surface: its name in camelCase ("shadingModelId").
+std::string extraMemberName(Attribute a);
 // Decoded value of a (non-checkerboard) field from its code expressions; "" for extras.
 std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c);
 // The GLSL statement that sets the attribute a field's encoding also stores (EncodingInfo::carries,
@@ -39,5 +44,14 @@ std::string decodeCarriedStatement(const Field& f, const std::vector<std::string
 bool nativeField(const Target& t, const Field& f);
 std::vector<std::string> emitNativeEncode(std::ostream& o, const std::string& ind, const Field& f, const std::string& id);
 std::string nativeDecodeExpr(const Field& f, const std::vector<std::string>& u);
+
+// Bit placement (wiring_codegen.cpp): `words[k] |= ...` lines that put `code` at its place in a
+// target's words, and the expression that reads a code back from them.
+void emitPlaceCode(std::ostream& o, const std::string& ind, const Target& t, const CodePlace& cp,
+                   const std::string& words, const std::string& code);
+std::string extractCode(const Target& t, const CodePlace& cp, const std::string& words);
+std::string maskLit(int bits);
+// `s.member = ...;` for a fallback (constant or derived; forward and material_pass as the renderer reads them).
+void emitFallback(std::ostream& o, const Fallback& fb, const Layout& layout);
 
 }  // namespace gbl::wiring

@@ -147,7 +147,9 @@ std::vector<uint32_t> compileGlsl(const ShaderSource& src) {
     return spirv;
 }
 
-std::vector<uint32_t> compileGlslUncached(const ShaderSource& src) {
+namespace {
+
+std::vector<uint32_t> compileUncached(const ShaderSource& src, const std::string* hlslEntry) {
     ScopedStage timed(Stage::ShaderCompile);
     ++shaderCacheCounters().glslangCompiles;
     initGlslang();
@@ -159,15 +161,20 @@ std::vector<uint32_t> compileGlslUncached(const ShaderSource& src) {
     std::string preamble;
     for (const auto& [k, v] : src.defines) preamble += "#define " + k + " " + v + "\n";
     shader.setPreamble(preamble.c_str());
-    shader.setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
+    shader.setEnvInput(hlslEntry ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
+    if (hlslEntry) {
+        shader.setEntryPoint("main");
+        shader.setSourceEntryPoint(hlslEntry->c_str());
+    }
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
-    // SPIR-V 1.5: 1.6 would emit LocalSizeId, which needs maintenance4 for no gain here.
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+    // SPIR-V 1.5: 1.6 would emit LocalSizeId, which needs maintenance4 for no gain here. HLSL:
+    // 1.3, as glslang 12's HLSL front end decorates structured buffers BufferBlock (gone in 1.4).
+    shader.setEnvTarget(glslang::EShTargetSpv, hlslEntry ? glslang::EShTargetSpv_1_3 : glslang::EShTargetSpv_1_5);
 
     std::map<std::string, std::string> included;
     Includer includer(src.virtualFiles, included);
-    const auto messages = EShMessages(EShMsgSpvRules | EShMsgVulkanRules);
-    if (!shader.parse(GetDefaultResources(), 450, false, messages, includer)) {
+    const auto messages = EShMessages(EShMsgSpvRules | EShMsgVulkanRules | (hlslEntry ? int(EShMsgReadHlsl) : 0));
+    if (!shader.parse(GetDefaultResources(), hlslEntry ? 100 : 450, false, messages, includer)) {
         const std::string log = shader.getInfoLog();
         throw ShaderCompileError("shader " + src.name + " failed to compile:\n" + explainLog(log, src, included) +
                                  "glslang log:\n" + log);
@@ -181,6 +188,14 @@ std::vector<uint32_t> compileGlslUncached(const ShaderSource& src) {
     options.disableOptimizer = true;  // spirv-opt gave no speed-up on lavapipe (STACK-FACTS)
     glslang::GlslangToSpv(*program.getIntermediate(stage), spirv, &options);
     return spirv;
+}
+
+}  // namespace
+
+std::vector<uint32_t> compileGlslUncached(const ShaderSource& src) { return compileUncached(src, nullptr); }
+
+std::vector<uint32_t> compileHlslUncached(const ShaderSource& src, const std::string& entry) {
+    return compileUncached(src, &entry);
 }
 
 VkShaderModule createShaderModule(VkDevice device, const std::vector<uint32_t>& spirv) {

@@ -42,6 +42,10 @@ std::vector<uint32_t> compileGlsl(const ShaderSource& source);
 // glslang, always (tests, and the cache's miss path).
 std::vector<uint32_t> compileGlslUncached(const ShaderSource& source);
 
+// HLSL through glslang's HLSL front end (what `glslangValidator -D -e ENTRY` runs), uncached:
+// for the layouts export's tests. Entry point `entry`, renamed to "main" in the SPIR-V.
+std::vector<uint32_t> compileHlslUncached(const ShaderSource& source, const std::string& entry = "main");
+
 VkShaderModule createShaderModule(VkDevice device, const std::vector<uint32_t>& spirv);
 
 }  // namespace gbl

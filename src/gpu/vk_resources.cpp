@@ -56,7 +56,13 @@ Buffer createBufferWithData(const VulkanContext& ctx, const void* bytes, VkDevic
 uint32_t formatTexelSize(VkFormat format) {
     switch (format) {
         case VK_FORMAT_R8_UNORM: case VK_FORMAT_R8_UINT: return 1;
-        case VK_FORMAT_R8G8_UNORM: case VK_FORMAT_R16_UINT: case VK_FORMAT_R16_SFLOAT: case VK_FORMAT_D16_UNORM: return 2;
+        case VK_FORMAT_R8G8_UNORM: case VK_FORMAT_R8G8_UINT: case VK_FORMAT_R16_UNORM: case VK_FORMAT_R16_UINT:
+        case VK_FORMAT_R16_SFLOAT: case VK_FORMAT_D16_UNORM: return 2;
+        // every real format a layout may name (layouts export renders into them)
+        case VK_FORMAT_R8G8B8A8_SNORM: case VK_FORMAT_B8G8R8A8_UNORM: case VK_FORMAT_B8G8R8A8_SRGB:
+        case VK_FORMAT_A8B8G8R8_UNORM_PACK32: case VK_FORMAT_A8B8G8R8_SRGB_PACK32: case VK_FORMAT_A2R10G10B10_UNORM_PACK32:
+            return 4;
+        case VK_FORMAT_R16G16B16A16_UNORM: return 8;
         case VK_FORMAT_R8G8B8A8_UNORM: case VK_FORMAT_R8G8B8A8_SRGB: case VK_FORMAT_R8G8B8A8_UINT:
         case VK_FORMAT_A2B10G10R10_UNORM_PACK32: case VK_FORMAT_A2B10G10R10_UINT_PACK32: case VK_FORMAT_R32_UINT:
         case VK_FORMAT_R32_SFLOAT: case VK_FORMAT_D32_SFLOAT: case VK_FORMAT_R16G16_UNORM: case VK_FORMAT_R16G16_SFLOAT:

@@ -47,6 +47,12 @@ VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& 
     addSpaceDefines(fs, wiring);
     // Both compiled before either module exists: a shader that fails to compile leaks nothing.
     const std::vector<uint32_t> vsSpirv = compileGlsl(vs), fsSpirv = compileGlsl(fs);
+    return createGBufferPipelineSpirv(ctx, wiring, layout, vsSpirv, fsSpirv, sceneVertices);
+}
+
+VkPipeline createGBufferPipelineSpirv(const VulkanContext& ctx, const GBufferWiring& wiring, VkPipelineLayout layout,
+                                      const std::vector<uint32_t>& vsSpirv, const std::vector<uint32_t>& fsSpirv,
+                                      bool sceneVertices) {
     VkShaderModule vsModule = createShaderModule(ctx.device, vsSpirv);
     VkShaderModule fsModule = createShaderModule(ctx.device, fsSpirv);
 

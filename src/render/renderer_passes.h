@@ -145,6 +145,11 @@ void createGBufferImages(const VulkanContext& ctx, const GBufferWiring& wiring, 
 bool writesStencil(const GBufferWiring& wiring);
 VkPipeline createGBufferPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, VkPipelineLayout layout,
                                  const ShaderSource& vertex, ShaderSource fragment, bool sceneVertices);
+// The same from compiled SPIR-V (entry points "main"): a fragment shader of another language
+// (the HLSL of `layouts export`, tests/codec/layout_export_gpu_test.cpp).
+VkPipeline createGBufferPipelineSpirv(const VulkanContext& ctx, const GBufferWiring& wiring, VkPipelineLayout layout,
+                                      const std::vector<uint32_t>& vertexSpirv, const std::vector<uint32_t>& fragmentSpirv,
+                                      bool sceneVertices);
 //   begin: targets and depth cleared, viewport and scissor set, pass.pipeline and pass.set bound;
 //   end: targets left in SHADER_READ_ONLY_OPTIMAL, depth in DEPTH_STENCIL_READ_ONLY_OPTIMAL.
 void beginGBufferPass(VkCommandBuffer cmd, const GBufferPass& pass);

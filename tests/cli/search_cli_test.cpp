@@ -50,10 +50,19 @@ TEST(SearchCli, SmallSearchIsDeterministicResumableAndItsFrontPassesCheck) {
     const auto fa = frontFiles(dir / "a" / "front"), fb = frontFiles(dir / "b" / "front");
     ASSERT_FALSE(fa.empty());
     EXPECT_EQ(fa, fb);  // same seed, same bytes
+    const std::string report = slurp(dir / "a" / "search-report.md");
     for (const auto& [name, text] : fa) {
+        if (fs::path(name).extension() != ".toml") continue;
         EXPECT_NE(text.find("seed 3"), std::string::npos) << name;
         const RunResult check = runGbufferlab(dir, "layouts check a/front/" + name);
         EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
+        // Its engine code beside it (layouts export), linked from the report.
+        const std::string stem = fs::path(name).stem().string();
+        for (const std::string ext : {".hlsl", ".glsl"}) {
+            ASSERT_TRUE(fa.count(stem + ext)) << stem + ext;
+            EXPECT_NE(fa.at(stem + ext).find("gbl_" + stem.substr(0, 5) + "_"), std::string::npos) << stem + ext;
+            EXPECT_NE(report.find("(front/" + stem + ext + ")"), std::string::npos) << report;
+        }
     }
     // A rerun into the same folder replays the journal: nothing is evaluated again.
     const RunResult c = runGbufferlab(dir, args + " --out a");

@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "layout.h"
 #include "layout_catalog.h"
+#include "layout_export.h"
 #include "renderer_passes.h"
 #include "shader_compiler.h"
 #include "wiring_codegen.h"
@@ -147,6 +149,22 @@ void compiles(const std::string& shader, const GBufferWiring& w, const std::stri
     EXPECT_NO_THROW(compileGlsl(s)) << "layout text accepted by check:\n" << mutant;
 }
 
+// `layouts export` of the mutant, in both languages with the kernel (which calls encode and
+// decode), compiled by glslang's GLSL and HLSL front ends.
+void exportCompiles(const Layout& layout, ExportLanguage lang, const std::string& text, const std::string& mutant) {
+    ShaderSource s{"export of mutant of " + layout.name, text, VK_SHADER_STAGE_COMPUTE_BIT, {}, {}};
+    if (lang == ExportLanguage::Glsl) EXPECT_NO_THROW(compileGlslUncached(s)) << "layout text accepted by check:\n" << mutant;
+    else EXPECT_NO_THROW(compileHlslUncached(s, "main")) << "layout text accepted by check:\n" << mutant;
+}
+
+std::string exportText(const Layout& layout, ExportLanguage lang) {
+    ExportOptions o;
+    o.language = lang;
+    o.kernel = true;
+    static const exporting::GlslLibrary library([](const std::string& n) { return resolveShaderInclude(n, {}); });
+    return exportLayout(layout, o, library);
+}
+
 }  // namespace
 
 TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
@@ -158,7 +176,9 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
     // withoutCommentText) and, for hostile strings, once per hostile string: every hostile text
     // still reaches glslang inside the comments of every shipped layout's code, but the same code
     // is not compiled again for each of its comment variants (17 layouts: 1030 compiles -> far fewer).
-    std::set<std::string> seenGlsl;
+    std::set<std::string> seenGlsl, seenExports;
+    std::map<std::string, int> perLayout;
+    size_t exported = 0;
     const std::regex place(R"(^mutant\.toml:[0-9]+:[0-9]+: )");
     for (const std::string& name : names) {
         for (const Mutant& mutant : mutants(readAll(dir / (name + ".toml")))) {
@@ -182,14 +202,32 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
                 compiles("gbuffer_pass.frag.glsl", w, text);
                 compiles("decode_pass.comp.glsl", w, text);
             }
+            // Exports: every accepted mutant is exported (text checks); each distinct code is
+            // compiled once (hostile text lives only in comments, which the check below the loop
+            // and LayoutExport.LayoutTextIsEscapedAndNamesArePrefixed hold to that), at most 2
+            // distinct ones per layout and language (glslang takes 0.1-0.2 s per export: all
+            // distinct ones took this test past 230 s).
+            for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl}) {
+                const std::string e = exportText(layout, lang);
+                for (const std::string& l : splitLines(e))
+                    if (l.rfind("//", 0) != 0 && l.find("//") == std::string::npos)
+                        ASSERT_TRUE(printableOnOneLine(l)) << l;
+                const std::string key = withoutCommentText(e);
+                if (seenExports.count(key) || perLayout[name + (lang == ExportLanguage::Hlsl ? "h" : "g")] >= 2) continue;
+                seenExports.insert(key);
+                ++perLayout[name + (lang == ExportLanguage::Hlsl ? "h" : "g")];
+                ++exported;
+                exportCompiles(layout, lang, e, text);
+            }
         }
     }
     // The mutants must exercise both sides: many refused, some accepted (e.g. hostile titles).
     EXPECT_GT(total, 1000u);
     EXPECT_GT(accepted, 50u);
     EXPECT_LT(accepted, total);
-    std::printf("layout mutants: %zu generated, %zu accepted by check, %zu distinct wirings compiled\n", total,
-                accepted, compiled);
+    EXPECT_GT(exported, 80u);
+    std::printf("layout mutants: %zu generated, %zu accepted by check, %zu distinct wirings compiled, %zu distinct "
+                "exports (HLSL and GLSL) compiled\n", total, accepted, compiled, exported);
 }
 
 TEST(LayoutMutants, NonFiniteAndOutOfRangeNumbersAreRefusedWithPlace) {
@@ -235,4 +273,10 @@ TEST(LayoutMutants, GeneratedGlslKeepsLayoutTextInComments) {
     EXPECT_EQ(w.glsl.find("\n#error injected"), std::string::npos) << w.glsl;
     EXPECT_EQ(w.glsl.find('\\'), std::string::npos) << w.glsl;
     compiles("gbuffer_pass.frag.glsl", w, "(hand-built layout)");
+    for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl}) {
+        const std::string e = exportText(l, lang);
+        EXPECT_EQ(e.find("\n#error"), std::string::npos) << e;
+        EXPECT_EQ(e.find('\\'), std::string::npos) << e;
+        exportCompiles(l, lang, e, "(hand-built layout)");
+    }
 }
