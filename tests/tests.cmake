@@ -79,6 +79,7 @@ gbl_test(report/rank_agreement_test LABELS unit DEPS gbl_report)  # Kendall's ta
 gbl_test(report/plot_labels_test LABELS unit DEPS gbl_report)
 gbl_test(report/report_html_glance_test LABELS unit DEPS gbl_report)
 gbl_test(report/report_atlas_test LABELS unit DEPS gbl_report)
+gbl_test(report/temporal_report_test LABELS unit DEPS gbl_report)  # --temporal N in report.json / csv / html
 gbl_test(report/report_browser_test LABELS unit DEPS gbl_report)
 gbl_test(report/error_images_test LABELS unit DEPS gbl_report)
 gbl_test(search/layout_packer_test LABELS unit DEPS gbl_search gbl_measure)
