@@ -165,7 +165,7 @@ std::vector<Column> columns() {
     c.push_back({"single_frame_flip_mean", [single](const RunReport& r) {
                      return single(r) ? numberText(single(r)->flipMean) : std::string();
                  }, {}});
-    c.push_back({"single_frame_normal_all_mean_deg", [](const RunReport& r) {
+    c.push_back({"single_frame_normal_mean_deg", [](const RunReport& r) {
                      if (!r.singleFrame) return std::string();
                      const auto& n = r.singleFrame->attributes[ErrorAttribute::Normal].all;
                      return n ? numberText(n->error.mean) : std::string();
