@@ -9,6 +9,9 @@
 #include "surface.glsl"
 #include "material.glsl"
 #include "normal_space.glsl"
+// The frame index of compare --temporal (RenderSettings::frameIndex), for a dither that moves with
+// time (a field's dither_per_frame); the generated wiring calls it only for such a field.
+uint gblFrameIndex() { return frame.band.z; }
 #define GBUFFER_WRITE 1
 #include "gbuffer_wiring.glsl"
 

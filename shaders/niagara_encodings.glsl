@@ -91,4 +91,28 @@ uvec2 encodeNormalOctahedralDithered(vec3 n, uint bits, ivec2 pixel) {
     return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
 }
 
+// A dither that moves with time (a field's dither_per_frame): the gradient noise advanced by
+// 5.588238 pixels per frame, cycling every 64 frames (Wolfe, "Interleaved Gradient Noise: A
+// Different Kind of Low Discrepancy Sequence", 2022, as Bevy and others animate Jimenez's noise).
+// Frame 0 is gradientNoise's value bit for bit (+ 0.0 is exact).
+float gradientNoiseAtFrame(ivec2 pixel, uint frameIndex) {
+    precise float offset = 5.588238 * float(frameIndex % 64u);
+    precise float x = float(pixel.x) + 0.5 + offset;
+    precise float y = float(pixel.y) + 0.5 + offset;
+    precise float d = x * 0.06711056 + y * 0.00583715;
+    precise float f = d - floor(d);
+    precise float g = 52.9829189 * f;
+    precise float r = g - floor(g);
+    return r;
+}
+
+uvec2 encodeNormalOctahedralDitheredAtFrame(vec3 n, uint bits, ivec2 pixel, uint frameIndex) {
+    vec2 p = octEncodeNiagara(n);
+    precise float s = float((1u << bits) - 1u);
+    precise float d = (gradientNoiseAtFrame(pixel, frameIndex) * 2.0 - 1.0) * (0.5 / s);
+    precise float ux = p.x * 0.5 + 0.5 + d;
+    precise float uy = p.y * 0.5 + 0.5 + d;
+    return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
+}
+
 #endif  // GBL_NIAGARA_ENCODINGS_GLSL

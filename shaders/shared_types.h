@@ -30,7 +30,8 @@ struct FrameConstants {
                           // z ground-truth random seed, w unused
     vec4 irradianceSh[9]; // rgb: SH9 of the irradiance, cosine convolution folded in (src/shading/ibl_precompute.h)
     // The rows of the frame a render covers (RenderSettings::bandFirstRow): x the frame row at row
-    // 0 of the outputs (HDR image, decoded surfaces, light buffers), y their rows; zw unused. The
+    // 0 of the outputs (HDR image, decoded surfaces, light buffers), y their rows; z the frame index
+    // of compare --temporal (RenderSettings::frameIndex: a dither that moves with time), w unused. The
     // G-buffer's images are the frame's (pixel = frame pixel). A whole frame: (0, height, 0, 0).
     uvec4 band;
 };

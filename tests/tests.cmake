@@ -15,6 +15,7 @@ gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/auto_exposure_test LABELS unit DEPS gbl_image)  # UE4's histogram auto-exposure
 gbl_test(image/color_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/png_writer_test LABELS unit DEPS gbl_image)
+gbl_test(image/temporal_resolve_test LABELS unit DEPS gbl_image gbl_encoding)  # compare --temporal: resolve, Halton, dithers over frames
 gbl_test(gpu/shader_compiler_test LABELS unit DEPS gbl_gpu)
 gbl_test(gpu/shader_cache_test LABELS unit DEPS gbl_gpu)
 gbl_test(scene/environment_test LABELS unit DEPS gbl_scene)
@@ -87,6 +88,7 @@ gbl_test(report/rank_agreement_test LABELS unit DEPS gbl_report)  # Kendall's ta
 gbl_test(report/plot_labels_test LABELS unit DEPS gbl_report)
 gbl_test(report/report_html_glance_test LABELS unit DEPS gbl_report)
 gbl_test(report/report_atlas_test LABELS unit DEPS gbl_report)
+gbl_test(report/temporal_report_test LABELS unit DEPS gbl_report)  # --temporal N in report.json / csv / html
 gbl_test(report/report_browser_test LABELS unit DEPS gbl_report)
 gbl_test(report/error_images_test LABELS unit DEPS gbl_report)
 gbl_test(search/layout_packer_test LABELS unit DEPS gbl_search gbl_measure)
@@ -101,6 +103,7 @@ gbl_test(cli/compare_bands_test LABELS unit DEPS gbl_cli)
 gbl_test(cli/scene_suite_test LABELS unit DEPS gbl_cli)  # --scene and suite files, refused before rendering
 gbl_test(cli/compare_scenes_cli_test LABELS gpu DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)  # several scenes
 gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
+gbl_test(cli/compare_temporal_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # --temporal N
 gbl_test(cli/diff_cli_test LABELS gpu DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
 # Hostile input, run as the executable and measured (peak memory, time); refusals need no driver.
 gbl_test(cli/diff_bounds_cli_test LABELS unit DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)

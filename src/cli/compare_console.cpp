@@ -33,8 +33,16 @@ void printTable(const ReportModel& model) {
         std::printf("\nEvery metric is the mean over %d views; the row under each run gives its spread over them:\n"
                     "± standard deviation, PSNR as min..max dB.",
                     int(views));
-    std::printf("\n%-*s %-16s %6s %9s %9s %9s %10s %8s %6s\n", w, "layout", "ibl", "B/px", "GB/s@1080", "normal°",
+    // compare --temporal N: the resolved errors, then the first frame's alone (1f) beside them.
+    const bool temporal = model.run.temporalFrames > 1;
+    if (temporal)
+        std::printf("\n--temporal %d: normal°, albedoΔE, PSNR and FLIP are the resolved images' (%s of %d jittered "
+                    "frames; attributes: their temporal mean); \"1f\" columns: frame 0 alone.",
+                    model.run.temporalFrames, model.run.temporalResolve.c_str(), model.run.temporalFrames);
+    std::printf("\n%-*s %-16s %6s %9s %9s %9s %10s %8s %6s", w, "layout", "ibl", "B/px", "GB/s@1080", "normal°",
                 "albedoΔE", "PSNR(tm)", "FLIP", "rank");
+    if (temporal) std::printf(" %9s %10s %8s", "normal°1f", "PSNR 1f", "FLIP 1f");
+    std::printf("\n");
     for (const RunReport& r : model.runs) {
         if (r.status == RunStatus::Failed) {
             std::printf("%-*s %-16s FAILED: %s\n", w, r.layout.c_str(), r.iblMode.c_str(), r.error.c_str());
@@ -43,10 +51,17 @@ void printTable(const ReportModel& model) {
         const auto& n = r.attributes[ErrorAttribute::Normal].all;
         const auto& a = r.attributes[ErrorAttribute::DiffuseColor].all;
         const RankRange* rank = model.significance ? model.significance->find(r.layout, r.iblMode) : nullptr;
-        std::printf("%-*s %-16s %6d %9.2f %9.3f %9.3f %10s %8.4f %6s\n", w, r.layout.c_str(), r.iblMode.c_str(),
+        std::printf("%-*s %-16s %6d %9.2f %9.3f %9.3f %10s %8.4f %6s", w, r.layout.c_str(), r.iblMode.c_str(),
                     r.bytesPerPixel.total, r.gigabytesPerSecond1080p60().value_or(0.0), n ? n->error.mean : 0.0,
                     a ? a->error.mean : 0.0, formatPsnr(r.image ? r.image->psnrToneMapped : 0.0).c_str(),
                     r.image ? r.image->flipMean : 0.0, rank ? rank->text().c_str() : "");
+        if (temporal && r.singleFrame) {
+            const auto& n1 = r.singleFrame->attributes[ErrorAttribute::Normal].all;
+            const auto& i1 = r.singleFrame->image;
+            std::printf(" %9.3f %10s %8.4f", n1 ? n1->error.mean : 0.0,
+                        formatPsnr(i1 ? i1->psnrToneMapped : 0.0).c_str(), i1 ? i1->flipMean : 0.0);
+        }
+        std::printf("\n");
         if (views > 1 && r.views.size() > 1) {
             auto attr = [](ErrorAttribute which) {
                 return [which](const RunReport& v) -> std::optional<double> {

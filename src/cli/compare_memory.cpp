@@ -16,13 +16,20 @@ constexpr double kBandBytesPerPixel = 360.0;   // in bands: per pixel of a band'
 constexpr double kFixedBytes = double(384u << 20);
 constexpr double kBytesPerLayout = double(24u << 20);
 constexpr double kBytesPerPixelPerExtraView = 48.0;
+// --temporal N > 1, counted from the sizes (not measured): a sequence's accumulators (HDR RGBA and
+// 20 surface channels in double: 192 B), its first frame and its resolve kept (HDR and surfaces in
+// float: 2 x 96 B), for the reference (and its first frame's prepared tone map and FLIP half) and
+// the layout being measured. It does not grow with N.
+constexpr double kTemporalBytesPerPixel = 2.0 * (192.0 + 2.0 * 96.0) + 64.0;
 
 }  // namespace
 
-double compareMemoryBytes(uint32_t width, uint32_t height, uint32_t bandImageRows, size_t layouts, int views) {
+double compareMemoryBytes(uint32_t width, uint32_t height, uint32_t bandImageRows, size_t layouts, int views,
+                          int temporalFrames) {
     const double frame = double(width) * double(height);
     const double fixed = kFixedBytes + double(layouts) * kBytesPerLayout +
-                         frame * kBytesPerPixelPerExtraView * double(views > 1 ? views - 1 : 0);
+                         frame * kBytesPerPixelPerExtraView * double(views > 1 ? views - 1 : 0) +
+                         (temporalFrames > 1 ? frame * kTemporalBytesPerPixel : 0.0);
     if (bandImageRows == 0 || bandImageRows >= height) return frame * kWholeBytesPerPixel + fixed;
     return frame * kFrameBytesPerPixel + double(width) * double(bandImageRows) * kBandBytesPerPixel + fixed;
 }

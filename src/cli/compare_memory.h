@@ -10,6 +10,8 @@
 namespace gbl::compare {
 
 // bandImageRows: the rows of one band's images (the band and its FLIP halo); 0: whole frames.
-double compareMemoryBytes(uint32_t width, uint32_t height, uint32_t bandImageRows, size_t layouts, int views);
+// temporalFrames: compare --temporal N (the accumulators of N > 1; the same for every N).
+double compareMemoryBytes(uint32_t width, uint32_t height, uint32_t bandImageRows, size_t layouts, int views,
+                          int temporalFrames = 1);
 
 }  // namespace gbl::compare

@@ -62,6 +62,13 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                                 "reference again for every run; 0: whole frames; auto (default): bands of " +
                                     std::to_string(kAutoBandRows) + " rows on a CPU device above " +
                                     std::to_string(kAutoBandPixels) + " pixels, unless --eval cpu or ground-truth"},
+        {"temporal", "N", "render N frames per view with Halton(2,3) sub-pixel jitter, the same for the reference and "
+                          "every layout, and measure the resolved images, as temporal anti-aliasing shows them "
+                          "(default 1: one frame, no jitter; at most " + std::to_string(kMaxTemporalFrames) +
+                              "; docs/compare.md)"},
+        {"resolve", "HOW", "--temporal's resolve: mean (default: the uniform mean of the frames in linear HDR, the "
+                           "converged history of a still camera) or exp (exponential history, current-frame weight "
+                           "0.1)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -130,6 +137,32 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                        ": bands are measured on the device evaluator, which keeps its float maps on the device; "
                        "give --band-rows 0, or drop --error-exr");
     if (o.errorExr) o.evalWhere = "cpu";
+    o.temporalFrames = parseIntFlag(parsed, "temporal", 1, 1, kMaxTemporalFrames);
+    if (parsed.has("resolve")) {
+        const std::string how = parsed.get("resolve");
+        if (how == "mean") o.resolve = ResolveMethod::Mean;
+        else if (how == "exp") o.resolve = ResolveMethod::Exponential;
+        else throwUserError("--resolve " + quoteName(how) + ": give mean or exp");
+        if (o.temporalFrames == 1)
+            throwUserError("--resolve " + how + " without --temporal N (N > 1): one frame has nothing to resolve; give "
+                           "--temporal 8, or drop --resolve");
+    }
+    if (o.temporalFrames > 1) {
+        // The resolve accumulates host images: the CPU evaluation, on whole frames, of a reference
+        // that is a single frame's (a ground truth converges on its own).
+        const std::string n = std::to_string(o.temporalFrames);
+        if (o.evalWhere == "gpu")
+            throwUserError("gbufferlab compare: --temporal " + n + " needs the CPU evaluation (the frames are resolved on "
+                           "the host); give --eval cpu or auto");
+        if (o.bandRowsGiven.value_or(0) > 0)
+            throwUserError("gbufferlab compare: --temporal " + n + " with --band-rows " + parsed.get("band-rows") +
+                           ": the frames are resolved whole; give --band-rows 0 or auto");
+        if (o.groundTruthAsked)
+            throwUserError("gbufferlab compare: --temporal " + n + " with --ibl ground-truth: the ground truth converges "
+                           "over its own batches, not over jittered frames; drop one of them");
+        o.evalWhere = "cpu";
+        o.bandRowsGiven = 0u;
+    }
     o.device = parsed.get("device");
     o.validation = parsed.has("validation");
     o.nativeFormats = parsed.has("native-formats");

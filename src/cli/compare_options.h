@@ -12,11 +12,14 @@
 #include "layout.h"
 #include "renderer.h"
 #include "scene.h"
+#include "temporal_resolve.h"
 
 namespace gbl::compare {
 
 inline constexpr const char* kReferenceLayout = "reference";
 inline constexpr const char* kGroundTruth = "ground-truth";  // the IBL mode's name
+// compare --temporal N: at most this many frames (a frame costs a full G-buffer and lighting pass).
+inline constexpr int kMaxTemporalFrames = 256;
 
 struct CompareOptions {
     std::string scenePath;  // empty: the built-in scene
@@ -50,6 +53,10 @@ struct CompareOptions {
     std::string evalWhere = "auto";  // auto, gpu or cpu
     bool groundTruthAsked = false;   // ground-truth among the modes
     std::optional<uint32_t> bandRowsGiven;  // unset: --band-rows auto
+    // --temporal N (temporal_resolve.h): frames per view, jittered, resolved by `resolve`; 1: one
+    // frame, no jitter (the code path of a comparison without the flag).
+    int temporalFrames = 1;
+    ResolveMethod resolve = ResolveMethod::Mean;
     std::string commandLine;                // "gbufferlab compare" and the arguments, for the report
 
     // Several modes with ground-truth among them: each mode's reference is also compared with the

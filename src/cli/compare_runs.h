@@ -22,6 +22,9 @@ struct ReferenceRender {
     std::unique_ptr<PreparedReference> prepared;  // of output.hdr, shared by the runs measured against it
     // --eval gpu: the evaluator the runs are measured with, on output.device (not owned).
     GpuEvaluator* evaluator = nullptr;
+    // compare --temporal N (N > 1): `output` is the resolve of the N frames (compare_temporal.h),
+    // this the first frame, prepared, for the runs' single-frame metrics.
+    std::unique_ptr<ReferenceRender> firstFrame;
 };
 
 // The render's device images as the GPU evaluator takes them (RenderSettings::keepOnDevice).

@@ -1,5 +1,6 @@
 // compare's set-up, bookkeeping and finish (the renders and runs of a view: compare_session_view.cpp).
 #include "compare_session.h"
+#include "compare_temporal.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -98,7 +99,7 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
                (o.evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
     validateResolution(ctx, o.width, o.height, "--size", bandPlan_.banded() ? bandPlan_.maxImageRows() : 0u);
     const uint32_t bandImageRows = bandPlan_.banded() ? bandPlan_.maxImageRows() : 0u;
-    requireMemory(compareMemoryBytes(o.width, o.height, bandImageRows, layouts_.size(), o.viewCount),
+    requireMemory(compareMemoryBytes(o.width, o.height, bandImageRows, layouts_.size(), o.viewCount, o.temporalFrames),
                   "--size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                       (bandImageRows ? " in bands of " + std::to_string(bandPlan_.bandRows) + " rows" : "") + " with " +
                       std::to_string(layouts_.size()) + " layout" + (layouts_.size() == 1 ? "" : "s"),
@@ -117,6 +118,18 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
     model_.run.exposure = o.exposure;
     model_.run.exposureMethod = o.autoExposure ? kAutoExposureMethod : "fixed";
     model_.run.exrPrecision = exrPixelTypeName(o.exrType);
+    model_.run.temporalFrames = o.temporalFrames;
+    model_.run.temporalResolve = resolveMethodName(o.resolve);
+    if (o.temporalFrames > 1) {
+        for (const JitterOffset& j : temporalJitter(o.temporalFrames)) model_.run.temporalJitter.push_back({j.x, j.y});
+        model_.run.notes.push_back(
+            "temporal: " + std::to_string(o.temporalFrames) + " frames per view with Halton(2,3) sub-pixel jitter, "
+            "resolved by " + (o.resolve == ResolveMethod::Mean ? std::string("their uniform mean in linear HDR")
+                                                               : std::string("an exponential history (weight 0.1)")) +
+            "; every image metric is the resolved image's, the attribute errors the temporal mean's; single-frame: "
+            "frame 0 against the reference's frame 0. Not modelled: motion and reprojection, history rejection, "
+            "upscalers");
+    }
     model_.reference.layout = kReferenceLayout;
     for (const Layout& l : layouts_) model_.atlas.push_back(atlasEntryOf(l));
     model_.run.notes.push_back("split-sum BRDF LUT: " + brdfLutVariantName(o.iblSettings) + " (--brdf-lut)");
@@ -276,13 +289,17 @@ RunReport CompareSession::makeRun(const Layout& layout, const std::string& mode)
 void CompareSession::record(RunReport&& run, int view) {
     std::lock_guard lock(modelMutex_);
     if (view == 0) {
-        if (run.status == RunStatus::Ok) run.views.push_back({run.attributes, run.image});
+        if (run.status == RunStatus::Ok) {
+            run.views.push_back({run.attributes, run.image});
+            addSingleFrameView(run, run);
+        }
         model_.runs.push_back(std::move(run));
     } else {
         RunReport& first = model_.runs.at(runIndex_);
         if (first.status == RunStatus::Ok) {
             if (run.status == RunStatus::Ok) {
                 first.views.push_back({run.attributes, run.image});
+                addSingleFrameView(first, run);
             } else {
                 first.status = RunStatus::Failed;
                 first.error = "view " + std::to_string(view) + ": " + run.error;

@@ -4,6 +4,7 @@
 
 #include "compare_console.h"
 #include "compare_session.h"
+#include "compare_temporal.h"
 #include "host_profile.h"
 #include "ibl_figure.h"
 #include "image_io.h"
@@ -49,6 +50,12 @@ CompareSession::References CompareSession::renderReferences(int view) {
             if (observe && !meter) observeView(view, ref.output.hdr, false);
             if (!firstView) ref.output.hdr = Image{};
             bandedReferenceMode_ = m;
+        } else if (o.temporalFrames > 1) {  // the resolve; its first frame for the single-frame metrics
+            TemporalRender t = renderTemporal(*renderer_, referenceWiring_, settingsFor(o.modes[m], view),
+                                              o.temporalFrames, o.resolve);
+            ref.output = std::move(t.resolved);
+            ref.firstFrame = std::make_unique<ReferenceRender>();
+            ref.firstFrame->output = std::move(t.first);
         } else {
             ref.output = renderer_->render(referenceWiring_, settingsFor(o.modes[m], view));
         }
@@ -105,6 +112,9 @@ CompareSession::References CompareSession::renderReferences(int view) {
         }
         ScopedStage timedPrepare(Stage::Metrics);
         stored.prepared = std::make_unique<PreparedReference>(stored.output.hdr, exposure(view));
+        if (stored.firstFrame)
+            stored.firstFrame->prepared =
+                std::make_unique<PreparedReference>(stored.firstFrame->output.hdr, exposure(view));
     }
     return references;
 }
@@ -203,6 +213,18 @@ void CompareSession::runLayouts(int view, const References& references) {
                                           bandPlan_, *evaluator_, o.outDir, prefix, o.hdrFlip, firstView,
                                           imageOutput_, gpuPassMs_);
                     run.times = PassTimes{t.gbufferMs, t.lightingMs, ctx_->info.name};
+                } else if (o.temporalFrames > 1) {
+                    // N jittered frames resolved; frame 0 measured alone beside the resolve.
+                    TemporalRender t = renderTemporal(*renderer_, wiring, settingsFor(o.modes[m], view),
+                                                      o.temporalFrames, o.resolve);
+                    gpuPassMs_ += t.resolved.timings.gbufferMs + t.resolved.timings.lightingMs;
+                    const double frames = double(o.temporalFrames);  // the times of one frame: their mean
+                    run.times = PassTimes{t.resolved.timings.gbufferMs / frames, t.resolved.timings.lightingMs / frames,
+                                          ctx_->info.name};
+                    measureSingleFrame(run, t.first, *ref.firstFrame, exposure(view), o.hdrFlip);
+                    t.first = RenderOutput{};
+                    measureRun(run, t.resolved, ref, o.outDir, prefix, exposure(view), o.hdrFlip, true, firstView,
+                               imageOutput_);
                 } else {
                     RenderOutput out = renderer_->render(wiring, settingsFor(o.modes[m], view));
                     gpuPassMs_ += out.timings.gbufferMs + out.timings.lightingMs;
@@ -210,7 +232,10 @@ void CompareSession::runLayouts(int view, const References& references) {
                     measureRun(run, out, ref, o.outDir, prefix, exposure(view), o.hdrFlip, true, firstView, imageOutput_);
                 }
                 progress_->end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
-                               std::to_string(run.image->flipMean).substr(0, 6));
+                               std::to_string(run.image->flipMean).substr(0, 6) +
+                               (run.singleFrame && run.singleFrame->image
+                                    ? " (one frame: " + std::to_string(run.singleFrame->image->flipMean).substr(0, 6) + ")"
+                                    : std::string()));
             } catch (const std::exception& e) {
                 // One layout that cannot be rendered must not sink the others: report it as failed.
                 run.status = RunStatus::Failed;

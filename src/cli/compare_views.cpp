@@ -1,4 +1,5 @@
 #include "compare_views.h"
+#include "compare_temporal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -93,6 +94,7 @@ std::vector<CompareView> compareViews(const Scene& scene, int count, float aspec
 void finishViews(RunReport& run) {
     if (run.views.size() > 1) averageViews(run);
     else run.views.clear();
+    finishSingleFrameViews(run);
 }
 
 std::vector<FigureBall> findFigureBalls(const Scene& scene, uint32_t width, uint32_t height) {

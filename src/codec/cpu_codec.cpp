@@ -21,8 +21,18 @@ int bandCount(int threads, int width, int height) {
 
 }  // namespace
 
+namespace {
+codec::CodecPlan planAtFrame(const Layout& layout, uint32_t frameIndex) {
+    codec::CodecPlan plan = codec::compilePlan(layout);
+    for (codec::TargetPlan& t : plan.targets)
+        for (codec::FieldPlan& f : t.encodeFields)
+            if (f.ditherPerFrame) f.frameIndex = frameIndex;
+    return plan;
+}
+}  // namespace
+
 CpuCodec::CpuCodec(const Layout& layout, CpuCodecOptions options)
-    : plan_(std::make_shared<const codec::CodecPlan>(codec::compilePlan(layout))),
+    : plan_(std::make_shared<const codec::CodecPlan>(planAtFrame(layout, options.frameIndex))),
       threads_(options.threads > 0 ? options.threads : hardwareThreads()) {}
 
 CpuGBuffer CpuCodec::encode(const std::vector<Surface>& surfaces, int width, int height) const {

@@ -37,6 +37,9 @@ struct CpuGBuffer {
 
 struct CpuCodecOptions {
     int threads = 0;  // bands run in parallel; 0: std::thread::hardware_concurrency()
+    // The frame a dither that moves with time encodes (a field's dither_per_frame; compare
+    // --temporal's RenderSettings::frameIndex). Fields whose dither is fixed ignore it.
+    uint32_t frameIndex = 0;
 };
 
 class CpuCodec {

@@ -410,6 +410,13 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
             return;
         }
         case Codec::NormalOctahedralDithered:
+            if (f.ditherPerFrame) {
+                const uint32_t frame = f.frameIndex;
+                map3to2(n, x, yv, z, c0, c1, [bits, x0, y, frame](vec3 v, int j) {
+                    return encodeNormalOctahedralDitheredAtFrame(v, bits, ivec2(x0 + j, y), frame);
+                });
+                return;
+            }
             map3to2(n, x, yv, z, c0, c1,
                     [bits, x0, y](vec3 v, int j) { return encodeNormalOctahedralDithered(v, bits, ivec2(x0 + j, y)); });
             return;

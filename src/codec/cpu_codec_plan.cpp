@@ -113,6 +113,7 @@ void placeConstant(const CodePlan& code, uint32_t value, uint32_t* words) {
 FieldPlan planField(const Target& t, const Field& f, int words) {
     FieldPlan fp;
     fp.codec = resolveCodec(f.encoding);
+    fp.ditherPerFrame = f.ditherPerFrame;
     fp.source = surfaceOffset(f.attribute);
     fp.components = fp.source >= 0 ? attributeInfo(f.attribute).components : 0;
     for (const CodePlace& cp : f.codes) fp.codes.push_back(planCode(t, cp, words));

@@ -89,6 +89,10 @@ struct FieldPlan {
     bool carries = false; // the encoding also stores the attribute at `reads`: decode sets it (HDRP's AO tag)
     float constant[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // the inputs of an extra (its declared value)
     std::vector<CodePlan> codes;
+    // A dither that moves with time (Field::ditherPerFrame) and the frame it encodes
+    // (CpuCodecOptions::frameIndex), as the GPU's gblFrameIndex().
+    bool ditherPerFrame = false;
+    uint32_t frameIndex = 0;
 };
 
 struct TargetPlan {

@@ -194,7 +194,13 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
     } else if (e == "emissive_albedo_ratio") {
         codes.push_back("encodeEmissiveAlbedoRatio(" + v + ", " + readsExpr(encodingOf(f)) + ", " + b + ")");
     } else if (e == "normal_octahedral_dithered") {
-        o << ind << "uvec2 " << id << " = encodeNormalOctahedralDithered(" << v << ", " << b << ", pixel);\n";
+        // A dither that moves with time reads the frame index the including shader defines
+        // (gbuffer_pass.frag.glsl gblFrameIndex: FrameConstants::band.z).
+        if (f.ditherPerFrame)
+            o << ind << "uvec2 " << id << " = encodeNormalOctahedralDitheredAtFrame(" << v << ", " << b
+              << ", pixel, gblFrameIndex());\n";
+        else
+            o << ind << "uvec2 " << id << " = encodeNormalOctahedralDithered(" << v << ", " << b << ", pixel);\n";
         for (int i = 0; i < 2; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "ycbcr_checkerboard" || e == "ycocg_checkerboard") {
         colorTransform(e, fwd, inv);

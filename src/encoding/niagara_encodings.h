@@ -118,4 +118,27 @@ inline uvec2 encodeNormalOctahedralDithered(vec3 n, uint bits, ivec2 pixel) {
     return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
 }
 
+// A dither that moves with time (a field's dither_per_frame; niagara_encodings.glsl): the
+// gradient noise advanced by 5.588238 pixels per frame, cycling every 64 frames (Wolfe,
+// "Interleaved Gradient Noise: A Different Kind of Low Discrepancy Sequence", 2022). Frame 0 is
+// gradientNoise(pixel) bit for bit.
+inline float gradientNoiseAtFrame(ivec2 pixel, uint32_t frameIndex) {
+    float offset = 5.588238f * float(frameIndex % 64u);
+    float x = float(pixel.x) + 0.5f + offset;
+    float y = float(pixel.y) + 0.5f + offset;
+    float d = x * 0.06711056f + y * 0.00583715f;
+    float f = d - floor(d);
+    float g = 52.9829189f * f;
+    return g - floor(g);
+}
+
+inline uvec2 encodeNormalOctahedralDitheredAtFrame(vec3 n, uint bits, ivec2 pixel, uint32_t frameIndex) {
+    vec2 p = octEncodeNiagara(n);
+    float s = float((1u << bits) - 1u);
+    float d = (gradientNoiseAtFrame(pixel, frameIndex) * 2.0f - 1.0f) * (0.5f / s);
+    float ux = p.x * 0.5f + 0.5f + d;
+    float uy = p.y * 0.5f + 0.5f + d;
+    return uvec2(quantizeUnorm(ux, bits), quantizeUnorm(uy, bits));
+}
+
 }  // namespace gbl::enc

@@ -219,6 +219,11 @@ struct Field {
     FilePlace encodingPlace;       // the "encoding" value (or the field when implicit)
     FilePlace atPlace;             // the "at" value
     Provenance provenance;
+    // A dithered encoding (EncodingInfo::dithered): whether the dither takes the frame index, as
+    // the engine's does or not (`dither_per_frame`; default false: a pattern fixed in screen space).
+    // compare --temporal N then gives frame k's index to the encoder.
+    bool ditherPerFrame = false;
+    bool ditherDeclared = false;   // the key was given
     bool incomplete = false;       // a parse error was reported for it: validation skips it
                                    // (never set in a Layout that parseLayout returns)
 

@@ -46,7 +46,8 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
     if (stencil)
         checkKeys(*t, {"attribute", "encoding", "at", "bits", "value", "from", "status", "differs"}, "a stencil field");
     else
-        checkKeys(*t, {"attribute", "encoding", "transform", "interleave", "at", "bits", "value", "from", "status", "differs"},
+        checkKeys(*t, {"attribute", "encoding", "transform", "interleave", "at", "bits", "value", "dither_per_frame", "from",
+                       "status", "differs"},
                   "a field");
     readProvenance(*t, field.provenance, field.place);
 
@@ -138,6 +139,22 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
         field.encoding = resolved;
     } else {
         field.incomplete = true;
+    }
+
+    // dither_per_frame: whether the engine's dither takes the frame index (a dithered encoding only)
+    if (const toml::node* d = t->get("dither_per_frame")) {
+        const EncodingInfo* enc = findEncoding(field.encoding);
+        if (!d->is_boolean()) {
+            error(placeOf(*d), "'dither_per_frame' must be true or false, not " + std::string(typeName(*d)));
+            field.incomplete = true;
+        } else if (enc && !enc->dithered) {
+            error(placeOf(*d), "'dither_per_frame' is for a dithered encoding (normal_octahedral_dithered); " +
+                                   squote(field.encoding) + " has no dither: remove the key");
+            field.incomplete = true;
+        } else {
+            field.ditherPerFrame = d->as_boolean()->get();
+            field.ditherDeclared = true;
+        }
     }
 
     // at

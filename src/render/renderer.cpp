@@ -131,6 +131,15 @@ CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool re
     return m;
 }
 
+void applyJitter(CameraMatrices& m, float dx, float dy, uint32_t width, uint32_t height) {
+    // NDC spans 2 over the frame; clip w = -z_view (proj[2][3] = -1), so adding -offset to the
+    // z column adds offset x w to clip x / y. Framebuffer y is NDC y here (the flip is in proj).
+    m.proj[2][0] -= 2.0f * dx / float(width);
+    m.proj[2][1] -= 2.0f * dy / float(height);
+    m.viewProj = m.proj * m.view;
+    m.invViewProj = glm::inverse(m.viewProj);
+}
+
 Renderer::Renderer(const VulkanContext& ctx, const Scene& scene, const EnvironmentMap& environment)
     : ctx_(ctx), scene_(scene), pipelines_(ownPipelines_) {
     ScopedStage timed(Stage::Precompute);
@@ -243,7 +252,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     const RenderBand band = renderBand(settings);
     const uint32_t rows = band.rows;  // of every output
     const Camera& camera = settings.camera ? *settings.camera : scene_.camera;
-    const CameraMatrices cam = computeCameraMatrices(camera, float(w) / float(h), wiring.reversedZ);
+    CameraMatrices cam = computeCameraMatrices(camera, float(w) / float(h), wiring.reversedZ);
+    if (settings.jitterX != 0.0f || settings.jitterY != 0.0f) applyJitter(cam, settings.jitterX, settings.jitterY, w, h);
     gpu::FrameConstants frame{};
     frame.view = cam.view;
     frame.proj = cam.proj;
@@ -261,7 +271,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     frame.ibl = glm::vec4(float(iblSamples), float(ibl_.sourceFaceSize), float(settings.groundTruthSeed), 0.0f);
     for (int k = 0; k < 9; ++k) frame.irradianceSh[k] = glm::vec4(ibl_.irradianceSh[k], 0.0f);
     frame.shading = glm::vec4(float(settings.fresnelMode), wiring.reversedZ ? 0.0f : 1.0f, 0.0f, 0.0f);
-    frame.band = glm::uvec4(band.first, band.rows, 0u, 0u);
+    frame.band = glm::uvec4(band.first, band.rows, settings.frameIndex, 0u);
     // Every pipeline this render needs, first (from the memo, or built now): a shader that does not
     // compile fails the render before anything is allocated for it.
     gbufferPassPipeline(ctx_, wiring, gpuScene_, pipelines_);

@@ -69,6 +69,12 @@ struct RenderSettings {
     bool decodeOnCpu = false;
     // The camera to render from; unset: the scene's (compare --views renders several).
     std::optional<Camera> camera;
+    // compare --temporal N (image/temporal_resolve.h): the frame's sub-pixel jitter in pixels (the
+    // image of the scene moves by it, x right, y down; applyJitter) and its index in the sequence,
+    // which an encoding whose dither moves with time reads (a field's dither_per_frame). Zero: the
+    // projection and the G-buffer codes of a render without them, bit for bit.
+    float jitterX = 0.0f, jitterY = 0.0f;
+    uint32_t frameIndex = 0;
 };
 
 struct PassTimings {
@@ -221,5 +227,10 @@ struct CameraMatrices {
     glm::mat4 view, proj, viewProj, invViewProj;
 };
 CameraMatrices computeCameraMatrices(const Camera& camera, float aspect, bool reversedZ);
+// Moves the image by (dx, dy) pixels of a width x height frame (x right, y down: clip-space x and
+// y gain offset x w, which a perspective projection's w = -z_view makes a translation of the
+// projection's third column), and recomputes viewProj and invViewProj. As UE's TAA jitters its
+// projection (ViewMatrices.HackAddTemporalAAProjectionJitter).
+void applyJitter(CameraMatrices& m, float dx, float dy, uint32_t width, uint32_t height);
 
 }  // namespace gbl

@@ -41,6 +41,7 @@ std::vector<AtlasRowGroup> atlasRows(const ReportModel& model) {
                 if (r->status == RunStatus::Ok && r->image) {
                     row.flipMean = r->image->flipMean;
                     row.psnrToneMapped = r->image->psnrToneMapped;
+                    if (r->singleFrame && r->singleFrame->image) row.flipMeanSingleFrame = r->singleFrame->image->flipMean;
                 }
             }
             row.entry = std::move(e);
@@ -48,12 +49,25 @@ std::vector<AtlasRowGroup> atlasRows(const ReportModel& model) {
         }
         out.push_back(std::move(group));
     }
+    // Ranks by either FLIP (the resolve's, frame 0's): the atlas read in either order.
+    for (auto [value, rank] : {std::pair{&AtlasRow::flipMean, &AtlasRow::rank},
+                               std::pair{&AtlasRow::flipMeanSingleFrame, &AtlasRow::rankSingleFrame}})
+        for (AtlasRowGroup& g : out)
+            for (AtlasRow& row : g.rows) {
+                if (!(row.*value)) continue;
+                int better = 0;
+                for (const AtlasRowGroup& h : out)
+                    for (const AtlasRow& other : h.rows)
+                        if ((other.*value) && *(other.*value) < *(row.*value)) ++better;
+                row.*rank = 1 + better;
+            }
     return out;
 }
 
 void writeAtlasHtml(std::string& out, const ReportModel& model) {
     if (model.atlas.empty()) return;
     const std::vector<AtlasRowGroup> groups = atlasRows(model);
+    const bool temporal = model.run.temporalFrames > 1;
     std::string mode;
     for (const AtlasRowGroup& g : groups)
         for (const AtlasRow& r : g.rows)
@@ -68,10 +82,12 @@ void writeAtlasHtml(std::string& out, const ReportModel& model) {
            "engine. Errors: the run under " +
            htmlEscape(mode.empty() ? std::string("-") : mode) + " against the float reference.</p>\n";
     out += "<table class=\"atlas\">\n<thead><tr><th>Layout</th><th>Engine</th><th>Year</th><th>Bytes/px</th>"
-           "<th>Attributes: bits, encoding</th><th>Provenance</th><th>FLIP mean</th><th>PSNR dB</th></tr></thead>\n"
-           "<tbody>\n";
+           "<th>Attributes: bits, encoding</th><th>Provenance</th><th>FLIP mean" +
+           std::string(temporal ? " (rank), resolved" : "") + "</th><th>PSNR dB</th>" +
+           (temporal ? "<th>FLIP mean (rank), single frame</th>" : "") + "</tr></thead>\n<tbody>\n";
     for (const AtlasRowGroup& g : groups) {
-        out += "<tr class=\"family\"><th colspan=\"8\">" + htmlEscape(g.family) + "</th></tr>\n";
+        out += "<tr class=\"family\"><th colspan=\"" + std::string(temporal ? "9" : "8") + "\">" +
+               htmlEscape(g.family) + "</th></tr>\n";
         for (const AtlasRow& r : g.rows) {
             const AtlasEntry& e = r.entry;
             std::string bytes = std::to_string(e.bytesPerPixel);
@@ -89,7 +105,13 @@ void writeAtlasHtml(std::string& out, const ReportModel& model) {
                    "</td><td class=\"provenance\">" +
                    (e.provenance.entries > 0 ? htmlEscape(e.provenance.text()) : std::string("&ndash;")) +
                    "</td><td class=\"num\">" + (r.flipMean ? fixed(*r.flipMean, 4) : "&ndash;") +
+                   (temporal && r.rank ? " (" + std::to_string(r.rank) + ")" : std::string()) +
                    "</td><td class=\"num\">" + (r.psnrToneMapped ? fixed(*r.psnrToneMapped, 2) : "&ndash;") +
+                   (temporal ? "</td><td class=\"num\">" +
+                                   (r.flipMeanSingleFrame ? fixed(*r.flipMeanSingleFrame, 4) + " (" +
+                                                                std::to_string(r.rankSingleFrame) + ")"
+                                                          : std::string("&ndash;"))
+                             : std::string()) +
                    "</td></tr>\n";
         }
     }

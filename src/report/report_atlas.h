@@ -17,6 +17,10 @@ struct AtlasRow {
     std::string iblMode;  // the run the errors come from ("" when the layout has no run)
     std::optional<double> flipMean;        // LDR-FLIP mean
     std::optional<double> psnrToneMapped;  // dB; +inf when identical to the reference
+    // compare --temporal N: flipMean is the resolve's; this frame 0's alone. Ranks: 1 + the atlas
+    // rows of lower FLIP mean, by each (0: no value).
+    std::optional<double> flipMeanSingleFrame;
+    int rank = 0, rankSingleFrame = 0;
 };
 
 struct AtlasRowGroup {

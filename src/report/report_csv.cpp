@@ -157,6 +157,19 @@ std::vector<Column> columns() {
         c.push_back({name + "_view_max", [spread](const RunReport& r) { return spread(r, &ViewSpread::max); }, {}});
         c.push_back({name + "_view_std", [spread](const RunReport& r) { return spread(r, &ViewSpread::stddev); }, {}});
     }
+    // compare --temporal N: frame 0 alone (the columns above are the resolve's); empty otherwise.
+    auto single = [](const RunReport& r) { return r.singleFrame && r.singleFrame->image ? &*r.singleFrame->image : nullptr; };
+    c.push_back({"single_frame_psnr_tonemapped_db", [single](const RunReport& r) {
+                     return single(r) ? numberText(single(r)->psnrToneMapped) : std::string();
+                 }, {}});
+    c.push_back({"single_frame_flip_mean", [single](const RunReport& r) {
+                     return single(r) ? numberText(single(r)->flipMean) : std::string();
+                 }, {}});
+    c.push_back({"single_frame_normal_mean_deg", [](const RunReport& r) {
+                     if (!r.singleFrame) return std::string();
+                     const auto& n = r.singleFrame->attributes[ErrorAttribute::Normal].all;
+                     return n ? numberText(n->error.mean) : std::string();
+                 }, {}});
     return c;
 }
 

@@ -397,13 +397,33 @@ std::string reportHtml(const ReportModel& model) {
     out += "<section id=\"plots\">\n<h2>Error against bytes per pixel</h2>\n<div class=\"toggle\" role=\"group\">"
            "<button type=\"button\" data-plot=\"flip\" aria-pressed=\"true\">FLIP mean, log axis</button>"
            "<button type=\"button\" data-plot=\"flip-linear\" aria-pressed=\"false\">FLIP mean, linear axis</button>"
-           "<button type=\"button\" data-plot=\"psnr\" aria-pressed=\"false\">PSNR</button></div>\n";
+           "<button type=\"button\" data-plot=\"psnr\" aria-pressed=\"false\">PSNR</button>";
+    // compare --temporal N: the plots above rank the resolves; these the first frame alone.
+    const bool temporal = model.run.temporalFrames > 1;
+    if (temporal)
+        out += "<button type=\"button\" data-plot=\"flip-1f\" aria-pressed=\"false\">FLIP mean, single frame</button>"
+               "<button type=\"button\" data-plot=\"psnr-1f\" aria-pressed=\"false\">PSNR, single frame</button>";
+    out += "</div>\n";
+    if (temporal)
+        out += "<p class=\"hint\">--temporal " + std::to_string(model.run.temporalFrames) +
+               ": FLIP and PSNR are the resolved images' (" + htmlEscape(model.run.temporalResolve) +
+               " of the jittered frames, as temporal anti-aliasing converges with a still camera); \"single frame\": "
+               "frame 0 alone. Not modelled: motion and reprojection, history rejection, upscalers.</p>\n";
     const auto flip4 = [](double v) { return formatFixed(v, 4); };
     writePlot(out, model, ids, {"flip", "FLIP mean", false, true, true, &ImageErrors::flipMean, flip4}, false);
     writePlot(out, model, ids, {"flip-linear", "FLIP mean", false, true, false, &ImageErrors::flipMean, flip4}, true);
     writePlot(out, model, ids, {"psnr", "PSNR dB (tone-mapped)", true, false, false, &ImageErrors::psnrToneMapped,
                                 [](double v) { return formatFixed(v, 2); }},
               true);
+    if (temporal) {
+        PlotSpec flip1{"flip-1f", "FLIP mean, single frame", false, true, true, &ImageErrors::flipMean, flip4};
+        flip1.singleFrame = true;
+        writePlot(out, model, ids, flip1, true);
+        PlotSpec psnr1{"psnr-1f", "PSNR dB (tone-mapped), single frame", true, false, false,
+                       &ImageErrors::psnrToneMapped, [](double v) { return formatFixed(v, 2); }};
+        psnr1.singleFrame = true;
+        writePlot(out, model, ids, psnr1, true);
+    }
     out += "</section>\n";
 
     for (size_t i = 0; i < model.runs.size(); ++i) writeRunSection(out, model, model.runs[i], ids[i]);

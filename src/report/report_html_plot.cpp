@@ -116,7 +116,8 @@ void writePlot(std::string& out, const ReportModel& model, const std::vector<std
             skippedLighting = true;
             continue;
         }
-        const double y = *r.image.*spec.field;
+        if (spec.singleFrame && (!r.singleFrame || !r.singleFrame->image)) continue;
+        const double y = spec.singleFrame ? *r.singleFrame->image.*spec.field : *r.image.*spec.field;
         if (std::isnan(y)) continue;
         Point p;
         p.x = r.bytesPerPixel.total;

@@ -25,6 +25,9 @@ struct PlotSpec {
     bool logY;               // a logarithmic error axis; values <= 0 go to a "0" lane under it
     double ImageErrors::*field;
     std::function<std::string(double)> format;
+    // compare --temporal N: the value of the run's first frame alone (RunReport::singleFrame)
+    // instead of its resolve's.
+    bool singleFrame = false;
 };
 
 // Appends the plot of `spec.field` against bytes per pixel. `runIds` are the runs' section ids,

@@ -37,15 +37,15 @@ struct TableColumn {
     std::function<std::string(double)> format;
 };
 
-std::vector<TableColumn> numericColumns() {
+std::vector<TableColumn> numericColumns(bool temporal) {
     const auto sig3 = [](double v) { return formatSignificant(v, 3); };
     const auto imageValue = [](double ImageErrors::*field) {
         return [field](const RunReport& r) { return r.image ? std::optional<double>(*r.image.*field) : std::nullopt; };
     };
     const char* cost = "Cost";
-    const char* attribute = "Attribute error, mean";
-    const char* image = "Image error";
-    return {
+    const char* attribute = temporal ? "Attribute error of the temporal mean, mean" : "Attribute error, mean";
+    const char* image = temporal ? "Image error, resolved" : "Image error";
+    std::vector<TableColumn> columns = {
         {"bpp", "Bytes/px", "G-buffer bytes per pixel: targets + depth-stencil + light buffers", "ascending", cost,
          false, false, [](const RunReport& r) { return std::optional<double>(r.bytesPerPixel.total); },
          [](double v) { return formatFixed(v, 0); }},
@@ -75,6 +75,28 @@ std::vector<TableColumn> numericColumns() {
         {"flip", "FLIP mean", "Mean LDR-FLIP error, 0 (identical) to 1", "ascending", image, false, true,
          imageValue(&ImageErrors::flipMean), [](double v) { return formatFixed(v, 4); }},
     };
+    if (!temporal) return columns;
+    // compare --temporal N: the columns above are the resolve's; frame 0 alone beside them.
+    const char* single = "Single frame (frame 0)";
+    const auto singleImage = [](double ImageErrors::*field) {
+        return [field](const RunReport& r) {
+            return r.singleFrame && r.singleFrame->image ? std::optional<double>(*r.singleFrame->image.*field)
+                                                         : std::nullopt;
+        };
+    };
+    columns.push_back({"normal_mean_1f", "Normal&nbsp;&deg;", "Frame 0 alone: mean normal angle error, degrees",
+                       "ascending", single, false, false,
+                       [](const RunReport& r) -> std::optional<double> {
+                           if (!r.singleFrame) return std::nullopt;
+                           const auto& all = r.singleFrame->attributes[ErrorAttribute::Normal].all;
+                           return all ? std::optional<double>(all->error.mean) : std::nullopt;
+                       },
+                       sig3});
+    columns.push_back({"psnr_1f", "PSNR dB", "Frame 0 alone: PSNR of the tone-mapped image", "descending", single, false,
+                       false, singleImage(&ImageErrors::psnrToneMapped), [](double v) { return formatFixed(v, 2); }});
+    columns.push_back({"flip_1f", "FLIP mean", "Frame 0 alone: mean LDR-FLIP error", "ascending", single, false, false,
+                       singleImage(&ImageErrors::flipMean), [](double v) { return formatFixed(v, 4); }});
+    return columns;
 }
 
 // The group row: each run of columns under one group header, once with every column counted
@@ -103,7 +125,7 @@ void writeGroupRow(std::string& out, const std::vector<TableColumn>& columns, bo
 }  // namespace
 
 void writeLayoutsTable(std::string& out, const ReportModel& model, const std::vector<std::string>& ids) {
-    const std::vector<TableColumn> columns = numericColumns();
+    const std::vector<TableColumn> columns = numericColumns(model.run.temporalFrames > 1);
     const bool spreads = model.run.views.size() > 1;
     out += std::string("<div class=\"fold\"><input type=\"checkbox\" id=\"all-columns\"><label for=\"all-columns\">"
                        "All columns (the normal angle's p99") +

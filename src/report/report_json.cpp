@@ -277,6 +277,11 @@ Json runJson(const RunReport& r) {
         j["view_spread"] = viewSpreadJson(views);
         j["views"] = std::move(views);
     }
+    if (r.singleFrame) {  // compare --temporal N: frame 0 alone, beside the resolve above
+        Json single{{"attribute_errors", attributesJson(r.singleFrame->attributes)}};
+        if (r.singleFrame->image) single["image_errors"] = imageErrorsJson(*r.singleFrame->image);
+        j["single_frame"] = std::move(single);
+    }
     return j;
 }
 
@@ -480,6 +485,13 @@ RunReport readRun(const Node& n) {
             r.views.push_back(std::move(m));
         }
     }
+    if (n.has("single_frame")) {
+        const Node single = n["single_frame"];
+        SingleFrameMetrics m;
+        m.attributes = readAttributes(single["attribute_errors"]);
+        if (single.has("image_errors")) m.image = readImageErrors(single["image_errors"]);
+        r.singleFrame = std::move(m);
+    }
     return r;
 }
 
@@ -515,6 +527,11 @@ Json reportToJson(const ReportModel& model) {
                              {"exr_precision", run.exrPrecision}}},
                 {"reference", Json{{"layout", model.reference.layout}, {"images", std::move(references)}}},
                 {"runs", std::move(runs)}};
+    if (run.temporalFrames > 1) {  // compare --temporal N
+        Json jitter = Json::array();
+        for (const auto& [x, y] : run.temporalJitter) jitter.push_back(Json::array({number(x), number(y)}));
+        j["run"]["temporal"] = Json{{"frames", run.temporalFrames}, {"resolve", run.temporalResolve}, {"jitter", jitter}};
+    }
     if (model.iblFigure) j["ibl_figure"] = iblFigureJson(*model.iblFigure);
     if (const auto v = gbufferOrVisibility(model)) {  // derived from the runs: not read back
         auto opt = [](const std::optional<double>& x) { return x ? Json(number(*x)) : Json(nullptr); };
@@ -570,6 +587,14 @@ ReportModel reportFromJson(const Json& json) {
             model.run.viewCoverage.push_back(run["view_coverage"].at(i).num());
     if (run.has("views")) model.run.views = run["views"].strings();
     if (run.has("exr_precision")) model.run.exrPrecision = run["exr_precision"].str();
+    if (run.has("temporal")) {
+        const Node t = run["temporal"];
+        model.run.temporalFrames = t["frames"].i32();
+        model.run.temporalResolve = t["resolve"].str();
+        const Node jitter = t["jitter"];
+        for (size_t i = 0; i < jitter.array().size(); ++i)
+            model.run.temporalJitter.push_back({jitter.at(i).at(0).num(), jitter.at(i).at(1).num()});
+    }
     const Node reference = root["reference"];
     model.reference.layout = reference["layout"].str();
     const Node images = reference["images"];

@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bandwidth.h"
@@ -45,6 +46,11 @@ struct ReportRunInfo {
     // "half" (compare's default) or "float32" (compare --float32-exr). The numbers in the report
     // are computed in 32-bit float either way.
     std::string exrPrecision = "float32";
+    // compare --temporal N (image/temporal_resolve.h): frames per view, their sub-pixel jitter
+    // (pixels, x right / y down) and the resolve ("mean" or "exp"). 1: one frame, no jitter.
+    int temporalFrames = 1;
+    std::string temporalResolve = "mean";
+    std::vector<std::pair<double, double>> temporalJitter;
 };
 
 struct ReferenceImage {
@@ -201,6 +207,16 @@ struct ViewMetrics {
     std::optional<ImageErrors> image;
 };
 
+// compare --temporal N (N > 1): the first frame of the sequence measured alone, against the
+// reference's first frame (both jittered by the sequence's first offset), beside the resolved
+// images the run's own `attributes` and `image` are measured on. `views`: per view, as
+// RunReport::views; after the last view, `attributes` and `image` are their mean.
+struct SingleFrameMetrics {
+    AttributeErrorTable attributes;
+    std::optional<ImageErrors> image;
+    std::vector<ViewMetrics> views;
+};
+
 struct RunReport {
     std::string layout;    // name
     std::string title;
@@ -221,6 +237,10 @@ struct RunReport {
     // `attributes` and `image` above hold their mean over the views (view_stats.h averageViews),
     // and every writer reports each metric's spread over them. Empty: a single view.
     std::vector<ViewMetrics> views;
+    // compare --temporal N (N > 1): `attributes` are then the errors of the temporal mean of each
+    // decoded attribute (normals: the normalised mean) against the reference's, and `image` the
+    // resolved image's errors; this holds the first frame's (absent at --temporal 1).
+    std::optional<SingleFrameMetrics> singleFrame;
 
     // A lighting comparison of `compare` (the reference layout under one IBL mode against the same
     // layout under ground truth, named "reference (<mode> vs ground-truth)"): its errors are the

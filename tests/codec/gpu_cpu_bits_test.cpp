@@ -49,10 +49,14 @@ void main() {
 }
 )";
 
-std::string fragmentSource() {
+// gblFrameIndex(): what a dither that moves with time reads (gbuffer_pass.frag.glsl: frame.band.z);
+// 0, or with `frameFromSurface` each pixel's own, the bits of its SurfaceIn's a[6].x.
+std::string fragmentSource(bool frameFromSurface = false) {
     return std::string("#version 450\n#extension GL_GOOGLE_include_directive : require\n#include \"surface.glsl\"\n") +
-           kSurfaceIn + "#define GBUFFER_WRITE 1\n#include \"gbuffer_wiring.glsl\"\nvoid main() { ivec2 p = ivec2(gl_FragCoord.xy); "
-                        "writeGBuffer(fetchSurface(p), p); }\n";
+           kSurfaceIn + "uint gblFrame = 0u;\nuint gblFrameIndex() { return gblFrame; }\n" +
+           "#define GBUFFER_WRITE 1\n#include \"gbuffer_wiring.glsl\"\nvoid main() { ivec2 p = ivec2(gl_FragCoord.xy); " +
+           (frameFromSurface ? "gblFrame = floatBitsToUint(surfaces[p.y * SIZE + p.x].a[6].x); " : "") +
+           "writeGBuffer(fetchSurface(p), p); }\n";
 }
 
 std::string decodeSource() {
@@ -148,7 +152,8 @@ std::vector<Surface> randomSurfaces(uint32_t seed) {
 // clears and transitions); only the shaders are the test's: a full-screen triangle whose fragment
 // shader fetches its Surface from the buffer instead of evaluating a material. Returns the pass
 // with its targets in SHADER_READ_ONLY_OPTIMAL.
-GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, const Buffer& surfaces, bool draw = true) {
+GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, const Buffer& surfaces, bool draw = true,
+                          bool frameFromSurface = false) {
     GBufferPass pass;
     createGBufferImages(ctx, w, kSize, kSize, pass);
     const std::vector<Binding> set0 = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -163,7 +168,7 @@ GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, cons
         .buffer(pass.set, enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.bestFitTable.buffer)
         .flush(ctx.device);
     const ShaderSource vs{"fullscreen.vert (test)", kVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}};
-    const ShaderSource fs{"gpu_cpu_bits.frag (layout " + w.layoutName + ")", fragmentSource(),
+    const ShaderSource fs{"gpu_cpu_bits.frag (layout " + w.layoutName + ")", fragmentSource(frameFromSurface),
                           VK_SHADER_STAGE_FRAGMENT_BIT, {{"SIZE", std::to_string(kSize)}}, {}};
     pass.pipeline = createGBufferPipeline(ctx, w, pass.pipelineLayout, vs, fs, false);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -322,6 +327,75 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
         if (layout.pipeline == Pipeline::VisibilityBuffer) continue;  // ids, not attributes: render/visibility_test
         checkWordsAndDecodes(ctx(), layout, randomSurfaces(seed++));
     }
+}
+
+// A dither that moves with time (a field's dither_per_frame): niagara's normal field declared per
+// frame, written by the GPU's generated writeGBuffer with each pixel at its own frame index (0 to
+// 127: every index of the noise's 64-frame cycle, twice) and by the CPU codec at each index: the
+// same words at every index. The codes move from frame to frame and repeat after 64 frames; the
+// field as niagara declares it (no frame term) ignores the index.
+TEST_F(GpuCpuBits, DitherThatMovesWithTimePacksTheSameWordsAtEveryFrame) {
+    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    Layout layout = loadLayoutFile(dir / "niagara.toml");
+    Field* dithered = nullptr;
+    for (Target& t : layout.targets)
+        for (Field& f : t.fields)
+            if (f.encoding == "normal_octahedral_dithered") dithered = &f;
+    ASSERT_NE(dithered, nullptr);
+    EXPECT_TRUE(dithered->ditherDeclared);
+    EXPECT_FALSE(dithered->ditherPerFrame);  // niagara: gradientNoise(gl_FragCoord.xy), no frame term
+    const Layout fixed = layout;
+    dithered->ditherPerFrame = true;
+    const GBufferWiring w = generateWiring(layout);
+    EXPECT_NE(w.glsl.find("gblFrameIndex()"), std::string::npos);
+    EXPECT_EQ(generateWiring(fixed).glsl.find("gblFrameIndex()"), std::string::npos);
+    constexpr uint32_t kFrames = 128;
+    const auto frameOf = [](size_t pixel) { return uint32_t((pixel % kSize + 3 * (pixel / kSize)) % kFrames); };
+    const std::vector<Surface> surfaces = randomSurfaces(77);
+    std::vector<float> packed = packSurfaces(surfaces);
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        const uint32_t frame = frameOf(i);
+        std::memcpy(&packed[i * kFloatsPerSurface + 24], &frame, sizeof frame);  // a[6].x's bits
+    }
+    Buffer ssbo = createBufferWithData(ctx(), packed.data(), packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    GBufferPass pass = renderTargets(ctx(), w, ssbo, true, true);
+    std::vector<std::vector<uint32_t>> gpu;
+    for (const GpuImage& t : pass.targets) gpu.push_back(readWords(ctx(), t));
+    destroyGBufferPass(ctx(), pass);
+    destroyBuffer(ctx(), ssbo);
+    std::vector<CpuGBuffer> cpu;  // the whole image encoded at each frame index
+    for (uint32_t frame = 0; frame < kFrames; ++frame) {
+        CpuCodecOptions options;
+        options.frameIndex = frame;
+        cpu.push_back(CpuCodec(layout, options).encode(surfaces, int(kSize), int(kSize)));
+    }
+    size_t compared = 0, mismatches = 0;
+    for (size_t t = 0; t < gpu.size(); ++t) {
+        const size_t wordsPerPixel = gpu[t].size() / surfaces.size();
+        for (size_t i = 0; i < gpu[t].size(); ++i) {
+            ++compared;
+            const uint32_t want = cpu[frameOf(i / wordsPerPixel)].targetWords[t][i];
+            if (gpu[t][i] != want && mismatches++ < 5)
+                ADD_FAILURE() << "target " << t << " word " << i << " (frame " << frameOf(i / wordsPerPixel) << "): gpu 0x"
+                              << std::hex << gpu[t][i] << " cpu 0x" << want << std::dec;
+        }
+    }
+    EXPECT_EQ(mismatches, 0u);
+    std::printf("[ bits     ] niagara, moving dither, frames 0-%u per pixel: %zu words compared, %zu mismatches\n",
+                kFrames - 1, compared, mismatches);
+    // The dither moves: frames 0 and 1 store other codes in many pixels; frame 64 is frame 0.
+    size_t moved = 0, words = 0;
+    for (size_t t = 0; t < gpu.size(); ++t)
+        for (size_t i = 0; i < cpu[0].targetWords[t].size(); ++i) {
+            ++words;
+            moved += cpu[0].targetWords[t][i] != cpu[1].targetWords[t][i];
+        }
+    EXPECT_GT(moved, words / 8) << moved << " of " << words << " words differ between frames 0 and 1";
+    EXPECT_EQ(cpu[0].targetWords, cpu[64].targetWords);
+    EXPECT_EQ(cpu[0].targetWords, CpuCodec(fixed).encode(surfaces, int(kSize), int(kSize)).targetWords);
+    CpuCodecOptions late;
+    late.frameIndex = 5;
+    EXPECT_EQ(CpuCodec(fixed, late).encode(surfaces, int(kSize), int(kSize)).targetWords, cpu[0].targetWords);
 }
 
 // HDRP's engine encodings with inputs the random Surfaces rarely give, so that their GLSL twins are

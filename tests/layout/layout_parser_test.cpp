@@ -140,6 +140,27 @@ TEST(LayoutParser, WholeValueEncodingsTakeOneBitCount) {
     expectError(text, placeOf(text, "\"g[0:6]\""), {"takes one bit count for all its codes", "code y", "has 7"});
 }
 
+// dither_per_frame: only on a dithered encoding, true or false; read into the field.
+TEST(LayoutParser, DitherPerFrameIsForDitheredEncodings) {
+    const std::string plain = edit(kValid, "encoding = \"gloss\", at", "encoding = \"gloss\", dither_per_frame = true, at");
+    expectError(plain, placeOf(plain, "true"), {"'dither_per_frame' is for a dithered encoding", "'gloss' has no dither"});
+    const std::string dithered =
+        edit(kValid, "encoding = \"normal_xy_zsign\", at = [\"r\", \"g\", \"b[7]\"]",
+             "encoding = \"normal_octahedral_dithered\", at = [\"r\", \"g\"], dither_per_frame = %s");
+    const std::string notBool = edit(dithered, "%s", "\"yes\"");
+    expectError(notBool, placeOf(notBool, "\"yes\""), {"'dither_per_frame' must be true or false"});
+    for (const bool value : {true, false}) {
+        const std::string text = edit(dithered, "%s", value ? "true" : "false");
+        const auto diags = checkLayout(text, kFile);
+        ASSERT_TRUE(diags.empty()) << joined(diags);
+        const Layout l = parseLayout(text, kFile);
+        const Field& f = l.targets[0].fields[0];
+        EXPECT_EQ(f.encoding, "normal_octahedral_dithered");
+        EXPECT_TRUE(f.ditherDeclared);
+        EXPECT_EQ(f.ditherPerFrame, value);
+    }
+}
+
 TEST(LayoutParser, DeclaredBitsMustMatchThePlaces) {
     const std::string text = edit(kValid, "encoding = \"gloss\", at", "encoding = \"gloss\", bits = 8, at");
     expectError(text, placeOf(text, "\"b[0:6]\""), {"field 'roughness': 'bits' says 8 but 'b[0:6]' holds 7 bits"});

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cmd_layouts.h"
+#include "encoding_registry.h"
 #include "layout.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
@@ -265,7 +266,7 @@ TEST(LayoutProvenance, BadProvenanceIsOneClearLine) {
 // fails here (and in `layouts check`). The citations are real pins: full 40-digit commits.
 TEST(LayoutProvenance, EveryShippedEntryHasProvenance) {
     std::set<ProvenanceStatus> seen;
-    int files = 0;
+    int files = 0, dithered = 0;
     for (const std::string& name : listLayoutNames(layoutsDir())) {
         SCOPED_TRACE(name);
         ++files;
@@ -289,7 +290,18 @@ TEST(LayoutProvenance, EveryShippedEntryHasProvenance) {
         }
         for (const Citation& cite : l.citations)
             EXPECT_TRUE(used.count(cite.key)) << name << ": citation " << cite.key << " is cited by no entry";
+        // A dithered field says whether its engine moves the dither with time (compare --temporal),
+        // with the field's provenance citing the code.
+        for (const Target& t : l.targets)
+            for (const Field& f : t.fields) {
+                const EncodingInfo* enc = findEncoding(f.encoding);
+                if (!enc || !enc->dithered) continue;
+                ++dithered;
+                EXPECT_TRUE(f.ditherDeclared) << name << ": field " << f.encoding << " needs dither_per_frame";
+                EXPECT_EQ(f.provenance.status, ProvenanceStatus::Verified) << name;
+            }
     }
+    EXPECT_GE(dithered, 1);  // niagara's normal
     EXPECT_GE(files, 25);
     for (ProvenanceStatus s : {ProvenanceStatus::Verified, ProvenanceStatus::Talk, ProvenanceStatus::Lineage,
                                ProvenanceStatus::Assumed, ProvenanceStatus::Own})
