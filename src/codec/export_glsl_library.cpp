@@ -216,6 +216,22 @@ std::vector<GlslDeclaration> splitGlslDeclarations(const std::string& text) {
     std::string line, comment, pending;
     bool inDecl = false, inResource = false;
     int depth = 0;
+    // The declaration gathered in `pending` ends when its braces balance at a ';' or '}'.
+    auto closeDeclarationIfComplete = [&] {
+        const std::string code = trim(stripComments(pending));
+        if (depth != 0 || code.empty() || (code.back() != ';' && code.back() != '}')) return;
+        GlslDeclaration d;
+        d.code = resolveCodecTables(pending);
+        d.comment = comment;
+        d.name = declaredName(d.code);
+        d.isConstant = code.rfind("const ", 0) == 0;
+        d.uses = identifiersOf(stripComments(d.code));
+        d.uses.erase(d.name);
+        out.push_back(std::move(d));
+        comment.clear();
+        pending.clear();
+        inDecl = false;
+    };
     auto depthOf = [](const std::string& l) {
         int d = 0;
         for (char c : stripComments(l)) d += (c == '(' || c == '{') - (c == ')' || c == '}');
@@ -231,20 +247,7 @@ std::vector<GlslDeclaration> splitGlslDeclarations(const std::string& text) {
         if (inDecl) {
             pending += line + "\n";
             depth += depthOf(line);
-            const std::string code = trim(stripComments(pending));
-            if (depth == 0 && !code.empty() && (code.back() == ';' || code.back() == '}')) {
-                GlslDeclaration d;
-                d.code = resolveCodecTables(pending);
-                d.comment = comment;
-                d.name = declaredName(d.code);
-                d.isConstant = code.rfind("const ", 0) == 0;
-                d.uses = identifiersOf(stripComments(d.code));
-                d.uses.erase(d.name);
-                out.push_back(std::move(d));
-                comment.clear();
-                pending.clear();
-                inDecl = false;
-            }
+            closeDeclarationIfComplete();
             continue;
         }
         if (t.empty()) {
@@ -272,20 +275,7 @@ std::vector<GlslDeclaration> splitGlslDeclarations(const std::string& text) {
             inDecl = true;
             pending = line + "\n";
             depth = depthOf(line);
-            const std::string code = trim(stripComments(pending));
-            if (depth == 0 && !code.empty() && (code.back() == ';' || code.back() == '}')) {  // one line
-                GlslDeclaration d;
-                d.code = resolveCodecTables(pending);
-                d.comment = comment;
-                d.name = declaredName(d.code);
-                d.isConstant = code.rfind("const ", 0) == 0;
-                d.uses = identifiersOf(stripComments(d.code));
-                d.uses.erase(d.name);
-                out.push_back(std::move(d));
-                comment.clear();
-                pending.clear();
-                inDecl = false;
-            }
+            closeDeclarationIfComplete();  // a declaration on one line
         }
     }
     if (inDecl || inResource) throw std::runtime_error("export: a GLSL declaration is not closed at the end of the file");

@@ -1,5 +1,7 @@
 #include "layout_packer.h"
 
+#include <functional>
+
 #include <algorithm>
 #include <numeric>
 #include <sstream>
@@ -115,30 +117,34 @@ std::vector<PlannedField> plannedFields(const Genome& g) {
     return out;
 }
 
+int smallestPackedBytes(const std::function<void(Genome&)>& adjust) {
+    int best = 0;
+    Genome g;
+    g.workflow = Workflow::Metallic;
+    g.metallicBits = 0;
+    g.specularMode = SpecularMode::FromMetallic;
+    g.occlusionBits = 0;
+    for (size_t n = 0; n < normalEncodings().size(); ++n)
+        for (size_t r = 0; r < roughnessEncodings().size(); ++r)
+            for (size_t c = 0; c < colourEncodings().size(); ++c)
+                for (size_t d = 0; d < depthFormats().size(); ++d) {
+                    g.normalEncoding = int(n);
+                    g.normalBits = normalEncodings()[n].minBits;
+                    g.roughnessEncoding = int(r);
+                    g.roughnessBits = roughnessEncodings()[r].minBits;
+                    g.colourEncoding = int(c);
+                    g.colourBits = colourEncodings()[c].minBits;
+                    g.depthFormat = int(d);
+                    Genome adjusted = g;
+                    if (adjust) adjust(adjusted);
+                    const int bytes = packGenome(adjusted, 0).bytesPerPixel;  // 0 when unpackable
+                    if (bytes > 0 && (best == 0 || bytes < best)) best = bytes;
+                }
+    return best;
+}
+
 int smallestPackedBytes() {
-    static const int smallest = [] {
-        int best = 0;
-        Genome g;
-        g.workflow = Workflow::Metallic;
-        g.metallicBits = 0;
-        g.specularMode = SpecularMode::FromMetallic;
-        g.occlusionBits = 0;
-        for (size_t n = 0; n < normalEncodings().size(); ++n)
-            for (size_t r = 0; r < roughnessEncodings().size(); ++r)
-                for (size_t c = 0; c < colourEncodings().size(); ++c)
-                    for (size_t d = 0; d < depthFormats().size(); ++d) {
-                        g.normalEncoding = int(n);
-                        g.normalBits = normalEncodings()[n].minBits;
-                        g.roughnessEncoding = int(r);
-                        g.roughnessBits = roughnessEncodings()[r].minBits;
-                        g.colourEncoding = int(c);
-                        g.colourBits = colourEncodings()[c].minBits;
-                        g.depthFormat = int(d);
-                        const int bytes = packGenome(g, 0).bytesPerPixel;  // 0 when unpackable
-                        if (bytes > 0 && (best == 0 || bytes < best)) best = bytes;
-                    }
-        return best;
-    }();
+    static const int smallest = smallestPackedBytes(nullptr);
     return smallest;
 }
 

@@ -4,6 +4,7 @@
 // byte budget that counts every target and the depth-stencil attachment, as bytesPerPixel
 // (layout.h) and measure/bandwidth.h count them. The text is then read by the real parser and
 // validator (parseLayout): a candidate exists only if `gbufferlab layouts check` accepts it.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ PackResult packGenome(const Genome& g, int budgetBytes);
 // specular), over every choice of normal, roughness and colour encoding. A budget below it
 // admits no layout at all (search refuses it before rendering).
 int smallestPackedBytes();
+// The same over genomes first passed through `adjust` (search_constraints.h: the engine
+// constraints); an empty function adjusts nothing.
+int smallestPackedBytes(const std::function<void(Genome&)>& adjust);
 
 // The whole file: `comment` (each line prefixed "# "), then name, then body.
 std::string layoutText(const std::string& name, const std::string& comment, const std::string& body);

@@ -176,29 +176,7 @@ std::string constraintsKey(const EngineConstraints& c) {
 }
 
 int smallestPackedBytes(const EngineConstraints& c) {
-    int best = 0;
-    Genome g;
-    g.workflow = Workflow::Metallic;
-    g.metallicBits = 0;
-    g.specularMode = SpecularMode::FromMetallic;
-    g.occlusionBits = 0;
-    for (size_t n = 0; n < normalEncodings().size(); ++n)
-        for (size_t r = 0; r < roughnessEncodings().size(); ++r)
-            for (size_t k = 0; k < colourEncodings().size(); ++k)
-                for (size_t d = 0; d < depthFormats().size(); ++d) {
-                    g.normalEncoding = int(n);
-                    g.normalBits = normalEncodings()[n].minBits;
-                    g.roughnessEncoding = int(r);
-                    g.roughnessBits = roughnessEncodings()[r].minBits;
-                    g.colourEncoding = int(k);
-                    g.colourBits = colourEncodings()[k].minBits;
-                    g.depthFormat = int(d);
-                    Genome constrained = g;
-                    constrainGenome(constrained, c);
-                    const int bytes = packGenome(constrained, 0).bytesPerPixel;  // 0 when unpackable
-                    if (bytes > 0 && (best == 0 || bytes < best)) best = bytes;
-                }
-    return best;
+    return smallestPackedBytes([&](Genome& g) { constrainGenome(g, c); });
 }
 
 }  // namespace gbl::search
