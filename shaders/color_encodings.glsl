@@ -140,6 +140,9 @@ float reflectanceFromSpecular(float s) {
     return sqrt(h);
 }
 float specularFromReflectance(float r) { return 2.0 * r * r; }
+// Bevy's WebGL2 read of its 4-bit reflectance: saturate(r - 0.03333333333), half a 4-bit step low
+// (the CPU mirror's comment says more).
+float specularFromReflectanceBevyWebgl2(float r) { return specularFromReflectance(clamp(r - 0.03333333333, 0.0, 1.0)); }
 
 // smoothnessFromRoughnessCry: s = 1 - sqrt(r); roughnessFromSmoothnessCry: r = (1 - s)^2.
 // Source: Schulz, "Moving to the Next Generation - The Rendering Technology of Ryse", GDC 2014.

@@ -75,7 +75,11 @@ void main() {
         store(index, outPixel, d);
         return;
     }
-    Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
+    Surface stored = readGBuffer(pixel);
+#ifdef GBL_STORES_DEPTH
+    depth = stored.position.z;  // the depth the lighting pass reads: the layout's own (lighting_pass)
+#endif
+    Surface s = gblSurfaceFromStored(stored);  // back to gbufferlab's world (Y-up)
     // View depth from the depth value alone. A projection (perspective or orthographic, reversed
     // Z or not) gives clip z and w from view z without x or y, so -z_view = (d P33 - P32) /
     // (d P23 - P22). The way through world space and back (inverse view-projection, divide, view

@@ -30,6 +30,11 @@ void main() {
                        materials[draw.material.x].alphaMaskCutoff.x != 0.0, gl_FragCoord.z);
 #else
     Surface s = evaluateMaterial(inWorldPosition, inNormal, inTangent, inUv, gl_FrontFacing);
-    writeGBuffer(gblSurfaceToStored(s), ivec2(gl_FragCoord.xy));  // into the layout's [space]
+    Surface stored = gblSurfaceToStored(s);  // into the layout's [space]
+#ifdef GBL_STORES_DEPTH
+    // A stored window depth (Bevy on WebGL2: in.frag_coord.z) rides in position.z (wiring_plan.h).
+    stored.position = vec3(0.0, 0.0, gl_FragCoord.z);
+#endif
+    writeGBuffer(stored, ivec2(gl_FragCoord.xy));
 #endif
 }

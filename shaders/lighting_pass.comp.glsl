@@ -114,7 +114,13 @@ void main() {
 #endif
         return;
     }
-    Surface s = gblSurfaceFromStored(readGBuffer(pixel));  // back to gbufferlab's world (Y-up)
+    Surface stored = readGBuffer(pixel);
+#ifdef GBL_STORES_DEPTH
+    // The layout's own depth word replaces the attachment's (Bevy on WebGL2, deferred_lighting.wgsl:
+    // frag_coord.z from the G-buffer); coverage above still comes from the attachment.
+    depth = stored.position.z;
+#endif
+    Surface s = gblSurfaceFromStored(stored);  // back to gbufferlab's world (Y-up)
 #if defined(GBL_STORES_POSITION) || defined(GBL_VISIBILITY_BUFFER)
     // The layout stores position (fat-naive): light from the decoded, quantised position, not
     // from the one depth gives. A visibility buffer: from the camera ray's hit on the triangle.

@@ -144,6 +144,9 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
                 case Codec::Reflectance:
                     map1(n, c, out, [bk](uint x) { return specularFromReflectance(dequantizeUnorm(x, bk)); });
                     break;
+                case Codec::ReflectanceBevyWebgl2:
+                    map1(n, c, out, [bk](uint x) { return specularFromReflectanceBevyWebgl2(dequantizeUnorm(x, bk)); });
+                    break;
                 default: break;  // Id: CpuCodec::decode throws before (plan.decodeError)
             }
         }

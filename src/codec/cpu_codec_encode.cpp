@@ -309,6 +309,7 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
                     break;
                 case Codec::CryGlossPower: map1(n, in, out, [](float x) { return encodeCryGlossPower(x); }); break;
                 case Codec::Reflectance:
+                case Codec::ReflectanceBevyWebgl2:  // the bias is the read's alone
                     map1(n, in, out, [bk](float x) { return quantizeUnorm(reflectanceFromSpecular(x), bk); });
                     break;
                 default: break;  // Id: folded into the target's constant words by compilePlan

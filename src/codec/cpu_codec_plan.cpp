@@ -29,6 +29,7 @@ Codec resolveCodec(const std::string& e) {
         {"smoothness_cry", Codec::SmoothnessCry},
         {"cry_gloss_power", Codec::CryGlossPower},
         {"reflectance", Codec::Reflectance},
+        {"reflectance_bevy_webgl2", Codec::ReflectanceBevyWebgl2},
         {"srgb8", Codec::Srgb8},
         {"luma", Codec::Luma},
         {"ycbcr", Codec::YCbCr},
@@ -163,6 +164,7 @@ int surfaceOffset(Attribute a) {
         case Attribute::Occlusion: return int(offsetof(Surface, occlusion)) / kFloat;
         case Attribute::Emissive: return int(offsetof(Surface, emissive)) / kFloat;
         case Attribute::Position: return int(offsetof(Surface, position)) / kFloat;
+        case Attribute::Depth: return int(offsetof(Surface, position)) / kFloat + 2;  // position.z (wiring_plan.h)
         default: return -1;
     }
 }

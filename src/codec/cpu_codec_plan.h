@@ -35,6 +35,7 @@ enum class Codec : uint8_t {
     Gloss,
     SmoothnessCry,
     Reflectance,
+    ReflectanceBevyWebgl2,
     CryGlossPower,  // the last scalar (isScalar)
     Srgb8,
     Luma,

@@ -167,7 +167,11 @@ std::string exportHeaderComment(const Layout& l, const ExportOptions& options) {
         o << "//   " << attributeName(f.attribute) << " = " << fallbackText(f) << provenanceText(f.provenance) << "\n";
         any = true;
     }
-    if (!l.stores(Attribute::Position)) {
+    if (l.stores(Attribute::Depth)) {
+        o << "//   position: not stored; rebuild it in the lighting pass from `depth` (gl_FragCoord.z, this layout's Z\n"
+             "//     convention), which the G-buffer pass writes and the lighting reads instead of the depth buffer\n";
+        any = true;
+    } else if (!l.stores(Attribute::Position)) {
         o << "//   position: not stored; rebuild it from depth in the lighting pass\n";
         any = true;
     }

@@ -52,6 +52,8 @@ struct GBufferWiring {
     int normalSpace = 0;
     int positionSpace = 2;
     bool storesPosition = false;  // the lighting uses the decoded position instead of depth's
+    bool storesDepth = false;     // the lighting and decode read the pixel's depth from the G-buffer
+                                  // (Surface.position.z) instead of the depth attachment (Bevy WebGL2)
     // Stencil extras (layout [depth] stencil), one per field: the G-buffer pass writes, per draw,
     // the reference OR over fields of (value & mask) << shift, value = the material's
     // (Material::stencilValues) or else the declared one, with stencil op REPLACE and write mask

@@ -293,7 +293,7 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         const std::string ts = std::to_string(t);
         for (size_t fi = 0; fi < tg.fields.size(); ++fi) {
             const Field& f = tg.fields[fi];
-            const char* m = surfaceMemberName(f.attribute);
+            const char* m = surfaceSlotName(f.attribute);
             if (!m) continue;  // extras: no shading meaning
             const std::string lhs = std::string("    s.") + m + " = ";
             if (native[t]) {
@@ -331,9 +331,15 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
     for (Attribute a : {Attribute::Normal, Attribute::BaseColor, Attribute::Metallic, Attribute::Roughness,
                         Attribute::Specular, Attribute::SpecularColor, Attribute::DiffuseColor, Attribute::Occlusion,
                         Attribute::Emissive, Attribute::Position})
-        if (!layout.stores(a) && !layout.findFallback(a))
-            o << "    s." << surfaceMemberName(a) << " = " << zeroOf(a) << ";  // not stored"
-              << (a == Attribute::Position ? ": rebuilt from depth by the lighting pass" : "") << "\n";
+        if (!layout.stores(a) && !layout.findFallback(a)) {
+            const bool depthInZ = a == Attribute::Position && layout.stores(Attribute::Depth);
+            o << "    s." << (depthInZ ? "position.xy" : surfaceMemberName(a)) << " = "
+              << (depthInZ ? "vec2(0.0)" : zeroOf(a)) << ";  // not stored"
+              << (a != Attribute::Position ? ""
+                  : depthInZ              ? ": z holds the stored depth, the lighting pass rebuilds position from it"
+                                          : ": rebuilt from depth by the lighting pass")
+              << "\n";
+        }
     for (const Fallback* fb : orderedFallbacks(layout)) emitFallback(o, *fb, layout);
     o << "    return s;\n}\n#endif\n";
     return o.str();
@@ -364,6 +370,7 @@ GBufferWiring generateWiring(const Layout& layout, const WiringOptions& options)
     w.normalSpace = int(layout.space.normal);
     w.positionSpace = int(layout.space.position);
     w.storesPosition = layout.stores(Attribute::Position);
+    w.storesDepth = layout.stores(Attribute::Depth);
     for (const Field& f : layout.depth.stencil) {
         // Integer extras, one code; its pieces take the value's bits, low bits first.
         if (f.codes.empty() || f.value.empty()) continue;

@@ -28,6 +28,7 @@ std::string componentExpr(const Field& f, int i, bool extrasFromSurface = false)
         const std::string e = "s." + extraMemberName(f.attribute);
         return n == 1 ? e : e + "." + kComp[i];
     }
+    if (const char* slot = surfaceSlotName(f.attribute)) return std::string("s.") + slot;  // depth: position.z
     const double v = f.value.empty() ? 0.0 : f.value[std::min<size_t>(size_t(i), f.value.size() - 1)];
     if (f.encoding == kIdEncoding) return ulit(uint64_t(v));
     return glslFloatLiteral(v);
@@ -80,7 +81,8 @@ std::string scalarEncode(const std::string& enc, const std::string& x, int bits)
     if (enc == "gloss") return "quantizeUnorm(glossFromRoughness(" + x + "), " + b + ")";
     if (enc == "smoothness_cry") return "quantizeUnorm(smoothnessFromRoughnessCry(" + x + "), " + b + ")";
     if (enc == "cry_gloss_power") return "encodeCryGlossPower(" + x + ")";
-    if (enc == "reflectance") return "quantizeUnorm(reflectanceFromSpecular(" + x + "), " + b + ")";
+    if (enc == "reflectance" || enc == "reflectance_bevy_webgl2")
+        return "quantizeUnorm(reflectanceFromSpecular(" + x + "), " + b + ")";
     throw std::logic_error("wiring: no scalar encoder for " + enc);
 }
 
@@ -97,6 +99,8 @@ std::string scalarDecode(const std::string& enc, const std::string& c, int bits)
     if (enc == "smoothness_cry") return "roughnessFromSmoothnessCry(dequantizeUnorm(" + c + ", " + b + "))";
     if (enc == "cry_gloss_power") return "decodeCryGlossPower(" + c + ")";
     if (enc == "reflectance") return "specularFromReflectance(dequantizeUnorm(" + c + ", " + b + "))";
+    if (enc == "reflectance_bevy_webgl2")
+        return "specularFromReflectanceBevyWebgl2(dequantizeUnorm(" + c + ", " + b + "))";
     throw std::logic_error("wiring: no scalar decoder for " + enc);
 }
 

@@ -24,6 +24,8 @@ const char* surfaceMemberName(Attribute a) {
     }
 }
 
+const char* surfaceSlotName(Attribute a) { return a == Attribute::Depth ? "position.z" : surfaceMemberName(a); }
+
 int wordsPerPixel(const Target& target) { return target.bits() <= 32 ? 1 : target.bits() / 32; }
 
 VkFormat uintFormatOf(const Target& target) {

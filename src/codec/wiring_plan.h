@@ -38,7 +38,13 @@ std::vector<const Fallback*> orderedFallbacks(const Layout& layout);
 // The attributes a derived fallback's formula reads (none for constants, forward, material pass).
 std::vector<Attribute> fallbackInputs(FallbackKind kind);
 
-// Surface member name of a shading / geometry attribute ("baseColor"); nullptr for extras.
+// Surface member name of a shading / geometry attribute ("baseColor"); nullptr for extras and
+// for `depth`, which is no member of its own (an exported Surface gives it one, `depth`).
 const char* surfaceMemberName(Attribute a);
+// Where gbufferlab's own Surface holds an attribute: its member, or for a stored window `depth`
+// "position.z" (a layout stores position or depth, not both: the Surface stays 22 floats, the
+// shape the CPU codec's transposes and the bit tests share). The lighting and decode passes read
+// it back as the pixel's depth. nullptr for extras.
+const char* surfaceSlotName(Attribute a);
 
 }  // namespace gbl

@@ -44,6 +44,10 @@ std::vector<EncodingInfo> makeRegistry() {
                  "Filament / Bevy reflectance r = sqrt(specular / 2) as unorm (F0 = 0.16 r^2 = 0.08 specular); "
                  "decodes specular = 2 r^2",
                  "Filament documentation, 'Reflectance' (F0 = 0.16 reflectance^2); Bevy StandardMaterial::reflectance"});
+    v.push_back({"reflectance_bevy_webgl2", K::Scalar, 1, 4, 1, 16, 0, false, "specular in [0,1]",
+                 "`reflectance` read back as Bevy reads its 4-bit WebGL2 reflectance: r = saturate(code / (2^b - 1) "
+                 "- 0.03333333333), specular = 2 r^2 (code 8 of 4 bits reads 0.5; the others half a step low)",
+                 "bevyengine/bevy v0.16.0 crates/bevy_pbr/src/deferred/pbr_deferred_functions.wgsl:36-40, 104-106"});
 
     v.push_back({"srgb8", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
                  "exact sRGB 8-bit per channel via 255 linear thresholds (no pow)",

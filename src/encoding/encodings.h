@@ -451,6 +451,13 @@ inline float reflectanceFromSpecular(float s) {
     return sqrt(h);
 }
 inline float specularFromReflectance(float r) { return 2.0f * r * r; }
+// specularFromReflectanceBevyWebgl2: Bevy's WebGL2 read of its 4-bit reflectance, biased down by
+// half a 4-bit step, saturate(r - 0.03333333333) ("Bias to 0.5 since that's the value for almost
+// all materials": code 8 reads 0.5, not 8/15; bevyengine/bevy v0.16.0 pbr_deferred_functions.wgsl:
+// 104-106). The write is plain `reflectance` (:36-40), so every code reads half a step low.
+inline float specularFromReflectanceBevyWebgl2(float r) {
+    return specularFromReflectance(clamp(r - 0.03333333333f, 0.0f, 1.0f));
+}
 
 // smoothnessFromRoughnessCry: s = 1 - sqrt(r); roughnessFromSmoothnessCry: r = (1 - s)^2.
 // Source: Schulz, "Moving to the Next Generation - The Rendering Technology of Ryse", GDC 2014.

@@ -34,6 +34,9 @@ const std::vector<AttributeInfo>& attributeTable() {
          "emitted radiance, linear, may exceed 1"},
         {Attribute::Position, "position", 3, AC::Geometry, VT::Float, VD::Any,
          "view-space position; a layout that does not store it reconstructs it from depth"},
+        {Attribute::Depth, "depth", 1, AC::Geometry, VT::Float, VD::Unit,
+         "window-space depth (gl_FragCoord.z, the layout's own Z convention); the lighting rebuilds position "
+         "from it instead of from the depth attachment (Bevy on WebGL2)"},
         {Attribute::Translucency, "translucency", 1, AC::Extra, VT::Float, VD::Unit,
          "translucency (transmission) luminance of thin surfaces (Crysis 3 RT0.a, Ryse RT0.a)"},
         {Attribute::SssProfile, "sss_profile", 1, AC::Extra, VT::Integer, VD::Id,

@@ -37,6 +37,7 @@ enum class Attribute : uint8_t {
     Emissive,       // vec3 linear radiance >= 0
     // geometry
     Position,  // vec3 view-space position; when not stored, reconstructed from depth
+    Depth,     // window-space depth (gl_FragCoord.z) the lighting reads instead of the depth attachment
     // extras
     Translucency,
     SssProfile,

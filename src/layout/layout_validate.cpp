@@ -70,7 +70,8 @@ private:
         }
         if ((enc.name == "gloss" || enc.name == "smoothness_cry" || enc.name == "cry_gloss_power") && attr.id != Attribute::Roughness)
             return e + " stores roughness only, not " + a;
-        if (enc.name == "reflectance" && attr.id != Attribute::Specular) return e + " stores specular only, not " + a;
+        if ((enc.name == "reflectance" || enc.name == "reflectance_bevy_webgl2") && attr.id != Attribute::Specular)
+            return e + " stores specular only, not " + a;
         if (attr.domain == ValueDomain::Signed && enc.name != "snorm" && enc.name != "float16" && enc.name != "float32")
             return a + " has components in [-1,1] but " + e + " takes " + enc.inputRange +
                    " (use a normal_* encoding, snorm, float16 or float32)";
@@ -436,6 +437,14 @@ private:
             error(sp.place, "the layout stores 'position' but [space] has no 'position': declare \"view\" or \"world\"");
         if (!position && sp.positionDeclared)
             error(sp.positionPlace, "[space] declares a 'position' space but the layout stores no 'position'");
+        // A stored window depth rides in the Surface's position slot (wiring_plan.h surfaceSlotName):
+        // the lighting rebuilds position from the one or the other.
+        if (position)
+            for (const Target& t : layout_.targets)
+                for (const Field& f : t.fields)
+                    if (f.attribute == Attribute::Depth)
+                        error(f.place, "the layout stores both 'position' and 'depth': the lighting rebuilds the "
+                                       "position from one of them; remove one");
     }
 
     void checkClear() {

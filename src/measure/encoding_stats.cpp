@@ -188,6 +188,9 @@ float roundTripScalar(std::string_view name, int bits, float x) {
         return enc::roughnessFromSmoothnessCry(
             enc::dequantizeUnorm(enc::quantizeUnorm(enc::smoothnessFromRoughnessCry(x), b), b));
     if (info.name == "cry_gloss_power") return enc::decodeCryGlossPower(enc::encodeCryGlossPower(x));
+    if (info.name == "reflectance_bevy_webgl2")
+        return enc::specularFromReflectanceBevyWebgl2(
+            enc::dequantizeUnorm(enc::quantizeUnorm(enc::reflectanceFromSpecular(x), b), b));
     if (info.name == "reflectance")
         return enc::specularFromReflectance(
             enc::dequantizeUnorm(enc::quantizeUnorm(enc::reflectanceFromSpecular(x), b), b));

@@ -25,7 +25,8 @@ float viewDepthAt(const gpu::FrameConstants& frame, float depth) {
 }  // namespace
 
 SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, const std::vector<float>& depth,
-                                  const gpu::FrameConstants& frame, int normalSpace, VkFormat depthFormat) {
+                                  const gpu::FrameConstants& frame, int normalSpace, VkFormat depthFormat,
+                                  bool storesDepth) {
     const int w = words.width, h = words.height;
     const size_t pixels = size_t(w) * size_t(h);
     const float clearDepth = frame.shading.y;
@@ -78,7 +79,8 @@ SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, cons
                     s.roughness.pixels[i] = d.roughness;
                     s.metallic.pixels[i] = d.metallic;
                     s.occlusion.pixels[i] = d.occlusion;
-                    s.viewDepth.pixels[i] = viewDepthAt(frame, sampled(depth[i]));
+                    // A layout's stored window depth is the one its lighting reads (decode_pass).
+                    s.viewDepth.pixels[i] = viewDepthAt(frame, storesDepth ? d.position.z : sampled(depth[i]));
                 }
         }
     });

@@ -23,8 +23,10 @@ namespace gbl {
 // the clear depth frame.shading.y, as the decode pass's gblHasGeometry. `frame`: the frame's
 // constants (view, inverse view-projection, extent). `normalSpace`, `depthFormat`: the wiring's
 // (a 24-bit depth's view depth is computed from the value as the device's sampler converts it).
+// `storesDepth`: the wiring's; the view depth then comes from the layout's stored window depth.
 // Runs on hardwareThreads() threads, a band of rows at a time per thread.
 SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, const std::vector<float>& depth,
-                                  const gpu::FrameConstants& frame, int normalSpace, VkFormat depthFormat);
+                                  const gpu::FrameConstants& frame, int normalSpace, VkFormat depthFormat,
+                                  bool storesDepth);
 
 }  // namespace gbl

@@ -459,7 +459,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         destroyBuffer(ctx_, frameBuffer);
         wordsScope.reset();
         HostScope scope("read-back: decode on the host");
-        out.surfaces = decodeSurfacesOnCpu(*wiring.cpuDecoder, words, out.depth, frame, wiring.normalSpace, wiring.depthFormat);
+        out.surfaces = decodeSurfacesOnCpu(*wiring.cpuDecoder, words, out.depth, frame, wiring.normalSpace, wiring.depthFormat,
+                                           wiring.storesDepth);
         out.targetWords.clear();
         if (settings.readTargetWords) out.targetWords = std::move(words.targetWords);
         return out;

@@ -73,11 +73,13 @@ struct GBufferPass {
 };
 
 // The layout's [space] as defines for shaders/normal_space.glsl (GBL_NORMAL_SPACE,
-// GBL_POSITION_SPACE) and, where it stores position, GBL_STORES_POSITION.
+// GBL_POSITION_SPACE) and, where it stores position or a window depth, GBL_STORES_POSITION or
+// GBL_STORES_DEPTH.
 inline void addSpaceDefines(ShaderSource& s, const GBufferWiring& w) {
     s.defines.push_back({"GBL_NORMAL_SPACE", std::to_string(w.normalSpace)});
     s.defines.push_back({"GBL_POSITION_SPACE", std::to_string(w.positionSpace)});
     if (w.storesPosition) s.defines.push_back({"GBL_STORES_POSITION", "1"});
+    if (w.storesDepth) s.defines.push_back({"GBL_STORES_DEPTH", "1"});
 }
 
 // Uploads bestFitNormalTable() as a storage buffer (for GBufferPass::bestFitTable).

@@ -111,6 +111,15 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
     }
     const std::vector<glm::vec3>& positions =
         variant ? variant->position : quantized.empty() ? v.shade.position : quantized;
+    // A stored window depth (Bevy on WebGL2) in the layout's own Z convention, as the G-buffer pass
+    // writes gl_FragCoord.z: a variant's depth is in it already; the D32 reference's is not reversed
+    // (reversed Z is 1 - d here: quantizeDepth).
+    const bool storesDepth = layout.stores(Attribute::Depth);
+    const bool flipDepth = !variant && layout.depth.reversedZ;
+    auto ownDepth = [&](size_t i) {
+        const float d = variant ? variant->depth[i] : v.depth[i];
+        return flipDepth ? float(1.0 - double(d)) : d;
+    };
 
     // Into the stored space (normal_space.h), as the G-buffer pass does before writeGBuffer;
     // pixels without geometry hold the layout's clear values.
@@ -128,6 +137,7 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
         Surface s = input[i];
         s.normal = directionToStored(s.normal, normalSpace, v.view);
         if (storesPosition) s.position = pointToStored(positions[i], layout.space.position, v.view);
+        if (storesDepth) s.position = glm::vec3(0.0f, 0.0f, ownDepth(i));
         stored[i] = s;
     }
     CpuCodec codec(layout, CpuCodecOptions{std::max(threads, 1)});
@@ -140,10 +150,18 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
         decoded[i].normal = directionFromStored(decoded[i].normal, normalSpace, v.view);
         if (storesPosition) storedPositions[i] = pointFromStored(decoded[i].position, layout.space.position, v.view);
     }
+    if (storesDepth) {  // the lighting rebuilds position from the decoded depth (lighting_pass.comp.glsl)
+        std::vector<float> depth(n);
+        for (size_t i = 0; i < n; ++i) {
+            const float d = decoded[i].position.z;
+            depth[i] = flipDepth ? float(1.0 - double(d)) : d;
+        }
+        storedPositions = positionsFromDepth(depth, w, h, variant ? variant->invViewProj : v.invViewProj);
+    }
     if (errors) addAttributeErrors(input, decoded, covered, *errors);
     const Fallback* emissive = layout.findFallback(Attribute::Emissive);
     const bool forward = emissive && emissive->kind == FallbackKind::Forward;
-    return reshade(v.shade, covered, decoded, storesPosition ? storedPositions : positions, lights_, ibl_,
+    return reshade(v.shade, covered, decoded, storesPosition || storesDepth ? storedPositions : positions, lights_, ibl_,
                    forward ? &input : nullptr, std::max(threads, 1));
 }
 

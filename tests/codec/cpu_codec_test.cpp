@@ -49,6 +49,7 @@ float* member(Surface& s, Attribute a) {
         case Attribute::Occlusion: return &s.occlusion;
         case Attribute::Emissive: return &s.emissive.x;
         case Attribute::Position: return &s.position.x;
+        case Attribute::Depth: return &s.position.z;  // a stored window depth rides in position.z (wiring_plan.h)
         default: return nullptr;
     }
 }
@@ -83,7 +84,7 @@ uint scalarEncode(const Field& f, float x, size_t i) {
     if (e == "gloss") return quantizeUnorm(glossFromRoughness(x), b);
     if (e == "smoothness_cry") return quantizeUnorm(smoothnessFromRoughnessCry(x), b);
     if (e == "cry_gloss_power") return encodeCryGlossPower(x);
-    if (e == "reflectance") return quantizeUnorm(reflectanceFromSpecular(x), b);
+    if (e == "reflectance" || e == "reflectance_bevy_webgl2") return quantizeUnorm(reflectanceFromSpecular(x), b);
     throw std::logic_error("cpu codec: no scalar encoder for " + e);
 }
 
@@ -101,6 +102,7 @@ float scalarDecode(const Field& f, uint c, size_t i) {
     if (e == "smoothness_cry") return roughnessFromSmoothnessCry(dequantizeUnorm(c, b));
     if (e == "cry_gloss_power") return decodeCryGlossPower(c);
     if (e == "reflectance") return specularFromReflectance(dequantizeUnorm(c, b));
+    if (e == "reflectance_bevy_webgl2") return specularFromReflectanceBevyWebgl2(dequantizeUnorm(c, b));
     throw std::logic_error("cpu codec: no scalar decoder for " + e);
 }
 

@@ -143,6 +143,8 @@ std::vector<Surface> randomSurfaces(uint32_t seed) {
         s.occlusion = u(rng);
         s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 8.0f;
         s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 100.0f;
+        // A stored window depth rides in position.z (wiring_plan.h): most z in [0, 1], some clamped.
+        s.position.z = u(rng) * 1.2f - 0.1f;
     }
     return v;
 }

@@ -85,6 +85,8 @@ std::vector<Surface> randomSurfaces(uint32_t seed) {
         s.occlusion = u(rng);
         s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 8.0f;
         s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 100.0f;
+        // A stored window depth rides in position.z (wiring_plan.h): most z in [0, 1], some clamped.
+        s.position.z = u(rng) * 1.2f - 0.1f;
     }
     // Edge values: 0 and 1 everywhere in one pixel, an axis normal in another.
     v[1] = Surface{};
@@ -106,6 +108,7 @@ const float* memberOf(const Surface& s, Attribute a) {
         case Attribute::Occlusion: return &s.occlusion;
         case Attribute::Emissive: return &s.emissive.x;
         case Attribute::Position: return &s.position.x;
+        case Attribute::Depth: return &s.position.z;  // the exported Surface's `depth` (wiring_plan.h)
         default: return nullptr;
     }
 }

@@ -93,6 +93,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
         {"urp-deferred", 3 * 4 + 5},           // GBuffer0..2 RGBA8 + D32S8
         {"urp-deferred-accurate", 3 * 4 + 5},  // the same targets, GBuffer2 UNORM
         {"bevy-deferred", 16 + 1 + 4},         // Rgba32Uint + R8Uint pass id + Depth32Float
+        {"bevy-deferred-webgl2", 16 + 1 + 4},  // the same targets; the depth also in word b's 20 bits
         {"granite", 4 + 4 + 4 + 2 + 4},        // B10G11R11 + RGBA8 + A2B10G10R10 + RG8 + D24S8
         {"granite-2025", 4 + 4 + 4 + 2 + 4},   // the same targets + D32_SFLOAT (no stencil)
         // Valient, Develop 2007: four RGBA8 + D24S8 = 20 bytes; the talk's "36 MB" is this at
@@ -107,7 +108,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     EXPECT_NEAR(bytesPerPixel(load("killzone2")) * 1280.0 * 720.0 * 2.0 / 1e6, 36.0, 1.0);
     EXPECT_GE(listLayoutNames(layoutsDir()).size(), 25u);  // issue 28: at least 24 layouts + the reference
-    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 29u);  // 28 and the reference: layouts/README.md's atlas
+    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 30u);  // 29 and the reference: layouts/README.md's atlas
 }
 
 // Where the atlas layouts put their bits (each engine's source, as the layout files cite it).
@@ -118,6 +119,14 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(bitsOf(bevy, Attribute::Normal), 24);     // oct 12:12
     EXPECT_EQ(bitsOf(bevy, Attribute::Flags), 8);
     EXPECT_EQ(bitsOf(bevy, Attribute::PassId), 8);
+    // WebGL2: word b = depth20 << 12 | occlusion4 << 8 | metallic4 << 4 | reflectance4.
+    const Layout webgl2 = load("bevy-deferred-webgl2");
+    EXPECT_EQ(bitsOf(webgl2, Attribute::Specular), 4);
+    EXPECT_EQ(bitsOf(webgl2, Attribute::Metallic), 4);
+    EXPECT_EQ(bitsOf(webgl2, Attribute::Occlusion), 4);
+    EXPECT_EQ(bitsOf(webgl2, Attribute::Depth), 20);
+    ASSERT_TRUE(webgl2.findField(Attribute::Depth));
+    EXPECT_EQ(webgl2.findField(Attribute::Depth)->codes[0].text, "b[12:31]");
     const Field* e = bevy.findField(Attribute::Emissive);
     ASSERT_TRUE(e);
     ASSERT_EQ(e->codes.size(), 4u);  // r, g, b mantissas, then the shared exponent in bits 27..31

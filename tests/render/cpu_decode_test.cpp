@@ -116,7 +116,8 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
     cpu.decodeOnCpu = true;
 
     for (const char* name :
-         {"ue4", "crysis2-slim", "crysis3-thin", "niagara", "ryse", "bevy-deferred", "killzone2", "reference"}) {
+         {"ue4", "crysis2-slim", "crysis3-thin", "niagara", "ryse", "bevy-deferred", "bevy-deferred-webgl2", "killzone2",
+          "reference"}) {
         SCOPED_TRACE(name);
         const GBufferWiring wiring = generateWiring(loadLayout(name));
         ASSERT_NE(wiring.cpuDecoder, nullptr);
@@ -202,6 +203,80 @@ TEST_F(CpuDecodeTest, ViewDepthIsTheProjectionsWithinTwoUlp) {
             EXPECT_LT(worst, worstRoundTrip);
         }
     }
+}
+
+// Bevy on WebGL2 lights from the 20-bit depth in its G-buffer word b, not from the depth attachment
+// (deferred_lighting.wgsl:51-52). Bevy's packing of frag_coord.z, written out here again from
+// pbr_deferred_types.wgsl:74-89: code = u32(saturate(z) * 1048575 + 0.5), read as code / 1048575.
+// Both decoders' view depth must be the projection's view depth of that value (within 2 ulp of the
+// double solution), and must differ from the attachment's on most pixels (else the attachment
+// was read). The lighting: the same layout without its depth field lights from the attachment;
+// the two images must differ, and only by what moving a point by its 20-bit depth step can do.
+TEST_F(CpuDecodeTest, BevyWebgl2LightsFromItsTwentyBitDepth) {
+    constexpr uint32_t kWidth = 160, kHeight = 90;
+    const Scene scene = makeSphereGridScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const Layout webgl2 = loadLayout("bevy-deferred-webgl2");
+    const GBufferWiring wiring = generateWiring(webgl2);
+    ASSERT_TRUE(wiring.storesDepth);
+    for (const bool onCpu : {false, true}) {
+        SCOPED_TRACE(onCpu ? "cpu decode" : "decode pass");
+        RenderSettings settings;
+        settings.width = kWidth;
+        settings.height = kHeight;
+        settings.decodeSurfaces = true;
+        settings.decodeOnCpu = onCpu;
+        settings.readTargetWords = false;
+        const RenderOutput out = renderer.render(wiring, settings);
+        const CameraMatrices m = computeCameraMatrices(scene.camera, float(kWidth) / float(kHeight), wiring.reversedZ);
+        const glm::dmat4 p(m.proj);
+        double worst = 0.0;
+        size_t covered = 0, moved = 0;
+        for (size_t i = 0; i < out.depth.size(); ++i) {
+            if (!out.surfaces.coverage[i]) continue;
+            ++covered;
+            const float z = out.depth[i];  // D32: the rasterised gl_FragCoord.z, as the G-buffer pass saw it
+            const uint32_t code = uint32_t(std::min(std::max(z, 0.0f), 1.0f) * 1048575.0f + 0.5f);
+            const double d = double(float(code) / 1048575.0f);
+            const double exact = (d * p[3][3] - p[3][2]) / (d * p[2][3] - p[2][2]);
+            const double attachment = (double(z) * p[3][3] - p[3][2]) / (double(z) * p[2][3] - p[2][2]);
+            worst = std::max(worst, ulpsApart(out.surfaces.viewDepth.pixels[i], exact));
+            moved += ulpsApart(out.surfaces.viewDepth.pixels[i], attachment) > 4.0;
+        }
+        std::printf("[ webgl2   ] %s: view depth within %.2f ulp of the 20-bit depth's; %zu of %zu pixels moved from the "
+                    "attachment's\n", onCpu ? "cpu decode " : "decode pass", worst, moved, covered);
+        ASSERT_GT(covered, size_t(kWidth) * kHeight / 4);
+        EXPECT_LE(worst, 2.0);
+        EXPECT_GT(moved, covered / 2);
+    }
+    // The same layout lighting from the attachment: drop the depth field (and its clear value).
+    Layout attachment = webgl2;
+    for (Target& t : attachment.targets)
+        t.fields.erase(std::remove_if(t.fields.begin(), t.fields.end(),
+                                      [](const Field& f) { return f.attribute == Attribute::Depth; }),
+                       t.fields.end());
+    attachment.clears.erase(std::remove_if(attachment.clears.begin(), attachment.clears.end(),
+                                           [](const ClearValue& c) { return c.attribute == Attribute::Depth; }),
+                            attachment.clears.end());
+    const GBufferWiring fromAttachment = generateWiring(attachment);
+    ASSERT_FALSE(fromAttachment.storesDepth);
+    RenderSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    const RenderOutput a = renderer.render(wiring, settings), b = renderer.render(fromAttachment, settings);
+    ASSERT_EQ(a.hdr.pixels.size(), b.hdr.pixels.size());
+    size_t differ = 0;
+    double worstRelative = 0.0;
+    for (size_t i = 0; i < a.hdr.pixels.size(); ++i) {
+        const double x = a.hdr.pixels[i], y = b.hdr.pixels[i];
+        differ += x != y;
+        worstRelative = std::max(worstRelative, std::abs(x - y) / std::max(std::abs(y), 1e-3));
+    }
+    std::printf("[ webgl2   ] HDR: %zu of %zu values differ from lighting by the attachment's depth, at most %.3g relative\n",
+                differ, a.hdr.pixels.size(), worstRelative);
+    EXPECT_GT(differ, a.hdr.pixels.size() / 10);
+    EXPECT_LT(worstRelative, 1e-3);
 }
 
 // Where the codec cannot stand in for readGBuffer, the wiring has no CPU decoder and the renderer
