@@ -77,43 +77,8 @@ uint32_t bevyVec3ToRgb9e5(glm::vec3 in) {
     return (uint32_t(expShared) << 27u) | (b << 18u) | (g << 9u) | r;
 }
 
-const char* kBevyLayout = R"(name = "bevy-packing"
-title = "bevy-deferred's deferred target"
-pipeline = "deferred-shading"
-source = { engine = "Bevy", talk = "unit test", year = 2023 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "deferred"
-format = "R32G32B32A32_UINT"
-field = [
-  { attribute = "base_color", encoding = "gamma22",     at = ["r[0:7]", "r[8:15]", "r[16:23]"] },
-  { attribute = "roughness",  encoding = "unorm",       at = "r[24:31]" },
-  { attribute = "emissive",   encoding = "rgb9e5",      at = ["g[0:8]", "g[9:17]", "g[18:26]", "g[27:31]"] },
-  { attribute = "specular",   encoding = "reflectance", at = "b[0:7]" },
-  { attribute = "metallic",   encoding = "unorm",       at = "b[8:15]" },
-  { attribute = "occlusion",  encoding = "unorm",       at = "b[16:23]" },
-  { attribute = "normal",     encoding = "normal_octahedral_bevy", at = ["a[0:11]", "a[12:23]"] },
-  { attribute = "flags",      at = "a[24:31]", value = 6 },
-]
-[fallback]
-specular_color = "ue4"
-diffuse_color = "from_base_color"
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, -1.0]
-roughness = 0.0
-base_color = 0.0
-emissive = 0.0
-specular = 0.0
-metallic = 0.0
-occlusion = 0.0
-)";
-
 TEST(EnginePackings, BevyDeferredWordsEqualBevysPacking) {
-    const Layout layout = gbl::parseLayout(kBevyLayout, "bevy-packing.toml");
+    const Layout layout = gbl::loadLayout("bevy-deferred");  // the shipped row itself
     const std::vector<glm::vec3> edges = edgeNormals();
     Rng rng(2801);
     // One input per pixel: the normal, and the material values, some of them on 8-bit ties.
