@@ -81,6 +81,7 @@ SearchReference renderSearchReference(Renderer& renderer, const std::vector<Came
         v.shade.covered = s.coverage;
         v.shade.background = r.hdr;
         v.depth = r.depth;
+        v.depthReversedZ = reference.depth.reversedZ;
         const CameraMatrices m = computeCameraMatrices(camera, float(width) / float(height), reference.depth.reversedZ);
         v.view = m.view;
         v.invViewProj = m.invViewProj;

@@ -42,16 +42,18 @@ std::vector<glm::vec3> positionsFromDepth(const std::vector<float>& depth, int w
     return out;
 }
 
-float quantizeDepth(float d, const Depth& depth) {
+float quantizeDepth(float d, bool referenceReversedZ, const Depth& depth) {
+    const bool flip = depth.reversedZ != referenceReversedZ;
     if (depth.floatDepth) {
-        if (!depth.reversedZ) return d;
-        // Reversed Z stores 1 - d (computeCameraMatrices' z' = w - z) as a float32, read back as 1 - stored.
+        if (!flip) return d;
+        // The other convention stores 1 - d (computeCameraMatrices' z' = w - z) as a float32, read back as 1 - stored.
         const float stored = float(1.0 - double(d));
         return float(1.0 - double(stored));
     }
     const double steps = std::ldexp(1.0, depth.depthBits) - 1.0;
-    const double stored = std::nearbyint(double(std::clamp(depth.reversedZ ? 1.0f - d : d, 0.0f, 1.0f)) * steps) / steps;
-    return float(depth.reversedZ ? 1.0 - stored : stored);
+    const double own = flip ? 1.0 - double(d) : double(d);
+    const double stored = std::nearbyint(std::clamp(own, 0.0, 1.0) * steps) / steps;
+    return float(flip ? 1.0 - stored : stored);
 }
 
 struct FastEvaluator::Prepared {
@@ -104,18 +106,18 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
     const std::vector<Surface>& input = variant ? variant->surfaces : v.reference;
     const std::vector<uint8_t>& covered = variant ? variant->covered : v.shade.covered;
     std::vector<glm::vec3> quantized;
-    if (!variant && !(layout.depth.floatDepth && !layout.depth.reversedZ)) {
+    if (!variant && !(layout.depth.floatDepth && layout.depth.reversedZ == v.depthReversedZ)) {
         std::vector<float> depth(n);
-        for (size_t i = 0; i < n; ++i) depth[i] = quantizeDepth(v.depth[i], layout.depth);
+        for (size_t i = 0; i < n; ++i) depth[i] = quantizeDepth(v.depth[i], v.depthReversedZ, layout.depth);
         quantized = positionsFromDepth(depth, w, h, v.invViewProj);
     }
     const std::vector<glm::vec3>& positions =
         variant ? variant->position : quantized.empty() ? v.shade.position : quantized;
     // A stored window depth (Bevy on WebGL2) in the layout's own Z convention, as the G-buffer pass
-    // writes gl_FragCoord.z: a variant's depth is in it already; the D32 reference's is not reversed
-    // (reversed Z is 1 - d here: quantizeDepth).
+    // writes gl_FragCoord.z: a variant's depth is in it already; the D32 reference's is in the
+    // reference's convention (the other one is 1 - d here: quantizeDepth).
     const bool storesDepth = layout.stores(Attribute::Depth);
-    const bool flipDepth = !variant && layout.depth.reversedZ;
+    const bool flipDepth = !variant && layout.depth.reversedZ != v.depthReversedZ;
     auto ownDepth = [&](size_t i) {
         const float d = variant ? variant->depth[i] : v.depth[i];
         return flipDepth ? float(1.0 - double(d)) : d;

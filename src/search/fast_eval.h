@@ -54,9 +54,10 @@ struct DepthVariant {
 struct EvalView {
     ShadeView shade;                 // width, height, camera, coverage, background; position is filled here
     std::vector<Surface> reference;  // decoded reference Surfaces, world (Y-up)
-    std::vector<float> depth;        // the reference's depth buffer (D32_SFLOAT, not reversed)
+    std::vector<float> depth;        // the reference's depth buffer (D32_SFLOAT, reversed as depthReversedZ)
+    bool depthReversedZ = false;     // the reference's [depth] reversed_z (layouts/reference.toml)
     glm::mat4 view{1.0f};            // world -> view (for layouts storing in view space)
-    glm::mat4 invViewProj{1.0f};     // of the non-reversed projection
+    glm::mat4 invViewProj{1.0f};     // of the reference's projection (reversed as depthReversedZ)
     // Optional: the reference under other depth formats. A layout whose depth matches one is fed
     // that variant's Surfaces, coverage and depth; otherwise the D32 depth is quantised
     // (quantizeDepth) and the D32 visibility kept.
@@ -117,8 +118,10 @@ private:
 std::vector<glm::vec3> positionsFromDepth(const std::vector<float>& depth, int width, int height,
                                           const glm::mat4& invViewProj);
 
-// The reference depth (D32, not reversed) as `depth`'s format would hold it: unorm formats round
-// to 2^bits - 1 steps, reversed-Z float stores 1 - d in float32; non-reversed float is exact.
-float quantizeDepth(float d, const Depth& depth);
+// The reference's D32 depth `d` (reversed Z when referenceReversedZ) as `depth`'s format would hold
+// it, returned in the reference's convention: unorm formats round to 2^bits - 1 steps of the
+// layout's own depth; a float depth of the other convention stores 1 - d in float32 (gbufferlab's
+// reversed Z is z' = w - z: computeCameraMatrices); a float depth of the same convention is exact.
+float quantizeDepth(float d, bool referenceReversedZ, const Depth& depth);
 
 }  // namespace gbl::search

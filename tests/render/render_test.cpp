@@ -127,9 +127,9 @@ TEST_F(RenderTest, MetalsAreTintedByTheirF0) {
 
 TEST_F(RenderTest, BackgroundShowsTheEnvironmentAndDepthIsCleared) {
     const Rendered& r = defaultRender();
-    // Top row centre: sky, uncovered, depth at the clear value 1, radiance > 0.
+    // Top row centre: sky, uncovered, depth at the clear value (0: the reference is reversed Z), radiance > 0.
     const size_t i = kWidth / 2;
-    EXPECT_EQ(r.output.depth[i], 1.0f);
+    EXPECT_EQ(r.output.depth[i], 0.0f);
     EXPECT_EQ(r.output.hdr.at(int(kWidth / 2), 0, 3), 0.0f);
     EXPECT_GT(luminance(pixel(r.output.hdr, {int(kWidth / 2), 0})), 0.0f);
 }
@@ -172,10 +172,12 @@ TEST_F(RenderTest, ReversedZMatchesForwardZ) {
     RenderSettings s;
     s.width = kWidth;
     s.height = kHeight;
-    GBufferWiring reversed = makeReferenceWiring();
-    reversed.reversedZ = true;
-    const RenderOutput out = renderer.render(reversed, s);
-    EXPECT_EQ(out.depth[kWidth / 2], 0.0f);  // cleared to 0 with reversed Z
+    // The reference is reversed Z (layouts/reference.toml); the same with the conventional mapping.
+    GBufferWiring forward = makeReferenceWiring();
+    ASSERT_TRUE(forward.reversedZ);
+    forward.reversedZ = false;
+    const RenderOutput out = renderer.render(forward, s);
+    EXPECT_EQ(out.depth[kWidth / 2], 1.0f);  // cleared to 1 with forward Z
     // Same coverage, nearly the same image (positions rebuilt from a different depth mapping).
     size_t differentCoverage = 0, bigDifferences = 0;
     for (size_t i = 0; i < out.hdr.pixelCount(); ++i) {

@@ -384,8 +384,13 @@ TEST_F(VisibilityTest, ResolvedSurfaceMatchesTheReferenceGBuffer) {
     settings.height = 270;
     settings.decodeSurfaces = true;
     settings.readTargetWords = false;
-    const RenderOutput ref = renderer.render(makeReferenceWiring(), settings);
-    const RenderOutput vis = renderer.render(generateWiring(loadLayout("visibility-32")), settings);
+    // The reference's float attributes under visibility-32's depth convention (conventional Z; the
+    // reference's own is reversed): which of two nearly coincident surfaces wins is the depth's call.
+    const GBufferWiring visibility = generateWiring(loadLayout("visibility-32"));
+    GBufferWiring reference = makeReferenceWiring();
+    reference.reversedZ = visibility.reversedZ;
+    const RenderOutput ref = renderer.render(reference, settings);
+    const RenderOutput vis = renderer.render(visibility, settings);
     const SurfaceImages& a = ref.surfaces;
     const SurfaceImages& b = vis.surfaces;
     ASSERT_EQ(a.coverage, b.coverage);

@@ -71,17 +71,25 @@ TEST(CpuReshade, ConstantEnvironmentGivesTheSplitSumClosedForm) {
 TEST(CpuReshade, DepthQuantisationFollowsTheFormats) {
     Depth d16;
     d16.depthBits = 16;
-    EXPECT_FLOAT_EQ(quantizeDepth(0.5f, d16), float(std::round(0.5 * 65535) / 65535));
+    EXPECT_FLOAT_EQ(quantizeDepth(0.5f, false, d16), float(std::round(0.5 * 65535) / 65535));
     Depth d24;
     d24.depthBits = 24;
     const float d = 0.987654321f;
-    EXPECT_FLOAT_EQ(quantizeDepth(d, d24), float(std::round(double(d) * 16777215.0) / 16777215.0));
-    EXPECT_LE(std::abs(quantizeDepth(d, d24) - d), 0.5f / 16777215.0f + 1e-7f);
+    EXPECT_FLOAT_EQ(quantizeDepth(d, false, d24), float(std::round(double(d) * 16777215.0) / 16777215.0));
+    EXPECT_LE(std::abs(quantizeDepth(d, false, d24) - d), 0.5f / 16777215.0f + 1e-7f);
     Depth f32;
     f32.floatDepth = true;
-    EXPECT_EQ(quantizeDepth(d, f32), d);
+    EXPECT_EQ(quantizeDepth(d, false, f32), d);
     f32.reversedZ = true;  // 1 - d in float32 near 0 is finer than d near 1: returns d within an ulp
-    EXPECT_NEAR(quantizeDepth(d, f32), d, 1.2e-7f);
+    EXPECT_NEAR(quantizeDepth(d, false, f32), d, 1.2e-7f);
+    // A reversed-Z reference: the same convention is exact, the other one rounds 1 - d.
+    EXPECT_EQ(quantizeDepth(d, true, f32), d);
+    const float near0 = 3.0e-4f;  // a far point in reversed Z
+    d24.reversedZ = false;
+    EXPECT_FLOAT_EQ(quantizeDepth(near0, true, d24),
+                    float(1.0 - std::round((1.0 - double(near0)) * 16777215.0) / 16777215.0));
+    d24.reversedZ = true;
+    EXPECT_FLOAT_EQ(quantizeDepth(near0, true, d24), float(std::round(double(near0) * 16777215.0) / 16777215.0));
 }
 
 const FastEvaluator& evaluator(Objective o) {
