@@ -26,9 +26,11 @@ constexpr const char* kUsage =
     "       gbufferlab layouts show NAME|FILE    targets, bits per attribute, bytes per pixel, each entry's provenance\n"
     "       gbufferlab layouts glsl NAME|FILE [--native-formats]\n"
     "                                            print the generated GLSL wiring (writeGBuffer / readGBuffer)\n"
-    "       gbufferlab layouts export NAME|FILE --lang hlsl|glsl [--kernel] [--out FILE [--force]]\n"
+    "       gbufferlab layouts export NAME|FILE --lang hlsl|glsl [--kernel] [--tables selects|arrays]\n"
+    "                                [--out FILE [--force]]\n"
     "                                            one self-contained HLSL or GLSL file for an engine: Surface struct,\n"
-    "                                            encode to the real target formats, decode (docs/export.md)\n";
+    "                                            encode to the real target formats, decode (docs/export.md); the\n"
+    "                                            8-bit tables as select trees (default) or const arrays\n";
 
 std::string pad(std::string s, size_t width) {
     if (s.size() < width) s.append(width - s.size(), ' ');
@@ -358,12 +360,14 @@ int printLayoutGlslCommand(const std::string& nameOrPath, bool nativeFormats, st
 // `layouts export`: stdout, or --out FILE (never over an existing file without --force, never
 // over the layout read; written through a temporary, so a failure leaves no partial file).
 int exportLayoutCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    std::string input, lang, outPath;
+    std::string input, lang, outPath, tables = "selects";
     bool kernel = false, force = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if ((a == "--lang" || a == "--out") && i + 1 < args.size()) {
-            (a == "--lang" ? lang : outPath) = args[++i];
+        if ((a == "--lang" || a == "--out" || a == "--tables") && i + 1 < args.size()) {
+            (a == "--lang" ? lang : a == "--out" ? outPath : tables) = args[++i];
+        } else if (a.rfind("--tables=", 0) == 0) {
+            tables = a.substr(9);
         } else if (a.rfind("--lang=", 0) == 0) {
             lang = a.substr(7);
         } else if (a.rfind("--out=", 0) == 0) {
@@ -383,11 +387,18 @@ int exportLayoutCommand(const std::vector<std::string>& args, std::ostream& out,
         err << "gbufferlab layouts export: give a layout and --lang hlsl or --lang glsl\n" << kUsage;
         return 2;
     }
+    if (tables != "selects" && tables != "arrays") {
+        err << "gbufferlab layouts export: --tables '" << escapeText(tables)
+            << "': unknown (selects: select trees, every driver compiles them fast; arrays: const arrays, "
+               "fewer instructions on a GPU)\n";
+        return 2;
+    }
     try {
         const Layout layout = loadLayout(input);
         ExportOptions options;
         options.language = lang == "hlsl" ? ExportLanguage::Hlsl : ExportLanguage::Glsl;
         options.kernel = kernel;
+        options.tables = tables == "arrays" ? exporting::ExportTables::Arrays : exporting::ExportTables::Selects;
         const std::string text = exportLayout(layout, options, [](const std::string& name) {
             return resolveShaderInclude(name, {});
         });

@@ -292,30 +292,28 @@ GlslLibrary::GlslLibrary(const ShaderFileReader& read) {
         if (!text) throw std::runtime_error(file + ": shader file not found (set GBL_SHADER_DIR to the shaders/ directory)");
         for (GlslDeclaration& d : splitGlslDeclarations(*text)) decls_.push_back(std::move(d));
     }
+    source_ = decls_;
     rewriteCodecTables(decls_);
 }
 
-bool GlslLibrary::declares(const std::string& name) const {
-    for (const GlslDeclaration& d : decls_)
-        if (d.name == name) return true;
-    return false;
-}
-
-std::vector<const GlslDeclaration*> GlslLibrary::closure(const std::set<std::string>& roots) const {
+std::vector<const GlslDeclaration*> GlslLibrary::closure(const std::set<std::string>& roots, ExportTables tables) const {
+    const std::vector<GlslDeclaration>& decls = declarations(tables);
+    std::set<std::string> names;
+    for (const GlslDeclaration& d : decls) names.insert(d.name);
     std::set<std::string> reached, todo;
     for (const std::string& r : roots)
-        if (declares(r)) todo.insert(r);
+        if (names.count(r)) todo.insert(r);
     while (!todo.empty()) {
         const std::string n = *todo.begin();
         todo.erase(todo.begin());
         if (!reached.insert(n).second) continue;
-        for (const GlslDeclaration& d : decls_)
+        for (const GlslDeclaration& d : decls)
             if (d.name == n)
                 for (const std::string& u : d.uses)
-                    if (!reached.count(u) && declares(u)) todo.insert(u);
+                    if (!reached.count(u) && names.count(u)) todo.insert(u);
     }
     std::vector<const GlslDeclaration*> out;
-    for (const GlslDeclaration& d : decls_)
+    for (const GlslDeclaration& d : decls)
         if (reached.count(d.name)) out.push_back(&d);
     return out;
 }

@@ -29,19 +29,28 @@ struct GlslDeclaration {
 // Reads one shader file by name ("encodings.glsl"); nullopt when missing.
 using ShaderFileReader = std::function<std::optional<std::string>(const std::string&)>;
 
+// How the export writes the encodings' 8-bit tables (export_tables.h): as select trees over
+// uvec4 constants (the default: straight code that every driver compiles fast, about 255 selects
+// per lookup), or as the shader source has them, const float arrays and 8-step binary searches
+// (up to 8 loads per lookup, from constant memory on a GPU; minutes to compile on lavapipe).
+enum class ExportTables { Selects, Arrays };
+
 class GlslLibrary {
 public:
     // The families encodings.glsl includes, in its order. Throws std::runtime_error naming the
     // file when one cannot be read.
     explicit GlslLibrary(const ShaderFileReader& read);
 
-    // The declarations `roots` reach (transitively), in source order.
-    std::vector<const GlslDeclaration*> closure(const std::set<std::string>& roots) const;
-    bool declares(const std::string& name) const;
-    const std::vector<GlslDeclaration>& declarations() const { return decls_; }
+    // The declarations `roots` reach (transitively), in source order, with the tables as `tables`.
+    std::vector<const GlslDeclaration*> closure(const std::set<std::string>& roots,
+                                                ExportTables tables = ExportTables::Selects) const;
+    const std::vector<GlslDeclaration>& declarations(ExportTables tables = ExportTables::Selects) const {
+        return tables == ExportTables::Selects ? decls_ : source_;
+    }
 
 private:
-    std::vector<GlslDeclaration> decls_;
+    std::vector<GlslDeclaration> decls_;   // the tables rewritten (rewriteCodecTables)
+    std::vector<GlslDeclaration> source_;  // as the shader files have them
 };
 
 // Splits one GLSL file into its top-level declarations (comments kept with the declaration they

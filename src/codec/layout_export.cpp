@@ -541,7 +541,7 @@ std::string exportLayout(const Layout& layout, const ExportOptions& options, con
 std::string exportLayout(const Layout& layout, const ExportOptions& options, const exporting::GlslLibrary& library) {
     const bool vis = layout.pipeline == Pipeline::VisibilityBuffer;
     std::string body = vis ? visibilityBody(layout, options) : Generator(layout, options).body();
-    const std::vector<const exporting::GlslDeclaration*> helpers = library.closure(exporting::identifiersOf(body));
+    const std::vector<const exporting::GlslDeclaration*> helpers = library.closure(exporting::identifiersOf(body), options.tables);
     std::set<std::string> rename = {"bestFitNormalTable"};
     for (const exporting::GlslDeclaration* d : helpers)
         if (d->name.rfind("GBL_", 0) != 0 && d->name.rfind("gbl", 0) != 0) rename.insert(d->name);
@@ -557,7 +557,10 @@ std::string exportLayout(const Layout& layout, const ExportOptions& options, con
     o << exportHeaderComment(layout, options);
     const std::string guard = "GBL_EXPORT_" + exportIdentifier(layout.name);
     o << "#ifndef " << guard << "\n#define " << guard << "\n\n";
-    if (!helpers.empty()) o << "// ---- encoding helpers: shaders/*_encodings.glsl of gbufferlab, as the renderer compiles them (the 8-bit tables as select trees: export_tables.h) ----\n";
+    if (!helpers.empty())
+        o << "// ---- encoding helpers: shaders/*_encodings.glsl of gbufferlab, as the renderer compiles them"
+          << (options.tables == exporting::ExportTables::Selects ? " (the 8-bit tables as select trees: export_tables.h)" : "")
+          << " ----\n";
     if (exportUsesBestFitTable(layout)) o << bestFitTableDeclaration(options.language);
     std::map<std::string, int> seen;
     for (const exporting::GlslDeclaration* d : helpers) {

@@ -29,6 +29,8 @@ struct ExportOptions {
     // A compute entry point `main`: surfaces from a buffer, encode, decode, both written back
     // (the float layout of exportSurfaceMembers; docs/export.md).
     bool kernel = false;
+    // The 8-bit tables as select trees (default) or const arrays (export_glsl_library.h).
+    exporting::ExportTables tables = exporting::ExportTables::Selects;
 };
 
 // One member of the exported Surface struct, in declaration order.

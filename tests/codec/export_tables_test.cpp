@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -131,6 +132,37 @@ TEST(ExportTables, DecodeTablesHoldTheCppTwinsEntries) {
             const float got = directEntry(code, i);
             ASSERT_EQ(std::memcmp(&got, &twin[i], 4), 0) << name << "[" << i << "]: " << got << " vs " << twin[i];
         }
+    }
+}
+
+// `--tables arrays`: the declarations as the shader files have them (the renderer's own code,
+// which gpu_cpu_bits_test holds to the CPU mirror on the device): every entry of every table the
+// C++ twin's, bit for bit, and the searches still loops over them.
+TEST(ExportTables, ArrayTablesAreTheCppTwins) {
+    const exporting::GlslLibrary lib([](const std::string& n) { return resolveShaderInclude(n, {}); });
+    std::map<std::string, const exporting::GlslDeclaration*> d;
+    for (const exporting::GlslDeclaration& x : lib.declarations(exporting::ExportTables::Arrays)) d[x.name] = &x;
+    const std::map<std::string, std::pair<const float*, size_t>> twins = {
+        {"kSrgbDecode", {enc::kSrgbDecode, 256}},
+        {"kGamma22Decode", {enc::kGamma22Decode, 256}},
+        {"kCryGlossRoughness", {enc::kCryGlossRoughness, 256}},
+        {"kSrgbEncodeThresholds", {enc::kSrgbEncodeThresholds, 255}},
+        {"kGamma22EncodeThresholds", {enc::kGamma22EncodeThresholds, 255}},
+        {"kSrgbFastHdrpEncodeThresholds", {enc::kSrgbFastHdrpEncodeThresholds, 255}},
+        {"kCryGlossEncodeThresholds", {enc::kCryGlossEncodeThresholds, 255}}};
+    for (const auto& [name, twin] : twins) {
+        SCOPED_TRACE(name);
+        ASSERT_TRUE(d.count(name));
+        EXPECT_TRUE(d.at(name)->isConstant);
+        const std::optional<exporting::ConstFloatTable> t = exporting::parseConstFloatTable(d.at(name)->code);
+        ASSERT_TRUE(t.has_value()) << d.at(name)->code;
+        ASSERT_EQ(t->values.size(), twin.second);
+        for (size_t i = 0; i < twin.second; ++i)
+            ASSERT_EQ(std::memcmp(&t->values[i], &twin.first[i], 4), 0) << name << "[" << i << "]";
+    }
+    for (const char* encoder : {"encodeSrgb8", "encodeGamma22", "encodeSrgb8FastHdrp", "encodeCryGlossPower"}) {
+        ASSERT_TRUE(d.count(encoder)) << encoder;
+        EXPECT_NE(d.at(encoder)->code.find("for ("), std::string::npos) << d.at(encoder)->code;
     }
 }
 

@@ -54,10 +54,14 @@ bool coveredAt(uint32_t x, uint32_t y) { return ((x * 7 + y * 3) % 5) != 0; }
 
 std::string lang(ExportLanguage l) { return l == ExportLanguage::Hlsl ? "HLSL" : "GLSL"; }
 
+// GBL_EXPORT_TEST_TABLES=arrays runs the check on `--tables arrays` exports (minutes per layout with
+// tables on lavapipe, which is why the default is the select trees: docs/export.md).
 std::string exportText(const Layout& layout, ExportLanguage l) {
     ExportOptions o;
     o.language = l;
     o.kernel = true;
+    if (const char* t = std::getenv("GBL_EXPORT_TEST_TABLES"); t && std::string(t) == "arrays")
+        o.tables = exporting::ExportTables::Arrays;
     return exportLayout(layout, o, [](const std::string& n) { return resolveShaderInclude(n, {}); });
 }
 

@@ -19,10 +19,12 @@
 namespace gbl {
 namespace {
 
-std::string exportOf(const Layout& layout, ExportLanguage lang, bool kernel) {
+std::string exportOf(const Layout& layout, ExportLanguage lang, bool kernel,
+                     exporting::ExportTables tables = exporting::ExportTables::Selects) {
     ExportOptions o;
     o.language = lang;
     o.kernel = kernel;
+    o.tables = tables;
     return exportLayout(layout, o, [](const std::string& n) { return resolveShaderInclude(n, {}); });
 }
 
@@ -85,14 +87,21 @@ TEST(LayoutExport, EveryShippedLayoutCompilesInBothLanguages) {
     for (const std::string& name : listLayoutNames(dir)) {
         SCOPED_TRACE(name);
         const Layout layout = loadLayoutFile(dir / (name + ".toml"));
-        for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl}) {
-            const std::string text = exportOf(layout, lang, true);
-            EXPECT_EQ(text.find("#include"), std::string::npos);
-            EXPECT_NO_THROW(compile(text, lang, name + (lang == ExportLanguage::Hlsl ? ".hlsl" : ".glsl")));
-            ++n;
-        }
+        for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl})
+            for (exporting::ExportTables tables : {exporting::ExportTables::Selects, exporting::ExportTables::Arrays}) {
+                const std::string text = exportOf(layout, lang, true, tables);
+                EXPECT_EQ(text.find("#include"), std::string::npos);
+                EXPECT_NO_THROW(compile(text, lang, name + (lang == ExportLanguage::Hlsl ? ".hlsl" : ".glsl")));
+                ++n;
+            }
     }
-    EXPECT_GE(n, 50u);
+    EXPECT_GE(n, 100u);
+    // The arrays as arrays: ue4's sRGB decode table and its search loop, in both languages.
+    const std::string glsl = exportOf(loadLayout("ue4"), ExportLanguage::Glsl, false, exporting::ExportTables::Arrays);
+    EXPECT_NE(glsl.find("const float gbl_kSrgbDecode[256] = float[256]("), std::string::npos);
+    EXPECT_EQ(glsl.find("uvec4 v = "), std::string::npos);  // no select tree
+    const std::string hlsl = exportOf(loadLayout("ue4"), ExportLanguage::Hlsl, false, exporting::ExportTables::Arrays);
+    EXPECT_NE(hlsl.find("static const float gbl_kSrgbDecode[256] = {"), std::string::npos);
     const Layout ue5 = loadLayout("ue5");
     const std::filesystem::path file = std::filesystem::temp_directory_path() / "gbl_export_ue5_test.hlsl";
     std::ofstream(file) << exportOf(ue5, ExportLanguage::Hlsl, true);
