@@ -107,3 +107,21 @@ TEST(Messages, ForceIntoAFolderHoldingAnInputIsRefused) {
     }
     EXPECT_EQ(slurp(scratch() / "kept" / "sky.hdr"), "the user's sky");
 }
+
+// `layouts export --tables`: an unknown form is one line naming both forms; `arrays` writes the
+// tables as const arrays (the default as select trees).
+TEST(Messages, ExportTablesNamesItsForms) {
+    const RunResult bad = run("layouts export ue4 --lang glsl --tables trees");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_EQ(lineCount(bad.err), 1u) << bad.err;
+    EXPECT_NE(bad.err.find("--tables 'trees'"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("selects"), std::string::npos) << bad.err;
+    EXPECT_TRUE(bad.out.empty());
+    const RunResult arrays = run("layouts export ue4 --lang hlsl --tables arrays");
+    ASSERT_EQ(arrays.exitCode, 0) << arrays.err;
+    EXPECT_NE(arrays.out.find("static const float gbl_kSrgbDecode[256] = {"), std::string::npos);
+    const RunResult selects = run("layouts export ue4 --lang hlsl");
+    ASSERT_EQ(selects.exitCode, 0) << selects.err;
+    EXPECT_EQ(selects.out.find("gbl_kSrgbDecode[256]"), std::string::npos);
+    EXPECT_NE(selects.out.find("float gbl_kSrgbDecode(uint i)"), std::string::npos);
+}
