@@ -5,6 +5,8 @@
 // decode within a few ulps. Deferred-lighting layouts also run the material pass.
 #include <gtest/gtest.h>
 
+#include "random_surfaces.h"
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -125,29 +127,7 @@ std::vector<Surface> unpackSurfaces(const float* f, size_t n) {
     return v;
 }
 
-std::vector<Surface> randomSurfaces(uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    std::vector<Surface> v(size_t(kSize) * kSize);
-    for (Surface& s : v) {
-        glm::vec3 n;
-        do n = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
-        while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
-        s.normal = glm::normalize(n);
-        s.baseColor = {u(rng), u(rng), u(rng)};
-        s.metallic = u(rng);
-        s.roughness = u(rng);
-        s.specular = u(rng);
-        s.specularColor = {u(rng), u(rng), u(rng)};
-        s.diffuseColor = {u(rng), u(rng), u(rng)};
-        s.occlusion = u(rng);
-        s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 8.0f;
-        s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 100.0f;
-        // A stored window depth rides in position.z (wiring_plan.h): most z in [0, 1], some clamped.
-        s.position.z = u(rng) * 1.2f - 0.1f;
-    }
-    return v;
-}
+std::vector<Surface> randomSurfaces(uint32_t seed) { return test::randomSurfaces(size_t(kSize) * kSize, seed); }
 
 // Writes the Surfaces in `surfaces` through the generated writeGBuffer, one per pixel, into a
 // G-buffer made by the renderer's own code (renderer_passes.h: targets, depth, pipeline state,

@@ -26,6 +26,7 @@
 #include "encodings.h"
 #include "export_glsl_library.h"
 #include "export_header.h"
+#include "random_surfaces.h"
 #include "layout_catalog.h"
 #include "layout_export.h"
 #include "renderer_passes.h"
@@ -72,26 +73,7 @@ std::vector<uint32_t> compileFor(ExportLanguage l, const std::string& name, cons
 }
 
 std::vector<Surface> randomSurfaces(uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    std::vector<Surface> v(kPixels);
-    for (Surface& s : v) {
-        glm::vec3 n;
-        do n = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
-        while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
-        s.normal = glm::normalize(n);
-        s.baseColor = {u(rng), u(rng), u(rng)};
-        s.metallic = u(rng);
-        s.roughness = u(rng);
-        s.specular = u(rng);
-        s.specularColor = {u(rng), u(rng), u(rng)};
-        s.diffuseColor = {u(rng), u(rng), u(rng)};
-        s.occlusion = u(rng);
-        s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 8.0f;
-        s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 100.0f;
-        // A stored window depth rides in position.z (wiring_plan.h): most z in [0, 1], some clamped.
-        s.position.z = u(rng) * 1.2f - 0.1f;
-    }
+    std::vector<Surface> v = test::randomSurfaces(kPixels, seed);
     // Edge values: 0 and 1 everywhere in one pixel, an axis normal in another.
     v[1] = Surface{};
     v[1].baseColor = v[1].specularColor = v[1].diffuseColor = glm::vec3(1.0f);
