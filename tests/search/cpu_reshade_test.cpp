@@ -4,7 +4,9 @@
 // (the reference scores zero, fewer bits score worse).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "brdf.h"
 #include "cpu_reshade.h"
@@ -141,6 +143,32 @@ TEST(FastEval, EveryMetricWhateverTheObjective) {
         EXPECT_GT(t.roughness, u.roughness);
         EXPECT_GT(u.psnr, t.psnr);
     }
+}
+
+// A stored window depth (Bevy on WebGL2) is what the re-shade lights from, as the lighting pass
+// does: without its depth field the same layout lights from the reference's depth. The images
+// differ, and by no more than moving each point by a 20-bit depth step can.
+TEST(FastEval, AStoredDepthIsWhatTheLightingReads) {
+    const Layout webgl2 = loadLayout("bevy-deferred-webgl2");
+    Layout attachment = webgl2;
+    for (Target& t : attachment.targets)
+        t.fields.erase(std::remove_if(t.fields.begin(), t.fields.end(),
+                                      [](const Field& f) { return f.attribute == Attribute::Depth; }),
+                       t.fields.end());
+    ASSERT_FALSE(attachment.stores(Attribute::Depth));
+    const Image a = evaluator(Objective::Flip).renderLayout(webgl2, 0, 1);
+    const Image b = evaluator(Objective::Flip).renderLayout(attachment, 0, 1);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    size_t differ = 0;
+    double worst = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        differ += a.pixels[i] != b.pixels[i];
+        worst = std::max(worst, std::abs(double(a.pixels[i]) - b.pixels[i]) / std::max(std::abs(double(b.pixels[i])), 1e-3));
+    }
+    std::printf("[ depth    ] %zu of %zu values moved by the 20-bit depth, at most %.3g relative\n", differ, a.pixels.size(),
+                worst);
+    EXPECT_GT(differ, a.pixels.size() / 10);
+    EXPECT_LT(worst, 1e-3);
 }
 
 TEST(FastEval, DeferredLightingIsRefusedInOneLine) {
