@@ -146,8 +146,8 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
     std::vector<Candidate>& cands = result.evaluated;
     const int total = options.candidates;
     const int threads = options.threads > 0 ? options.threads : hardwareThreads();
-    double sessionSeconds = 0.0;
-    int sessionEvaluated = 0;
+    double runSeconds = 0.0;
+    int runEvaluated = 0;
 
     const int smallest = smallestPackedBytes(options.constraints);
     std::vector<int> front;  // the archive, updated in candidate order after each round
@@ -231,9 +231,9 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
                 c.eval = evaluate(layoutText("candidate", "", c.body));
             }
         });
-        sessionSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        runSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         result.cpuSeconds += double(std::clock() - cpuStart) / double(CLOCKS_PER_SEC);
-        sessionEvaluated += int(todo.size());
+        runEvaluated += int(todo.size());
         for (Candidate& c : batch) {
             if (journal && !c.fromJournal) journal->append({c.index, c.hash, c.bytes, c.eval});
             cands.push_back(std::move(c));
@@ -244,8 +244,8 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
             p.evaluated = int(cands.size());
             p.total = total;
             p.resumed = result.resumed;
-            p.seconds = sessionSeconds;
-            p.perMinute = sessionSeconds > 0 ? 60.0 * sessionEvaluated / sessionSeconds : 0.0;
+            p.seconds = runSeconds;
+            p.perMinute = runSeconds > 0 ? 60.0 * runEvaluated / runSeconds : 0.0;
             p.etaSeconds = p.perMinute > 0 ? (total - p.evaluated) * 60.0 / p.perMinute : 0.0;
             for (int f : front)
                 if (!p.bestAtBudget || better(cands[size_t(f)], *p.bestAtBudget)) p.bestAtBudget = &cands[size_t(f)];
@@ -254,7 +254,7 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
     }
     sortFront(cands, front);
     result.front = front;
-    result.seconds = sessionSeconds;
+    result.seconds = runSeconds;
     return result;
 }
 
