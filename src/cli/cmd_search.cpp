@@ -187,7 +187,7 @@ int runSearchCommand(const std::vector<std::string>& args) {
     auto addKey = [&](const DepthKey& k) {
         if (std::find(depthKeys.begin(), depthKeys.end(), k) == depthKeys.end()) depthKeys.push_back(k);
     };
-    for (const auto& d : search::depthFormats()) addKey({d.format, false});
+    for (const auto& d : search::depthFormats()) addKey({d.format, d.reversedZ});
     std::vector<Layout> publishedLayouts;
     for (const std::string& name : listLayoutNames()) {
         if (name == "reference") continue;

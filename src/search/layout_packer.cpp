@@ -202,7 +202,7 @@ PackResult packGenome(const Genome& g, int budgetBytes) {
     t << "title = \"Found by gbufferlab search: " << describeGenome(g) << "\"\n";
     t << "pipeline = \"deferred-shading\"\n";
     t << "source = { engine = \"gbufferlab search\", code = \"src/search/layout_packer.cpp\", year = 2026 }\n\n";
-    t << "[depth]\nformat = \"" << depth.format << "\"\nreversed_z = false\n\n";
+    t << "[depth]\nformat = \"" << depth.format << "\"\nreversed_z = " << (depth.reversedZ ? "true" : "false") << "\n\n";
     t << "[space]\nnormal = \"world\"\nup = \"" << (g.normalSpace ? "z" : "y") << "\"\n";
     for (size_t b = 0; b < bins.size(); ++b) {
         t << "\n[[target]]\nname = \"RT" << b << "\"\nformat = \"" << placements[b].format->name << "\"\nfield = [\n";

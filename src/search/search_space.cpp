@@ -48,9 +48,9 @@ const std::vector<EncodingChoice>& colourEncodings() {
 
 const std::vector<DepthChoice>& depthFormats() {
     static const std::vector<DepthChoice> v = {
-        {"D16_UNORM", 2, 16},
-        {"D24_UNORM_S8_UINT", 4, 24},
-        {"D32_SFLOAT", 4, 0},
+        {"D16_UNORM", 2, 16, false},
+        {"D24_UNORM_S8_UINT", 4, 24, false},
+        {"D32_SFLOAT", 4, 0, true},  // reversed: a unorm depth gains nothing from it, a float one 2^-23 relative
     };
     return v;
 }

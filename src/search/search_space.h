@@ -68,7 +68,8 @@ const std::vector<EncodingChoice>& colourEncodings();
 struct DepthChoice {
     const char* format;
     int bytes;
-    int depthBits;  // 0: 32-bit float
+    int depthBits;    // 0: 32-bit float
+    bool reversedZ;   // float depth reversed, as engines use it (and the reference: layouts/reference.toml)
 };
 const std::vector<DepthChoice>& depthFormats();
 
