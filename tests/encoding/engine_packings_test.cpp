@@ -35,6 +35,7 @@
 #include <glm/glm.hpp>
 
 #include "engine_packing_support.h"
+#include "layout_catalog.h"
 
 namespace {
 
@@ -439,42 +440,13 @@ TEST(EnginePackings, HdrpGBuffer3EqualsEncodeIntoGBufferWithItsAoTag) {
 // (:210); the hardware's float -> SNORM8 conversion quantises both. Desktop half is float.
 // ==================================================================================================
 
-const char* kUrpSnormLayout = R"(name = "urp-snorm"
-title = "urp-deferred's GBuffer2"
-pipeline = "deferred-shading"
-source = { engine = "Unity URP", talk = "unit test", year = 2021 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "GBuffer2"
-format = "R8G8B8A8_SNORM"
-field = [
-  { attribute = "normal",    encoding = "snorm", at = ["r", "g", "b"] },
-  { attribute = "roughness", encoding = "gloss", at = "a[0:6]" },
-]
-[fallback]
-base_color = 0.5
-metallic = 0.0
-specular = 0.5
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = 0.0
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-)";
-
 TEST(EnginePackings, UrpSnormNormalsEqualTheHardwareConversion) {
-    const Layout layout = gbl::parseLayout(kUrpSnormLayout, "urp-snorm.toml");
+    const Layout layout = gbl::loadLayout("urp-deferred");  // the shipped row: its GBuffer2
     const std::vector<glm::vec3> edges = edgeNormals();
     Rng rng(2804);
     std::vector<Surface> keep(kImage);
     Tally t;
-    runCodec(layout, 0,
+    runCodec(layout, targetIndex(layout, "GBuffer2"),
              [&](size_t i) {
                  Surface s;
                  s.normal = normalInput(edges, rng, i);
@@ -526,42 +498,13 @@ float niagaraGradientNoise(glm::vec2 uv) {
     return f - std::floor(f);
 }
 
-const char* kNiagaraLayout = R"(name = "niagara-packing"
-title = "niagara's gbuffer1"
-pipeline = "deferred-shading"
-source = { engine = "niagara", talk = "unit test", year = 2024 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "gbuffer1"
-format = "A2B10G10R10_UNORM_PACK32"
-field = [
-  { attribute = "normal",    encoding = "normal_octahedral_dithered", bits = 10, at = ["r", "g"] },
-  { attribute = "roughness", encoding = "gloss",                      at = "b" },
-]
-[fallback]
-base_color = 0.5
-metallic = 0.0
-specular = 0.5
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = 0.0
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-)";
-
 TEST(EnginePackings, NiagaraNormalsEqualEncodeOctWithItsDeband) {
-    const Layout layout = gbl::parseLayout(kNiagaraLayout, "niagara-packing.toml");
+    const Layout layout = gbl::loadLayout("niagara");  // the shipped row: its gbuffer1
     const std::vector<glm::vec3> edges = edgeNormals();
     Rng rng(2805);
     std::vector<Surface> keep(kImage);
     Tally t;
-    runCodec(layout, 0,
+    runCodec(layout, targetIndex(layout, "gbuffer1"),
              [&](size_t i) {
                  Surface s;
                  s.normal = normalInput(edges, rng, i);
@@ -596,48 +539,13 @@ TEST(EnginePackings, NiagaraNormalsEqualEncodeOctWithItsDeband) {
 // (assets/shaders/inc/render_target.h:24) through the hardware's UNORM conversion; alpha unwritten.
 // ==================================================================================================
 
-const char* kGraniteLayout = R"(name = "granite-packing"
-title = "Granite's normal target"
-pipeline = "deferred-shading"
-source = { engine = "Granite", talk = "unit test", year = 2018 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "normal"
-format = "A2B10G10R10_UNORM_PACK32"
-field = [
-  { attribute = "normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"] },
-]
-[[target]]
-name = "pbr"
-format = "R8G8_UNORM"
-field = [
-  { attribute = "metallic",  encoding = "unorm", at = "r" },
-  { attribute = "roughness", encoding = "unorm", at = "g" },
-]
-[fallback]
-base_color = 0.5
-specular = 0.5
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = 0.0
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-metallic = 0.0
-)";
-
 TEST(EnginePackings, GraniteNormalsEqualHalfNormalPlusHalf) {
-    const Layout layout = gbl::parseLayout(kGraniteLayout, "granite-packing.toml");
+    const Layout layout = gbl::loadLayout("granite");  // the shipped row: its normal target
     const std::vector<glm::vec3> edges = edgeNormals();
     Rng rng(2806);
     std::vector<Surface> keep(kImage);
     Tally t;
-    runCodec(layout, 0,
+    runCodec(layout, targetIndex(layout, "normal"),
              [&](size_t i) {
                  Surface s;
                  s.normal = normalInput(edges, rng, i);

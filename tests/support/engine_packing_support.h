@@ -222,6 +222,14 @@ inline void runCodec(const Layout& layout, size_t target, const std::function<Su
     }
 }
 
+// The index of the target named `name` in `layout` (a shipped row's target); fails the test when absent.
+inline size_t targetIndex(const Layout& layout, const std::string& name) {
+    for (size_t t = 0; t < layout.targets.size(); ++t)
+        if (layout.targets[t].name == name) return t;
+    ADD_FAILURE() << layout.name << " has no target " << name;
+    return 0;
+}
+
 inline std::string hex(uint32_t w) {
     char b[16];
     std::snprintf(b, sizeof b, "0x%08x", w);
