@@ -122,12 +122,13 @@ std::vector<SearchRow> writeFront(const search::SearchResult& result, const fs::
             row.file = file.string();
             // The layout as an engine takes it (layouts export): HLSL and GLSL next to its TOML.
             const Layout layout = parseLayout(text, file.string());
+            // The shaders' declarations, read and split once for every front layout and language.
+            static const exporting::GlslLibrary library([](const std::string& n) { return resolveShaderInclude(n, {}); });
             for (ExportLanguage lang : {ExportLanguage::Hlsl, ExportLanguage::Glsl}) {
                 ExportOptions options;
                 options.language = lang;
                 const std::string ext = lang == ExportLanguage::Hlsl ? ".hlsl" : ".glsl";
-                writeFileAtomic(dir / (row.name + ext),
-                                exportLayout(layout, options, [](const std::string& n) { return resolveShaderInclude(n, {}); }));
+                writeFileAtomic(dir / (row.name + ext), exportLayout(layout, options, library));
                 row.exports.push_back(row.name + ext);
             }
             if (exportUsesBestFitTable(layout)) {

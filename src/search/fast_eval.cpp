@@ -42,13 +42,18 @@ std::vector<glm::vec3> positionsFromDepth(const std::vector<float>& depth, int w
     return out;
 }
 
+namespace {
+// A window depth in the other Z convention: gbufferlab's reversed Z is z' = w - z
+// (computeCameraMatrices), so d' = 1 - d, rounded once to float32.
+float otherZConvention(float d) { return float(1.0 - double(d)); }
+}  // namespace
+
 float quantizeDepth(float d, bool referenceReversedZ, const Depth& depth) {
     const bool flip = depth.reversedZ != referenceReversedZ;
     if (depth.floatDepth) {
         if (!flip) return d;
-        // The other convention stores 1 - d (computeCameraMatrices' z' = w - z) as a float32, read back as 1 - stored.
-        const float stored = float(1.0 - double(d));
-        return float(1.0 - double(stored));
+        // The other convention stores 1 - d as a float32, read back as 1 - stored.
+        return otherZConvention(otherZConvention(d));
     }
     const double steps = std::ldexp(1.0, depth.depthBits) - 1.0;
     const double own = flip ? 1.0 - double(d) : double(d);
@@ -120,7 +125,7 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
     const bool flipDepth = !variant && layout.depth.reversedZ != v.depthReversedZ;
     auto ownDepth = [&](size_t i) {
         const float d = variant ? variant->depth[i] : v.depth[i];
-        return flipDepth ? float(1.0 - double(d)) : d;
+        return flipDepth ? otherZConvention(d) : d;
     };
 
     // Into the stored space (normal_space.h), as the G-buffer pass does before writeGBuffer;
@@ -156,7 +161,7 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
         std::vector<float> depth(n);
         for (size_t i = 0; i < n; ++i) {
             const float d = decoded[i].position.z;
-            depth[i] = flipDepth ? float(1.0 - double(d)) : d;
+            depth[i] = flipDepth ? otherZConvention(d) : d;
         }
         storedPositions = positionsFromDepth(depth, w, h, variant ? variant->invViewProj : v.invViewProj);
     }

@@ -1,8 +1,7 @@
 #include "layout_packer.h"
 
-#include <functional>
-
 #include <algorithm>
+#include <functional>
 #include <numeric>
 #include <sstream>
 
