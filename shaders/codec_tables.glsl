@@ -1,6 +1,7 @@
 // codec_tables.glsl -- where the encodings' exact 8-bit tables are read (sRGB in
-// scalar_encodings.glsl, CryEngine's gloss in color_encodings.glsl, gamma 2.2 and HDRP's fast
-// sRGB in engine_encodings.glsl): GBL_CODEC_TABLE(array, offset, i) is array[i].
+// scalar_encodings.glsl, CryEngine's gloss in color_encodings.glsl, gamma 2.2, HDRP's fast sRGB
+// and Killzone 2's specular power in engine_encodings.glsl): GBL_CODEC_TABLE(array, offset, i) is
+// array[i].
 //
 // A pass that defines GBL_CODEC_TABLES_SET and GBL_CODEC_TABLES_BINDING reads them from a
 // storage buffer there instead (the renderer's G-buffer pass: set 0; its lighting and decode
@@ -20,6 +21,8 @@
 #define GBL_CODEC_TABLE_GAMMA22_DECODE 1024u
 #define GBL_CODEC_TABLE_GAMMA22_ENCODE 1280u
 #define GBL_CODEC_TABLE_SRGB_FAST_HDRP_ENCODE 1536u
+#define GBL_CODEC_TABLE_KZ2_POWER_DECODE 1792u
+#define GBL_CODEC_TABLE_KZ2_POWER_ENCODE 2048u
 
 #ifdef GBL_CODEC_TABLES_SET
 layout(std430, set = GBL_CODEC_TABLES_SET, binding = GBL_CODEC_TABLES_BINDING) readonly buffer GblCodecTables {

@@ -26,7 +26,7 @@ gbl_test(scene/default_scene_test LABELS unit DEPS gbl_scene)
 gbl_test(encoding/encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # normals; checks their stats too
 gbl_test(encoding/scalar_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
 gbl_test(encoding/color_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
-gbl_test(encoding/engine_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # RGB9E5, gamma 2.2, Bevy / Unity / Killzone normals
+gbl_test(encoding/engine_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # RGB9E5, gamma 2.2, Bevy / Unity / Killzone normals, Killzone 2 power
 gbl_test(encoding/niagara_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # emissive/albedo ratio, dithered octahedral
 gbl_test(encoding/engine_packings_test LABELS unit DEPS gbl_codec)  # each engine's published packing, reimplemented, vs the codec's words
 gbl_test(encoding/bevy_packings_test LABELS unit DEPS gbl_codec gbl_layout)  # Bevy's native and WebGL2 packings, reimplemented

@@ -141,6 +141,7 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
                     map1(n, c, out, [bk](uint x) { return roughnessFromSmoothnessCry(dequantizeUnorm(x, bk)); });
                     break;
                 case Codec::CryGlossPower: map1(n, c, out, [](uint x) { return decodeCryGlossPower(x); }); break;
+                case Codec::Kz2LogPower: map1(n, c, out, [](uint x) { return decodeKz2LogPower(x); }); break;
                 case Codec::Reflectance:
                     map1(n, c, out, [bk](uint x) { return specularFromReflectance(dequantizeUnorm(x, bk)); });
                     break;

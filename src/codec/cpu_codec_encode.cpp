@@ -308,6 +308,7 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
                     map1(n, in, out, [bk](float x) { return quantizeUnorm(smoothnessFromRoughnessCry(x), bk); });
                     break;
                 case Codec::CryGlossPower: map1(n, in, out, [](float x) { return encodeCryGlossPower(x); }); break;
+                case Codec::Kz2LogPower: map1(n, in, out, [](float x) { return encodeKz2LogPower(x); }); break;
                 case Codec::Reflectance:
                 case Codec::ReflectanceBevyWebgl2:  // the bias is the read's alone
                     map1(n, in, out, [bk](float x) { return quantizeUnorm(reflectanceFromSpecular(x), bk); });

@@ -28,6 +28,7 @@ Codec resolveCodec(const std::string& e) {
         {"gloss", Codec::Gloss},
         {"smoothness_cry", Codec::SmoothnessCry},
         {"cry_gloss_power", Codec::CryGlossPower},
+        {"kz2_log_power", Codec::Kz2LogPower},
         {"reflectance", Codec::Reflectance},
         {"reflectance_bevy_webgl2", Codec::ReflectanceBevyWebgl2},
         {"srgb8", Codec::Srgb8},
@@ -148,7 +149,7 @@ FieldPlan planField(const Target& t, const Field& f, int words) {
 
 }  // namespace
 
-bool isScalar(Codec c) { return c <= Codec::CryGlossPower; }
+bool isScalar(Codec c) { return c <= Codec::Kz2LogPower; }
 
 bool isCheckerboard(Codec c) { return c == Codec::YCbCrCheckerboard || c == Codec::YCoCgCheckerboard; }
 

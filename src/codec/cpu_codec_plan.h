@@ -36,7 +36,8 @@ enum class Codec : uint8_t {
     SmoothnessCry,
     Reflectance,
     ReflectanceBevyWebgl2,
-    CryGlossPower,  // the last scalar (isScalar)
+    CryGlossPower,
+    Kz2LogPower,  // the last scalar (isScalar)
     Srgb8,
     Luma,
     YCbCr,

@@ -81,6 +81,7 @@ std::string scalarEncode(const std::string& enc, const std::string& x, int bits)
     if (enc == "gloss") return "quantizeUnorm(glossFromRoughness(" + x + "), " + b + ")";
     if (enc == "smoothness_cry") return "quantizeUnorm(smoothnessFromRoughnessCry(" + x + "), " + b + ")";
     if (enc == "cry_gloss_power") return "encodeCryGlossPower(" + x + ")";
+    if (enc == "kz2_log_power") return "encodeKz2LogPower(" + x + ")";
     if (enc == "reflectance" || enc == "reflectance_bevy_webgl2")
         return "quantizeUnorm(reflectanceFromSpecular(" + x + "), " + b + ")";
     throw std::logic_error("wiring: no scalar encoder for " + enc);
@@ -98,6 +99,7 @@ std::string scalarDecode(const std::string& enc, const std::string& c, int bits)
     if (enc == "gloss") return "roughnessFromGloss(dequantizeUnorm(" + c + ", " + b + "))";
     if (enc == "smoothness_cry") return "roughnessFromSmoothnessCry(dequantizeUnorm(" + c + ", " + b + "))";
     if (enc == "cry_gloss_power") return "decodeCryGlossPower(" + c + ")";
+    if (enc == "kz2_log_power") return "decodeKz2LogPower(" + c + ")";
     if (enc == "reflectance") return "specularFromReflectance(dequantizeUnorm(" + c + ", " + b + "))";
     if (enc == "reflectance_bevy_webgl2")
         return "specularFromReflectanceBevyWebgl2(dequantizeUnorm(" + c + ", " + b + "))";
@@ -304,8 +306,8 @@ bool nativeField(const Target& t, const Field& f) {
         bool ok = false;
         switch (ch.type) {
             case ChannelType::Unorm:
-                ok = e == "unorm" || e == "gloss" || e == "smoothness_cry" || e == "cry_gloss_power" || e == "normal_xyz" || e == "ycbcr" ||
-                     e == "ycbcr_sqrt" || e == "ycocg" || e == "luma";
+                ok = e == "unorm" || e == "gloss" || e == "smoothness_cry" || e == "cry_gloss_power" || e == "kz2_log_power" ||
+                     e == "normal_xyz" || e == "ycbcr" || e == "ycbcr_sqrt" || e == "ycocg" || e == "luma";
                 break;
             case ChannelType::Srgb: ok = e == "srgb8"; break;
             case ChannelType::Sfloat: ok = (e == "float16" && ch.bits == 16) || (e == "float32" && ch.bits == 32); break;
@@ -328,6 +330,7 @@ std::vector<std::string> emitNativeEncode(std::ostream& o, const std::string& in
                         : e == "smoothness_cry" ? "smoothnessFromRoughnessCry(" + x + ")"
                         // The code's own float: the hardware's round(x * 255) gives the code back.
                         : e == "cry_gloss_power" ? "dequantizeUnorm(encodeCryGlossPower(" + x + "), 8u)"
+                        : e == "kz2_log_power"   ? "dequantizeUnorm(encodeKz2LogPower(" + x + "), 8u)"
                                                 : x);
         }
     } else if (e == "srgb8") {
@@ -358,6 +361,7 @@ std::string nativeDecodeExpr(const Field& f, const std::vector<std::string>& u) 
             parts.push_back(e == "gloss" ? "roughnessFromGloss(" + x + ")"
                             : e == "smoothness_cry" ? "roughnessFromSmoothnessCry(" + x + ")"
                             : e == "cry_gloss_power" ? "decodeCryGlossPower(quantizeUnorm(" + x + ", 8u))"
+                            : e == "kz2_log_power"   ? "decodeKz2LogPower(quantizeUnorm(" + x + ", 8u))"
                                                     : x);
         if (parts.size() == 1) return parts[0];
         std::string s = "vec" + std::to_string(parts.size()) + "(";

@@ -21,6 +21,8 @@ const std::vector<float>& codecTableFloats() {
         put(kCodecTableGamma22Encode, std::begin(kGamma22EncodeThresholds), std::end(kGamma22EncodeThresholds));
         put(kCodecTableSrgbFastHdrpEncode, std::begin(kSrgbFastHdrpEncodeThresholds),
             std::end(kSrgbFastHdrpEncodeThresholds));
+        put(kCodecTableKz2PowerDecode, std::begin(kKz2PowerRoughness), std::end(kKz2PowerRoughness));
+        put(kCodecTableKz2PowerEncode, std::begin(kKz2PowerEncodeThresholds), std::end(kKz2PowerEncodeThresholds));
         return f;
     }();
     return floats;

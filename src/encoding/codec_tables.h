@@ -1,8 +1,8 @@
 #pragma once
 // The encodings' exact 8-bit tables (encodings.h: kSrgbDecode, kSrgbEncodeThresholds,
 // kCryGlossRoughness, kCryGlossEncodeThresholds, kGamma22Decode, kGamma22EncodeThresholds,
-// kSrgbFastHdrpEncodeThresholds) as one
-// array of floats, in the order and at the offsets of shaders/codec_tables.glsl: what the
+// kSrgbFastHdrpEncodeThresholds; engine_encodings.h: kKz2PowerRoughness,
+// kKz2PowerEncodeThresholds) as one array of floats, in the order and at the offsets of shaders/codec_tables.glsl: what the
 // renderer uploads as the storage buffer its G-buffer pass (set 0) and G-buffer readers (lighting
 // and decode passes, set 1) take the tables from, at binding kCodecTablesBinding. Why a buffer and not the
 // shaders' constant arrays: codec_tables.glsl (llvmpipe's JIT compile of constant arrays indexed
@@ -23,9 +23,11 @@ inline constexpr uint32_t kCodecTableCryGlossEncode = 768;
 inline constexpr uint32_t kCodecTableGamma22Decode = 1024;
 inline constexpr uint32_t kCodecTableGamma22Encode = 1280;
 inline constexpr uint32_t kCodecTableSrgbFastHdrpEncode = 1536;
-inline constexpr uint32_t kCodecTableFloats = 1792;
+inline constexpr uint32_t kCodecTableKz2PowerDecode = 1792;
+inline constexpr uint32_t kCodecTableKz2PowerEncode = 2048;
+inline constexpr uint32_t kCodecTableFloats = 2304;
 
-// kCodecTableFloats floats: the seven tables at the offsets above.
+// kCodecTableFloats floats: the nine tables at the offsets above.
 const std::vector<float>& codecTableFloats();
 
 }  // namespace gbl::enc

@@ -39,6 +39,11 @@ std::vector<EncodingInfo> makeRegistry() {
                  "Sousa, Kasyan, Schulz, 'Secrets of CryENGINE 3 Graphics Technology', SIGGRAPH 2011 (gloss "
                  "in RT1.a); power mapping assumed (CryENGINE 3-era shaders); Walter et al., EGSR 2007 "
                  "(n = 2/alpha^2 - 2)"});
+    v.push_back({"kz2_log_power", K::Scalar, 1, 8, 8, 8, 0, false, "roughness in [0.1927, 0.9036] (clamps)",
+                 "8-bit g = log2(n) / 10.5 of a Blinn-Phong power n = 2^(10.5 g) (1..1448), to GGX roughness = "
+                 "(2 / (n + 2))^(1/4) as cry_gloss_power; table exact; round-trip error <= 0.0019 inside the range",
+                 "Valient, 'Deferred Rendering in Killzone 2', Develop 2007 ('Specular power - stored as "
+                 "log2(original)/10.5'); Walter et al., EGSR 2007 (n = 2/alpha^2 - 2)"});
 
     v.push_back({"reflectance", K::Scalar, 1, 8, 1, 16, 0, false, "specular in [0,1]",
                  "Filament / Bevy reflectance r = sqrt(specular / 2) as unorm (F0 = 0.16 r^2 = 0.08 specular); "

@@ -148,6 +148,24 @@ inline vec3 decodeNormalOctahedralUnorm(uvec2 code, uint bits) {
     return normalize(octDecode(u * 2.0f - 1.0f));
 }
 
+// kz2_log_power: Killzone 2's specular power, stored as log2(power) / 10.5 in 8 bits (RT2.b):
+// n = 2^(10.5 g), 1 .. 1448, converted to roughness as cry_gloss_power does, (2 / (n + 2))^(1/4).
+// Table based (tables in encodings.cpp): the code = the number of thresholds >= roughness
+// (decreasing with the code, as in encodeCryGlossPower). The GLSL twin carries the sources.
+extern const float kKz2PowerRoughness[256];
+extern const float kKz2PowerEncodeThresholds[255];
+inline uint encodeKz2LogPower(float r) {
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kKz2PowerEncodeThresholds[mid] >= r) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+inline float decodeKz2LogPower(uint code) { return kKz2PowerRoughness[code & 255u]; }
+
 // View-space x, y as half floats, z = +sqrt(1 - x^2 - y^2) (Killzone 2's RT1).
 inline uvec2 encodeNormalXyFloat16(vec3 n) { return uvec2(encodeFloat16(n.x), encodeFloat16(n.y)); }
 

@@ -68,7 +68,8 @@ private:
             case AttributeKind::Scalar:
                 break;
         }
-        if ((enc.name == "gloss" || enc.name == "smoothness_cry" || enc.name == "cry_gloss_power") && attr.id != Attribute::Roughness)
+        if ((enc.name == "gloss" || enc.name == "smoothness_cry" || enc.name == "cry_gloss_power" || enc.name == "kz2_log_power") &&
+            attr.id != Attribute::Roughness)
             return e + " stores roughness only, not " + a;
         if ((enc.name == "reflectance" || enc.name == "reflectance_bevy_webgl2") && attr.id != Attribute::Specular)
             return e + " stores specular only, not " + a;

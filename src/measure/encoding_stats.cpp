@@ -188,6 +188,7 @@ float roundTripScalar(std::string_view name, int bits, float x) {
         return enc::roughnessFromSmoothnessCry(
             enc::dequantizeUnorm(enc::quantizeUnorm(enc::smoothnessFromRoughnessCry(x), b), b));
     if (info.name == "cry_gloss_power") return enc::decodeCryGlossPower(enc::encodeCryGlossPower(x));
+    if (info.name == "kz2_log_power") return enc::decodeKz2LogPower(enc::encodeKz2LogPower(x));
     if (info.name == "reflectance_bevy_webgl2")
         return enc::specularFromReflectanceBevyWebgl2(
             enc::dequantizeUnorm(enc::quantizeUnorm(enc::reflectanceFromSpecular(x), b), b));

@@ -84,6 +84,7 @@ uint scalarEncode(const Field& f, float x, size_t i) {
     if (e == "gloss") return quantizeUnorm(glossFromRoughness(x), b);
     if (e == "smoothness_cry") return quantizeUnorm(smoothnessFromRoughnessCry(x), b);
     if (e == "cry_gloss_power") return encodeCryGlossPower(x);
+    if (e == "kz2_log_power") return encodeKz2LogPower(x);
     if (e == "reflectance" || e == "reflectance_bevy_webgl2") return quantizeUnorm(reflectanceFromSpecular(x), b);
     throw std::logic_error("cpu codec: no scalar encoder for " + e);
 }
@@ -101,6 +102,7 @@ float scalarDecode(const Field& f, uint c, size_t i) {
     if (e == "gloss") return roughnessFromGloss(dequantizeUnorm(c, b));
     if (e == "smoothness_cry") return roughnessFromSmoothnessCry(dequantizeUnorm(c, b));
     if (e == "cry_gloss_power") return decodeCryGlossPower(c);
+    if (e == "kz2_log_power") return decodeKz2LogPower(c);
     if (e == "reflectance") return specularFromReflectance(dequantizeUnorm(c, b));
     if (e == "reflectance_bevy_webgl2") return specularFromReflectanceBevyWebgl2(dequantizeUnorm(c, b));
     throw std::logic_error("cpu codec: no scalar decoder for " + e);

@@ -121,7 +121,8 @@ TEST(ExportTables, DecodeTablesHoldTheCppTwinsEntries) {
     const exporting::GlslLibrary lib([](const std::string& n) { return resolveShaderInclude(n, {}); });
     const auto d = byName(lib);
     const std::map<std::string, const float*> twins = {
-        {"kSrgbDecode", enc::kSrgbDecode}, {"kGamma22Decode", enc::kGamma22Decode}, {"kCryGlossRoughness", enc::kCryGlossRoughness}};
+        {"kSrgbDecode", enc::kSrgbDecode}, {"kGamma22Decode", enc::kGamma22Decode}, {"kCryGlossRoughness", enc::kCryGlossRoughness},
+        {"kKz2PowerRoughness", enc::kKz2PowerRoughness}};
     for (const auto& [name, twin] : twins) {
         ASSERT_TRUE(d.count(name)) << name;
         const std::string& code = d.at(name)->code;
@@ -149,7 +150,9 @@ TEST(ExportTables, ArrayTablesAreTheCppTwins) {
         {"kSrgbEncodeThresholds", {enc::kSrgbEncodeThresholds, 255}},
         {"kGamma22EncodeThresholds", {enc::kGamma22EncodeThresholds, 255}},
         {"kSrgbFastHdrpEncodeThresholds", {enc::kSrgbFastHdrpEncodeThresholds, 255}},
-        {"kCryGlossEncodeThresholds", {enc::kCryGlossEncodeThresholds, 255}}};
+        {"kCryGlossEncodeThresholds", {enc::kCryGlossEncodeThresholds, 255}},
+        {"kKz2PowerRoughness", {enc::kKz2PowerRoughness, 256}},
+        {"kKz2PowerEncodeThresholds", {enc::kKz2PowerEncodeThresholds, 255}}};
     for (const auto& [name, twin] : twins) {
         SCOPED_TRACE(name);
         ASSERT_TRUE(d.count(name));
@@ -160,7 +163,7 @@ TEST(ExportTables, ArrayTablesAreTheCppTwins) {
         for (size_t i = 0; i < twin.second; ++i)
             ASSERT_EQ(std::memcmp(&t->values[i], &twin.first[i], 4), 0) << name << "[" << i << "]";
     }
-    for (const char* encoder : {"encodeSrgb8", "encodeGamma22", "encodeSrgb8FastHdrp", "encodeCryGlossPower"}) {
+    for (const char* encoder : {"encodeSrgb8", "encodeGamma22", "encodeSrgb8FastHdrp", "encodeCryGlossPower", "encodeKz2LogPower"}) {
         ASSERT_TRUE(d.count(encoder)) << encoder;
         EXPECT_NE(d.at(encoder)->code.find("for ("), std::string::npos) << d.at(encoder)->code;
     }
@@ -173,7 +176,7 @@ TEST(ExportTables, UnrolledSearchesEncodeAsTheCppEncoders) {
         const char* table;
         const char* encoder;
         const float* thresholds;
-        bool descending;  // CryEngine's gloss: count of thresholds >= r
+        bool descending;  // CryEngine's gloss, Killzone 2's power: count of thresholds >= r
         std::function<uint32_t(float)> cpu;
     };
     const Case cases[] = {
@@ -183,6 +186,8 @@ TEST(ExportTables, UnrolledSearchesEncodeAsTheCppEncoders) {
          [](float x) { return enc::encodeSrgb8FastHdrp(x); }},
         {"kCryGlossEncodeThresholds", "encodeCryGlossPower", enc::kCryGlossEncodeThresholds, true,
          [](float x) { return enc::encodeCryGlossPower(x); }},
+        {"kKz2PowerEncodeThresholds", "encodeKz2LogPower", enc::kKz2PowerEncodeThresholds, true,
+         [](float x) { return enc::encodeKz2LogPower(x); }},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.table);

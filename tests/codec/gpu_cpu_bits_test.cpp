@@ -14,6 +14,7 @@
 
 #include "best_fit_normals.h"
 #include "cpu_codec.h"
+#include "encodings.h"
 #include "layout_catalog.h"
 #include "renderer_passes.h"
 #include "shader_compiler.h"
@@ -444,6 +445,23 @@ TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
     // and emissive that is not 0 but quantises to it (no tag: the word 0), or holds the tag's floats
     for (size_t i = 1; i < surfaces.size(); i += 10) surfaces[i].emissive = glm::vec3(1e-30f, 0.0f, 0.0f);
     for (size_t i = 3; i < surfaces.size(); i += 50) surfaces[i].emissive = glm::vec3(2048.0f, 0.25f, 1024.0f);
+    checkWordsAndDecodes(ctx(), layout, surfaces);
+}
+
+// killzone2's specular power (kz2_log_power): roughness on each of its 255 thresholds and the
+// floats beside them, on its two ends and beyond them, so that the GLSL search is held to the CPU's
+// code at every boundary, not only at the random Surfaces' roughnesses.
+TEST_F(GpuCpuBits, Killzone2PowerPacksTheSameWordsOnItsThresholds) {
+    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "killzone2.toml");
+    std::vector<Surface> surfaces = randomSurfaces(910);
+    std::vector<float> probes = {0.0f, -0.0f, 1.0f, 2.0f, -1.0f, 0.1f, 0.95f, enc::kKz2PowerRoughness[0],
+                                 enc::kKz2PowerRoughness[255]};
+    for (float t : enc::kKz2PowerEncodeThresholds) {
+        probes.push_back(t);
+        probes.push_back(std::nextafter(t, 0.0f));
+        probes.push_back(std::nextafter(t, 1.0f));
+    }
+    for (size_t i = 0; i < surfaces.size(); i += 2) surfaces[i].roughness = probes[(i / 2) % probes.size()];
     checkWordsAndDecodes(ctx(), layout, surfaces);
 }
 

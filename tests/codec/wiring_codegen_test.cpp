@@ -240,6 +240,10 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                         // Clamps to the engine's range, then half a gloss step (encodings.h).
                         err = std::abs(std::clamp(x.x, 0.17673357f, 0.84089643f) - y.x);
                         bound = 0.0019;
+                    } else if (e == "kz2_log_power") {
+                        // Clamps to Killzone 2's range (n = 1 .. 2^10.5), then half a code (engine_encodings.h).
+                        err = std::abs(std::clamp(x.x, 0.19270985f, 0.90360200f) - y.x);
+                        bound = 0.0020;
                     } else if (e == "smoothness_cry") {
                         err = std::abs(x.x - y.x);
                         bound = 2.0 * unormBound(b);

@@ -53,6 +53,7 @@ TEST(CodecTables, OffsetsMatchTheShader) {
         {"CRY_GLOSS_DECODE", enc::kCodecTableCryGlossDecode}, {"CRY_GLOSS_ENCODE", enc::kCodecTableCryGlossEncode},
         {"GAMMA22_DECODE", enc::kCodecTableGamma22Decode},    {"GAMMA22_ENCODE", enc::kCodecTableGamma22Encode},
         {"SRGB_FAST_HDRP_ENCODE", enc::kCodecTableSrgbFastHdrpEncode},
+        {"KZ2_POWER_DECODE", enc::kCodecTableKz2PowerDecode}, {"KZ2_POWER_ENCODE", enc::kCodecTableKz2PowerEncode},
     };
     for (const auto& [name, offset] : expected) {
         std::smatch m;
@@ -77,6 +78,8 @@ TEST(CodecTables, BufferHoldsTheShadersConstantArrays) {
         {"engine_encodings.glsl", "kGamma22Decode", enc::kCodecTableGamma22Decode, 256},
         {"engine_encodings.glsl", "kGamma22EncodeThresholds", enc::kCodecTableGamma22Encode, 255},
         {"engine_encodings.glsl", "kSrgbFastHdrpEncodeThresholds", enc::kCodecTableSrgbFastHdrpEncode, 255},
+        {"engine_encodings.glsl", "kKz2PowerRoughness", enc::kCodecTableKz2PowerDecode, 256},
+        {"engine_encodings.glsl", "kKz2PowerEncodeThresholds", enc::kCodecTableKz2PowerEncode, 255},
     };
     const std::vector<float>& buffer = enc::codecTableFloats();
     for (const Table& t : tables) {

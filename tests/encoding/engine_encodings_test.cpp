@@ -1,7 +1,8 @@
 // Tests for the packings of shipped engines (section 8 of src/encoding/encodings.h, mirror of
 // shaders/encodings.glsl): RGB9E5, gamma 2.2, the octahedral normals of Bevy, Unity and HDRP,
-// Killzone 2's FP16 normal XY, and the Filament / Bevy reflectance. Each is checked against a
-// formula written independently here, in double, from its published source.
+// Killzone 2's FP16 normal XY and log-range specular power, and the Filament / Bevy reflectance.
+// Each is checked against a formula written independently here, in double, from its published
+// source.
 #include "encodings_test_support.h"
 
 namespace {
@@ -242,6 +243,56 @@ TEST(NormalXyFloat16, HalfFloatsOfXYAndZRebuiltPositive) {
     // z = 0 below 2 degrees.
     EXPECT_LT(worstFront, 0.1);
     EXPECT_LT(worstBack, 2.0);
+}
+
+// Killzone 2's RT2.b, written out from the talk (Valient, Develop 2007: "Specular power - stored as
+// log2(original)/10.5"): the byte g = code / 255 holds log2(n) / 10.5, so n = 2^(10.5 g). Read as
+// GGX roughness with Walter et al.'s n = 2 / alpha^2 - 2 and UE4's alpha = roughness^2.
+TEST(Kz2LogPower, TablesMatchTheMapping) {
+    auto powerOfCode = [](double g) { return std::pow(2.0, 10.5 * g); };
+    auto roughnessOfPower = [](double n) { return std::sqrt(std::sqrt(2.0 / (n + 2.0))); };
+    auto storedOfRoughness = [](double r) { return std::log2(2.0 / (r * r * r * r) - 2.0) / 10.5; };
+    for (int k = 0; k < 256; ++k)
+        ASSERT_EQ(kKz2PowerRoughness[k], float(roughnessOfPower(powerOfCode(k / 255.0)))) << k;
+    for (int i = 0; i < 255; ++i) {
+        const double t = roughnessOfPower(powerOfCode((i + 0.5) / 255.0));
+        const float f = kKz2PowerEncodeThresholds[i];
+        ASSERT_LE(double(f), t) << i;
+        ASSERT_GT(double(std::nextafter(f, 1.0f)), t) << i;  // the largest float <= t
+    }
+    // The ends: power 1 (code 0) and 2^10.5 = 1448.15 (code 255); roughness beyond them clamps.
+    EXPECT_NEAR(roughnessOfPower(1.0), 0.9036020, 1e-7);
+    EXPECT_NEAR(roughnessOfPower(std::pow(2.0, 10.5)), 0.1927098, 1e-7);
+    EXPECT_EQ(encodeKz2LogPower(1.0f), 0u);
+    EXPECT_EQ(encodeKz2LogPower(0.95f), 0u);
+    EXPECT_EQ(encodeKz2LogPower(0.0f), 255u);
+    EXPECT_EQ(encodeKz2LogPower(0.1f), 255u);
+    EXPECT_EQ(decodeKz2LogPower(0u), 0.903602f);
+    EXPECT_EQ(decodeKz2LogPower(255u), 0.19270985f);
+    // A decoded code is the power the talk's formula gives for it.
+    for (uint k = 0; k < 256; ++k) {
+        const double r = decodeKz2LogPower(k);
+        const double n = 2.0 / (r * r * r * r) - 2.0;
+        ASSERT_NEAR(n / powerOfCode(k / 255.0), 1.0, 2e-5) << k;
+    }
+    // The encoder rounds the stored value to the nearest code.
+    Rng rng(94);
+    double worst = 0.0;
+    int checked = 0;
+    for (int i = 0; i < 1000000; ++i) {
+        const float r = float(0.19270985 + (0.90360200 - 0.19270985) * rng.u01());
+        const double g = 255.0 * storedOfRoughness(double(r));
+        const uint code = encodeKz2LogPower(r);
+        if (std::abs(g - std::floor(g) - 0.5) > 1e-4) {  // away from a tie
+            ASSERT_EQ(double(code), std::clamp(std::floor(g + 0.5), 0.0, 255.0)) << r;
+            ++checked;
+        }
+        worst = std::max(worst, std::fabs(double(decodeKz2LogPower(code)) - double(r)));
+    }
+    EXPECT_GT(checked, 999000);
+    // Half a code of g, times |d roughness / d g| = roughness / 4 * 10.5 ln 2 * n / (n + 2) <= 1.
+    std::printf("[measured] kz2_log_power: max roughness error inside [0.1927, 0.9036] %.6f\n", worst);
+    EXPECT_LE(worst, 0.0020);
 }
 
 // Filament / Bevy reflectance: r = sqrt(specular / 2), F0 = 0.16 r^2 = 0.08 specular.
