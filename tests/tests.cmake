@@ -9,6 +9,7 @@ gbl_test(base/disk_cache_test LABELS unit DEPS gbl_base)
 gbl_test(base/memory_budget_test LABELS unit DEPS gbl_base)
 gbl_test(base/escape_text_test LABELS unit DEPS gbl_base)
 gbl_test(base/output_over_input_test LABELS unit DEPS gbl_base)
+gbl_test(base/special_output_test LABELS unit DEPS gbl_base)  # devices, FIFOs, sockets: never replaced
 gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads environment maps too
 gbl_test(image/exr_half_test LABELS unit DEPS gbl_image)
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
@@ -82,6 +83,7 @@ gbl_test(measure/significance_test LABELS unit DEPS gbl_measure)  # the sign-fli
 gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/encoding_stats_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)
+gbl_test(measure/png16_diff_test LABELS unit DEPS gbl_measure)  # 16-bit PNGs at 16 bits
 gbl_test(report/report_test LABELS unit DEPS gbl_report)
 gbl_test(report/visibility_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/budget_verdict_test LABELS unit DEPS gbl_report)
@@ -111,4 +113,5 @@ gbl_test(cli/diff_bounds_cli_test LABELS unit DEPS gbufferlab gbl_measure gbl_im
 gbl_test(cli/input_bounds_cli_test LABELS unit DEPS gbufferlab gbl_render gbl_image)
 gbl_test(cli/run_names_cli_test LABELS unit DEPS gbufferlab gbl_base)
 gbl_test(cli/messages_cli_test LABELS unit DEPS gbufferlab gbl_base)
+gbl_test(cli/outputs_cli_test LABELS unit DEPS gbufferlab gbl_image)  # special files, --out '', a failed stdout
 include(tests/layering/layering.cmake)
