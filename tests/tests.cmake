@@ -83,6 +83,7 @@ gbl_test(measure/significance_test LABELS unit DEPS gbl_measure)  # the sign-fli
 gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/encoding_stats_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)
+gbl_test(measure/view_content_test LABELS unit DEPS gbl_measure)  # views with nothing to measure
 gbl_test(measure/png16_diff_test LABELS unit DEPS gbl_measure)  # 16-bit PNGs at 16 bits
 gbl_test(report/report_test LABELS unit DEPS gbl_report)
 gbl_test(report/visibility_verdict_test LABELS unit DEPS gbl_report)
@@ -107,6 +108,7 @@ gbl_test(cli/scene_suite_test LABELS unit DEPS gbl_cli)  # --scene and suite fil
 gbl_test(cli/compare_scenes_cli_test LABELS gpu DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)  # several scenes
 gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
 gbl_test(cli/compare_temporal_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # --temporal N
+gbl_test(cli/nothing_measured_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # views with nothing to measure
 gbl_test(cli/diff_cli_test LABELS gpu DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
 # Hostile input, run as the executable and measured (peak memory, time); refusals need no driver.
 gbl_test(cli/diff_bounds_cli_test LABELS unit DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)

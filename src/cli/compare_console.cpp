@@ -48,6 +48,11 @@ void printTable(const ReportModel& model) {
             std::printf("%-*s %-16s FAILED: %s\n", w, r.layout.c_str(), r.iblMode.c_str(), r.error.c_str());
             continue;
         }
+        if (r.status == RunStatus::NotMeasured) {  // no view had anything to measure: no numbers
+            std::printf("%-*s %-16s %6d NOT MEASURED (no view had anything to measure)\n", w, r.layout.c_str(),
+                        r.iblMode.c_str(), r.bytesPerPixel.total);
+            continue;
+        }
         const auto& n = r.attributes[ErrorAttribute::Normal].all;
         const auto& a = r.attributes[ErrorAttribute::DiffuseColor].all;
         const RankRange* rank = model.significance ? model.significance->find(r.layout, r.iblMode) : nullptr;
@@ -86,6 +91,10 @@ void printTable(const ReportModel& model) {
                         as.stddev, psnr, f.stddev);
         }
     }
+    for (size_t v = 0; v < model.run.viewNotMeasured.size(); ++v)
+        if (!model.run.viewNotMeasured[v].empty())
+            std::printf("view %d not measured: %s; it is left out of every mean, rank and verdict\n", int(v),
+                        model.run.viewNotMeasured[v].c_str());
     if (model.significance && !model.significance->ranks.empty())
         std::printf("rank: by mean FLIP; a range (4-6) where the differences are not significant (%s)\n",
                     model.significance->method.c_str());
