@@ -238,6 +238,17 @@ void checkOutputDirectory(const fs::path& dir, bool force, const std::string& fl
     if (!fs::is_empty(dir, ec) && !force)
         throwUserError(flagName + " " + escapeText(dir.string()) + ": directory exists and is not empty; choose a new "
                        "directory, or " + reuse);
+    // Its files may be replaced: none may be a device, FIFO or socket (the writes would refuse it
+    // at the end, after the work; refused here, before it). Links are not followed into.
+    for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+        if (it->is_directory(ec) && !it->is_symlink(ec)) continue;
+        const std::string kind = nonRegularKind(it->path());
+        if (!kind.empty() && kind != "a directory")
+            throwUserError(flagName + " " + escapeText(dir.string()) + ": holds " + escapeText(it->path().string()) +
+                           ", which is " + kind + ", not a regular file; an output replaces only a regular file: "
+                           "remove it, or choose another directory");
+    }
 }
 
 fs::path defaultOutputDirectory(const std::string& prefix) {

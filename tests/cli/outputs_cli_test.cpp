@@ -106,6 +106,21 @@ TEST(Outputs, ANamedOutputNeverReplacesASpecialFile) {
     }
 }
 
+// --force lets a command replace the files of a non-empty --out: a device, FIFO or socket in it is
+// refused before any work (the writes would refuse it too, at the end).
+TEST(Outputs, ForceIntoAFolderHoldingASpecialFileIsRefusedBeforeTheWork) {
+    fs::create_directories(scratch() / "used" / "runs");
+    { std::ofstream(scratch() / "used" / "notes.txt") << "x"; }
+    ASSERT_EQ(::mkfifo((scratch() / "used" / "runs" / "report.json").c_str(), 0600), 0);
+    for (const std::string command : {"compare --size 32x32 --layouts ue4", "render --size 32x32", "ibl"}) {
+        SCOPED_TRACE(command);
+        const RunResult r = run(command + " --out used --force");
+        expectOneLineError(r, {"--out used", "report.json", "a FIFO", "not a regular file"});
+        EXPECT_EQ(typeOf(scratch() / "used" / "runs" / "report.json"), mode_t(S_IFIFO));
+        EXPECT_FALSE(fs::exists(scratch() / "used" / "INCOMPLETE"));
+    }
+}
+
 // An empty --out named no file: layouts export printed to stdout; it is an error for every command.
 TEST(Outputs, AnEmptyOutIsAnError) {
     writeSmallPngs();
@@ -136,6 +151,15 @@ TEST(Outputs, AFailedWriteToStandardOutputIsAnError) {
             EXPECT_NE(r.err.find("standard output"), std::string::npos) << r.err;
         }
     }
+    // A reader that has gone (a pipe closed before the text was written): EPIPE, not a death by
+    // SIGPIPE (exit 141).
+    const fs::path err = scratch() / "stderr.txt";
+    const std::string piped = "cd " + scratch().string() + " && bash -c '" + GBL_BINARY +
+                              " layouts export ue4 --lang hlsl 2>" + err.string() + " | true; exit ${PIPESTATUS[0]}'";
+    const int status = std::system(piped.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1) << slurp(err);
+    EXPECT_NE(slurp(err).find("standard output"), std::string::npos) << slurp(err);
     // The same commands into a file: exit 0, the text whole.
     const RunResult ok = runWithStdout("layouts export ue4 --lang hlsl", ">" + (scratch() / "ue4.hlsl").string());
     EXPECT_EQ(ok.exitCode, 0) << ok.err;
