@@ -29,10 +29,13 @@ void printTable(const ReportModel& model) {
     int w = 20;
     for (const RunReport& r : model.runs) w = std::max(w, int(r.layout.size()));
     const size_t views = model.run.views.size();
+    size_t measured = 0;  // a view with nothing to measure is in no mean
+    for (size_t i = 0; i < views; ++i)
+        measured += i >= model.run.viewNotMeasured.size() || model.run.viewNotMeasured[i].empty();
     if (views > 1)
-        std::printf("\nEvery metric is the mean over %d views; the row under each run gives its spread over them:\n"
+        std::printf("\nEvery metric is the mean over %d %s; the row under each run gives its spread over them:\n"
                     "± standard deviation, PSNR as min..max dB.",
-                    int(views));
+                    int(measured), measured == views ? "views" : ("of the " + std::to_string(views) + " views").c_str());
     // compare --temporal N: the resolved errors, then the first frame's alone (1f) beside them.
     const bool temporal = model.run.temporalFrames > 1;
     if (temporal)

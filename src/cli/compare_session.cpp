@@ -307,6 +307,11 @@ std::string CompareSession::viewNotMeasured(int view) {
 
 void CompareSession::finishRuns(ReportModel& model) const {
     for (RunReport& r : model.runs) finishViews(r, model.run.viewNotMeasured);
+    // The note that says what the means are over says which views they leave out.
+    for (size_t v = 0; v < model.run.viewNotMeasured.size(); ++v)
+        if (!model.run.viewNotMeasured[v].empty())
+            model.run.notes.push_back("view " + std::to_string(v) + " is not measured (" + model.run.viewNotMeasured[v] +
+                                      "): it is in no mean, spread, rank or verdict");
 }
 
 RunReport CompareSession::makeRun(const Layout& layout, const std::string& mode) const {

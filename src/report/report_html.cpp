@@ -400,10 +400,19 @@ std::string reportHtml(const ReportModel& model) {
 
     out += "<section id=\"summary\">\n<h2>Layouts</h2>\n";
     if (model.run.views.size() > 1) {
-        out += "<p class=\"views\">Every metric is the mean over " + std::to_string(model.run.views.size()) +
-               " views; under each, its range (min&ndash;max) and standard deviation &sigma; over them. Views: ";
+        // Over the views measured: a view with nothing to measure is in no mean (run.viewNotMeasured).
+        size_t measured = 0;
         for (size_t i = 0; i < model.run.views.size(); ++i)
-            out += (i ? "; " : "") + std::to_string(i) + ": " + htmlEscape(model.run.views[i]);
+            measured += i >= model.run.viewNotMeasured.size() || model.run.viewNotMeasured[i].empty();
+        out += "<p class=\"views\">Every metric is the mean over " + std::to_string(measured) +
+               (measured == model.run.views.size() ? std::string(" views")
+                                                   : " of the " + std::to_string(model.run.views.size()) +
+                                                         " views (the others had nothing to measure)") +
+               "; under each, its range (min&ndash;max) and standard deviation &sigma; over them. Views: ";
+        for (size_t i = 0; i < model.run.views.size(); ++i)
+            out += (i ? "; " : "") + std::to_string(i) + ": " + htmlEscape(model.run.views[i]) +
+                   (i < model.run.viewNotMeasured.size() && !model.run.viewNotMeasured[i].empty() ? " (not measured)"
+                                                                                                   : "");
         out += ". Images and crops are the first view's.</p>\n";
     }
     writeLayoutsTable(out, model, ids);

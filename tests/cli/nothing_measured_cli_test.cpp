@@ -81,4 +81,8 @@ up = [0.0, 0.0, -1.0]
     }
     EXPECT_EQ(report["verdict"]["views"], 1);
     EXPECT_NE(slurp(scratch() / "sky/scenes/builtin/report.csv").find("coverage 0"), std::string::npos);
+    // The report agrees with itself: its means are over the one view measured, and it says so.
+    EXPECT_NE(slurp(scratch() / "sky/scenes/builtin/report.html").find("Every metric is the mean over 1 of the 2 views"),
+              std::string::npos);
+    EXPECT_NE(r.out.find("Every metric is the mean over 1 of the 2 views"), std::string::npos) << r.out;
 }
