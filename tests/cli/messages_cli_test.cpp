@@ -128,7 +128,7 @@ TEST(Messages, ExportTablesNamesItsForms) {
 
 // --min-bits normal=8,normal=10 kept the last; a key given twice is refused, as a flag given twice is.
 TEST(Messages, MinBitsRefusesAnAttributeGivenTwice) {
-    const RunResult r = run("search --budget 12 --min-bits normal=8,normal=10 --out mb");
+    const RunResult r = run("search --budget 12 --min-bits normal=8,normal=10 --size 32x18 --views 1 --candidates 8 --no-confirm --out mb");
     expectOneLineError(r, {"--min-bits", "normal is given twice (8 and 10)", "once"});
     EXPECT_FALSE(fs::exists(scratch() / "mb"));
     expectOneLineError(run("search --budget 12 --min-bits normal=+8 --out mb"), {"--min-bits", "whole number"});
