@@ -9,6 +9,7 @@ gbl_test(base/disk_cache_test LABELS unit DEPS gbl_base)
 gbl_test(base/memory_budget_test LABELS unit DEPS gbl_base)
 gbl_test(base/escape_text_test LABELS unit DEPS gbl_base)
 gbl_test(base/output_over_input_test LABELS unit DEPS gbl_base)
+gbl_test(base/special_output_test LABELS unit DEPS gbl_base)  # devices, FIFOs, sockets: never replaced
 gbl_test(image/image_io_test LABELS unit DEPS gbl_image gbl_scene)  # reads environment maps too
 gbl_test(image/exr_half_test LABELS unit DEPS gbl_image)
 gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
@@ -82,6 +83,8 @@ gbl_test(measure/significance_test LABELS unit DEPS gbl_measure)  # the sign-fli
 gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/encoding_stats_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)
+gbl_test(measure/view_content_test LABELS unit DEPS gbl_measure)  # views with nothing to measure
+gbl_test(measure/png16_diff_test LABELS unit DEPS gbl_measure)  # 16-bit PNGs at 16 bits
 gbl_test(report/report_test LABELS unit DEPS gbl_report)
 gbl_test(report/visibility_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/budget_verdict_test LABELS unit DEPS gbl_report)
@@ -105,10 +108,12 @@ gbl_test(cli/scene_suite_test LABELS unit DEPS gbl_cli)  # --scene and suite fil
 gbl_test(cli/compare_scenes_cli_test LABELS gpu DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)  # several scenes
 gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
 gbl_test(cli/compare_temporal_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # --temporal N
+gbl_test(cli/nothing_measured_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # views with nothing to measure
 gbl_test(cli/diff_cli_test LABELS gpu DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
 # Hostile input, run as the executable and measured (peak memory, time); refusals need no driver.
 gbl_test(cli/diff_bounds_cli_test LABELS unit DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
 gbl_test(cli/input_bounds_cli_test LABELS unit DEPS gbufferlab gbl_render gbl_image)
 gbl_test(cli/run_names_cli_test LABELS unit DEPS gbufferlab gbl_base)
 gbl_test(cli/messages_cli_test LABELS unit DEPS gbufferlab gbl_base)
+gbl_test(cli/outputs_cli_test LABELS unit DEPS gbufferlab gbl_image)  # special files, --out '', a failed stdout
 include(tests/layering/layering.cmake)

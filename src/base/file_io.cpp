@@ -120,6 +120,8 @@ void registerInput(const fs::path& path) {
     inputs().files.insert(id);
 }
 
+bool isSameFile(const fs::path& a, const fs::path& b) { return sameFile(a, b); }
+
 bool isRegisteredInput(const fs::path& path) {
     std::pair<dev_t, ino_t> id;
     if (!fileIdentity(path, id)) return false;
@@ -150,6 +152,38 @@ void refuseInputsInsideDirectory(const fs::path& dir, const std::vector<std::str
     }
 }
 
+namespace {
+
+// What a path that is not a regular file is, for the message ("a FIFO"); "" for a regular file or
+// a path that does not exist (nor a symbolic link whose target does not).
+std::string nonRegularKind(const fs::path& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+        if (errno == ELOOP) return "a symbolic link that loops";
+        return "";
+    }
+    if (S_ISREG(st.st_mode)) return "";
+    if (S_ISDIR(st.st_mode)) return "a directory";
+    if (S_ISCHR(st.st_mode)) return "a character device";
+    if (S_ISBLK(st.st_mode)) return "a block device";
+    if (S_ISFIFO(st.st_mode)) return "a FIFO";
+    if (S_ISSOCK(st.st_mode)) return "a socket";
+    return "not a regular file";
+}
+
+}  // namespace
+
+void refuseNonRegularOutput(const fs::path& path, const std::string& flagName) {
+    const std::string kind = nonRegularKind(path);
+    if (kind.empty()) return;
+    struct stat link {};
+    const bool viaLink = ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode);
+    throwUserError((flagName.empty() ? "" : flagName + " ") + escapeText(path.string()) + ": exists and is " +
+                   (viaLink ? "a symbolic link to " : "") + kind +
+                   ", not a regular file; an output replaces only a regular file, with or without --force: "
+                   "choose another path");
+}
+
 void commitTemporary(const fs::path& tmp, const fs::path& path) {
     // The last line of defence of "outputs never replace inputs": whatever check a command made
     // before its work, a write over a file it read as input is refused here.
@@ -157,6 +191,14 @@ void commitTemporary(const fs::path& tmp, const fs::path& path) {
         discardTemporary(tmp);
         throwUserError(escapeText(path.string()) + ": is an input of this command; an output never replaces an "
                        "input: choose another output path");
+    }
+    // Nor anything that is not a regular file (a device, a FIFO, a socket): checked again here,
+    // just before the rename that would replace it.
+    try {
+        refuseNonRegularOutput(path);
+    } catch (...) {
+        discardTemporary(tmp);
+        throw;
     }
     std::error_code ec;
     fs::rename(tmp, path, ec);
@@ -186,6 +228,9 @@ void writeFileAtomic(const fs::path& path, const void* bytes, size_t size) {
 void writeFileAtomic(const fs::path& path, const std::string& text) { writeFileAtomic(path, text.data(), text.size()); }
 
 void checkOutputDirectory(const fs::path& dir, bool force, const std::string& flagName, const std::string& reuse) {
+    if (dir.empty())
+        throwUserError(flagName + " '': an empty directory name; give a directory, or leave " + flagName +
+                       " out for a new one under out/");
     std::error_code ec;
     if (!fs::exists(dir, ec)) return;
     if (!fs::is_directory(dir, ec))
@@ -193,6 +238,17 @@ void checkOutputDirectory(const fs::path& dir, bool force, const std::string& fl
     if (!fs::is_empty(dir, ec) && !force)
         throwUserError(flagName + " " + escapeText(dir.string()) + ": directory exists and is not empty; choose a new "
                        "directory, or " + reuse);
+    // Its files may be replaced: none may be a device, FIFO or socket (the writes would refuse it
+    // at the end, after the work; refused here, before it). Links are not followed into.
+    for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+        if (it->is_directory(ec) && !it->is_symlink(ec)) continue;
+        const std::string kind = nonRegularKind(it->path());
+        if (!kind.empty() && kind != "a directory")
+            throwUserError(flagName + " " + escapeText(dir.string()) + ": holds " + escapeText(it->path().string()) +
+                           ", which is " + kind + ", not a regular file; an output replaces only a regular file: "
+                           "remove it, or choose another directory");
+    }
 }
 
 fs::path defaultOutputDirectory(const std::string& prefix) {

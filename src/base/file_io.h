@@ -17,6 +17,13 @@ std::string readTextFile(const std::filesystem::path& path);
 // For readers that open by name themselves (OpenEXR): the same refusal without reading.
 void requireRegularFile(const std::filesystem::path& path);
 
+// An output replaces only a regular file. An existing `path` that is anything else (a character
+// or block device such as /dev/full, a FIFO, a socket, a directory, or a symbolic link to one) is a
+// UserError naming the path, what it is and the fix: the rename of an atomic write would put a
+// regular file in its place. `flagName` ("--out"), when given, starts the message. Every atomic
+// write below checks this itself; commands call it before their work, so that it fails fast.
+void refuseNonRegularOutput(const std::filesystem::path& path, const std::string& flagName = "");
+
 // Writes `bytes` to `path` atomically (temporary file + rename). Throws UserError on failure.
 void writeFileAtomic(const std::filesystem::path& path, const void* bytes, size_t size);
 void writeFileAtomic(const std::filesystem::path& path, const std::string& text);
@@ -36,6 +43,9 @@ void discardTemporary(const std::filesystem::path& tmp) noexcept;
 // command's own earlier outputs (a resumed search's journal) are not registered: they are
 // meant to be rewritten.
 void registerInput(const std::filesystem::path& path);
+// Whether two paths name the same existing file (by device and inode: a relative and an absolute
+// path, a symbolic link or a hard link to it, a path through a linked folder).
+bool isSameFile(const std::filesystem::path& a, const std::filesystem::path& b);
 // Whether `path` exists and is a registered input.
 bool isRegisteredInput(const std::filesystem::path& path);
 // Checks made before the work, so that a clash fails fast: `output` (a file) must not be one of
@@ -63,6 +73,7 @@ std::filesystem::path defaultOutputDirectory(const std::string& prefix);
 
 template <class WriteFn>
 void writeViaTemporary(const std::filesystem::path& path, WriteFn&& write) {
+    refuseNonRegularOutput(path);
     const auto tmp = temporaryPathFor(path);
     registerTemporary(tmp);  // removed on SIGINT / SIGTERM (interrupt.h)
     try {

@@ -108,13 +108,18 @@ float parsePositiveFloatFlag(const ParsedArgs& args, const std::string& flag, fl
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || end != text.c_str() + text.size() || std::isnan(v) || !(v > 0.0))
         throwUserError("--" + flag + " " + quoteName(text) + ": expected a positive number, e.g. 1.5");
-    if (v > double(std::numeric_limits<float>::max()))
-        throwUserError("--" + flag + " " + quoteName(text) +
-                       ": too large; the largest value a float holds is about 3.4e38");
-    if (v < double(std::numeric_limits<float>::min()))
-        throwUserError("--" + flag + " " + quoteName(text) +
-                       ": too small; the smallest value a float holds at full precision is about 1.2e-38");
+    if (const std::string problem = positiveFloatProblem(v); !problem.empty())
+        throwUserError("--" + flag + " " + quoteName(text) + ": " + problem);
     return float(v);
+}
+
+std::string positiveFloatProblem(double v) {
+    if (std::isnan(v) || !(v > 0.0)) return "expected a positive number, e.g. 1.5";
+    if (v > double(std::numeric_limits<float>::max()))
+        return "too large; the largest value a float holds is about 3.4e38";
+    if (v < double(std::numeric_limits<float>::min()))
+        return "too small; the smallest value a float holds at full precision is about 1.2e-38";
+    return "";
 }
 
 std::vector<std::string> splitFlagList(const std::string& text, const std::string& flag) {

@@ -70,7 +70,7 @@ int runDiffCommand(const std::vector<std::string>& args) {
     if (parsed.has("help")) {
         std::printf("%s", formatHelp("gbufferlab diff REFERENCE TEST [--json] [--out MAP]",
                                      "Compares TEST with REFERENCE: RMSE, PSNR, max |difference| and FLIP.\n"
-                                     "8-bit PNG/JPEG inputs are sRGB and get LDR-FLIP (PSNR peak 1); EXR/HDR inputs "
+                                     "PNG/JPEG inputs (8 or 16 bits, read at full precision) are sRGB and get LDR-FLIP (PSNR peak 1); EXR/HDR inputs "
                                      "are linear and get\nHDR-FLIP (PSNR peak = the reference's largest value). Both "
                                      "files must have the same kind, size and\nchannels, and finite values (a NaN or "
                                      "infinity is refused, naming its pixel). A pair whose comparison\nwould not fit "
@@ -92,6 +92,10 @@ int runDiffCommand(const std::vector<std::string>& args) {
     std::string outPath = parsed.get("out");
     std::string outExt;
     if (parsed.has("out")) {
+        if (outPath.empty())
+            throwUserError("--out '': an empty file name; give the error map's file name (.png or .exr), or leave "
+                           "--out out");
+        refuseNonRegularOutput(outPath, "--out");  // a device, FIFO or socket: never replaced, --force or not
         outExt = fs::path(outPath).extension().string();
         for (char& c : outExt) c = char(std::tolower(static_cast<unsigned char>(c)));
         if (outExt != ".png" && outExt != ".exr")
@@ -125,6 +129,7 @@ int runDiffCommand(const std::vector<std::string>& args) {
         throwUserError(escapeText(refPath) +
                        ": exposure flags are for HDR-FLIP, but the inputs are 8-bit (LDR-FLIP); drop them");
     const DiffResult r = diffImages(reference, test, escapeText(refPath), escapeText(testPath), options);
+    const std::string precision = diffPrecision(reference, test);  // what the numbers were computed at
 
     if (parsed.has("out")) {
         if (outExt == ".png")
@@ -138,6 +143,7 @@ int runDiffCommand(const std::vector<std::string>& args) {
         j["reference"] = refPath;
         j["test"] = testPath;
         j["kind"] = hdr ? "hdr" : "ldr";
+        j["precision"] = precision;
         j["width"] = r.width;
         j["height"] = r.height;
         j["channels"] = r.channels;
@@ -162,7 +168,8 @@ int runDiffCommand(const std::vector<std::string>& args) {
         return 0;
     }
     std::printf("%s vs %s: %dx%d, %d channel%s, %s\n", testPath.c_str(), refPath.c_str(), r.width, r.height,
-                r.channels, r.channels == 1 ? "" : "s", hdr ? "HDR (linear)" : "LDR (8-bit sRGB)");
+                r.channels, r.channels == 1 ? "" : "s",
+                hdr ? "HDR (linear)" : ("LDR (" + precision + " sRGB)").c_str());
     std::printf("  RMSE       %.6g\n  PSNR       %s dB (peak %.6g)\n  max |diff| %.6g\n", r.rmse,
                 std::isinf(r.psnrDb) ? "inf" : std::to_string(r.psnrDb).c_str(), r.peak, r.maxAbs);
     std::printf("  %s mean %.6f, weighted median %.6f, max %.6f\n", hdr ? "HDR-FLIP" : "LDR-FLIP", r.flip.mean,

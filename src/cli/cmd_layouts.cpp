@@ -361,16 +361,18 @@ int printLayoutGlslCommand(const std::string& nameOrPath, bool nativeFormats, st
 // over the layout read; written through a temporary, so a failure leaves no partial file).
 int exportLayoutCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     std::string input, lang, outPath, tables = "selects";
-    bool kernel = false, force = false;
+    bool kernel = false, force = false, outGiven = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if ((a == "--lang" || a == "--out" || a == "--tables") && i + 1 < args.size()) {
+            outGiven = outGiven || a == "--out";
             (a == "--lang" ? lang : a == "--out" ? outPath : tables) = args[++i];
         } else if (a.rfind("--tables=", 0) == 0) {
             tables = a.substr(9);
         } else if (a.rfind("--lang=", 0) == 0) {
             lang = a.substr(7);
         } else if (a.rfind("--out=", 0) == 0) {
+            outGiven = true;
             outPath = a.substr(6);
         } else if (a == "--kernel") {
             kernel = true;
@@ -394,6 +396,10 @@ int exportLayoutCommand(const std::vector<std::string>& args, std::ostream& out,
         return 2;
     }
     try {
+        // --out "" names no file: an error (as any bad output path), never standard output.
+        if (outGiven && outPath.empty())
+            throwUserError("--out '': an empty file name; give a file name, or leave --out out to print to standard "
+                           "output");
         const Layout layout = loadLayout(input);
         ExportOptions options;
         options.language = lang == "hlsl" ? ExportLanguage::Hlsl : ExportLanguage::Glsl;
@@ -410,9 +416,11 @@ int exportLayoutCommand(const std::vector<std::string>& args, std::ostream& out,
         refuseOutputOverInput(outPath, inputs, "--out");
         const std::string table = outPath + ".bestfit.u32";
         const bool needsTable = exportUsesBestFitTable(layout);
-        for (const std::string& p : needsTable ? std::vector<std::string>{outPath, table} : std::vector<std::string>{outPath})
+        for (const std::string& p : needsTable ? std::vector<std::string>{outPath, table} : std::vector<std::string>{outPath}) {
+            refuseNonRegularOutput(p, "--out");  // a device, FIFO or socket: never replaced, --force or not
             if (std::filesystem::exists(p) && !force)
                 throwUserError("--out " + escapeText(p) + ": file exists; choose another name or add --force to replace it");
+        }
         if (needsTable) {
             refuseOutputOverInput(table, inputs, "--out");
             const std::vector<uint32_t>& words = enc::bestFitNormalTable();

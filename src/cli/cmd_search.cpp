@@ -178,7 +178,7 @@ int runSearchCommand(const std::vector<std::string>& args) {
         scenes.push_back(std::move(scene));
     }
     VulkanContext ctx(DeviceOptions{parsed.get("device"), false});
-    validateResolution(ctx, width, height, "--size");
+    validateResolution(ctx, width, height, "--size", 0, "give a smaller --size");  // search has no bands
     prepareOutputDirectory(outDir, resuming, "--out", reuse);
 
     // The depth formats candidates and published layouts use: the reference is rendered under each

@@ -29,10 +29,13 @@ void printTable(const ReportModel& model) {
     int w = 20;
     for (const RunReport& r : model.runs) w = std::max(w, int(r.layout.size()));
     const size_t views = model.run.views.size();
+    size_t measured = 0;  // a view with nothing to measure is in no mean
+    for (size_t i = 0; i < views; ++i)
+        measured += i >= model.run.viewNotMeasured.size() || model.run.viewNotMeasured[i].empty();
     if (views > 1)
-        std::printf("\nEvery metric is the mean over %d views; the row under each run gives its spread over them:\n"
+        std::printf("\nEvery metric is the mean over %d %s; the row under each run gives its spread over them:\n"
                     "± standard deviation, PSNR as min..max dB.",
-                    int(views));
+                    int(measured), measured == views ? "views" : ("of the " + std::to_string(views) + " views").c_str());
     // compare --temporal N: the resolved errors, then the first frame's alone (1f) beside them.
     const bool temporal = model.run.temporalFrames > 1;
     if (temporal)
@@ -46,6 +49,11 @@ void printTable(const ReportModel& model) {
     for (const RunReport& r : model.runs) {
         if (r.status == RunStatus::Failed) {
             std::printf("%-*s %-16s FAILED: %s\n", w, r.layout.c_str(), r.iblMode.c_str(), r.error.c_str());
+            continue;
+        }
+        if (r.status == RunStatus::NotMeasured) {  // no view had anything to measure: no numbers
+            std::printf("%-*s %-16s %6d NOT MEASURED (no view had anything to measure)\n", w, r.layout.c_str(),
+                        r.iblMode.c_str(), r.bytesPerPixel.total);
             continue;
         }
         const auto& n = r.attributes[ErrorAttribute::Normal].all;
@@ -86,6 +94,10 @@ void printTable(const ReportModel& model) {
                         as.stddev, psnr, f.stddev);
         }
     }
+    for (size_t v = 0; v < model.run.viewNotMeasured.size(); ++v)
+        if (!model.run.viewNotMeasured[v].empty())
+            std::printf("view %d not measured: %s; it is left out of every mean, rank and verdict\n", int(v),
+                        model.run.viewNotMeasured[v].c_str());
     if (model.significance && !model.significance->ranks.empty())
         std::printf("rank: by mean FLIP; a range (4-6) where the differences are not significant (%s)\n",
                     model.significance->method.c_str());

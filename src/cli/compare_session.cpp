@@ -8,6 +8,7 @@
 
 #include "auto_exposure.h"
 #include "bandwidth.h"
+#include "budget_verdict.h"
 #include "best_fit_normals.h"
 #include "compare_console.h"
 #include "compare_memory.h"
@@ -25,6 +26,7 @@
 #include "rank_significance.h"
 #include "report_html.h"
 #include "stage_clock.h"
+#include "view_content.h"
 
 namespace gbl::compare {
 
@@ -53,7 +55,8 @@ CompareShared::~CompareShared() {
     }
 }
 
-CompareSession::CompareSession(const CompareOptions& options, CompareShared* shared) : options_(options) {
+CompareSession::CompareSession(const CompareOptions& options, CompareShared* shared)
+    : options_(options), shared_(shared) {
     const CompareOptions& o = options_;
     std::optional<ScopedStage> timedSetup(std::in_place, Stage::Setup);
     checkOutputDirectory(o.outDir, o.force, "--out");
@@ -97,14 +100,26 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
     retainHostBlocks(!bandPlan_.banded());
     gpuEval_ = bandPlan_.banded() || o.evalWhere == "gpu" ||
                (o.evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
-    validateResolution(ctx, o.width, o.height, "--size", bandPlan_.banded() ? bandPlan_.maxImageRows() : 0u);
+    // A refusal of whole frames advises bands only where the other flags allow them.
+    const std::string wholeFrameAdvice =
+        o.temporalFrames > 1 ? "give a smaller --size or fewer --layouts (--temporal resolves whole frames, so it "
+                               "takes no --band-rows)"
+        : o.errorExr         ? "give a smaller --size or fewer --layouts (--error-exr needs whole frames), or drop "
+                               "--error-exr and compare in bands (--band-rows 64)"
+        : o.groundTruthAsked ? "give a smaller --size or fewer --layouts (the ground truth converges over whole "
+                               "frames, so it takes no --band-rows)"
+        : o.evalWhere == "cpu" ? "give a smaller --size or fewer --layouts, or compare in bands on the device "
+                                 "evaluator (--eval auto --band-rows 64)"
+                               : "give a smaller --size, or compare in bands (--band-rows 64)";
+    validateResolution(ctx, o.width, o.height, "--size", bandPlan_.banded() ? bandPlan_.maxImageRows() : 0u,
+                       wholeFrameAdvice);
     const uint32_t bandImageRows = bandPlan_.banded() ? bandPlan_.maxImageRows() : 0u;
     requireMemory(compareMemoryBytes(o.width, o.height, bandImageRows, layouts_.size(), o.viewCount, o.temporalFrames),
                   "--size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                       (bandImageRows ? " in bands of " + std::to_string(bandPlan_.bandRows) + " rows" : "") + " with " +
-                      std::to_string(layouts_.size()) + " layout" + (layouts_.size() == 1 ? "" : "s"),
-                  bandImageRows ? "give a smaller --size or fewer --layouts"
-                                : "give a smaller --size, or compare in bands (--band-rows 64)");
+                      std::to_string(layouts_.size()) + " layout" + (layouts_.size() == 1 ? "" : "s") +
+                      (o.temporalFrames > 1 ? " and --temporal " + std::to_string(o.temporalFrames) : ""),
+                  bandImageRows ? "give a smaller --size or fewer --layouts" : wholeFrameAdvice);
     wiringOptions_.nativeFormats = o.nativeFormats;
 
     model_.run.scene = inputs_.scene.source;
@@ -178,8 +193,14 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
     imageWriter_.emplace(bandPlan_.banded() || hardwareThreads() < 8 ? 1 : 2, bandPlan_.banded() ? 1 : 2,
                          writerNiceness());
     imageOutput_ = ImageOutput{&*imageWriter_, o.exrType, o.errorExr};
-    setInterruptAction([this](int signal) { writeInterruptedReport(signal); });
+    // Several scenes: the comparison's own action (the report of the scenes that finished) runs
+    // after this scene's partial report, and is put back when this scene is done.
+    setInterruptAction([this, outer = shared ? shared->onInterrupt : std::function<void(int)>{}](int signal) {
+        writeInterruptedReport(signal);
+        if (outer) outer(signal);
+    });
     interruptGuard_.set = true;
+    interruptGuard_.restore = shared ? shared->onInterrupt : std::function<void(int)>{};
     timedSetup.reset();
 
     std::optional<HostScope> rendererScope(std::in_place, "set-up: renderer and IBL");
@@ -197,7 +218,7 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
 }
 
 CompareSession::InterruptActionGuard::~InterruptActionGuard() {
-    if (set) setInterruptAction({});
+    if (set) setInterruptAction(restore);
 }
 
 // Every run renders the same way but for the IBL mode and the camera, and decodes its G-buffer
@@ -264,13 +285,33 @@ void CompareSession::observeView(int view, const Image& referenceHdr, bool meter
         metered = double(float(gbl::meterExposure(referenceHdr).exposure));
         viewExposures_.at(size_t(view)) = float(*metered);
     }
+    // A view that shows nothing a layout can change (no geometry; a reference clipped to black or
+    // white) would score every layout PSNR inf, FLIP 0: it is measured by no metric, and said so.
+    const std::string nothing = nothingToMeasure(referenceHdr, exposure(view));
     std::lock_guard lock(modelMutex_);
     model_.run.viewCoverage.resize(views_.size(), 0.0);
     model_.run.viewCoverage[size_t(view)] = fraction;
+    model_.run.viewNotMeasured.resize(views_.size());
+    model_.run.viewNotMeasured[size_t(view)] = nothing;
     if (!metered) return;
     model_.run.viewExposures.resize(views_.size(), 0.0);
     model_.run.viewExposures[size_t(view)] = *metered;
     if (view == 0) model_.run.exposure = *metered;  // the images' (view 0's)
+}
+
+std::string CompareSession::viewNotMeasured(int view) {
+    std::lock_guard lock(modelMutex_);
+    const auto& why = model_.run.viewNotMeasured;
+    return size_t(view) < why.size() ? why[size_t(view)] : std::string();
+}
+
+void CompareSession::finishRuns(ReportModel& model) const {
+    for (RunReport& r : model.runs) finishViews(r, model.run.viewNotMeasured);
+    // The note that says what the means are over says which views they leave out.
+    for (size_t v = 0; v < model.run.viewNotMeasured.size(); ++v)
+        if (!model.run.viewNotMeasured[v].empty())
+            model.run.notes.push_back("view " + std::to_string(v) + " is not measured (" + model.run.viewNotMeasured[v] +
+                                      "): it is in no mean, spread, rank or verdict");
 }
 
 RunReport CompareSession::makeRun(const Layout& layout, const std::string& mode) const {
@@ -288,6 +329,10 @@ RunReport CompareSession::makeRun(const Layout& layout, const std::string& mode)
 
 void CompareSession::record(RunReport&& run, int view) {
     std::lock_guard lock(modelMutex_);
+    // A view with nothing to measure adds no numbers: its metrics are left out of every mean.
+    if (run.status == RunStatus::Ok && size_t(view) < model_.run.viewNotMeasured.size() &&
+        !model_.run.viewNotMeasured[size_t(view)].empty())
+        clearMeasurements(run);
     if (view == 0) {
         if (run.status == RunStatus::Ok) {
             run.views.push_back({run.attributes, run.image});
@@ -322,11 +367,42 @@ void CompareSession::writeInterruptedReport(int signal) {
     imageWriter_->drain();
     std::lock_guard lock(modelMutex_);
     if (reportComplete_) return;
-    for (RunReport& r : partial.runs) finishViews(r);
-    const std::string what = std::string("INCOMPLETE: interrupted by ") + signalName(signal) + " after " +
-                             std::to_string(partial.runs.size()) + " of " +
-                             std::to_string(steps_ - int(options_.modes.size())) +
-                             " runs; this report lists only the runs that finished";
+    // What never ran is said, to people and to programs: a run of view 0 not reached has no row
+    // (interruption.notRun, named by the verdict where it fits a budget); a row whose later views
+    // were not reached is the mean of the views it has, and names the others.
+    const std::string signalText = signalName(signal);
+    ReportInterruption interruption;
+    interruption.signal = signalText;
+    interruption.runsPlanned = int(layouts_.size() * options_.modes.size()) +
+                               (options_.compareLighting() ? int(options_.modes.size()) - 1 : 0);
+    for (const std::string& mode : options_.modeNames)
+        for (const Layout& layout : layouts_) {
+            const bool ran = std::any_of(partial.runs.begin(), partial.runs.end(), [&](const RunReport& r) {
+                return r.layout == layout.name && r.iblMode == mode;
+            });
+            if (ran) continue;
+            const RunReport planned = makeRun(layout, mode);
+            interruption.notRun.push_back({layout.name, mode, planned.bytesPerPixel.total, verdictCountedBytes(planned)});
+        }
+    const size_t viewCount = views_.size();
+    for (RunReport& r : partial.runs) {
+        const bool allViews = r.status != RunStatus::Ok || r.views.size() >= viewCount;
+        if (allViews) {
+            ++interruption.runsFinished;
+            continue;
+        }
+        r.notMeasured = "views " + std::to_string(r.views.size()) + "-" + std::to_string(viewCount - 1) +
+                        ": not run (interrupted by " + signalText + ")";
+    }
+    finishRuns(partial);
+    partial.interruption = interruption;
+    const std::string what = "INCOMPLETE: interrupted by " + signalText + " after " +
+                             std::to_string(interruption.runsFinished) + " of " +
+                             std::to_string(interruption.runsPlanned) +
+                             " runs; this report lists only the runs that finished" +
+                             (interruption.notRun.empty() ? std::string()
+                                                          : " (" + std::to_string(interruption.notRun.size()) +
+                                                                " not run at all)");
     partial.run.notes.push_back(what);
     writeReport(options_.outDir, partial);
     writeFileAtomic(incompleteMarker_, what + "\n");
@@ -336,7 +412,7 @@ int CompareSession::finish() {
     const fs::path& outDir = options_.outDir;
     {
         std::lock_guard lock(modelMutex_);
-        for (RunReport& r : model_.runs) finishViews(r);
+        finishRuns(model_);
         ScopedStage timed(Stage::Report);
         model_.significance = rankWithSignificance(model_);
     }
@@ -360,7 +436,7 @@ int CompareSession::finish() {
         fs::remove(incompleteMarker_, ec);
         reportComplete_ = true;
     }
-    setInterruptAction({});
+    setInterruptAction(interruptGuard_.restore);
     interruptGuard_.set = false;
     hostProfileAdd("compare: up to the report (then teardown)", StageClock::global().read().totalMs / 1e3);
     std::printf("report: %s\n", (outDir / "report.html").string().c_str());
@@ -370,6 +446,14 @@ int CompareSession::finish() {
     // scripts and CI notice (2 runs failed of 7: exit 4).
     const auto failed = std::count_if(model_.runs.begin(), model_.runs.end(),
                                       [](const RunReport& r) { return r.status == RunStatus::Failed; });
+    // No view had anything to measure: the report says why, and the exit status that nothing was.
+    const auto& why = model_.run.viewNotMeasured;
+    if (!why.empty() && std::none_of(why.begin(), why.end(), [](const std::string& w) { return w.empty(); })) {
+        std::fprintf(stderr, "gbufferlab: error: no view had anything to measure (view 0: %s); no layout was measured "
+                             "(see %s)\n",
+                     why.front().c_str(), escapeText((outDir / "report.html").string()).c_str());
+        return kExitRunsFailed;
+    }
     if (failed > 0) {
         std::fprintf(stderr, "gbufferlab: error: %d of %d runs failed (see the FAILED rows above and in %s)\n",
                      int(failed), int(model_.runs.size()), escapeText((outDir / "report.html").string()).c_str());

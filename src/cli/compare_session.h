@@ -12,6 +12,7 @@
 // An interruption (SIGINT, SIGTERM) at any point after the set-up writes the report of the runs
 // that finished (compare_session.cpp).
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -44,6 +45,9 @@ struct CompareShared {
     std::optional<VulkanContext> ctx;  // created by the first scene's session
     PipelineMemo pipelines;
     std::map<std::string, IblMaps> ibl;  // by environment file ("": the built-in sky)
+    // The comparison's own interrupt action (the report of the scenes that finished): a scene's
+    // session runs it after writing its own partial report, and puts it back when it finishes.
+    std::function<void(int signal)> onInterrupt;
     CompareShared() = default;
     CompareShared(const CompareShared&) = delete;
     CompareShared& operator=(const CompareShared&) = delete;
@@ -74,8 +78,14 @@ private:
     RenderSettings settingsFor(IblMode mode, int view) const;
     // The view's exposure: --exposure, or metered from the view's first reference (auto_exposure.h).
     float exposure(int view) const { return viewExposures_.at(size_t(view)); }
-    // From the view's first reference: its covered fraction, and with `meter` its exposure.
+    // From the view's first reference: its covered fraction, with `meter` its exposure, and whether
+    // it has anything to measure (measure/view_content.h).
     void observeView(int view, const Image& referenceHdr, bool meter);
+    // Why view `view` has nothing to measure, "" when it has (set by observeView).
+    std::string viewNotMeasured(int view);
+    // After the last view (or an interruption): each run's metrics the mean over its measured views,
+    // the views left out named, a run with none measured NotMeasured.
+    void finishRuns(ReportModel& model) const;
     void preparePipelines();
     References renderReferences(int view);
     void compareLightingModes(int view, References& references);
@@ -87,6 +97,7 @@ private:
     void writeInterruptedReport(int signal);
 
     const CompareOptions& options_;
+    CompareShared* shared_ = nullptr;
     std::vector<Layout> layouts_;
     Layout referenceLayout_;
     SceneInputs inputs_;
@@ -116,6 +127,7 @@ private:
     // declared last is destroyed first; a destructor's body would not run then).
     struct InterruptActionGuard {
         bool set = false;
+        std::function<void(int)> restore;  // the comparison's own action (CompareShared::onInterrupt), or none
         ~InterruptActionGuard();
     } interruptGuard_;
 };

@@ -101,9 +101,11 @@ CompareSession::References CompareSession::renderReferences(int view) {
             std::lock_guard lock(modelMutex_);
             model_.run.notes.push_back(gtNote + viewLabel);
         }
+        const std::string nothing = observe ? viewNotMeasured(view) : std::string();
         progress_->end("G-buffer " + std::to_string(int(ref.output.timings.gbufferMs)) + " ms, lighting " +
                        std::to_string(int(ref.output.timings.lightingMs)) + " ms" +
-                       (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches"));
+                       (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches") +
+                       (nothing.empty() ? "" : "; this view is not measured: " + nothing));
         ReferenceRender& stored = references[o.modeNames[m]] = std::move(ref);
         if (gpuEval_) {
             stored.evaluator = evaluator_.get();
@@ -134,8 +136,10 @@ void CompareSession::compareLightingModes(int view, References& references) {
         run.times = PassTimes{approx.output.timings.gbufferMs, approx.output.timings.lightingMs, ctx_->info.name};
         measureRun(run, approx.output, truth, o.outDir, "lighting/" + mode + "/", exposure(view), o.hdrFlip, false,
                    firstView, imageOutput_);
-        progress_->end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
-                       std::to_string(run.image->flipMean).substr(0, 6));
+        const std::string nothing = viewNotMeasured(view);
+        progress_->end(!nothing.empty() ? "not measured: " + nothing
+                                        : "PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
+                                              std::to_string(run.image->flipMean).substr(0, 6));
         record(std::move(run), view);
     }
 }
@@ -188,9 +192,13 @@ void CompareSession::runLayouts(int view, const References& references) {
     const CompareOptions& o = options_;
     const bool firstView = view == 0;
     const std::string viewLabel = o.viewCount > 1 ? " [view " + std::to_string(view) + "]" : "";
+    // A view with nothing to measure adds no numbers; its layouts are rendered only in view 0,
+    // whose images the report shows.
+    const std::string nothing = viewNotMeasured(view);
+    const bool skipView = !firstView && !nothing.empty();
     for (size_t m = 0; m < o.modes.size(); ++m) {
         const ReferenceRender& ref = references.at(o.modeNames[m]);
-        if (bandPlan_.banded() && bandedReferenceMode_ != m) {  // the evaluator holds another mode's
+        if (bandPlan_.banded() && bandedReferenceMode_ != m && !skipView) {  // the evaluator holds another mode's
             const PassTimings t = renderReferenceInBands(*renderer_, referenceWiring_, settingsFor(o.modes[m], view),
                                                          bandPlan_, *evaluator_, exposure(view), nullptr);
             gpuPassMs_ += t.gbufferMs + t.lightingMs;
@@ -204,6 +212,11 @@ void CompareSession::runLayouts(int view, const References& references) {
                 continue;
             }
             RunReport run = makeRun(layout, o.modeNames[m]);
+            if (skipView) {
+                progress_->end("skipped: this view is not measured");
+                record(std::move(run), view);
+                continue;
+            }
             try {
                 const std::string prefix = "runs/" + layout.name + "/" + o.modeNames[m] + "/";
                 const GBufferWiring wiring = generateWiring(layout, wiringOptions_);
@@ -231,11 +244,14 @@ void CompareSession::runLayouts(int view, const References& references) {
                     run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx_->info.name};
                     measureRun(run, out, ref, o.outDir, prefix, exposure(view), o.hdrFlip, true, firstView, imageOutput_);
                 }
-                progress_->end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
-                               std::to_string(run.image->flipMean).substr(0, 6) +
-                               (run.singleFrame && run.singleFrame->image
-                                    ? " (one frame: " + std::to_string(run.singleFrame->image->flipMean).substr(0, 6) + ")"
-                                    : std::string()));
+                if (!nothing.empty())
+                    progress_->end("not measured: " + nothing);
+                else
+                    progress_->end("PSNR " + formatPsnr(run.image->psnrToneMapped) + ", FLIP " +
+                                   std::to_string(run.image->flipMean).substr(0, 6) +
+                                   (run.singleFrame && run.singleFrame->image
+                                        ? " (one frame: " + std::to_string(run.singleFrame->image->flipMean).substr(0, 6) + ")"
+                                        : std::string()));
             } catch (const std::exception& e) {
                 // One layout that cannot be rendered must not sink the others: report it as failed.
                 run.status = RunStatus::Failed;

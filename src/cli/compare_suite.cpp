@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <mutex>
 
 #include "compare_console.h"
 #include "compare_session.h"
 #include "error.h"
 #include "file_io.h"
+#include "interrupt.h"
 #include "scene_suite.h"
 #include "stage_clock.h"
 #include "suite_report.h"
@@ -58,6 +60,37 @@ bool comparesSeveralScenes(const CompareOptions& options) {
     return a.size() > 1 || (a.size() == 1 && a[0].size() > 5 && a[0].compare(a[0].size() - 5, 5, ".toml") == 0);
 }
 
+namespace {
+
+// The top report's shared facts, from the scenes that finished (the first one's run).
+void completeSuiteModel(SuiteModel& model, const CompareOptions& o) {
+    for (const SuiteScene& s : model.scenes)
+        if (s.report) {
+            model.run = s.report->run;
+            break;
+        }
+    model.run.scene.clear();
+    model.run.environment.clear();
+    model.run.views.clear();
+    model.run.viewNotMeasured.clear();
+    model.run.notes = {"each scene's own report, with its images, notes and views, is in scenes/<name>/; "
+                       "scenes[i].report below is that report (its paths relative to that folder)",
+                       "pipelines, the device and each environment's IBL pre-computation are shared by the "
+                       "scenes"};
+    if (model.run.commandLine.empty()) model.run.commandLine = o.commandLine;
+    summariseSuite(model);
+}
+
+// What the main thread and an interruption (the watcher thread, interrupt.h) share: the scenes
+// that finished, and whether the final report is written (then an interruption writes nothing).
+struct SuiteProgress {
+    std::mutex mutex;
+    SuiteModel model;
+    bool complete = false;
+};
+
+}  // namespace
+
 int runCompareSuite(const CompareOptions& options) {
     const CompareOptions& o = options;
     // Everything given is read and checked before the first pixel: the layouts, the scenes' files.
@@ -76,10 +109,35 @@ int runCompareSuite(const CompareOptions& options) {
     writeFileAtomic(marker, "gbufferlab compare over " + std::to_string(scenes.size()) +
                                 " scenes has not finished: this folder is incomplete\n");
 
-    SuiteModel model;
+    // SIGINT, SIGTERM: the top report of the scenes that finished (the scene in progress writes its
+    // own partial report first, compare_session.cpp), and INCOMPLETE naming the signal, as a single
+    // scene's comparison does.
+    SuiteProgress progress;
+    const auto interrupted = [&](int signal) {
+        std::lock_guard lock(progress.mutex);
+        if (progress.complete) return;
+        SuiteModel partial = progress.model;
+        SuiteInterruption what;
+        what.signal = signalName(signal);
+        what.scenesPlanned = int(scenes.size());
+        for (size_t i = partial.scenes.size(); i < scenes.size(); ++i) what.notFinished.push_back(scenes[i].name);
+        partial.interruption = what;
+        completeSuiteModel(partial, o);
+        writeSuiteReport(o.outDir, partial);
+        writeFileAtomic(marker, "INCOMPLETE: interrupted by " + what.signal + " after " +
+                                    std::to_string(partial.scenes.size()) + " of " + std::to_string(scenes.size()) +
+                                    " scenes; report.json and report.html cover only the scenes that finished\n");
+    };
+    setInterruptAction(interrupted);
+    struct ClearAction {
+        ~ClearAction() { setInterruptAction({}); }
+    } clearAction;
+
     std::vector<CompareOptions> sceneOptions(scenes.size(), o);
+    SuiteModel model;
     {
         CompareShared shared;  // the device, pipelines and IBL maps of every scene, freed after the last
+        shared.onInterrupt = interrupted;
         double gpuPassMs = 0.0;
         for (size_t i = 0; i < scenes.size(); ++i) {
             const SceneSpec& spec = scenes[i];
@@ -117,29 +175,20 @@ int runCompareSuite(const CompareOptions& options) {
                 std::fprintf(stderr, "gbufferlab: error: scene %s (%s): %s\n", spec.name.c_str(), spec.origin.c_str(),
                              entry.error.c_str());
             }
-            model.scenes.push_back(std::move(entry));
+            std::lock_guard lock(progress.mutex);
+            progress.model.scenes.push_back(std::move(entry));
         }
-        for (const SuiteScene& s : model.scenes)
-            if (s.report) {
-                model.run = s.report->run;
-                break;
-            }
-        model.run.scene.clear();
-        model.run.environment.clear();
-        model.run.views.clear();
-        model.run.notes = {"each scene's own report, with its images, notes and views, is in scenes/<name>/; "
-                           "scenes[i].report below is that report (its paths relative to that folder)",
-                           "pipelines, the device and each environment's IBL pre-computation are shared by the "
-                           "scenes"};
-        if (model.run.commandLine.empty()) model.run.commandLine = o.commandLine;
-        summariseSuite(model);
+        std::lock_guard lock(progress.mutex);
+        model = progress.model;
+        completeSuiteModel(model, o);
         writeSuiteReport(o.outDir, model);
         printSuiteTable(model);
         reportStageTimes(o.outDir, StageClock::global().read(), gpuPassMs, shared.ctx &&
                              shared.ctx->info.type == VK_PHYSICAL_DEVICE_TYPE_CPU);
+        std::error_code ec;
+        fs::remove(marker, ec);
+        progress.complete = true;
     }
-    std::error_code ec;
-    fs::remove(marker, ec);
     std::printf("report: %s\n", (o.outDir / "report.html").string().c_str());
     int status = 0;
     for (const SuiteScene& s : model.scenes) {

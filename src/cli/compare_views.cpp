@@ -91,10 +91,29 @@ std::vector<CompareView> compareViews(const Scene& scene, int count, float aspec
     return views;
 }
 
-void finishViews(RunReport& run) {
+void finishViews(RunReport& run, const std::vector<std::string>& viewNotMeasured) {
     if (run.views.size() > 1) averageViews(run);
     else run.views.clear();
     finishSingleFrameViews(run);
+    size_t left = 0;
+    for (size_t v = 0; v < viewNotMeasured.size(); ++v) {
+        if (viewNotMeasured[v].empty()) continue;
+        run.notMeasured += (run.notMeasured.empty() ? "" : "; ") + ("view " + std::to_string(v) + ": " + viewNotMeasured[v]);
+        ++left;
+    }
+    if (left && left == viewNotMeasured.size() && run.status == RunStatus::Ok) {
+        clearMeasurements(run);
+        run.status = RunStatus::NotMeasured;
+    }
+}
+
+void clearMeasurements(RunReport& run) {
+    run.attributes = {};
+    run.image.reset();
+    if (run.singleFrame) {
+        run.singleFrame->attributes = {};
+        run.singleFrame->image.reset();
+    }
 }
 
 std::vector<FigureBall> findFigureBalls(const Scene& scene, uint32_t width, uint32_t height) {

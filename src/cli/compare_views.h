@@ -34,7 +34,12 @@ std::vector<CompareView> compareViews(const Scene& scene, int count, float aspec
 std::vector<CompareView> placedViews(const Scene& scene, const std::vector<Camera>& cameras);
 
 // After the last view: a run's metrics become the mean over its views; one view: as before.
-void finishViews(RunReport& run);
+// `viewNotMeasured`: per view, why it had nothing to measure ("" measured; record() left such a
+// view's metrics empty, so the means leave it out): named in run.notMeasured, and a run with no
+// view measured becomes RunStatus::NotMeasured.
+void finishViews(RunReport& run, const std::vector<std::string>& viewNotMeasured = {});
+// A view's metrics emptied (attributes, image, single frame): a view with nothing to measure.
+void clearMeasurements(RunReport& run);
 
 // The material balls of the built-in scene's sphere grid (materials "metal roughness ..." and
 // "dielectric roughness ..."), as square crops of a width x height render: metals, then

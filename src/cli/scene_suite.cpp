@@ -4,8 +4,10 @@
 #include "scene_suite.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
+#include "cli_args.h"
 #include "error.h"
 #include "file_io.h"
 #include "layout_parser_detail.h"
@@ -45,17 +47,47 @@ std::string suitePath(const fs::path& folder, const std::string& value) {
     return (p.is_absolute() || folder.empty() ? p : folder / p).lexically_normal().string();
 }
 
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// A file given where another kind belongs, by its extension: "a scene suite" for a .toml given as
+// a glTF; "" when it may be what `key` asks for (the loader checks the contents).
+std::string wrongKindOfFile(const std::string& key, const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == ".toml") return "is a scene suite (a .toml), not " + std::string(key == "gltf" ? "a glTF scene" : "an environment map") +
+                               "; list its scenes in this suite, or give both suites to --scene";
+    if (key == "gltf" && (ext == ".hdr" || ext == ".exr"))
+        return "is an environment map, not a glTF scene; give it as the scene's 'environment'";
+    if (key == "environment" && (ext == ".gltf" || ext == ".glb"))
+        return "is a glTF scene, not an environment map; give it as the scene's 'gltf'";
+    return "";
+}
+
 bool isRegularFile(const std::string& path) {
     std::error_code ec;
     return fs::is_regular_file(path, ec);
+}
+
+// Two inputs of scenes are the same when both are the built-in one ("") or both name one file,
+// however reached (a relative and an absolute path, a symbolic link, a linked folder): the files
+// are compared, not the text.
+bool sameInput(const std::string& a, const std::string& b) {
+    if (a.empty() || b.empty()) return a.empty() && b.empty();
+    return a == b || isSameFile(a, b);
+}
+
+bool sameSceneFiles(const SceneSpec& a, const SceneSpec& b) {
+    return sameInput(a.gltfPath, b.gltfPath) && sameInput(a.envPath, b.envPath);
 }
 
 // The same scene twice: the same name (its folder), or the same glTF under the same environment.
 void refuseRepeats(const std::vector<SceneSpec>& scenes) {
     for (size_t i = 0; i < scenes.size(); ++i)
         for (size_t k = 0; k < i; ++k) {
-            std::error_code ec;
-            const bool sameFiles = scenes[i].gltfPath == scenes[k].gltfPath && scenes[i].envPath == scenes[k].envPath;
+            const bool sameFiles = sameSceneFiles(scenes[i], scenes[k]);
             if (scenes[i].name == scenes[k].name || sameFiles)
                 throwUserError(scenes[i].origin + ": the scene " + quoteName(scenes[i].name) +
                                " is given twice (also " + scenes[k].origin + ")" +
@@ -177,7 +209,9 @@ SceneSpec readScene(const toml::node& node, const fs::path& folder, Diagnostics&
         }
         const std::string& value = n->as_string()->get();
         out = suitePath(folder, value);
-        if (!out.empty() && !isRegularFile(out))
+        if (const std::string wrong = out.empty() ? "" : wrongKindOfFile(key, out); !wrong.empty())
+            d.error(placeOf(*n), "'" + std::string(key) + "' " + quoteName(value) + " " + wrong);
+        else if (!out.empty() && !isRegularFile(out))
             d.error(placeOf(*n), "'" + std::string(key) + "' " + quoteName(value) + ": no such file (" +
                                      escapeText(out) + "; paths are relative to the suite's folder)");
     };
@@ -193,7 +227,17 @@ SceneSpec readScene(const toml::node& node, const fs::path& folder, Diagnostics&
         d.error(place, "the glTF's file name " + quoteName(s.name) + " cannot name a folder; give the scene a 'name'");
     }
     if (const toml::node* n = t->get("exposure")) {
-        if (const auto x = readNumber(*n, "'exposure'", 0.0, 1e6, d)) s.exposure = float(*x);
+        // The range compare --exposure accepts, no narrower and no wider.
+        const std::optional<double> x = n->is_integer()          ? std::optional<double>(double(n->as_integer()->get()))
+                                        : n->is_floating_point() ? std::optional<double>(n->as_floating_point()->get())
+                                                                 : std::nullopt;
+        if (!x)
+            d.error(placeOf(*n), "'exposure' must be a number, not " + std::string(typeName(*n)));
+        else if (const std::string problem = positiveFloatProblem(*x); !problem.empty())
+            d.error(placeOf(*n), "'exposure' " + layout_parser::formatNumber(*x) +
+                                     " is outside the range --exposure accepts: " + problem);
+        else
+            s.exposure = float(*x);
     }
     if (const toml::node* cams = t->get("camera")) {
         const toml::array* a = cams->as_array();
@@ -249,7 +293,7 @@ std::vector<SceneSpec> parseSceneSuite(const std::string& text, const std::strin
     // A scene twice: named where the second one is.
     for (size_t i = 0; i < scenes.size() && d.lines.empty(); ++i)
         for (size_t k = 0; k < i; ++k) {
-            const bool sameFiles = scenes[i].gltfPath == scenes[k].gltfPath && scenes[i].envPath == scenes[k].envPath;
+            const bool sameFiles = sameSceneFiles(scenes[i], scenes[k]);
             if (scenes[i].name != scenes[k].name && !sameFiles) continue;
             const FilePlace at = placeOf(*list->as_array()->get(i));
             d.error(at, "the scene " + quoteName(scenes[i].name) + " is given twice (also at " + scenes[k].origin +
@@ -266,6 +310,9 @@ std::vector<SceneSpec> loadSceneSuite(const fs::path& path) {
 
 std::vector<SceneSpec> resolveScenes(const std::vector<std::string>& sceneArgs, const std::string& envPath) {
     std::vector<SceneSpec> scenes;
+    if (const std::string wrong = envPath.empty() ? "" : wrongKindOfFile("environment", envPath); !wrong.empty())
+        throwUserError("--env " + quoteName(envPath) + ": " + wrong.substr(0, wrong.find(';')) +
+                       "; give an .hdr or .exr file");
     if (!envPath.empty() && !isRegularFile(envPath))
         throwUserError("--env " + quoteName(envPath) + ": no such file; give an .hdr or .exr file");
     for (const std::string& arg : sceneArgs.empty() ? std::vector<std::string>{kBuiltinSceneName} : sceneArgs) {
@@ -278,6 +325,10 @@ std::vector<SceneSpec> resolveScenes(const std::vector<std::string>& sceneArgs, 
         s.envPath = envPath;
         s.name = stemName(s.gltfPath);
         s.origin = "--scene " + quoteName(arg);
+        if (const std::string wrong = s.gltfPath.empty() ? "" : wrongKindOfFile("gltf", s.gltfPath);
+            !wrong.empty() && lowerExtension(s.gltfPath) != ".toml")
+            throwUserError("--scene " + quoteName(arg) + ": " + wrong.substr(0, wrong.find(';')) +
+                           "; give it as --env, and a .gltf / .glb file, builtin or a suite .toml as --scene");
         if (!s.gltfPath.empty() && !isRegularFile(s.gltfPath))
             throwUserError("--scene " + quoteName(arg) + ": no such file; give a .gltf / .glb file, builtin, or a suite .toml");
         if (!isValidSceneName(s.name))

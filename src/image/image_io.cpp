@@ -149,6 +149,35 @@ Image8 readImage8(const std::string& path) {
     return image;
 }
 
+UnormImage readImageUnorm(const std::string& path) {
+    const auto bytes = readWholeFile(path);
+    const StbInfo info = stbInfo(path, bytes, "image");
+    requireDecodeMemory(path, info, 1.0);
+    UnormImage out;
+    int width = 0, height = 0, channels = 0;
+    auto toImage = [&](const auto* data, float scale) {
+        out.image = Image(width, height, channels);
+        for (size_t i = 0; i < out.image.pixels.size(); ++i) out.image.pixels[i] = float(data[i]) / scale;
+    };
+    if (info.sixteenBit) {
+        std::unique_ptr<stbi_us, StbFree> data(
+            stbi_load_16_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 0));
+        if (!data)
+            throwUserError(escapeText(path) + ": cannot decode the 16-bit image (stb_image: " + stbReason() +
+                           "); re-save it as a PNG");
+        out.bitsPerSample = 16;
+        toImage(data.get(), 65535.0f);
+        return out;
+    }
+    std::unique_ptr<unsigned char, StbFree> data(
+        stbi_load_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 0));
+    if (!data)
+        throwUserError(escapeText(path) + ": cannot decode image (stb_image: " + stbReason() +
+                       "); use a PNG (8 or 16 bits) or a JPEG");
+    toImage(data.get(), 255.0f);
+    return out;
+}
+
 namespace {
 
 void writeEncodedPng(const std::string& path, const Image8& image, bool colourMapped) {

@@ -67,7 +67,15 @@ void writePng(const std::string& path, const Image8& image);
 // Writes a colour-mapped image (the error maps) as encodePngColourMapped does: indexed when it
 // has at most 256 colours; the pixels read back are the same as writePng's.
 void writeColourMappedPng(const std::string& path, const Image8& image);
-// Reads a PNG / JPEG (8-bit) file.
+// Reads a PNG / JPEG (8-bit) file. A 16-bit PNG keeps only its high bytes here: readers that
+// measure (diff) take readImageUnorm.
 Image8 readImage8(const std::string& path);
+// Reads a PNG or JPEG at the precision it holds: a 16-bit PNG at 16 bits (each value v / 65535),
+// anything else at 8 (v / 255); every value in [0, 1], as stored (sRGB-encoded for an sRGB image).
+struct UnormImage {
+    Image image;           // the file's channels, alpha included
+    int bitsPerSample = 8;  // 8 or 16: the precision the values keep
+};
+UnormImage readImageUnorm(const std::string& path);
 
 }  // namespace gbl

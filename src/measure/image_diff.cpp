@@ -25,7 +25,7 @@ std::string shortNumber(double v) {
     return buf;
 }
 
-const char* kindName(DiffKind k) { return k == DiffKind::Ldr ? "8-bit sRGB (PNG/JPEG)" : "HDR float (EXR/HDR)"; }
+const char* kindName(DiffKind k) { return k == DiffKind::Ldr ? "sRGB (PNG/JPEG)" : "HDR float (EXR/HDR)"; }
 
 }  // namespace
 
@@ -34,14 +34,17 @@ DiffInput readDiffInput(const std::string& path) {
     if (!std::filesystem::exists(path)) throwUserError(path + ": no such file");
     DiffInput in;
     if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") {
-        const Image8 img = readImage8(path);
+        // At the file's precision: a 16-bit PNG read as 8 bits would lose its low bytes, and two
+        // files that differ only there would compare as identical.
+        const UnormImage file = readImageUnorm(path);
+        const Image& img = file.image;
         in.kind = DiffKind::Ldr;
         in.fileChannels = img.channels;
+        in.bitsPerSample = file.bitsPerSample;
         const int colour = img.channels >= 3 ? 3 : 1;  // grey(+alpha) -> 1, RGB(A) -> 3
         in.image = Image(img.width, img.height, colour);
         for (size_t p = 0; p < in.image.pixelCount(); ++p)
-            for (int c = 0; c < colour; ++c)
-                in.image.pixels[p * colour + c] = float(img.pixels[p * img.channels + c]) / 255.0f;
+            for (int c = 0; c < colour; ++c) in.image.pixels[p * colour + c] = img.pixels[p * img.channels + c];
         return in;
     }
     if (ext == ".exr") {
@@ -66,6 +69,13 @@ DiffInput readDiffInput(const std::string& path) {
         return in;
     }
     throwUserError(path + ": unknown image type '" + ext + "'; give a .png, .jpg, .exr or .hdr file");
+}
+
+std::string diffPrecision(const DiffInput& reference, const DiffInput& test) {
+    if (reference.kind == DiffKind::Hdr) return "float";
+    if (reference.bitsPerSample == test.bitsPerSample) return std::to_string(reference.bitsPerSample) + "-bit";
+    return std::to_string(reference.bitsPerSample) + "-bit reference, " + std::to_string(test.bitsPerSample) +
+           "-bit test";
 }
 
 double diffMemoryBytes(const ImageFileInfo& reference, const ImageFileInfo& test) {

@@ -3,7 +3,10 @@
 // and NVIDIA's FLIP tool compare files.
 //
 // Inputs are read by extension and keep their kind:
-//   .png / .jpg / .jpeg  LDR: 8-bit, sRGB-encoded; values v / 255 in [0, 1].
+//   .png / .jpg / .jpeg  LDR: sRGB-encoded, at the file's precision: 8 bits (v / 255) or, for a
+//                        16-bit PNG, 16 bits (v / 65535); values in [0, 1]. A 16-bit pair is
+//                        compared at 16 bits (never rounded to 8), an 8-bit file with a 16-bit
+//                        one each at its own; DiffInput::bitsPerSample says which.
 //   .exr / .hdr          HDR: linear RGB float (EXR: R,G,B or Y; A is not compared).
 // Reference and test must be the same kind, width, height and channel count (else UserError
 // naming the test file).
@@ -41,7 +44,11 @@ struct DiffInput {
     DiffKind kind = DiffKind::Ldr;
     Image image;        // LDR: sRGB-encoded [0,1]; HDR: linear. Colour channels only (1 or 3).
     int fileChannels = 0;  // channels in the file (alpha included), for the like-for-like check
+    int bitsPerSample = 0;  // LDR: 8 or 16, the precision its values keep; HDR: 0 (float)
 };
+// How precise the numbers of a pair are: "8-bit", "16-bit", "8-bit reference, 16-bit test" (LDR),
+// "float" (HDR).
+std::string diffPrecision(const DiffInput& reference, const DiffInput& test);
 
 // Reads one input; bad files (unreadable, unknown extension) are a UserError naming the file.
 DiffInput readDiffInput(const std::string& path);

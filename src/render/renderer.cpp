@@ -68,7 +68,7 @@ std::vector<uint32_t> downloadWords(const VulkanContext& ctx, const GpuImage& im
 }  // namespace
 
 void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag,
-                        uint32_t bandRows) {
+                        uint32_t bandRows, const std::string& advice) {
     const uint32_t maxDim = ctx.properties.limits.maxImageDimension2D;
     if (width == 0 || height == 0)
         throwUserError(flag + " " + std::to_string(width) + "x" + std::to_string(height) +
@@ -76,14 +76,15 @@ void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t heigh
     if (width > maxDim || height > maxDim)
         throwUserError(flag + " " + std::to_string(width) + "x" + std::to_string(height) + ": the device '" +
                        ctx.info.name + "' allows at most " + std::to_string(maxDim) + " pixels per side");
-    requireRenderMemory(width, height, bandRows, flag);
+    requireRenderMemory(width, height, bandRows, flag, advice);
 }
 
-void requireRenderMemory(uint32_t width, uint32_t height, uint32_t bandRows, const std::string& flag) {
+void requireRenderMemory(uint32_t width, uint32_t height, uint32_t bandRows, const std::string& flag,
+                         const std::string& advice) {
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
     requireMemory(renderMemoryBytes(width, height, bandRows),
                   flag + " " + size + (bandRows ? " in bands of " + std::to_string(bandRows) + " rows" : ""),
-                  bandRows ? "give a smaller --size" : "give a smaller --size, or render in bands (--band-rows 64)");
+                  bandRows ? "give a smaller --size" : advice);
 }
 
 RenderBand renderBand(const RenderSettings& settings) {

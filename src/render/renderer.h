@@ -141,10 +141,14 @@ double renderMemoryBytes(uint32_t width, uint32_t height, uint32_t bandRows);
 // Checks a requested resolution against the device's limits, and the render's memory
 // (renderMemoryBytes, with `bandRows`) against the budget (memory_budget.h); throws UserError
 // naming `flag`.
+// `advice`: the fix the refusal of whole frames gives; it names only flags the command has and
+// accepts with its other flags (render: bands; search and compare --temporal: none).
+inline constexpr const char* kRenderInBandsAdvice = "give a smaller --size, or render in bands (--band-rows 64)";
 void validateResolution(const VulkanContext& ctx, uint32_t width, uint32_t height, const std::string& flag,
-                        uint32_t bandRows = 0);
+                        uint32_t bandRows = 0, const std::string& advice = kRenderInBandsAdvice);
 // The budget half alone, before a device exists (render checks it before loading anything).
-void requireRenderMemory(uint32_t width, uint32_t height, uint32_t bandRows, const std::string& flag);
+void requireRenderMemory(uint32_t width, uint32_t height, uint32_t bandRows, const std::string& flag,
+                         const std::string& advice = kRenderInBandsAdvice);
 
 class Renderer {
 public:

@@ -35,21 +35,30 @@ std::string budgetText(const std::optional<int>& budget) {
     return budget ? "Up to " + std::to_string(*budget) + " B/px" : std::string("Unlimited");
 }
 
-std::string sentenceOf(const BudgetLine& line, int views) {
+// "; not run (interrupted by SIGINT): crysis3-thin (12 B/px), niagara (12 B/px)"
+std::string notRunText(const BudgetLine& line, const std::string& interruptedBy) {
+    if (line.notRun.empty()) return "";
+    std::string s = "; not run (interrupted by " + interruptedBy + "): ";
+    for (size_t i = 0; i < line.notRun.size(); ++i)
+        s += (i ? ", " : "") + line.notRun[i].layout + " (" + printed("%g", line.notRun[i].countedBytes) + " B/px)";
+    return s;
+}
+
+std::string sentenceOf(const BudgetLine& line, int views, const std::string& interruptedBy) {
     std::string s = budgetText(line.budget) + ": ";
     if (!line.best) {
-        s += "no layout fits";
+        s += interruptedBy.empty() ? "no layout fits" : "no layout that ran fits";
         if (line.smallest)
             s += "; the smallest, " + line.smallest->layout + ", counts " + printed("%g", line.smallest->countedBytes) +
                  " B/px";
-        return s + ".";
+        return s + notRunText(line, interruptedBy) + ".";
     }
     s += line.best->layout + " (" + bytesText(*line.best) + ") has the lowest mean FLIP over " +
          std::to_string(views) + (views == 1 ? " view, " : " views, ") + printed("%.4f", line.best->flipMean);
     for (size_t i = 0; i < line.tiedWith.size(); ++i)
         s += (i == 0 ? ", tied with " : i + 1 == line.tiedWith.size() ? " and " : ", ") + line.tiedWith[i].layout +
              " (" + bytesText(line.tiedWith[i]) + ")";
-    return s + ".";
+    return s + notRunText(line, interruptedBy) + ".";
 }
 
 }  // namespace
@@ -71,7 +80,11 @@ std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model) {
             if (r.iblMode != mode || !counts(r, model.reference.layout)) continue;
             entries.push_back({r.layout, r.bytesPerPixel.total, verdictCountedBytes(r), r.pipeline == kVisibilityPipeline,
                                r.image->flipMean});
-            views = std::max(views, int(r.views.size()));
+            // The views measured (a view with nothing to measure has no image errors: not in the mean).
+            const int measured = r.views.empty() ? 1
+                                                 : int(std::count_if(r.views.begin(), r.views.end(),
+                                                                     [](const ViewMetrics& v) { return bool(v.image); }));
+            views = std::max(views, measured);
         }
         if (entries.empty()) continue;
         // Best first; among equal means the fewer counted bytes, then the name, so ties read the same
@@ -84,16 +97,32 @@ std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model) {
         const VerdictEntry smallest = *std::min_element(
             entries.begin(), entries.end(),
             [](const VerdictEntry& a, const VerdictEntry& b) { return a.countedBytes < b.countedBytes; });
+        // What an interruption left unrun under this mode, by counted bytes then name.
+        std::vector<VerdictEntry> notRun;
+        if (model.interruption)
+            for (const PlannedRun& p : model.interruption->notRun)
+                if (p.iblMode == mode) notRun.push_back({p.layout, p.bytesPerPixel, p.countedBytes, false, 0.0});
+        std::stable_sort(notRun.begin(), notRun.end(), [](const VerdictEntry& a, const VerdictEntry& b) {
+            return a.countedBytes != b.countedBytes ? a.countedBytes < b.countedBytes : a.layout < b.layout;
+        });
         BudgetVerdict v;
         v.iblMode = mode;
         v.views = views;
+        v.interruptedBy = model.interruption ? model.interruption->signal : "";
         v.basis = "The best layout per byte budget, under IBL " + mode +
                   ": the lowest mean FLIP (LDR) over " + std::to_string(views) + (views == 1 ? " view" : " views") +
                   " among the measured layouts whose bytes per pixel fit the budget. Bytes per pixel are the "
                   "table's (targets + depth + light buffers); a visibility buffer also counts half of its "
                   "resolve's modelled vertex fetches (no cache reuse), since the bandwidth model moves a stored "
-                  "byte twice (written, then read) and a fetched byte once. Differences are not tested for "
-                  "significance yet: a tie is an exactly equal mean.";
+                  "byte twice (written, then read) and a fetched byte once. The lines compare mean FLIP alone: "
+                  "\"tied with\" names layouts of exactly equal mean, and a line does not say whether its layout "
+                  "is significantly better than the next; the Rank column does (the paired sign-flip test on "
+                  "FLIP tiles: layouts that share a rank range are not significantly different).";
+        if (model.interruption)
+            v.basis += " This report was interrupted by " + model.interruption->signal + " after " +
+                       std::to_string(model.interruption->runsFinished) + " of " +
+                       std::to_string(model.interruption->runsPlanned) +
+                       " runs: the lines speak only of the layouts that ran and name those that fit but did not.";
         std::vector<std::optional<int>> budgets(std::begin(kVerdictBudgets), std::end(kVerdictBudgets));
         budgets.push_back(std::nullopt);
         for (const std::optional<int>& budget : budgets) {
@@ -106,7 +135,9 @@ std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model) {
                 else break;
             }
             if (!line.best) line.smallest = smallest;
-            line.sentence = sentenceOf(line, views);
+            for (const VerdictEntry& e : notRun)
+                if (!budget || e.countedBytes <= *budget) line.notRun.push_back(e);
+            line.sentence = sentenceOf(line, views, v.interruptedBy);
             v.lines.push_back(std::move(line));
         }
         return v;

@@ -11,9 +11,14 @@
 // pass) and a fetched byte once: the half is the G-buffer size that moves as many bytes. Without
 // it a visibility buffer would read as its 8 B/px of ids and depth and win every budget.
 //
-// Ties: the lines name every layout tied with the best. No significance test exists yet, so a
-// tie is an exactly equal mean; a test over the views can widen `tiedWith` without changing the
-// shape of the verdict or of its JSON.
+// Ties: the lines rest on the mean FLIP alone and name every layout tied with the best, a tie
+// being an exactly equal mean. They do not test whether the best is significantly better than the
+// next: the table's tied ranks do (rank_significance.h, the paired sign-flip test on FLIP tiles),
+// and the basis says so.
+//
+// An interrupted report (ReportModel::interruption) holds only the runs that finished: each line
+// names the layouts that fit its budget but never ran, and "no layout fits" becomes "no layout
+// that ran fits", so that no line claims what was never measured.
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +42,8 @@ struct BudgetLine {
     std::optional<VerdictEntry> best;  // nullopt: no measured layout fits
     std::vector<VerdictEntry> tiedWith;
     std::optional<VerdictEntry> smallest;  // when nothing fits: the layout of fewest counted bytes
+    // An interrupted report: the layouts that fit the budget but never ran (flipMean unused).
+    std::vector<VerdictEntry> notRun;
     std::string sentence;
 };
 
@@ -44,6 +51,7 @@ struct BudgetVerdict {
     std::string iblMode;  // the first IBL mode with a measured layout run
     int views = 1;        // the FLIP means are over this many views
     std::string basis;    // how the lines are decided, one paragraph
+    std::string interruptedBy;  // "SIGINT" when the report is an interrupted one's, else 
     std::vector<BudgetLine> lines;  // kVerdictBudgets in order, then unlimited
 };
 

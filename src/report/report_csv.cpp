@@ -170,6 +170,8 @@ std::vector<Column> columns() {
                      const auto& n = r.singleFrame->attributes[ErrorAttribute::Normal].all;
                      return n ? numberText(n->error.mean) : std::string();
                  }, {}});
+    // The views left out of the metrics (nothing to measure), and why; empty when every view counted.
+    text("not_measured", &RunReport::notMeasured);
     return c;
 }
 
@@ -185,20 +187,27 @@ std::string csvField(const std::string& text) {
     return quoted + "\"";
 }
 
+// The last column, of the report rather than of its run: "complete", or "interrupted by SIGINT"
+// (the rows are then only the runs that finished).
+constexpr const char* kReportStatusColumn = "report_status";
+
 std::vector<std::string> reportCsvHeader() {
     std::vector<std::string> names;
     for (const Column& c : columns()) names.push_back(c.name);
+    names.push_back(kReportStatusColumn);
     return names;
 }
 
 std::string reportCsv(const ReportModel& model) {
     const std::vector<Column> cols = columns();
+    const std::string status =
+        model.interruption ? "interrupted by " + model.interruption->signal : std::string("complete");
     std::string out;
     for (size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i].name;
-    out += "\n";
+    out += std::string(",") + kReportStatusColumn + "\n";
     for (const RunReport& run : model.runs) {
         for (size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + csvField(cols[i].value(run));
-        out += "\n";
+        out += "," + csvField(status) + "\n";
     }
     return out;
 }

@@ -197,6 +197,10 @@ void writeRunSection(std::string& out, const ReportModel& model, const RunReport
     if (!r.source.empty()) out += "<p class=\"cite\">" + htmlEscape(r.source) + "</p>\n";
     if (r.status == RunStatus::Failed)
         out += "<div class=\"errorbox\"><strong>Failed:</strong> " + htmlEscape(r.error) + "</div>\n";
+    if (!r.notMeasured.empty())
+        out += "<div class=\"errorbox\"><strong>" +
+               std::string(r.status == RunStatus::NotMeasured ? "Not measured" : "Views left out") + ":</strong> " +
+               htmlEscape(r.notMeasured) + "</div>\n";
     out += "<div class=\"cols\">\n<table class=\"small\"><tbody>\n";
     textRow(out, "Pipeline", htmlEscape(r.pipeline));
     statRow(out, "Targets", formatFixed(r.bytesPerPixel.targets, 0), "B/px");
@@ -353,6 +357,22 @@ std::string reportHtml(const ReportModel& model) {
                                                                            std::to_string(failed) + " failed</span>"
                                                                      : std::string()));
     out += "</dl>\n";
+    // What this report lacks comes first: an interruption, views with nothing to measure.
+    if (model.interruption) {
+        const ReportInterruption& i = *model.interruption;
+        std::string notRun;
+        for (const PlannedRun& p : i.notRun)
+            notRun += (notRun.empty() ? "" : ", ") + htmlEscape(p.layout) + " (" + htmlEscape(p.iblMode) + ")";
+        out += "<div class=\"errorbox\" id=\"interrupted\"><strong>Incomplete:</strong> interrupted by " +
+               htmlEscape(i.signal) + " after " + std::to_string(i.runsFinished) + " of " +
+               std::to_string(i.runsPlanned) + " runs; this report lists only the runs that finished." +
+               (notRun.empty() ? std::string() : " Not run: " + notRun + ".") + "</div>\n";
+    }
+    for (size_t v = 0; v < run.viewNotMeasured.size(); ++v)
+        if (!run.viewNotMeasured[v].empty())
+            out += "<div class=\"errorbox\"><strong>View " + std::to_string(v) +
+                   " not measured:</strong> " + htmlEscape(run.viewNotMeasured[v]) +
+                   "; it is left out of every mean, rank and verdict.</div>\n";
     if (!run.commandLine.empty()) out += "<pre class=\"cmd\"><code>" + htmlEscape(run.commandLine) + "</code></pre>\n";
     if (!run.notes.empty()) {
         out += "<ul class=\"notes\">";
@@ -380,10 +400,19 @@ std::string reportHtml(const ReportModel& model) {
 
     out += "<section id=\"summary\">\n<h2>Layouts</h2>\n";
     if (model.run.views.size() > 1) {
-        out += "<p class=\"views\">Every metric is the mean over " + std::to_string(model.run.views.size()) +
-               " views; under each, its range (min&ndash;max) and standard deviation &sigma; over them. Views: ";
+        // Over the views measured: a view with nothing to measure is in no mean (run.viewNotMeasured).
+        size_t measured = 0;
         for (size_t i = 0; i < model.run.views.size(); ++i)
-            out += (i ? "; " : "") + std::to_string(i) + ": " + htmlEscape(model.run.views[i]);
+            measured += i >= model.run.viewNotMeasured.size() || model.run.viewNotMeasured[i].empty();
+        out += "<p class=\"views\">Every metric is the mean over " + std::to_string(measured) +
+               (measured == model.run.views.size() ? std::string(" views")
+                                                   : " of the " + std::to_string(model.run.views.size()) +
+                                                         " views (the others had nothing to measure)") +
+               "; under each, its range (min&ndash;max) and standard deviation &sigma; over them. Views: ";
+        for (size_t i = 0; i < model.run.views.size(); ++i)
+            out += (i ? "; " : "") + std::to_string(i) + ": " + htmlEscape(model.run.views[i]) +
+                   (i < model.run.viewNotMeasured.size() && !model.run.viewNotMeasured[i].empty() ? " (not measured)"
+                                                                                                   : "");
         out += ". Images and crops are the first view's.</p>\n";
     }
     writeLayoutsTable(out, model, ids);

@@ -174,6 +174,8 @@ void writeLayoutsTable(std::string& out, const ReportModel& model, const std::ve
                 out += "<td class=\"num\"></td>";
         }
         if (failed) out += "<td>failed<div class=\"errtext\">" + htmlEscape(r.error) + "</div></td>";
+        else if (r.status == RunStatus::NotMeasured)
+            out += "<td>not measured<div class=\"errtext\">" + htmlEscape(r.notMeasured) + "</div></td>";
         else out += "<td class=\"status-ok\">ok</td>";
         out += "</tr>\n";
     }

@@ -130,6 +130,14 @@ Json verdictJson(const BudgetVerdict& v) {
         for (const VerdictEntry& e : line.tiedWith) tied.push_back(verdictEntryJson(e));
         b["tied_with"] = std::move(tied);
         if (line.smallest) b["smallest"] = verdictEntryJson(*line.smallest);
+        if (!line.notRun.empty()) {  // an interrupted report: layouts that fit but never ran
+            Json notRun = Json::array();
+            for (const VerdictEntry& e : line.notRun)
+                notRun.push_back(Json{{"layout", e.layout},
+                                      {"bytes_per_pixel", e.bytesPerPixel},
+                                      {"counted_bytes_per_pixel", number(e.countedBytes)}});
+            b["not_run"] = std::move(notRun);
+        }
         b["sentence"] = line.sentence;
         budgets.push_back(std::move(b));
     }
@@ -256,6 +264,7 @@ Json runJson(const RunReport& r) {
                                     {"depth", r.bytesPerPixel.depth},
                                     {"light_buffers", r.bytesPerPixel.lightBuffers},
                                     {"total", r.bytesPerPixel.total}}}};
+    if (!r.notMeasured.empty()) j["not_measured"] = r.notMeasured;  // views left out, and why
     Json frames = Json::array();
     for (const FrameTraffic& f : r.bandwidth) frames.push_back(frameJson(f));
     j["bandwidth"] = std::move(frames);
@@ -298,6 +307,7 @@ Json reportToJson(const ReportModel& model) {
     for (const RunReport& r : model.runs) runs.push_back(runJson(r));
     Json j{{"schema", "gbufferlab-report"},
                 {"schema_version", kReportSchemaVersion},
+                {"status", model.interruption ? "interrupted" : "complete"},
                 {"run", Json{{"scene", run.scene},
                              {"environment", run.environment},
                              {"width", run.width},
@@ -312,11 +322,25 @@ Json reportToJson(const ReportModel& model) {
                              {"exposure_method", run.exposureMethod},
                              {"view_exposures", run.viewExposures},
                              {"view_coverage", run.viewCoverage},
+                             {"view_not_measured", run.viewNotMeasured},
                              {"notes", run.notes},
                              {"views", run.views},
                              {"exr_precision", run.exrPrecision}}},
                 {"reference", Json{{"layout", model.reference.layout}, {"images", std::move(references)}}},
                 {"runs", std::move(runs)}};
+    if (model.interruption) {  // what the report lacks, for programs: the signal and the runs never run
+        const ReportInterruption& i = *model.interruption;
+        Json notRun = Json::array();
+        for (const PlannedRun& p : i.notRun)
+            notRun.push_back(Json{{"layout", p.layout},
+                                  {"ibl_mode", p.iblMode},
+                                  {"bytes_per_pixel", p.bytesPerPixel},
+                                  {"counted_bytes_per_pixel", number(p.countedBytes)}});
+        j["interruption"] = Json{{"signal", i.signal},
+                                 {"runs_finished", i.runsFinished},
+                                 {"runs_planned", i.runsPlanned},
+                                 {"not_run", std::move(notRun)}};
+    }
     if (run.temporalFrames > 1) {  // compare --temporal N
         Json jitter = Json::array();
         for (const auto& [x, y] : run.temporalJitter) jitter.push_back(Json::array({number(x), number(y)}));

@@ -184,8 +184,10 @@ RunReport readRun(const Node& n) {
     const std::string status = n["status"].str();
     if (status == "ok") r.status = RunStatus::Ok;
     else if (status == "failed") r.status = RunStatus::Failed;
-    else n["status"].fail("expected \"ok\" or \"failed\", not \"" + status + "\"");
+    else if (status == "not-measured") r.status = RunStatus::NotMeasured;
+    else n["status"].fail("expected \"ok\", \"failed\" or \"not-measured\", not \"" + status + "\"");
     r.error = n["error"].str();
+    if (n.has("not_measured")) r.notMeasured = n["not_measured"].str();
     const Node bpp = n["bytes_per_pixel"];
     r.bytesPerPixel = {bpp["targets"].i32(), bpp["depth"].i32(), bpp["light_buffers"].i32(), bpp["total"].i32()};
     const Node frames = n["bandwidth"];
@@ -258,6 +260,7 @@ ReportModel reportFromJson(const Json& json) {
     if (run.has("view_coverage"))
         for (size_t i = 0; i < run["view_coverage"].array().size(); ++i)
             model.run.viewCoverage.push_back(run["view_coverage"].at(i).num());
+    if (run.has("view_not_measured")) model.run.viewNotMeasured = run["view_not_measured"].strings();
     if (run.has("views")) model.run.views = run["views"].strings();
     if (run.has("exr_precision")) model.run.exrPrecision = run["exr_precision"].str();
     if (run.has("temporal")) {
@@ -277,6 +280,25 @@ ReportModel reportFromJson(const Json& json) {
                                           images.at(i).has("hdr_preview") ? images.at(i)["hdr_preview"].str() : ""});
     const Node runs = root["runs"];
     for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
+    // An interrupted report says so (reports before `status`: complete).
+    if (root.has("status") && root["status"].str() != "complete" && root["status"].str() != "interrupted")
+        root["status"].fail("expected \"complete\" or \"interrupted\", not \"" + root["status"].str() + "\"");
+    if (root.has("interruption")) {
+        const Node i = root["interruption"];
+        ReportInterruption in;
+        in.signal = i["signal"].str();
+        in.runsFinished = i["runs_finished"].i32();
+        in.runsPlanned = i["runs_planned"].i32();
+        const Node notRun = i["not_run"];
+        for (size_t k = 0; k < notRun.array().size(); ++k) {
+            const Node p = notRun.at(k);
+            in.notRun.push_back({p["layout"].str(), p["ibl_mode"].str(), p["bytes_per_pixel"].i32(),
+                                 p["counted_bytes_per_pixel"].num()});
+        }
+        model.interruption = std::move(in);
+    } else if (root.has("status") && root["status"].str() == "interrupted") {
+        root.fail("\"status\" is \"interrupted\" but there is no \"interruption\"");
+    }
     if (root.has("significance")) {
         const Node sig = root["significance"];
         SignificanceReport sr;

@@ -40,6 +40,9 @@ struct ReportRunInfo {
     std::vector<double> viewExposures;
     // Per view: the fraction of its pixels the scene's geometry covers (the reference's alpha).
     std::vector<double> viewCoverage;
+    // Per view: why it had nothing to measure (measure/view_content.h), "" when it was measured.
+    // A view not measured is left out of every mean, rank and verdict. Empty: every view measured.
+    std::vector<std::string> viewNotMeasured;
     std::vector<std::string> notes;  // free-form remarks (e.g. "12 ringing texels clamped to 0")
     std::vector<std::string> views;  // compare --views: how each camera was placed ("scene camera", ...)
     // The pixel type of the EXR files written (render.exr, errors.exr, the reference's):
@@ -70,8 +73,12 @@ struct ReportReference {
     }
 };
 
-enum class RunStatus : uint8_t { Ok, Failed };
-inline const char* runStatusName(RunStatus s) { return s == RunStatus::Ok ? "ok" : "failed"; }
+// NotMeasured: the run rendered, but no view had anything to measure (measure/view_content.h):
+// it has no image errors and counts in no mean, rank or verdict; RunReport::notMeasured says why.
+enum class RunStatus : uint8_t { Ok, Failed, NotMeasured };
+inline const char* runStatusName(RunStatus s) {
+    return s == RunStatus::Ok ? "ok" : s == RunStatus::Failed ? "failed" : "not-measured";
+}
 
 struct BytesPerPixel {
     int targets = 0;       // G-buffer colour targets
@@ -225,6 +232,9 @@ struct RunReport {
     std::string iblMode;
     RunStatus status = RunStatus::Ok;
     std::string error;     // why it failed ("" when ok)
+    // The views left out of its metrics and why ("view 1: the camera sees no geometry ..."), "" when
+    // every view was measured; with no view measured its status is NotMeasured.
+    std::string notMeasured;
     BytesPerPixel bytesPerPixel;
     std::vector<FrameTraffic> bandwidth;  // one per (resolution, MSAA samples)
     AttributeErrorTable attributes;
@@ -298,8 +308,23 @@ struct SignificanceReport {
     const RankRange* find(const std::string& layout, const std::string& iblMode) const;
 };
 
+// A report written after an interruption (SIGINT, SIGTERM) lists only the runs that finished:
+// this says so, and which runs were asked for and never ran (report.json `status`,
+// `interruption`; report.csv's `report_status`; the verdict names them where they fit).
+struct PlannedRun {
+    std::string layout, iblMode;
+    int bytesPerPixel = 0;      // the table's
+    double countedBytes = 0.0;  // what a verdict holds against a budget (budget_verdict.h)
+};
+struct ReportInterruption {
+    std::string signal;  // "SIGINT" / "SIGTERM"
+    int runsFinished = 0, runsPlanned = 0;
+    std::vector<PlannedRun> notRun;  // every layout and mode without a finished run
+};
+
 struct ReportModel {
     ReportRunInfo run;
+    std::optional<ReportInterruption> interruption;  // absent: the report is complete
     ReportReference reference;
     std::vector<RunReport> runs;
     std::optional<IblFigure> iblFigure;

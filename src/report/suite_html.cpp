@@ -35,6 +35,14 @@ std::string suiteHtml(const SuiteModel& model) {
         for (const std::string& n : r.notes) out += "<li>" + htmlEscape(n) + "</li>";
         out += "</ul>";
     }
+    if (model.interruption) {  // what this report lacks comes first
+        std::string names;
+        for (const std::string& n : model.interruption->notFinished) names += (names.empty() ? "" : ", ") + htmlEscape(n);
+        out += "<div class=\"errorbox\" id=\"interrupted\"><strong>Incomplete:</strong> interrupted by " +
+               htmlEscape(model.interruption->signal) + " after " + std::to_string(model.scenes.size()) + " of " +
+               std::to_string(model.interruption->scenesPlanned) +
+               " scenes; this report covers only the scenes that finished. Not finished: " + names + ".</div>\n";
+    }
     out += "</header>\n";
 
     // The summary: one row per layout and mode, one error (rank) column per scene.

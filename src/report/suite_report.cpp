@@ -193,9 +193,18 @@ nlohmann::ordered_json suiteToJson(const SuiteModel& model) {
                                  {"kendall_tau", jsonNumber(g.tau)},
                                  {"swapped_pairs", std::move(swaps)}});
     }
-    return Json{{"schema", "gbufferlab-scene-suite"},
+    Json interruption;
+    if (model.interruption)
+        interruption = Json{{"signal", model.interruption->signal},
+                            {"scenes_finished", int(model.scenes.size())},
+                            {"scenes_planned", model.interruption->scenesPlanned},
+                            {"not_finished", model.interruption->notFinished}};
+    Json j{{"schema", "gbufferlab-scene-suite"},
                 {"schema_version", kReportSchemaVersion},
-                {"run", std::move(run)},
+                {"status", model.interruption ? "interrupted" : "complete"}};
+    if (model.interruption) j["interruption"] = std::move(interruption);
+    j["run"] = std::move(run);
+    Json rest{
                 {"scenes", std::move(scenes)},
                 {"summary", Json{{"error", "image_errors.flip_mean"},
                                  {"rank", "1 = lowest error of the scene's layouts under the same IBL mode; equal errors "
@@ -208,6 +217,8 @@ nlohmann::ordered_json suiteToJson(const SuiteModel& model) {
                                                    "ranked (by mean LDR-FLIP); swapped_pairs: [better in scene_a, "
                                                    "better in scene_b]"},
                                         {"pairs", std::move(agreement)}}}};
+    for (auto& [key, value] : rest.items()) j[key] = std::move(value);
+    return j;
 }
 
 void writeSuiteReport(const std::filesystem::path& dir, const SuiteModel& model) {

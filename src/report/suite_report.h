@@ -52,8 +52,18 @@ struct SceneAgreement {
     std::vector<std::pair<std::string, std::string>> swaps;  // (better in A, better in B)
 };
 
+// A comparison of several scenes interrupted by a signal: its report holds the scenes that
+// finished; these are the ones that did not (the one interrupted has its own partial report in
+// its folder, the rest never started).
+struct SuiteInterruption {
+    std::string signal;  // "SIGINT" / "SIGTERM"
+    int scenesPlanned = 0;
+    std::vector<std::string> notFinished;  // scene names, in the order given
+};
+
 struct SuiteModel {
     ReportRunInfo run;  // what every scene shares (scene, environment and exposure are each scene's)
+    std::optional<SuiteInterruption> interruption;  // absent: every scene finished
     std::vector<SuiteScene> scenes;
     std::vector<SuiteLayoutSummary> summary;  // by mean rank, then mean error
     // Pairwise significance across the scenes (every scene's tiles pooled; rank_significance.h),

@@ -128,6 +128,14 @@ bool isIndex(const json& v) {
     return false;
 }
 
+// Why `v` is not an index ("" when it is): a negative whole number is named as what it is (-1 is
+// an integer, it is only below 0), anything else by its type.
+std::string indexProblem(const json& v, const char* what) {
+    if (isIndex(v)) return "";
+    if (v.is_number_integer()) return std::to_string(v.get<int64_t>()) + " is negative; " + what + " must be >= 0";
+    return std::string("must be ") + what + " (a whole number >= 0), not " + jsonTypeName(v);
+}
+
 std::string numberText(double x) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", x);
@@ -153,7 +161,9 @@ public:
             case Kind::IndexArray:
             case Kind::NumberArray:
             case Kind::StringArray: need(v.is_array(), "an array"); break;
-            case Kind::Index: need(isIndex(v), "an index (a whole number >= 0)"); break;
+            case Kind::Index:
+                if (const std::string problem = indexProblem(v, "an index"); !problem.empty()) fail(where, problem);
+                break;
             case Kind::Number: need(v.is_number(), "a number"); break;
             case Kind::Unit:
                 need(v.is_number(), "a number");
@@ -172,8 +182,8 @@ public:
     void checkObject(const json& object, const Schema& schema, const std::string& where) const {
         if (&schema == &kAttributes) {
             for (const auto& [name, value] : object.items())
-                if (!isIndex(value))
-                    fail(where + "." + escapeText(name), std::string("must be an accessor index, not ") + jsonTypeName(value));
+                if (const std::string problem = indexProblem(value, "an accessor index"); !problem.empty())
+                    fail(where + "." + escapeText(name), problem);
             return;
         }
         if (const auto ext = object.find("extensions"); ext != object.end()) {

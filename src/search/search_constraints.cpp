@@ -4,6 +4,8 @@
 #include <cerrno>
 #include <cstdlib>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "error.h"
 #include "layout.h"
@@ -66,6 +68,7 @@ void parseMinBits(const std::string& text, EngineConstraints& c) {
         throwUserError("--min-bits: empty; give ATTRIBUTE=BITS[,...], e.g. --min-bits occlusion=4,roughness=6");
     std::istringstream in(text);
     std::string entry;
+    std::vector<std::pair<std::string, std::string>> given;  // attribute, value: each at most once
     while (std::getline(in, entry, ',')) {
         const size_t eq = entry.find('=');
         if (entry.empty() || eq == std::string::npos)
@@ -75,11 +78,18 @@ void parseMinBits(const std::string& text, EngineConstraints& c) {
         if (std::find(minBitsAttributes().begin(), minBitsAttributes().end(), attribute) == minBitsAttributes().end())
             throwUserError("--min-bits " + quoteName(text) + ": unknown attribute " + quoteName(attribute) +
                            " (known: " + known + ")");
+        for (const auto& [earlier, earlierValue] : given)
+            if (earlier == attribute)
+                throwUserError("--min-bits " + quoteName(text) + ": " + attribute + " is given twice (" +
+                               escapeText(earlierValue) + " and " + escapeText(value) + "); give each attribute once");
+        given.emplace_back(attribute, value);
         char* end = nullptr;
         errno = 0;
-        const long bits = value.empty() ? -1 : std::strtol(value.c_str(), &end, 10);
+        // Digits only: strtol would also take " 8" and "+8".
+        const bool digits = !value.empty() && value.size() <= 9 && value.find_first_not_of("0123456789") == std::string::npos;
+        const long bits = digits ? std::strtol(value.c_str(), &end, 10) : -1;
         const int most = searchMaxBits(attribute);
-        if (value.empty() || *end != '\0' || errno != 0 || bits < 0 || bits > most)
+        if (!digits || *end != '\0' || errno != 0 || bits < 0 || bits > most)
             throwUserError("--min-bits " + quoteName(text) + ": " + attribute + "=" + escapeText(value) +
                            ": bits must be a whole number from 0 (no minimum) to " + std::to_string(most) +
                            " (the most the search stores " + attribute + " in)");

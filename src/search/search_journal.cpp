@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -30,31 +32,69 @@ std::string hexFloat(double v) {
     return buf;
 }
 
-bool parseLine(const std::string& line, JournalEntry& e) {
+// A whole number of decimal digits only ("12", not "12.0", "+12", " 12", "1e1"), at most `max`.
+bool wholeNumber(const std::string& s, int max, int& out) {
+    if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+    const long v = std::strtol(s.c_str(), nullptr, 10);
+    if (v > max) return false;
+    out = int(v);
+    return true;
+}
+
+// Why a journal line is not one this gbufferlab wrote ("" when it is). A resumed search trusts
+// every number of the line in place of an evaluation, so each must be one an evaluation can give:
+// finite, in its metric's range (FLIP 0..1, an angle 0..180 degrees, every error >= 0, PSNR >= 0),
+// and the score the objective's value of them (`objective`: the key's, "" when it names none).
+std::string lineProblem(const std::string& line, const std::string& objective, JournalEntry& e) {
     std::vector<std::string> parts;
     std::string part;
     std::istringstream in(line);
     while (std::getline(in, part, '\t')) parts.push_back(part);
-    if (parts.size() != 14) return false;
-    char* end = nullptr;
-    auto number = [&](const std::string& s, double& out) {
-        errno = 0;
-        out = std::strtod(s.c_str(), &end);
-        return !s.empty() && *end == '\0' && errno == 0;
+    if (parts.size() != 14) return std::to_string(parts.size()) + " columns, not 14";
+    if (!wholeNumber(parts[0], 1 << 30, e.index)) return "index " + quoteName(parts[0]) + " is not a whole number";
+    if (parts[1].size() != 16 || parts[1].find_first_not_of("0123456789abcdef") != std::string::npos)
+        return "hash " + quoteName(parts[1]) + " is not 16 hexadecimal digits";
+    e.hash = std::strtoull(parts[1].c_str(), nullptr, 16);
+    if (!wholeNumber(parts[2], 1024, e.bytes) || e.bytes < 1)
+        return "bytes " + quoteName(parts[2]) + " is not a whole number of bytes per pixel";
+    struct Column {
+        const char* name;
+        double* value;
+        double lo, hi;
     };
-    double index, bytes;
-    if (!number(parts[0], index) || !number(parts[2], bytes)) return false;
-    e.index = int(index);
-    e.bytes = int(bytes);
-    errno = 0;
-    e.hash = std::strtoull(parts[1].c_str(), &end, 16);
-    if (parts[1].size() != 16 || *end != '\0') return false;
-    double* values[] = {&e.eval.error,       &e.eval.flip,        &e.eval.psnr,           &e.eval.attributes,
-                        &e.eval.normalDeg,   &e.eval.baseColorDe, &e.eval.diffuseColorDe, &e.eval.specularColorDe,
-                        &e.eval.roughness,   &e.eval.metallic,    &e.eval.occlusion};
-    for (size_t k = 0; k < std::size(values); ++k)
-        if (!number(parts[3 + k], *values[k])) return false;
-    return true;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    const Column columns[] = {{"score", &e.eval.error, -kInf, kInf},
+                              {"flip", &e.eval.flip, 0.0, 1.0},
+                              {"psnr", &e.eval.psnr, 0.0, kInf},
+                              {"attributes", &e.eval.attributes, 0.0, kInf},
+                              {"normal", &e.eval.normalDeg, 0.0, 180.0},
+                              {"base colour", &e.eval.baseColorDe, 0.0, kInf},
+                              {"diffuse colour", &e.eval.diffuseColorDe, 0.0, kInf},
+                              {"specular colour", &e.eval.specularColorDe, 0.0, kInf},
+                              {"roughness", &e.eval.roughness, 0.0, kInf},
+                              {"metallic", &e.eval.metallic, 0.0, kInf},
+                              {"occlusion", &e.eval.occlusion, 0.0, kInf}};
+    for (size_t k = 0; k < std::size(columns); ++k) {
+        const std::string& text = parts[3 + k];
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(text.c_str(), &end);
+        const Column& c = columns[k];
+        if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+            return std::string(c.name) + " " + quoteName(text) + " is not a finite number";
+        if (v < c.lo || v > c.hi)
+            return std::string(c.name) + " " + quoteName(text) + " is outside " +
+                   (c.hi == kInf ? "0 and above" : "0 to " + std::string(c.hi == 1.0 ? "1" : "180"));
+        *c.value = v;
+    }
+    // The score is the objective's value of the metrics, bit for bit (fast_eval.cpp, search_metrics.cpp).
+    const double expected = objective == "flip"         ? e.eval.flip
+                            : objective == "psnr"       ? -e.eval.psnr
+                            : objective == "attributes" ? e.eval.attributes
+                                                        : e.eval.error;
+    if (e.eval.error != expected)
+        return "score " + quoteName(parts[3]) + " is not the " + objective + " objective's value of the line's metrics";
+    return "";
 }
 
 // The key's fields ("budget=16 scene=... seed=1") by name.
@@ -111,6 +151,9 @@ uint64_t textHash(const std::string& text) {
 Journal::Journal(const std::filesystem::path& path, const std::string& key) : path_(path) {
     const std::string header = std::string(kMagic) + "\t" + key + "\n";
     std::string valid = header;
+    std::string objective;  // the key's objective=...: the score each line must hold
+    for (const auto& [name, value] : keyFields(key))
+        if (name == "objective") objective = value;
     if (std::filesystem::exists(path)) {
         const std::string text = readTextFile(path);
         if (text.compare(0, header.size(), header) != 0) throwUserError(headerProblem(path, text, key));
@@ -120,9 +163,13 @@ Journal::Journal(const std::filesystem::path& path, const std::string& key) : pa
             if (nl == std::string::npos) break;  // torn last line: dropped
             JournalEntry e;
             const std::string line = text.substr(pos, nl - pos);
-            if (!parseLine(line, e) || e.index != int(entries_.size()))
-                throwUserError(path.string() + ":" + std::to_string(entries_.size() + 2) +
-                               ": malformed journal line; remove the file to start the search again");
+            std::string problem = lineProblem(line, objective, e);
+            if (problem.empty() && e.index != int(entries_.size()))
+                problem = "index " + std::to_string(e.index) + ", not " + std::to_string(entries_.size());
+            if (!problem.empty())
+                throwUserError(escapeText(path.string()) + ":" + std::to_string(entries_.size() + 2) +
+                               ": malformed journal line (" + problem +
+                               "); remove the file to start the search again");
             entries_.push_back(e);
             pos = nl + 1;
         }

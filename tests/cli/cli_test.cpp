@@ -478,6 +478,17 @@ TEST(Cli, InterruptedCompareLeavesAMarkedFolderWithAReportOfFinishedRuns) {
         EXPECT_LT(report["runs"].size(), 6u);
         EXPECT_NE(report["run"]["notes"].dump().find("INCOMPLETE"), std::string::npos);
         EXPECT_TRUE(fs::exists(out / "report.html"));
+        // It says so to programs, and its verdict speaks only of the layouts that ran: it named no
+        // signal and claimed "no layout fits 12 B/px" of 12 B/px layouts that never ran.
+        const std::string signalText = signal == SIGINT ? "SIGINT" : "SIGTERM";
+        EXPECT_EQ(report.value("status", ""), "interrupted");
+        ASSERT_TRUE(report.contains("interruption")) << "no interruption in report.json";
+        EXPECT_EQ(report["interruption"]["signal"], signalText);
+        EXPECT_GE(report["interruption"]["not_run"].size(), 1u);
+        EXPECT_NE(slurp(out / "report.csv").find(",interrupted by " + signalText + "\n"), std::string::npos);
+        if (report.contains("verdict"))
+            for (const auto& b : report["verdict"]["budgets"])
+                EXPECT_EQ(b["sentence"].get<std::string>().find("no layout fits"), std::string::npos) << b["sentence"];
         // The images are written in the background; the runs the report lists had theirs
         // queued, and the interruption writes them before the report.
         for (const auto& r : report["runs"])
@@ -486,6 +497,46 @@ TEST(Cli, InterruptedCompareLeavesAMarkedFolderWithAReportOfFinishedRuns) {
                     EXPECT_TRUE(fs::exists(out / r["images"][key].get<std::string>())) << r["images"][key];
                 }
     }
+}
+
+// A suite interrupted by a signal wrote no top report and left INCOMPLETE without the signal,
+// though docs/compare.md promised it: the top report of the scenes that finished is written, says
+// it is interrupted and which scenes did not finish, and INCOMPLETE names the signal.
+TEST(Cli, InterruptedSuiteWritesTheTopReportOfTheScenesThatFinished) {
+    // Two scenes: the built-in one under its sky, one view; then under a small grey environment of
+    // its own, 16 cameras: long enough for the signal to land in it.
+    gbl::Image grey(64, 32, 3);
+    for (float& v : grey.pixels) v = 0.5f;
+    gbl::writeExr((scratch() / "grey.exr").string(), grey);
+    {
+        std::ofstream suite(scratch() / "suite-int.toml");
+        suite << "[[scene]]\ngltf = \"builtin\"\nname = \"sky\"\n[[scene]]\ngltf = \"builtin\"\nname = \"grey\"\n"
+                 "environment = \"grey.exr\"\n";
+        for (int c = 0; c < 16; ++c)
+            suite << "[[scene.camera]]\nposition = [" << std::sin(c * 0.39) * 4.0 << ", 1.5, " << std::cos(c * 0.39) * 4.0
+                  << "]\ntarget = [0.0, 0.5, 0.0]\n";
+    }
+    const fs::path out = scratch() / "suite-interrupted";
+    Background b("suite-int", {"compare", "--scene", "suite-int.toml", "--out", out.string(), "--size", "96x54",
+                               "--views", "1", "--layouts", "ue4,crysis3-thin,ryse,niagara"});
+    // The second scene has begun (its folder exists): the first one has finished.
+    ASSERT_TRUE(waitFor([&] { return fs::exists(out / "scenes/grey"); }, 300)) << b.err();
+    ::kill(b.pid, SIGINT);
+    EXPECT_EQ(b.wait(), 130) << b.err();
+    const std::string marker = slurp(out / "INCOMPLETE");
+    EXPECT_NE(marker.find("interrupted by SIGINT"), std::string::npos) << marker;
+    ASSERT_TRUE(fs::exists(out / "report.json"));
+    const nlohmann::json top = nlohmann::json::parse(slurp(out / "report.json"));
+    EXPECT_EQ(top["schema"], "gbufferlab-scene-suite");
+    EXPECT_EQ(top.value("status", ""), "interrupted");
+    ASSERT_TRUE(top.contains("interruption")) << "no interruption in report.json";
+    EXPECT_EQ(top["interruption"]["signal"], "SIGINT");
+    EXPECT_EQ(top["interruption"]["scenes_planned"], 2);
+    ASSERT_EQ(top["scenes"].size(), 1u);
+    EXPECT_EQ(top["scenes"][0]["name"], "sky");
+    EXPECT_EQ(top["interruption"]["not_finished"], nlohmann::json::array({"grey"}));
+    EXPECT_NE(slurp(out / "report.html").find("interrupted by SIGINT"), std::string::npos);
+    EXPECT_TRUE(temporariesUnder(out).empty());
 }
 
 // Two runs into one --out: the second is refused (even with --force) while the first runs, and

@@ -127,3 +127,20 @@ TEST(CompareTemporalCli, BadValuesAreOneLine) {
 }
 
 }  // namespace
+
+// The memory refusal of --temporal at 16384^2 advised --band-rows, which --temporal refuses; a
+// refusal advises only what the command accepts with the flags given (search has no bands at all).
+TEST(CompareTemporalCli, AMemoryRefusalAdvisesOnlyWhatTheFlagsAllow) {
+    const std::string budget = "GBL_MEMORY_BUDGET=4G";  // refused on any machine
+    const RunResult r = runGbufferlab(scratch(), "compare --temporal 4 --size 16384x16384 --layouts ue4 --views 1 --out huge", budget);
+    expectOneLineError(r, {"--size 16384x16384", "--temporal"});
+    EXPECT_EQ(r.err.find("--band-rows 64"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(scratch() / "huge"));
+    const RunResult s = runGbufferlab(scratch(), "search --budget 12 --size 16384x16384 --views 1 --out huge-search", budget);
+    expectOneLineError(s, {"--size 16384x16384"});
+    EXPECT_EQ(s.err.find("--band-rows"), std::string::npos) << s.err;
+    // Without --temporal, compare can still advise bands.
+    const RunResult whole =
+        runGbufferlab(scratch(), "compare --size 16384x16384 --layouts ue4 --views 1 --band-rows 0 --out huge-whole", budget);
+    expectOneLineError(whole, {"--size 16384x16384", "--band-rows 64"});
+}

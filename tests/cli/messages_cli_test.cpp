@@ -125,3 +125,20 @@ TEST(Messages, ExportTablesNamesItsForms) {
     EXPECT_EQ(selects.out.find("gbl_kSrgbDecode[256]"), std::string::npos);
     EXPECT_NE(selects.out.find("float gbl_kSrgbDecode(uint i)"), std::string::npos);
 }
+
+// --min-bits normal=8,normal=10 kept the last; a key given twice is refused, as a flag given twice is.
+TEST(Messages, MinBitsRefusesAnAttributeGivenTwice) {
+    const RunResult r = run("search --budget 12 --min-bits normal=8,normal=10 --size 32x18 --views 1 --candidates 8 --no-confirm --out mb");
+    expectOneLineError(r, {"--min-bits", "normal is given twice (8 and 10)", "once"});
+    EXPECT_FALSE(fs::exists(scratch() / "mb"));
+    expectOneLineError(run("search --budget 12 --min-bits normal=+8 --out mb"), {"--min-bits", "whole number"});
+}
+
+// A suite entry whose gltf is a suite failed later as "not valid JSON"; it says what it is.
+TEST(Messages, ASuiteGivenAsAGltfSaysSo) {
+    { std::ofstream(scratch() / "inner.toml") << "[[scene]]\ngltf = \"builtin\"\n"; }
+    { std::ofstream(scratch() / "outer.toml") << "[[scene]]\ngltf = \"inner.toml\"\n"; }
+    const RunResult r = run("compare --scene outer.toml --size 32x32 --layouts ue4 --out nested");
+    expectOneLineError(r, {"outer.toml:2:8:", "'inner.toml' is a scene suite"});
+    EXPECT_FALSE(fs::exists(scratch() / "nested"));
+}

@@ -129,3 +129,72 @@ TEST(SceneSuite, SceneFlagsExpandAndRefuseRepeats) {
     EXPECT_EQ(resolveScenes({suite.string()}, "").size(), 2u);
     EXPECT_NE(refused({suite.string(), "builtin"}, "").find("given twice"), std::string::npos);
 }
+
+// Two entries that reach one glTF through a relative and an absolute path, or through a linked
+// folder, were two scenes (the text differed): the same scene is the same file.
+TEST(SceneSuite, TheSameFileByAnotherPathIsTheSameScene) {
+    fs::create_directories(folder() / "linked");
+    if (!fs::exists(folder() / "linked" / "models")) fs::create_directory_symlink(folder() / "models", folder() / "linked" / "models");
+    const std::string absolute = (folder() / "models" / "box.gltf").string();
+    const std::string cases[] = {
+        "[[scene]]\nname = \"a\"\ngltf = \"models/box.gltf\"\n[[scene]]\nname = \"b\"\ngltf = \"" + absolute + "\"\n",
+        "[[scene]]\nname = \"a\"\ngltf = \"models/box.gltf\"\n[[scene]]\nname = \"b\"\ngltf = \"linked/models/box.gltf\"\n",
+        "[[scene]]\nname = \"a\"\ngltf = \"models/box.gltf\"\nenvironment = \"sky.hdr\"\n[[scene]]\nname = \"b\"\n"
+        "gltf = \"./models/../models/box.gltf\"\nenvironment = \"" + (folder() / "sky.hdr").string() + "\"\n",
+    };
+    for (const std::string& text : cases) {
+        const std::string e = errorOf(text);
+        EXPECT_NE(e.find("given twice"), std::string::npos) << text << "\n" << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    }
+    // Under another environment it is another scene.
+    EXPECT_EQ(errorOf("[[scene]]\nname = \"a\"\ngltf = \"models/box.gltf\"\n[[scene]]\nname = \"b\"\ngltf = \"" +
+                      absolute + "\"\nenvironment = \"sky.hdr\"\n"),
+              "");
+    // On the command line too.
+    const fs::path cwd = fs::current_path();
+    fs::current_path(folder());
+    std::string refused;
+    try {
+        resolveScenes({"models/box.gltf", absolute}, "");
+    } catch (const UserError& e) {
+        refused = e.what();
+    }
+    fs::current_path(cwd);
+    EXPECT_NE(refused.find("given twice"), std::string::npos) << refused;
+}
+
+// A suite's `gltf` naming a suite failed at load time as a glTF that is not JSON; it is refused
+// for what it is, as is an environment map given as a glTF and the other way round.
+TEST(SceneSuite, AFileOfTheWrongKindIsNamedForWhatItIs) {
+    std::ofstream(folder() / "inner.toml") << "[[scene]]\ngltf = \"builtin\"\n";
+    struct Case {
+        std::string text, place, words;
+    };
+    const Case cases[] = {
+        {"[[scene]]\ngltf = \"inner.toml\"\n", ":2:8:", "is a scene suite"},
+        {"[[scene]]\ngltf = \"sky.hdr\"\n", ":2:8:", "is an environment map, not a glTF scene"},
+        {"[[scene]]\ngltf = \"builtin\"\nenvironment = \"models/box.gltf\"\n", ":3:15:", "is a glTF scene, not an environment map"},
+    };
+    for (const Case& c : cases) {
+        const std::string e = errorOf(c.text);
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+        EXPECT_NE(e.find(c.place), std::string::npos) << c.text << "\n" << e;
+        EXPECT_NE(e.find(c.words), std::string::npos) << c.text << "\n" << e;
+    }
+}
+
+// --exposure and a suite's `exposure` accept the same range (the suite stopped at 1e6 and took no
+// value below it but 0; --exposure takes what a float holds at full precision).
+TEST(SceneSuite, ExposureTakesTheRangeOfTheFlag) {
+    for (const char* good : {"1e30", "1e-30", "2", "0.001", "3e38"}) {
+        const std::string text = std::string("[[scene]]\ngltf = \"builtin\"\nexposure = ") + good + "\n";
+        std::vector<SceneSpec> s;
+        ASSERT_NO_THROW(s = parseSceneSuite(text, (folder() / "suite.toml").string())) << good;
+        EXPECT_FLOAT_EQ(*s[0].exposure, float(std::stod(good)));
+    }
+    for (const char* bad : {"0", "-1", "1e39", "1e-39", "nan", "inf"}) {
+        const std::string e = errorOf(std::string("[[scene]]\ngltf = \"builtin\"\nexposure = ") + bad + "\n");
+        EXPECT_NE(e.find("outside the range --exposure accepts"), std::string::npos) << bad << ": " << e;
+    }
+}

@@ -160,5 +160,56 @@ TEST(BudgetVerdict, ReportJsonHoldsTheSameLines) {
     EXPECT_FALSE(reportToJson(ReportModel{}).contains("verdict"));
 }
 
+// The caption said "Differences are not tested for significance yet: a tie is an exactly equal
+// mean" beside a Rank column that ties layouts by the sign-flip test: it now says what the lines
+// rest on (the mean alone) and where significance is.
+TEST(BudgetVerdict, TheBasisSaysWhatTheLinesRestOn) {
+    const auto v = budgetVerdict(test::sampleReport());
+    ASSERT_TRUE(v.has_value());
+    EXPECT_EQ(v->basis.find("not tested for significance yet"), std::string::npos) << v->basis;
+    EXPECT_NE(v->basis.find("mean FLIP alone"), std::string::npos) << v->basis;
+    EXPECT_NE(v->basis.find("exactly equal mean"), std::string::npos) << v->basis;
+    EXPECT_NE(v->basis.find("the Rank column does (the paired sign-flip test"), std::string::npos) << v->basis;
+}
+
+// After SIGINT the verdict claimed "no layout fits 12 B/px" when the 12 B/px layouts were asked
+// for and never ran: the lines speak only of the layouts that ran and name those that did not.
+TEST(BudgetVerdict, AnInterruptedReportNamesTheLayoutsThatDidNotRun) {
+    ReportModel m = test::sampleReport();
+    std::erase_if(m.runs, [](const RunReport& r) { return r.layout != "ue4" || r.iblMode != "split-sum"; });
+    ReportInterruption i;
+    i.signal = "SIGINT";
+    i.runsFinished = 1;
+    i.runsPlanned = 3;
+    i.notRun = {{"niagara", "split-sum", 12, 12.0}, {"crysis3-thin", "split-sum", 12, 12.0}};
+    m.interruption = i;
+    const auto v = budgetVerdict(m);
+    ASSERT_TRUE(v.has_value());
+    EXPECT_EQ(v->interruptedBy, "SIGINT");
+    EXPECT_EQ(lineFor(*v, 8).sentence, "Up to 8 B/px: no layout that ran fits; the smallest, ue4, counts 20 B/px.");
+    EXPECT_EQ(lineFor(*v, 12).sentence,
+              "Up to 12 B/px: no layout that ran fits; the smallest, ue4, counts 20 B/px; not run (interrupted by "
+              "SIGINT): crysis3-thin (12 B/px), niagara (12 B/px).");
+    EXPECT_EQ(lineFor(*v, 24).sentence,
+              "Up to 24 B/px: ue4 (20 B/px) has the lowest mean FLIP over 1 view, 0.0213; not run (interrupted by "
+              "SIGINT): crysis3-thin (12 B/px), niagara (12 B/px).");
+    EXPECT_NE(v->basis.find("interrupted by SIGINT after 1 of 3 runs"), std::string::npos) << v->basis;
+    for (const BudgetLine& l : v->lines) EXPECT_EQ(l.sentence.find("no layout fits"), std::string::npos) << l.sentence;
+    // report.json says so to programs, and reads back to the same verdict.
+    const nlohmann::ordered_json j = reportToJson(m);
+    EXPECT_EQ(j["status"], "interrupted");
+    EXPECT_EQ(j["interruption"]["signal"], "SIGINT");
+    EXPECT_EQ(j["interruption"]["runs_finished"], 1);
+    EXPECT_EQ(j["interruption"]["runs_planned"], 3);
+    ASSERT_EQ(j["interruption"]["not_run"].size(), 2u);
+    EXPECT_EQ(j["verdict"]["budgets"][1]["not_run"].size(), 2u);
+    EXPECT_EQ(j["verdict"]["budgets"][0].contains("not_run"), false);
+    const nlohmann::ordered_json back = reportToJson(reportFromJson(j));
+    EXPECT_EQ(back["status"], j["status"]);
+    EXPECT_EQ(back["interruption"], j["interruption"]);
+    EXPECT_EQ(back["verdict"], j["verdict"]);
+    EXPECT_EQ(reportToJson(test::sampleReport())["status"], "complete");
+}
+
 }  // namespace
 }  // namespace gbl

@@ -540,5 +540,49 @@ TEST(Report, WritesAllThreeFilesAtomically) {
               std::string::npos);
 }
 
+// A view with nothing to measure gave "PSNR inf, FLIP 0.0000" and ties; such a view is marked
+// not measured with its reason in report.json, report.csv and report.html, and a run with no view
+// measured has no numbers and its own status. An interrupted report's CSV says so on every row.
+TEST(ReportNotMeasured, EveryFileSaysWhichViewsWereLeftOutAndWhy) {
+    ReportModel m = test::sampleReport();
+    const std::string why = "the reference tone-maps to all black at exposure 1e-30, where no layout's error can show";
+    m.run.viewNotMeasured = {why};
+    for (RunReport& r : m.runs) {
+        if (r.status != RunStatus::Ok) continue;
+        r.status = RunStatus::NotMeasured;
+        r.notMeasured = "view 0: " + why;
+        r.attributes = {};
+        r.image.reset();
+    }
+    const Json j = reportToJson(m);
+    EXPECT_EQ(j["run"]["view_not_measured"][0], why);
+    EXPECT_EQ(j["runs"][0]["status"], "not-measured");
+    EXPECT_EQ(j["runs"][0]["not_measured"], "view 0: " + why);
+    EXPECT_FALSE(j["runs"][0].contains("image_errors"));
+    EXPECT_FALSE(j.contains("verdict")) << "a verdict of nothing measured";
+    const ReportModel back = reportFromJson(j);
+    EXPECT_EQ(back.runs[0].status, RunStatus::NotMeasured);
+    EXPECT_EQ(back.runs[0].notMeasured, m.runs[0].notMeasured);
+    EXPECT_EQ(back.run.viewNotMeasured, m.run.viewNotMeasured);
+    const auto rows = parseCsv(reportCsv(m));
+    const auto& header = rows[0];
+    const auto column = [&](const std::string& name) {
+        return size_t(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    ASSERT_LT(column("not_measured"), header.size());
+    EXPECT_EQ(rows[1][column("status")], "not-measured");
+    EXPECT_EQ(rows[1][column("not_measured")], "view 0: " + why);
+    EXPECT_EQ(rows[1][column("flip_mean")], "");
+    EXPECT_EQ(rows[1][column("report_status")], "complete");
+    const std::string html = reportHtml(m);
+    EXPECT_NE(html.find("View 0 not measured:</strong> " + htmlEscape(why)), std::string::npos);
+    EXPECT_NE(html.find("<td>not measured<div"), std::string::npos);
+    // Interrupted: every row of the CSV says so.
+    m.interruption = ReportInterruption{"SIGTERM", 2, 5, {}};
+    const auto interrupted = parseCsv(reportCsv(m));
+    EXPECT_EQ(interrupted[1][column("report_status")], "interrupted by SIGTERM");
+    EXPECT_NE(reportHtml(m).find("interrupted by SIGTERM after 2 of 5 runs"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace gbl

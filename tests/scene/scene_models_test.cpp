@@ -167,8 +167,8 @@ const BrokenFile kBrokenFiles[] = {
     {"wrongTypes/badObject.gltf", "materials[0].pbrMetallicRoughness: must be an object, not an array",
      "pbrMetallicRoughness as array"},
     {"wrongTypes/badString.gltf", "scenes[0].name: must be a string, not an integer", "scene name 42"},
-    {"wrongTypes/badUint.gltf", "baseColorTexture.index: must be an index (a whole number >= 0), not an integer",
-     "texture index -1"},
+    // -1 is an integer: what is wrong is its sign (the message said "not an integer").
+    {"wrongTypes/badUint.gltf", "baseColorTexture.index: -1 is negative; an index must be >= 0", "texture index -1"},
     {"IndexOutOfRange/IndexOutOfRange.gltf", "out of range", "index 255 of 24 vertices"},
     {"IndexOutOfRange/AllIndicesOutOfRange.gltf", "out of range", "every index out of range"},
     {"BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "non-finite", "Inf positions"},

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <unistd.h>
 
 #include "error.h"
@@ -162,6 +163,68 @@ TEST(LayoutSearch, AJournalsProblemIsNamedForWhatItIs) {
         EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), text)
             << "a refused journal is left as it was";
     }
+    fs::remove_all(dir);
+}
+
+// A resumed search trusted any number its journal held: a line whose score or FLIP was nan, inf
+// or negative stood in for an evaluation, and the resumed front picked the tampered candidate.
+// Every numeric column of a line, tampered, is now "malformed" with file:line, as a bad index or
+// hash is; the untampered journal resumes to the uninterrupted front.
+TEST(LayoutSearch, AJournalLineWithANumberNoEvaluationGivesIsMalformed) {
+    const fs::path dir = scratch("tampered");
+    SearchOptions o = options(8);
+    o.journalKey = "budget=12 objective=flip seed=5";
+    o.journalPath = (dir / "journal.tsv").string();
+    const SearchResult whole = runSearch(evaluateFn(), o);
+    std::ifstream in(o.journalPath, std::ios::binary);
+    const std::string journal((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t lineStart = journal.find('\n') + 1;  // the first candidate's line: line 2
+    const size_t lineEnd = journal.find('\n', lineStart);
+    std::vector<std::string> columns;
+    {
+        std::istringstream line(journal.substr(lineStart, lineEnd - lineStart));
+        for (std::string c; std::getline(line, c, '\t');) columns.push_back(c);
+    }
+    ASSERT_EQ(columns.size(), 14u);
+    // A line as written resumes (the journal of this very search).
+    EXPECT_EQ(Journal(o.journalPath, o.journalKey).entries().size(), 8u);
+    const char* names[] = {"index", "hash", "bytes", "score", "flip", "psnr", "attributes", "normal",
+                           "base colour", "diffuse colour", "specular colour", "roughness", "metallic", "occlusion"};
+    std::vector<std::pair<size_t, std::string>> tampers;
+    for (size_t c = 0; c < 14; ++c)
+        for (const std::string bad : {"nan", "inf", "-inf", "-0x1p-4", "-1", "1e999", "", "0x1p+10", "1.5"})
+            tampers.push_back({c, bad});
+    tampers.push_back({4, "0x1.8p+0"});   // FLIP 1.5: FLIP is at most 1
+    tampers.push_back({7, "0x1.7p+7"});   // a normal error of 184 degrees
+    tampers.push_back({3, columns[4] == "0x0p+0" ? "0x1p-4" : "0x0p+0"});  // a score that is not the FLIP
+    tampers.push_back({1, "-000000000000001"});  // 16 characters, not 16 hex digits
+    for (const auto& [column, bad] : tampers) {
+        std::vector<std::string> tampered = columns;
+        if (tampered[column] == bad) continue;  // the value as written
+        // Values some column may legitimately hold: skip them where they are valid.
+        if (column >= 5 && column != 7 && (bad == "0x1p+10" || bad == "1.5")) continue;  // errors >= 0, unbounded
+        if (column == 7 && bad == "1.5") continue;                                          // 1.5 degrees
+        if (column == 2 && bad == "1.5") {}                                                 // bytes: whole only
+        tampered[column] = bad;
+        std::string line;
+        for (size_t k = 0; k < tampered.size(); ++k) line += (k ? "\t" : "") + tampered[k];
+        const std::string text = journal.substr(0, lineStart) + line + journal.substr(lineEnd);
+        { std::ofstream(o.journalPath, std::ios::binary | std::ios::trunc) << text; }
+        SCOPED_TRACE(std::string(names[column]) + " = '" + bad + "'");
+        try {
+            Journal journalRead(o.journalPath, o.journalKey);
+            ADD_FAILURE() << "accepted";
+        } catch (const UserError& e) {
+            const std::string m = e.what();
+            EXPECT_EQ(m.rfind(o.journalPath + ":2: malformed journal line", 0), 0u) << m;
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        }
+    }
+    // Untampered again: the resumed search is the uninterrupted one.
+    { std::ofstream(o.journalPath, std::ios::binary | std::ios::trunc) << journal; }
+    const SearchResult resumed = runSearch(evaluateFn(), o);
+    EXPECT_EQ(resumed.resumed, 8);
+    expectSameRun(whole, resumed);
     fs::remove_all(dir);
 }
 
