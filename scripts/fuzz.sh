@@ -10,28 +10,18 @@
 # written to build-fuzz/findings-TARGET/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/packages.sh
 
 packages=(clang libclang-rt-14-dev libtinygltf-dev libtomlplusplus-dev nlohmann-json3-dev libglm-dev libstb-dev
           assimp-testmodels)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "fuzz: installing ${missing[*]}"
-  sudo_cmd=()
-  [ "$(id -u)" = 0 ] || sudo_cmd=(sudo)
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -qq
-  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+install_missing "${packages[@]}"
 
 mode="${1:-600}"
 shift || true
 extra=("$@")
 out=build-fuzz
 mkdir -p "$out"
-flags=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize=vptr -ffp-contract=off
+flags=(-std=c++20 -O1 -g1 -fsanitize=fuzzer,address,undefined -fno-sanitize=vptr -ffp-contract=off
        -Ishaders -DGLM_FORCE_DEPTH_ZERO_TO_ONE -DGLM_FORCE_RADIANS
        -DGBL_SOURCE_SHADER_DIR="\"$PWD/shaders\"" -DGBL_SOURCE_LAYOUT_DIR="\"$PWD/layouts\"" $(pkg-config --cflags OpenEXR))
 for folder in base encoding image layout scene codec; do flags+=("-Isrc/$folder"); done

@@ -7,6 +7,7 @@
 #            validation layers, test models, Chromium for the report's browser test), and all targets.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/packages.sh
 
 with_tests=0
 if [ "${1:-}" = "--tests" ]; then with_tests=1; shift; fi
@@ -25,18 +26,7 @@ if ((with_tests)); then
   )
 fi
 
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "setup: installing ${missing[*]}"
-  sudo_cmd=()
-  [ "$(id -u)" = 0 ] || sudo_cmd=(sudo)
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -qq
-  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+install_missing "${packages[@]}"
 
 build_dir="${1:-build}"
 shift || true

@@ -117,3 +117,18 @@ gbl_test(cli/run_names_cli_test LABELS unit DEPS gbufferlab gbl_base)
 gbl_test(cli/messages_cli_test LABELS unit DEPS gbufferlab gbl_base)
 gbl_test(cli/outputs_cli_test LABELS unit DEPS gbufferlab gbl_image)  # special files, --out '', a failed stdout
 include(tests/layering/layering.cmake)
+
+# ctest -j runs the costliest tests first (COST: seconds they took on the 2-core CI machine, in
+# Release on lavapipe or, for cpu_codec_test, under the sanitizers): a clean clone has no timings
+# of its own, and a long test started last would leave the other core idle at the end.
+foreach(test_cost IN ITEMS gpu_cpu_bits_test:300 layout_mutants_test:240 layout_export_gpu_test_2:200
+                           cpu_codec_test:200 layout_export_gpu_test:110 encodings_fast_test:60 cli_test:50
+                           compare_bands_cli_test:45 layout_export_test:45 render_test:40 ibl_gpu_test:40
+                           report_browser_test:35)
+  string(REPLACE ":" ";" test_cost ${test_cost})
+  list(GET test_cost 0 test_name)
+  list(GET test_cost 1 cost)
+  if(TEST ${test_name})
+    set_tests_properties(${test_name} PROPERTIES COST ${cost})
+  endif()
+endforeach()

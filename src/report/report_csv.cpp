@@ -92,11 +92,11 @@ std::vector<Column> columns() {
             {"rmse_linear", &ImageClassErrors::rmseLinear},
             {"flip_mean", &ImageClassErrors::flipMean}};
         for (const auto& [fieldName, field] : fields)
-            c.push_back(metricColumn(prefix + fieldName, [member, field](const RunReport& r) -> std::optional<double> {
+            c.push_back(metricColumn(prefix + fieldName, [member = member, field = field](const RunReport& r) -> std::optional<double> {
                 if (!r.image || !(*r.image.*member)) return std::nullopt;
                 return *(*r.image.*member).*field;
             }));
-        c.push_back(metricColumn(prefix + "reference_noise", [member](const RunReport& r) -> std::optional<double> {
+        c.push_back(metricColumn(prefix + "reference_noise", [member = member](const RunReport& r) -> std::optional<double> {
             if (!r.image || !(*r.image.*member)) return std::nullopt;
             return (*r.image.*member)->referenceNoise;
         }));
@@ -129,13 +129,13 @@ std::vector<Column> columns() {
             const std::string prefix = std::string(errorAttributeName(a)) + "_" + className + "_";
             for (const auto& [statName, stat] : stats)
                 c.push_back(metricColumn(prefix + statName + "_" + unitSuffix(a),
-                                         [a, member, stat](const RunReport& r) -> std::optional<double> {
+                                         [a, member = member, stat = stat](const RunReport& r) -> std::optional<double> {
                                              const auto& s = r.attributes[a].*member;
                                              if (!s) return std::nullopt;
                                              return s->error.*stat;
                                          }));
             if (errorAttributeIsColor(a))
-                c.push_back(metricColumn(prefix + "rmse_linear", [a, member](const RunReport& r) -> std::optional<double> {
+                c.push_back(metricColumn(prefix + "rmse_linear", [a, member = member](const RunReport& r) -> std::optional<double> {
                     const auto& s = r.attributes[a].*member;
                     if (!s) return std::nullopt;
                     return s->rmse;

@@ -11,10 +11,11 @@
 #include <cstring>
 
 #include "host_heap.h"
+#include "sanitizers.h"
 
 // Under AddressSanitizer the allocator is the sanitizer's: it ignores mallopt, and
 // retainHostBlocks says so by returning false (CI's sanitizer run).
-#if defined(__SANITIZE_ADDRESS__)
+#if GBL_ASAN
 constexpr bool kGlibcAllocator = false;
 #elif defined(__GLIBC__)
 constexpr bool kGlibcAllocator = true;

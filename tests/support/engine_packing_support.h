@@ -19,6 +19,7 @@
 #include "cpu_codec.h"
 #include "layout.h"
 #include "surface.h"
+#include "sanitizers.h"
 
 namespace gbl::test::packing {
 
@@ -34,7 +35,7 @@ using gbl::Surface;
 
 // 2^20 inputs per engine (16 images of 1024 x 64); an eighth under AddressSanitizer, whose
 // instrumented codec is about ten times slower (the file stays under a few seconds there).
-#if defined(__SANITIZE_ADDRESS__)
+#if GBL_ASAN
 inline constexpr size_t kInputs = size_t(1) << 17;
 #else
 inline constexpr size_t kInputs = size_t(1) << 20;

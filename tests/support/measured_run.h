@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli_runner.h"
+#include "sanitizers.h"
 
 namespace gbl::test {
 
@@ -63,7 +64,7 @@ inline MeasuredRun runMeasured(const std::filesystem::path& folder, const std::v
 // Whether the tests run under AddressSanitizer, whose shadow memory makes a process's resident
 // size no measure of what the program allocated.
 constexpr bool kSanitized =
-#if defined(__SANITIZE_ADDRESS__)
+#if GBL_ASAN
     true;
 #else
     false;
