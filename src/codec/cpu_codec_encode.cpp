@@ -95,10 +95,14 @@ GBL_SIMD_CLONES_AVX512 void srgb8Row(int n, const float* in, uint32_t* out, cons
     const Srgb8EncodeTable t = table;
     alignas(32) uint32_t buckets[kBlock], entries[kBlock];
     for (int j = 0; j < n; ++j) buckets[j] = srgb8Bucket(in[j], t);
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // GCC cannot see that it reads only the n written
+#endif
     gatherWords(n, buckets, t.entries, entries);
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
     for (int j = 0; j < n; ++j) out[j] = srgb8FromEntry(in[j], entries[j], t);
 }
 

@@ -255,8 +255,8 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                         // r is read half a 4-bit step (1/30) low on top of half a code of rounding:
                         // |2 r^2 - 2 r'^2| = 2 |r - r'| (r + r') <= 2 d (2 sqrt(1/2) + d).
                         err = std::abs(x.x - y.x);
-                        const double d = unormBound(b) + 1.0 / 30.0;
-                        bound = 2.0 * d * (1.4143 + d) * 1.01;
+                        const double dr = unormBound(b) + 1.0 / 30.0;
+                        bound = 2.0 * dr * (1.4143 + dr) * 1.01;
                     } else if (e == "gamma22") {
                         // Half a code of 255 x^(1/2.2) times the slope 2.2 x^1.2 <= 2.2.
                         for (int c = 0; c < 3; ++c) err = std::max(err, double(std::abs(x[c] - y[c])));

@@ -122,7 +122,8 @@ TEST(ReadHdr, DamagedFilesAreUserErrors) {
     GBL_REQUIRE_FILE(source);
     const auto bytes = readBinaryFile(source);
     TempDir dir;
-    const auto header = std::search(bytes.begin(), bytes.end(), "\n\n", "\n\n" + 2) - bytes.begin();
+    static constexpr char kBlankLine[] = "\n\n";  // the end of the header
+    const auto header = std::search(bytes.begin(), bytes.end(), kBlankLine, kBlankLine + 2) - bytes.begin();
     ASSERT_GT(header, 0);
 
     // Cut in half: stb alone spins forever on the zeros it reads past the end.
