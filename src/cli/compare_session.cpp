@@ -172,7 +172,8 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
                                    " views (--views); images and crops are the first view's (the scene camera)");
     const int modeCount = int(o.modes.size());
     steps_ = o.viewCount * (modeCount * (1 + int(layouts_.size())) + (o.compareLighting() ? modeCount - 1 : 0));
-    progress_.emplace(steps_, stderr);
+    static ConsoleProgress console(stderr, stdout);
+    progress_.emplace(steps_, &console);
     prepareOutputDirectory(o.outDir, o.force, "--out");
     // Until the report is complete the folder says so: an interruption (SIGINT, SIGTERM) writes
     // the report of the runs that finished and leaves this file, naming the signal; a kill -9
