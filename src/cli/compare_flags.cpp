@@ -15,8 +15,10 @@
 
 namespace gbl::compare {
 
-std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args) {
-    const std::vector<FlagSpec> specs = {
+namespace {
+
+std::vector<FlagSpec> compareFlags() {
+    return {
         {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb), builtin (the built-in scene: the sphere grid and its "
                           "surroundings; the default) or a scene-suite .toml; give it several times to compare "
                           "every layout on every scene (docs/compare.md)", true},
@@ -68,23 +70,22 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
-    const ParsedArgs parsed = parseArgs("compare", args, specs);
-    if (parsed.has("help")) {
-        std::printf("%s", formatHelp("gbufferlab compare [--scene F] [--env F] [--layouts A,B,...|all] [--ibl MODES] "
-                                     "[--size WxH] [--out DIR]",
-                                     "Renders the float reference and each layout at the same camera, and reports "
-                                     "what each loses\n(attribute and image error, FLIP, error images) and costs "
-                                     "(bytes per pixel, bandwidth).\nWith --ibl listing several modes and "
-                                     "ground-truth among them, the reference under each mode is also\ncompared with "
-                                     "the reference under ground-truth: the error of the lighting approximation.",
-                                     specs)
-                               .c_str());
-        return std::nullopt;
-    }
-    if (!parsed.positional.empty())
-        throwUserError("gbufferlab compare: unexpected argument '" + parsed.positional[0] + "' (see --help)");
+}
 
-    CompareOptions o;
+void printCompareHelp(const std::vector<FlagSpec>& specs) {
+    std::printf("%s", formatHelp("gbufferlab compare [--scene F] [--env F] [--layouts A,B,...|all] [--ibl MODES] "
+                                 "[--size WxH] [--out DIR]",
+                                 "Renders the float reference and each layout at the same camera, and reports "
+                                 "what each loses\n(attribute and image error, FLIP, error images) and costs "
+                                 "(bytes per pixel, bandwidth).\nWith --ibl listing several modes and "
+                                 "ground-truth among them, the reference under each mode is also\ncompared with "
+                                 "the reference under ground-truth: the error of the lighting approximation.",
+                                 specs)
+                           .c_str());
+}
+
+// The scenes, the layouts, the size, the exposure and the views.
+void readScenesAndViews(const ParsedArgs& parsed, CompareOptions& o) {
     o.scenePath = parsed.get("scene");
     o.envPath = parsed.get("env");
     o.sceneArgs = parsed.all("scene");
@@ -97,6 +98,10 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     o.autoExposure = !parsed.has("exposure");
     o.viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
+}
+
+// The IBL modes, their samples, the ground truth's convergence, the BRDF LUT.
+void readLighting(const ParsedArgs& parsed, CompareOptions& o) {
     o.modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
     o.modes.clear();
     for (size_t i = 0; i < o.modeNames.size(); ++i) {
@@ -113,12 +118,20 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.gtMaxBatches = parseIntFlag(parsed, "gt-max-batches", 256, 8, 65536);
     o.gtNoise = parsePositiveFloatFlag(parsed, "gt-noise", 0.002f);
     if (parsed.has("brdf-lut")) applyBrdfLutVariant(parsed.get("brdf-lut"), o.iblSettings);
+}
+
+// Where the report goes and how its images are written.
+void readOutputs(const ParsedArgs& parsed, CompareOptions& o) {
     o.outDir = parsed.has("out") ? std::filesystem::path(parsed.get("out")) : defaultOutputDirectory("compare");
     o.force = parsed.has("force");
     if (parsed.has("hdr-flip") && parsed.has("no-hdr-flip"))
         throwUserError("gbufferlab compare: --hdr-flip and --no-hdr-flip contradict each other; give one");
     o.hdrFlip = parsed.has("hdr-flip");
     o.exrType = parsed.has("float32-exr") ? ExrPixelType::Float32 : ExrPixelType::Half;
+}
+
+// Where the metrics are computed: --eval, --error-exr, --band-rows.
+void readEvaluation(const ParsedArgs& parsed, CompareOptions& o) {
     o.evalWhere = parsed.get("eval", "auto");
     if (o.evalWhere != "gpu" && o.evalWhere != "cpu" && o.evalWhere != "auto")
         throwUserError("gbufferlab compare: --eval " + o.evalWhere + ": give auto, gpu or cpu");
@@ -134,6 +147,10 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                        ": bands are measured on the device evaluator, which keeps its float maps on the device; "
                        "give --band-rows 0, or drop --error-exr");
     if (o.errorExr) o.evalWhere = "cpu";
+}
+
+// --temporal N and its --resolve, and what they need of the evaluation.
+void readTemporal(const ParsedArgs& parsed, CompareOptions& o) {
     o.temporalFrames = parseIntFlag(parsed, "temporal", 1, 1, kMaxTemporalFrames);
     if (parsed.has("resolve")) {
         const std::string how = parsed.get("resolve");
@@ -160,6 +177,26 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
         o.evalWhere = "cpu";
         o.bandRowsGiven = 0u;
     }
+}
+
+}  // namespace
+
+std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args) {
+    const std::vector<FlagSpec> specs = compareFlags();
+    const ParsedArgs parsed = parseArgs("compare", args, specs);
+    if (parsed.has("help")) {
+        printCompareHelp(specs);
+        return std::nullopt;
+    }
+    if (!parsed.positional.empty())
+        throwUserError("gbufferlab compare: unexpected argument '" + parsed.positional[0] + "' (see --help)");
+
+    CompareOptions o;
+    readScenesAndViews(parsed, o);
+    readLighting(parsed, o);
+    readOutputs(parsed, o);
+    readEvaluation(parsed, o);
+    readTemporal(parsed, o);
     o.device = parsed.get("device");
     o.validation = parsed.has("validation");
     o.nativeFormats = parsed.has("native-formats");
