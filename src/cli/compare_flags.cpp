@@ -11,7 +11,6 @@
 #include "error.h"
 #include "file_io.h"
 #include "ibl_cache.h"
-#include "layout_catalog.h"
 
 namespace gbl::compare {
 
