@@ -99,12 +99,14 @@ gbl_test(search/layout_packer_test LABELS unit DEPS gbl_search gbl_measure)
 gbl_test(search/cpu_reshade_test LABELS unit DEPS gbl_search)
 gbl_test(search/layout_search_test LABELS unit DEPS gbl_search)
 gbl_test(search/search_constraints_test LABELS unit DEPS gbl_search)  # constraints, --min-bits, the every-metric front, trades
-gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_cli)  # fast evaluation vs full renders
+gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_app)  # fast evaluation vs full renders
+gbl_test(app/compare_bands_test LABELS unit DEPS gbl_app)
+gbl_test(app/scene_suite_test LABELS unit DEPS gbl_app)  # --scene and suite files, refused before rendering
+gbl_test(app/search_report_test LABELS unit DEPS gbl_app nlohmann_json::nlohmann_json)  # confirmation over several scenes
+# The comparison and the search through the library's API, in this process: no command line.
+gbl_test(app/app_api_test LABELS gpu DEPS gbl_app nlohmann_json::nlohmann_json)
 gbl_test(cli/search_cli_test LABELS gpu DEPS gbufferlab)
-gbl_test(cli/search_report_test LABELS unit DEPS gbl_cli nlohmann_json::nlohmann_json)  # confirmation over several scenes
 gbl_test(cli/cli_test LABELS gpu DEPS gbufferlab gbl_report gbl_image nlohmann_json::nlohmann_json)
-gbl_test(cli/compare_bands_test LABELS unit DEPS gbl_cli)
-gbl_test(cli/scene_suite_test LABELS unit DEPS gbl_cli)  # --scene and suite files, refused before rendering
 gbl_test(cli/compare_scenes_cli_test LABELS gpu DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)  # several scenes
 gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
 gbl_test(cli/compare_temporal_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # --temporal N

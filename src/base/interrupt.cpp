@@ -1,5 +1,6 @@
 #include "interrupt.h"
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -16,6 +17,7 @@ struct State {
     std::set<std::filesystem::path> temporaries;
     std::function<void(int)> action;
     bool interrupted = false;
+    std::atomic<bool> signalled{false};  // a signal was received: the watcher will end the process
 };
 
 State& state() {
@@ -30,6 +32,7 @@ void watch(sigset_t set) {
     int signal = 0;
     if (sigwait(&set, &signal) != 0) return;
     State& s = state();
+    s.signalled = true;
     std::function<void(int)> action;
     {
         std::lock_guard lock(s.mutex);
@@ -85,6 +88,11 @@ void installInterruptHandling() {
 void setInterruptAction(std::function<void(int signal)> action) {
     std::lock_guard lock(state().mutex);
     state().action = std::move(action);
+}
+
+void awaitInterruptExit() {
+    if (!state().signalled) return;
+    for (;;) ::pause();  // the watcher calls _exit
 }
 
 void registerTemporary(const std::filesystem::path& path) {

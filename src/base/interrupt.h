@@ -17,7 +17,14 @@ void installInterruptHandling();
 
 // What the command wants done on interruption (before temporaries are removed), e.g. write a
 // partial report. Runs on the watcher thread; `signal` is SIGINT or SIGTERM. Pass {} to clear.
+// The command line sets one action for the whole process: it cancels the run's CancelToken
+// (cancel_token.h), whose own action the comparison sets.
 void setInterruptAction(std::function<void(int signal)> action);
+
+// For a command whose work stopped because of a signal: the watcher is cleaning up and ends the
+// process (exit status 128 + the signal), so this waits for it and never returns. Without a signal
+// received, returns at once.
+void awaitInterruptExit();
 
 // Temporary files in flight (file_io's writeViaTemporary registers every one): removed on
 // interruption. After interruption has begun, registering blocks forever (the process is about

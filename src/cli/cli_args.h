@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "option_values.h"  // positiveFloatProblem, splitFlagList
+
 namespace gbl {
 
 struct FlagSpec {
@@ -36,15 +38,6 @@ std::string formatHelp(const std::string& usage, const std::string& summary, con
 int parseIntFlag(const ParsedArgs& args, const std::string& flag, int fallback, int lo, int hi);
 // The flag's value as a finite number > 0, or `fallback` when absent.
 float parsePositiveFloatFlag(const ParsedArgs& args, const std::string& flag, float fallback);
-// The range parsePositiveFloatFlag accepts (a positive number a float holds at full precision,
-// about 1.2e-38 to 3.4e38), for values read elsewhere (a suite's `exposure`): "" when `v` is in it,
-// else why not ("not positive", "too small; ...", "too large; ...").
-std::string positiveFloatProblem(double v);
-
-// "a,b,c" -> {a, b, c}; an empty list or an empty item ("", ",", "a,,b", "a,") is a UserError
-// naming the flag.
-std::vector<std::string> splitFlagList(const std::string& text, const std::string& flag);
-
 // "1920x1080" -> (1920, 1080); anything else is a UserError naming the flag.
 std::pair<uint32_t, uint32_t> parseSize(const std::string& text, const std::string& flag);
 

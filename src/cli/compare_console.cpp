@@ -4,25 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include <nlohmann/json.hpp>
-
 #include "budget_verdict.h"
-#include "file_io.h"
-#include "shader_cache.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
-#include "warm_up_times.h"
 
 namespace gbl::compare {
-
-namespace fs = std::filesystem;
-
-std::string formatPsnr(double db) {
-    if (std::isinf(db)) return "inf";
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.1f dB", db);
-    return buf;
-}
 
 void printTable(const ReportModel& model) {
     // The layout column is as wide as its longest name ("reference (split-sum-shader vs ground-truth)").
@@ -112,64 +98,64 @@ void printVerdict(const ReportModel& model) {
     for (const BudgetLine& line : v->lines) std::printf("  %s\n", line.sentence.c_str());
 }
 
-void reportStageTimes(const fs::path& outDir, const StageTimes& t, double gpuPassMs, bool cpuDevice) {
-    nlohmann::ordered_json j;
-    j["schema"] = "gbufferlab-timings";
-    j["schema_version"] = 1;
-    nlohmann::ordered_json stages;
+void printTimings(const CompareTimings& t) {
     std::printf("\ntime by stage (wall):");
-    for (size_t s = 0; s < kStageCount; ++s) {
-        stages[stageName(Stage(s))] = t.ms[s];
-        std::printf("%s %s %.2f s", s ? "," : "", stageName(Stage(s)), t.ms[s] / 1000.0);
-    }
-    j["stages_ms"] = stages;
-    // What "shader compile" paid for: glslang runs and driver pipeline compiles, or cache hits
-    // (src/gpu/shader_cache.h). A second run on the same machine shows 0 glslang compiles.
-    const ShaderCacheCounters& c = shaderCacheCounters();
-    nlohmann::ordered_json cache;
-    cache["enabled"] = shaderCacheEnabled();
-    cache["glslang_compiles"] = c.glslangCompiles.load();
-    cache["spirv_cache_hits"] = c.spirvCacheHits.load();
-    cache["spirv_cache_invalid"] = c.spirvCacheInvalid.load();
-    cache["pipelines"] = c.pipelines.load();
-    cache["pipeline_cache_hits"] = c.pipelineCacheHits.load();
-    cache["pipelines_reused"] = c.pipelinesReused.load();
-    j["shader_cache"] = cache;
+    for (size_t s = 0; s < kStageCount; ++s)
+        std::printf("%s %s %.2f s", s ? "," : "", stageName(Stage(s)), t.stages.ms[s] / 1000.0);
     std::printf("\nshaders: %d compiled by glslang, %d from the SPIR-V cache%s; pipelines: %d created, %d found in "
                 "the pipeline cache (driver's report), %d reused across views and modes",
-                c.glslangCompiles.load(), c.spirvCacheHits.load(),
-                c.spirvCacheInvalid.load() ? (", " + std::to_string(c.spirvCacheInvalid.load()) +
-                                              " invalid cache files ignored").c_str()
-                                           : "",
-                c.pipelines.load(), c.pipelineCacheHits.load(), c.pipelinesReused.load());
-    // The warm-ups inside "shader compile" by pass kind (gpu/warm_up_times.h): on llvmpipe, where
-    // a first run's JIT compile goes.
-    nlohmann::ordered_json warmUps = nlohmann::ordered_json::object();
-    for (const auto& [kind, w] : warmUpTotals()) {
-        nlohmann::ordered_json k;
-        k["count"] = w.count;
-        k["ms"] = w.ms;
-        k["slowest_ms"] = w.slowestMs;
-        k["slowest"] = w.slowest;
-        warmUps[kind] = k;
+                t.glslangCompiles, t.spirvCacheHits,
+                t.spirvCacheInvalid ? (", " + std::to_string(t.spirvCacheInvalid) + " invalid cache files ignored").c_str()
+                                    : "",
+                t.pipelines, t.pipelineCacheHits, t.pipelinesReused);
+    for (const auto& [kind, w] : t.warmUps)
         std::printf("\nwarm-ups %s: %d, %.2f s (slowest %.2f s: %s)", kind.c_str(), w.count, w.ms / 1000.0,
                     w.slowestMs / 1000.0, w.slowest.c_str());
-    }
-    j["warm_ups"] = warmUps;
-    j["total_ms"] = t.totalMs;
-    j["gpu_pass_ms"] = gpuPassMs;
-    j["total_over_gpu_passes"] = gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0;
-    // A CPU device renders on the cores that encode the files meanwhile, and its timestamps are
-    // wall-clock time: the encoders lengthen the passes and flatter the ratio (bench/RESULTS.md,
-    // 2026-11-25: 1.64x printed, 2.06x with the encoders at nice 19; bench/run.sh ratio).
-    j["gpu_passes_share_host_cores"] = cpuDevice;
-    std::printf("\ntotal %.2f s = %.2fx the GPU passes' own %.2f s (timestamps%s)\n", t.totalMs / 1000.0,
-                gpuPassMs > 0.0 ? t.totalMs / gpuPassMs : 0.0, gpuPassMs / 1000.0,
-                cpuDevice ? "; on this CPU device the passes share the cores with the file encoders, which can "
-                            "lengthen them"
-                          : "");
-    writeFileAtomic(outDir / "timings.json", j.dump(2) + "\n");
+    std::printf("\ntotal %.2f s = %.2fx the GPU passes' own %.2f s (timestamps%s)\n", t.stages.totalMs / 1000.0,
+                t.gpuPassMs > 0.0 ? t.stages.totalMs / t.gpuPassMs : 0.0, t.gpuPassMs / 1000.0,
+                t.cpuDevice ? "; on this CPU device the passes share the cores with the file encoders, which can "
+                              "lengthen them"
+                            : "");
 }
 
+void printSuiteTable(const SuiteModel& model) {
+    int w = 20;
+    for (const SuiteLayoutSummary& row : model.summary) w = std::max(w, int(row.layout.size()));
+    std::printf("\nAcross %d scenes (error: mean LDR-FLIP over each scene's views; rank 1 = lowest in that scene):\n",
+                int(model.scenes.size()));
+    std::printf("%-*s %-12s %5s %9s %6s %6s %6s", w, "layout", "ibl", "B/px", "mean FLIP", "tied#", "mean#",
+                "worst#");
+    for (const SuiteScene& s : model.scenes) std::printf(" %16.16s", s.name.c_str());
+    std::printf("\n");
+    for (const SuiteLayoutSummary& row : model.summary) {
+        std::printf("%-*s %-12s %5d", w, row.layout.c_str(), row.iblMode.c_str(), row.bytesPerPixel);
+        if (row.scenesMeasured)
+            std::printf(" %9.5f %6s %6.2f %6d", row.meanError, row.tiedRankAcross.c_str(), row.meanRank, row.worstRank);
+        else
+            std::printf(" %9s %6s %6s %6s", "FAILED", "", "", "");
+        for (size_t s = 0; s < model.scenes.size(); ++s) {
+            char buf[40] = "-";
+            if (row.errors[s]) std::snprintf(buf, sizeof(buf), "%.5f (%s)", *row.errors[s], row.tiedRanks[s].c_str());
+            std::printf(" %16s", buf);
+        }
+        std::printf("\n");
+    }
+    std::printf("tied#: by mean FLIP over the scenes, a range where differences are not significant (%s); per scene: "
+                "its FLIP (its own tied rank); mean#, worst#: plain ranks\n", model.acrossScenes.method.c_str());
+    for (const SceneAgreement& g : model.agreement)
+        std::printf("rank agreement %s / %s (%s): Kendall's tau-b %.2f, %d of %d layout pairs swap\n", g.sceneA.c_str(),
+                    g.sceneB.c_str(), g.iblMode.c_str(), g.tau, int(g.swaps.size()), g.pairs);
+    for (const SuiteScene& s : model.scenes)
+        if (!s.ok) std::printf("scene %s FAILED: %s\n", s.name.c_str(), s.error.c_str());
+}
+
+void printReport(const app::CompareResult& result) {
+    if (result.suite) printSuiteTable(*result.suite);
+    else if (result.report) printTable(*result.report);
+    if (result.timings) printTimings(*result.timings);
+    std::printf("report: %s\n", (result.outDir / "report.html").string().c_str());
+    // A file that could not be written, runs or scenes that failed: one line each, never lost.
+    for (const std::string& e : result.errors) std::fprintf(stderr, "gbufferlab: error: %s\n", e.c_str());
+}
 
 }  // namespace gbl::compare

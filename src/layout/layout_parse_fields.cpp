@@ -30,6 +30,193 @@ constexpr Variant kVariants[] = {
 constexpr const char* kTransforms[] = {"gloss", "cry_smoothness", "cry_gloss_power", "sqrt"};
 constexpr const char* kInterleaves[] = {"checkerboard"};
 
+// transform / interleave: the registry encoding that `e` with them spells, or `e` itself when
+// neither is given; a bad spelling is reported and marks the field incomplete.
+std::string resolveVariant(Parser& p, const toml::table& t, const std::string& e, const std::string& what,
+                           Field& field) {
+    std::string resolved = e;
+    const toml::node* trNode = t.get("transform");
+    const toml::node* ilNode = t.get("interleave");
+    std::optional<std::string> transform, interleave;
+    if (trNode) {
+        transform = p.getString(t, "transform", false, field.place, what);
+        if (transform && std::find_if(std::begin(kTransforms), std::end(kTransforms),
+                                      [&](const char* k) { return *transform == k; }) == std::end(kTransforms)) {
+            p.error(placeOf(*trNode),
+                    "unknown transform " + squote(*transform) + " (known: gloss, cry_smoothness, cry_gloss_power, sqrt)");
+            field.incomplete = true;
+        }
+    }
+    if (ilNode) {
+        interleave = p.getString(t, "interleave", false, field.place, what);
+        if (interleave && std::find_if(std::begin(kInterleaves), std::end(kInterleaves),
+                                       [&](const char* k) { return *interleave == k; }) == std::end(kInterleaves)) {
+            p.error(placeOf(*ilNode), "unknown interleave " + squote(*interleave) + " (known: checkerboard)");
+            field.incomplete = true;
+        }
+    }
+    if (!field.incomplete && (transform || interleave) && !findEncoding(e)) {
+        p.error(field.encodingPlace, "unknown encoding " + squote(e) + " (known: " + knownEncodingNames() + ", id)");
+        field.incomplete = true;
+    }
+    if (!field.incomplete && (transform || interleave)) {
+        const Variant* match = nullptr;
+        for (const Variant& v : kVariants) {
+            const bool sameTransform = transform ? (v.transform && *transform == v.transform) : !v.transform;
+            const bool sameInterleave = interleave ? (v.interleave && *interleave == v.interleave) : !v.interleave;
+            if (e == v.base && sameTransform && sameInterleave) match = &v;
+        }
+        if (match) {
+            resolved = match->encoding;
+        } else {
+            std::string list;
+            for (const Variant& v : kVariants) {
+                list += list.empty() ? "" : ", ";
+                list += std::string(v.base) + (v.transform ? " + transform " + std::string(v.transform) : "") +
+                        (v.interleave ? " + interleave " + std::string(v.interleave) : "");
+            }
+            p.error(placeOf(trNode ? *trNode : *ilNode),
+                    "encoding " + squote(e) + " has no such variant (available: " + list + ")");
+            field.incomplete = true;
+        }
+    }
+    return resolved;
+}
+
+// encoding (+ transform / interleave). False when the field cannot be read on (a stencil field of
+// a non-integer attribute).
+bool readEncoding(Parser& p, const toml::table& t, const AttributeInfo& attr, const std::string& what, bool stencil,
+                  Field& field) {
+    const toml::node* encNode = t.get("encoding");
+    field.encodingPlace = encNode ? placeOf(*encNode) : field.place;
+    if (attr.type == ValueType::Integer) {
+        field.encoding = kIdEncoding;
+        if (encNode) {
+            auto e = p.getString(t, "encoding", false, field.place, what);
+            if (e && *e != kIdEncoding) {
+                p.error(field.encodingPlace, squote(attr.name) +
+                                                 " is an integer id: its encoding is 'id' "
+                                                 "(the declared value is the code), not " +
+                                                 squote(*e));
+                field.incomplete = true;
+            }
+        }
+    } else if (stencil) {
+        p.error(placeOf(*t.get("attribute")),
+                "the stencil holds integer extras only; " + squote(attr.name) + " is not one");
+        return false;
+    } else if (auto e = p.getString(t, "encoding", true, field.place, what)) {
+        const std::string resolved = resolveVariant(p, t, *e, what, field);
+        if (resolved == kIdEncoding) {
+            p.error(field.encodingPlace, "encoding 'id' holds integer extras only; " + squote(attr.name) +
+                                             " needs one of: " + knownEncodingNames());
+            field.incomplete = true;
+        } else if (!field.incomplete && !findEncoding(resolved)) {
+            p.error(field.encodingPlace, "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
+            field.incomplete = true;
+        }
+        field.encoding = resolved;
+    } else {
+        field.incomplete = true;
+    }
+    return true;
+}
+
+// dither_per_frame: whether the engine's dither takes the frame index (a dithered encoding only)
+void readDitherPerFrame(Parser& p, const toml::table& t, Field& field) {
+    const toml::node* d = t.get("dither_per_frame");
+    if (!d) return;
+    const EncodingInfo* enc = findEncoding(field.encoding);
+    if (!d->is_boolean()) {
+        p.error(placeOf(*d), "'dither_per_frame' must be true or false, not " + std::string(typeName(*d)));
+        field.incomplete = true;
+    } else if (enc && !enc->dithered) {
+        p.error(placeOf(*d), "'dither_per_frame' is for a dithered encoding (normal_octahedral_dithered); " +
+                                 squote(field.encoding) + " has no dither: remove the key");
+        field.incomplete = true;
+    } else {
+        field.ditherPerFrame = d->as_boolean()->get();
+        field.ditherDeclared = true;
+    }
+}
+
+// bits: an optional cross-check of the widths given by 'at'
+void checkBits(Parser& p, const toml::table& t, const std::string& what, Field& field) {
+    const toml::node* b = t.get("bits");
+    if (!b) return;
+    std::vector<int> declared;
+    if (const toml::array* a = b->as_array()) {
+        for (const toml::node& e : *a)
+            if (auto v = p.getInteger(e, "'bits'")) declared.push_back(static_cast<int>(*v));
+    } else if (auto v = p.getInteger(*b, "'bits'")) {
+        declared.push_back(static_cast<int>(*v));
+    }
+    if (field.incomplete || declared.empty()) return;
+    const bool perCode = b->is_array();
+    if (perCode && declared.size() != field.codes.size()) {
+        p.error(placeOf(*b), what + ": 'bits' lists " + std::to_string(declared.size()) +
+                                 " widths but 'at' places " + std::to_string(field.codes.size()) + " codes");
+        field.incomplete = true;
+        return;
+    }
+    // A single number is the encoding's bits per code: it applies to every code except a
+    // fixed-width extra one (normal_xy_zsign's sign bit).
+    const EncodingInfo* enc = findEncoding(field.encoding);
+    const size_t checked =
+        (!perCode && enc && enc->extraBits > 0 && field.codes.size() > 1) ? field.codes.size() - 1 : field.codes.size();
+    for (size_t i = 0; i < checked; ++i) {
+        const int want = perCode ? declared[i] : declared[0];
+        if (field.codes[i].bits() != want) {
+            p.error(field.codes[i].place, what + ": 'bits' says " + std::to_string(want) + " but " +
+                                              squote(field.codes[i].text) + " holds " +
+                                              std::to_string(field.codes[i].bits()) + " bits");
+            field.incomplete = true;
+        }
+    }
+}
+
+// value: extras only
+void readValue(Parser& p, const toml::table& t, const AttributeInfo& attr, const std::string& what, Field& field) {
+    const toml::node* v = t.get("value");
+    if (!v) {
+        if (attr.cls == AttributeClass::Extra) {
+            p.error(field.place,
+                    what + " needs a 'value': extras hold a constant the layout declares (" + attr.meaning + ")");
+            field.incomplete = true;
+        }
+        return;
+    }
+    if (attr.cls != AttributeClass::Extra) {
+        p.error(placeOf(*v), "'value' is for extra attributes; " + squote(attr.name) + " comes from the surface");
+        field.incomplete = true;
+        return;
+    }
+    auto values = p.getNumbers(*v, what + ": 'value'");
+    if (!values) {
+        field.incomplete = true;
+        return;
+    }
+    if (values->size() == 1 && attr.components > 1) values->assign(attr.components, values->front());
+    if (static_cast<int>(values->size()) != attr.components) {
+        p.error(placeOf(*v), what + ": 'value' has " + std::to_string(values->size()) + " components, " +
+                                 squote(attr.name) + " has " + std::to_string(attr.components));
+        field.incomplete = true;
+    }
+    for (double x : *values) {
+        if (attr.type == ValueType::Integer && (x != std::floor(x) || x < 0)) {
+            p.error(placeOf(*v), what + ": 'value' must be a non-negative integer (an id)");
+            field.incomplete = true;
+            break;
+        }
+        if (attr.type == ValueType::Float && attr.domain == ValueDomain::Unit && (x < 0 || x > 1)) {
+            p.error(placeOf(*v), what + ": 'value' " + std::to_string(x) + " is outside [0,1]");
+            field.incomplete = true;
+            break;
+        }
+    }
+    field.value = *values;
+}
+
 }  // namespace
 
 // Reads one field: attribute, encoding (+ transform / interleave), at, bits, value.
@@ -61,200 +248,45 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
     }
     field.attribute = attr->id;
     const std::string what = "field " + squote(attr->name);
+    if (!readEncoding(*this, *t, *attr, what, stencil, field)) return std::nullopt;
+    readDitherPerFrame(*this, *t, field);
+    parsePlaces(*t, channels, formatName, what, field);
+    checkBits(*this, *t, what, field);
+    readValue(*this, *t, *attr, what, field);
+    return field;
+}
 
-    // encoding
-    const toml::node* encNode = t->get("encoding");
-    field.encodingPlace = encNode ? placeOf(*encNode) : field.place;
-    if (attr->type == ValueType::Integer) {
-        field.encoding = kIdEncoding;
-        if (encNode) {
-            auto e = getString(*t, "encoding", false, field.place, what);
-            if (e && *e != kIdEncoding) {
-                error(field.encodingPlace, squote(attr->name) +
-                                               " is an integer id: its encoding is 'id' "
-                                               "(the declared value is the code), not " +
-                                               squote(*e));
-                field.incomplete = true;
-            }
-        }
-    } else if (stencil) {
-        error(placeOf(*t->get("attribute")),
-              "the stencil holds integer extras only; " + squote(attr->name) + " is not one");
-        return std::nullopt;
-    } else if (auto e = getString(*t, "encoding", true, field.place, what)) {
-        std::string resolved = *e;
-        const toml::node* trNode = t->get("transform");
-        const toml::node* ilNode = t->get("interleave");
-        std::optional<std::string> transform, interleave;
-        if (trNode) {
-            transform = getString(*t, "transform", false, field.place, what);
-            if (transform && std::find_if(std::begin(kTransforms), std::end(kTransforms),
-                                          [&](const char* k) { return *transform == k; }) == std::end(kTransforms)) {
-                error(placeOf(*trNode),
-                      "unknown transform " + squote(*transform) + " (known: gloss, cry_smoothness, cry_gloss_power, sqrt)");
-                field.incomplete = true;
-            }
-        }
-        if (ilNode) {
-            interleave = getString(*t, "interleave", false, field.place, what);
-            if (interleave && std::find_if(std::begin(kInterleaves), std::end(kInterleaves),
-                                           [&](const char* k) { return *interleave == k; }) == std::end(kInterleaves)) {
-                error(placeOf(*ilNode), "unknown interleave " + squote(*interleave) + " (known: checkerboard)");
-                field.incomplete = true;
-            }
-        }
-        if (!field.incomplete && (transform || interleave) && !findEncoding(*e)) {
-            error(field.encodingPlace, "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
-            field.incomplete = true;
-        }
-        if (!field.incomplete && (transform || interleave)) {
-            const Variant* match = nullptr;
-            for (const Variant& v : kVariants) {
-                const bool sameTransform = transform ? (v.transform && *transform == v.transform) : !v.transform;
-                const bool sameInterleave = interleave ? (v.interleave && *interleave == v.interleave) : !v.interleave;
-                if (*e == v.base && sameTransform && sameInterleave) match = &v;
-            }
-            if (match) {
-                resolved = match->encoding;
-            } else {
-                std::string list;
-                for (const Variant& v : kVariants) {
-                    list += list.empty() ? "" : ", ";
-                    list += std::string(v.base) + (v.transform ? " + transform " + std::string(v.transform) : "") +
-                            (v.interleave ? " + interleave " + std::string(v.interleave) : "");
-                }
-                error(placeOf(trNode ? *trNode : *ilNode),
-                      "encoding " + squote(*e) + " has no such variant (available: " + list + ")");
-                field.incomplete = true;
-            }
-        }
-        if (resolved == kIdEncoding) {
-            error(field.encodingPlace, "encoding 'id' holds integer extras only; " + squote(attr->name) +
-                                           " needs one of: " + knownEncodingNames());
-            field.incomplete = true;
-        } else if (!field.incomplete && !findEncoding(resolved)) {
-            error(field.encodingPlace, "unknown encoding " + squote(*e) + " (known: " + knownEncodingNames() + ", id)");
-            field.incomplete = true;
-        }
-        field.encoding = resolved;
-    } else {
+// at: where each code goes, one place or an array of them.
+void Parser::parsePlaces(const toml::table& t, const std::vector<Channel>& channels, const std::string& formatName,
+                         const std::string& what, Field& field) {
+    const toml::node* at = t.get("at");
+    if (!at) {
+        error(field.place, what + " has no 'at': say where each code goes, e.g. at = [\"r\", \"g\", \"b[7]\"]");
         field.incomplete = true;
+        return;
     }
-
-    // dither_per_frame: whether the engine's dither takes the frame index (a dithered encoding only)
-    if (const toml::node* d = t->get("dither_per_frame")) {
-        const EncodingInfo* enc = findEncoding(field.encoding);
-        if (!d->is_boolean()) {
-            error(placeOf(*d), "'dither_per_frame' must be true or false, not " + std::string(typeName(*d)));
+    field.atPlace = placeOf(*at);
+    if (channels.empty()) {
+        field.incomplete = true;  // unknown format, reported already
+    } else if (const toml::array* a = at->as_array()) {
+        if (a->empty()) {
+            error(placeOf(*at), what + ": 'at' is empty");
             field.incomplete = true;
-        } else if (enc && !enc->dithered) {
-            error(placeOf(*d), "'dither_per_frame' is for a dithered encoding (normal_octahedral_dithered); " +
-                                   squote(field.encoding) + " has no dither: remove the key");
-            field.incomplete = true;
-        } else {
-            field.ditherPerFrame = d->as_boolean()->get();
-            field.ditherDeclared = true;
         }
-    }
-
-    // at
-    if (const toml::node* at = t->get("at")) {
-        field.atPlace = placeOf(*at);
-        if (channels.empty()) {
-            field.incomplete = true;  // unknown format, reported already
-        } else if (const toml::array* a = at->as_array()) {
-            if (a->empty()) {
-                error(placeOf(*at), what + ": 'at' is empty");
-                field.incomplete = true;
-            }
-            for (const toml::node& p : *a) {
-                CodePlace code;
-                if (parsePlace(p, channels, formatName, code))
-                    field.codes.push_back(std::move(code));
-                else
-                    field.incomplete = true;
-            }
-        } else {
+        for (const toml::node& p : *a) {
             CodePlace code;
-            if (parsePlace(*at, channels, formatName, code))
+            if (parsePlace(p, channels, formatName, code))
                 field.codes.push_back(std::move(code));
             else
                 field.incomplete = true;
         }
     } else {
-        error(field.place, what + " has no 'at': say where each code goes, e.g. at = [\"r\", \"g\", \"b[7]\"]");
-        field.incomplete = true;
-    }
-
-    // bits: an optional cross-check of the widths given by 'at'
-    if (const toml::node* b = t->get("bits")) {
-        std::vector<int> declared;
-        if (const toml::array* a = b->as_array()) {
-            for (const toml::node& e : *a)
-                if (auto v = getInteger(e, "'bits'")) declared.push_back(static_cast<int>(*v));
-        } else if (auto v = getInteger(*b, "'bits'")) {
-            declared.push_back(static_cast<int>(*v));
-        }
-        if (!field.incomplete && !declared.empty()) {
-            const bool perCode = b->is_array();
-            if (perCode && declared.size() != field.codes.size()) {
-                error(placeOf(*b), what + ": 'bits' lists " + std::to_string(declared.size()) +
-                                       " widths but 'at' places " + std::to_string(field.codes.size()) + " codes");
-                field.incomplete = true;
-            } else {
-                // A single number is the encoding's bits per code: it applies to every code except a
-                // fixed-width extra one (normal_xy_zsign's sign bit).
-                const EncodingInfo* enc = findEncoding(field.encoding);
-                const size_t checked = (!perCode && enc && enc->extraBits > 0 && field.codes.size() > 1)
-                                           ? field.codes.size() - 1
-                                           : field.codes.size();
-                for (size_t i = 0; i < checked; ++i) {
-                    const int want = perCode ? declared[i] : declared[0];
-                    if (field.codes[i].bits() != want) {
-                        error(field.codes[i].place, what + ": 'bits' says " + std::to_string(want) + " but " +
-                                                        squote(field.codes[i].text) + " holds " +
-                                                        std::to_string(field.codes[i].bits()) + " bits");
-                        field.incomplete = true;
-                    }
-                }
-            }
-        }
-    }
-
-    // value: extras only
-    if (const toml::node* v = t->get("value")) {
-        if (attr->cls != AttributeClass::Extra) {
-            error(placeOf(*v), "'value' is for extra attributes; " + squote(attr->name) + " comes from the surface");
+        CodePlace code;
+        if (parsePlace(*at, channels, formatName, code))
+            field.codes.push_back(std::move(code));
+        else
             field.incomplete = true;
-        } else if (auto values = getNumbers(*v, what + ": 'value'")) {
-            if (values->size() == 1 && attr->components > 1) values->assign(attr->components, values->front());
-            if (static_cast<int>(values->size()) != attr->components) {
-                error(placeOf(*v), what + ": 'value' has " + std::to_string(values->size()) + " components, " +
-                                       squote(attr->name) + " has " + std::to_string(attr->components));
-                field.incomplete = true;
-            }
-            for (double x : *values) {
-                if (attr->type == ValueType::Integer && (x != std::floor(x) || x < 0)) {
-                    error(placeOf(*v), what + ": 'value' must be a non-negative integer (an id)");
-                    field.incomplete = true;
-                    break;
-                }
-                if (attr->type == ValueType::Float && attr->domain == ValueDomain::Unit && (x < 0 || x > 1)) {
-                    error(placeOf(*v), what + ": 'value' " + std::to_string(x) + " is outside [0,1]");
-                    field.incomplete = true;
-                    break;
-                }
-            }
-            field.value = *values;
-        } else {
-            field.incomplete = true;
-        }
-    } else if (attr->cls == AttributeClass::Extra) {
-        error(field.place,
-              what + " needs a 'value': extras hold a constant the layout declares (" + attr->meaning + ")");
-        field.incomplete = true;
     }
-    return field;
 }
 
 // One code's place (grammar in parseCodePlace, layout.cpp).

@@ -170,6 +170,9 @@ private:
                                     const std::string& formatName, bool stencil);
     bool parsePlace(const toml::node& node, const std::vector<Channel>& channels, const std::string& formatName,
                     CodePlace& out);
+    // A field's 'at' (layout_parse_fields.cpp): its codes' places into field.codes.
+    void parsePlaces(const toml::table& t, const std::vector<Channel>& channels, const std::string& formatName,
+                     const std::string& what, Field& field);
     void parseFallbacks(const toml::table& root, Layout& layout);
     void parseLightBuffers(const toml::table& root, Layout& layout);
     void parseClear(const toml::table& root, Layout& layout);

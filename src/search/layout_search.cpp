@@ -152,6 +152,7 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
     const int smallest = smallestPackedBytes(options.constraints);
     std::vector<int> front;  // the archive, updated in candidate order after each round
     for (int round = 0; int(cands.size()) < total; ++round) {
+        if (options.stop && options.stop()) break;
         // Propose a batch from the archive as it stood at the end of the last round.
         sortFront(cands, front);
         const std::vector<int> pool = parentPool(cands, front);

@@ -54,6 +54,9 @@ struct SearchOptions {
     std::string journalKey;
     EngineConstraints constraints;  // on by default (search_constraints.h)
     std::function<void(const SearchProgress&)> progress;  // after every round
+    // Before every round: true ends the search there (what was evaluated is the result; the
+    // journal holds it, so the same options resume). Unset: it runs to `candidates`.
+    std::function<bool()> stop;
 };
 
 struct SearchResult {

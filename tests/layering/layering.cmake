@@ -33,3 +33,13 @@ gbl_layering_probe(layering_render_sees_codec gbl_render wiring_codegen.h allowe
 gbl_layering_probe(layering_measure_cannot_see_evaluate gbl_measure gpu_evaluator.h refused)
 gbl_layering_probe(layering_render_cannot_see_evaluate gbl_render gpu_evaluator.h refused)
 gbl_layering_probe(layering_evaluate_sees_measure gbl_evaluate run_metrics.h allowed)
+# app/ runs the comparison and the search below the command line: it cannot see cli/'s headers
+# (its flags, its console), and the libraries it uses cannot see its own.
+gbl_layering_probe(layering_app_cannot_see_cli gbl_app cli.h refused)
+gbl_layering_probe(layering_app_cannot_see_compare_flags gbl_app compare_flags.h refused)
+gbl_layering_probe(layering_app_cannot_see_console gbl_app compare_console.h refused)
+gbl_layering_probe(layering_report_cannot_see_app gbl_report compare_api.h refused)
+gbl_layering_probe(layering_search_cannot_see_app gbl_search search_api.h refused)
+gbl_layering_probe(layering_evaluate_cannot_see_app gbl_evaluate compare_session.h refused)
+gbl_layering_probe(layering_app_sees_search gbl_app layout_search.h allowed)
+gbl_layering_probe(layering_cli_sees_app gbl_cli compare_api.h allowed)

@@ -32,7 +32,7 @@ struct Fixture {
     std::unique_ptr<search::FastEvaluator> evaluator;
     Fixture() {
         for (const auto& v : compare::compareViews(inputs.scene, 2, float(kW) / float(kH))) cameras.push_back(v.camera);
-        // As cmd_search: the reference under every depth format the tested layouts use.
+        // As the search (app/search_api.cpp): the reference under every depth format the tested layouts use.
         reference = renderSearchReference(renderer, cameras, kW, kH,
                                           {{"D16_UNORM", false}, {"D24_UNORM_S8_UINT", false}, {"D32_SFLOAT", true},
                                            {"D32_SFLOAT_S8_UINT", true}});

@@ -2,15 +2,16 @@
 // compare, the whole comparison: one device, renderer and (with --eval gpu) evaluator for every
 // view, IBL mode and layout; the report model the runs fill; the writer their files go to.
 //
-// The steps, in the order runCompareCommand calls them:
-//   CompareSession(options)  set-up: inputs read and validated, device, output folder (marked
-//                            INCOMPLETE until the report is written), pipelines built;
+// The steps, in the order runComparison (compare_api.h) calls them:
+//   CompareSession(options, control)  set-up: inputs read and validated, device, output folder
+//                            (marked INCOMPLETE until the report is written), pipelines built;
 //   runView(v) per view      the references under each mode, the lighting approximations against
 //                            the ground truth (with --ibl ...,ground-truth), the IBL figure (first
 //                            view), then every layout under every mode;
-//   finish()                 waits for the image files, writes the report; the exit status.
-// An interruption (SIGINT, SIGTERM) at any point after the set-up writes the report of the runs
-// that finished (compare_session.cpp).
+//   finish()                 waits for the image files, writes the report; the result.
+// A cancel request (RunControl::cancel; the command line's on SIGINT, SIGTERM) at any point after
+// the set-up writes the report of the runs that finished (compare_session.cpp), at once on the
+// asking thread; the runs stop at the next layout, and interrupted(signal) gives the result.
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "background_writer.h"
+#include "compare_api.h"
 #include "compare_bands.h"
 #include "compare_options.h"
 #include "compare_runs.h"
@@ -35,9 +37,6 @@
 
 namespace gbl::compare {
 
-// Exit status when the report was written but some runs failed (1: bad input, 2: usage, 3: bug).
-inline constexpr int kExitRunsFailed = 4;
-
 // What the scenes of one comparison share (compare --scene A --scene B, compare_suite.h): the
 // device, every pipeline (those that do not depend on the scene are built once) and the IBL
 // pre-computation of each environment. Destroyed after the scenes' sessions.
@@ -45,7 +44,7 @@ struct CompareShared {
     std::optional<VulkanContext> ctx;  // created by the first scene's session
     PipelineMemo pipelines;
     std::map<std::string, IblMaps> ibl;  // by environment file ("": the built-in sky)
-    // The comparison's own interrupt action (the report of the scenes that finished): a scene's
+    // The comparison's own cancel action (the report of the scenes that finished): a scene's
     // session runs it after writing its own partial report, and puts it back when it finishes.
     std::function<void(int signal)> onInterrupt;
     CompareShared() = default;
@@ -57,7 +56,7 @@ struct CompareShared {
 class CompareSession {
 public:
     // `shared`: the device, pipelines and IBL maps of the other scenes of the comparison (null: its own).
-    explicit CompareSession(const CompareOptions& options, CompareShared* shared = nullptr);
+    CompareSession(const CompareOptions& options, const app::RunControl& control, CompareShared* shared = nullptr);
     CompareSession(const CompareSession&) = delete;
     CompareSession& operator=(const CompareSession&) = delete;
 
@@ -65,9 +64,14 @@ public:
     // Every run of view `view` (0 first: its runs are the report's rows; the later views' add
     // their metrics to those rows, in the same order).
     void runView(int view);
-    // After the last view: waits for the image files, writes the report and prints the table.
-    // Returns the exit status: 0, 1 (a file could not be written) or kExitRunsFailed.
-    int finish();
+    // After the last view: waits for the image files, writes the report. The result's exit status:
+    // 0, 1 (a file could not be written) or kExitRunsFailed.
+    app::CompareResult finish();
+    // Instead of finish() when the control's cancel was asked: the report of the runs that finished
+    // (written by the cancel action, or now), the exit status 128 + `signal`.
+    app::CompareResult interrupted(int signal);
+    // Whether the control's cancel was asked (the runs stop at the next layout).
+    bool cancelled() const { return control_.cancelSignal() != 0; }
     // The report (complete after finish()).
     const ReportModel& model() const { return model_; }
     double gpuPassMs() const { return gpuPassMs_; }
@@ -97,6 +101,7 @@ private:
     void writeInterruptedReport(int signal);
 
     const CompareOptions& options_;
+    const app::RunControl& control_;
     CompareShared* shared_ = nullptr;
     std::vector<Layout> layouts_;
     Layout referenceLayout_;
@@ -115,6 +120,8 @@ private:
     std::filesystem::path incompleteMarker_;
     std::mutex modelMutex_;  // model_.runs, shared with the interrupt action
     bool reportComplete_ = false;
+    bool interruptionStarted_ = false;              // writeInterruptedReport ran, or runs
+    std::optional<ReportModel> interruptedReport_;  // the partial report, once written
     std::optional<BackgroundWriter> imageWriter_;
     ImageOutput imageOutput_;
     double gpuPassMs_ = 0.0;  // timestamps of every frame rendered
@@ -122,11 +129,11 @@ private:
     GBufferWiring referenceWiring_;
     size_t runIndex_ = 0;  // the row of the next run recorded in this view
     size_t bandedReferenceMode_ = 0;  // in bands: the mode whose reference statistics the evaluator holds
-    // The interrupt action (set by the constructor) uses the members above: this clears it before
+    // The cancel action (set by the constructor) uses the members above: this clears it before
     // any of them is destroyed, on every way out, a constructor that throws included (a member
     // declared last is destroyed first; a destructor's body would not run then).
     struct InterruptActionGuard {
-        bool set = false;
+        CancelToken* token = nullptr;      // set: the action is the token's
         std::function<void(int)> restore;  // the comparison's own action (CompareShared::onInterrupt), or none
         ~InterruptActionGuard();
     } interruptGuard_;

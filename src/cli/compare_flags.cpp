@@ -1,6 +1,6 @@
 // compare's flags: parsed and checked in the order the command used to, so that of several bad
 // values the same one is named first.
-#include "compare_options.h"
+#include "compare_flags.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,16 +11,13 @@
 #include "error.h"
 #include "file_io.h"
 #include "ibl_cache.h"
-#include "layout_catalog.h"
 
 namespace gbl::compare {
 
-bool CompareOptions::compareLighting() const {
-    return modes.size() > 1 && std::find(modeNames.begin(), modeNames.end(), kGroundTruth) != modeNames.end();
-}
+namespace {
 
-std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args) {
-    const std::vector<FlagSpec> specs = {
+std::vector<FlagSpec> compareFlags() {
+    return {
         {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb), builtin (the built-in scene: the sphere grid and its "
                           "surroundings; the default) or a scene-suite .toml; give it several times to compare "
                           "every layout on every scene (docs/compare.md)", true},
@@ -72,23 +69,22 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
-    const ParsedArgs parsed = parseArgs("compare", args, specs);
-    if (parsed.has("help")) {
-        std::printf("%s", formatHelp("gbufferlab compare [--scene F] [--env F] [--layouts A,B,...|all] [--ibl MODES] "
-                                     "[--size WxH] [--out DIR]",
-                                     "Renders the float reference and each layout at the same camera, and reports "
-                                     "what each loses\n(attribute and image error, FLIP, error images) and costs "
-                                     "(bytes per pixel, bandwidth).\nWith --ibl listing several modes and "
-                                     "ground-truth among them, the reference under each mode is also\ncompared with "
-                                     "the reference under ground-truth: the error of the lighting approximation.",
-                                     specs)
-                               .c_str());
-        return std::nullopt;
-    }
-    if (!parsed.positional.empty())
-        throwUserError("gbufferlab compare: unexpected argument '" + parsed.positional[0] + "' (see --help)");
+}
 
-    CompareOptions o;
+void printCompareHelp(const std::vector<FlagSpec>& specs) {
+    std::printf("%s", formatHelp("gbufferlab compare [--scene F] [--env F] [--layouts A,B,...|all] [--ibl MODES] "
+                                 "[--size WxH] [--out DIR]",
+                                 "Renders the float reference and each layout at the same camera, and reports "
+                                 "what each loses\n(attribute and image error, FLIP, error images) and costs "
+                                 "(bytes per pixel, bandwidth).\nWith --ibl listing several modes and "
+                                 "ground-truth among them, the reference under each mode is also\ncompared with "
+                                 "the reference under ground-truth: the error of the lighting approximation.",
+                                 specs)
+                           .c_str());
+}
+
+// The scenes, the layouts, the size, the exposure and the views.
+void readScenesAndViews(const ParsedArgs& parsed, CompareOptions& o) {
     o.scenePath = parsed.get("scene");
     o.envPath = parsed.get("env");
     o.sceneArgs = parsed.all("scene");
@@ -101,7 +97,12 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     o.autoExposure = !parsed.has("exposure");
     o.viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
+}
+
+// The IBL modes, their samples, the ground truth's convergence, the BRDF LUT.
+void readLighting(const ParsedArgs& parsed, CompareOptions& o) {
     o.modeNames = splitFlagList(parsed.get("ibl", "split-sum"), "--ibl");
+    o.modes.clear();
     for (size_t i = 0; i < o.modeNames.size(); ++i) {
         o.modes.push_back(parseIblMode(o.modeNames[i]));
         // Each mode's runs go to runs/<layout>/<mode>/: a mode given twice would write its runs
@@ -116,12 +117,20 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.gtMaxBatches = parseIntFlag(parsed, "gt-max-batches", 256, 8, 65536);
     o.gtNoise = parsePositiveFloatFlag(parsed, "gt-noise", 0.002f);
     if (parsed.has("brdf-lut")) applyBrdfLutVariant(parsed.get("brdf-lut"), o.iblSettings);
+}
+
+// Where the report goes and how its images are written.
+void readOutputs(const ParsedArgs& parsed, CompareOptions& o) {
     o.outDir = parsed.has("out") ? std::filesystem::path(parsed.get("out")) : defaultOutputDirectory("compare");
     o.force = parsed.has("force");
     if (parsed.has("hdr-flip") && parsed.has("no-hdr-flip"))
         throwUserError("gbufferlab compare: --hdr-flip and --no-hdr-flip contradict each other; give one");
     o.hdrFlip = parsed.has("hdr-flip");
     o.exrType = parsed.has("float32-exr") ? ExrPixelType::Float32 : ExrPixelType::Half;
+}
+
+// Where the metrics are computed: --eval, --error-exr, --band-rows.
+void readEvaluation(const ParsedArgs& parsed, CompareOptions& o) {
     o.evalWhere = parsed.get("eval", "auto");
     if (o.evalWhere != "gpu" && o.evalWhere != "cpu" && o.evalWhere != "auto")
         throwUserError("gbufferlab compare: --eval " + o.evalWhere + ": give auto, gpu or cpu");
@@ -137,6 +146,10 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
                        ": bands are measured on the device evaluator, which keeps its float maps on the device; "
                        "give --band-rows 0, or drop --error-exr");
     if (o.errorExr) o.evalWhere = "cpu";
+}
+
+// --temporal N and its --resolve, and what they need of the evaluation.
+void readTemporal(const ParsedArgs& parsed, CompareOptions& o) {
     o.temporalFrames = parseIntFlag(parsed, "temporal", 1, 1, kMaxTemporalFrames);
     if (parsed.has("resolve")) {
         const std::string how = parsed.get("resolve");
@@ -163,61 +176,32 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
         o.evalWhere = "cpu";
         o.bandRowsGiven = 0u;
     }
+}
+
+}  // namespace
+
+std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args) {
+    const std::vector<FlagSpec> specs = compareFlags();
+    const ParsedArgs parsed = parseArgs("compare", args, specs);
+    if (parsed.has("help")) {
+        printCompareHelp(specs);
+        return std::nullopt;
+    }
+    if (!parsed.positional.empty())
+        throwUserError("gbufferlab compare: unexpected argument '" + parsed.positional[0] + "' (see --help)");
+
+    CompareOptions o;
+    readScenesAndViews(parsed, o);
+    readLighting(parsed, o);
+    readOutputs(parsed, o);
+    readEvaluation(parsed, o);
+    readTemporal(parsed, o);
     o.device = parsed.get("device");
     o.validation = parsed.has("validation");
     o.nativeFormats = parsed.has("native-formats");
     o.commandLine = "gbufferlab compare";
     for (const auto& a : args) o.commandLine += " " + a;
     return o;
-}
-
-std::string joinList(const std::vector<std::string>& items) {
-    std::string out;
-    for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
-    return out;
-}
-
-// A run's files go to runs/<layout name>/<mode>/ and its row is named by the layout: two layouts
-// of one name (the same file given twice, or two files whose `name` agrees) would overwrite each
-// other's files and leave two rows that cannot be told apart, so they are refused before rendering.
-void requireDistinctRunNames(const std::vector<Layout>& layouts) {
-    for (size_t i = 0; i < layouts.size(); ++i)
-        for (size_t k = 0; k < i; ++k) {
-            if (layouts[k].name != layouts[i].name) continue;
-            std::error_code ec;
-            const std::string a = layouts[k].sourceFile, b = layouts[i].sourceFile;
-            if (a == b || std::filesystem::equivalent(a, b, ec))
-                throwUserError("--layouts: the layout " + quoteName(layouts[i].name) + " (" + escapeText(a) +
-                               ") is given twice; give each layout once");
-            throwUserError("--layouts: " + escapeText(a) + " and " + escapeText(b) + " are both named " +
-                           quoteName(layouts[i].name) + ", so their runs would share runs/" +
-                           escapeText(layouts[i].name) + "/; give one of them another name (its `name` key)");
-        }
-}
-
-// "all" (or no flag) = every file in layouts/ but the reference; otherwise names or paths. Every
-// file is parsed and validated here, before any rendering.
-std::vector<Layout> resolveLayouts(const std::optional<std::string>& spec) {
-    std::vector<std::string> names;
-    const std::vector<std::string> known = listLayoutNames();
-    const std::vector<std::string> given = spec ? splitFlagList(*spec, "--layouts") : std::vector<std::string>{"all"};
-    if (given.size() > 1 && std::find(given.begin(), given.end(), "all") != given.end())
-        throwUserError("--layouts " + quoteName(*spec) + ": 'all' already names every layout; give all alone, or names");
-    if (given.front() == "all") {
-        for (const auto& n : known)
-            if (n != kReferenceLayout) names.push_back(n);
-    } else {
-        names = given;
-    }
-    std::vector<Layout> layouts;
-    for (const std::string& n : names) {
-        const bool isPath = n.find('/') != std::string::npos || n.find(".toml") != std::string::npos;
-        if (!isPath && std::find(known.begin(), known.end(), n) == known.end())
-            throwUserError("--layouts: unknown layout " + quoteName(n) + " (known: " + joinList(known) + ", or all)");
-        layouts.push_back(loadLayout(n));
-    }
-    requireDistinctRunNames(layouts);
-    return layouts;
 }
 
 }  // namespace gbl::compare

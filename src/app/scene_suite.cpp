@@ -7,7 +7,7 @@
 #include <cctype>
 #include <cmath>
 
-#include "cli_args.h"
+#include "option_values.h"
 #include "error.h"
 #include "file_io.h"
 #include "layout_parser_detail.h"

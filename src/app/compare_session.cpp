@@ -10,15 +10,15 @@
 #include "bandwidth.h"
 #include "budget_verdict.h"
 #include "best_fit_normals.h"
-#include "compare_console.h"
 #include "compare_memory.h"
+#include "compare_timings.h"
 #include "env_flag.h"
 #include "error.h"
 #include "file_io.h"
 #include "host_heap.h"
 #include "host_profile.h"
 #include "ibl_cache.h"
-#include "interrupt.h"
+#include "interrupt.h"  // signalName
 #include "layout_atlas.h"
 #include "layout_catalog.h"
 #include "memory_budget.h"
@@ -55,8 +55,8 @@ CompareShared::~CompareShared() {
     }
 }
 
-CompareSession::CompareSession(const CompareOptions& options, CompareShared* shared)
-    : options_(options), shared_(shared) {
+CompareSession::CompareSession(const CompareOptions& options, const app::RunControl& control, CompareShared* shared)
+    : options_(options), control_(control), shared_(shared) {
     const CompareOptions& o = options_;
     std::optional<ScopedStage> timedSetup(std::in_place, Stage::Setup);
     checkOutputDirectory(o.outDir, o.force, "--out");
@@ -172,9 +172,10 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
                                    " views (--views); images and crops are the first view's (the scene camera)");
     const int modeCount = int(o.modes.size());
     steps_ = o.viewCount * (modeCount * (1 + int(layouts_.size())) + (o.compareLighting() ? modeCount - 1 : 0));
-    progress_.emplace(steps_, stderr);
+    progress_.emplace(steps_, control.progress);
     prepareOutputDirectory(o.outDir, o.force, "--out");
-    // Until the report is complete the folder says so: an interruption (SIGINT, SIGTERM) writes
+    // Until the report is complete the folder says so: an interruption (a cancel request: SIGINT,
+    // SIGTERM on the command line) writes
     // the report of the runs that finished and leaves this file, naming the signal; a kill -9
     // leaves it as written here. The finished report removes it.
     incompleteMarker_ = o.outDir / kIncompleteMarker;
@@ -195,12 +196,14 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
     imageOutput_ = ImageOutput{&*imageWriter_, o.exrType, o.errorExr};
     // Several scenes: the comparison's own action (the report of the scenes that finished) runs
     // after this scene's partial report, and is put back when this scene is done.
-    setInterruptAction([this, outer = shared ? shared->onInterrupt : std::function<void(int)>{}](int signal) {
-        writeInterruptedReport(signal);
-        if (outer) outer(signal);
-    });
-    interruptGuard_.set = true;
-    interruptGuard_.restore = shared ? shared->onInterrupt : std::function<void(int)>{};
+    if (control.cancel) {
+        control.cancel->setAction([this, outer = shared ? shared->onInterrupt : std::function<void(int)>{}](int signal) {
+            writeInterruptedReport(signal);
+            if (outer) outer(signal);
+        });
+        interruptGuard_.token = control.cancel;
+        interruptGuard_.restore = shared ? shared->onInterrupt : std::function<void(int)>{};
+    }
     timedSetup.reset();
 
     std::optional<HostScope> rendererScope(std::in_place, "set-up: renderer and IBL");
@@ -218,7 +221,7 @@ CompareSession::CompareSession(const CompareOptions& options, CompareShared* sha
 }
 
 CompareSession::InterruptActionGuard::~InterruptActionGuard() {
-    if (set) setInterruptAction(restore);
+    if (token) token->setAction(restore);
 }
 
 // Every run renders the same way but for the IBL mode and the camera, and decodes its G-buffer
@@ -354,12 +357,14 @@ void CompareSession::record(RunReport&& run, int view) {
     ++runIndex_;
 }
 
-// SIGINT, SIGTERM: the report of the runs that finished, the folder left marked incomplete.
+// SIGINT, SIGTERM (a cancel request): the report of the runs that finished, the folder left marked
+// incomplete. Once: a second request, or interrupted() after the action, finds it written.
 void CompareSession::writeInterruptedReport(int signal) {
     ReportModel partial;
     {
         std::lock_guard lock(modelMutex_);
-        if (reportComplete_) return;
+        if (reportComplete_ || interruptionStarted_) return;
+        interruptionStarted_ = true;
         partial = model_;
     }
     // Every run in `partial` queued its images before it was recorded: they are written before
@@ -406,9 +411,10 @@ void CompareSession::writeInterruptedReport(int signal) {
     partial.run.notes.push_back(what);
     writeReport(options_.outDir, partial);
     writeFileAtomic(incompleteMarker_, what + "\n");
+    interruptedReport_ = std::move(partial);
 }
 
-int CompareSession::finish() {
+app::CompareResult CompareSession::finish() {
     const fs::path& outDir = options_.outDir;
     {
         std::lock_guard lock(modelMutex_);
@@ -417,6 +423,8 @@ int CompareSession::finish() {
         model_.significance = rankWithSignificance(model_);
     }
 
+    app::CompareResult result;
+    result.outDir = outDir;
     std::vector<std::string> writeErrors;  // image files of no run (the references', the figure)
     {
         ScopedStage timed(Stage::Report);
@@ -430,18 +438,19 @@ int CompareSession::finish() {
         HostScope reportScope("report: html, json, csv");
         writeErrors = failRunsOfWriteFailures(model_, failures);
         writeReport(outDir, model_);
-        printTable(model_);
-        reportStageTimes(outDir, StageClock::global().read(), gpuPassMs_, ctx_->info.type == VK_PHYSICAL_DEVICE_TYPE_CPU);
+        result.timings = collectTimings(StageClock::global().read(), gpuPassMs_,
+                                        ctx_->info.type == VK_PHYSICAL_DEVICE_TYPE_CPU);
+        writeTimings(outDir, *result.timings);
         std::error_code ec;
         fs::remove(incompleteMarker_, ec);
         reportComplete_ = true;
     }
-    setInterruptAction(interruptGuard_.restore);
-    interruptGuard_.set = false;
+    if (interruptGuard_.token) interruptGuard_.token->setAction(interruptGuard_.restore);
+    interruptGuard_.token = nullptr;
     hostProfileAdd("compare: up to the report (then teardown)", StageClock::global().read().totalMs / 1e3);
-    std::printf("report: %s\n", (outDir / "report.html").string().c_str());
+    result.report = model_;
     // A file that could not be written is an error of the command, one line each, never lost.
-    for (const std::string& e : writeErrors) std::fprintf(stderr, "gbufferlab: error: %s\n", e.c_str());
+    result.errors = writeErrors;
     // The report lists what failed and why; the exit status says that something did, so that
     // scripts and CI notice (2 runs failed of 7: exit 4).
     const auto failed = std::count_if(model_.runs.begin(), model_.runs.end(),
@@ -449,17 +458,32 @@ int CompareSession::finish() {
     // No view had anything to measure: the report says why, and the exit status that nothing was.
     const auto& why = model_.run.viewNotMeasured;
     if (!why.empty() && std::none_of(why.begin(), why.end(), [](const std::string& w) { return w.empty(); })) {
-        std::fprintf(stderr, "gbufferlab: error: no view had anything to measure (view 0: %s); no layout was measured "
-                             "(see %s)\n",
-                     why.front().c_str(), escapeText((outDir / "report.html").string()).c_str());
-        return kExitRunsFailed;
+        result.errors.push_back("no view had anything to measure (view 0: " + why.front() +
+                                "); no layout was measured (see " + escapeText((outDir / "report.html").string()) + ")");
+        result.exitStatus = kExitRunsFailed;
+    } else if (failed > 0) {
+        result.errors.push_back(std::to_string(failed) + " of " + std::to_string(model_.runs.size()) +
+                                " runs failed (see the FAILED rows above and in " +
+                                escapeText((outDir / "report.html").string()) + ")");
+        result.exitStatus = kExitRunsFailed;
+    } else {
+        result.exitStatus = writeErrors.empty() ? 0 : 1;
     }
-    if (failed > 0) {
-        std::fprintf(stderr, "gbufferlab: error: %d of %d runs failed (see the FAILED rows above and in %s)\n",
-                     int(failed), int(model_.runs.size()), escapeText((outDir / "report.html").string()).c_str());
-        return kExitRunsFailed;
-    }
-    return writeErrors.empty() ? 0 : 1;
+    return result;
+}
+
+app::CompareResult CompareSession::interrupted(int signal) {
+    // An action running on the asking thread is waited for, and none runs after.
+    if (interruptGuard_.token) interruptGuard_.token->setAction(interruptGuard_.restore);
+    interruptGuard_.token = nullptr;
+    writeInterruptedReport(signal);  // unless the action wrote it
+    app::CompareResult result;
+    result.interruptedBy = signal;
+    result.exitStatus = 128 + signal;
+    result.outDir = options_.outDir;
+    std::lock_guard lock(modelMutex_);
+    result.report = interruptedReport_;
+    return result;
 }
 
 }  // namespace gbl::compare

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <mutex>
 
-#include "compare_console.h"
 #include "compare_session.h"
+#include "compare_timings.h"
 #include "error.h"
 #include "file_io.h"
-#include "interrupt.h"
+#include "interrupt.h"  // signalName
 #include "scene_suite.h"
 #include "stage_clock.h"
 #include "suite_report.h"
@@ -21,37 +21,6 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string firstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
-
-void printSuiteTable(const SuiteModel& model) {
-    int w = 20;
-    for (const SuiteLayoutSummary& row : model.summary) w = std::max(w, int(row.layout.size()));
-    std::printf("\nAcross %d scenes (error: mean LDR-FLIP over each scene's views; rank 1 = lowest in that scene):\n",
-                int(model.scenes.size()));
-    std::printf("%-*s %-12s %5s %9s %6s %6s %6s", w, "layout", "ibl", "B/px", "mean FLIP", "tied#", "mean#",
-                "worst#");
-    for (const SuiteScene& s : model.scenes) std::printf(" %16.16s", s.name.c_str());
-    std::printf("\n");
-    for (const SuiteLayoutSummary& row : model.summary) {
-        std::printf("%-*s %-12s %5d", w, row.layout.c_str(), row.iblMode.c_str(), row.bytesPerPixel);
-        if (row.scenesMeasured)
-            std::printf(" %9.5f %6s %6.2f %6d", row.meanError, row.tiedRankAcross.c_str(), row.meanRank, row.worstRank);
-        else
-            std::printf(" %9s %6s %6s %6s", "FAILED", "", "", "");
-        for (size_t s = 0; s < model.scenes.size(); ++s) {
-            char buf[40] = "-";
-            if (row.errors[s]) std::snprintf(buf, sizeof(buf), "%.5f (%s)", *row.errors[s], row.tiedRanks[s].c_str());
-            std::printf(" %16s", buf);
-        }
-        std::printf("\n");
-    }
-    std::printf("tied#: by mean FLIP over the scenes, a range where differences are not significant (%s); per scene: "
-                "its FLIP (its own tied rank); mean#, worst#: plain ranks\n", model.acrossScenes.method.c_str());
-    for (const SceneAgreement& g : model.agreement)
-        std::printf("rank agreement %s / %s (%s): Kendall's tau-b %.2f, %d of %d layout pairs swap\n", g.sceneA.c_str(),
-                    g.sceneB.c_str(), g.iblMode.c_str(), g.tau, int(g.swaps.size()), g.pairs);
-    for (const SuiteScene& s : model.scenes)
-        if (!s.ok) std::printf("scene %s FAILED: %s\n", s.name.c_str(), s.error.c_str());
-}
 
 }  // namespace
 
@@ -81,18 +50,61 @@ void completeSuiteModel(SuiteModel& model, const CompareOptions& o) {
     summariseSuite(model);
 }
 
-// What the main thread and an interruption (the watcher thread, interrupt.h) share: the scenes
-// that finished, and whether the final report is written (then an interruption writes nothing).
+// What the main thread and an interruption (a cancel request on another thread: the command
+// line's signal watcher, interrupt.h) share: the scenes that finished, and whether the final
+// report is written (then an interruption writes nothing) or the partial one.
 struct SuiteProgress {
     std::mutex mutex;
     SuiteModel model;
     bool complete = false;
+    std::optional<SuiteModel> partial;  // the report of the scenes that finished, once written
 };
+
+// Each scene's options: the suite's, with the scene's files, exposure, cameras and folder.
+CompareOptions sceneOptions(const CompareOptions& o, const SceneSpec& spec) {
+    CompareOptions so = o;
+    so.scenePath = spec.gltfPath;
+    so.envPath = spec.envPath;
+    if (spec.exposure) {
+        so.exposure = *spec.exposure;
+        so.autoExposure = false;
+    }
+    if (!spec.cameras.empty()) {
+        so.cameras = spec.cameras;
+        so.viewCount = int(spec.cameras.size());
+    }
+    so.outDir = o.outDir / "scenes" / spec.name;
+    return so;
+}
+
+// The suite's exit status from its scenes'; the line that says which failed.
+void completeResult(app::CompareResult& result, const SuiteModel& model, const fs::path& outDir) {
+    int status = 0;
+    for (const SuiteScene& s : model.scenes) {
+        if (s.exitStatus == kExitRunsFailed) status = kExitRunsFailed;
+        else if (s.exitStatus != 0 && status == 0) status = s.exitStatus;
+    }
+    if (status == kExitRunsFailed) {
+        int failed = 0;
+        for (const SuiteScene& s : model.scenes) failed += s.ok ? 0 : 1;
+        result.errors.push_back(std::to_string(failed) + " of " + std::to_string(model.scenes.size()) +
+                                " scenes failed, or some of their runs (see " +
+                                escapeText((outDir / "report.html").string()) + ")");
+    }
+    result.exitStatus = status;
+}
 
 }  // namespace
 
-int runCompareSuite(const CompareOptions& options) {
+app::CompareResult runCompareSuite(const CompareOptions& options, const app::RunControl& control) {
     const CompareOptions& o = options;
+    app::CompareResult result;
+    result.outDir = o.outDir;
+    if (const int signal = control.cancelSignal()) {  // asked before anything was read or written
+        result.interruptedBy = signal;
+        result.exitStatus = 128 + signal;
+        return result;
+    }
     // Everything given is read and checked before the first pixel: the layouts, the scenes' files.
     checkOutputDirectory(o.outDir, o.force, "--out");
     const std::vector<Layout> layouts = resolveLayouts(o.layoutsSpec);
@@ -109,13 +121,13 @@ int runCompareSuite(const CompareOptions& options) {
     writeFileAtomic(marker, "gbufferlab compare over " + std::to_string(scenes.size()) +
                                 " scenes has not finished: this folder is incomplete\n");
 
-    // SIGINT, SIGTERM: the top report of the scenes that finished (the scene in progress writes its
-    // own partial report first, compare_session.cpp), and INCOMPLETE naming the signal, as a single
-    // scene's comparison does.
+    // SIGINT, SIGTERM (a cancel request): the top report of the scenes that finished (the scene in
+    // progress writes its own partial report first, compare_session.cpp), and INCOMPLETE naming
+    // the signal, as a single scene's comparison does. Once.
     SuiteProgress progress;
     const auto interrupted = [&](int signal) {
         std::lock_guard lock(progress.mutex);
-        if (progress.complete) return;
+        if (progress.complete || progress.partial) return;
         SuiteModel partial = progress.model;
         SuiteInterruption what;
         what.signal = signalName(signal);
@@ -127,43 +139,55 @@ int runCompareSuite(const CompareOptions& options) {
         writeFileAtomic(marker, "INCOMPLETE: interrupted by " + what.signal + " after " +
                                     std::to_string(partial.scenes.size()) + " of " + std::to_string(scenes.size()) +
                                     " scenes; report.json and report.html cover only the scenes that finished\n");
+        progress.partial = std::move(partial);
     };
-    setInterruptAction(interrupted);
+    // The result of a comparison stopped by a cancel request: the partial report, written now
+    // unless the action (on the asking thread) wrote it.
+    const auto stopped = [&](int signal) {
+        if (control.cancel) control.cancel->setAction({});  // an action running is waited for
+        interrupted(signal);
+        result.interruptedBy = signal;
+        result.exitStatus = 128 + signal;
+        std::lock_guard lock(progress.mutex);
+        result.suite = progress.partial;
+        return result;
+    };
+    if (control.cancel) control.cancel->setAction(interrupted);
     struct ClearAction {
-        ~ClearAction() { setInterruptAction({}); }
-    } clearAction;
+        CancelToken* token;
+        ~ClearAction() {
+            if (token) token->setAction({});
+        }
+    } clearAction{control.cancel};
 
-    std::vector<CompareOptions> sceneOptions(scenes.size(), o);
     SuiteModel model;
     {
         CompareShared shared;  // the device, pipelines and IBL maps of every scene, freed after the last
         shared.onInterrupt = interrupted;
         double gpuPassMs = 0.0;
         for (size_t i = 0; i < scenes.size(); ++i) {
+            if (const int signal = control.cancelSignal()) return stopped(signal);
             const SceneSpec& spec = scenes[i];
-            CompareOptions& so = sceneOptions[i];
-            so.scenePath = spec.gltfPath;
-            so.envPath = spec.envPath;
-            if (spec.exposure) {
-                so.exposure = *spec.exposure;
-                so.autoExposure = false;
-            }
-            if (!spec.cameras.empty()) {
-                so.cameras = spec.cameras;
-                so.viewCount = int(spec.cameras.size());
-            }
-            so.outDir = o.outDir / "scenes" / spec.name;
+            const CompareOptions so = sceneOptions(o, spec);
             SuiteScene entry;
             entry.name = spec.name;
             entry.scene = spec.gltfPath.empty() ? "built-in scene" : spec.gltfPath;
             entry.environment = spec.envPath.empty() ? "built-in procedural sky" : spec.envPath;
-            std::printf("\n== scene %d of %d: %s ==\n", int(i + 1), int(scenes.size()), spec.name.c_str());
-            std::fflush(stdout);
+            if (control.progress)
+                control.progress->note("\n== scene " + std::to_string(i + 1) + " of " + std::to_string(scenes.size()) +
+                                       ": " + spec.name + " ==");
             try {
-                CompareSession comparison(so, &shared);
-                for (int view = 0; view < comparison.viewCount(); ++view) comparison.runView(view);
-                entry.exitStatus = comparison.finish();
-                entry.report = comparison.model();
+                CompareSession comparison(so, control, &shared);
+                for (int view = 0; view < comparison.viewCount() && !comparison.cancelled(); ++view)
+                    comparison.runView(view);
+                if (const int signal = control.cancelSignal()) {
+                    comparison.interrupted(signal);  // the scene's own partial report
+                    return stopped(signal);
+                }
+                const app::CompareResult sceneResult = comparison.finish();
+                if (control.onReport) control.onReport(sceneResult);
+                entry.exitStatus = sceneResult.exitStatus;
+                entry.report = sceneResult.report;
                 entry.scene = entry.report->run.scene;
                 entry.environment = entry.report->run.environment;
                 gpuPassMs += comparison.gpuPassMs();
@@ -172,8 +196,8 @@ int runCompareSuite(const CompareOptions& options) {
                 entry.ok = false;
                 entry.error = firstLine(e.what());
                 entry.exitStatus = kExitRunsFailed;
-                std::fprintf(stderr, "gbufferlab: error: scene %s (%s): %s\n", spec.name.c_str(), spec.origin.c_str(),
-                             entry.error.c_str());
+                if (control.progress)
+                    control.progress->error("scene " + spec.name + " (" + spec.origin + "): " + entry.error);
             }
             std::lock_guard lock(progress.mutex);
             progress.model.scenes.push_back(std::move(entry));
@@ -182,26 +206,17 @@ int runCompareSuite(const CompareOptions& options) {
         model = progress.model;
         completeSuiteModel(model, o);
         writeSuiteReport(o.outDir, model);
-        printSuiteTable(model);
-        reportStageTimes(o.outDir, StageClock::global().read(), gpuPassMs, shared.ctx &&
-                             shared.ctx->info.type == VK_PHYSICAL_DEVICE_TYPE_CPU);
+        result.timings = collectTimings(StageClock::global().read(), gpuPassMs,
+                                        shared.ctx && shared.ctx->info.type == VK_PHYSICAL_DEVICE_TYPE_CPU);
+        writeTimings(o.outDir, *result.timings);
         std::error_code ec;
         fs::remove(marker, ec);
         progress.complete = true;
     }
-    std::printf("report: %s\n", (o.outDir / "report.html").string().c_str());
-    int status = 0;
-    for (const SuiteScene& s : model.scenes) {
-        if (s.exitStatus == kExitRunsFailed) status = kExitRunsFailed;
-        else if (s.exitStatus != 0 && status == 0) status = s.exitStatus;
-    }
-    if (status == kExitRunsFailed) {
-        int failed = 0;
-        for (const SuiteScene& s : model.scenes) failed += s.ok ? 0 : 1;
-        std::fprintf(stderr, "gbufferlab: error: %d of %d scenes failed, or some of their runs (see %s)\n", failed,
-                     int(model.scenes.size()), escapeText((o.outDir / "report.html").string()).c_str());
-    }
-    return status;
+    completeResult(result, model, o.outDir);
+    result.suite = std::move(model);
+    if (control.onReport) control.onReport(result);
+    return result;
 }
 
 }  // namespace gbl::compare

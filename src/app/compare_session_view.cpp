@@ -2,9 +2,9 @@
 // ground truth, the IBL figure (first view), then every layout under every mode.
 #include <cstdio>
 
-#include "compare_console.h"
 #include "compare_session.h"
 #include "compare_temporal.h"
+#include "compare_text.h"
 #include "host_profile.h"
 #include "ibl_figure.h"
 #include "image_io.h"
@@ -205,6 +205,7 @@ void CompareSession::runLayouts(int view, const References& references) {
             bandedReferenceMode_ = m;
         }
         for (const Layout& layout : layouts_) {
+            if (cancelled()) return;  // asked to stop: no run starts after the request
             progress_->begin(layout.name + " / " + o.modeNames[m] + viewLabel);
             if (!firstView && model_.runs.at(runIndex_).status == RunStatus::Failed) {
                 progress_->end("skipped: failed in view 0");

@@ -1,6 +1,7 @@
 #pragma once
-// compare's command line: every flag read and checked before anything is rendered, so that a bad
-// value is one line naming the flag and the fix, and no output folder is touched for it.
+// What a comparison is asked to do: the scenes, layouts, IBL modes, size, views, output folder and
+// the rest, each field's default the one of `gbufferlab compare` without its flag (the command
+// line reads its flags into it: cli/compare_flags.h; app/compare_api.h runs it).
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -31,12 +32,12 @@ struct CompareOptions {
     std::string envPath;    // empty: the built-in sky
     bool allowOutsideScene = false;
     std::optional<std::string> layoutsSpec;  // --layouts as given; unset: all
-    std::vector<IblMode> modes;              // --ibl, in the order given
-    std::vector<std::string> modeNames;      // their names, as given
+    std::vector<IblMode> modes = {IblMode::SplitSum};  // --ibl, in the order given
+    std::vector<std::string> modeNames = {"split-sum"};  // their names, as given
     int splitSumShaderSamples = 1024;
     int gtBatchSamples = 64;
     int gtMaxBatches = 256;
-    double gtNoise = 0.002;
+    double gtNoise = 0.002f;  // as --gt-noise reads it: a float
     IblSettings iblSettings;
     uint32_t width = 1920, height = 1080;
     int viewCount = 3;
@@ -57,16 +58,12 @@ struct CompareOptions {
     // frame, no jitter (the code path of a comparison without the flag).
     int temporalFrames = 1;
     ResolveMethod resolve = ResolveMethod::Mean;
-    std::string commandLine;                // "gbufferlab compare" and the arguments, for the report
+    std::string commandLine;  // "gbufferlab compare" and the arguments, for the report ("": none)
 
     // Several modes with ground-truth among them: each mode's reference is also compared with the
     // ground truth's (the error of the lighting approximation).
     bool compareLighting() const;
 };
-
-// The options of `gbufferlab compare ARGS`; unset when --help was asked (the help is printed).
-// Throws UserError for anything the user must fix.
-std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>& args);
 
 // --layouts: names in layouts/ or .toml paths, or all (unset: all), loaded and validated; two of
 // one name (requireDistinctRunNames) are a UserError.
