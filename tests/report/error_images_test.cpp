@@ -14,6 +14,7 @@
 #include "png_writer.h"
 #include "run_metrics.h"
 #include "worst_regions.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -21,17 +22,8 @@ namespace fs = std::filesystem;
 using gbl::Image;
 using gbl::Image8;
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::random_device rd;
-        path = fs::temp_directory_path() / ("gbl_error_images_" + std::to_string(rd()) + std::to_string(rd()));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
+struct TempDir : gbl::test::TempDir {
+    TempDir() : gbl::test::TempDir("gbl_error_images_") {}
 };
 
 bool sameRgb(const Image8& im, int x, int y, gbl::Rgb8 c) {
