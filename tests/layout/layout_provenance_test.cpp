@@ -17,6 +17,7 @@
 #include "layout.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "layout_text.h"
 
 using namespace gbl;
 
@@ -147,39 +148,11 @@ TEST(LayoutProvenance, GoodProvenanceParsesIntoEveryEntry) {
 
 // A user's own layout: no [sources], no provenance, nothing said about it.
 TEST(LayoutProvenance, LayoutWithoutSourcesNeedsNone) {
-    const char* bare = R"(name = "x"
-title = "t"
-pipeline = "deferred-shading"
-source = { engine = "e", code = "c", year = 2020 }
-
-[depth]
-format = "D32_SFLOAT"
-
-[[target]]
-name = "rt0"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "normal", encoding = "normal_xyz", at = ["r", "g", "b"] },
-  { attribute = "roughness", encoding = "unorm", at = "a" },
-]
-
-[fallback]
-base_color = 0.5
-metallic = 0.0
-specular = 0.5
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = "forward"
-
-[space]
-normal = "world"
-up = "y"
-
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-)";
+    const std::string bare = test::LayoutText("x", "t", R"({ engine = "e", code = "c", year = 2020 })")
+                                 .target("rt0", "R8G8B8A8_UNORM",
+                                         {R"(attribute = "normal", encoding = "normal_xyz", at = ["r", "g", "b"])",
+                                          R"(attribute = "roughness", encoding = "unorm", at = "a")"})
+                                 .fallback("emissive", "\"forward\"");
     EXPECT_EQ(diagnosticsOf(bare), "");
     const Layout l = parseLayout(bare, "x.toml");
     EXPECT_FALSE(l.sourcesDeclared);

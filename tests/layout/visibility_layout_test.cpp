@@ -5,6 +5,7 @@
 #include "layout.h"
 #include "layout_catalog.h"
 #include "layout_test_support.h"
+#include "layout_text.h"
 
 namespace gbl {
 namespace {
@@ -16,20 +17,9 @@ using layout_test::joined;
 using layout_test::kFile;
 using layout_test::placeOf;
 
-const std::string kVisibility = R"(name = "vis"
-title = "A visibility buffer"
-pipeline = "visibility-buffer"
-source = { engine = "none", talk = "unit test", year = 2024 }
-
-[depth]
-format = "D32_SFLOAT"
-
-[ids]
-format = "R32_UINT"
-triangle_bits = 23
-draw_bits = 8
-alpha_mask_bit = true
-)";
+// A visibility buffer: The Forge's split of R32_UINT.
+const std::string kVisibility = test::LayoutText("vis", "A visibility buffer", test::kTestSource, "visibility-buffer")
+                                    .ids("format = \"R32_UINT\"\ntriangle_bits = 23\ndraw_bits = 8\nalpha_mask_bit = true\n");
 
 TEST(VisibilityLayout, TheSmallOneIsValidAndReadsAsWritten) {
     EXPECT_TRUE(checkLayout(kVisibility, kFile).empty()) << joined(checkLayout(kVisibility, kFile));
@@ -103,23 +93,10 @@ TEST(VisibilityLayout, BadIdsAreErrorsAtTheirPlace) {
 }
 
 // Nanite's and Bevy's meshlet ids: a depth word, an offset on the draw (cluster) field, clusters.
-const std::string kNanite = R"(name = "vis"
-title = "Nanite-like ids"
-pipeline = "visibility-buffer"
-source = { engine = "none", talk = "unit test", year = 2024 }
-
-[depth]
-format = "D32_SFLOAT"
-reversed_z = true
-
-[ids]
-format = "R32G32_UINT"
-triangle_bits = 7
-draw_bits = 25
-draw_offset = 1
-cluster_triangles = 128
-depth_word = 1
-)";
+const std::string kNanite = test::LayoutText("vis", "Nanite-like ids", test::kTestSource, "visibility-buffer")
+                                .depth("format = \"D32_SFLOAT\"\nreversed_z = true\n")
+                                .ids("format = \"R32G32_UINT\"\ntriangle_bits = 7\ndraw_bits = 25\ndraw_offset = 1\n"
+                                     "cluster_triangles = 128\ndepth_word = 1\n");
 
 TEST(VisibilityLayout, DepthWordOffsetAndClustersReadAsWritten) {
     EXPECT_TRUE(checkLayout(kNanite, kFile).empty()) << joined(checkLayout(kNanite, kFile));
