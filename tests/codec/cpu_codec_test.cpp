@@ -24,43 +24,29 @@
 #include "layout_catalog.h"
 #include "encodings_fast.h"
 #include "parallel_for.h"
+#include "surface_support.h"
 #include "wiring_codegen.h"
 
 namespace gbl {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// The former per-pixel codec, unchanged apart from its namespace.
+// The former per-pixel codec, unchanged apart from its namespace and the Surface member lookup,
+// which is the tests' own (surface_support.h).
 namespace reference {
 
 using namespace enc;
 
 int components(Attribute a) { return attributeInfo(a).components; }
 
-float* member(Surface& s, Attribute a) {
-    switch (a) {
-        case Attribute::Normal: return &s.normal.x;
-        case Attribute::BaseColor: return &s.baseColor.x;
-        case Attribute::Metallic: return &s.metallic;
-        case Attribute::Roughness: return &s.roughness;
-        case Attribute::Specular: return &s.specular;
-        case Attribute::SpecularColor: return &s.specularColor.x;
-        case Attribute::DiffuseColor: return &s.diffuseColor.x;
-        case Attribute::Occlusion: return &s.occlusion;
-        case Attribute::Emissive: return &s.emissive.x;
-        case Attribute::Position: return &s.position.x;
-        case Attribute::Depth: return &s.position.z;  // a stored window depth rides in position.z (wiring_plan.h)
-        default: return nullptr;
-    }
-}
-const float* member(const Surface& s, Attribute a) { return member(const_cast<Surface&>(s), a); }
+using test::memberOf;  // the Surface member of an attribute (a stored window depth rides in position.z)
 
 bool isScalar(const Field& f) {
     return f.encoding == kIdEncoding || findEncoding(f.encoding)->kind == AttributeKind::Scalar;
 }
 
 float componentValue(const Field& f, const Surface& s, int i) {
-    if (const float* m = member(s, f.attribute)) return m[i];
+    if (const float* m = memberOf(s, f.attribute)) return m[i];
     return f.value.empty() ? 0.0f : float(f.value[std::min<size_t>(size_t(i), f.value.size() - 1)]);
 }
 vec3 wholeValue(const Field& f, const Surface& s) {
@@ -257,7 +243,7 @@ int mirror(int p, int size) {
 }
 
 void setMember(Surface& s, Attribute a, vec3 v) {
-    float* m = member(s, a);
+    float* m = memberOf(s, a);
     if (!m) return;
     for (int i = 0; i < components(a); ++i) m[i] = v[i];
 }
@@ -322,7 +308,7 @@ CpuGBuffer encodeGBuffer(const Layout& layout, const std::vector<Surface>& surfa
             for (int c = 0; c < slot.components; ++c) {
                 const int k = slot.firstFloat + c;
                 g.materialWords[size_t(k / 4)][i * 4 + size_t(k % 4)] =
-                    floatBitsToUint(member(surfaces[i], slot.attribute)[c]);
+                    floatBitsToUint(memberOf(surfaces[i], slot.attribute)[c]);
             }
     return g;
 }
@@ -348,7 +334,7 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                 };
                 const uint32_t* w = wordsAt(x, y);
                 for (const Field& f : tg.fields) {
-                    if (!member(s, f.attribute)) continue;
+                    if (!memberOf(s, f.attribute)) continue;
                     const EncodingInfo* info = findEncoding(f.encoding);
                     if (info && info->needsNeighbours) {
                         ColorFn fwd = nullptr, inv = nullptr;
@@ -400,15 +386,6 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
 }  // namespace reference
 
 // ---------------------------------------------------------------------------------------------
-
-std::vector<Layout> allLayouts() {
-    std::vector<Layout> v;
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    for (const std::string& name : listLayoutNames(dir)) v.push_back(loadLayoutFile(dir / (name + ".toml")));
-    // A visibility buffer stores no attribute (its ids: tests/render/visibility_test.cpp).
-    std::erase_if(v, [](const Layout& l) { return l.pipeline == Pipeline::VisibilityBuffer; });
-    return v;
-}
 
 glm::vec3 randomUnit(std::mt19937& rng) {
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
@@ -495,7 +472,7 @@ size_t compareSurfaces(const std::vector<Surface>& a, const std::vector<Surface>
 // ---------------------------------------------------------------------------------------------
 
 TEST(CpuCodec, EveryLayoutMatchesTheReferenceAtEveryThreadCount) {
-    const std::vector<Layout> layouts = allLayouts();
+    const std::vector<Layout> layouts = test::shippedAttributeLayouts();
     ASSERT_GE(layouts.size(), 7u);
     // Sizes: block edges (kBlock = 128 pixels per row block), one row, one column, one pixel, and
     // more rows than threads and fewer.
@@ -531,7 +508,7 @@ TEST(CpuCodec, EveryLayoutMatchesTheReferenceAtEveryThreadCount) {
 // A large image, where every thread gets many bands' worth of rows, at 1 and 2 threads.
 TEST(CpuCodec, LargeImageIsTheSameAtOneAndTwoThreads) {
     constexpr int w = 640, h = 360;
-    for (const Layout& layout : allLayouts()) {
+    for (const Layout& layout : test::shippedAttributeLayouts()) {
         SCOPED_TRACE(layout.name);
         const std::vector<Surface> in = makeSurfaces(w, h, 99u);
         const CpuCodec one(layout, CpuCodecOptions{1}), two(layout, CpuCodecOptions{2});

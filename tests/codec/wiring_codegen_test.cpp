@@ -15,20 +15,12 @@
 #include "encodings.h"
 #include "layout_catalog.h"
 #include "shader_compiler.h"
+#include "surface_support.h"
 #include "wiring_codegen.h"
 
 using namespace gbl;
 
 namespace {
-
-std::vector<Layout> allLayouts() {
-    std::vector<Layout> v;
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    for (const std::string& name : listLayoutNames(dir)) v.push_back(loadLayoutFile(dir / (name + ".toml")));
-    // A visibility buffer stores no attribute (its ids: tests/render/visibility_test.cpp).
-    std::erase_if(v, [](const Layout& l) { return l.pipeline == Pipeline::VisibilityBuffer; });
-    return v;
-}
 
 void compileWith(const std::string& shader, const GBufferWiring& w,
                  std::vector<std::pair<std::string, std::string>> defines = {}) {
@@ -84,7 +76,7 @@ double unormBound(int b) { return (0.5 + std::ldexp(1.0, b - 24)) / (std::ldexp(
 }  // namespace
 
 TEST(WiringCodegen, GeneratedGlslCompilesForEveryLayout) {
-    const std::vector<Layout> layouts = allLayouts();
+    const std::vector<Layout> layouts = test::shippedAttributeLayouts();
     ASSERT_GE(layouts.size(), 7u);
     for (const Layout& l : layouts) {
         for (bool native : {false, true}) {
@@ -141,7 +133,7 @@ TEST(WiringCodegen, WiringFlagsAndFormats) {
 // encoder that reads the table.
 TEST(WiringCodegen, BestFitTableFlagFollowsTheGeneratedGlsl) {
     int flagged = 0, clear = 0;
-    for (const Layout& l : allLayouts()) {
+    for (const Layout& l : test::shippedAttributeLayouts()) {
         const GBufferWiring w = generateWiring(l);
         const bool calls = w.glsl.find("encodeNormalBestFit(") != std::string::npos;
         EXPECT_EQ(w.bestFitTable, calls) << l.name;
@@ -164,7 +156,7 @@ TEST(WiringCodegen, LayoutsGlslCommandPrintsTheWiring) {
 
 TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
     constexpr int W = 64, H = 48;
-    for (const Layout& l : allLayouts()) {
+    for (const Layout& l : test::shippedAttributeLayouts()) {
         SCOPED_TRACE(l.name);
         const std::vector<Surface> in = makeSurfaces(W, H, 7u);
         const CpuGBuffer g = encodeGBuffer(l, in, W, H);

@@ -42,12 +42,8 @@ const Renders& renders() {
         const Scene scene = makeDefaultScene();
         const EnvironmentMap sky = makeProceduralSky(64);
         Renderer renderer(test::sharedContext(), scene, sky);
-        RenderSettings rs;
-        rs.width = kWidth;
-        rs.height = kHeight;
+        RenderSettings rs = test::decodedFrame(kWidth, kHeight);
         rs.splitSumShaderSamples = 16;
-        rs.decodeSurfaces = true;
-        rs.readTargetWords = false;
         x.reference = renderer.render(makeReferenceWiring(), rs);
         x.test = renderer.render(generateWiring(loadLayout("crysis3-thin")), rs);
         return x;

@@ -61,11 +61,7 @@ const Renders& renders() {
         const Scene scene = makeDefaultScene();
         const EnvironmentMap sky = makeProceduralSky(64);
         Renderer renderer(test::sharedContext(), scene, sky);
-        RenderSettings rs;
-        rs.width = 256;
-        rs.height = 144;
-        rs.decodeSurfaces = true;
-        rs.readTargetWords = false;
+        const RenderSettings rs = test::decodedFrame(256, 144);
         x.reference = renderer.render(makeReferenceWiring(), rs);
         x.ue4 = renderer.render(generateWiring(loadLayout("ue4")), rs);
         x.crysis = renderer.render(generateWiring(loadLayout("crysis3-thin")), rs);
