@@ -125,6 +125,12 @@ size_t compareDecoded(const Layout& layout, const uint32_t* out, size_t stride, 
 uint32_t codeOfValue(RealKind k, uint32_t bits, uint32_t word, int channelBits, bool& ok) {
     float f;
     std::memcpy(&f, &word, 4);
+    // A small float or sRGB code: the value must be the code's exact value.
+    auto exactly = [&](uint32_t (*encode)(float), float (*decode)(uint32_t)) {
+        const uint32_t c = encode(f);
+        ok = ok && decode(c) == f;
+        return c;
+    };
     switch (k) {
         case RealKind::Uint: return word;
         case RealKind::Float32: return word;
@@ -137,26 +143,10 @@ uint32_t codeOfValue(RealKind k, uint32_t bits, uint32_t word, int channelBits, 
             ok = ok && std::abs(r) - std::abs(code) >= 0.0 && std::abs(r) - std::abs(code) < 0.25 && std::trunc(r) == code;
             return uint32_t(int32_t(code)) & (channelBits >= 32 ? 0xffffffffu : (1u << channelBits) - 1u);
         }
-        case RealKind::Srgb: {
-            const uint32_t c = enc::encodeSrgb8(f);
-            ok = ok && enc::decodeSrgb8(c) == f;
-            return c;
-        }
-        case RealKind::Float16: {
-            const uint32_t c = enc::encodeFloat16(f);
-            ok = ok && enc::decodeFloat16(c) == f;
-            return c;
-        }
-        case RealKind::Float11: {
-            const uint32_t c = enc::encodeFloat11(f);
-            ok = ok && enc::decodeFloat11(c) == f;
-            return c;
-        }
-        case RealKind::Float10: {
-            const uint32_t c = enc::encodeFloat10(f);
-            ok = ok && enc::decodeFloat10(c) == f;
-            return c;
-        }
+        case RealKind::Srgb: return exactly(enc::encodeSrgb8, enc::decodeSrgb8);
+        case RealKind::Float16: return exactly(enc::encodeFloat16, enc::decodeFloat16);
+        case RealKind::Float11: return exactly(enc::encodeFloat11, enc::decodeFloat11);
+        case RealKind::Float10: return exactly(enc::encodeFloat10, enc::decodeFloat10);
     }
     (void)bits;
     return 0;

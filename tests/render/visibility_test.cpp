@@ -177,7 +177,8 @@ TEST_F(VisibilityTest, TooManyTrianglesForTheIdsIsOneLineNamingTheFix) {
     Renderer renderer(ctx(), scene, sky);
     const Layout narrow =
         parseLayout(test::LayoutText("narrow-ids", "4-bit triangle ids", test::kTestSource, "visibility-buffer")
-                        .ids("format = \"R32_UINT\"\ntriangle_bits = 4\ndraw_bits = 8\n"),
+                        .ids("format = \"R32_UINT\"\ntriangle_bits = 4\ndraw_bits = 8\n")
+                        .text(),
                     "narrow-ids.toml");
     RenderSettings settings;
     settings.width = kTinyW;
@@ -310,7 +311,8 @@ TEST_F(VisibilityTest, TooManyClustersForTheIdsIsOneLineNamingTheFix) {
         parseLayout(test::LayoutText("narrow-clusters", "2-bit cluster ids", test::kTestSource, "visibility-buffer")
                         .depth("format = \"D32_SFLOAT\"\nreversed_z = true\n")
                         .ids("format = \"R32G32_UINT\"\ntriangle_bits = 4\ndraw_bits = 2\ndraw_offset = 1\n"
-                             "cluster_triangles = 16\ndepth_word = 1\n"),
+                             "cluster_triangles = 16\ndepth_word = 1\n")
+                        .text(),
                     "narrow-clusters.toml");
     RenderSettings settings;
     settings.width = kTinyW;

@@ -148,19 +148,26 @@ TEST(ErrorImages, SrgbFloatTo8Rounds) {
 
 // ---- Files -------------------------------------------------------------------------------------
 
+// The metrics of `test` against `ref` with a w x h HDR image `hdrScale` times the reference's,
+// their error maps in `maps`.
+gbl::RunMetrics metricsOf(const gbl::SurfaceImages& ref, const gbl::SurfaceImages& test, int w, int h, float hdrScale,
+                          gbl::RunErrorMaps& maps) {
+    const Image hdr = makeHdr(w, h);
+    Image hdrTest = hdr;
+    for (float& v : hdrTest.pixels) v *= hdrScale;
+    gbl::RunMetricsOptions options;
+    options.maps = &maps;
+    return gbl::computeRunMetrics(ref, test, hdr, hdrTest, 1.0f, options);
+}
+
 TEST(ErrorImages, WritesEveryImageAndTheExrRoundTrips) {
     const int w = 48, h = 36;
     const gbl::SurfaceImages ref = makeSurface(w, h);
     gbl::SurfaceImages test = ref;
     for (float& v : test.roughness.pixels) v += 0.01f;
     for (size_t i = 0; i < test.normal.pixelCount(); ++i) test.normal.pixels[i * 3] = 0.05f;
-    const Image hdr = makeHdr(w, h);
-    Image hdrTest = hdr;
-    for (float& v : hdrTest.pixels) v *= 1.05f;
     gbl::RunErrorMaps maps;
-    gbl::RunMetricsOptions options;
-    options.maps = &maps;
-    const gbl::RunMetrics metrics = gbl::computeRunMetrics(ref, test, hdr, hdrTest, 1.0f, options);
+    const gbl::RunMetrics metrics = metricsOf(ref, test, w, h, 1.05f, maps);
 
     TempDir dir;
     gbl::ErrorImageOptions o;
@@ -217,13 +224,8 @@ TEST(ErrorImages, PathsAreKnownBeforeWritingAndHalfExrHoldsRoundedValues) {
     const gbl::SurfaceImages ref = makeSurface(w, h);
     gbl::SurfaceImages test = ref;
     for (float& v : test.roughness.pixels) v += 0.013f;
-    const Image hdr = makeHdr(w, h);
-    Image hdrTest = hdr;
-    for (float& v : hdrTest.pixels) v *= 1.07f;
     gbl::RunErrorMaps maps;
-    gbl::RunMetricsOptions options;
-    options.maps = &maps;
-    const gbl::RunMetrics metrics = gbl::computeRunMetrics(ref, test, hdr, hdrTest, 1.0f, options);
+    const gbl::RunMetrics metrics = metricsOf(ref, test, w, h, 1.07f, maps);
     TempDir dir;
     gbl::ErrorImageOptions o;
     o.exrType = gbl::ExrPixelType::Half;

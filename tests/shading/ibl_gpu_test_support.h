@@ -42,9 +42,7 @@ inline Scene furnaceScene(Scene scene) {
 
 // A width x height render of the specular IBL alone (no diffuse IBL), in `mode`.
 inline RenderSettings specularOnly(uint32_t width, uint32_t height, IblMode mode) {
-    RenderSettings rs;
-    rs.width = width;
-    rs.height = height;
+    RenderSettings rs = test::frame(width, height);
     rs.diffuseIbl = false;
     rs.specularIbl = mode;
     return rs;

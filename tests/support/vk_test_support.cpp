@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "procedural_sky.h"
 #include "vk_pipeline.h"
 #include "wiring_plan.h"
 
@@ -119,13 +120,27 @@ void main() {
 }
 )";
 
-RenderSettings decodedFrame(uint32_t width, uint32_t height) {
+RenderSettings frame(uint32_t width, uint32_t height) {
     RenderSettings s;
     s.width = width;
     s.height = height;
+    return s;
+}
+
+RenderSettings decodedFrame(uint32_t width, uint32_t height) {
+    RenderSettings s = frame(width, height);
     s.decodeSurfaces = true;
     s.readTargetWords = false;
     return s;
+}
+
+std::vector<RenderOutput> renderDefaultScene(const RenderSettings& settings, const std::vector<GBufferWiring>& wirings) {
+    const Scene scene = makeDefaultScene();
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(sharedContext(), scene, sky);
+    std::vector<RenderOutput> out;
+    for (const GBufferWiring& w : wirings) out.push_back(renderer.render(w, settings));
+    return out;
 }
 
 std::vector<uint32_t> targetWords(const VulkanContext& ctx, const GpuImage& target, size_t pixels) {

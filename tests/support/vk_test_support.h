@@ -122,9 +122,14 @@ std::string wiringKernel(const std::string& body);
 // A full-screen triangle's vertex shader (depth 0.5: it passes LESS and reversed-Z GREATER).
 extern const char* const kFullScreenTriangleVertex;
 
+// The settings of a width x height frame.
+RenderSettings frame(uint32_t width, uint32_t height);
 // A width x height frame whose decoded Surfaces come back (decodeSurfaces) without the targets'
 // raw words (readTargetWords off).
 RenderSettings decodedFrame(uint32_t width, uint32_t height);
+// The built-in default scene under the built-in sky (makeProceduralSky(64)), rendered with
+// `settings` through each of `wirings` in turn by one Renderer.
+std::vector<RenderOutput> renderDefaultScene(const RenderSettings& settings, const std::vector<GBufferWiring>& wirings);
 
 // The words of a render target in SHADER_READ_ONLY_OPTIMAL, `pixels` texels: one word per texel
 // for R8 / R16 targets (texelsToWords).
