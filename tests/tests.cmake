@@ -1,6 +1,6 @@
 # Each test: gbl_test(<folder>/<file name without .cpp> LABELS unit|gpu DEPS <libraries>).
-# Every test links gbl_test_support; gbl_test_support_codec and gbl_test_support_vk (gpu tests only)
-# are named where a test uses them (tests/support/support.cmake).
+# Every test links gbl_test_support; gbl_test_support_layout, gbl_test_support_codec and
+# gbl_test_support_vk (gpu tests only) are named where a test uses them (tests/support/support.cmake).
 # tests/ mirrors src/: a test lives in the folder of the library it tests.
 # "unit" tests use no Vulkan and also run under the sanitizer build; "gpu" tests need a driver.
 gbl_test(base/stage_clock_test LABELS unit DEPS gbl_base)
@@ -39,18 +39,18 @@ gbl_test(encoding/codec_tables_test LABELS unit DEPS gbl_encoding gbl_gpu)  # th
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_reads_test LABELS unit DEPS gbl_layout)  # encodings that read another attribute (niagara)
-gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout)
+gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout gbl_test_support_layout)
 gbl_test(layout/layout_mutants_test LABELS unit TIMEOUT 900 DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
-gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli)  # [sources], from / status, `layouts show`
-gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli gbl_test_support_codec)
+gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli gbl_test_support_layout)  # [sources], from / status, `layouts show`
+gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli gbl_test_support_layout)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec gbl_test_support_codec)
-gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec)
-gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec)  # Nanite's and Bevy's 64-bit ids, reimplemented, vs the packing
+gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec gbl_test_support_layout)
+gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec gbl_test_support_layout)  # Nanite's and Bevy's 64-bit ids, reimplemented, vs the packing
 gbl_test(codec/gpu_cpu_bits_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render gbl_test_support_vk)  # every layout on the GPU: 150 s alone
 gbl_test(codec/visibility_bits_test LABELS gpu DEPS gbl_codec gbl_render gbl_test_support_vk)  # the ids' GLSL vs its C++ twin
 gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render gbl_test_support_vk)
-gbl_test(codec/layout_export_test LABELS unit DEPS gbl_codec gbl_gpu gbl_test_support_codec)  # HLSL / GLSL export: compiles, names, exact UNORM values
+gbl_test(codec/layout_export_test LABELS unit DEPS gbl_codec gbl_gpu gbl_test_support_layout)  # HLSL / GLSL export: compiles, names, exact UNORM values
 gbl_test(codec/export_tables_test LABELS unit DEPS gbl_codec gbl_gpu)  # the tables as select trees vs the C++ twins
 gbl_test(codec/layout_export_gpu_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render gbl_test_support_vk)  # the export on lavapipe: real formats vs the CPU mirror
 if(TARGET layout_export_gpu_test)  # every shipped layout, in two halves that ctest -j2 runs side by side

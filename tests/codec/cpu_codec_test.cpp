@@ -20,6 +20,7 @@
 #include "cpu_codec.h"
 #include "encoding_registry.h"
 #include "encodings.h"
+#include "layout_files.h"
 #include "niagara_encodings.h"
 #include "layout_catalog.h"
 #include "encodings_fast.h"
@@ -521,7 +522,7 @@ TEST(CpuCodec, LargeImageIsTheSameAtOneAndTwoThreads) {
 // Checkerboard chroma with a geometry mask: the optimised decode equals the per-pixel reference,
 // and a silhouette pixel never takes chroma from a neighbour without geometry.
 TEST(CpuCodec, CheckerboardChromaSkipsPixelsWithoutGeometry) {
-    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "crysis3-thin.toml");
+    const Layout layout = test::shippedLayout("crysis3-thin");
     const CpuCodec codec(layout);
     for (const auto& [w, h] : {std::pair<int, int>{131, 67}, {2, 2}, {1, 9}}) {
         CpuGBuffer g = codec.encode(makeSurfaces(w, h, 7u), w, h);
@@ -566,12 +567,11 @@ namespace gbl {
 // keeps 542 and 826). HDRP's GBuffer1 clear is Color.black = (0, 0, 0, 1): octahedral codes (0, 0)
 // and roughness code 255; URP's accurate-normals GBuffer2 clears to 0 (RenderGraph).
 TEST(CpuCodec, EngineClearWordsAreTheEnginesClearColours) {
-    const std::filesystem::path dir(GBL_SOURCE_LAYOUT_DIR);
-    const auto niagara = clearWords(loadLayoutFile(dir / "niagara.toml"));
+    const auto niagara = clearWords(test::shippedLayout("niagara"));
     ASSERT_EQ(niagara.size(), 2u);
     EXPECT_EQ(niagara[0][0], 135u | 206u << 8 | 250u << 16 | 15u << 24);
     EXPECT_EQ(niagara[1][0], 542u | 826u << 10 | 1003u << 20);
-    const auto hdrp = clearWords(loadLayoutFile(dir / "hdrp-lit.toml"));
+    const auto hdrp = clearWords(test::shippedLayout("hdrp-lit"));
     ASSERT_EQ(hdrp.size(), 4u);
     EXPECT_EQ(hdrp[1][0], 0xFF000000u);  // GBuffer1: R = G = B = 0 (codes (0, 0)), A = 255
     // GBuffer0: diffuse 0; its alpha, specular occlusion, is an extra (1 in every pixel: the
@@ -579,13 +579,13 @@ TEST(CpuCodec, EngineClearWordsAreTheEnginesClearColours) {
     EXPECT_EQ(hdrp[0][0], 0xFF000000u);
     EXPECT_EQ(hdrp[2][0], 0u);
     EXPECT_EQ(hdrp[3][0], 0u);  // GBuffer3: Color.clear, the word 0, not the AO tag
-    EXPECT_EQ(clearWords(loadLayoutFile(dir / "hdrp-lit-apv.toml"))[3][0], 0u);
-    const auto urp = clearWords(loadLayoutFile(dir / "urp-deferred-accurate.toml"));
+    EXPECT_EQ(clearWords(test::shippedLayout("hdrp-lit-apv"))[3][0], 0u);
+    const auto urp = clearWords(test::shippedLayout("urp-deferred-accurate"));
     ASSERT_EQ(urp.size(), 3u);
     EXPECT_EQ(urp[2][0], 0u);  // GBuffer2: octahedral codes (0, 0), smoothness 0
     // UE clears every G-buffer code to 0; its extras (shading model, mask, per-object, precomputed
     // shadow) are the one documented difference: gbufferlab writes their values in every pixel.
-    const auto ue5 = clearWords(loadLayoutFile(dir / "ue5.toml"));
+    const auto ue5 = clearWords(test::shippedLayout("ue5"));
     ASSERT_EQ(ue5.size(), 5u);
     EXPECT_EQ(ue5[0][0], 1u << 30);           // GBufferA: normal codes 0, per-object code 1
     EXPECT_EQ(ue5[1][0], 0x81u << 24);        // GBufferB: B8G8R8A8, alpha = 1 | 8 << 4

@@ -14,6 +14,7 @@
 #include "cpu_codec.h"
 #include "encodings.h"
 #include "layout_catalog.h"
+#include "layout_files.h"
 #include "layout_text.h"
 #include "renderer_passes.h"
 #include "shader_compiler.h"
@@ -276,8 +277,7 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
 // same words at every index. The codes move from frame to frame and repeat after 64 frames; the
 // field as niagara declares it (no frame term) ignores the index.
 TEST_F(GpuCpuBits, DitherThatMovesWithTimePacksTheSameWordsAtEveryFrame) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    Layout layout = loadLayoutFile(dir / "niagara.toml");
+    Layout layout = test::shippedLayout("niagara");
     Field* dithered = nullptr;
     for (Target& t : layout.targets)
         for (Field& f : t.fields)
@@ -382,7 +382,7 @@ TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
 // floats beside them, on its two ends and beyond them, so that the GLSL search is held to the CPU's
 // code at every boundary, not only at the random Surfaces' roughnesses.
 TEST_F(GpuCpuBits, Killzone2PowerPacksTheSameWordsOnItsThresholds) {
-    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "killzone2.toml");
+    const Layout layout = test::shippedLayout("killzone2");
     std::vector<Surface> surfaces = randomSurfaces(910);
     std::vector<float> probes = {0.0f, -0.0f, 1.0f, 2.0f, -1.0f, 0.1f, 0.95f, enc::kKz2PowerRoughness[0],
                                  enc::kKz2PowerRoughness[255]};
@@ -496,7 +496,7 @@ uint32_t theForgePackVisBufData(bool opaque, uint32_t drawId, uint32_t triangleI
 // (The Forge masks the excess away, and so must gbufferlab), then unpacked as its shade pass does.
 TEST_F(GpuCpuBits, VisibilityIdsEqualTheForgesPackVisBufData) {
     VulkanContext& c = ctx();
-    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-32.toml");
+    const Layout layout = test::shippedLayout("visibility-32");
     ASSERT_EQ(layout.pipeline, Pipeline::VisibilityBuffer);
     const GBufferWiring w = generateWiring(layout);
     constexpr uint32_t kIds = 1u << 20;

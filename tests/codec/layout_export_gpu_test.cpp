@@ -27,6 +27,7 @@
 #include "export_glsl_library.h"
 #include "export_header.h"
 #include "layout_export.h"
+#include "layout_files.h"
 #include "renderer_passes.h"
 #include "shader_compiler.h"
 #include "surface_support.h"

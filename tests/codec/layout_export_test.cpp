@@ -16,7 +16,7 @@
 #include "layout_export.h"
 #include "layout_text.h"
 #include "shader_compiler.h"
-#include "surface_support.h"
+#include "layout_files.h"
 
 namespace gbl {
 namespace {

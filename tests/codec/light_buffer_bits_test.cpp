@@ -15,7 +15,7 @@
 #include "layout_catalog.h"
 #include "light_buffer_wiring.h"
 #include "shader_compiler.h"
-#include "surface_support.h"
+#include "layout_files.h"
 #include "vk_test_support.h"
 
 namespace gbl {
@@ -161,8 +161,7 @@ TEST_F(LightBufferBits, ShippedDeferredLightingLayoutsAgreeWithTheCpuMirror) {
 // The encodings and channel orders no shipped layout uses: R11G11B10F, RGBK in B8G8R8A8 with
 // another range, and Engel's light pre-pass (one buffer: diffuse RGB + specular luminance).
 TEST_F(LightBufferBits, OtherEncodingsAndEngelsLuminanceAgreeWithTheCpuMirror) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    const Layout base = loadLayoutFile(dir / "crysis2-slim.toml");
+    const Layout base = test::shippedLayout("crysis2-slim");
     auto variant = [&](std::vector<LightBuffer> buffers) {
         Layout l = base;
         l.lightBuffers = std::move(buffers);

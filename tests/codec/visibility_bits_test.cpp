@@ -11,7 +11,7 @@
 #include <random>
 
 #include "shader_compiler.h"
-#include "surface_support.h"
+#include "layout_files.h"
 #include "visibility_wiring.h"
 #include "vk_test_support.h"
 #include "wiring_codegen.h"

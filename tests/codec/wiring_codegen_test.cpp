@@ -15,7 +15,7 @@
 #include "encodings.h"
 #include "layout_catalog.h"
 #include "shader_compiler.h"
-#include "surface_support.h"
+#include "layout_files.h"
 #include "wiring_codegen.h"
 
 using namespace gbl;
@@ -93,7 +93,7 @@ TEST(WiringCodegen, GeneratedGlslCompilesForEveryLayout) {
 }
 
 TEST(WiringCodegen, CompileErrorNamesTheLayout) {
-    GBufferWiring w = generateWiring(loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml"));
+    GBufferWiring w = generateWiring(test::shippedLayout("ue4"));
     w.glsl += "\nthis is not glsl;\n";
     ShaderSource s = loadShaderFile("decode_pass.comp.glsl");
     s.virtualFiles["gbuffer_wiring.glsl"] = w.glsl;
@@ -107,23 +107,22 @@ TEST(WiringCodegen, CompileErrorNamesTheLayout) {
 }
 
 TEST(WiringCodegen, WiringFlagsAndFormats) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    const GBufferWiring c2 = generateWiring(loadLayoutFile(dir / "crysis2-slim.toml"));
+    const GBufferWiring c2 = generateWiring(test::shippedLayout("crysis2-slim"));
     EXPECT_TRUE(c2.materialPass);
     EXPECT_EQ(c2.materialTargetFormats.size(), 4u);  // 15 floats
-    const GBufferWiring c3 = generateWiring(loadLayoutFile(dir / "crysis3-thin.toml"));
+    const GBufferWiring c3 = generateWiring(test::shippedLayout("crysis3-thin"));
     EXPECT_TRUE(c3.emissiveForward);
     EXPECT_FALSE(c3.materialPass);
     EXPECT_EQ(c3.targetFormats, (std::vector<VkFormat>{VK_FORMAT_R32_UINT, VK_FORMAT_R32_UINT}));
     EXPECT_EQ(c3.depthFormat, VK_FORMAT_D24_UNORM_S8_UINT);
-    const GBufferWiring fat = generateWiring(loadLayoutFile(dir / "fat-naive.toml"), WiringOptions{true});
+    const GBufferWiring fat = generateWiring(test::shippedLayout("fat-naive"), WiringOptions{true});
     EXPECT_EQ(fat.targetFormats, (std::vector<VkFormat>{VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT,
                                                         VK_FORMAT_R8G8B8A8_UNORM}));
     const GBufferWiring ref = makeReferenceWiring();
     EXPECT_EQ(ref.layoutName, "reference");
     EXPECT_EQ(ref.targetFormats.size(), 5u);
     // Bits inside a channel keep a target UINT under native formats, and the GLSL says why.
-    const GBufferWiring c3n = generateWiring(loadLayoutFile(dir / "crysis3-thin.toml"), WiringOptions{true});
+    const GBufferWiring c3n = generateWiring(test::shippedLayout("crysis3-thin"), WiringOptions{true});
     EXPECT_EQ(c3n.targetFormats[0], VK_FORMAT_R32_UINT);
     EXPECT_NE(c3n.glsl.find("stays UINT"), std::string::npos);
 }
@@ -315,7 +314,7 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
 
 TEST(WiringCodegen, BitPlacementLowBitsFirst) {
     // compact-octahedral: normal u at "r + b[0:3]" -> low 8 bits in r (bits 0..7), high 4 in b[0:3] (16..19).
-    const Layout l = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "compact-octahedral.toml");
+    const Layout l = test::shippedLayout("compact-octahedral");
     Surface s;
     s.normal = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
     const CpuGBuffer g = encodeGBuffer(l, {s}, 1, 1);

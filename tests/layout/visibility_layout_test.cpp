@@ -4,6 +4,7 @@
 
 #include "layout.h"
 #include "layout_catalog.h"
+#include "layout_files.h"
 #include "layout_test_support.h"
 #include "layout_text.h"
 
@@ -39,13 +40,13 @@ TEST(VisibilityLayout, TheSmallOneIsValidAndReadsAsWritten) {
 // ((drawId << 23) & 0x7F800000) | (triangleId & 0x007FFFFF), bit 31 for alpha-tested geometry) and
 // full 32-bit ids in R32G32_UINT.
 TEST(VisibilityLayout, ShippedLayoutsAreTheForgesAndSixtyFourBit) {
-    const Layout v32 = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-32.toml");
+    const Layout v32 = test::shippedLayout("visibility-32");
     EXPECT_EQ(v32.ids.format, "R32_UINT");
     EXPECT_EQ(v32.ids.triangleBits, 23);  // mask 0x007FFFFF
     EXPECT_EQ(v32.ids.drawBits, 8);       // mask 0x7F800000 >> 23 = 0xFF
     EXPECT_TRUE(v32.ids.alphaMaskBit);    // 1 << 31
     EXPECT_EQ(bytesPerPixel(v32), 8);
-    const Layout v64 = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-64.toml");
+    const Layout v64 = test::shippedLayout("visibility-64");
     EXPECT_EQ(v64.ids.format, "R32G32_UINT");
     EXPECT_EQ(v64.ids.bits, 64);
     EXPECT_EQ(v64.ids.triangleBits, 32);
@@ -55,7 +56,7 @@ TEST(VisibilityLayout, ShippedLayoutsAreTheForgesAndSixtyFourBit) {
     // UE 5's Nanite: ((visible cluster + 1) << 7) | triangle in word 0, asuint(DeviceZ) in word 1;
     // Bevy 0.16's meshlets: the same without the + 1. 128-triangle clusters, reversed Z, 8 bytes.
     for (const char* name : {"nanite-visbuffer", "bevy-meshlet-visbuffer"}) {
-        const Layout l = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / (std::string(name) + ".toml"));
+        const Layout l = test::shippedLayout(name);
         EXPECT_EQ(l.ids.format, "R32G32_UINT") << name;
         EXPECT_EQ(l.ids.triangleBits, 7) << name;
         EXPECT_EQ(l.ids.drawBits, 25) << name;

@@ -2,28 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <random>
 
 #include <glm/glm.hpp>
 
-#include "layout_catalog.h"
 
 namespace gbl::test {
-
-std::vector<Layout> shippedLayouts() {
-    std::vector<Layout> v;
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    for (const std::string& name : listLayoutNames(dir)) v.push_back(loadLayoutFile(dir / (name + ".toml")));
-    return v;
-}
-
-std::vector<Layout> shippedAttributeLayouts() {
-    std::vector<Layout> v = shippedLayouts();
-    std::erase_if(v, [](const Layout& l) { return l.pipeline == Pipeline::VisibilityBuffer; });
-    return v;
-}
 
 std::vector<Surface> randomSurfaces(size_t count, uint32_t seed) {
     std::mt19937 rng(seed);

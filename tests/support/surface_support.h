@@ -1,22 +1,17 @@
 #pragma once
 // What the tests that hold encoders to each other share (codec/gpu_cpu_bits_test,
-// codec/layout_export_gpu_test, codec/cpu_codec_test, ...): the shipped layouts, seeded random
-// Surfaces, a Surface's member for an attribute, the coverage pattern of the decode checks, and
-// their 4-ulp comparison.
+// codec/layout_export_gpu_test, codec/cpu_codec_test, ...): seeded random Surfaces, a Surface's
+// member for an attribute, the coverage pattern of the decode checks, and their 4-ulp comparison;
+// and the shipped layouts (layout_files.h).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "layout.h"
+#include "layout_files.h"
 #include "surface.h"
 
 namespace gbl::test {
-
-// Every layouts/*.toml of the source tree, in the order of their names.
-std::vector<Layout> shippedLayouts();
-// The shipped layouts that store attributes: all but the visibility buffers (their ids:
-// tests/render/visibility_test.cpp).
-std::vector<Layout> shippedAttributeLayouts();
 
 // Seeded random Surfaces: every member uniform over its range, normals unit and uniform in
 // direction, emissive up to 8, positions within +-100 with z mostly in [0, 1] and some outside (a
