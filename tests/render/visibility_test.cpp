@@ -26,6 +26,13 @@ namespace {
 constexpr uint32_t kTinyW = 96, kTinyH = 64;
 constexpr int kGrid = 4;  // quads per side: 32 triangles per draw
 
+// A visibility layout `name`.toml with these [depth] and [ids] lines.
+Layout visibilityLayout(const std::string& name, const std::string& title, const std::string& depth,
+                        const std::string& ids) {
+    return parseLayout(test::LayoutText(name, title, test::kTestSource, "visibility-buffer").depth(depth).ids(ids).text(),
+                       name + ".toml");
+}
+
 // `render` is refused in one line holding every word; `otherwise` says what rendering meant.
 void expectOneLineRefusal(const std::function<void()>& render, std::initializer_list<const char*> words,
                           const std::string& otherwise = "rendered what the ids cannot hold") {
@@ -135,9 +142,7 @@ TEST_F(VisibilityTest, IdsRoundTripTheForgesPackingAndSixtyFourBits) {
     const Scene scene = tinyScene();
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(ctx(), scene, sky);
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
     const std::vector<Expected> expected = rasterise(scene, kTinyW, kTinyH);
     for (const char* name : {"visibility-32", "visibility-64"}) {
         const RenderOutput out = renderer.render(generateWiring(loadLayout(name)), settings);
@@ -175,14 +180,9 @@ TEST_F(VisibilityTest, TooManyTrianglesForTheIdsIsOneLineNamingTheFix) {
     const Scene scene = tinyScene();  // 32 triangles per draw
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(ctx(), scene, sky);
-    const Layout narrow =
-        parseLayout(test::LayoutText("narrow-ids", "4-bit triangle ids", test::kTestSource, "visibility-buffer")
-                        .ids("format = \"R32_UINT\"\ntriangle_bits = 4\ndraw_bits = 8\n")
-                        .text(),
-                    "narrow-ids.toml");
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
+    const Layout narrow = visibilityLayout("narrow-ids", "4-bit triangle ids", "format = \"D32_SFLOAT\"\n",
+                                           "format = \"R32_UINT\"\ntriangle_bits = 4\ndraw_bits = 8\n");
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
     expectOneLineRefusal([&] { renderer.render(generateWiring(narrow), settings); },
                          {"layout 'narrow-ids'", "32 triangles", "4-bit triangle ids hold 16", "visibility-64"},
                          "rendered 32 triangles per draw through 4-bit triangle ids");
@@ -205,9 +205,7 @@ TEST_F(VisibilityTest, TheForgesIdsRefuseWhatTheyCannotHoldAndSixtyFourBitsDoNot
         many.draws.push_back(d);
     }
     const EnvironmentMap sky = makeProceduralSky(64);
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
     {
         Renderer renderer(ctx(), many, sky);
         expectOneLineRefusal([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
@@ -249,9 +247,7 @@ TEST_F(VisibilityTest, NaniteAndBevyIdsSplitDrawsIntoClustersAndCarryTheirDepth)
     ASSERT_EQ(scene.draws[0].indexCount / 3, 288u);
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(ctx(), scene, sky);
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
     settings.decodeSurfaces = true;
     const std::vector<Expected> expected = rasterise(scene, kTinyW, kTinyH);
     const RenderOutput v64 = renderer.render(generateWiring(loadLayout("visibility-64")), settings);
@@ -308,15 +304,10 @@ TEST_F(VisibilityTest, TooManyClustersForTheIdsIsOneLineNamingTheFix) {
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(ctx(), scene, sky);
     const Layout narrow =
-        parseLayout(test::LayoutText("narrow-clusters", "2-bit cluster ids", test::kTestSource, "visibility-buffer")
-                        .depth("format = \"D32_SFLOAT\"\nreversed_z = true\n")
-                        .ids("format = \"R32G32_UINT\"\ntriangle_bits = 4\ndraw_bits = 2\ndraw_offset = 1\n"
-                             "cluster_triangles = 16\ndepth_word = 1\n")
-                        .text(),
-                    "narrow-clusters.toml");
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
+        visibilityLayout("narrow-clusters", "2-bit cluster ids", "format = \"D32_SFLOAT\"\nreversed_z = true\n",
+                         "format = \"R32G32_UINT\"\ntriangle_bits = 4\ndraw_bits = 2\ndraw_offset = 1\n"
+                         "cluster_triangles = 16\ndepth_word = 1\n");
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
     expectOneLineRefusal([&] { renderer.render(generateWiring(narrow), settings); },
                          {"layout 'narrow-clusters'", "4 clusters of up to 16 triangles",
                           "2-bit cluster ids (with draw_offset 1) hold 3", "visibility-64"},
