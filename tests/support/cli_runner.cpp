@@ -10,8 +10,6 @@ namespace gbl::test {
 
 namespace fs = std::filesystem;
 
-const char* gbufferlabBinary() { return GBL_BINARY; }
-
 int shellExitCode(const std::string& command) {
     const int status = std::system(command.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

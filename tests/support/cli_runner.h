@@ -20,9 +20,6 @@ struct RunResult {
     std::string err;
 };
 
-// The gbufferlab executable the tests run.
-const char* gbufferlabBinary();
-
 // The whole file as text ("" when it cannot be read).
 inline std::string slurp(const std::filesystem::path& p) { return readFile(p); }
 

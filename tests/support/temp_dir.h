@@ -24,7 +24,7 @@ struct TempDir {
     std::vector<std::string> list() const;
 };
 
-// A folder for this test process (its pid in the name), emptied on first use.
+// A fresh, empty folder for this test process (its pid in the name; emptied when it was there).
 std::filesystem::path scratchFolder(const std::string& prefix);
 
 // The scratch folder of one test file, made by scratchFolder(prefix) the first time it is asked

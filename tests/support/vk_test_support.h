@@ -48,7 +48,6 @@ public:
     TestBuffer& operator=(const TestBuffer&) = delete;
 
     operator const Buffer&() const { return buffer_; }
-    const Buffer& get() const { return buffer_; }
     // The contents of a host-visible buffer.
     template <class T>
     T* mapped() const {
