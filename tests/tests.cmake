@@ -1,4 +1,6 @@
 # Each test: gbl_test(<folder>/<file name without .cpp> LABELS unit|gpu DEPS <libraries>).
+# Every test links gbl_test_support; gbl_test_support_layout, gbl_test_support_codec and
+# gbl_test_support_vk (gpu tests only) are named where a test uses them (tests/support/support.cmake).
 # tests/ mirrors src/: a test lives in the folder of the library it tests.
 # "unit" tests use no Vulkan and also run under the sanitizer build; "gpu" tests need a driver.
 gbl_test(base/stage_clock_test LABELS unit DEPS gbl_base)
@@ -37,20 +39,20 @@ gbl_test(encoding/codec_tables_test LABELS unit DEPS gbl_encoding gbl_gpu)  # th
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_reads_test LABELS unit DEPS gbl_layout)  # encodings that read another attribute (niagara)
-gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout)
+gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout gbl_test_support_layout)
 gbl_test(layout/layout_mutants_test LABELS unit TIMEOUT 900 DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
-gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli)  # [sources], from / status, `layouts show`
-gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli)
-gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec)
-gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec)
-gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec)  # Nanite's and Bevy's 64-bit ids, reimplemented, vs the packing
-gbl_test(codec/gpu_cpu_bits_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render)  # every layout on the GPU: 150 s alone
-gbl_test(codec/visibility_bits_test LABELS gpu DEPS gbl_codec gbl_render)  # the ids' GLSL vs its C++ twin
-gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render)
-gbl_test(codec/layout_export_test LABELS unit DEPS gbl_codec gbl_gpu)  # HLSL / GLSL export: compiles, names, exact UNORM values
+gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli gbl_test_support_layout)  # [sources], from / status, `layouts show`
+gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli gbl_test_support_layout)
+gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec gbl_test_support_codec)
+gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec gbl_test_support_layout)
+gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec gbl_test_support_layout)  # Nanite's and Bevy's 64-bit ids, reimplemented, vs the packing
+gbl_test(codec/gpu_cpu_bits_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render gbl_test_support_vk)  # every layout on the GPU: 150 s alone
+gbl_test(codec/visibility_bits_test LABELS gpu DEPS gbl_codec gbl_render gbl_test_support_vk)  # the ids' GLSL vs its C++ twin
+gbl_test(codec/light_buffer_bits_test LABELS gpu DEPS gbl_codec gbl_render gbl_test_support_vk)
+gbl_test(codec/layout_export_test LABELS unit DEPS gbl_codec gbl_gpu gbl_test_support_layout)  # HLSL / GLSL export: compiles, names, exact UNORM values
 gbl_test(codec/export_tables_test LABELS unit DEPS gbl_codec gbl_gpu)  # the tables as select trees vs the C++ twins
-gbl_test(codec/layout_export_gpu_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render)  # the export on lavapipe: real formats vs the CPU mirror
+gbl_test(codec/layout_export_gpu_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render gbl_test_support_vk)  # the export on lavapipe: real formats vs the CPU mirror
 if(TARGET layout_export_gpu_test)  # every shipped layout, in two halves that ctest -j2 runs side by side
   set_tests_properties(layout_export_gpu_test PROPERTIES ENVIRONMENT "GBL_VALIDATION=1;GBL_EXPORT_TEST_SHARD=0/2")
   add_test(NAME layout_export_gpu_test_2 COMMAND layout_export_gpu_test)
@@ -61,19 +63,19 @@ gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ibl_math_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ground_truth_mis_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/brdf_lut_test LABELS unit DEPS gbl_shading gbl_base)
-gbl_test(shading/ibl_gpu_test LABELS gpu DEPS gbl_render gbl_shading)
-gbl_test(shading/ibl_ground_truth_test LABELS gpu DEPS gbl_render gbl_shading)
-gbl_test(render/render_test LABELS gpu DEPS gbl_render)
-gbl_test(render/texture_mip_cache_test LABELS gpu DEPS gbl_render)
-gbl_test(render/visibility_test LABELS gpu DEPS gbl_render)
-gbl_test(render/pipeline_reuse_test LABELS gpu DEPS gbl_render gbl_layout)
-gbl_test(render/render_band_test LABELS gpu DEPS gbl_render gbl_layout)
-gbl_test(render/memory_recycler_test LABELS gpu DEPS gbl_render gbl_layout)
-gbl_test(render/cpu_decode_test LABELS gpu DEPS gbl_render gbl_layout)  # the read-back on the CPU codec vs the decode pass
+gbl_test(shading/ibl_gpu_test LABELS gpu DEPS gbl_render gbl_shading gbl_test_support_vk)
+gbl_test(shading/ibl_ground_truth_test LABELS gpu DEPS gbl_render gbl_shading gbl_test_support_vk)
+gbl_test(render/render_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
+gbl_test(render/texture_mip_cache_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
+gbl_test(render/visibility_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
+gbl_test(render/pipeline_reuse_test LABELS gpu DEPS gbl_render gbl_layout gbl_test_support_vk)
+gbl_test(render/render_band_test LABELS gpu DEPS gbl_render gbl_layout gbl_test_support_vk)
+gbl_test(render/memory_recycler_test LABELS gpu DEPS gbl_render gbl_layout gbl_test_support_vk)
+gbl_test(render/cpu_decode_test LABELS gpu DEPS gbl_render gbl_layout gbl_test_support_vk)  # the read-back on the CPU codec vs the decode pass
 gbl_test(evaluate/histogram_test LABELS unit DEPS gbl_evaluate)
 gbl_test(evaluate/eval_profile_test LABELS unit DEPS gbl_evaluate)
-gbl_test(evaluate/gpu_evaluator_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_layout)
-gbl_test(evaluate/gpu_evaluator_band_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_layout)
+gbl_test(evaluate/gpu_evaluator_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_layout gbl_test_support_vk)
+gbl_test(evaluate/gpu_evaluator_band_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_layout gbl_test_support_vk)
 gbl_test(measure/metrics_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/flip_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/flip_mean_test LABELS unit DEPS gbl_measure)  # the mean against an exact sum, and NVIDIA's float sum
@@ -99,7 +101,7 @@ gbl_test(search/layout_packer_test LABELS unit DEPS gbl_search gbl_measure)
 gbl_test(search/cpu_reshade_test LABELS unit DEPS gbl_search)
 gbl_test(search/layout_search_test LABELS unit DEPS gbl_search)
 gbl_test(search/search_constraints_test LABELS unit DEPS gbl_search)  # constraints, --min-bits, the every-metric front, trades
-gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_app)  # fast evaluation vs full renders
+gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_app gbl_test_support_vk)  # fast evaluation vs full renders
 gbl_test(app/compare_bands_test LABELS unit DEPS gbl_app)
 gbl_test(app/scene_suite_test LABELS unit DEPS gbl_app)  # --scene and suite files, refused before rendering
 gbl_test(app/search_report_test LABELS unit DEPS gbl_app nlohmann_json::nlohmann_json)  # confirmation over several scenes

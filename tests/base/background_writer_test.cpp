@@ -24,6 +24,7 @@
 #include "background_writer.h"
 #include "error.h"
 #include "file_io.h"
+#include "temp_dir.h"
 
 namespace gbl {
 namespace {
@@ -31,23 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::random_device rd;
-        path = fs::temp_directory_path() / ("gbl_bgwriter_" + std::to_string(rd()) + std::to_string(rd()));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::vector<std::string> list() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
+struct TempDir : test::TempDir {
+    TempDir() : test::TempDir("gbl_bgwriter_") {}
 };
 
 // A gate the test opens: jobs that wait on it stay "running" until then.

@@ -1,36 +1,20 @@
 // Outputs never replace inputs (base/file_io.h): a registered input survives every atomic write
 // aimed at it, by its name or through a link, and the checks made before the work name it.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "error.h"
 #include "file_io.h"
+#include "temp_dir.h"
 
 namespace gbl {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch() {
-    static const fs::path dir = [] {
-        const fs::path d = fs::temp_directory_path() / ("gbl_output_input_test_" + std::to_string(::getpid()));
-        fs::remove_all(d);
-        fs::create_directories(d);
-        return d;
-    }();
-    return dir;
-}
-
-std::string contents(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+const test::ScratchDir scratch("gbl_output_input_test_");
 
 TEST(OutputOverInput, AWriteOverARegisteredInputIsRefusedAndLeavesItWhole) {
     const fs::path input = scratch() / "scene.gltf";
@@ -48,13 +32,13 @@ TEST(OutputOverInput, AWriteOverARegisteredInputIsRefusedAndLeavesItWhole) {
             EXPECT_NE(std::string(e.what()).find("is an input"), std::string::npos) << e.what();
         }
     }
-    EXPECT_EQ(contents(input), "the user's scene");
+    EXPECT_EQ(test::readFile(input), "the user's scene");
     // No temporary left behind, and other files are written as before.
     size_t files = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(scratch())) ++files;
     EXPECT_EQ(files, 3u);
     writeFileAtomic(scratch() / "report.json", std::string("{}"));
-    EXPECT_EQ(contents(scratch() / "report.json"), "{}");
+    EXPECT_EQ(test::readFile(scratch() / "report.json"), "{}");
     EXPECT_FALSE(isRegisteredInput(scratch() / "report.json"));
 }
 

@@ -15,21 +15,14 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "temp_dir.h"
 
 namespace gbl {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch() {
-    static const fs::path dir = [] {
-        const fs::path d = fs::temp_directory_path() / ("gbl_special_output_test_" + std::to_string(::getpid()));
-        fs::remove_all(d);
-        fs::create_directories(d);
-        return d;
-    }();
-    return dir;
-}
+const test::ScratchDir scratch("gbl_special_output_test_");
 
 std::string refusal(const std::function<void()>& write) {
     try {

@@ -30,12 +30,9 @@ namespace {
 
 using namespace gbl::test;
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_cli_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_cli_test_");
 
-RunResult run(const std::string& args, const std::string& envPrefix = "") { return runGbufferlab(scratch(), args, envPrefix); }
+RunResult run(const std::string& args, const std::string& envPrefix = "") { return scratch.run(args, envPrefix); }
 
 TEST(Cli, MissingVulkanDriverIsOneClearLine) {
     const RunResult r = run("render --out nodriver --size 64x64",
@@ -125,7 +122,7 @@ TEST(Cli, RenderWritesExrAndPng) {
 TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
     RunResult r = run("compare --out cmp --size 96x64 --layouts ue4,crysis3-thin");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "cmp" / "report.json"));
+    const nlohmann::json report = scratch.json("cmp/report.json");
     ASSERT_EQ(report["runs"].size(), 2u);
     for (const auto& run : report["runs"]) {
         EXPECT_TRUE(run["image_errors"].contains("flip_mean")) << run["layout"];
@@ -143,7 +140,7 @@ TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
         EXPECT_NE(at, std::string::npos) << budget["sentence"] << "\n" << r.out;
     }
     // The stages are exclusive: they add up to the total, and the frames' own GPU time is known.
-    const nlohmann::json t = nlohmann::json::parse(slurp(scratch() / "cmp" / "timings.json"));
+    const nlohmann::json t = scratch.json("cmp/timings.json");
     double sum = 0.0;
     for (const auto& [stage, ms] : t["stages_ms"].items()) {
         EXPECT_GE(ms.get<double>(), 0.0) << stage;
@@ -160,7 +157,7 @@ TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
 
     r = run("compare --out cmp-hdr --size 96x64 --layouts crysis3-thin --hdr-flip");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const nlohmann::json hdr = nlohmann::json::parse(slurp(scratch() / "cmp-hdr" / "report.json"));
+    const nlohmann::json hdr = scratch.json("cmp-hdr/report.json");
     const auto& errors = hdr["runs"][0]["image_errors"];
     ASSERT_TRUE(errors.contains("hdr_flip_mean"));
     EXPECT_GT(errors["hdr_flip_mean"].get<double>(), 0.0);  // crysis3-thin loses visible colour
@@ -184,7 +181,7 @@ TEST(Cli, CompareViewsReportTheMeanOverViewsAndItsSpread) {
     }
     const RunResult r = run("compare --out views2 --size 96x64 --layouts ue4,crysis3-thin --views 2");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "views2" / "report.json"));
+    const nlohmann::json report = scratch.json("views2/report.json");
     ASSERT_EQ(report["run"]["views"].size(), 2u);
     ASSERT_EQ(report["runs"].size(), 2u);
     const auto num = [](const nlohmann::json& j) {
@@ -232,7 +229,7 @@ TEST(Cli, CompareDrawsTheSeedsIblFigureWithTheReportsNumbers) {
     const RunResult r = run("compare --out fig --size 160x90 --layouts ue4 --ibl bo2,ground-truth,split-sum "
                             "--gt-noise 0.05 --gt-batch-samples 16");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "fig" / "report.json"));
+    const nlohmann::json report = scratch.json("fig/report.json");
     ASSERT_TRUE(report.contains("ibl_figure"));
     const auto& fig = report["ibl_figure"];
     ASSERT_EQ(fig["rows"].size(), 3u);
@@ -395,7 +392,7 @@ TEST(Cli, CompareExitsNonZeroWhenARunFailsAndStillReportsIt) {
     const RunResult r = run("compare --out cmp-fail --force --size 64x32 --layouts crysis3-thin,ue4");
     EXPECT_EQ(r.exitCode, 4) << r.err;
     EXPECT_NE(r.err.find("2 of 2 runs failed"), std::string::npos) << r.err;
-    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "cmp-fail" / "report.json"));
+    const nlohmann::json report = scratch.json("cmp-fail/report.json");
     ASSERT_EQ(report["runs"].size(), 2u);
     for (const auto& run : report["runs"]) {
         EXPECT_EQ(run["status"], "failed");

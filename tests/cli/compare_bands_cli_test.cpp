@@ -19,27 +19,13 @@ using namespace gbl::test;
 
 namespace {
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_compare_bands_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_compare_bands_test_");
 
-RunResult run(const std::string& args) { return runGbufferlab(scratch(), args); }
+RunResult run(const std::string& args) { return scratch.run(args); }
 
-// Every number under `j`, by its JSON pointer, but for times and other facts of the run itself.
-void collectNumbers(const nlohmann::json& j, const std::string& at, std::vector<std::pair<std::string, double>>& out) {
-    if (j.is_object()) {
-        for (auto it = j.begin(); it != j.end(); ++it) {
-            const std::string& k = it.key();
-            if (k.find("ms") != std::string::npos || k == "times" || k == "pass_times" || k == "run" || k == "date")
-                continue;
-            collectNumbers(it.value(), at + "/" + k, out);
-        }
-    } else if (j.is_array()) {
-        for (size_t i = 0; i < j.size(); ++i) collectNumbers(j[i], at + "/" + std::to_string(i), out);
-    } else if (j.is_number()) {
-        out.emplace_back(at, j.get<double>());
-    }
+// Every number of a report.json, but for times and other facts of the run itself.
+std::vector<std::pair<std::string, double>> reportNumbers(const std::string& dir) {
+    return scratch.reportNumbers(dir, {"times", "pass_times", "run", "date"});
 }
 
 TEST(CompareBandsCli, BandsGiveTheWholeFramesNumbersAndImages) {
@@ -54,19 +40,15 @@ TEST(CompareBandsCli, BandsGiveTheWholeFramesNumbersAndImages) {
     // Whole frames the way a GPU runs them: each run's 8-bit images unpacked by the writer's job
     // (GpuErrorImages::unpack) while later runs evaluate into new buffers. The same files.
     const RunResult deferred =
-        runGbufferlab(scratch(), common + "--band-rows 0 --out deferred", "GBL_EVAL_DEFER_IMAGES=1 GBL_HOST_PROFILE=1");
+        scratch.run(common + "--band-rows 0 --out deferred", "GBL_EVAL_DEFER_IMAGES=1 GBL_HOST_PROFILE=1");
     ASSERT_EQ(deferred.exitCode, 0) << deferred.err;
     EXPECT_NE(deferred.err.find("job: unpack the 8-bit images"), std::string::npos) << "no image was deferred";
     EXPECT_EQ(whole.err.find("job: unpack the 8-bit images"), std::string::npos);
 
-    const nlohmann::json w = nlohmann::json::parse(slurp(scratch() / "whole" / "report.json"));
-    std::vector<std::pair<std::string, double>> expected;
-    collectNumbers(w, "", expected);
+    const std::vector<std::pair<std::string, double>> expected = reportNumbers("whole");
     ASSERT_GT(expected.size(), 200u);
     for (const char* dir : {"bands", "odd", "deferred"}) {
-        const nlohmann::json b = nlohmann::json::parse(slurp(scratch() / dir / "report.json"));
-        std::vector<std::pair<std::string, double>> got;
-        collectNumbers(b, "", got);
+        const std::vector<std::pair<std::string, double>> got = reportNumbers(dir);
         ASSERT_EQ(got.size(), expected.size()) << dir;
         size_t differ = 0;
         for (size_t i = 0; i < got.size(); ++i) {
@@ -81,13 +63,10 @@ TEST(CompareBandsCli, BandsGiveTheWholeFramesNumbersAndImages) {
         EXPECT_EQ(differ, 0u) << dir;
         // Every image the whole-frame run wrote, byte for byte (PNGs, render.exr, crops).
         size_t files = 0;
-        for (const auto& entry : fs::recursive_directory_iterator(scratch() / "whole")) {
-            const fs::path rel = fs::relative(entry.path(), scratch() / "whole");
-            const std::string ext = rel.extension().string();
-            if (ext != ".png" && ext != ".exr") continue;
+        for (const fs::path& rel : imageFilesUnder(scratch / "whole")) {
             ++files;
-            ASSERT_TRUE(fs::exists(scratch() / dir / rel)) << dir << "/" << rel;
-            EXPECT_EQ(slurp(entry.path()), slurp(scratch() / dir / rel)) << dir << "/" << rel << " differs";
+            ASSERT_TRUE(fs::exists(scratch / dir / rel)) << dir << "/" << rel;
+            EXPECT_EQ(slurp(scratch / "whole" / rel), slurp(scratch / dir / rel)) << dir << "/" << rel << " differs";
         }
         EXPECT_GT(files, 20u);
     }
@@ -100,7 +79,7 @@ TEST(CompareBandsCli, BadUsesAreOneLine) {
     expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows 16 --ibl ground-truth,split-sum --out e3"),
                        {"--band-rows", "ground-truth"});
     expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows many --out e4"), {"--band-rows"});
-    for (const char* d : {"e1", "e2", "e3", "e4"}) EXPECT_FALSE(fs::exists(scratch() / d)) << d;
+    for (const char* d : {"e1", "e2", "e3", "e4"}) EXPECT_FALSE(fs::exists(scratch / d)) << d;
 }
 
 }  // namespace

@@ -23,12 +23,7 @@ using namespace gbl::test;
 
 namespace {
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_compare_scenes_test_");
-    return dir;
-}
-
-Json readJson(const fs::path& p) { return Json::parse(slurp(p)); }
+const CliScratch scratch("gbl_compare_scenes_test_");
 
 const Json* runOf(const Json& report, const std::string& layout) {
     for (const Json& r : report["runs"])
@@ -44,11 +39,11 @@ TEST(CompareScenes, EveryLayoutOnEveryScene) {
     GBL_REQUIRE_FILE(avocado);
     GBL_REQUIRE_FILE(studio);
     const std::string common = " --layouts ue4,crysis3-thin --size 160x90 --views 2 --float32-exr";
-    const RunResult r = runGbufferlab(scratch(), "compare --scene builtin --scene " + avocado.string() + " --env " +
+    const RunResult r = scratch.run("compare --scene builtin --scene " + avocado.string() + " --env " +
                                                      studio.string() + common + " --out two");
     ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("Across 2 scenes"), std::string::npos) << r.out;
-    const Json top = readJson(scratch() / "two/report.json");
+    const Json top = scratch.json("two/report.json");
     EXPECT_EQ(top["schema"], "gbufferlab-scene-suite");
     ASSERT_EQ(top["scenes"].size(), 2u);
     EXPECT_EQ(top["scenes"][0]["name"], "builtin");
@@ -99,9 +94,9 @@ TEST(CompareScenes, EveryLayoutOnEveryScene) {
 
     // One scene alone: the same numbers as in the comparison of two.
     const RunResult alone =
-        runGbufferlab(scratch(), "compare --scene " + avocado.string() + " --env " + studio.string() + common + " --out one");
+        scratch.run("compare --scene " + avocado.string() + " --env " + studio.string() + common + " --out one");
     ASSERT_EQ(alone.exitCode, 0) << alone.err;
-    const Json single = readJson(scratch() / "one/report.json");
+    const Json single = scratch.json("one/report.json");
     EXPECT_EQ(single["schema"], "gbufferlab-report");
     for (const char* layout : {"ue4", "crysis3-thin"})
         EXPECT_EQ((*runOf(single, layout))["image_errors"]["flip_mean"],
@@ -113,11 +108,11 @@ TEST(CompareScenes, ASceneThatCannotLoadFailsAlone) {
     fs::create_directories(scratch() / "broken");
     std::ofstream(scratch() / "broken/broken.gltf") << "{ \"asset\": { \"version\": \"2.0\" }, \"buffers\": [ { \"uri\": 7 } ] }";
     std::ofstream(scratch() / "suite.toml") << "[[scene]]\ngltf = \"broken/broken.gltf\"\n[[scene]]\ngltf = \"builtin\"\n";
-    const RunResult r = runGbufferlab(scratch(), "compare --scene suite.toml --layouts ue4 --size 160x90 --views 1 "
+    const RunResult r = scratch.run("compare --scene suite.toml --layouts ue4 --size 160x90 --views 1 "
                                                  "--exposure 1 --out failed");
     EXPECT_EQ(r.exitCode, 4) << r.out << r.err;
     EXPECT_NE(r.err.find("scene broken"), std::string::npos) << r.err;
-    const Json top = readJson(scratch() / "failed/report.json");
+    const Json top = scratch.json("failed/report.json");
     EXPECT_EQ(top["scenes"][0]["status"], "failed");
     EXPECT_FALSE(top["scenes"][0]["error"].get<std::string>().empty());
     EXPECT_EQ(top["scenes"][1]["status"], "ok");
@@ -129,12 +124,12 @@ TEST(CompareScenes, ASceneThatCannotLoadFailsAlone) {
 
 TEST(CompareScenes, BadSuitesAreRefusedBeforeRendering) {
     std::ofstream(scratch() / "missing.toml") << "[[scene]]\ngltf = \"builtin\"\n[[scene]]\ngltf = \"nowhere.gltf\"\n";
-    RunResult r = runGbufferlab(scratch(), "compare --scene missing.toml --layouts ue4 --size 32x32 --out refused");
+    RunResult r = scratch.run("compare --scene missing.toml --layouts ue4 --size 32x32 --out refused");
     expectOneLineError(r, {"missing.toml:4:8:", "no such file"});
-    r = runGbufferlab(scratch(), "compare --scene builtin --scene builtin --layouts ue4 --size 32x32 --out refused");
+    r = scratch.run("compare --scene builtin --scene builtin --layouts ue4 --size 32x32 --out refused");
     expectOneLineError(r, {"given twice"});
     std::ofstream(scratch() / "empty.toml") << "# nothing\n";
-    r = runGbufferlab(scratch(), "compare --scene empty.toml --layouts ue4 --size 32x32 --out refused");
+    r = scratch.run("compare --scene empty.toml --layouts ue4 --size 32x32 --out refused");
     expectOneLineError(r, {"empty.toml:1:1:", "no scene"});
     EXPECT_FALSE(fs::exists(scratch() / "refused"));
 }

@@ -18,27 +18,9 @@ using namespace gbl::test;
 
 namespace {
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_compare_temporal_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_compare_temporal_test_");
 
-RunResult run(const std::string& args) { return runGbufferlab(scratch(), args); }
-
-// Every number under `j` by its JSON pointer, but for times and the facts of the run itself.
-void collectNumbers(const nlohmann::json& j, const std::string& at, std::vector<std::pair<std::string, double>>& out) {
-    if (j.is_object()) {
-        for (auto it = j.begin(); it != j.end(); ++it) {
-            const std::string& k = it.key();
-            if (k.find("ms") != std::string::npos || k == "run" || k == "date") continue;
-            collectNumbers(it.value(), at + "/" + k, out);
-        }
-    } else if (j.is_array()) {
-        for (size_t i = 0; i < j.size(); ++i) collectNumbers(j[i], at + "/" + std::to_string(i), out);
-    } else if (j.is_number()) {
-        out.emplace_back(at, j.get<double>());
-    }
-}
+RunResult run(const std::string& args) { return scratch.run(args); }
 
 const std::string kCommon = "compare --size 96x54 --layouts niagara,crysis3-thin --views 1 ";
 
@@ -47,24 +29,22 @@ TEST(CompareTemporalCli, TemporalOneIsTheComparisonWithoutTheFlagBitForBit) {
     ASSERT_EQ(plain.exitCode, 0) << plain.err;
     const RunResult one = run(kCommon + "--temporal 1 --out one");
     ASSERT_EQ(one.exitCode, 0) << one.err;
-    std::vector<std::pair<std::string, double>> a, b;
-    collectNumbers(nlohmann::json::parse(slurp(scratch() / "plain" / "report.json")), "", a);
-    collectNumbers(nlohmann::json::parse(slurp(scratch() / "one" / "report.json")), "", b);
+    // Every number of report.json, but for times and the facts of the run itself.
+    const std::vector<std::pair<std::string, double>> a = scratch.reportNumbers("plain", {"run", "date"}),
+                                                      b = scratch.reportNumbers("one", {"run", "date"});
     ASSERT_GT(a.size(), 100u);
     ASSERT_EQ(a.size(), b.size());
     for (size_t i = 0; i < a.size(); ++i) {
         ASSERT_EQ(a[i].first, b[i].first);
         EXPECT_EQ(a[i].second, b[i].second) << a[i].first;  // exactly: the same code path
     }
-    const nlohmann::json j = nlohmann::json::parse(slurp(scratch() / "one" / "report.json"));
+    const nlohmann::json j = scratch.json("one/report.json");
     EXPECT_FALSE(j["run"].contains("temporal"));
     for (const auto& r : j["runs"]) EXPECT_FALSE(r.contains("single_frame"));
     size_t files = 0;
-    for (const auto& entry : fs::recursive_directory_iterator(scratch() / "plain")) {
-        const fs::path rel = fs::relative(entry.path(), scratch() / "plain");
-        if (rel.extension() != ".png" && rel.extension() != ".exr") continue;
+    for (const fs::path& rel : imageFilesUnder(scratch / "plain")) {
         ++files;
-        EXPECT_EQ(slurp(entry.path()), slurp(scratch() / "one" / rel)) << rel;
+        EXPECT_EQ(slurp(scratch / "plain" / rel), slurp(scratch / "one" / rel)) << rel;
     }
     EXPECT_GT(files, 10u);
 }
@@ -73,7 +53,7 @@ TEST(CompareTemporalCli, ResolvedAndSingleFrameSideBySide) {
     const RunResult t = run(kCommon + "--temporal 4 --out t4");
     ASSERT_EQ(t.exitCode, 0) << t.err;
     EXPECT_NE(t.out.find("FLIP 1f"), std::string::npos) << t.out;
-    const nlohmann::json j = nlohmann::json::parse(slurp(scratch() / "t4" / "report.json"));
+    const nlohmann::json j = scratch.json("t4/report.json");
     const nlohmann::json& temporal = j["run"]["temporal"];
     EXPECT_EQ(temporal["frames"], 4);
     EXPECT_EQ(temporal["resolve"], "mean");
@@ -89,7 +69,7 @@ TEST(CompareTemporalCli, ResolvedAndSingleFrameSideBySide) {
     // (jittered by (0, -1/6)): the frames were really moved and resolved.
     const RunResult plain = run(kCommon + "--out plain4");
     ASSERT_EQ(plain.exitCode, 0) << plain.err;
-    const nlohmann::json p = nlohmann::json::parse(slurp(scratch() / "plain4" / "report.json"));
+    const nlohmann::json p = scratch.json("plain4/report.json");
     ASSERT_EQ(j["runs"].size(), 2u);
     for (size_t i = 0; i < 2; ++i) {
         const nlohmann::json& r = j["runs"][i];
@@ -105,10 +85,10 @@ TEST(CompareTemporalCli, ResolvedAndSingleFrameSideBySide) {
         EXPECT_TRUE(r["attribute_errors"]["normal"].contains("all"));
     }
     // report.html shows both; the CSV carries frame 0's columns.
-    const std::string html = slurp(scratch() / "t4" / "report.html");
+    const std::string html = scratch.read("t4/report.html");
     EXPECT_NE(html.find("Single frame (frame 0)"), std::string::npos);
     EXPECT_NE(html.find("data-plot=\"flip-1f\""), std::string::npos);
-    EXPECT_NE(slurp(scratch() / "t4" / "report.csv").find("single_frame_flip_mean"), std::string::npos);
+    EXPECT_NE(scratch.read("t4/report.csv").find("single_frame_flip_mean"), std::string::npos);
 }
 
 TEST(CompareTemporalCli, BadValuesAreOneLine) {
@@ -123,7 +103,7 @@ TEST(CompareTemporalCli, BadValuesAreOneLine) {
     expectOneLineError(run(c + "--temporal 4 --resolve median --out e8"), {"--resolve", "mean or exp"});
     expectOneLineError(run(c + "--resolve exp --out e9"), {"--resolve exp", "--temporal"});
     for (const char* d : {"e1", "e2", "e3", "e4", "e5", "e6", "e7", "e8", "e9"})
-        EXPECT_FALSE(fs::exists(scratch() / d)) << d;
+        EXPECT_FALSE(fs::exists(scratch / d)) << d;
 }
 
 }  // namespace
@@ -132,15 +112,15 @@ TEST(CompareTemporalCli, BadValuesAreOneLine) {
 // refusal advises only what the command accepts with the flags given (search has no bands at all).
 TEST(CompareTemporalCli, AMemoryRefusalAdvisesOnlyWhatTheFlagsAllow) {
     const std::string budget = "GBL_MEMORY_BUDGET=4G";  // refused on any machine
-    const RunResult r = runGbufferlab(scratch(), "compare --temporal 4 --size 16384x16384 --layouts ue4 --views 1 --out huge", budget);
+    const RunResult r = scratch.run("compare --temporal 4 --size 16384x16384 --layouts ue4 --views 1 --out huge", budget);
     expectOneLineError(r, {"--size 16384x16384", "--temporal"});
     EXPECT_EQ(r.err.find("--band-rows 64"), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(scratch() / "huge"));
-    const RunResult s = runGbufferlab(scratch(), "search --budget 12 --size 16384x16384 --views 1 --out huge-search", budget);
+    EXPECT_FALSE(fs::exists(scratch / "huge"));
+    const RunResult s = scratch.run("search --budget 12 --size 16384x16384 --views 1 --out huge-search", budget);
     expectOneLineError(s, {"--size 16384x16384"});
     EXPECT_EQ(s.err.find("--band-rows"), std::string::npos) << s.err;
     // Without --temporal, compare can still advise bands.
     const RunResult whole =
-        runGbufferlab(scratch(), "compare --size 16384x16384 --layouts ue4 --views 1 --band-rows 0 --out huge-whole", budget);
+        scratch.run("compare --size 16384x16384 --layouts ue4 --views 1 --band-rows 0 --out huge-whole", budget);
     expectOneLineError(whole, {"--size 16384x16384", "--band-rows 64"});
 }

@@ -28,10 +28,7 @@ using namespace gbl::test;
 
 const std::vector<std::pair<std::string, std::string>> kBudget8G = {{"GBL_MEMORY_BUDGET", "8G"}};
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_diff_bounds_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_diff_bounds_test_");
 
 std::string at(const std::string& name) { return (scratch() / name).string(); }
 

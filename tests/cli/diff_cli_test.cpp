@@ -24,12 +24,9 @@ namespace {
 
 using namespace gbl::test;
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_diff_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_diff_test_");
 
-RunResult run(const std::string& args, const std::string& envPrefix = "") { return runGbufferlab(scratch(), args, envPrefix); }
+RunResult run(const std::string& args, const std::string& envPrefix = "") { return scratch.run(args, envPrefix); }
 
 gbl::Image8 pattern8(int w, int h, int channels, int seed) {
     gbl::Image8 img{w, h, channels, std::vector<unsigned char>(size_t(w) * h * channels)};
@@ -217,7 +214,7 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
 TEST(Diff, ErrorExrIsWrittenOnlyOnRequest) {
     const RunResult c = run("compare --size 96x54 --layouts ue4 --views 1 --eval cpu --out noerrexr");
     ASSERT_EQ(c.exitCode, 0) << c.err;
-    const auto report = nlohmann::json::parse(slurp(scratch() / "noerrexr" / "report.json"));
+    const auto report = scratch.json("noerrexr/report.json");
     EXPECT_EQ(report["runs"][0]["images"]["errors_exr"], "");
     for (const auto& entry : fs::recursive_directory_iterator(scratch() / "noerrexr"))
         EXPECT_NE(entry.path().filename(), "errors.exr") << entry.path();
@@ -225,7 +222,7 @@ TEST(Diff, ErrorExrIsWrittenOnlyOnRequest) {
 
     const RunResult w = run("compare --size 96x54 --layouts ue4 --views 1 --error-exr --out errexr");
     ASSERT_EQ(w.exitCode, 0) << w.err;
-    const auto withExr = nlohmann::json::parse(slurp(scratch() / "errexr" / "report.json"));
+    const auto withExr = scratch.json("errexr/report.json");
     const std::string path = withExr["runs"][0]["images"]["errors_exr"];
     ASSERT_FALSE(path.empty());
     EXPECT_TRUE(fs::is_regular_file(scratch() / "errexr" / path)) << path;
@@ -249,7 +246,7 @@ TEST(Diff, ErrorExrIsWrittenOnlyOnRequest) {
 TEST(Diff, HalfExrsReproduceTheReportWithinHalfsRounding) {
     const RunResult c = run("compare --size 96x54 --layouts ue4 --views 1 --error-exr --out half");
     ASSERT_EQ(c.exitCode, 0) << c.err;
-    const auto report = nlohmann::json::parse(slurp(scratch() / "half" / "report.json"));
+    const auto report = scratch.json("half/report.json");
     EXPECT_EQ(report["run"]["exr_precision"], "half");
     const std::string refExr = "half/" + report["reference"]["images"][0]["render_exr"].get<std::string>();
     const auto& runJson = report["runs"][0];

@@ -19,10 +19,7 @@ namespace {
 
 using namespace gbl::test;
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_input_bounds_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_input_bounds_test_");
 
 std::string gib(double bytes) { return std::to_string(uint64_t(bytes / double(1 << 20))) + "M"; }
 

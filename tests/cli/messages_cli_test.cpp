@@ -15,12 +15,9 @@ namespace {
 
 using namespace gbl::test;
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_messages_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_messages_test_");
 
-RunResult run(const std::string& args) { return runGbufferlab(scratch(), args); }
+RunResult run(const std::string& args) { return scratch.run(args); }
 
 void expectAbsent(const RunResult& r, const std::string& text) {
     EXPECT_EQ(r.err.find(text), std::string::npos) << "'" << text << "' in: " << r.err;

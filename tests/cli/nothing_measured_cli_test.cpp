@@ -18,12 +18,9 @@ using namespace gbl::test;
 
 namespace {
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_nothing_measured_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_nothing_measured_test_");
 
-RunResult run(const std::string& args) { return runGbufferlab(scratch(), args); }
+RunResult run(const std::string& args) { return scratch.run(args); }
 
 }  // namespace
 
@@ -35,7 +32,7 @@ TEST(NothingMeasured, AReferenceClippedToBlackIsNoPerfectScore) {
     EXPECT_NE(r.out.find("view 0 not measured: the reference tone-maps to all black at exposure 1e-30"),
               std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("inf"), std::string::npos) << r.out;
-    const Json report = Json::parse(slurp(scratch() / "black/report.json"));
+    const Json report = scratch.json("black/report.json");
     ASSERT_TRUE(report["run"].contains("view_not_measured")) << report["run"].dump();
     EXPECT_NE(report["run"]["view_not_measured"][0].get<std::string>().find("all black"), std::string::npos);
     ASSERT_EQ(report["runs"].size(), 2u);
@@ -45,10 +42,10 @@ TEST(NothingMeasured, AReferenceClippedToBlackIsNoPerfectScore) {
         EXPECT_NE(run.value("not_measured", "").find("view 0: "), std::string::npos);
     }
     EXPECT_FALSE(report.contains("verdict")) << report.value("verdict", Json()).dump();
-    const std::string csv = slurp(scratch() / "black/report.csv");
+    const std::string csv = scratch.read("black/report.csv");
     EXPECT_NE(csv.find("not-measured"), std::string::npos);
     EXPECT_NE(csv.find("all black"), std::string::npos);
-    EXPECT_NE(slurp(scratch() / "black/report.html").find("not measured"), std::string::npos);
+    EXPECT_NE(scratch.read("black/report.html").find("not measured"), std::string::npos);
     EXPECT_FALSE(fs::exists(scratch() / "black/INCOMPLETE"));
 }
 
@@ -66,7 +63,7 @@ up = [0.0, 0.0, -1.0]
 )";
     const RunResult r = run("compare --scene two-views.toml --size 64x36 --layouts ue4,crysis3-thin --out sky");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const Json report = Json::parse(slurp(scratch() / "sky/scenes/builtin/report.json"));
+    const Json report = scratch.json("sky/scenes/builtin/report.json");
     ASSERT_TRUE(report["run"].contains("view_not_measured")) << report["run"].dump();
     EXPECT_EQ(report["run"]["view_not_measured"][0], "");
     EXPECT_NE(report["run"]["view_not_measured"][1].get<std::string>().find("coverage 0"), std::string::npos)
@@ -82,9 +79,9 @@ up = [0.0, 0.0, -1.0]
         EXPECT_EQ(run["view_spread"]["image_errors"]["flip_mean"]["views"], 1);
     }
     EXPECT_EQ(report["verdict"]["views"], 1);
-    EXPECT_NE(slurp(scratch() / "sky/scenes/builtin/report.csv").find("coverage 0"), std::string::npos);
+    EXPECT_NE(scratch.read("sky/scenes/builtin/report.csv").find("coverage 0"), std::string::npos);
     // The report agrees with itself: its means are over the one view measured, and it says so.
-    EXPECT_NE(slurp(scratch() / "sky/scenes/builtin/report.html").find("Every metric is the mean over 1 of the 2 views"),
+    EXPECT_NE(scratch.read("sky/scenes/builtin/report.html").find("Every metric is the mean over 1 of the 2 views"),
               std::string::npos);
     EXPECT_NE(r.out.find("Every metric is the mean over 1 of the 2 views"), std::string::npos) << r.out;
 }

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -24,12 +25,9 @@ namespace {
 
 using namespace gbl::test;
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_outputs_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_outputs_test_");
 
-RunResult run(const std::string& args) { return runGbufferlab(scratch(), args); }
+RunResult run(const std::string& args) { return scratch.run(args); }
 
 // `gbufferlab ARGS` with stdout sent to `target` (a shell redirection such as ">/dev/full" or
 // ">&-"); stderr captured.
@@ -37,8 +35,7 @@ RunResult runWithStdout(const std::string& args, const std::string& target) {
     const fs::path err = scratch() / "stderr.txt";
     const std::string cmd = "cd " + scratch().string() + " && " + GBL_BINARY + " " + args + " " + target + " 2>" +
                             err.string();
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), "", slurp(err)};
+    return {shellExitCode(cmd), "", slurp(err)};
 }
 
 mode_t typeOf(const fs::path& p) {

@@ -15,12 +15,9 @@ namespace {
 
 using namespace gbl::test;
 
-fs::path scratch() {
-    static const fs::path dir = scratchFolder("gbl_run_names_test_");
-    return dir;
-}
+const CliScratch scratch("gbl_run_names_test_");
 
-RunResult compare(const std::string& args) { return runGbufferlab(scratch(), "compare --size 32x32 --out out " + args); }
+RunResult compare(const std::string& args) { return scratch.run("compare --size 32x32 --out out " + args); }
 
 }  // namespace
 

@@ -16,6 +16,7 @@
 #include "cpu_codec.h"
 #include "encodings.h"
 #include "layout_catalog.h"
+#include "layout_files.h"
 #include "normal_space.h"
 
 namespace gbl {
@@ -28,7 +29,7 @@ TEST(CpuCodec, NeutralChromaDecodesWithoutTint) {
     EXPECT_EQ(enc::dequantizeChroma(127u, 8), 0.5f);
     for (const char* name : {"crysis3-thin", "ryse"}) {
         SCOPED_TRACE(name);
-        const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / (std::string(name) + ".toml"));
+        const Layout layout = test::shippedLayout(name);
         std::vector<Surface> in(16);
         for (Surface& s : in) {
             s.normal = glm::vec3(0, 0, 1);
@@ -46,7 +47,7 @@ TEST(CpuCodec, NeutralChromaDecodesWithoutTint) {
 }
 
 TEST(CpuCodec, RejectsMismatchedSizes) {
-    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml");
+    const Layout layout = test::shippedLayout("ue4");
     const CpuCodec codec(layout);
     EXPECT_THROW(codec.encode(std::vector<Surface>(5), 2, 2), std::invalid_argument);
     CpuGBuffer g = codec.encode(std::vector<Surface>(4), 2, 2);

@@ -20,47 +20,34 @@
 #include "cpu_codec.h"
 #include "encoding_registry.h"
 #include "encodings.h"
+#include "layout_files.h"
 #include "niagara_encodings.h"
 #include "layout_catalog.h"
 #include "encodings_fast.h"
 #include "parallel_for.h"
+#include "surface_support.h"
 #include "wiring_codegen.h"
 
 namespace gbl {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
-// The former per-pixel codec, unchanged apart from its namespace.
+// The former per-pixel codec, unchanged apart from its namespace and the Surface member lookup,
+// which is the tests' own (surface_support.h).
 namespace reference {
 
 using namespace enc;
 
 int components(Attribute a) { return attributeInfo(a).components; }
 
-float* member(Surface& s, Attribute a) {
-    switch (a) {
-        case Attribute::Normal: return &s.normal.x;
-        case Attribute::BaseColor: return &s.baseColor.x;
-        case Attribute::Metallic: return &s.metallic;
-        case Attribute::Roughness: return &s.roughness;
-        case Attribute::Specular: return &s.specular;
-        case Attribute::SpecularColor: return &s.specularColor.x;
-        case Attribute::DiffuseColor: return &s.diffuseColor.x;
-        case Attribute::Occlusion: return &s.occlusion;
-        case Attribute::Emissive: return &s.emissive.x;
-        case Attribute::Position: return &s.position.x;
-        case Attribute::Depth: return &s.position.z;  // a stored window depth rides in position.z (wiring_plan.h)
-        default: return nullptr;
-    }
-}
-const float* member(const Surface& s, Attribute a) { return member(const_cast<Surface&>(s), a); }
+using test::memberOf;  // the Surface member of an attribute (a stored window depth rides in position.z)
 
 bool isScalar(const Field& f) {
     return f.encoding == kIdEncoding || findEncoding(f.encoding)->kind == AttributeKind::Scalar;
 }
 
 float componentValue(const Field& f, const Surface& s, int i) {
-    if (const float* m = member(s, f.attribute)) return m[i];
+    if (const float* m = memberOf(s, f.attribute)) return m[i];
     return f.value.empty() ? 0.0f : float(f.value[std::min<size_t>(size_t(i), f.value.size() - 1)]);
 }
 vec3 wholeValue(const Field& f, const Surface& s) {
@@ -257,7 +244,7 @@ int mirror(int p, int size) {
 }
 
 void setMember(Surface& s, Attribute a, vec3 v) {
-    float* m = member(s, a);
+    float* m = memberOf(s, a);
     if (!m) return;
     for (int i = 0; i < components(a); ++i) m[i] = v[i];
 }
@@ -322,7 +309,7 @@ CpuGBuffer encodeGBuffer(const Layout& layout, const std::vector<Surface>& surfa
             for (int c = 0; c < slot.components; ++c) {
                 const int k = slot.firstFloat + c;
                 g.materialWords[size_t(k / 4)][i * 4 + size_t(k % 4)] =
-                    floatBitsToUint(member(surfaces[i], slot.attribute)[c]);
+                    floatBitsToUint(memberOf(surfaces[i], slot.attribute)[c]);
             }
     return g;
 }
@@ -348,7 +335,7 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                 };
                 const uint32_t* w = wordsAt(x, y);
                 for (const Field& f : tg.fields) {
-                    if (!member(s, f.attribute)) continue;
+                    if (!memberOf(s, f.attribute)) continue;
                     const EncodingInfo* info = findEncoding(f.encoding);
                     if (info && info->needsNeighbours) {
                         ColorFn fwd = nullptr, inv = nullptr;
@@ -400,15 +387,6 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
 }  // namespace reference
 
 // ---------------------------------------------------------------------------------------------
-
-std::vector<Layout> allLayouts() {
-    std::vector<Layout> v;
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    for (const std::string& name : listLayoutNames(dir)) v.push_back(loadLayoutFile(dir / (name + ".toml")));
-    // A visibility buffer stores no attribute (its ids: tests/render/visibility_test.cpp).
-    std::erase_if(v, [](const Layout& l) { return l.pipeline == Pipeline::VisibilityBuffer; });
-    return v;
-}
 
 glm::vec3 randomUnit(std::mt19937& rng) {
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
@@ -495,7 +473,7 @@ size_t compareSurfaces(const std::vector<Surface>& a, const std::vector<Surface>
 // ---------------------------------------------------------------------------------------------
 
 TEST(CpuCodec, EveryLayoutMatchesTheReferenceAtEveryThreadCount) {
-    const std::vector<Layout> layouts = allLayouts();
+    const std::vector<Layout> layouts = test::shippedAttributeLayouts();
     ASSERT_GE(layouts.size(), 7u);
     // Sizes: block edges (kBlock = 128 pixels per row block), one row, one column, one pixel, and
     // more rows than threads and fewer.
@@ -531,7 +509,7 @@ TEST(CpuCodec, EveryLayoutMatchesTheReferenceAtEveryThreadCount) {
 // A large image, where every thread gets many bands' worth of rows, at 1 and 2 threads.
 TEST(CpuCodec, LargeImageIsTheSameAtOneAndTwoThreads) {
     constexpr int w = 640, h = 360;
-    for (const Layout& layout : allLayouts()) {
+    for (const Layout& layout : test::shippedAttributeLayouts()) {
         SCOPED_TRACE(layout.name);
         const std::vector<Surface> in = makeSurfaces(w, h, 99u);
         const CpuCodec one(layout, CpuCodecOptions{1}), two(layout, CpuCodecOptions{2});
@@ -544,7 +522,7 @@ TEST(CpuCodec, LargeImageIsTheSameAtOneAndTwoThreads) {
 // Checkerboard chroma with a geometry mask: the optimised decode equals the per-pixel reference,
 // and a silhouette pixel never takes chroma from a neighbour without geometry.
 TEST(CpuCodec, CheckerboardChromaSkipsPixelsWithoutGeometry) {
-    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "crysis3-thin.toml");
+    const Layout layout = test::shippedLayout("crysis3-thin");
     const CpuCodec codec(layout);
     for (const auto& [w, h] : {std::pair<int, int>{131, 67}, {2, 2}, {1, 9}}) {
         CpuGBuffer g = codec.encode(makeSurfaces(w, h, 7u), w, h);
@@ -589,12 +567,11 @@ namespace gbl {
 // keeps 542 and 826). HDRP's GBuffer1 clear is Color.black = (0, 0, 0, 1): octahedral codes (0, 0)
 // and roughness code 255; URP's accurate-normals GBuffer2 clears to 0 (RenderGraph).
 TEST(CpuCodec, EngineClearWordsAreTheEnginesClearColours) {
-    const std::filesystem::path dir(GBL_SOURCE_LAYOUT_DIR);
-    const auto niagara = clearWords(loadLayoutFile(dir / "niagara.toml"));
+    const auto niagara = clearWords(test::shippedLayout("niagara"));
     ASSERT_EQ(niagara.size(), 2u);
     EXPECT_EQ(niagara[0][0], 135u | 206u << 8 | 250u << 16 | 15u << 24);
     EXPECT_EQ(niagara[1][0], 542u | 826u << 10 | 1003u << 20);
-    const auto hdrp = clearWords(loadLayoutFile(dir / "hdrp-lit.toml"));
+    const auto hdrp = clearWords(test::shippedLayout("hdrp-lit"));
     ASSERT_EQ(hdrp.size(), 4u);
     EXPECT_EQ(hdrp[1][0], 0xFF000000u);  // GBuffer1: R = G = B = 0 (codes (0, 0)), A = 255
     // GBuffer0: diffuse 0; its alpha, specular occlusion, is an extra (1 in every pixel: the
@@ -602,13 +579,13 @@ TEST(CpuCodec, EngineClearWordsAreTheEnginesClearColours) {
     EXPECT_EQ(hdrp[0][0], 0xFF000000u);
     EXPECT_EQ(hdrp[2][0], 0u);
     EXPECT_EQ(hdrp[3][0], 0u);  // GBuffer3: Color.clear, the word 0, not the AO tag
-    EXPECT_EQ(clearWords(loadLayoutFile(dir / "hdrp-lit-apv.toml"))[3][0], 0u);
-    const auto urp = clearWords(loadLayoutFile(dir / "urp-deferred-accurate.toml"));
+    EXPECT_EQ(clearWords(test::shippedLayout("hdrp-lit-apv"))[3][0], 0u);
+    const auto urp = clearWords(test::shippedLayout("urp-deferred-accurate"));
     ASSERT_EQ(urp.size(), 3u);
     EXPECT_EQ(urp[2][0], 0u);  // GBuffer2: octahedral codes (0, 0), smoothness 0
     // UE clears every G-buffer code to 0; its extras (shading model, mask, per-object, precomputed
     // shadow) are the one documented difference: gbufferlab writes their values in every pixel.
-    const auto ue5 = clearWords(loadLayoutFile(dir / "ue5.toml"));
+    const auto ue5 = clearWords(test::shippedLayout("ue5"));
     ASSERT_EQ(ue5.size(), 5u);
     EXPECT_EQ(ue5[0][0], 1u << 30);           // GBufferA: normal codes 0, per-object code 1
     EXPECT_EQ(ue5[1][0], 0x81u << 24);        // GBufferB: B8G8R8A8, alpha = 1 | 8 << 4

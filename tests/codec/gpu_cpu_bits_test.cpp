@@ -5,8 +5,6 @@
 // decode within a few ulps. Deferred-lighting layouts also run the material pass.
 #include <gtest/gtest.h>
 
-#include "random_surfaces.h"
-
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -16,8 +14,11 @@
 #include "cpu_codec.h"
 #include "encodings.h"
 #include "layout_catalog.h"
+#include "layout_files.h"
+#include "layout_text.h"
 #include "renderer_passes.h"
 #include "shader_compiler.h"
+#include "surface_support.h"
 #include "vk_pipeline.h"
 #include "vk_resources.h"
 #include "vk_test_support.h"
@@ -27,6 +28,7 @@ namespace gbl {
 namespace {
 
 constexpr uint32_t kSize = 256;
+constexpr size_t kPixels = size_t(kSize) * kSize;
 constexpr int kFloatsPerSurface = 28;  // 7 vec4, see kSurfaceIn
 
 const char* kSurfaceIn = R"(
@@ -42,13 +44,6 @@ Surface fetchSurface(ivec2 p) {
     s.emissive = i.a[4].xyz;
     s.position = i.a[5].xyz;
     return s;
-}
-)";
-
-const char* kVertex = R"(#version 450
-void main() {
-    vec2 p = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
-    gl_Position = vec4(p * 2.0 - 1.0, 0.5, 1.0);  // depth 0.5 passes LESS and reversed-Z GREATER
 }
 )";
 
@@ -69,7 +64,7 @@ std::string decodeSource() {
 #define GBUFFER_READ 1
 #define GBL_GEOMETRY_MASK 1
 #include "gbuffer_wiring.glsl"
-// Pixels "without geometry" (a fixed pattern, mirrored by coveredMask): checkerboard chroma skips them.
+// Pixels "without geometry" (test::coveredAt's pattern, surface_support.h): checkerboard chroma skips them.
 bool gblHasGeometry(ivec2 p) { return ((p.x * 7 + p.y * 3) % 5) != 0; }
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0, std430) writeonly buffer Out { vec4 decoded[]; };
@@ -128,7 +123,7 @@ std::vector<Surface> unpackSurfaces(const float* f, size_t n) {
     return v;
 }
 
-std::vector<Surface> randomSurfaces(uint32_t seed) { return test::randomSurfaces(size_t(kSize) * kSize, seed); }
+std::vector<Surface> randomSurfaces(uint32_t seed) { return test::randomSurfaces(kPixels, seed); }
 
 // Writes the Surfaces in `surfaces` through the generated writeGBuffer, one per pixel, into a
 // G-buffer made by the renderer's own code (renderer_passes.h: targets, depth, pipeline state,
@@ -150,7 +145,7 @@ GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, cons
         .buffer(pass.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, surfaces.buffer)
         .buffer(pass.set, enc::kBestFitTableBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, pass.bestFitTable.buffer)
         .flush(ctx.device);
-    const ShaderSource vs{"fullscreen.vert (test)", kVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}};
+    const ShaderSource vs{"fullscreen.vert (test)", test::kFullScreenTriangleVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}};
     const ShaderSource fs{"gpu_cpu_bits.frag (layout " + w.layoutName + ")", fragmentSource(frameFromSurface),
                           VK_SHADER_STAGE_FRAGMENT_BIT, {{"SIZE", std::to_string(kSize)}}, {}};
     pass.pipeline = createGBufferPipeline(ctx, w, pass.pipelineLayout, vs, fs, false);
@@ -162,69 +157,44 @@ GBufferPass renderTargets(const VulkanContext& ctx, const GBufferWiring& w, cons
     return pass;
 }
 
-std::vector<uint32_t> readWords(const VulkanContext& ctx, const GpuImage& img) {
-    const std::vector<uint8_t> bytes = downloadImage(ctx, img, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    return texelsToWords(bytes, size_t(kSize) * kSize);  // one word per texel for R8 / R16 targets
-}
+std::vector<uint32_t> readWords(const VulkanContext& ctx, const GpuImage& img) { return test::targetWords(ctx, img, kPixels); }
 
 std::vector<Surface> gpuDecode(const VulkanContext& ctx, const GBufferWiring& w, const std::vector<GpuImage>& targets,
                                const std::vector<GpuImage>& material) {
-    const size_t pixels = size_t(kSize) * kSize;
-    Buffer out = createBuffer(ctx, pixels * kFloatsPerSurface * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    test::TestBuffer out(ctx, kPixels * kFloatsPerSurface * sizeof(float));
     VkSampler sampler = createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                       VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-    std::vector<std::vector<Binding>> sets = {{{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}}, {}, {}};
-    for (uint32_t i = 0; i < targets.size(); ++i) sets[1].push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
-    for (uint32_t i = 0; i < material.size(); ++i) sets[2].push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    std::vector<std::vector<test::Resource>> sets = {{test::storage(out)}, {}, {}};
+    for (const GpuImage& t : targets) sets[1].push_back(test::combinedImage(t, sampler));
+    for (const GpuImage& m : material) sets[2].push_back(test::combinedImage(m, sampler));
     if (material.empty()) sets.pop_back();
-    std::vector<VkDescriptorSetLayout> layouts;
-    for (const auto& s : sets) layouts.push_back(createSetLayout(ctx.device, s, VK_SHADER_STAGE_COMPUTE_BIT));
-    VkPipelineLayout pipelineLayout = createPipelineLayout(ctx.device, layouts, 0, 0);
-    VkDescriptorPool pool = createPoolFor(ctx.device, sets);
-    std::vector<VkDescriptorSet> ds;
-    for (VkDescriptorSetLayout l : layouts) ds.push_back(allocateSet(ctx.device, pool, l));
-    DescriptorWriter writer;
-    writer.buffer(ds[0], 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.buffer);
-    for (uint32_t i = 0; i < targets.size(); ++i)
-        writer.image(ds[1], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, targets[i].view, sampler,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    for (uint32_t i = 0; i < material.size(); ++i)
-        writer.image(ds[2], i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, material[i].view, sampler,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    writer.flush(ctx.device);
     ShaderSource cs{"gpu_cpu_bits.comp (layout " + w.layoutName + ")", decodeSource(), VK_SHADER_STAGE_COMPUTE_BIT,
                     {{"SIZE", std::to_string(kSize)}}, {{"gbuffer_wiring.glsl", w.glsl}}};
-    VkShaderModule module = createShaderModule(ctx.device, compileGlsl(cs));
-    VkPipeline pipeline = createComputePipeline(ctx, pipelineLayout, module);
-    vkDestroyShaderModule(ctx.device, module, nullptr);
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, uint32_t(ds.size()), ds.data(),
-                                0, nullptr);
-        vkCmdDispatch(cmd, kSize / 8, kSize / 8, 1);
-        fullBarrier(cmd);
-    });
-    std::vector<Surface> result = unpackSurfaces(static_cast<const float*>(out.mapped), pixels);
-    vkDestroyPipeline(ctx.device, pipeline, nullptr);
-    vkDestroyPipelineLayout(ctx.device, pipelineLayout, nullptr);
-    vkDestroyDescriptorPool(ctx.device, pool, nullptr);
-    for (VkDescriptorSetLayout l : layouts) vkDestroyDescriptorSetLayout(ctx.device, l, nullptr);
+    test::ComputeKernel(ctx, cs, sets).dispatch(kSize / 8, kSize / 8);
     vkDestroySampler(ctx.device, sampler, nullptr);
-    destroyBuffer(ctx, out);
-    return result;
+    return unpackSurfaces(out.mapped<const float>(), kPixels);
 }
 
-std::vector<uint8_t> coveredMask() {
-    std::vector<uint8_t> m(size_t(kSize) * kSize);
-    for (uint32_t y = 0; y < kSize; ++y)
-        for (uint32_t x = 0; x < kSize; ++x) m[size_t(y) * kSize + x] = ((x * 7 + y * 3) % 5) != 0;
-    return m;
-}
-
-bool near(float a, float b) {
-    if (a == b) return true;
-    return std::abs(a - b) <= 4.0f * std::numeric_limits<float>::epsilon() * std::max(1.0f, std::abs(b));
-}
+// `surfaces` packed by the CPU mirror (its decode skipping the pixels without geometry, as
+// gblHasGeometry in decodeSource does) and by the generated writeGBuffer of `w` (and its material
+// pass): the words of both, until the object goes.
+struct Packed {
+    Packed(VulkanContext& c, const Layout& layout, const GBufferWiring& w, const std::vector<Surface>& surfaces)
+        : ctx(c), cpu(encodeGBuffer(layout, surfaces, int(kSize), int(kSize))),
+          ssbo(test::TestBuffer::holding(c, packSurfaces(surfaces))) {
+        cpu.covered = test::coverageMask(kSize, kSize);
+        gbuffer = renderTargets(c, w, ssbo);
+        if (w.materialPass) material = renderTargets(c, materialPassWiring(w), ssbo);
+    }
+    ~Packed() {
+        destroyGBufferPass(ctx, gbuffer);
+        destroyGBufferPass(ctx, material);
+    }
+    VulkanContext& ctx;
+    CpuGBuffer cpu;
+    test::TestBuffer ssbo;
+    GBufferPass gbuffer, material;
+};
 
 // Random Surfaces written by the generated writeGBuffer of `layout` and by the CPU mirror: the
 // words must be equal, and their decodes equal within 4 ulp.
@@ -232,16 +202,10 @@ void checkWordsAndDecodes(VulkanContext& c, const Layout& layout, const std::vec
     {
         const std::string& name = layout.name;
         const GBufferWiring w = generateWiring(layout);
-        CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
-        cpu.covered = coveredMask();  // decode: as gblHasGeometry in decodeSource
-        const std::vector<float> packed = packSurfaces(surfaces);
-        Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        GBufferPass gbuffer = renderTargets(c, w, ssbo);
-        GBufferPass materialPass;
-        if (w.materialPass) materialPass = renderTargets(c, materialPassWiring(w), ssbo);
-        const std::vector<GpuImage>& targets = gbuffer.targets;
-        const std::vector<GpuImage>& material = materialPass.targets;
+        const Packed packed(c, layout, w, surfaces);
+        const CpuGBuffer& cpu = packed.cpu;
+        const std::vector<GpuImage>& targets = packed.gbuffer.targets;
+        const std::vector<GpuImage>& material = packed.material.targets;
 
         size_t compared = 0, mismatches = 0;
         for (size_t t = 0; t < targets.size(); ++t) {
@@ -284,30 +248,25 @@ void checkWordsAndDecodes(VulkanContext& c, const Layout& layout, const std::vec
                                s.position.z};
             for (size_t k = 0; k < std::size(a); ++k) {
                 worst = std::max(worst, std::abs(a[k] - b[k]));
-                if (!near(a[k], b[k]) && decodeMismatches++ < 5)
+                if (!test::within4Ulp(a[k], b[k]) && decodeMismatches++ < 5)
                     ADD_FAILURE() << "decode pixel " << i << " value " << k << ": gpu " << a[k] << " cpu " << b[k];
             }
         }
         EXPECT_EQ(decodeMismatches, 0u);
         std::printf("[ decode   ] %-20s max |gpu - cpu| %g, %zu beyond 4 ulp\n", name.c_str(), double(worst),
                     decodeMismatches);
-        destroyGBufferPass(c, gbuffer);
-        destroyGBufferPass(c, materialPass);
-        destroyBuffer(c, ssbo);
     }
 }
 
 class GpuCpuBits : public test::VulkanTest {};
 
+// Every shipped layout but the visibility buffers (ids, not attributes: render/visibility_test).
 TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    const std::vector<std::string> names = listLayoutNames(dir);
-    ASSERT_GE(names.size(), 7u);
+    const std::vector<Layout> layouts = test::shippedAttributeLayouts();
+    ASSERT_GE(layouts.size(), 7u);
     uint32_t seed = 1;
-    for (const std::string& name : names) {
-        SCOPED_TRACE(name);
-        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
-        if (layout.pipeline == Pipeline::VisibilityBuffer) continue;  // ids, not attributes: render/visibility_test
+    for (const Layout& layout : layouts) {
+        SCOPED_TRACE(layout.name);
         checkWordsAndDecodes(ctx(), layout, randomSurfaces(seed++));
     }
 }
@@ -318,8 +277,7 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
 // same words at every index. The codes move from frame to frame and repeat after 64 frames; the
 // field as niagara declares it (no frame term) ignores the index.
 TEST_F(GpuCpuBits, DitherThatMovesWithTimePacksTheSameWordsAtEveryFrame) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    Layout layout = loadLayoutFile(dir / "niagara.toml");
+    Layout layout = test::shippedLayout("niagara");
     Field* dithered = nullptr;
     for (Target& t : layout.targets)
         for (Field& f : t.fields)
@@ -340,12 +298,13 @@ TEST_F(GpuCpuBits, DitherThatMovesWithTimePacksTheSameWordsAtEveryFrame) {
         const uint32_t frame = frameOf(i);
         std::memcpy(&packed[i * kFloatsPerSurface + 24], &frame, sizeof frame);  // a[6].x's bits
     }
-    Buffer ssbo = createBufferWithData(ctx(), packed.data(), packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    GBufferPass pass = renderTargets(ctx(), w, ssbo, true, true);
     std::vector<std::vector<uint32_t>> gpu;
-    for (const GpuImage& t : pass.targets) gpu.push_back(readWords(ctx(), t));
-    destroyGBufferPass(ctx(), pass);
-    destroyBuffer(ctx(), ssbo);
+    {
+        const test::TestBuffer ssbo = test::TestBuffer::holding(ctx(), packed);
+        GBufferPass pass = renderTargets(ctx(), w, ssbo, true, true);
+        for (const GpuImage& t : pass.targets) gpu.push_back(readWords(ctx(), t));
+        destroyGBufferPass(ctx(), pass);
+    }
     std::vector<CpuGBuffer> cpu;  // the whole image encoded at each frame index
     for (uint32_t frame = 0; frame < kFrames; ++frame) {
         CpuCodecOptions options;
@@ -386,49 +345,20 @@ TEST_F(GpuCpuBits, DitherThatMovesWithTimePacksTheSameWordsAtEveryFrame) {
 // 1/1024 clamp, fresnel0 (srgb8_fast_hdrp) below sRGB's toe, and GBuffer3's AO tag
 // (float11_11_10_hdrp_ao_tag) where emissive is exactly 0, with AO at 0, 1, float11's denormals
 // and its rounding ties, and emissive that quantises to 0 without being 0.
-const char* kEngineEncodingsLayout = R"(name = "engine-encodings"
-title = "engine encodings no seed layout stores"
-pipeline = "deferred-shading"
-source = { engine = "Unity HDRP", talk = "unit test", year = 2021 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "GBuffer1"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "normal",    encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"] },
-  { attribute = "roughness", encoding = "unorm", at = "a" },
-]
-[[target]]
-name = "GBuffer2"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "specular_color", encoding = "srgb8_fast_hdrp", at = ["r", "g", "b"] },
-]
-[[target]]
-name = "GBuffer3"
-format = "B10G11R11_UFLOAT_PACK32"
-field = [
-  { attribute = "emissive", encoding = "float11_11_10_hdrp_ao_tag", at = ["r", "g", "b"] },
-]
-[fallback]
-base_color = 0.5
-metallic = 0.0
-specular = 0.5
-diffuse_color = "from_base_color"
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-specular_color = 0.0
-emissive = 0.0
-occlusion = 0.5
-)";
+// HDRP's GBuffer1, GBuffer2 and GBuffer3 (occlusion rides in GBuffer3's AO tag: no fallback for it).
+std::string engineEncodingsLayout() {
+    return test::LayoutText("engine-encodings", "engine encodings no seed layout stores", test::kHdrpSource)
+        .target(test::hdrpGBuffer1())
+        .target(test::hdrpGBuffer2())
+        .target(test::hdrpGBuffer3())
+        .noFallback("occlusion")
+        .clear("specular_color = 0.0")
+        .clear("emissive = 0.0")
+        .clear("occlusion = 0.5");
+}
 
 TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
-    const Layout layout = parseLayout(kEngineEncodingsLayout, "engine-encodings.toml");
+    const Layout layout = parseLayout(engineEncodingsLayout(), "engine-encodings.toml");
     std::vector<Surface> surfaces = randomSurfaces(900);
     // A quarter of the normals within HDRP's 1/1024 of the equator (its clamp acts), +-0 included.
     const float zs[] = {0.0f, -0.0f, 1.0f / 1024.0f, -1.0f / 1024.0f, 3e-4f, -3e-4f, 1e-30f, -1e-7f};
@@ -452,7 +382,7 @@ TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
 // floats beside them, on its two ends and beyond them, so that the GLSL search is held to the CPU's
 // code at every boundary, not only at the random Surfaces' roughnesses.
 TEST_F(GpuCpuBits, Killzone2PowerPacksTheSameWordsOnItsThresholds) {
-    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "killzone2.toml");
+    const Layout layout = test::shippedLayout("killzone2");
     std::vector<Surface> surfaces = randomSurfaces(910);
     std::vector<float> probes = {0.0f, -0.0f, 1.0f, 2.0f, -1.0f, 0.1f, 0.95f, enc::kKz2PowerRoughness[0],
                                  enc::kKz2PowerRoughness[255]};
@@ -470,15 +400,11 @@ TEST_F(GpuCpuBits, Killzone2PowerPacksTheSameWordsOnItsThresholds) {
 // and (crysis3-thin) those words decode to a black albedo without tint, not chroma -0.5.
 TEST_F(GpuCpuBits, ClearedPixelsHoldTheEncodedClearValues) {
     VulkanContext& c = ctx();
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    for (const std::string& name : listLayoutNames(dir)) {
+    for (const Layout& layout : test::shippedAttributeLayouts()) {  // visibility buffers: render/visibility_test
+        const std::string& name = layout.name;
         SCOPED_TRACE(name);
-        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
-        if (layout.pipeline == Pipeline::VisibilityBuffer) continue;  // ids, not attributes: render/visibility_test
         const GBufferWiring w = generateWiring(layout);
-        const std::vector<float> packed = packSurfaces(std::vector<Surface>(size_t(kSize) * kSize));
-        Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        const test::TestBuffer ssbo = test::TestBuffer::holding(c, packSurfaces(std::vector<Surface>(kPixels)));
         GBufferPass gbuffer = renderTargets(c, w, ssbo, false);
         const std::vector<std::array<uint32_t, 4>> clear = clearWords(layout);
         CpuGBuffer cleared;
@@ -486,7 +412,7 @@ TEST_F(GpuCpuBits, ClearedPixelsHoldTheEncodedClearValues) {
         size_t mismatches = 0;
         for (size_t t = 0; t < gbuffer.targets.size(); ++t) {
             const std::vector<uint32_t> gpu = readWords(c, gbuffer.targets[t]);
-            const size_t words = gpu.size() / (size_t(kSize) * kSize);
+            const size_t words = gpu.size() / kPixels;
             for (size_t i = 0; i < gpu.size(); ++i)
                 if (gpu[i] != clear[t][i % words] && mismatches++ < 3)
                     ADD_FAILURE() << "target " << t << " word " << i << ": 0x" << std::hex << gpu[i] << " expected 0x"
@@ -500,7 +426,6 @@ TEST_F(GpuCpuBits, ClearedPixelsHoldTheEncodedClearValues) {
             EXPECT_LT(glm::length(s[1].diffuseColor), 1e-6f);
         }
         destroyGBufferPass(c, gbuffer);
-        destroyBuffer(c, ssbo);
     }
 }
 
@@ -509,26 +434,14 @@ TEST_F(GpuCpuBits, ClearedPixelsHoldTheEncodedClearValues) {
 // conversion truncates, its SRGB one is off by a step on ~6% of values: STACK-FACTS.md).
 TEST_F(GpuCpuBits, NativeFormatsRenderAndDecodeNearTheBitExactPath) {
     VulkanContext& c = ctx();
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
     uint32_t seed = 100;
-    for (const std::string& name : listLayoutNames(dir)) {
+    for (const Layout& layout : test::shippedAttributeLayouts()) {  // visibility buffers: render/visibility_test
+        const std::string& name = layout.name;
         SCOPED_TRACE(name);
-        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
-        if (layout.pipeline == Pipeline::VisibilityBuffer) continue;  // ids, not attributes: render/visibility_test
         const GBufferWiring w = generateWiring(layout, WiringOptions{true});
-        const std::vector<Surface> surfaces = randomSurfaces(seed++);
-        CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
-        cpu.covered = coveredMask();  // decode: as gblHasGeometry in decodeSource
-        const std::vector<float> packed = packSurfaces(surfaces);
-        Buffer ssbo = createBufferWithData(c, packed.data(), packed.size() * sizeof(float),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        GBufferPass gbuffer = renderTargets(c, w, ssbo);
-        GBufferPass materialPass;
-        if (w.materialPass) materialPass = renderTargets(c, materialPassWiring(w), ssbo);
-        const std::vector<GpuImage>& targets = gbuffer.targets;
-        const std::vector<GpuImage>& material = materialPass.targets;
-        const std::vector<Surface> g = gpuDecode(c, w, targets, material);
-        const std::vector<Surface> s = decodeGBuffer(layout, cpu);
+        const Packed packed(c, layout, w, randomSurfaces(seed++));
+        const std::vector<Surface> g = gpuDecode(c, w, packed.gbuffer.targets, packed.material.targets);
+        const std::vector<Surface> s = decodeGBuffer(layout, packed.cpu);
         size_t native = 0, far = 0;
         for (size_t t = 0; t < w.targetFormats.size(); ++t) native += w.targetFormats[t] != uintFormatOf(layout.targets[t]);
         // One 8-bit step in each code, through the widest inverse transform: YCbCr's
@@ -563,9 +476,6 @@ TEST_F(GpuCpuBits, NativeFormatsRenderAndDecodeNearTheBitExactPath) {
         EXPECT_EQ(far, 0u) << "worst relative difference " << worst;
         std::printf("[ native   ] %-20s %zu of %zu targets native, max rel. diff vs bit-exact decode %g\n",
                     name.c_str(), native, w.targetFormats.size(), double(worst));
-        destroyGBufferPass(c, gbuffer);
-        destroyGBufferPass(c, materialPass);
-        destroyBuffer(c, ssbo);
     }
 }
 
@@ -586,7 +496,7 @@ uint32_t theForgePackVisBufData(bool opaque, uint32_t drawId, uint32_t triangleI
 // (The Forge masks the excess away, and so must gbufferlab), then unpacked as its shade pass does.
 TEST_F(GpuCpuBits, VisibilityIdsEqualTheForgesPackVisBufData) {
     VulkanContext& c = ctx();
-    const Layout layout = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-32.toml");
+    const Layout layout = test::shippedLayout("visibility-32");
     ASSERT_EQ(layout.pipeline, Pipeline::VisibilityBuffer);
     const GBufferWiring w = generateWiring(layout);
     constexpr uint32_t kIds = 1u << 20;
@@ -607,41 +517,15 @@ TEST_F(GpuCpuBits, VisibilityIdsEqualTheForgesPackVisBufData) {
         in[size_t(i) * 4 + 2] = (i / 512u) % 2u;  // alpha-tested
         in[size_t(i) * 4 + 3] = 0u;
     }
-    Buffer input = createBufferWithData(c, in.data(), in.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Buffer out = createBuffer(c, size_t(kIds) * 4 * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    const std::vector<Binding> set = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    VkDescriptorSetLayout setLayout = createSetLayout(c.device, set, VK_SHADER_STAGE_COMPUTE_BIT);
-    VkPipelineLayout pipelineLayout = createPipelineLayout(c.device, {setLayout}, 0, 0);
-    VkDescriptorPool pool = createPoolFor(c.device, {set});
-    VkDescriptorSet ds = allocateSet(c.device, pool, setLayout);
-    DescriptorWriter()
-        .buffer(ds, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, input.buffer)
-        .buffer(ds, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.buffer)
-        .flush(c.device);
-    const char* source = R"(#version 450
-#extension GL_GOOGLE_include_directive : require
-#include "gbuffer_wiring.glsl"
-layout(local_size_x = 64) in;
-layout(set = 0, binding = 0, std430) readonly buffer In { uvec4 ids[]; };
-layout(set = 0, binding = 1, std430) writeonly buffer Out { uvec4 words[]; };
-void main() {
-    uint i = gl_GlobalInvocationID.x;
-    uvec4 v = ids[i];
+    const test::TestBuffer input = test::TestBuffer::holding(c, in);
+    const test::TestBuffer out(c, size_t(kIds) * 4 * sizeof(uint32_t));
+    const std::string source = test::wiringKernel(R"(    uvec4 v = inputs[i];
     uint packed = packVisibilityIds(v.x, v.y, v.z != 0u, 0.0).x;
-    words[i] = uvec4(packed, unpackVisibilityIds(uvec2(packed, 0u)));
-}
-)";
+    outputs[i] = uvec4(packed, unpackVisibilityIds(uvec2(packed, 0u)));
+)");
     ShaderSource cs{"visibility_ids.comp (test)", source, VK_SHADER_STAGE_COMPUTE_BIT, {}, {{"gbuffer_wiring.glsl", w.glsl}}};
-    VkShaderModule module = createShaderModule(c.device, compileGlsl(cs));
-    VkPipeline pipeline = createComputePipeline(c, pipelineLayout, module);
-    vkDestroyShaderModule(c.device, module, nullptr);
-    c.submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, 1, &ds, 0, nullptr);
-        vkCmdDispatch(cmd, kIds / 64, 1, 1);
-        fullBarrier(cmd);
-    });
-    const uint32_t* got = static_cast<const uint32_t*>(out.mapped);
+    test::ComputeKernel(c, cs, {{test::storage(input), test::storage(out)}}).dispatch(kIds / 64);
+    const uint32_t* got = out.mapped<const uint32_t>();
     size_t mismatches = 0;
     for (uint32_t i = 0; i < kIds; ++i) {
         const uint32_t draw = in[size_t(i) * 4], tri = in[size_t(i) * 4 + 1];
@@ -656,12 +540,6 @@ void main() {
     }
     EXPECT_EQ(mismatches, 0u);
     std::printf("[ ids      ] visibility-32: %u ids packed as packVisBufData, %zu mismatches\n", kIds, mismatches);
-    vkDestroyPipeline(c.device, pipeline, nullptr);
-    vkDestroyPipelineLayout(c.device, pipelineLayout, nullptr);
-    vkDestroyDescriptorPool(c.device, pool, nullptr);
-    vkDestroyDescriptorSetLayout(c.device, setLayout, nullptr);
-    destroyBuffer(c, input);
-    destroyBuffer(c, out);
 }
 
 }  // namespace

@@ -26,13 +26,11 @@
 #include "encodings.h"
 #include "export_glsl_library.h"
 #include "export_header.h"
-#include "random_surfaces.h"
-#include "layout_catalog.h"
 #include "layout_export.h"
+#include "layout_files.h"
 #include "renderer_passes.h"
 #include "shader_compiler.h"
-#include "vk_pipeline.h"
-#include "vk_resources.h"
+#include "surface_support.h"
 #include "vk_test_support.h"
 #include "wiring_codegen.h"
 #include "wiring_field_codegen.h"
@@ -43,15 +41,6 @@ namespace {
 
 constexpr uint32_t kSize = 16;
 constexpr size_t kPixels = size_t(kSize) * kSize;
-
-const char* kVertex = R"(#version 450
-void main() {
-    vec2 p = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
-    gl_Position = vec4(p * 2.0 - 1.0, 0.5, 1.0);
-}
-)";
-
-bool coveredAt(uint32_t x, uint32_t y) { return ((x * 7 + y * 3) % 5) != 0; }
 
 std::string lang(ExportLanguage l) { return l == ExportLanguage::Hlsl ? "HLSL" : "GLSL"; }
 
@@ -82,23 +71,6 @@ std::vector<Surface> randomSurfaces(uint32_t seed) {
     return v;
 }
 
-const float* memberOf(const Surface& s, Attribute a) {
-    switch (a) {
-        case Attribute::Normal: return &s.normal.x;
-        case Attribute::BaseColor: return &s.baseColor.x;
-        case Attribute::Metallic: return &s.metallic;
-        case Attribute::Roughness: return &s.roughness;
-        case Attribute::Specular: return &s.specular;
-        case Attribute::SpecularColor: return &s.specularColor.x;
-        case Attribute::DiffuseColor: return &s.diffuseColor.x;
-        case Attribute::Occlusion: return &s.occlusion;
-        case Attribute::Emissive: return &s.emissive.x;
-        case Attribute::Position: return &s.position.x;
-        case Attribute::Depth: return &s.position.z;  // the exported Surface's `depth` (wiring_plan.h)
-        default: return nullptr;
-    }
-}
-
 // The kernel's input: each member (extras: the layout's value), then covered.
 std::vector<float> kernelInput(const Layout& layout, const std::vector<Surface>& surfaces) {
     const std::vector<ExportMember> members = exportSurfaceMembers(layout);
@@ -108,7 +80,7 @@ std::vector<float> kernelInput(const Layout& layout, const std::vector<Surface>&
         float* p = &f[i * size_t(n)];
         for (const ExportMember& m : members)
             for (int c = 0; c < m.components; ++c) {
-                if (const float* v = memberOf(surfaces[i], m.attribute); v && !m.isUint && m.defaultValue.empty()) {
+                if (const float* v = test::memberOf(surfaces[i], m.attribute); v && !m.isUint && m.defaultValue.empty()) {
                     p[m.firstFloat + c] = v[c];
                     continue;
                 }
@@ -120,14 +92,9 @@ std::vector<float> kernelInput(const Layout& layout, const std::vector<Surface>&
                     p[m.firstFloat + c] = float(d);
                 }
             }
-        p[n - 1] = coveredAt(uint32_t(i % kSize), uint32_t(i / kSize)) ? 1.0f : 0.0f;
+        p[n - 1] = test::coveredAt(uint32_t(i % kSize), uint32_t(i / kSize)) ? 1.0f : 0.0f;
     }
     return f;
-}
-
-bool near(float a, float b) {
-    if (a == b) return true;
-    return std::abs(a - b) <= 4.0f * std::numeric_limits<float>::epsilon() * std::max(1.0f, std::abs(b));
 }
 
 // Decoded members (words [0, floats) of each output record) against the CPU decode; extras
@@ -144,11 +111,11 @@ size_t compareDecoded(const Layout& layout, const uint32_t* out, size_t stride, 
                     if (w != want && bad++ < 5) ADD_FAILURE() << what << " pixel " << i << " " << m.name << ": " << w << " != " << want;
                     continue;
                 }
-                const float* v = memberOf(cpu[i], m.attribute);
+                const float* v = test::memberOf(cpu[i], m.attribute);
                 if (!v) continue;  // float extras: held by the words' check
                 float g;
                 std::memcpy(&g, &w, 4);
-                if (!near(g, v[c]) && bad++ < 5)
+                if (!test::within4Ulp(g, v[c]) && bad++ < 5)
                     ADD_FAILURE() << what << " pixel " << i << " " << m.name << "[" << c << "]: " << g << ", CPU " << v[c];
             }
     return bad;
@@ -159,6 +126,12 @@ size_t compareDecoded(const Layout& layout, const uint32_t* out, size_t stride, 
 uint32_t codeOfValue(RealKind k, uint32_t bits, uint32_t word, int channelBits, bool& ok) {
     float f;
     std::memcpy(&f, &word, 4);
+    // A small float or sRGB code: the value must be the code's exact value.
+    auto exactly = [&](uint32_t (*encode)(float), float (*decode)(uint32_t)) {
+        const uint32_t c = encode(f);
+        ok = ok && decode(c) == f;
+        return c;
+    };
     switch (k) {
         case RealKind::Uint: return word;
         case RealKind::Float32: return word;
@@ -171,79 +144,22 @@ uint32_t codeOfValue(RealKind k, uint32_t bits, uint32_t word, int channelBits, 
             ok = ok && std::abs(r) - std::abs(code) >= 0.0 && std::abs(r) - std::abs(code) < 0.25 && std::trunc(r) == code;
             return uint32_t(int32_t(code)) & (channelBits >= 32 ? 0xffffffffu : (1u << channelBits) - 1u);
         }
-        case RealKind::Srgb: {
-            const uint32_t c = enc::encodeSrgb8(f);
-            ok = ok && enc::decodeSrgb8(c) == f;
-            return c;
-        }
-        case RealKind::Float16: {
-            const uint32_t c = enc::encodeFloat16(f);
-            ok = ok && enc::decodeFloat16(c) == f;
-            return c;
-        }
-        case RealKind::Float11: {
-            const uint32_t c = enc::encodeFloat11(f);
-            ok = ok && enc::decodeFloat11(c) == f;
-            return c;
-        }
-        case RealKind::Float10: {
-            const uint32_t c = enc::encodeFloat10(f);
-            ok = ok && enc::decodeFloat10(c) == f;
-            return c;
-        }
+        case RealKind::Srgb: return exactly(enc::encodeSrgb8, enc::decodeSrgb8);
+        case RealKind::Float16: return exactly(enc::encodeFloat16, enc::decodeFloat16);
+        case RealKind::Float11: return exactly(enc::encodeFloat11, enc::decodeFloat11);
+        case RealKind::Float10: return exactly(enc::encodeFloat10, enc::decodeFloat10);
     }
     (void)bits;
     return 0;
 }
 
-struct Set0 {
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    void destroy(VkDevice d) {
-        vkDestroyPipelineLayout(d, pipelineLayout, nullptr);
-        vkDestroyDescriptorPool(d, pool, nullptr);
-        vkDestroyDescriptorSetLayout(d, setLayout, nullptr);
-    }
-};
-
 // Set 0 as the export declares it: 0 kernel input, 1 kernel output, 2 best-fit table (storage
 // buffers), then 3.. the targets as sampled images (decode pass only).
-Set0 makeSet0(const VulkanContext& c, VkShaderStageFlags stage, const Buffer& in, const Buffer& out, const Buffer& table,
-              const std::vector<GpuImage>* images) {
-    std::vector<Binding> b = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                              {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    if (images)
-        for (uint32_t i = 0; i < images->size(); ++i) b.push_back({3 + i, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE});
-    Set0 s;
-    s.setLayout = createSetLayout(c.device, b, stage);
-    s.pipelineLayout = createPipelineLayout(c.device, {s.setLayout}, 0, 0);
-    s.pool = createPoolFor(c.device, {b});
-    s.set = allocateSet(c.device, s.pool, s.setLayout);
-    DescriptorWriter w;
-    w.buffer(s.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.buffer)
-        .buffer(s.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.buffer)
-        .buffer(s.set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, table.buffer);
-    if (images)
-        for (uint32_t i = 0; i < images->size(); ++i)
-            w.image(s.set, 3 + i, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, (*images)[i].view, VK_NULL_HANDLE,
-                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    w.flush(c.device);
-    return s;
-}
-
-void runCompute(const VulkanContext& c, const Set0& s, const std::vector<uint32_t>& spirv) {
-    VkShaderModule module = createShaderModule(c.device, spirv);
-    VkPipeline pipeline = createComputePipeline(c, s.pipelineLayout, module);
-    vkDestroyShaderModule(c.device, module, nullptr);
-    c.submitAndWait([&](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelineLayout, 0, 1, &s.set, 0, nullptr);
-        vkCmdDispatch(cmd, kSize / 8, kSize / 8, 1);
-        fullBarrier(cmd);
-    });
-    vkDestroyPipeline(c.device, pipeline, nullptr);
+std::vector<std::vector<test::Resource>> set0(const Buffer& in, const Buffer& out, const Buffer& table,
+                                              const std::vector<GpuImage>& images = {}) {
+    std::vector<test::Resource> set = {test::storage(in), test::storage(out), test::storage(table)};
+    for (const GpuImage& image : images) set.push_back(test::sampledImage(image));
+    return {set};
 }
 
 // The exported kernel file (GLSL: after its #version line) with `lines` in front.
@@ -328,14 +244,14 @@ class LayoutExportGpu : public test::VulkanTest {};
 void checkLayout(VulkanContext& c, const Layout& layout, uint32_t seed, const Buffer& table) {
     const std::vector<Surface> surfaces = randomSurfaces(seed);
     CpuGBuffer cpu = encodeGBuffer(layout, surfaces, int(kSize), int(kSize));
-    cpu.covered.resize(kPixels);
-    for (size_t i = 0; i < kPixels; ++i) cpu.covered[i] = coveredAt(uint32_t(i % kSize), uint32_t(i / kSize));
+    cpu.covered = test::coverageMask(kSize, kSize);
     const std::vector<Surface> cpuDecoded = decodeGBuffer(layout, cpu);
     const std::vector<float> input = kernelInput(layout, surfaces);
     const size_t outWords = size_t(exportKernelOutputWords(layout));
-    Buffer in = createBufferWithData(c, input.data(), input.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Buffer out = createBuffer(c, kPixels * outWords * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    const std::vector<uint32_t> vs = compileGlslUncached({"export.vert (test)", kVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}});
+    const test::TestBuffer in = test::TestBuffer::holding(c, input);
+    const test::TestBuffer out(c, kPixels * outWords * 4);
+    const std::vector<uint32_t> vs =
+        compileGlslUncached({"export.vert (test)", test::kFullScreenTriangleVertex, VK_SHADER_STAGE_VERTEX_BIT, {}, {}});
 
     GBufferWiring w = generateWiring(layout, WiringOptions{true});
     for (size_t t = 0; t < layout.targets.size(); ++t) w.targetFormats[t] = vkFormatFromName(layout.targets[t].format);
@@ -350,11 +266,11 @@ void checkLayout(VulkanContext& c, const Layout& layout, uint32_t seed, const Bu
         // 1. raster into the real formats
         GBufferPass pass;
         createGBufferImages(c, w, kSize, kSize, pass);
-        Set0 s = makeSet0(c, VK_SHADER_STAGE_FRAGMENT_BIT, in, out, table, nullptr);
-        pass.setLayout = s.setLayout;
+        const test::DescriptorSets s(c, VK_SHADER_STAGE_FRAGMENT_BIT, set0(in, out, table));
+        pass.setLayout = s.setLayouts[0];
         pass.pipelineLayout = s.pipelineLayout;
         pass.pool = s.pool;
-        pass.set = s.set;
+        pass.set = s.sets[0];
         const std::vector<uint32_t> fs =
             compileFor(l, "export.frag (" + layout.name + ")", fragmentWrapper(layout, l, exported), VK_SHADER_STAGE_FRAGMENT_BIT);
         pass.pipeline = createGBufferPipelineSpirv(c, w, pass.pipelineLayout, vs, fs, false);
@@ -365,8 +281,7 @@ void checkLayout(VulkanContext& c, const Layout& layout, uint32_t seed, const Bu
         });
         size_t wordMismatches = 0, words = 0;
         for (size_t t = 0; t < pass.targets.size(); ++t) {
-            const std::vector<uint32_t> gpu =
-                texelsToWords(downloadImage(c, pass.targets[t], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL), kPixels);
+            const std::vector<uint32_t> gpu = test::targetWords(c, pass.targets[t], kPixels);
             ASSERT_EQ(gpu.size(), cpu.targetWords[t].size());
             for (size_t i = 0; i < gpu.size(); ++i, ++words)
                 if (gpu[i] != cpu.targetWords[t][i] && wordMismatches++ < 5)
@@ -376,20 +291,21 @@ void checkLayout(VulkanContext& c, const Layout& layout, uint32_t seed, const Bu
         EXPECT_EQ(wordMismatches, 0u);
 
         // 2. decode from the real-format images
-        Set0 d = makeSet0(c, VK_SHADER_STAGE_COMPUTE_BIT, in, out, table, &pass.targets);
-        std::memset(out.mapped, 0xff, kPixels * outWords * 4);
-        runCompute(c, d, compileFor(l, "export decode (" + layout.name + ")", decodeWrapper(layout, l, exported),
-                                    VK_SHADER_STAGE_COMPUTE_BIT));
+        std::memset(out.mapped<void>(), 0xff, kPixels * outWords * 4);
+        const std::string decode = decodeWrapper(layout, l, exported);
+        test::ComputeKernel(c, compileFor(l, "export decode (" + layout.name + ")", decode, VK_SHADER_STAGE_COMPUTE_BIT),
+                            set0(in, out, table, pass.targets))
+            .dispatch(kSize / 8, kSize / 8);
         const size_t decodeMismatches =
-            compareDecoded(layout, static_cast<const uint32_t*>(out.mapped), outWords, cpuDecoded, "image decode");
+            compareDecoded(layout, out.mapped<const uint32_t>(), outWords, cpuDecoded, "image decode");
         EXPECT_EQ(decodeMismatches, 0u);
-        d.destroy(c.device);
 
         // 3. the export's own kernel
-        std::memset(out.mapped, 0xff, kPixels * outWords * 4);
-        Set0 k = makeSet0(c, VK_SHADER_STAGE_COMPUTE_BIT, in, out, table, nullptr);
-        runCompute(c, k, compileFor(l, "export kernel (" + layout.name + ")", exported, VK_SHADER_STAGE_COMPUTE_BIT));
-        const uint32_t* o = static_cast<const uint32_t*>(out.mapped);
+        std::memset(out.mapped<void>(), 0xff, kPixels * outWords * 4);
+        test::ComputeKernel(c, compileFor(l, "export kernel (" + layout.name + ")", exported, VK_SHADER_STAGE_COMPUTE_BIT),
+                            set0(in, out, table))
+            .dispatch(kSize / 8, kSize / 8);
+        const uint32_t* o = out.mapped<const uint32_t>();
         const size_t kernelDecode = compareDecoded(layout, o, outWords, cpuDecoded, "kernel decode");
         EXPECT_EQ(kernelDecode, 0u);
         size_t valueMismatches = 0, roomy = 0;
@@ -414,7 +330,6 @@ void checkLayout(VulkanContext& c, const Layout& layout, uint32_t seed, const Bu
         }
         EXPECT_EQ(valueMismatches, 0u);
         EXPECT_EQ(roomy, 0u) << "values that leave the format's conversion a choice";
-        k.destroy(c.device);
         std::printf("[ export   ] %-22s %s: %zu words bit-exact in the real formats (%zu off), decode %zu off, "
                     "kernel values %zu off, %zu inexact (%.1f s)\n",
                     layout.name.c_str(), lang(l).c_str(), words, wordMismatches, decodeMismatches, valueMismatches, roomy,
@@ -422,11 +337,8 @@ void checkLayout(VulkanContext& c, const Layout& layout, uint32_t seed, const Bu
         pass.setLayout = VK_NULL_HANDLE;
         pass.pipelineLayout = VK_NULL_HANDLE;
         pass.pool = VK_NULL_HANDLE;
-        destroyGBufferPass(c, pass);
-        s.destroy(c.device);
+        destroyGBufferPass(c, pass);  // the set is s's
     }
-    destroyBuffer(c, in);
-    destroyBuffer(c, out);
 }
 
 // Ids packed as [ids] says, written out here: triangle from bit 0, draw above it, the top bit.
@@ -439,14 +351,16 @@ void checkVisibility(VulkanContext& c, const Layout& layout, const Buffer& table
         in[i * 4 + 1] = rng();
         in[i * 4 + 2] = i % 2;
     }
-    Buffer inBuf = createBufferWithData(c, in.data(), in.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Buffer out = createBuffer(c, kPixels * 5 * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    const test::TestBuffer inBuf = test::TestBuffer::holding(c, in);
+    const test::TestBuffer out(c, kPixels * 5 * 4);
     auto mask = [](int b) { return b >= 64 ? ~0ull : (1ull << b) - 1; };
     for (ExportLanguage l : {ExportLanguage::Glsl, ExportLanguage::Hlsl}) {
         SCOPED_TRACE(lang(l));
-        Set0 k = makeSet0(c, VK_SHADER_STAGE_COMPUTE_BIT, inBuf, out, table, nullptr);
-        runCompute(c, k, compileFor(l, "export kernel (" + layout.name + ")", exportText(layout, l), VK_SHADER_STAGE_COMPUTE_BIT));
-        const uint32_t* o = static_cast<const uint32_t*>(out.mapped);
+        const std::string kernel = exportText(layout, l);
+        test::ComputeKernel(c, compileFor(l, "export kernel (" + layout.name + ")", kernel, VK_SHADER_STAGE_COMPUTE_BIT),
+                            set0(inBuf, out, table))
+            .dispatch(kSize / 8, kSize / 8);
+        const uint32_t* o = out.mapped<const uint32_t>();
         size_t bad = 0;
         for (size_t i = 0; i < kPixels; ++i) {
             const uint64_t tri = in[i * 4] & mask(ids.triangleBits), draw = in[i * 4 + 1] & mask(ids.drawBits);
@@ -459,17 +373,12 @@ void checkVisibility(VulkanContext& c, const Layout& layout, const Buffer& table
         EXPECT_EQ(bad, 0u);
         std::printf("[ export   ] %-22s %s: %zu ids packed and unpacked as [ids] says, %zu off\n", layout.name.c_str(),
                     lang(l).c_str(), kPixels, bad);
-        k.destroy(c.device);
     }
-    destroyBuffer(c, inBuf);
-    destroyBuffer(c, out);
 }
 
 TEST_F(LayoutExportGpu, EveryLayoutEncodesTheMirrorsWordsInItsRealFormats) {
     VulkanContext& c = ctx();
-    const std::vector<uint32_t>& tableWords = enc::bestFitNormalTable();
-    Buffer table = createBufferWithData(c, tableWords.data(), tableWords.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
+    const test::TestBuffer table = test::TestBuffer::holding(c, enc::bestFitNormalTable());
     const uint32_t seed = 3100;
     // Every shipped layout, the reference included. Two ctest entries run half each
     // (GBL_EXPORT_TEST_SHARD=i/n: the layouts at positions i, i + n, ... of the sorted list), so
@@ -491,17 +400,15 @@ TEST_F(LayoutExportGpu, EveryLayoutEncodesTheMirrorsWordsInItsRealFormats) {
     }
     ASSERT_LT(shard, shards);
     size_t position = 0, ran = 0;
-    for (const std::string& name : listLayoutNames(dir)) {
+    for (const Layout& layout : test::shippedLayouts()) {
         const size_t at = position++;
-        if (!subset.empty() ? !subset.count(name) : at % shards != shard) continue;
-        SCOPED_TRACE(name);
+        if (!subset.empty() ? !subset.count(layout.name) : at % shards != shard) continue;
+        SCOPED_TRACE(layout.name);
         ++ran;
-        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
         if (layout.pipeline == Pipeline::VisibilityBuffer) checkVisibility(c, layout, table);
         else checkLayout(c, layout, seed + uint32_t(at), table);
     }
     EXPECT_GT(ran, 0u) << "no layout ran";
-    destroyBuffer(c, table);
 }
 
 }  // namespace

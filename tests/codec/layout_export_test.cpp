@@ -14,7 +14,9 @@
 #include "export_glsl_library.h"
 #include "layout_catalog.h"
 #include "layout_export.h"
+#include "layout_text.h"
 #include "shader_compiler.h"
+#include "layout_files.h"
 
 namespace gbl {
 namespace {
@@ -82,11 +84,10 @@ TEST(LayoutExport, HlslTranslationOfConstructorsAndArrays) {
 // Every shipped layout, both languages, with the compute kernel (which calls encode and decode):
 // glslang compiles them. The HLSL also through glslangValidator itself, as docs/export.md says.
 TEST(LayoutExport, EveryShippedLayoutCompilesInBothLanguages) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
     size_t n = 0;
-    for (const std::string& name : listLayoutNames(dir)) {
+    for (const Layout& layout : test::shippedLayouts()) {
+        const std::string& name = layout.name;
         SCOPED_TRACE(name);
-        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
         for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl})
             for (exporting::ExportTables tables : {exporting::ExportTables::Selects, exporting::ExportTables::Arrays}) {
                 const std::string text = exportOf(layout, lang, true, tables);
@@ -128,39 +129,14 @@ TEST(LayoutExport, OnlyTheHelpersTheLayoutNeeds) {
 // with "*/", a trailing backslash (continues a // comment), quotes, "#" and non-ASCII. None of it
 // may appear outside a // comment, identifiers stay valid, and both languages compile.
 TEST(LayoutExport, LayoutTextIsEscapedAndNamesArePrefixed) {
-    const char* text = R"(name = "x--y__z"
-title = "*/ #error boom \\ \"q\" caf\u00e9"
-pipeline = "deferred-shading"
-source = { engine = "E */", talk = "T \\", year = 2020 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "*/ #define x 1 \\"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "normal", encoding = "normal_octahedral", at = ["r", "g"] },
-  { attribute = "roughness", encoding = "unorm", at = "b" },
-  { attribute = "shading_model_id", at = "a", value = 7 },
-]
-[[target]]
-name = "9 lives"
-format = "R8G8B8A8_SRGB"
-field = [ { attribute = "base_color", encoding = "srgb8", at = ["r", "g", "b"] } ]
-[fallback]
-metallic = 0.0
-specular = 0.5
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = 0.0
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-base_color = 0.0
-)";
+    const std::string text =
+        test::LayoutText("x--y__z", R"(*/ #error boom \\ \"q\" caf\u00e9)", R"({ engine = "E */", talk = "T \\", year = 2020 })")
+            .target(R"(*/ #define x 1 \\)", "R8G8B8A8_UNORM",
+                    {R"(attribute = "normal", encoding = "normal_octahedral", at = ["r", "g"])",
+                     R"(attribute = "roughness", encoding = "unorm", at = "b")",
+                     R"(attribute = "shading_model_id", at = "a", value = 7)"})
+            .target("9 lives", "R8G8B8A8_SRGB", {R"(attribute = "base_color", encoding = "srgb8", at = ["r", "g", "b"])"})
+            .clear("base_color = 0.0");
     const Layout layout = parseLayout(text, "x--y__z.toml");
     EXPECT_EQ(exportPrefix(layout), "gbl_x_y_z");
     for (ExportLanguage lang : {ExportLanguage::Glsl, ExportLanguage::Hlsl}) {

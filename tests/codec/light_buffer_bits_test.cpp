@@ -15,8 +15,7 @@
 #include "layout_catalog.h"
 #include "light_buffer_wiring.h"
 #include "shader_compiler.h"
-#include "vk_pipeline.h"
-#include "vk_resources.h"
+#include "layout_files.h"
 #include "vk_test_support.h"
 
 namespace gbl {
@@ -92,36 +91,14 @@ protected:
         for (size_t i = kItems * B; i < values.size(); ++i)
             for (int k = 0; k < 4; ++k) values[i][k] = std::min(std::abs(values[i][k]), 1e4f);
 
-        Buffer in = createBufferWithData(c, values.data(), values.size() * sizeof(glm::vec4),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        Buffer words = createBuffer(c, size_t(kItems) * 2 * W * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        Buffer decoded = createBuffer(c, size_t(kItems) * 2 * B * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                      true);
-        const std::vector<Binding> set0 = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                           {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-        VkDescriptorSetLayout setLayout = createSetLayout(c.device, set0, VK_SHADER_STAGE_COMPUTE_BIT);
-        VkPipelineLayout pipelineLayout = createPipelineLayout(c.device, {setLayout}, 0, 0);
-        VkDescriptorPool pool = createPoolFor(c.device, {set0});
-        VkDescriptorSet set = allocateSet(c.device, pool, setLayout);
-        DescriptorWriter()
-            .buffer(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.buffer)
-            .buffer(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, words.buffer)
-            .buffer(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, decoded.buffer)
-            .flush(c.device);
+        const test::TestBuffer in = test::TestBuffer::holding(c, values);
+        const test::TestBuffer words(c, size_t(kItems) * 2 * W * 4);
+        const test::TestBuffer decoded(c, size_t(kItems) * 2 * B * sizeof(glm::vec4));
         ShaderSource cs{"light_buffer_bits.comp (layout " + layout.name + ")", shaderText(layout),
                         VK_SHADER_STAGE_COMPUTE_BIT, {}, {{"light_buffers.glsl", generateLightBufferGlsl(layout)}}};
-        VkShaderModule module = createShaderModule(c.device, compileGlsl(cs));
-        VkPipeline pipeline = createComputePipeline(c, pipelineLayout, module);
-        vkDestroyShaderModule(c.device, module, nullptr);
-        c.submitAndWait([&](VkCommandBuffer cmd) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, 1, &set, 0, nullptr);
-            vkCmdDispatch(cmd, kItems / 64, 1, 1);
-            fullBarrier(cmd);
-        });
-        const uint32_t* gw = static_cast<const uint32_t*>(words.mapped);
-        const glm::vec4* gd = static_cast<const glm::vec4*>(decoded.mapped);
+        test::ComputeKernel(c, cs, {{test::storage(in), test::storage(words), test::storage(decoded)}}).dispatch(kItems / 64);
+        const uint32_t* gw = words.mapped<const uint32_t>();
+        const glm::vec4* gd = decoded.mapped<const glm::vec4>();
 
         size_t mismatches = 0, compared = 0;
         auto report = [&](bool ok, const std::string& what) {
@@ -166,24 +143,15 @@ protected:
         }
         EXPECT_EQ(mismatches, 0u) << layout.name << ": " << mismatches << " of " << compared << " differ";
         EXPECT_GT(compared, size_t(kItems) * 4);
-        vkDestroyPipeline(c.device, pipeline, nullptr);
-        vkDestroyPipelineLayout(c.device, pipelineLayout, nullptr);
-        vkDestroyDescriptorPool(c.device, pool, nullptr);
-        vkDestroyDescriptorSetLayout(c.device, setLayout, nullptr);
-        destroyBuffer(c, in);
-        destroyBuffer(c, words);
-        destroyBuffer(c, decoded);
     }
 };
 
 TEST_F(LightBufferBits, ShippedDeferredLightingLayoutsAgreeWithTheCpuMirror) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
     int checked = 0;
     uint32_t seed = 11;
-    for (const std::string& name : listLayoutNames(dir)) {
-        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
+    for (const Layout& layout : test::shippedLayouts()) {
         if (layout.pipeline != Pipeline::DeferredLighting) continue;
-        SCOPED_TRACE(name);
+        SCOPED_TRACE(layout.name);
         check(layout, seed++);
         ++checked;
     }
@@ -193,8 +161,7 @@ TEST_F(LightBufferBits, ShippedDeferredLightingLayoutsAgreeWithTheCpuMirror) {
 // The encodings and channel orders no shipped layout uses: R11G11B10F, RGBK in B8G8R8A8 with
 // another range, and Engel's light pre-pass (one buffer: diffuse RGB + specular luminance).
 TEST_F(LightBufferBits, OtherEncodingsAndEngelsLuminanceAgreeWithTheCpuMirror) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    const Layout base = loadLayoutFile(dir / "crysis2-slim.toml");
+    const Layout base = test::shippedLayout("crysis2-slim");
     auto variant = [&](std::vector<LightBuffer> buffers) {
         Layout l = base;
         l.lightBuffers = std::move(buffers);

@@ -10,12 +10,9 @@
 #include <limits>
 #include <random>
 
-#include "layout_catalog.h"
-#include "renderer_passes.h"
 #include "shader_compiler.h"
+#include "layout_files.h"
 #include "visibility_wiring.h"
-#include "vk_pipeline.h"
-#include "vk_resources.h"
 #include "vk_test_support.h"
 #include "wiring_codegen.h"
 
@@ -24,21 +21,12 @@ namespace {
 
 class VisibilityBits : public test::VulkanTest {};
 
-const char* kShader = R"(#version 450
-#extension GL_GOOGLE_include_directive : require
-#include "gbuffer_wiring.glsl"
-layout(local_size_x = 64) in;
-layout(set = 0, binding = 0, std430) readonly buffer In { uvec4 inputs[]; };
-layout(set = 0, binding = 1, std430) writeonly buffer Out { uvec4 outputs[]; };
-void main() {
-    uint i = gl_GlobalInvocationID.x;
-    uvec4 v = inputs[i];  // first id, gl_PrimitiveID, alpha-masked, depth bits
+const std::string kShader = test::wiringKernel(R"(    uvec4 v = inputs[i];  // first id, gl_PrimitiveID, alpha-masked, depth bits
     uvec2 f = visibilityFields(v.x, v.y);
     uvec2 w = packVisibilityIds(f.x, f.y, v.z != 0u, uintBitsToFloat(v.w));
     outputs[2u * i] = uvec4(f, w);
     outputs[2u * i + 1u] = uvec4(unpackVisibilityIds(w), 0u);
-}
-)";
+)");
 
 TEST_F(VisibilityBits, EveryVisibilityLayoutPacksAsItsCppTwin) {
     VulkanContext& c = ctx();
@@ -63,36 +51,17 @@ TEST_F(VisibilityBits, EveryVisibilityLayoutPacksAsItsCppTwin) {
         in[size_t(i) * 4 + 2] = (i / 512u) % 2u;  // alpha-tested
         in[size_t(i) * 4 + 3] = depthBits;
     }
-    Buffer input = createBufferWithData(c, in.data(), in.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Buffer out = createBuffer(c, size_t(kIds) * 8 * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    const std::vector<Binding> set = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    VkDescriptorSetLayout setLayout = createSetLayout(c.device, set, VK_SHADER_STAGE_COMPUTE_BIT);
-    VkPipelineLayout pipelineLayout = createPipelineLayout(c.device, {setLayout}, 0, 0);
-    VkDescriptorPool pool = createPoolFor(c.device, {set});
-    VkDescriptorSet ds = allocateSet(c.device, pool, setLayout);
-    DescriptorWriter()
-        .buffer(ds, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, input.buffer)
-        .buffer(ds, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.buffer)
-        .flush(c.device);
+    const test::TestBuffer input = test::TestBuffer::holding(c, in);
+    const test::TestBuffer out(c, size_t(kIds) * 8 * sizeof(uint32_t));
     size_t layouts = 0;
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    for (const std::string& name : listLayoutNames(dir)) {
-        const Layout layout = loadLayoutFile(dir / (name + ".toml"));
+    for (const Layout& layout : test::shippedLayouts()) {
         if (layout.pipeline != Pipeline::VisibilityBuffer) continue;
         ++layouts;
         const GBufferWiring w = generateWiring(layout);
         ShaderSource cs{"visibility_bits.comp (test, " + layout.name + ")", kShader, VK_SHADER_STAGE_COMPUTE_BIT, {},
                         {{"gbuffer_wiring.glsl", w.glsl}}};
-        VkShaderModule module = createShaderModule(c.device, compileGlsl(cs));
-        VkPipeline pipeline = createComputePipeline(c, pipelineLayout, module);
-        vkDestroyShaderModule(c.device, module, nullptr);
-        c.submitAndWait([&](VkCommandBuffer cmd) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, 1, &ds, 0, nullptr);
-            vkCmdDispatch(cmd, kIds / 64, 1, 1);
-            fullBarrier(cmd);
-        });
-        const uint32_t* got = static_cast<const uint32_t*>(out.mapped);
+        test::ComputeKernel(c, cs, {{test::storage(input), test::storage(out)}}).dispatch(kIds / 64);
+        const uint32_t* got = out.mapped<const uint32_t>();
         const GBufferWiring::VisibilityIds& ids = w.visibilityIds;
         size_t mismatches = 0, depthWords = 0;
         for (uint32_t i = 0; i < kIds; ++i) {
@@ -119,14 +88,8 @@ TEST_F(VisibilityBits, EveryVisibilityLayoutPacksAsItsCppTwin) {
         if (ids.depthWord) EXPECT_EQ(depthWords, kIds) << layout.name << ": word 1 holds the depth's bits";
         std::printf("[ ids      ] %-24s %u fragments: GPU and C++ %zu mismatches\n", layout.name.c_str(), kIds,
                     mismatches);
-        vkDestroyPipeline(c.device, pipeline, nullptr);
     }
     EXPECT_GE(layouts, 4u);  // visibility-32, visibility-64, nanite-visbuffer, bevy-meshlet-visbuffer
-    vkDestroyPipelineLayout(c.device, pipelineLayout, nullptr);
-    vkDestroyDescriptorPool(c.device, pool, nullptr);
-    vkDestroyDescriptorSetLayout(c.device, setLayout, nullptr);
-    destroyBuffer(c, input);
-    destroyBuffer(c, out);
 }
 
 }  // namespace

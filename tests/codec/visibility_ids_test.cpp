@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "layout_catalog.h"
+#include "layout_files.h"
 #include "visibility_wiring.h"
 #include "wiring_codegen.h"
 
@@ -72,7 +73,7 @@ BevyVisibility bevyResolve(uint64_t visibility) {
 }
 
 GBufferWiring::VisibilityIds idsOf(const char* name) {
-    return generateWiring(loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / (std::string(name) + ".toml")))
+    return generateWiring(test::shippedLayout(name))
         .visibilityIds;
 }
 
@@ -225,7 +226,7 @@ TEST(EngineVisibilityIds, ClustersMapBackToTheirDrawAndTriangle) {
 // How many clusters the ids hold: 2^25 - 1 for Nanite (its + 1), 2^25 for Bevy; a draw of any
 // size fits; past the limit, one line naming the layout, the count, the limit and the fix.
 TEST(EngineVisibilityIds, ClusterCapacityIsTheFieldLessTheOffset) {
-    GBufferWiring w = generateWiring(loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "nanite-visbuffer.toml"));
+    GBufferWiring w = generateWiring(test::shippedLayout("nanite-visbuffer"));
     const size_t full = 128u * ((size_t(1) << 25) - 1u);
     EXPECT_EQ(visibilityCapacityProblem(w, {full}), "");
     EXPECT_EQ(visibilityCapacityProblem(w, {full - 128, 100}), "");  // draws of partial clusters count whole
@@ -234,7 +235,7 @@ TEST(EngineVisibilityIds, ClusterCapacityIsTheFieldLessTheOffset) {
                              "25-bit cluster ids (with draw_offset 1) hold 33554431", "visibility-64"})
         EXPECT_NE(m.find(word), std::string::npos) << "missing [" << word << "] in: " << m;
     EXPECT_EQ(m.find('\n'), std::string::npos);
-    w = generateWiring(loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "bevy-meshlet-visbuffer.toml"));
+    w = generateWiring(test::shippedLayout("bevy-meshlet-visbuffer"));
     EXPECT_EQ(visibilityCapacityProblem(w, {full, 128}), "");
     EXPECT_NE(visibilityCapacityProblem(w, {full, 129}), "");
 }

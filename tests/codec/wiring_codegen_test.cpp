@@ -15,20 +15,12 @@
 #include "encodings.h"
 #include "layout_catalog.h"
 #include "shader_compiler.h"
+#include "layout_files.h"
 #include "wiring_codegen.h"
 
 using namespace gbl;
 
 namespace {
-
-std::vector<Layout> allLayouts() {
-    std::vector<Layout> v;
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    for (const std::string& name : listLayoutNames(dir)) v.push_back(loadLayoutFile(dir / (name + ".toml")));
-    // A visibility buffer stores no attribute (its ids: tests/render/visibility_test.cpp).
-    std::erase_if(v, [](const Layout& l) { return l.pipeline == Pipeline::VisibilityBuffer; });
-    return v;
-}
 
 void compileWith(const std::string& shader, const GBufferWiring& w,
                  std::vector<std::pair<std::string, std::string>> defines = {}) {
@@ -84,7 +76,7 @@ double unormBound(int b) { return (0.5 + std::ldexp(1.0, b - 24)) / (std::ldexp(
 }  // namespace
 
 TEST(WiringCodegen, GeneratedGlslCompilesForEveryLayout) {
-    const std::vector<Layout> layouts = allLayouts();
+    const std::vector<Layout> layouts = test::shippedAttributeLayouts();
     ASSERT_GE(layouts.size(), 7u);
     for (const Layout& l : layouts) {
         for (bool native : {false, true}) {
@@ -101,7 +93,7 @@ TEST(WiringCodegen, GeneratedGlslCompilesForEveryLayout) {
 }
 
 TEST(WiringCodegen, CompileErrorNamesTheLayout) {
-    GBufferWiring w = generateWiring(loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "ue4.toml"));
+    GBufferWiring w = generateWiring(test::shippedLayout("ue4"));
     w.glsl += "\nthis is not glsl;\n";
     ShaderSource s = loadShaderFile("decode_pass.comp.glsl");
     s.virtualFiles["gbuffer_wiring.glsl"] = w.glsl;
@@ -115,23 +107,22 @@ TEST(WiringCodegen, CompileErrorNamesTheLayout) {
 }
 
 TEST(WiringCodegen, WiringFlagsAndFormats) {
-    const std::filesystem::path dir = GBL_SOURCE_LAYOUT_DIR;
-    const GBufferWiring c2 = generateWiring(loadLayoutFile(dir / "crysis2-slim.toml"));
+    const GBufferWiring c2 = generateWiring(test::shippedLayout("crysis2-slim"));
     EXPECT_TRUE(c2.materialPass);
     EXPECT_EQ(c2.materialTargetFormats.size(), 4u);  // 15 floats
-    const GBufferWiring c3 = generateWiring(loadLayoutFile(dir / "crysis3-thin.toml"));
+    const GBufferWiring c3 = generateWiring(test::shippedLayout("crysis3-thin"));
     EXPECT_TRUE(c3.emissiveForward);
     EXPECT_FALSE(c3.materialPass);
     EXPECT_EQ(c3.targetFormats, (std::vector<VkFormat>{VK_FORMAT_R32_UINT, VK_FORMAT_R32_UINT}));
     EXPECT_EQ(c3.depthFormat, VK_FORMAT_D24_UNORM_S8_UINT);
-    const GBufferWiring fat = generateWiring(loadLayoutFile(dir / "fat-naive.toml"), WiringOptions{true});
+    const GBufferWiring fat = generateWiring(test::shippedLayout("fat-naive"), WiringOptions{true});
     EXPECT_EQ(fat.targetFormats, (std::vector<VkFormat>{VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT,
                                                         VK_FORMAT_R8G8B8A8_UNORM}));
     const GBufferWiring ref = makeReferenceWiring();
     EXPECT_EQ(ref.layoutName, "reference");
     EXPECT_EQ(ref.targetFormats.size(), 5u);
     // Bits inside a channel keep a target UINT under native formats, and the GLSL says why.
-    const GBufferWiring c3n = generateWiring(loadLayoutFile(dir / "crysis3-thin.toml"), WiringOptions{true});
+    const GBufferWiring c3n = generateWiring(test::shippedLayout("crysis3-thin"), WiringOptions{true});
     EXPECT_EQ(c3n.targetFormats[0], VK_FORMAT_R32_UINT);
     EXPECT_NE(c3n.glsl.find("stays UINT"), std::string::npos);
 }
@@ -141,7 +132,7 @@ TEST(WiringCodegen, WiringFlagsAndFormats) {
 // encoder that reads the table.
 TEST(WiringCodegen, BestFitTableFlagFollowsTheGeneratedGlsl) {
     int flagged = 0, clear = 0;
-    for (const Layout& l : allLayouts()) {
+    for (const Layout& l : test::shippedAttributeLayouts()) {
         const GBufferWiring w = generateWiring(l);
         const bool calls = w.glsl.find("encodeNormalBestFit(") != std::string::npos;
         EXPECT_EQ(w.bestFitTable, calls) << l.name;
@@ -164,7 +155,7 @@ TEST(WiringCodegen, LayoutsGlslCommandPrintsTheWiring) {
 
 TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
     constexpr int W = 64, H = 48;
-    for (const Layout& l : allLayouts()) {
+    for (const Layout& l : test::shippedAttributeLayouts()) {
         SCOPED_TRACE(l.name);
         const std::vector<Surface> in = makeSurfaces(W, H, 7u);
         const CpuGBuffer g = encodeGBuffer(l, in, W, H);
@@ -323,7 +314,7 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
 
 TEST(WiringCodegen, BitPlacementLowBitsFirst) {
     // compact-octahedral: normal u at "r + b[0:3]" -> low 8 bits in r (bits 0..7), high 4 in b[0:3] (16..19).
-    const Layout l = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "compact-octahedral.toml");
+    const Layout l = test::shippedLayout("compact-octahedral");
     Surface s;
     s.normal = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
     const CpuGBuffer g = encodeGBuffer(l, {s}, 1, 1);

@@ -36,6 +36,7 @@
 
 #include "engine_packing_support.h"
 #include "layout_catalog.h"
+#include "layout_text.h"
 
 namespace {
 
@@ -80,35 +81,12 @@ glm::vec3 hdrpSeamClamp(glm::vec3 n) {
 
 // HDRP's GBuffer1 (the normal buffer: EncodeIntoNormalBuffer, NormalBuffer.hlsl:20-36, written by
 // Lit.hlsl's EncodeIntoGBuffer) and URP's GBuffer2 with accurate normals (UnityGBuffer.hlsl).
-std::string unityLayout(const char* name, const char* normalEncoding) {
-    return std::string("name = \"") + name + R"("
-title = "normal buffer"
-pipeline = "deferred-shading"
-source = { engine = "Unity", talk = "unit test", year = 2021 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "normals"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "normal",    encoding = ")" + normalEncoding + R"(", at = ["r + b[0:3]", "g + b[4:7]"] },
-  { attribute = "roughness", encoding = ")" + (std::string(name) == "hdrp" ? "unorm" : "gloss") + R"(", at = "a" },
-]
-[fallback]
-base_color = 0.5
-metallic = 0.0
-specular = 0.5
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = 0.0
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-)";
+std::string unityLayout(const std::string& name, const std::string& normalEncoding) {
+    const std::string roughness = name == "hdrp" ? "unorm" : "gloss";
+    return gbl::test::LayoutText(name, "normal buffer", R"({ engine = "Unity", talk = "unit test", year = 2021 })")
+        .target("normals", "R8G8B8A8_UNORM",
+                {R"(attribute = "normal",    encoding = ")" + normalEncoding + R"(", at = ["r + b[0:3]", "g + b[4:7]"])",
+                 R"(attribute = "roughness", encoding = ")" + roughness + R"(", at = "a")"});
 }
 
 // Runs the Unity normal buffer check: `hdrp` selects HDRP's seam clamp and its alpha
@@ -181,43 +159,15 @@ double hdrpFastLinearToSrgb(float c) {  // in double: a GPU's pow is not correct
 }
 float hdrpFastSrgbToLinear(float c) { return c * (c * (c * 0.305306011f + 0.682171111f) + 0.012522878f); }
 
-const char* kHdrpFresnelLayout = R"(name = "hdrp-fresnel0"
-title = "HDRP's GBuffer1 and GBuffer2"
-pipeline = "deferred-shading"
-source = { engine = "Unity HDRP", talk = "unit test", year = 2021 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "GBuffer1"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "normal",    encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"] },
-  { attribute = "roughness", encoding = "unorm", at = "a" },
-]
-[[target]]
-name = "GBuffer2"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "specular_color", encoding = "srgb8_fast_hdrp", at = ["r", "g", "b"] },
-]
-[fallback]
-base_color = 0.5
-metallic = 0.0
-specular = 0.5
-diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = 0.0
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-specular_color = 0.0
-)";
+std::string hdrpFresnelLayout() {
+    return gbl::test::LayoutText("hdrp-fresnel0", "HDRP's GBuffer1 and GBuffer2", gbl::test::kHdrpSource)
+        .target(gbl::test::hdrpGBuffer1())
+        .target(gbl::test::hdrpGBuffer2())
+        .clear("specular_color = 0.0");
+}
 
 TEST(EnginePackings, HdrpFresnel0EqualsFastLinearToSrgbAndItsCubic) {
-    const Layout layout = gbl::parseLayout(kHdrpFresnelLayout, "hdrp-fresnel0.toml");
+    const Layout layout = gbl::parseLayout(hdrpFresnelLayout(), "hdrp-fresnel0.toml");
     const CpuCodec codec(layout);
     Rng rng(2808);
     std::vector<Surface> surfaces(kImage), decoded;
@@ -317,40 +267,15 @@ uint32_t hdrpGBuffer3(glm::vec3 e, float ao) {
     return smallFloatRne(x, 6) | smallFloatRne(y, 6) << 11 | smallFloatRne(z, 5) << 22;
 }
 
-const char* kHdrpGBuffer3Layout = R"(name = "hdrp-gbuffer3"
-title = "HDRP's GBuffer3 with its AO tag"
-pipeline = "deferred-shading"
-source = { engine = "Unity HDRP", talk = "unit test", year = 2021 }
-[depth]
-format = "D32_SFLOAT"
-[[target]]
-name = "GBuffer1"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "normal",    encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"] },
-  { attribute = "roughness", encoding = "unorm", at = "a" },
-]
-[[target]]
-name = "GBuffer3"
-format = "B10G11R11_UFLOAT_PACK32"
-field = [
-  { attribute = "emissive", encoding = "float11_11_10_hdrp_ao_tag", at = ["r", "g", "b"] },
-]
-[fallback]
-base_color = 0.5
-metallic = 0.0
-specular = 0.5
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-[space]
-normal = "world"
-up = "y"
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-emissive = 0.0
-occlusion = 1.0
-)";
+// Occlusion rides in GBuffer3 (the AO tag): no fallback for it.
+std::string hdrpGBuffer3Layout() {
+    return gbl::test::LayoutText("hdrp-gbuffer3", "HDRP's GBuffer3 with its AO tag", gbl::test::kHdrpSource)
+        .target(gbl::test::hdrpGBuffer1())
+        .target(gbl::test::hdrpGBuffer3())
+        .noFallback("occlusion")
+        .clear("emissive = 0.0")
+        .clear("occlusion = 1.0");
+}
 
 // The i-th (emissive, AO): edges first, then a third with emissive exactly 0 (the tag), a third
 // small (float11's denormals, and values that quantise to 0 without being 0), a third wide.
@@ -385,7 +310,7 @@ EmissiveAo hdrpGBuffer3Input(Rng& rng, size_t i) {
 }
 
 TEST(EnginePackings, HdrpGBuffer3EqualsEncodeIntoGBufferWithItsAoTag) {
-    const Layout layout = gbl::parseLayout(kHdrpGBuffer3Layout, "hdrp-gbuffer3.toml");
+    const Layout layout = gbl::parseLayout(hdrpGBuffer3Layout(), "hdrp-gbuffer3.toml");
     const CpuCodec codec(layout);
     Rng rng(2809);
     std::vector<Surface> surfaces(kImage), decoded;

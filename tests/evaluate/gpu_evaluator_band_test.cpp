@@ -15,7 +15,6 @@
 
 #include "gpu_evaluator.h"
 #include "layout_catalog.h"
-#include "procedural_sky.h"
 #include "renderer.h"
 #include "vk_test_support.h"
 #include "wiring_codegen.h"
@@ -38,19 +37,11 @@ struct Renders {
 
 const Renders& renders() {
     static const Renders r = [] {
-        Renders x;
-        const Scene scene = makeDefaultScene();
-        const EnvironmentMap sky = makeProceduralSky(64);
-        Renderer renderer(test::sharedContext(), scene, sky);
-        RenderSettings rs;
-        rs.width = kWidth;
-        rs.height = kHeight;
+        RenderSettings rs = test::decodedFrame(kWidth, kHeight);
         rs.splitSumShaderSamples = 16;
-        rs.decodeSurfaces = true;
-        rs.readTargetWords = false;
-        x.reference = renderer.render(makeReferenceWiring(), rs);
-        x.test = renderer.render(generateWiring(loadLayout("crysis3-thin")), rs);
-        return x;
+        std::vector<RenderOutput> o =
+            test::renderDefaultScene(rs, {makeReferenceWiring(), generateWiring(loadLayout("crysis3-thin"))});
+        return Renders{std::move(o[0]), std::move(o[1])};
     }();
     return r;
 }

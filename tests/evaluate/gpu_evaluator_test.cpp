@@ -12,7 +12,6 @@
 #include "error.h"
 #include "gpu_evaluator.h"
 #include "layout_catalog.h"
-#include "procedural_sky.h"
 #include "renderer.h"
 #include "run_metrics.h"
 #include "tone_map.h"
@@ -57,19 +56,10 @@ struct Renders {
 
 const Renders& renders() {
     static const Renders r = [] {
-        Renders x;
-        const Scene scene = makeDefaultScene();
-        const EnvironmentMap sky = makeProceduralSky(64);
-        Renderer renderer(test::sharedContext(), scene, sky);
-        RenderSettings rs;
-        rs.width = 256;
-        rs.height = 144;
-        rs.decodeSurfaces = true;
-        rs.readTargetWords = false;
-        x.reference = renderer.render(makeReferenceWiring(), rs);
-        x.ue4 = renderer.render(generateWiring(loadLayout("ue4")), rs);
-        x.crysis = renderer.render(generateWiring(loadLayout("crysis3-thin")), rs);
-        return x;
+        std::vector<RenderOutput> o = test::renderDefaultScene(
+            test::decodedFrame(256, 144), {makeReferenceWiring(), generateWiring(loadLayout("ue4")),
+                                           generateWiring(loadLayout("crysis3-thin"))});
+        return Renders{std::move(o[0]), std::move(o[1]), std::move(o[2])};
     }();
     return r;
 }

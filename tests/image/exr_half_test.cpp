@@ -16,23 +16,15 @@
 #include <OpenEXR/ImfInputFile.h>
 
 #include "image_io.h"
+#include "temp_dir.h"
 
 namespace gbl {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::random_device rd;
-        path = fs::temp_directory_path() / ("gbl_exr_half_" + std::to_string(rd()) + std::to_string(rd()));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
+struct TempDir : test::TempDir {
+    TempDir() : test::TempDir("gbl_exr_half_") {}
 };
 
 // binary16: 1 sign bit, 5 exponent bits (bias 15), 10 fraction bits. Normal numbers from 2^-14

@@ -24,29 +24,14 @@
 #include "file_io.h"
 #include "image_io.h"
 #include "test_paths.h"
+#include "temp_dir.h"
 
 namespace gbl {
 namespace {
 namespace fs = std::filesystem;
 
-// A fresh directory per test, removed afterwards.
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path = fs::temp_directory_path() /
-               ("gbl_image_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-    std::string operator/(const std::string& name) const { return (path / name).string(); }
-    std::vector<std::string> list() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(path)) names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
+struct TempDir : test::TempDir {
+    TempDir() : test::TempDir("gbl_image_io_") {}
 };
 
 void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes) {

@@ -17,12 +17,12 @@
 #include "layout.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "layout_files.h"
+#include "layout_text.h"
 
 using namespace gbl;
 
 namespace {
-
-std::filesystem::path layoutsDir() { return GBL_SOURCE_LAYOUT_DIR; }
 
 // A small deferred-shading layout whose every entry carries provenance: one code repository cited
 // through `in`, one talk; statuses of every kind; fallbacks and clear values in table form.
@@ -147,39 +147,11 @@ TEST(LayoutProvenance, GoodProvenanceParsesIntoEveryEntry) {
 
 // A user's own layout: no [sources], no provenance, nothing said about it.
 TEST(LayoutProvenance, LayoutWithoutSourcesNeedsNone) {
-    const char* bare = R"(name = "x"
-title = "t"
-pipeline = "deferred-shading"
-source = { engine = "e", code = "c", year = 2020 }
-
-[depth]
-format = "D32_SFLOAT"
-
-[[target]]
-name = "rt0"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "normal", encoding = "normal_xyz", at = ["r", "g", "b"] },
-  { attribute = "roughness", encoding = "unorm", at = "a" },
-]
-
-[fallback]
-base_color = 0.5
-metallic = 0.0
-specular = 0.5
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-occlusion = 1.0
-emissive = "forward"
-
-[space]
-normal = "world"
-up = "y"
-
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-)";
+    const std::string bare = test::LayoutText("x", "t", R"({ engine = "e", code = "c", year = 2020 })")
+                                 .target("rt0", "R8G8B8A8_UNORM",
+                                         {R"(attribute = "normal", encoding = "normal_xyz", at = ["r", "g", "b"])",
+                                          R"(attribute = "roughness", encoding = "unorm", at = "a")"})
+                                 .fallback("emissive", "\"forward\"");
     EXPECT_EQ(diagnosticsOf(bare), "");
     const Layout l = parseLayout(bare, "x.toml");
     EXPECT_FALSE(l.sourcesDeclared);
@@ -269,10 +241,10 @@ TEST(LayoutProvenance, BadProvenanceIsOneClearLine) {
 TEST(LayoutProvenance, EveryShippedEntryHasProvenance) {
     std::set<ProvenanceStatus> seen;
     int files = 0, dithered = 0;
-    for (const std::string& name : listLayoutNames(layoutsDir())) {
+    for (const Layout& l : test::shippedLayouts()) {
+        const std::string& name = l.name;
         SCOPED_TRACE(name);
         ++files;
-        const Layout l = loadLayoutFile(layoutsDir() / (name + ".toml"));
         EXPECT_TRUE(l.sourcesDeclared) << name << " has no [sources] table";
         for (const ProvenanceEntry& e : provenanceEntries(l)) {
             EXPECT_TRUE(e.provenance->given()) << name << ": " << e.what;
@@ -331,9 +303,9 @@ TEST(LayoutProvenance, EveryCitationNamesItsSourceAndWhereInIt) {
     const std::regex symbol(R"([A-Za-z_][A-Za-z0-9_:]*)");
     std::set<std::pair<std::string, std::string>> usedBySymbol, usedWhole;
     int refs = 0;
-    for (const std::string& name : listLayoutNames(layoutsDir())) {
+    for (const Layout& l : test::shippedLayouts()) {
+        const std::string& name = l.name;
         SCOPED_TRACE(name);
-        const Layout l = loadLayoutFile(layoutsDir() / (name + ".toml"));
         for (const ProvenanceEntry& e : provenanceEntries(l))
             for (const CitationRef& r : e.provenance->refs) {
                 ++refs;
@@ -378,9 +350,9 @@ TEST(LayoutProvenance, ListAndReportCarryTheCounts) {
     std::ostringstream out, err;
     ASSERT_EQ(runLayoutsCommand({"list"}, out, err), 0) << err.str();
     const std::string list = out.str();
-    for (const std::string& name : listLayoutNames(layoutsDir())) {
+    for (const Layout& l : test::shippedLayouts()) {
+        const std::string& name = l.name;
         SCOPED_TRACE(name);
-        const Layout l = loadLayoutFile(layoutsDir() / (name + ".toml"));
         const std::string counts = provenanceCounts(l).text();
         const size_t at = list.find("  " + name + " ");
         ASSERT_NE(at, std::string::npos);
@@ -388,7 +360,7 @@ TEST(LayoutProvenance, ListAndReportCarryTheCounts) {
         EXPECT_NE(line.find(counts), std::string::npos) << line << "\n  want: " << counts;
         EXPECT_EQ(atlasEntryOf(l).provenance.text(), counts);
     }
-    const ProvenanceCounts kz2 = provenanceCounts(loadLayoutFile(layoutsDir() / "killzone2.toml"));
+    const ProvenanceCounts kz2 = provenanceCounts(test::shippedLayout("killzone2"));
     EXPECT_EQ(kz2.text(), "verified 0/23, talk 10, assumed 13, differs 3");
 }
 
@@ -396,7 +368,7 @@ TEST(LayoutProvenance, ListAndReportCarryTheCounts) {
 // values, [space] = 27 entries; all verified but GBufferD's custom data and [space] (assumed); 3
 // known differences (shading model id in cleared pixels, precomputed irradiance, handedness).
 TEST(LayoutProvenance, Ue4CountsByHand) {
-    const Layout ue4 = loadLayoutFile(layoutsDir() / "ue4.toml");
+    const Layout ue4 = test::shippedLayout("ue4");
     const ProvenanceCounts c = provenanceCounts(ue4);
     EXPECT_EQ(c.entries, 27);
     EXPECT_EQ(c.verified, 25);
@@ -405,12 +377,12 @@ TEST(LayoutProvenance, Ue4CountsByHand) {
     EXPECT_EQ(c.text(), "verified 25/27, assumed 2, differs 3");
     EXPECT_EQ(atlasEntryOf(ue4).provenance.text(), c.text());
     // visibility-64: [depth] and [ids], both gbufferlab's own.
-    EXPECT_EQ(provenanceCounts(loadLayoutFile(layoutsDir() / "visibility-64.toml")).text(), "verified 0/2, own 2");
+    EXPECT_EQ(provenanceCounts(test::shippedLayout("visibility-64")).text(), "verified 0/2, own 2");
 }
 
 // `layouts show` prints each entry's provenance beside it, differences under it, the citations.
 TEST(LayoutProvenance, ShowPrintsProvenance) {
-    const std::string show = describeLayout(loadLayoutFile(layoutsDir() / "ue5.toml"));
+    const std::string show = describeLayout(test::shippedLayout("ue5"));
     for (const char* want : {
              "provenance: verified ",
              "target GBufferA  A2B10G10R10_UNORM_PACK32  4 bytes  [verified  gbi:335, 354, 156-158]\n",
@@ -427,7 +399,7 @@ TEST(LayoutProvenance, ShowPrintsProvenance) {
     // Every citation is listed once, after "sources".
     const size_t sources = show.find("\nsources (");
     ASSERT_NE(sources, std::string::npos);
-    const Layout ue5 = loadLayoutFile(layoutsDir() / "ue5.toml");
+    const Layout ue5 = test::shippedLayout("ue5");
     for (const Citation& c : ue5.citations)
         EXPECT_NE(show.find("  " + c.key + " ", sources), std::string::npos) << c.key;
 }

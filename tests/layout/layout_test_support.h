@@ -12,50 +12,25 @@
 
 #include "error.h"
 #include "layout.h"
+#include "layout_text.h"
 
 namespace gbl::layout_test {
 
 using namespace gbl;
 
-
 inline const char* kFile = "fake/test.toml";
 
 // A valid layout exercising bit fields: xy + z sign, 7-bit gloss, a 3:3:2 colour in one byte.
-const std::string kValid = R"(name = "test"
-title = "A test layout"
-pipeline = "deferred-shading"
-source = { game = "none", talk = "unit test", year = 2024 }
-
-[depth]
-format = "D24_UNORM_S8_UINT"
-stencil = [ { attribute = "ambient_id", at = "s[0:3]", value = 2 } ]
-
-[[target]]
-name = "rt0"
-format = "R8G8B8A8_UNORM"
-field = [
-  { attribute = "normal", encoding = "normal_xy_zsign", at = ["r", "g", "b[7]"] },
-  { attribute = "roughness", encoding = "gloss", at = "b[0:6]" },
-  { attribute = "base_color", encoding = "unorm", at = ["a[0:2]", "a[3:5]", "a[6:7]"] },
-]
-
-[fallback]
-specular_color = "from_metallic"
-diffuse_color = "from_base_color"
-metallic = 0.0
-specular = 0.5
-occlusion = 1.0
-emissive = 0.0
-
-[space]
-normal = "world"
-up = "z"
-
-[clear]
-normal = [0.0, 0.0, 1.0]
-roughness = 1.0
-base_color = 0.0
-)";
+const std::string kValid =
+    test::LayoutText("test", "A test layout", R"({ game = "none", talk = "unit test", year = 2024 })")
+        .depth("format = \"D24_UNORM_S8_UINT\"\nstencil = [ { attribute = \"ambient_id\", at = \"s[0:3]\", value = 2 } ]\n")
+        .target("rt0", "R8G8B8A8_UNORM",
+                {R"(attribute = "normal", encoding = "normal_xy_zsign", at = ["r", "g", "b[7]"])",
+                 R"(attribute = "roughness", encoding = "gloss", at = "b[0:6]")",
+                 R"(attribute = "base_color", encoding = "unorm", at = ["a[0:2]", "a[3:5]", "a[6:7]"])"})
+        .fallbackOrder({"specular_color", "diffuse_color", "metallic", "specular", "occlusion", "emissive"})
+        .space("normal = \"world\"\nup = \"z\"\n")
+        .clear("base_color = 0.0");
 
 // `text` with the first `from` replaced by `to` (which must exist).
 inline std::string edit(const std::string& text, const std::string& from, const std::string& to) {

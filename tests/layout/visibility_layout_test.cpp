@@ -4,7 +4,9 @@
 
 #include "layout.h"
 #include "layout_catalog.h"
+#include "layout_files.h"
 #include "layout_test_support.h"
+#include "layout_text.h"
 
 namespace gbl {
 namespace {
@@ -16,20 +18,9 @@ using layout_test::joined;
 using layout_test::kFile;
 using layout_test::placeOf;
 
-const std::string kVisibility = R"(name = "vis"
-title = "A visibility buffer"
-pipeline = "visibility-buffer"
-source = { engine = "none", talk = "unit test", year = 2024 }
-
-[depth]
-format = "D32_SFLOAT"
-
-[ids]
-format = "R32_UINT"
-triangle_bits = 23
-draw_bits = 8
-alpha_mask_bit = true
-)";
+// A visibility buffer: The Forge's split of R32_UINT.
+const std::string kVisibility = test::LayoutText("vis", "A visibility buffer", test::kTestSource, "visibility-buffer")
+                                    .ids("format = \"R32_UINT\"\ntriangle_bits = 23\ndraw_bits = 8\nalpha_mask_bit = true\n");
 
 TEST(VisibilityLayout, TheSmallOneIsValidAndReadsAsWritten) {
     EXPECT_TRUE(checkLayout(kVisibility, kFile).empty()) << joined(checkLayout(kVisibility, kFile));
@@ -49,13 +40,13 @@ TEST(VisibilityLayout, TheSmallOneIsValidAndReadsAsWritten) {
 // ((drawId << 23) & 0x7F800000) | (triangleId & 0x007FFFFF), bit 31 for alpha-tested geometry) and
 // full 32-bit ids in R32G32_UINT.
 TEST(VisibilityLayout, ShippedLayoutsAreTheForgesAndSixtyFourBit) {
-    const Layout v32 = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-32.toml");
+    const Layout v32 = test::shippedLayout("visibility-32");
     EXPECT_EQ(v32.ids.format, "R32_UINT");
     EXPECT_EQ(v32.ids.triangleBits, 23);  // mask 0x007FFFFF
     EXPECT_EQ(v32.ids.drawBits, 8);       // mask 0x7F800000 >> 23 = 0xFF
     EXPECT_TRUE(v32.ids.alphaMaskBit);    // 1 << 31
     EXPECT_EQ(bytesPerPixel(v32), 8);
-    const Layout v64 = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / "visibility-64.toml");
+    const Layout v64 = test::shippedLayout("visibility-64");
     EXPECT_EQ(v64.ids.format, "R32G32_UINT");
     EXPECT_EQ(v64.ids.bits, 64);
     EXPECT_EQ(v64.ids.triangleBits, 32);
@@ -65,7 +56,7 @@ TEST(VisibilityLayout, ShippedLayoutsAreTheForgesAndSixtyFourBit) {
     // UE 5's Nanite: ((visible cluster + 1) << 7) | triangle in word 0, asuint(DeviceZ) in word 1;
     // Bevy 0.16's meshlets: the same without the + 1. 128-triangle clusters, reversed Z, 8 bytes.
     for (const char* name : {"nanite-visbuffer", "bevy-meshlet-visbuffer"}) {
-        const Layout l = loadLayoutFile(std::filesystem::path(GBL_SOURCE_LAYOUT_DIR) / (std::string(name) + ".toml"));
+        const Layout l = test::shippedLayout(name);
         EXPECT_EQ(l.ids.format, "R32G32_UINT") << name;
         EXPECT_EQ(l.ids.triangleBits, 7) << name;
         EXPECT_EQ(l.ids.drawBits, 25) << name;
@@ -103,23 +94,10 @@ TEST(VisibilityLayout, BadIdsAreErrorsAtTheirPlace) {
 }
 
 // Nanite's and Bevy's meshlet ids: a depth word, an offset on the draw (cluster) field, clusters.
-const std::string kNanite = R"(name = "vis"
-title = "Nanite-like ids"
-pipeline = "visibility-buffer"
-source = { engine = "none", talk = "unit test", year = 2024 }
-
-[depth]
-format = "D32_SFLOAT"
-reversed_z = true
-
-[ids]
-format = "R32G32_UINT"
-triangle_bits = 7
-draw_bits = 25
-draw_offset = 1
-cluster_triangles = 128
-depth_word = 1
-)";
+const std::string kNanite = test::LayoutText("vis", "Nanite-like ids", test::kTestSource, "visibility-buffer")
+                                .depth("format = \"D32_SFLOAT\"\nreversed_z = true\n")
+                                .ids("format = \"R32G32_UINT\"\ntriangle_bits = 7\ndraw_bits = 25\ndraw_offset = 1\n"
+                                     "cluster_triangles = 128\ndepth_word = 1\n");
 
 TEST(VisibilityLayout, DepthWordOffsetAndClustersReadAsWritten) {
     EXPECT_TRUE(checkLayout(kNanite, kFile).empty()) << joined(checkLayout(kNanite, kFile));

@@ -2,7 +2,6 @@
 // max 0, LDR-FLIP 0 (the 8-bit reader kept the high bytes only). The files are written here by a
 // minimal 16-bit PNG encoder (zlib), independent of gbufferlab's writer, which writes 8 bits.
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -14,21 +13,14 @@
 
 #include "image_diff.h"
 #include "image_io.h"
+#include "temp_dir.h"
 
 namespace gbl {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch() {
-    static const fs::path d = [] {
-        const fs::path p = fs::temp_directory_path() / ("gbl_png16_test_" + std::to_string(::getpid()));
-        fs::remove_all(p);
-        fs::create_directories(p);
-        return p;
-    }();
-    return d;
-}
+const test::ScratchDir scratch("gbl_png16_test_");
 
 void put32(std::string& s, uint32_t v) {
     for (int shift = 24; shift >= 0; shift -= 8) s += char((v >> shift) & 0xff);

@@ -107,11 +107,7 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
     const Scene scene = makeSphereGridScene();
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(test::sharedContext(), scene, sky);
-    RenderSettings pass;
-    pass.width = kWidth;
-    pass.height = kHeight;
-    pass.decodeSurfaces = true;
-    pass.readTargetWords = false;
+    const RenderSettings pass = test::decodedFrame(kWidth, kHeight);
     RenderSettings cpu = pass;
     cpu.decodeOnCpu = true;
 
@@ -166,11 +162,7 @@ TEST_F(CpuDecodeTest, ViewDepthIsTheProjectionsWithinTwoUlp) {
         const GBufferWiring wiring = generateWiring(loadLayout(name));
         for (const bool orbit : {false, true}) {
             SCOPED_TRACE(std::string(name) + (orbit ? " orbit" : " scene camera"));
-            RenderSettings settings;
-            settings.width = kWidth;
-            settings.height = kHeight;
-            settings.decodeSurfaces = true;
-            settings.readTargetWords = false;
+            RenderSettings settings = test::decodedFrame(kWidth, kHeight);
             const Camera camera = orbit ? orbitCamera(scene) : scene.camera;
             settings.camera = camera;
             const RenderOutput out = renderer.render(wiring, settings);  // the decode pass
@@ -222,12 +214,8 @@ TEST_F(CpuDecodeTest, BevyWebgl2LightsFromItsTwentyBitDepth) {
     ASSERT_TRUE(wiring.storesDepth);
     for (const bool onCpu : {false, true}) {
         SCOPED_TRACE(onCpu ? "cpu decode" : "decode pass");
-        RenderSettings settings;
-        settings.width = kWidth;
-        settings.height = kHeight;
-        settings.decodeSurfaces = true;
+        RenderSettings settings = test::decodedFrame(kWidth, kHeight);
         settings.decodeOnCpu = onCpu;
-        settings.readTargetWords = false;
         const RenderOutput out = renderer.render(wiring, settings);
         const CameraMatrices m = computeCameraMatrices(scene.camera, float(kWidth) / float(kHeight), wiring.reversedZ);
         const glm::dmat4 p(m.proj);

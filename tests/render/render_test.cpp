@@ -139,11 +139,7 @@ TEST_F(RenderTest, DecodeInBandsEqualsDecodeInOnePass) {
     Scene scene = makeSphereGridScene();
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(test::sharedContext(), scene, sky);
-    RenderSettings s;
-    s.width = kWidth;
-    s.height = kHeight;
-    s.decodeSurfaces = true;
-    s.readTargetWords = false;
+    RenderSettings s = test::decodedFrame(kWidth, kHeight);
     const RenderOutput whole = renderer.render(makeReferenceWiring(), s);
     s.decodeBandRows = 16;
     const RenderOutput banded = renderer.render(makeReferenceWiring(), s);

@@ -14,6 +14,7 @@
 #include "gpu_scene.h"
 #include "layout.h"
 #include "layout_catalog.h"
+#include "layout_text.h"
 #include "procedural_sky.h"
 #include "renderer.h"
 #include "vk_test_support.h"
@@ -24,6 +25,26 @@ namespace {
 
 constexpr uint32_t kTinyW = 96, kTinyH = 64;
 constexpr int kGrid = 4;  // quads per side: 32 triangles per draw
+
+// A visibility layout `name`.toml with these [depth] and [ids] lines.
+Layout visibilityLayout(const std::string& name, const std::string& title, const std::string& depth,
+                        const std::string& ids) {
+    return parseLayout(test::LayoutText(name, title, test::kTestSource, "visibility-buffer").depth(depth).ids(ids).text(),
+                       name + ".toml");
+}
+
+// `render` is refused in one line holding every word; `otherwise` says what rendering meant.
+void expectOneLineRefusal(const std::function<void()>& render, std::initializer_list<const char*> words,
+                          const std::string& otherwise = "rendered what the ids cannot hold") {
+    try {
+        render();
+        ADD_FAILURE() << otherwise;
+    } catch (const UserError& e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        for (const char* w : words) EXPECT_NE(m.find(w), std::string::npos) << "missing [" << w << "] in: " << m;
+    }
+}
 
 // A square grid of `grid` x `grid` quads in z = 0 spanning [-0.5, 0.5]^2, two triangles per quad.
 Draw appendGrid(Scene& scene, int grid = kGrid) {
@@ -121,9 +142,7 @@ TEST_F(VisibilityTest, IdsRoundTripTheForgesPackingAndSixtyFourBits) {
     const Scene scene = tinyScene();
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(ctx(), scene, sky);
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
     const std::vector<Expected> expected = rasterise(scene, kTinyW, kTinyH);
     for (const char* name : {"visibility-32", "visibility-64"}) {
         const RenderOutput out = renderer.render(generateWiring(loadLayout(name)), settings);
@@ -161,30 +180,12 @@ TEST_F(VisibilityTest, TooManyTrianglesForTheIdsIsOneLineNamingTheFix) {
     const Scene scene = tinyScene();  // 32 triangles per draw
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(ctx(), scene, sky);
-    const Layout narrow = parseLayout(R"(name = "narrow-ids"
-title = "4-bit triangle ids"
-pipeline = "visibility-buffer"
-source = { engine = "none", talk = "unit test", year = 2024 }
-[depth]
-format = "D32_SFLOAT"
-[ids]
-format = "R32_UINT"
-triangle_bits = 4
-draw_bits = 8
-)",
-                                      "narrow-ids.toml");
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
-    try {
-        renderer.render(generateWiring(narrow), settings);
-        FAIL() << "rendered 32 triangles per draw through 4-bit triangle ids";
-    } catch (const UserError& e) {
-        const std::string m = e.what();
-        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
-        for (const char* w : {"layout 'narrow-ids'", "32 triangles", "4-bit triangle ids hold 16", "visibility-64"})
-            EXPECT_NE(m.find(w), std::string::npos) << "missing [" << w << "] in: " << m;
-    }
+    const Layout narrow = visibilityLayout("narrow-ids", "4-bit triangle ids", "format = \"D32_SFLOAT\"\n",
+                                           "format = \"R32_UINT\"\ntriangle_bits = 4\ndraw_bits = 8\n");
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
+    expectOneLineRefusal([&] { renderer.render(generateWiring(narrow), settings); },
+                         {"layout 'narrow-ids'", "32 triangles", "4-bit triangle ids hold 16", "visibility-64"},
+                         "rendered 32 triangles per draw through 4-bit triangle ids");
 }
 
 // Scenes past The Forge's 32-bit ids: 300 draws (8-bit draw ids hold 256), and a draw of 2^23 + 1
@@ -204,23 +205,11 @@ TEST_F(VisibilityTest, TheForgesIdsRefuseWhatTheyCannotHoldAndSixtyFourBitsDoNot
         many.draws.push_back(d);
     }
     const EnvironmentMap sky = makeProceduralSky(64);
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
-    auto expectOneLine = [](const std::function<void()>& f, std::initializer_list<const char*> words) {
-        try {
-            f();
-            ADD_FAILURE() << "rendered what the ids cannot hold";
-        } catch (const UserError& e) {
-            const std::string m = e.what();
-            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
-            for (const char* w : words) EXPECT_NE(m.find(w), std::string::npos) << "missing [" << w << "] in: " << m;
-        }
-    };
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
     {
         Renderer renderer(ctx(), many, sky);
-        expectOneLine([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
-                      {"layout 'visibility-32'", "300 draws", "8-bit draw ids hold 256", "visibility-64"});
+        expectOneLineRefusal([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
+                             {"layout 'visibility-32'", "300 draws", "8-bit draw ids hold 256", "visibility-64"});
         const RenderOutput out = renderer.render(generateWiring(loadLayout("visibility-64")), settings);
         const std::vector<Expected> expected = rasterise(many, kTinyW, kTinyH);
         int maxDraw = -1;
@@ -235,8 +224,8 @@ TEST_F(VisibilityTest, TheForgesIdsRefuseWhatTheyCannotHoldAndSixtyFourBitsDoNot
     Scene huge = tinyScene();
     huge.draws[1].indexCount = 3u * ((1u << 23) + 1u);
     Renderer renderer(ctx(), huge, sky);
-    expectOneLine([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
-                  {"layout 'visibility-32'", "8388609 triangles", "23-bit triangle ids hold 8388608", "visibility-64"});
+    expectOneLineRefusal([&] { renderer.render(generateWiring(loadLayout("visibility-32")), settings); },
+                         {"layout 'visibility-32'", "8388609 triangles", "23-bit triangle ids hold 8388608", "visibility-64"});
 }
 
 uint32_t floatBits(float f) {
@@ -258,9 +247,7 @@ TEST_F(VisibilityTest, NaniteAndBevyIdsSplitDrawsIntoClustersAndCarryTheirDepth)
     ASSERT_EQ(scene.draws[0].indexCount / 3, 288u);
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(ctx(), scene, sky);
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
     settings.decodeSurfaces = true;
     const std::vector<Expected> expected = rasterise(scene, kTinyW, kTinyH);
     const RenderOutput v64 = renderer.render(generateWiring(loadLayout("visibility-64")), settings);
@@ -316,35 +303,15 @@ TEST_F(VisibilityTest, TooManyClustersForTheIdsIsOneLineNamingTheFix) {
     const Scene scene = tinyScene();
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(ctx(), scene, sky);
-    const Layout narrow = parseLayout(R"(name = "narrow-clusters"
-title = "2-bit cluster ids"
-pipeline = "visibility-buffer"
-source = { engine = "none", talk = "unit test", year = 2024 }
-[depth]
-format = "D32_SFLOAT"
-reversed_z = true
-[ids]
-format = "R32G32_UINT"
-triangle_bits = 4
-draw_bits = 2
-draw_offset = 1
-cluster_triangles = 16
-depth_word = 1
-)",
-                                      "narrow-clusters.toml");
-    RenderSettings settings;
-    settings.width = kTinyW;
-    settings.height = kTinyH;
-    try {
-        renderer.render(generateWiring(narrow), settings);
-        FAIL() << "rendered 4 clusters through 2-bit cluster ids with offset 1";
-    } catch (const UserError& e) {
-        const std::string m = e.what();
-        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
-        for (const char* w : {"layout 'narrow-clusters'", "4 clusters of up to 16 triangles",
-                              "2-bit cluster ids (with draw_offset 1) hold 3", "visibility-64"})
-            EXPECT_NE(m.find(w), std::string::npos) << "missing [" << w << "] in: " << m;
-    }
+    const Layout narrow =
+        visibilityLayout("narrow-clusters", "2-bit cluster ids", "format = \"D32_SFLOAT\"\nreversed_z = true\n",
+                         "format = \"R32G32_UINT\"\ntriangle_bits = 4\ndraw_bits = 2\ndraw_offset = 1\n"
+                         "cluster_triangles = 16\ndepth_word = 1\n");
+    RenderSettings settings = test::frame(kTinyW, kTinyH);
+    expectOneLineRefusal([&] { renderer.render(generateWiring(narrow), settings); },
+                         {"layout 'narrow-clusters'", "4 clusters of up to 16 triangles",
+                          "2-bit cluster ids (with draw_offset 1) hold 3", "visibility-64"},
+                         "rendered 4 clusters through 2-bit cluster ids with offset 1");
 }
 
 // The resolve's candidates per material slot (visibility_resolve.glsl without non-uniform

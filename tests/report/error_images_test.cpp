@@ -14,6 +14,7 @@
 #include "png_writer.h"
 #include "run_metrics.h"
 #include "worst_regions.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -21,17 +22,8 @@ namespace fs = std::filesystem;
 using gbl::Image;
 using gbl::Image8;
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::random_device rd;
-        path = fs::temp_directory_path() / ("gbl_error_images_" + std::to_string(rd()) + std::to_string(rd()));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
+struct TempDir : gbl::test::TempDir {
+    TempDir() : gbl::test::TempDir("gbl_error_images_") {}
 };
 
 bool sameRgb(const Image8& im, int x, int y, gbl::Rgb8 c) {
@@ -156,19 +148,26 @@ TEST(ErrorImages, SrgbFloatTo8Rounds) {
 
 // ---- Files -------------------------------------------------------------------------------------
 
+// The metrics of `test` against `ref` with a w x h HDR image `hdrScale` times the reference's,
+// their error maps in `maps`.
+gbl::RunMetrics metricsOf(const gbl::SurfaceImages& ref, const gbl::SurfaceImages& test, int w, int h, float hdrScale,
+                          gbl::RunErrorMaps& maps) {
+    const Image hdr = makeHdr(w, h);
+    Image hdrTest = hdr;
+    for (float& v : hdrTest.pixels) v *= hdrScale;
+    gbl::RunMetricsOptions options;
+    options.maps = &maps;
+    return gbl::computeRunMetrics(ref, test, hdr, hdrTest, 1.0f, options);
+}
+
 TEST(ErrorImages, WritesEveryImageAndTheExrRoundTrips) {
     const int w = 48, h = 36;
     const gbl::SurfaceImages ref = makeSurface(w, h);
     gbl::SurfaceImages test = ref;
     for (float& v : test.roughness.pixels) v += 0.01f;
     for (size_t i = 0; i < test.normal.pixelCount(); ++i) test.normal.pixels[i * 3] = 0.05f;
-    const Image hdr = makeHdr(w, h);
-    Image hdrTest = hdr;
-    for (float& v : hdrTest.pixels) v *= 1.05f;
     gbl::RunErrorMaps maps;
-    gbl::RunMetricsOptions options;
-    options.maps = &maps;
-    const gbl::RunMetrics metrics = gbl::computeRunMetrics(ref, test, hdr, hdrTest, 1.0f, options);
+    const gbl::RunMetrics metrics = metricsOf(ref, test, w, h, 1.05f, maps);
 
     TempDir dir;
     gbl::ErrorImageOptions o;
@@ -225,13 +224,8 @@ TEST(ErrorImages, PathsAreKnownBeforeWritingAndHalfExrHoldsRoundedValues) {
     const gbl::SurfaceImages ref = makeSurface(w, h);
     gbl::SurfaceImages test = ref;
     for (float& v : test.roughness.pixels) v += 0.013f;
-    const Image hdr = makeHdr(w, h);
-    Image hdrTest = hdr;
-    for (float& v : hdrTest.pixels) v *= 1.07f;
     gbl::RunErrorMaps maps;
-    gbl::RunMetricsOptions options;
-    options.maps = &maps;
-    const gbl::RunMetrics metrics = gbl::computeRunMetrics(ref, test, hdr, hdrTest, 1.0f, options);
+    const gbl::RunMetrics metrics = metricsOf(ref, test, w, h, 1.07f, maps);
     TempDir dir;
     gbl::ErrorImageOptions o;
     o.exrType = gbl::ExrPixelType::Half;

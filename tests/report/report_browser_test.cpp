@@ -28,6 +28,7 @@
 #include "report_json.h"
 #include "report_sample.h"
 #include "tone_map.h"
+#include "temp_dir.h"
 
 namespace gbl {
 namespace {
@@ -35,15 +36,10 @@ namespace fs = std::filesystem;
 
 const char* kChromium = "/usr/bin/chromium";
 
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& tag)
-        : path(fs::temp_directory_path() / ("gbl_report_browser_" + tag + "_" + std::to_string(::getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        if (!std::getenv("GBL_KEEP_REPORT")) fs::remove_all(path);
+// GBL_KEEP_REPORT keeps the folder, to look at the pages.
+struct TempDir : test::TempDir {
+    explicit TempDir(const std::string& tag) : test::TempDir("gbl_report_browser_" + tag + "_") {
+        keep = std::getenv("GBL_KEEP_REPORT") != nullptr;
     }
 };
 

@@ -16,16 +16,16 @@
 #include "report_json.h"
 #include "report_sample.h"
 #include "view_stats.h"
+#include "temp_dir.h"
+#include "user_error.h"
 
 namespace gbl {
 namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("gbl_report_test_" + std::to_string(::getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() { fs::remove_all(path); }
+struct TempDir : test::TempDir {
+    TempDir() : test::TempDir("gbl_report_test_") {}
 };
 
 size_t countOf(const std::string& text, const std::string& what) {
@@ -210,16 +210,7 @@ TEST(ReportJson, FieldNamesUnitsAndSpecialValues) {
     EXPECT_TRUE(failed["attribute_errors"].empty());
 }
 
-template <class Fn>
-std::string userErrorOf(Fn&& fn) {
-    try {
-        fn();
-    } catch (const UserError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no UserError";
-    return "";
-}
+using test::userErrorOf;
 
 TEST(ReportJson, SchemaErrorsNameTheField) {
     const Json good = reportToJson(test::sampleReport());

@@ -15,22 +15,15 @@
 #include "image_io.h"
 #include "procedural_sky.h"
 #include "test_paths.h"
+#include "temp_dir.h"
+#include "user_error.h"
 
 namespace gbl {
 namespace {
 namespace fs = std::filesystem;
 constexpr float kPi = 3.14159265358979323846f;
 
-template <class Fn>
-std::string userErrorOf(Fn&& fn) {
-    try {
-        fn();
-    } catch (const UserError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no UserError";
-    return "";
-}
+using test::userErrorOf;
 
 float angleBetween(glm::vec3 a, glm::vec3 b) {
     return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
@@ -164,10 +157,8 @@ TEST(Validate, BadValuesAreErrorsNotClamps) {
     EXPECT_NO_THROW(validateEnvironmentImage(zero, "black.exr"));
 }
 
-struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("gbl_environment_test_" + std::to_string(::getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() { fs::remove_all(path); }
+struct TempDir : test::TempDir {
+    TempDir() : test::TempDir("gbl_environment_test_") {}
 };
 
 std::string writeCleanMap(const fs::path& dir) {

@@ -199,9 +199,7 @@ TEST_F(IblGpuTest, FastPrefilterMatchesBruteForceWithinItsNoise) {
 // it alone (specular only) stays within the LUT's A + B <= 1.
 TEST_F(IblGpuTest, WhiteFurnace) {
     const EnvironmentMap white = constantEnvironment(1.0f);
-    IblSettings s;
-    s.sourceFaceSize = 32;
-    s.prefilteredFaceSize = 32;
+    IblSettings s = iblSizes(32, 32);
     s.lutSize = 64;
     const IblMaps maps = computeIblMaps(ctx(), white, s);
     for (const CubeMip& m : maps.prefiltered)
@@ -215,20 +213,9 @@ TEST_F(IblGpuTest, WhiteFurnace) {
         maxAB = std::max(maxAB, maps.brdfLut.pixels[i * 2] + maps.brdfLut.pixels[i * 2 + 1]);
     EXPECT_LE(maxAB, 1.0f + 2e-3f);
 
-    Scene scene = makeSphereGridScene();
-    scene.lights.clear();
-    for (Material& m : scene.materials) {
-        m.baseColorFactor = glm::vec4(1.0f);
-        m.metallicFactor = 1.0f;
-        m.emissiveFactor = glm::vec3(0.0f);
-    }
+    const Scene scene = furnaceScene(makeSphereGridScene());
     Renderer renderer(ctx(), scene, white, maps);
-    RenderSettings rs;
-    rs.width = 160;
-    rs.height = 90;
-    rs.diffuseIbl = false;
-    rs.specularIbl = IblMode::SplitSum;
-    const RenderOutput out = renderer.render(makeReferenceWiring(), rs);
+    const RenderOutput out = renderer.render(makeReferenceWiring(), specularOnly(160, 90, IblMode::SplitSum));
     size_t covered = 0;
     for (size_t i = 0; i < out.hdr.pixelCount(); ++i) {
         if (out.hdr.pixels[i * 4 + 3] < 0.5f) continue;

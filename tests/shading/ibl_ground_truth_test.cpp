@@ -17,8 +17,6 @@
 #include "procedural_sky.h"
 #include "renderer.h"
 #include "shader_compiler.h"
-#include "vk_pipeline.h"
-#include "vk_resources.h"
 #include "vk_test_support.h"
 
 namespace gbl {
@@ -30,19 +28,12 @@ using namespace ibl_test;
 // sampling) and split-sum-shader must converge to split-sum (LUT) up to MC and LUT error.
 TEST_F(IblGpuTest, GroundTruthConvergesToSplitSumOnAConstantEnvironment) {
     const EnvironmentMap white = constantEnvironment(1.0f);
-    IblSettings s;
-    s.sourceFaceSize = 32;
-    s.prefilteredFaceSize = 32;
-    const IblMaps maps = computeIblMaps(ctx(), white, s);
+    const IblMaps maps = computeIblMaps(ctx(), white, iblSizes(32, 32));
     Scene scene = makeSphereGridScene();
     scene.lights.clear();
     Renderer renderer(ctx(), scene, white, maps);
-    RenderSettings rs;
-    rs.width = 160;
-    rs.height = 90;
-    rs.diffuseIbl = false;
+    RenderSettings rs = specularOnly(160, 90, IblMode::SplitSum);
     rs.groundTruthSamples = 64;  // per batch; batches run until the noise target
-    rs.specularIbl = IblMode::SplitSum;
     const RenderOutput split = renderer.render(makeReferenceWiring(), rs);
     for (IblMode mode : {IblMode::GroundTruth, IblMode::SplitSumShader}) {
         rs.specularIbl = mode;
@@ -93,24 +84,11 @@ TEST(EnvironmentSampling, PdfIsNormalisedAndFollowsLuminance) {
 // estimator (GGX + environment samples) must land on it within its own reported noise.
 TEST_F(IblGpuTest, GroundTruthFurnaceGivesDirectionalAlbedoWithinItsNoise) {
     const EnvironmentMap white = constantEnvironment(1.0f);
-    IblSettings s;
-    s.sourceFaceSize = 32;
-    s.prefilteredFaceSize = 32;
-    const IblMaps maps = computeIblMaps(ctx(), white, s);
-    Scene scene = makeDefaultScene();
-    scene.lights.clear();
-    for (Material& m : scene.materials) {
-        m.baseColorFactor = glm::vec4(1.0f);
-        m.metallicFactor = 1.0f;
-        m.emissiveFactor = glm::vec3(0.0f);
-        m.normalTexture = -1;
-    }
+    const IblMaps maps = computeIblMaps(ctx(), white, iblSizes(32, 32));
+    Scene scene = furnaceScene(makeDefaultScene());
+    for (Material& m : scene.materials) m.normalTexture = -1;
     Renderer renderer(ctx(), scene, white, maps);
-    RenderSettings rs;
-    rs.width = 96;
-    rs.height = 54;
-    rs.diffuseIbl = false;
-    rs.specularIbl = IblMode::SplitSum;
+    RenderSettings rs = specularOnly(96, 54, IblMode::SplitSum);
     const RenderOutput split = renderer.render(makeReferenceWiring(), rs);
     rs.specularIbl = IblMode::GroundTruth;
     rs.groundTruthSamples = 32;
@@ -146,17 +124,11 @@ TEST_F(IblGpuTest, GroundTruthFurnaceGivesDirectionalAlbedoWithinItsNoise) {
 // does not converge.
 TEST_F(IblGpuTest, GroundTruthNoiseEstimateMatchesTheSpreadOfIndependentRuns) {
     const EnvironmentMap sky = makeProceduralSky(256);
-    IblSettings s;
-    s.prefilteredFaceSize = 32;
-    const IblMaps maps = computeIblMaps(ctx(), sky, s);
+    const IblMaps maps = computeIblMaps(ctx(), sky, iblSizes(32));
     Scene scene = makeDefaultScene();
     scene.lights.clear();
     Renderer renderer(ctx(), scene, sky, maps);
-    RenderSettings rs;
-    rs.width = 64;
-    rs.height = 36;
-    rs.diffuseIbl = false;
-    rs.specularIbl = IblMode::GroundTruth;
+    RenderSettings rs = specularOnly(64, 36, IblMode::GroundTruth);
     rs.groundTruthSamples = 32;
     rs.groundTruthNoiseTarget = 0.01;
     const RenderOutput a = renderer.render(makeReferenceWiring(), rs);
@@ -256,29 +228,13 @@ void main() {
 }
 )";
     VulkanContext& c = ctx();
-    Buffer tableBuf = createBufferWithData(c, table.data(), table.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Buffer radianceBuf =
-        createBufferWithData(c, radiance.data(), radiance.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Buffer casesBuf = createBufferWithData(c, in.data(), in.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    Buffer out = createBuffer(c, n * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    const std::vector<Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                           {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                           {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
-    VkDescriptorSetLayout setLayout = createSetLayout(c.device, bindings, VK_SHADER_STAGE_COMPUTE_BIT);
-    VkPipelineLayout pipelineLayout = createPipelineLayout(c.device, {setLayout}, 8, VK_SHADER_STAGE_COMPUTE_BIT);
-    VkDescriptorPool pool = createPoolFor(c.device, {bindings});
-    VkDescriptorSet set = allocateSet(c.device, pool, setLayout);
-    DescriptorWriter()
-        .buffer(set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, tableBuf.buffer)
-        .buffer(set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, radianceBuf.buffer)
-        .buffer(set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, casesBuf.buffer)
-        .buffer(set, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.buffer)
-        .flush(c.device);
-    ShaderSource cs{"ibl_mis_twin.comp", text, VK_SHADER_STAGE_COMPUTE_BIT, {}, {}};
-    VkShaderModule module = createShaderModule(c.device, compileGlsl(cs));
-    VkPipeline pipeline = createComputePipeline(c, pipelineLayout, module);
-    vkDestroyShaderModule(c.device, module, nullptr);
+    const test::TestBuffer tableBuf = test::TestBuffer::holding(c, table);
+    const test::TestBuffer radianceBuf = test::TestBuffer::holding(c, radiance);
+    const test::TestBuffer casesBuf = test::TestBuffer::holding(c, in);
+    const test::TestBuffer out(c, n * sizeof(glm::vec4));
+    const test::ComputeKernel kernel(
+        c, ShaderSource{"ibl_mis_twin.comp", text, VK_SHADER_STAGE_COMPUTE_BIT, {}, {}},
+        {{test::storage(tableBuf), test::storage(radianceBuf), test::storage(casesBuf), test::storage(out)}}, 8);
     const shading::EnvironmentLodFn texel = [&](glm::vec3 dir, float) {
         const glm::vec2 uv = directionToEquirectUv(dir);
         const uint32_t W = uint32_t(sky.image.width), H = uint32_t(sky.image.height);
@@ -291,14 +247,8 @@ void main() {
     };
     for (uint32_t smoothRadiance : {1u, 0u}) {
         const uint32_t push[2] = {samples, smoothRadiance};
-        c.submitAndWait([&](VkCommandBuffer cmd) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout, 0, 1, &set, 0, nullptr);
-            vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), push);
-            vkCmdDispatch(cmd, n, 1, 1);
-            fullBarrier(cmd);
-        });
-        const glm::vec4* gpu = static_cast<const glm::vec4*>(out.mapped);
+        kernel.dispatch(n, 1, 1, push);
+        const glm::vec4* gpu = out.mapped<const glm::vec4>();
         const char* what = smoothRadiance ? "smooth radiance" : "sky, nearest texel";
         double worst = 0.0;
         uint32_t close = 0;
@@ -324,14 +274,6 @@ void main() {
                     close, n, worst, samples);
         EXPECT_GE(close, smoothRadiance ? n : n / 2) << what;
     }
-    vkDestroyPipeline(c.device, pipeline, nullptr);
-    vkDestroyPipelineLayout(c.device, pipelineLayout, nullptr);
-    vkDestroyDescriptorPool(c.device, pool, nullptr);
-    vkDestroyDescriptorSetLayout(c.device, setLayout, nullptr);
-    destroyBuffer(c, out);
-    destroyBuffer(c, casesBuf);
-    destroyBuffer(c, radianceBuf);
-    destroyBuffer(c, tableBuf);
 }
 
 }  // namespace

@@ -1,16 +1,16 @@
 #pragma once
 // Runs the real gbufferlab executable (GBL_BINARY) from a scratch folder of the test process and
 // captures what it printed: the harness of the tests that check the command line from outside.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <functional>
 #include <initializer_list>
-#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "temp_dir.h"
 
 namespace gbl::test {
 
@@ -20,43 +20,44 @@ struct RunResult {
     std::string err;
 };
 
-// A fresh folder for this test process (its pid in the name), emptied on first use.
-inline std::filesystem::path scratchFolder(const std::string& prefix) {
-    std::filesystem::path d = std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()));
-    std::filesystem::remove_all(d);
-    std::filesystem::create_directories(d);
-    return d;
-}
-
-inline std::string slurp(const std::filesystem::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+// The whole file as text ("" when it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) { return readFile(p); }
 
 // `gbufferlab ARGS` in `folder`, with `envPrefix` (VAR=value ...) before it; exit code as the
 // shell gives it (128 + signal for a signal).
-inline RunResult runGbufferlab(const std::filesystem::path& folder, const std::string& args,
-                               const std::string& envPrefix = "") {
-    const std::filesystem::path out = folder / "stdout.txt", err = folder / "stderr.txt";
-    const std::string cmd = "cd " + folder.string() + " && " + envPrefix + " " + GBL_BINARY + " " + args + " >" +
-                            out.string() + " 2>" + err.string();
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), slurp(out), slurp(err)};
-}
+RunResult runGbufferlab(const std::filesystem::path& folder, const std::string& args, const std::string& envPrefix = "");
 
-inline size_t lineCount(const std::string& s) {
-    size_t n = 0;
-    for (char c : s) n += c == '\n';
-    return n;
-}
+// `command` run by the shell; its exit code as runGbufferlab gives it.
+int shellExitCode(const std::string& command);
+
+// The scratch folder of a test file that runs gbufferlab (ScratchDir: made on first use), the
+// runs in it and the files they write there.
+class CliScratch : public ScratchDir {
+public:
+    using ScratchDir::ScratchDir;
+    RunResult run(const std::string& args, const std::string& envPrefix = "") const {
+        return runGbufferlab((*this)(), args, envPrefix);
+    }
+    std::string read(const std::filesystem::path& name) const { return readFile(*this / name); }
+    nlohmann::json json(const std::filesystem::path& name) const { return nlohmann::json::parse(read(name)); }
+    // Every number of `dir`/report.json by its JSON pointer (jsonNumbers), but under the keys that
+    // hold "ms" (times) and `skipKeys` (other facts of the run itself).
+    std::vector<std::pair<std::string, double>> reportNumbers(const std::string& dir,
+                                                              std::initializer_list<std::string> skipKeys) const;
+};
+
+size_t lineCount(const std::string& s);
 
 // A user error: exit 1, exactly one line on stderr containing every `needle`.
-inline void expectOneLineError(const RunResult& r, std::initializer_list<std::string> needles) {
-    EXPECT_EQ(r.exitCode, 1) << r.err;
-    EXPECT_EQ(lineCount(r.err), 1u) << r.err;
-    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "missing '" << n << "' in: " << r.err;
-}
+void expectOneLineError(const RunResult& r, std::initializer_list<std::string> needles);
+
+// Every number under `j` with its JSON pointer, in document order, leaving out the members whose
+// key `skip` says (times and other facts of the run itself, which differ between runs).
+std::vector<std::pair<std::string, double>> jsonNumbers(const nlohmann::json& j,
+                                                        const std::function<bool(const std::string& key)>& skip);
+
+// The image files (.png, .exr) under `dir`, as paths relative to it, in the order the folder walk
+// gives them.
+std::vector<std::filesystem::path> imageFilesUnder(const std::filesystem::path& dir);
 
 }  // namespace gbl::test

@@ -1,0 +1,69 @@
+#include "surface_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <glm/glm.hpp>
+
+
+namespace gbl::test {
+
+std::vector<Surface> randomSurfaces(size_t count, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<Surface> v(count);
+    for (Surface& s : v) {
+        glm::vec3 n;
+        do n = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
+        while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
+        s.normal = glm::normalize(n);
+        s.baseColor = {u(rng), u(rng), u(rng)};
+        s.metallic = u(rng);
+        s.roughness = u(rng);
+        s.specular = u(rng);
+        s.specularColor = {u(rng), u(rng), u(rng)};
+        s.diffuseColor = {u(rng), u(rng), u(rng)};
+        s.occlusion = u(rng);
+        s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 8.0f;
+        s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 100.0f;
+        s.position.z = u(rng) * 1.2f - 0.1f;
+    }
+    return v;
+}
+
+float* memberOf(Surface& s, Attribute a) {
+    switch (a) {
+        case Attribute::Normal: return &s.normal.x;
+        case Attribute::BaseColor: return &s.baseColor.x;
+        case Attribute::Metallic: return &s.metallic;
+        case Attribute::Roughness: return &s.roughness;
+        case Attribute::Specular: return &s.specular;
+        case Attribute::SpecularColor: return &s.specularColor.x;
+        case Attribute::DiffuseColor: return &s.diffuseColor.x;
+        case Attribute::Occlusion: return &s.occlusion;
+        case Attribute::Emissive: return &s.emissive.x;
+        case Attribute::Position: return &s.position.x;
+        case Attribute::Depth: return &s.position.z;
+        default: return nullptr;
+    }
+}
+
+const float* memberOf(const Surface& s, Attribute a) { return memberOf(const_cast<Surface&>(s), a); }
+
+bool coveredAt(uint32_t x, uint32_t y) { return ((x * 7 + y * 3) % 5) != 0; }
+
+std::vector<uint8_t> coverageMask(uint32_t width, uint32_t height) {
+    std::vector<uint8_t> m(size_t(width) * height);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) m[size_t(y) * width + x] = coveredAt(x, y);
+    return m;
+}
+
+bool within4Ulp(float a, float b) {
+    if (a == b) return true;
+    return std::abs(a - b) <= 4.0f * std::numeric_limits<float>::epsilon() * std::max(1.0f, std::abs(b));
+}
+
+}  // namespace gbl::test

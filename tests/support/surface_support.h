@@ -1,0 +1,35 @@
+#pragma once
+// What the tests that hold encoders to each other share (codec/gpu_cpu_bits_test,
+// codec/layout_export_gpu_test, codec/cpu_codec_test, ...): seeded random Surfaces, a Surface's
+// member for an attribute, the coverage pattern of the decode checks, and their 4-ulp comparison;
+// and the shipped layouts (layout_files.h).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "layout.h"
+#include "layout_files.h"
+#include "surface.h"
+
+namespace gbl::test {
+
+// Seeded random Surfaces: every member uniform over its range, normals unit and uniform in
+// direction, emissive up to 8, positions within +-100 with z mostly in [0, 1] and some outside (a
+// stored window depth rides in position.z: wiring_plan.h).
+std::vector<Surface> randomSurfaces(size_t count, uint32_t seed);
+
+// The Surface member that holds `a` (its first component), nullptr for an attribute a Surface
+// does not hold; a stored window depth rides in position.z (wiring_plan.h).
+float* memberOf(Surface& s, Attribute a);
+const float* memberOf(const Surface& s, Attribute a);
+
+// The pixels "with geometry" of the decode checks: a fixed pattern that the test shaders mirror
+// ((x * 7 + y * 3) % 5 != 0), so that reconstructions that skip pixels without geometry are held too.
+bool coveredAt(uint32_t x, uint32_t y);
+// coveredAt over a width x height image, row by row (CpuGBuffer::covered).
+std::vector<uint8_t> coverageMask(uint32_t width, uint32_t height);
+
+// GPU and CPU decodes agree: equal, or within 4 float epsilons of b (relative above 1).
+bool within4Ulp(float a, float b);
+
+}  // namespace gbl::test
