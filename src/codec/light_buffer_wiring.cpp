@@ -6,12 +6,12 @@
 
 #include "glsl_text.h"
 #include "light_buffer_encodings.h"
+#include "wiring_field_codegen.h"  // kComp
 
 namespace gbl {
 
 namespace {
 
-const char* kComp[] = {"x", "y", "z", "w"};
 const char* kChannel[] = {"r", "g", "b", "a"};
 
 const TargetFormatInfo& formatOf(const LightBuffer& b) {

@@ -21,7 +21,7 @@ bool isHex(std::string_view s) {
     return std::all_of(s.begin(), s.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; });
 }
 
-std::string trim(std::string_view s) {
+std::string trimSpaces(std::string_view s) {
     size_t b = 0, e = s.size();
     while (b < e && s[b] == ' ') ++b;
     while (e > b && s[e - 1] == ' ') --e;
@@ -333,7 +333,7 @@ void Parser::readProvenance(const toml::table& t, Provenance& p, FilePlace entry
             while (start <= from->size()) {
                 size_t end = from->find(';', start);
                 if (end == std::string::npos) end = from->size();
-                const std::string piece = trim(std::string_view(*from).substr(start, end - start));
+                const std::string piece = trimSpaces(std::string_view(*from).substr(start, end - start));
                 size_t lead = start;
                 while (lead < end && (*from)[lead] == ' ') ++lead;
                 const FilePlace at{p.fromPlace.line, p.fromPlace.column + 1 + static_cast<int>(lead)};
@@ -343,8 +343,8 @@ void Parser::readProvenance(const toml::table& t, Provenance& p, FilePlace entry
                 } else {
                     const size_t colon = piece.find(':');
                     CitationRef ref;
-                    ref.key = trim(piece.substr(0, colon));
-                    ref.locator = colon == std::string::npos ? "" : trim(piece.substr(colon + 1));
+                    ref.key = trimSpaces(piece.substr(0, colon));
+                    ref.locator = colon == std::string::npos ? "" : trimSpaces(piece.substr(colon + 1));
                     ref.place = at;
                     if (colon != std::string::npos && ref.locator.empty())
                         error(at, "citation " + squote(ref.key) + " in 'from' has ':' but no line or slide after it");

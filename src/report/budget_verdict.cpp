@@ -6,8 +6,6 @@
 namespace gbl {
 namespace {
 
-constexpr const char* kVisibilityPipeline = "visibility-buffer";
-
 bool counts(const RunReport& r, const std::string& reference) {
     return r.status == RunStatus::Ok && r.image && !r.isLightingComparison() && r.layout != reference;
 }
@@ -65,7 +63,7 @@ std::string sentenceOf(const BudgetLine& line, int views, const std::string& int
 
 double verdictCountedBytes(const RunReport& run) {
     double bytes = run.bytesPerPixel.total;
-    if (run.pipeline == kVisibilityPipeline) bytes += vertexFetchBytesPerPixel(run) / 2.0;
+    if (run.isVisibilityBuffer()) bytes += vertexFetchBytesPerPixel(run) / 2.0;
     return bytes;
 }
 
@@ -78,7 +76,7 @@ std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model) {
         int views = 1;
         for (const RunReport& r : model.runs) {
             if (r.iblMode != mode || !counts(r, model.reference.layout)) continue;
-            entries.push_back({r.layout, r.bytesPerPixel.total, verdictCountedBytes(r), r.pipeline == kVisibilityPipeline,
+            entries.push_back({r.layout, r.bytesPerPixel.total, verdictCountedBytes(r), r.isVisibilityBuffer(),
                                r.image->flipMean});
             // The views measured (a view with nothing to measure has no image errors: not in the mean).
             const int measured = r.views.empty() ? 1

@@ -8,12 +8,10 @@
 #include "budget_verdict.h"
 #include "plot_labels.h"
 #include "report_html.h"
-
 namespace gbl {
 namespace {
 
 const char* kSeriesColors[] = {"#1f5fa8", "#c0392b", "#218c4b", "#7b3fa0", "#d9730d", "#6b4f3a", "#0f8a8a"};
-constexpr const char* kVisibilityPipeline = "visibility-buffer";
 constexpr double kLabelFont = 11;
 constexpr double kMarkerHalf = 5;  // a marker's box, around its centre
 
@@ -125,7 +123,7 @@ PlotPoints collectPoints(const ReportModel& model, const PlotSpec& spec) {
         if (std::isnan(y)) continue;
         Point p;
         p.x = r.bytesPerPixel.total;
-        p.visibility = r.pipeline == kVisibilityPipeline;
+        p.visibility = r.isVisibilityBuffer();
         p.counted = p.visibility ? verdictCountedBytes(r) : p.x;
         p.y = y;
         p.series = size_t(std::find(c.modes.begin(), c.modes.end(), r.iblMode) - c.modes.begin());

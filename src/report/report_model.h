@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bandwidth.h"
+#include "layout.h"
 #include "layout_atlas.h"
 #include "metrics.h"
 
@@ -258,6 +259,10 @@ struct RunReport {
     bool isLightingComparison() const {
         return layout.rfind("reference (", 0) == 0 && layout.find(" vs ") != std::string::npos;
     }
+
+    // A visibility buffer's run (pipeline = "visibility-buffer"): its bytes leave out the vertex
+    // fetch of the resolve, which the verdicts and the plot count apart.
+    bool isVisibilityBuffer() const { return pipeline == pipelineName(Pipeline::VisibilityBuffer); }
 
     // The 1920x1080, 1-sample frame's traffic at 60 fps in GB/s; nullopt when not in `bandwidth`.
     std::optional<double> gigabytesPerSecond1080p60() const {

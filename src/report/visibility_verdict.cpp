@@ -6,8 +6,6 @@ namespace gbl {
 
 namespace {
 
-constexpr const char* kVisibilityPipeline = "visibility-buffer";
-
 const FrameTraffic* frame1080(const RunReport& r) {
     for (const FrameTraffic& f : r.bandwidth)
         if (f.width == 1920 && f.height == 1080 && f.samples == 1) return &f;
@@ -39,7 +37,7 @@ std::optional<VisibilityVerdict> gbufferOrVisibility(const ReportModel& model) {
     const RunReport* visibility = nullptr;
     for (const RunReport& r : model.runs) {
         if (!usable(r, model.reference.layout, mode)) continue;
-        if (r.pipeline == kVisibilityPipeline) {
+        if (r.isVisibilityBuffer()) {
             if (!visibility || frame1080(r)->totalBytes < frame1080(*visibility)->totalBytes) visibility = &r;
         } else if (!gbuffer || r.image->flipMean < gbuffer->image->flipMean) {
             gbuffer = &r;

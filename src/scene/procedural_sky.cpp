@@ -9,7 +9,7 @@
 namespace gbl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kSkyPi = 3.14159265358979323846;
 // The ground meets the sky over this band of d.y just below the horizon (about 1.1 degrees),
 // so the horizon does not alias into a jagged seam at low map resolutions.
 constexpr double kHorizonBand = 0.02;
@@ -39,7 +39,7 @@ double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
 }
 
 glm::dvec3 directionAt(double u, double v) {
-    const double phi = (u - 0.5) * 2.0 * kPi, theta = v * kPi;
+    const double phi = (u - 0.5) * 2.0 * kSkyPi, theta = v * kSkyPi;
     return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
 }
 
@@ -48,14 +48,14 @@ glm::dvec3 directionAt(double u, double v) {
 // and let a small sun fall between texel centres.
 double sunCoverage(int i, int j, int width, int height, const glm::dvec3& sun, double radius) {
     const double du = 1.0 / width, dv = 1.0 / height;
-    const double texelAngle = std::max(2.0 * kPi * du, kPi * dv);
+    const double texelAngle = std::max(2.0 * kSkyPi * du, kSkyPi * dv);
     const double outer = radius * (1.0 + kSunEdge);
     if (angleBetween(directionAt((i + 0.5) * du, (j + 0.5) * dv), sun) > outer + texelAngle) return 0.0;
     const int n = std::clamp(int(std::ceil(8.0 * texelAngle / radius)), 4, 64);  // sub-spacing <= r/8
     double covered = 0.0, total = 0.0;
     for (int sj = 0; sj < n; ++sj) {
         const double v = (j + (sj + 0.5) / n) * dv;
-        const double weight = std::sin(v * kPi);
+        const double weight = std::sin(v * kSkyPi);
         for (int si = 0; si < n; ++si) {
             const glm::dvec3 d = directionAt((i + (si + 0.5) / n) * du, v);
             const double disc = 1.0 - smoothstep(radius * (1.0 - kSunEdge), outer, angleBetween(d, sun));

@@ -11,7 +11,6 @@
 namespace gbl::shading {
 
 namespace {
-float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
 }  // namespace
 
 // GGX / Trowbridge-Reitz [Karis13 eq. 3], [Walter07 eq. 33], alpha = roughness^2.

@@ -36,6 +36,8 @@ inline constexpr int DIFFUSE_LAMBERT = 0;
 inline constexpr int FRESNEL_DEFAULT = FRESNEL_KARIS;
 
 inline constexpr float kPi = 3.14159265358979323846f;
+// GLSL's clamp(x, 0, 1), as the shaders write it.
+inline float saturate(float x) { return x < 0.0f ? 0.0f : x > 1.0f ? 1.0f : x; }
 // evaluateDirectLight clamps roughness to at least this (GGX is a delta at roughness 0).
 inline constexpr float kMinDirectRoughness = 0.045f;
 

@@ -21,7 +21,6 @@ namespace gbl::shading {
 
 namespace {
 
-float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
 
 uint32_t reverseBits(uint32_t bits) {
     bits = (bits << 16u) | (bits >> 16u);
