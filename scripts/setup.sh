@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
 # Installs the Debian packages gbufferlab needs (only the missing ones: quiet and fast when all
-# are present), then configures and builds it in Release.
-# Usage: scripts/setup.sh [--tests] [build-dir [extra cmake args...]]
-#   default: what building and running `gbufferlab` needs, and only the gbufferlab target;
-#   --tests: also what the tests and benchmarks need (GoogleTest, Google Benchmark, Vulkan's
-#            validation layers, test models, Chromium for the report's browser test), and all targets.
+# are present), then configures and builds it.
+# Usage: scripts/setup.sh [--tests | --sanitize] [--target T]... [build-dir [extra cmake args...]]
+#   default:    what building and running `gbufferlab` needs; Release; only the gbufferlab target;
+#   --tests:    also what the tests and benchmarks need (GoogleTest, Google Benchmark, Vulkan's
+#               validation layers, test models, Chromium for the report's browser test); all targets;
+#   --sanitize: the sanitizer build (default folder build-asan): clang at -O1 with line tables,
+#               ASan + UBSan, the unit tests only, and the libFuzzer targets (tests/fuzz/fuzz.cmake);
+#   --target T: build T (repeatable) instead of the mode's default targets.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . scripts/packages.sh
 
-with_tests=0
-if [ "${1:-}" = "--tests" ]; then with_tests=1; shift; fi
+mode=run
+case "${1:-}" in
+  --tests) mode=tests; shift ;;
+  --sanitize) mode=sanitize; shift ;;
+esac
+targets=()
+while [ "${1:-}" = --target ]; do targets+=(--target "$2"); shift 2; done
 
 packages=(
   cmake g++ make pkg-config zlib1g-dev
@@ -18,26 +26,36 @@ packages=(
   glslang-dev glslang-tools spirv-tools libglm-dev libtinygltf-dev libopenexr-dev
   libtomlplusplus-dev libstb-dev nlohmann-json3-dev
 )
-if ((with_tests)); then
+if [ "$mode" != run ]; then
   packages+=(
     vulkan-validationlayers libbenchmark-dev libgtest-dev
     assimp-testmodels blender-data
     chromium
   )
 fi
-
+[ "$mode" = sanitize ] && packages+=(clang libclang-rt-14-dev)
 install_missing "${packages[@]}"
 
-build_dir="${1:-build}"
+default_dir=build
+[ "$mode" = sanitize ] && default_dir=build-asan
+build_dir="${1:-$default_dir}"
 shift || true
-# Both scripts share one build folder: each states the options it needs, so a folder configured by
-# one is reconfigured (seconds, no rebuild of what exists) by the other.
-onoff=$( ((with_tests)) && echo ON || echo OFF )
-want="GBL_BUILD_TESTS:BOOL=$onoff"
-if [ ! -f "$build_dir/CMakeCache.txt" ] || ! grep -qx "$want" "$build_dir/CMakeCache.txt" || (($#)); then
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DGBL_BUILD_TESTS="$onoff" -DGBL_BUILD_BENCH="$onoff" "$@" >/dev/null
+config=(-DCMAKE_BUILD_TYPE=Release)
+case "$mode" in
+  run) config+=(-DGBL_BUILD_TESTS=OFF -DGBL_BUILD_BENCH=OFF) ;;
+  tests) config+=(-DGBL_BUILD_TESTS=ON -DGBL_BUILD_BENCH=ON) ;;
+  # The Sanitize build type is -O1 -g1 (CMakeLists.txt): the reports still name file:line, and it
+  # compiles in a fraction of RelWithDebInfo's time.
+  sanitize) config=(-DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++
+                    -DGBL_SANITIZE=ON -DGBL_BUILD_TESTS=ON -DGBL_BUILD_BENCH=OFF -DGBL_TEST_LABELS=unit) ;;
+esac
+# scripts/run.sh and scripts/test.sh share the folder build: each states the options it needs, so
+# a folder configured by one is reconfigured (seconds, no rebuild of what exists) by the other.
+want="GBL_BUILD_TESTS:BOOL=$([ "$mode" = run ] && echo OFF || echo ON)"
+if [ ! -f "$build_dir/CMakeCache.txt" ] || ! grep -qx "$want" "$build_dir/CMakeCache.txt" || (($#)) ||
+   [ "$mode" = sanitize ]; then
+  cmake -S . -B "$build_dir" "${config[@]}" "$@" >/dev/null
 fi
-targets=()
-((with_tests)) || targets=(--target gbufferlab)
+if ((${#targets[@]} == 0)) && [ "$mode" = run ]; then targets=(--target gbufferlab); fi
 mkdir -p "$build_dir"
 cmake --build "$build_dir" -j"$(nproc)" "${targets[@]}" >"$build_dir/build.log" 2>&1 || { cat "$build_dir/build.log"; exit 1; }

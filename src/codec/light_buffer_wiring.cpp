@@ -6,11 +6,13 @@
 
 #include "glsl_text.h"
 #include "light_buffer_encodings.h"
-#include "wiring_field_codegen.h"  // kComp
+#include "wiring_field_codegen.h"  // wiring::kComp
 
 namespace gbl {
 
 namespace {
+
+using wiring::kComp;
 
 const char* kChannel[] = {"r", "g", "b", "a"};
 
