@@ -20,9 +20,9 @@ layout(push_constant) uniform Draw { DrawConstants draw; };
 #endif
 #include "material_eval.glsl"
 
-bool alphaTestDiscards(vec2 uv) { return materialAlphaTestDiscards(materials[draw.material.x], uv); }
+bool alphaTestDiscards(vec2 uv, vec2 uv1) { return materialAlphaTestDiscards(materials[draw.material.x], uv, uv1); }
 
-Surface evaluateMaterial(vec3 worldPosition, vec3 normal, vec4 tangent, vec2 uv, bool frontFacing) {
-    return evaluateMaterialOf(materials[draw.material.x], worldPosition, normal, tangent, uv, frontFacing);
+Surface evaluateMaterial(vec3 worldPosition, vec3 normal, vec4 tangent, vec2 uv, vec2 uv1, bool frontFacing) {
+    return evaluateMaterialOf(materials[draw.material.x], worldPosition, normal, tangent, uv, uv1, frontFacing);
 }
 #endif

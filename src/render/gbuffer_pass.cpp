@@ -66,17 +66,18 @@ VkPipeline createGBufferPipelineSpirv(const VulkanContext& ctx, const GBufferWir
     stages[1].pName = "main";
 
     VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[4] = {
+    VkVertexInputAttributeDescription attributes[5] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
         {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
         {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+        {4, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv1)},
     };
     VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     if (sceneVertices) {
         vertexInput.vertexBindingDescriptionCount = 1;
         vertexInput.pVertexBindingDescriptions = &binding;
-        vertexInput.vertexAttributeDescriptionCount = 4;
+        vertexInput.vertexAttributeDescriptionCount = 5;
         vertexInput.pVertexAttributeDescriptions = attributes;
     }
 
@@ -229,6 +230,7 @@ PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& 
     ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
     fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
     addMaterialSlotDefines(fs, scene.texturesBySlot);
+    addSceneFeatureDefines(fs, scene.layers, scene.uvTransforms);  // material_eval.glsl
     // The encoders' threshold tables from GBufferPass::codecTables, not constant arrays: llvmpipe
     // JIT-compiles their binary searches far faster so (codec_tables.glsl).
     fs.defines.push_back({"GBL_CODEC_TABLES_SET", "0"});
@@ -287,6 +289,8 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
                      scene.textureSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
     writer.flush(ctx.device);
     pass.pipelineFromMemo = true;
+    pass.sceneLayers = scene.layers;
+    pass.sceneUvTransforms = scene.uvTransforms;
     pass.writesStencil = writesStencil(wiring);
     pass.wiring.stencilFields = wiring.stencilFields;
     if (wiring.visibilityBuffer) {

@@ -197,6 +197,7 @@ private:
     VkSampler environmentSampler_ = VK_NULL_HANDLE;
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
     IblGpu ibl_;
+    GpuImage sheenAlbedo_;  // shading::sheenAlbedoTable() as R32F (1 x 1 zero without sheen)
     PipelineMemo ownPipelines_;
     PipelineMemo& pipelines_;  // ownPipelines_, or the memo shared by several renderers
     // The tables a G-buffer pass binds (tablesFor): the encodings' (uploaded at init) and the
