@@ -183,6 +183,8 @@ public:
 
     const Scene& scene() const { return scene_; }
     const IblGpu& ibl() const { return ibl_; }
+    // The material layers some material of the scene has (GpuScene::layers, kLayer* bits).
+    int sceneLayers() const { return gpuScene_.layers; }
     // Pipelines built so far (G-buffer, material, lighting, decode): each layout's are built at its
     // first render and reused by every later one, whatever the camera or size; the lighting
     // pass's once per IBL mode (and Fresnel).
