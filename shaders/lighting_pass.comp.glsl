@@ -63,7 +63,7 @@ layout(push_constant) uniform Batch { uint batchIndex; } batch;  // 0, 1, ... (g
 // The sheen's directional albedo E(NoV, sheen roughness), src/shading/sheen_albedo.h's table
 // (R32F, bilinear, clamp to edge; 1 x 1 where the scene has no sheen).
 layout(set = 0, binding = 12) uniform sampler2D sheenAlbedoLut;
-float sheenAlbedo(float NoX, float sheenRoughness) { return texture(sheenAlbedoLut, vec2(NoX, sheenRoughness)).r; }
+float sheenAlbedo(float NoX, float sheenRoughness) { return textureLod(sheenAlbedoLut, vec2(NoX, sheenRoughness), 0.0).r; }
 
 vec3 sampleEnvironment(vec3 direction) {
     return textureLod(environmentEquirect, directionToEquirectUv(direction), 0.0).rgb * frame.environment.x;
