@@ -166,6 +166,10 @@ float visGgxAnisotropic(float NoL, float NoV, float BoV, float ToV, float ToL, f
 // Direct light on the anisotropic base: (Lambert + D_aniso V_aniso F) lightRadiance NoL, the
 // specification's BRDF_specularAnisotropicGGX with the base's Fresnel mode (F is the base's, only
 // the microfacet lobe changes). Roughness clamped to kMinDirectRoughness as the isotropic base.
+// Its visibility is the specification's height-correlated Smith, not UE4's Schlick-Smith with the
+// analytic k: at strength -> 0 the lobe tends to GGX with that visibility, not to the UE4 base, so
+// a layout that drops a weak anisotropy is charged that difference too (the specification defines
+// the anisotropic lobe whole; UE4 itself switches to a joint Smith for anisotropy).
 vec3 evaluateDirectLightAnisotropicMode(vec3 N, vec3 V, vec3 L, vec3 T, vec3 B, float anisotropy,
                                         vec3 diffuseColor, vec3 specularColor, float roughness,
                                         vec3 lightRadiance, int fresnelMode) {
