@@ -95,6 +95,13 @@ const float* memberOf(const Surface& s, Attribute a) {
         case Attribute::Emissive: return &s.emissive.x;
         case Attribute::Position: return &s.position.x;
         case Attribute::Depth: return &s.position.z;  // the exported Surface's `depth` (wiring_plan.h)
+        case Attribute::Coat: return &s.coat;
+        case Attribute::CoatRoughness: return &s.coatRoughness;
+        case Attribute::CoatNormal: return &s.coatNormal.x;
+        case Attribute::SheenColor: return &s.sheenColor.x;
+        case Attribute::SheenRoughness: return &s.sheenRoughness;
+        case Attribute::AnisotropyStrength: return &s.anisotropyStrength;
+        case Attribute::AnisotropyDirection: return &s.anisotropyDirection.x;
         default: return nullptr;
     }
 }
