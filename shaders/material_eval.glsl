@@ -30,19 +30,24 @@
 
 // The uv a slot samples: TEXCOORD_<texCoord>, through its KHR_texture_transform (the README's
 // translation * rotation * scale; src/scene/scene.h TextureTransform has the rotation's sense).
-// A resolve that samples with explicit gradients defines GBL_SLOT_UV_GRADIENTS(set, m2): the
-// gradients of the set's uv, times the slot's 2x2 matrix, for the sample that follows.
+// The includer samples a transformed slot with explicit gradients: it defines
+// GBL_SLOT_UV_GRADIENTS(pick1, m2, uv0, uv1), the gradients of the set's uv (pick1: 1 for
+// TEXCOORD_1, else 0) times the slot's 2x2 matrix, for the sample that follows (the resolve from
+// its ray differentials, the G-buffer pass from dFdx / dFdy of the interpolated sets). Implicit
+// derivatives of the transformed uv itself would be undefined where a pixel quad straddles a
+// triangle edge: the transform is read from the material buffer, which lavapipe's helper lanes
+// read as 0 (a transformed uv read a 1 x 1 mip along a quad's diagonal). Branch-free: every slot
+// computes offset + matrix * uv, which for a slot without a transform (identity, offset 0) is uv.
 vec2 materialSlotUv(GpuMaterial m, int slot, vec2 uv0, vec2 uv1) {
 #if GBL_UV_TRANSFORMS
     vec4 t = m.uvTransforms[2 * slot + 1];
     vec4 r = m.uvTransforms[2 * slot];
-    bool set1 = t.z > 0.5;
-    mat2 a = t.w != 0.0 ? mat2(r.xy, r.zw) : mat2(1.0);
+    float pick1 = step(0.5, t.z);
+    mat2 a = mat2(r.xy, r.zw);
 #ifdef GBL_SLOT_UV_GRADIENTS
-    GBL_SLOT_UV_GRADIENTS(set1, a);
+    GBL_SLOT_UV_GRADIENTS(pick1, a, uv0, uv1);
 #endif
-    vec2 uv = set1 ? uv1 : uv0;
-    return t.w != 0.0 ? a * uv + t.xy : uv;
+    return a * mix(uv0, uv1, pick1) + t.xy;
 #else
     return uv0;
 #endif

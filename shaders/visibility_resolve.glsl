@@ -30,9 +30,9 @@ vec2 gblUvDx, gblUvDy;  // the derivatives of the uv the next texture sample rea
 vec2 gblUv0Dx, gblUv0Dy, gblUv1Dx, gblUv1Dy;  // the pixel's derivatives of TEXCOORD_0 and _1
 // material_eval.glsl's hook before each slot's sample: the set's gradients through the slot's
 // KHR_texture_transform (its 2x2 matrix; the offset does not move a derivative).
-#define GBL_SLOT_UV_GRADIENTS(set1, m2) \
-    gblUvDx = (m2) * ((set1) ? gblUv1Dx : gblUv0Dx); \
-    gblUvDy = (m2) * ((set1) ? gblUv1Dy : gblUv0Dy)
+#define GBL_SLOT_UV_GRADIENTS(pick1, m2, uv0, uv1) \
+    gblUvDx = (m2) * mix(gblUv0Dx, gblUv1Dx, (pick1)); \
+    gblUvDy = (m2) * mix(gblUv0Dy, gblUv1Dy, (pick1))
 
 #ifdef GBL_NONUNIFORM_TEXTURE_INDEXING
 #define GBL_SAMPLE_TEXTURE_SLOT(slot, index, uv) textureGrad(gblTextures[nonuniformEXT(index)], uv, gblUvDx, gblUvDy)

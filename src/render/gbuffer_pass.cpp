@@ -210,13 +210,17 @@ constexpr VkShaderStageFlags kGBufferStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SH
 // 268-315 ms at 1080p with every slot sampled, 247-259 ms so (gpu_pass_bench, alternated; the
 // material's index in single-texture slots too: 254-287 ms). Every material's index in a slot is
 // one of its listed textures or GBL_NO_TEXTURE (then the fallback is taken): the same texels.
-void addMaterialSlotDefines(ShaderSource& fs, const MaterialTextureSlots& slots) {
+// With KHR_texture_transform in the scene (`gradients`), every sample takes the slot's own
+// gradients (material.glsl gblUvDx, gblUvDy; material_eval.glsl materialSlotUv says why).
+void addMaterialSlotDefines(ShaderSource& fs, const MaterialTextureSlots& slots, bool gradients) {
     fs.defines.push_back({"GBL_MATERIAL_SLOTS", "1"});
+    const std::string tail = gradients ? ", uv, gblUvDx, gblUvDy)" : ", uv)";
+    const std::string call = gradients ? "textureGrad(" : "texture(";
     for (size_t k = 0; k < kMaterialTextureSlotCount; ++k) {
         const std::vector<uint32_t>& t = slots[k];
         const std::string sample = t.empty()       ? "vec4(0.0)"
-                                   : t.size() == 1 ? "texture(textures[" + std::to_string(t[0]) + "], uv)"
-                                                   : "texture(textures[index], uv)";
+                                   : t.size() == 1 ? call + "textures[" + std::to_string(t[0]) + "]" + tail
+                                                   : call + "textures[index]" + tail;
         fs.defines.push_back({std::string("GBL_MATERIAL_SLOT_") + kMaterialTextureSlotNames[k] + "(index, uv)", sample});
     }
 }
@@ -229,7 +233,7 @@ PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& 
     const ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
     ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
     fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
-    addMaterialSlotDefines(fs, scene.texturesBySlot);
+    addMaterialSlotDefines(fs, scene.texturesBySlot, scene.uvTransforms);
     addSceneFeatureDefines(fs, scene.layers, scene.uvTransforms);  // material_eval.glsl
     // The encoders' threshold tables from GBufferPass::codecTables, not constant arrays: llvmpipe
     // JIT-compiles their binary searches far faster so (codec_tables.glsl).

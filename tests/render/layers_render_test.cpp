@@ -225,5 +225,86 @@ TEST_F(LayersRenderTest, ForwardMaskCoversTheTransmissiveDraws) {
     EXPECT_TRUE(renderForwardMask(renderer, scene, rs).empty());  // none: no render, no mask
 }
 
+// KHR_texture_transform on the GPU, in the G-buffer pass (the rasteriser's derivatives) and in a
+// visibility buffer's resolve (the slot's gradients through the transform): a quad facing the
+// camera, uv (0, 0) at its top left, textured with four quadrants (top left red, top right green,
+// bottom left blue, bottom right white), seen at the centres of its quarters. Identity: the
+// quadrants as they are; offset (0.5, 0): left and right swap; rotation pi/2, the README's
+// "counter-clockwise" in UV space (scene.h: (u, v) -> (v, -u)): uv (0.25, 0.25) reads (0.25,
+// 0.75), the top left quarter shows blue; texCoord 1 with TEXCOORD_1 = (1 - u, v): mirrored. The
+// centres of the quarters lie on the quad's diagonal, where a pixel quad straddles its two
+// triangles: the implicit derivatives of a transformed uv read a 1 x 1 mip there on lavapipe
+// (material_eval.glsl materialSlotUv), which the explicit gradients avoid.
+TEST_F(LayersRenderTest, TextureTransformMovesWhatEachPixelSamples) {
+    Scene scene;
+    scene.source = "texture transform quad";
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    const glm::vec4 t(1.0f, 0.0f, 0.0f, 1.0f);
+    scene.vertices = {{{-1, 1, 0}, n, t, {0, 0}, {1, 0}},
+                      {{1, 1, 0}, n, t, {1, 0}, {0, 0}},
+                      {{1, -1, 0}, n, t, {1, 1}, {0, 1}},
+                      {{-1, -1, 0}, n, t, {0, 1}, {1, 1}}};
+    scene.indices = {0, 3, 2, 0, 2, 1};
+    Texture quadrants;
+    quadrants.name = "quadrants";
+    quadrants.width = quadrants.height = 64;
+    quadrants.rgba.resize(64 * 64 * 4);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const uint8_t c[4][4] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, {255, 255, 255, 255}};
+            std::memcpy(&quadrants.rgba[size_t(y * 64 + x) * 4], c[(y >= 32 ? 2 : 0) + (x >= 32 ? 1 : 0)], 4);
+        }
+    scene.textures.push_back(quadrants);
+    Draw draw;
+    draw.indexCount = 6;
+    scene.draws.push_back(draw);
+    scene.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
+    scene.camera.target = glm::vec3(0.0f);
+    scene.lights.push_back(defaultSun());
+    const glm::vec3 red(1, 0, 0), green(0, 1, 0), blue(0, 0, 1), white(1, 1, 1);
+    struct Case {
+        const char* name;
+        TextureTransform transform;
+        glm::vec3 topLeft, topRight, bottomLeft, bottomRight;
+    };
+    TextureTransform offset, rotation, set1;
+    offset.offset = glm::vec2(0.5f, 0.0f);
+    rotation.rotation = 1.5707963f;
+    set1.texCoord = 1;
+    const Case cases[] = {{"identity", TextureTransform{}, red, green, blue, white},
+                          {"offset (0.5, 0)", offset, green, red, white, blue},
+                          {"rotation pi/2", rotation, blue, red, white, green},
+                          {"texCoord 1", set1, green, red, white, blue}};
+    const EnvironmentMap white1 = constantEnvironment(1.0f);
+    IblSettings is;
+    is.sourceFaceSize = 32;
+    is.prefilteredFaceSize = 32;
+    const IblMaps maps = computeIblMaps(ctx(), white1, is);
+    for (const Case& c : cases) {
+        Material m;
+        m.baseColorTexture = 0;
+        m.uvTransforms[size_t(TextureSlot::BaseColor)] = c.transform;
+        scene.materials = {m};
+        Renderer renderer(ctx(), scene, white1, maps);
+        RenderSettings rs;
+        rs.width = rs.height = 64;
+        rs.decodeSurfaces = true;
+        for (const char* layout : {"reference", "visibility-32"}) {
+            const GBufferWiring wiring = std::string(layout) == "reference" ? makeReferenceWiring() : generateWiring(loadLayout(layout));
+            const RenderOutput out = renderer.render(wiring, rs);
+            // The quarters' centres, world (+-0.5, +-0.5): about 14.7 pixels from the image's centre.
+            auto at = [&](int x, int y) {
+                const float* p = &out.surfaces.baseColor.pixels[size_t(y * 64 + x) * 3];
+                return glm::vec3(p[0], p[1], p[2]);
+            };
+            const std::pair<glm::vec3, glm::vec3> checks[] = {
+                {at(17, 17), c.topLeft}, {at(46, 17), c.topRight}, {at(17, 46), c.bottomLeft}, {at(46, 46), c.bottomRight}};
+            for (const auto& [got, want] : checks)
+                EXPECT_LT(glm::length(got - want), 0.02f) << c.name << ", " << layout << ": (" << got.x << ", " << got.y
+                                                          << ", " << got.z << ")";
+        }
+    }
+}
+
 }  // namespace
 }  // namespace gbl
