@@ -19,9 +19,10 @@ layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv;
+layout(location = 4) in vec2 inUv1;  // TEXCOORD_1 (0 where the primitive has none)
 
 void main() {
-    if (alphaTestDiscards(inUv)) discard;
+    if (alphaTestDiscards(inUv, inUv1)) discard;
 #ifdef GBL_VISIBILITY_BUFFER
     // gl_PrimitiveID counts the draw's triangles from its firstIndex (Vulkan: vkCmdDrawIndexed);
     // draw.material.y is the draw's id: its index in GpuScene::draws, or with clusters its first
@@ -29,7 +30,7 @@ void main() {
     writeVisibilityIds(uint(draw.material.y), uint(gl_PrimitiveID),
                        materials[draw.material.x].alphaMaskCutoff.x != 0.0, gl_FragCoord.z);
 #else
-    Surface s = evaluateMaterial(inWorldPosition, inNormal, inTangent, inUv, gl_FrontFacing);
+    Surface s = evaluateMaterial(inWorldPosition, inNormal, inTangent, inUv, inUv1, gl_FrontFacing);
     Surface stored = gblSurfaceToStored(s);  // into the layout's [space]
 #ifdef GBL_STORES_DEPTH
     // A stored window depth (Bevy on WebGL2: in.frag_coord.z) rides in position.z (wiring_plan.h).

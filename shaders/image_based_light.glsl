@@ -125,4 +125,110 @@ vec3 evaluateImageBasedLight(Surface s, vec3 N, vec3 V) {
     return diffuse + specular;
 }
 
+#if GBL_LAYERS != 0
+// ---- the layers (brdf_layers.glsl, ibl_layers.glsl): compiled only for a scene that has them ----
+// The lighting pass defines sheenAlbedo(NoX, sheenRoughness) from its table (binding 12).
+#define GBL_IBL_HAS_SHEEN_ALBEDO
+#include "ibl_layers.glsl"
+
+// The coat's reflection of the environment, per mode, as the specification layers it: the coat's
+// lobe without Fresnel (F = 1: f0 A + B with f0 = 1, the fits at f0 = 1) times its layering weight
+// clearcoat * fc(NcoV) [Coat], the Fresnel with n.v outside the integral as the specification writes
+// it (the ground truth integrates the same). The lobe's own first sum as the base's (pre-filtered
+// cube at the coat roughness around Rc = reflect(-V, Nc), or per pixel); its second from the base's
+// tables and fits (Smith-Schlick k = alpha/2, where the direct coat has the height-correlated Smith).
+vec3 coatImageBasedLight(int mode, Layers ly, vec3 V, float weight, uint samples) {
+    vec3 Nc = ly.coatNormal;
+    float r = clamp(ly.coatRoughness, 0.0, 1.0);
+    float NcoV = max(coatNoV(Nc, V), kMinIblNoV);
+    vec3 Rc = reflect(-V, Nc);
+    vec3 lobe;
+    if (mode == GBL_IBL_SPLIT_SUM_SHADER) {
+        vec2 AB = integrateBRDF(r, NcoV, samples);
+        lobe = prefilteredRadianceInShader(Nc, V, r, samples) * (AB.x + AB.y);
+    } else if (mode == GBL_IBL_SPLIT_SUM) {
+        vec2 AB = texture(brdfLut, vec2(NcoV, r)).rg;
+        lobe = prefilteredRadiance(Rc, r) * (AB.x + AB.y);
+    } else if (mode == GBL_IBL_ENVBRDF_APPROX) {
+        lobe = prefilteredRadiance(Rc, r) * envBRDFApprox(vec3(1.0), r, NcoV);
+    } else {
+        lobe = prefilteredRadiance(Rc, r) * environmentBRDF(bo2GlossFromRoughness(r), NcoV, vec3(1.0));
+    }
+    return weight * lobe;
+}
+
+// evaluateImageBasedLight over the layers of `ly` (coat(sheen(base)), brdf_layers.glsl), every mode:
+//   ground-truth      iblGroundTruthLayeredMis: the layered BRDF integrated (base specular, coat,
+//                     sheen, and the sheen's per-direction scaling of the diffuse), plus the SH9
+//                     diffuse under the coat's weight.
+//   split-sum-shader  the base's first sum per pixel (an anisotropic lobe sampled as such), the
+//                     sheen's per pixel over its own lobe (sheenRadianceInShader) times c E(NoV), the
+//                     coat's as the base's.
+//   split-sum, envbrdf-approx, bo2: one pre-filtered look-up per lobe: the base's along the
+//                     anisotropic bent normal's reflection where anisotropic [Aniso], the sheen's
+//                     along R at the sheen roughness times c E(NoV) (Filament's sheen IBL), the coat's
+//                     along Rc; each mode's own environment BRDF for base and coat.
+// Under the sheen the base (diffuse and specular) is scaled by 1 - max3(c) E(NoV), the
+// specification's single-look-up form for indirect light [Sheen]; under the coat everything by
+// 1 - clearcoat fc(NcoV) [Coat]. Without layers: evaluateImageBasedLight.
+vec3 evaluateImageBasedLightLayered(Surface s, vec3 N, vec3 V, Layers ly) {
+    const int mode = GBL_IBL_ACTIVE_MODE;
+    uint samples = uint(frame.ibl.x);
+    float roughness = clamp(s.roughness, 0.0, 1.0);
+    float NoV = max(clamp(dot(N, V), 0.0, 1.0), kMinIblNoV);
+    bool aniso = ly.anisotropy > 0.0;
+    vec3 diffuseColor = s.diffuseColor;
+    vec3 specularColor = s.specularColor;
+    bool diffuseOn = frame.environment.w > 0.5;
+    float sheenMax = max3(ly.sheenColor);
+    float sheenV = sheenMax > 0.0 ? sheenAlbedo(NoV, ly.sheenRoughness) : 0.0;
+    float fc = ly.coat > 0.0 ? ly.coat * coatFresnel(max(coatNoV(ly.coatNormal, V), kMinIblNoV)) : 0.0;
+    if (mode == GBL_IBL_GROUND_TRUTH) {
+        uint k2 = iblBatchKey.z * 2u;
+        uint xl = iblBatchKey.x ^ 0x5bd1e995u;  // the coat's and sheen's streams, apart from the base's
+        vec3 layered = iblGroundTruthLayeredMis(
+            diffuseOn ? diffuseColor : vec3(0.0), specularColor, roughness, N, V, ly, samples,
+            vec4(randomShift(iblBatchKey.x, iblBatchKey.y, k2), randomShift(iblBatchKey.x, iblBatchKey.y, k2 + 1u)),
+            vec4(randomShift(xl, iblBatchKey.y, k2), randomShift(xl, iblBatchKey.y, k2 + 1u)));
+        vec3 diffuse = diffuseOn ? diffuseColor * (1.0 / kPi) * irradianceFromSh(N) : vec3(0.0);
+        return diffuse * (1.0 - fc) + layered;
+    }
+    vec3 R = aniso ? anisotropicReflection(N, V, ly.anisotropyB, ly.anisotropy, roughness) : reflect(-V, N);
+    vec3 specular = vec3(0.0);
+    vec3 sheen = vec3(0.0);
+    if (mode == GBL_IBL_SPLIT_SUM_SHADER) {
+        vec2 AB = integrateBRDF(roughness, NoV, samples);
+        vec3 radiance = aniso ? prefilteredRadianceInShaderAnisotropic(N, V, ly.anisotropyT, ly.anisotropyB,
+                                                                       anisotropicAlphaT(roughness, ly.anisotropy),
+                                                                       roughness * roughness, samples)
+                              : prefilteredRadianceInShader(N, V, roughness, samples);
+        specular = radiance * (specularColor * AB.x + AB.y);
+        if (sheenMax > 0.0) sheen = ly.sheenColor * sheenV * sheenRadianceInShader(N, V, ly.sheenRoughness, samples);
+    } else {
+        if (mode == GBL_IBL_SPLIT_SUM) {
+            vec2 AB = texture(brdfLut, vec2(NoV, roughness)).rg;
+            specular = prefilteredRadiance(R, roughness) * envBRDF(specularColor, AB);
+        } else if (mode == GBL_IBL_ENVBRDF_APPROX) {
+            if (roughness >= 0.999) {
+                envBRDFApproxFullyRough(diffuseColor, specularColor);
+            } else {
+                bool nonmetal = all(lessThanEqual(abs(specularColor - vec3(0.04)), vec3(0.002)));
+                vec3 brdf = nonmetal ? vec3(envBRDFApproxNonmetal(roughness, NoV))
+                                     : envBRDFApprox(specularColor, roughness, NoV);
+                specular = prefilteredRadiance(R, roughness) * brdf;
+            }
+        } else {
+            specular = prefilteredRadiance(R, roughness) * environmentBRDF(bo2GlossFromRoughness(roughness), NoV, specularColor);
+        }
+        if (sheenMax > 0.0)
+            sheen = ly.sheenColor * sheenV * prefilteredRadiance(reflect(-V, N), clamp(ly.sheenRoughness, 0.0, 1.0));
+    }
+    vec3 diffuse = diffuseOn ? diffuseColor * (1.0 / kPi) * irradianceFromSh(N) : vec3(0.0);
+    vec3 color = diffuse + specular;
+    if (sheenMax > 0.0) color = sheen + color * (1.0 - sheenMax * sheenV);
+    if (ly.coat > 0.0) color = color * (1.0 - fc) + coatImageBasedLight(mode, ly, V, fc, samples);
+    return color;
+}
+#endif  // GBL_LAYERS != 0
+
 #endif

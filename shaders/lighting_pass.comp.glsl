@@ -7,6 +7,12 @@
 #include "shared_types.h"
 #include "surface.glsl"
 #include "brdf.glsl"
+#include "brdf_layers.glsl"
+// The material layers some material of the scene has (brdf_layers.glsl GBL_LAYER_*; the renderer's
+// define from src/render/gpu_scene.h sceneLayers): a scene without them compiles none of their code.
+#ifndef GBL_LAYERS
+#define GBL_LAYERS 0
+#endif
 // The direct lights' Fresnel (brdf.glsl FRESNEL_*): GBL_FRESNEL_MODE where the pipeline is built for
 // one (src/render/lighting_pass.cpp: constant-folded before the driver compiles, as GBL_IBL_MODE
 // in image_based_light.glsl), else frame.shading.x at run time.
@@ -54,12 +60,39 @@ layout(std430, set = 0, binding = 10) readonly buffer EnvironmentSampling { floa
 // a = sum of squared deviations of the batch luminances from their mean (M2).
 layout(set = 0, binding = 11, rgba32f) uniform image2D accumulation;
 layout(push_constant) uniform Batch { uint batchIndex; } batch;  // 0, 1, ... (ground truth only)
+// The sheen's directional albedo E(NoV, sheen roughness), src/shading/sheen_albedo.h's table
+// (R32F, bilinear, clamp to edge; 1 x 1 where the scene has no sheen).
+layout(set = 0, binding = 12) uniform sampler2D sheenAlbedoLut;
+float sheenAlbedo(float NoX, float sheenRoughness) { return textureLod(sheenAlbedoLut, vec2(NoX, sheenRoughness), 0.0).r; }
 
 vec3 sampleEnvironment(vec3 direction) {
     return textureLod(environmentEquirect, directionToEquirectUv(direction), 0.0).rgb * frame.environment.x;
 }
 
 #include "image_based_light.glsl"
+
+#if GBL_LAYERS != 0
+// The pixel's layers from its decoded Surface. What the layout does not store decodes as 0, "no
+// layer": no coat, black sheen, no anisotropy; a zero coat normal is the base normal (Bevy's coat
+// reuses it), a zero or normal-parallel tangent leaves the base isotropic (no direction to stretch
+// along). The tangent is made orthogonal to the shading normal (Gram-Schmidt). Layers the scene
+// has none of are constants here, and their code folds away.
+Layers gblLayersOf(Surface s, vec3 N) {
+    Layers ly;
+    ly.coat = (GBL_LAYERS & GBL_LAYER_COAT) != 0 ? clamp(s.coat, 0.0, 1.0) : 0.0;
+    ly.coatRoughness = clamp(s.coatRoughness, 0.0, 1.0);
+    ly.coatNormal = dot(s.coatNormal, s.coatNormal) > 0.0 ? normalize(s.coatNormal) : N;
+    ly.sheenColor = (GBL_LAYERS & GBL_LAYER_SHEEN) != 0 ? max(s.sheenColor, vec3(0.0)) : vec3(0.0);
+    ly.sheenRoughness = clamp(s.sheenRoughness, 0.0, 1.0);
+    vec3 t = s.anisotropyDirection - N * dot(N, s.anisotropyDirection);
+    float tt = dot(t, t);
+    bool aniso = (GBL_LAYERS & GBL_LAYER_ANISOTROPY) != 0 && tt > 1e-12;
+    ly.anisotropy = aniso ? clamp(s.anisotropyStrength, 0.0, 1.0) : 0.0;
+    ly.anisotropyT = aniso ? t * inversesqrt(tt) : vec3(0.0);
+    ly.anisotropyB = cross(N, ly.anisotropyT);
+    return ly;
+}
+#endif
 
 vec3 worldPositionFromDepth(ivec2 pixel, float depth) {
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0;
@@ -134,6 +167,19 @@ void main() {
     vec3 color = shadeLightPrePass(outPixel, s, N, V, position);
 #else
     vec3 color = vec3(0.0);
+#if GBL_LAYERS != 0
+    Layers ly = gblLayersOf(s, N);
+    float sheenV = max3(ly.sheenColor) > 0.0 ? sheenAlbedo(clamp(dot(N, V), 0.0, 1.0), ly.sheenRoughness) : 0.0;
+    for (uint i = 0u; i < frame.extent.z; ++i) {
+        vec3 L;
+        vec3 radiance = lightRadianceAndDirection(lights[i], position, L);
+        float sheenL = max3(ly.sheenColor) > 0.0 ? sheenAlbedo(clamp(dot(N, L), 0.0, 1.0), ly.sheenRoughness) : 0.0;
+        color += evaluateDirectLightLayeredMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, ly, sheenV,
+                                                sheenL, radiance, GBL_ACTIVE_FRESNEL);
+    }
+    iblBatchKey = uvec3(uint(pixel.x), uint(pixel.y), batch.batchIndex + uint(frame.ibl.z) * 0x10000u);
+    color += evaluateImageBasedLightLayered(s, N, V, ly) * s.occlusion;
+#else
     for (uint i = 0u; i < frame.extent.z; ++i) {
         vec3 L;
         vec3 radiance = lightRadianceAndDirection(lights[i], position, L);
@@ -143,9 +189,18 @@ void main() {
     iblBatchKey = uvec3(uint(pixel.x), uint(pixel.y), batch.batchIndex + uint(frame.ibl.z) * 0x10000u);
     color += evaluateImageBasedLight(s, N, V) * s.occlusion;
 #endif
+#endif
+#if GBL_LAYERS != 0 && !defined(LIGHT_PRE_PASS)
+    // Emission under the coat [Coat], the forward scene-colour emission too.
+    color += coatedEmission(s.emissive, ly, V);
+#ifdef EMISSIVE_FORWARD
+    color += coatedEmission(texelFetch(sceneColorEmissive, pixel, 0).rgb, ly, V);
+#endif
+#else
     color += s.emissive;
 #ifdef EMISSIVE_FORWARD
     color += texelFetch(sceneColorEmissive, pixel, 0).rgb;
+#endif
 #endif
     if (GBL_IBL_ACTIVE_MODE == GBL_IBL_GROUND_TRUTH) {
         // Welford's update over batch means of the luminance (CIE Y of linear sRGB).

@@ -41,13 +41,18 @@ vec3 gblPointFromStored(vec3 p, int space) {
     return p;
 }
 
+// The layers' directions (the coat normal, the anisotropy tangent) live in the normal's space.
 Surface gblSurfaceToStored(Surface s) {
     s.normal = gblDirectionToStored(s.normal, GBL_NORMAL_SPACE);
+    s.coatNormal = gblDirectionToStored(s.coatNormal, GBL_NORMAL_SPACE);
+    s.anisotropyDirection = gblDirectionToStored(s.anisotropyDirection, GBL_NORMAL_SPACE);
     s.position = gblPointToStored(s.position, GBL_POSITION_SPACE);
     return s;
 }
 Surface gblSurfaceFromStored(Surface s) {
     s.normal = gblDirectionFromStored(s.normal, GBL_NORMAL_SPACE);
+    s.coatNormal = gblDirectionFromStored(s.coatNormal, GBL_NORMAL_SPACE);
+    s.anisotropyDirection = gblDirectionFromStored(s.anisotropyDirection, GBL_NORMAL_SPACE);
     s.position = gblPointFromStored(s.position, GBL_POSITION_SPACE);
     return s;
 }

@@ -43,14 +43,43 @@ struct GpuLight {
     vec4 spotCone;        // spot: x lightAngleScale, y lightAngleOffset (KHR_lights_punctual), zw unused
 };
 
+// A material's texture slots (material_eval.glsl's order; src/render/gpu_scene.h names them).
+#define GBL_SLOT_BASE_COLOR 0
+#define GBL_SLOT_METALLIC_ROUGHNESS 1
+#define GBL_SLOT_NORMAL 2
+#define GBL_SLOT_OCCLUSION 3
+#define GBL_SLOT_EMISSIVE 4
+#define GBL_SLOT_SPECULAR 5
+#define GBL_SLOT_SPECULAR_COLOR 6
+#define GBL_SLOT_CLEARCOAT 7
+#define GBL_SLOT_CLEARCOAT_ROUGHNESS 8
+#define GBL_SLOT_CLEARCOAT_NORMAL 9
+#define GBL_SLOT_SHEEN_COLOR 10
+#define GBL_SLOT_SHEEN_ROUGHNESS 11
+#define GBL_SLOT_ANISOTROPY 12
+#define GBL_SLOT_COUNT 13
+
 struct GpuMaterial {
     vec4 baseColorFactor;
-    vec4 emissiveNormalScale;     // rgb emissive factor, a normal scale
+    vec4 emissiveNormalScale;     // rgb emissive factor x KHR_materials_emissive_strength, a normal scale
     vec4 specularColorSpecular;   // rgb KHR_materials_specular colour, a specular factor
     vec4 metallicRoughnessOcclusion;  // x metallic, y roughness, z occlusion strength, w double sided
     ivec4 textures0;              // base colour, metallic-roughness, normal, occlusion
-    ivec4 textures1;              // emissive, specular, specular colour, unused
-    vec4 alphaMaskCutoff;         // x 1 = alphaMode MASK, y alpha cutoff
+    ivec4 textures1;              // emissive, specular, specular colour, clear coat
+    vec4 alphaMaskCutoff;         // x 1 = alphaMode MASK, y alpha cutoff, z dielectric F0 of the ior
+                                  // (KHR_materials_ior: ((ior - 1) / (ior + 1))^2, 0.04 at 1.5), w the
+                                  // material's layers (GBL_LAYER_* bits)
+    vec4 clearcoat;               // KHR_materials_clearcoat: x clearcoatFactor, y clearcoatRoughnessFactor,
+                                  // z clearcoatNormalTexture scale, w unused
+    vec4 sheen;                   // KHR_materials_sheen: rgb sheenColorFactor, a sheenRoughnessFactor
+    vec4 anisotropy;              // KHR_materials_anisotropy: x anisotropyStrength, yz cos, sin of
+                                  // anisotropyRotation, w unused
+    ivec4 textures2;              // clear-coat roughness, clear-coat normal, sheen colour, sheen roughness
+    ivec4 textures3;              // anisotropy, unused x3
+    // KHR_texture_transform per slot (GBL_SLOT_*): [2 slot] the 2x2 matrix rotation * scale as
+    // columns (m00, m10, m01, m11); [2 slot + 1] (offset.x, offset.y, texCoord set, 1 where the
+    // slot transforms its uv, else 0).
+    vec4 uvTransforms[2 * GBL_SLOT_COUNT];
 };
 
 struct DrawConstants {

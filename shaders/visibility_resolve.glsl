@@ -26,7 +26,13 @@
 #ifndef GBL_VISIBILITY_RESOLVE_GLSL
 #define GBL_VISIBILITY_RESOLVE_GLSL
 
-vec2 gblUvDx, gblUvDy;  // the pixel's uv derivatives, set before the material is evaluated
+vec2 gblUvDx, gblUvDy;  // the derivatives of the uv the next texture sample reads
+vec2 gblUv0Dx, gblUv0Dy, gblUv1Dx, gblUv1Dy;  // the pixel's derivatives of TEXCOORD_0 and _1
+// material_eval.glsl's hook before each slot's sample: the set's gradients through the slot's
+// KHR_texture_transform (its 2x2 matrix; the offset does not move a derivative).
+#define GBL_SLOT_UV_GRADIENTS(pick1, m2, uv0, uv1) \
+    gblUvDx = (m2) * mix(gblUv0Dx, gblUv1Dx, (pick1)); \
+    gblUvDy = (m2) * mix(gblUv0Dy, gblUv1Dy, (pick1))
 
 #ifdef GBL_NONUNIFORM_TEXTURE_INDEXING
 #define GBL_SAMPLE_TEXTURE_SLOT(slot, index, uv) textureGrad(gblTextures[nonuniformEXT(index)], uv, gblUvDx, gblUvDy)
@@ -46,6 +52,12 @@ GBL_RESOLVE_SLOT_FUNCTION(OCCLUSION)
 GBL_RESOLVE_SLOT_FUNCTION(EMISSIVE)
 GBL_RESOLVE_SLOT_FUNCTION(SPECULAR)
 GBL_RESOLVE_SLOT_FUNCTION(SPECULAR_COLOR)
+GBL_RESOLVE_SLOT_FUNCTION(CLEARCOAT)
+GBL_RESOLVE_SLOT_FUNCTION(CLEARCOAT_ROUGHNESS)
+GBL_RESOLVE_SLOT_FUNCTION(CLEARCOAT_NORMAL)
+GBL_RESOLVE_SLOT_FUNCTION(SHEEN_COLOR)
+GBL_RESOLVE_SLOT_FUNCTION(SHEEN_ROUGHNESS)
+GBL_RESOLVE_SLOT_FUNCTION(ANISOTROPY)
 #define GBL_SAMPLE_TEXTURE_SLOT(slot, index, uv) gblResolveTexture_##slot(index, uv)
 #endif
 #include "material_eval.glsl"
@@ -55,15 +67,17 @@ struct GblVertex {
     vec3 normal;
     vec4 tangent;
     vec2 uv;
+    vec2 uv1;
 };
 
 GblVertex gblFetchVertex(uint index) {
-    uint b = index * 12u;  // sizeof(Vertex) / 4
+    uint b = index * 14u;  // sizeof(Vertex) / 4 (src/scene/scene.h)
     GblVertex v;
     v.position = vec3(gblVertexFloats[b], gblVertexFloats[b + 1u], gblVertexFloats[b + 2u]);
     v.normal = vec3(gblVertexFloats[b + 3u], gblVertexFloats[b + 4u], gblVertexFloats[b + 5u]);
     v.tangent = vec4(gblVertexFloats[b + 6u], gblVertexFloats[b + 7u], gblVertexFloats[b + 8u], gblVertexFloats[b + 9u]);
     v.uv = vec2(gblVertexFloats[b + 10u], gblVertexFloats[b + 11u]);
+    v.uv1 = vec2(gblVertexFloats[b + 12u], gblVertexFloats[b + 13u]);
     return v;
 }
 
@@ -84,13 +98,14 @@ Surface readGBuffer(ivec2 pixel) {
     mat3 normalMatrix = mat3(d.normalMatrix[0].xyz, d.normalMatrix[1].xyz, d.normalMatrix[2].xyz);
     vec3 p[3], n[3];
     vec4 tg[3];
-    vec2 uv[3];
+    vec2 uv[3], uvb[3];
     for (int k = 0; k < 3; ++k) {
         GblVertex v = gblFetchVertex(uint(int(gblIndices[firstIndex + uint(k)]) + d.material.w));
         p[k] = (d.model * vec4(v.position, 1.0)).xyz;
         n[k] = normalMatrix * v.normal;
         tg[k] = vec4(mat3(d.model) * v.tangent.xyz, v.tangent.w);
         uv[k] = v.uv;
+        uvb[k] = v.uv1;
     }
     vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
     vec3 plane = cross(e1, e2);
@@ -114,13 +129,18 @@ Surface readGBuffer(ivec2 pixel) {
     vec2 dbdy = vec2(dot(dPdy, c1), dot(dPdy, c2));
     gblUvDx = dbdx.x * (uv[1] - uv[0]) + dbdx.y * (uv[2] - uv[0]);
     gblUvDy = dbdy.x * (uv[1] - uv[0]) + dbdy.y * (uv[2] - uv[0]);
+    gblUv0Dx = gblUvDx;
+    gblUv0Dy = gblUvDy;
+    gblUv1Dx = dbdx.x * (uvb[1] - uvb[0]) + dbdx.y * (uvb[2] - uvb[0]);
+    gblUv1Dy = dbdy.x * (uvb[1] - uvb[0]) + dbdy.y * (uvb[2] - uvb[0]);
 
     vec3 normal = w.x * n[0] + w.y * n[1] + w.z * n[2];
     vec4 tangent = w.x * tg[0] + w.y * tg[1] + w.z * tg[2];
     vec2 texcoord = w.x * uv[0] + w.y * uv[1] + w.z * uv[2];
+    vec2 texcoord1 = w.x * uvb[0] + w.y * uvb[1] + w.z * uvb[2];
     // Vulkan's rule with gbufferlab's y-flipped projection and VK_FRONT_FACE_COUNTER_CLOCKWISE:
     // a triangle whose right-handed normal faces the camera is front-facing.
     bool frontFacing = DoN < 0.0;
-    return evaluateMaterialOf(gblMaterials[d.material.x], hit, normal, tangent, texcoord, frontFacing);
+    return evaluateMaterialOf(gblMaterials[d.material.x], hit, normal, tangent, texcoord, texcoord1, frontFacing);
 }
 #endif

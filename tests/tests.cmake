@@ -60,12 +60,17 @@ if(TARGET layout_export_gpu_test)  # every shipped layout, in two halves that ct
     ENVIRONMENT "GBL_VALIDATION=1;GBL_EXPORT_TEST_SHARD=1/2")
 endif()
 gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
+gbl_test(shading/brdf_layers_test LABELS unit DEPS gbl_shading)  # clear coat, sheen, anisotropy vs the specifications
+gbl_test(shading/sheen_albedo_test LABELS unit DEPS gbl_shading)  # the sheen albedo table vs brute force
+gbl_test(shading/ibl_layers_test LABELS unit DEPS gbl_shading)  # the layered ground truth vs a quadrature
 gbl_test(shading/ibl_math_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/ground_truth_mis_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/brdf_lut_test LABELS unit DEPS gbl_shading gbl_base)
 gbl_test(shading/ibl_gpu_test LABELS gpu DEPS gbl_render gbl_shading gbl_test_support_vk)
 gbl_test(shading/ibl_ground_truth_test LABELS gpu DEPS gbl_render gbl_shading gbl_test_support_vk)
+gbl_test(shading/ibl_layers_gpu_test LABELS gpu DEPS gbl_shading gbl_test_support_vk)  # the layers' GLSL vs their C++ twins
 gbl_test(render/render_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
+gbl_test(render/layers_render_test LABELS gpu DEPS gbl_render gbl_test_support_vk)  # the layers in every IBL mode, dropped by a layout, the forward mask
 gbl_test(render/texture_mip_cache_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
 gbl_test(render/visibility_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
 gbl_test(render/pipeline_reuse_test LABELS gpu DEPS gbl_render gbl_layout gbl_test_support_vk)

@@ -224,6 +224,7 @@ void measureRun(RunReport& run, RenderOutput& test, const ReferenceRender& refer
     options.hdrFlip = hdrFlip;
     options.prepared = reference.prepared.get();
     if (!reference.output.noise.empty()) options.referenceNoise = &reference.output.noise;
+    options.excluded = reference.forwardMask.get();
     setGroundTruth(run, reference);
     std::optional<ScopedStage> timed(std::in_place, Stage::Metrics);
     const RunMetrics m =

@@ -25,6 +25,9 @@ struct ReferenceRender {
     // compare --temporal N (N > 1): `output` is the resolve of the N frames (compare_temporal.h),
     // this the first frame, prepared, for the runs' single-frame metrics.
     std::unique_ptr<ReferenceRender> firstFrame;
+    // The view's pixels drawn forward (render/forward_mask.h), left out of every metric of the runs
+    // measured against this reference (RunMetricsOptions::excluded); null: none.
+    std::shared_ptr<const std::vector<uint8_t>> forwardMask;
 };
 
 // The render's device images as the GPU evaluator takes them (RenderSettings::keepOnDevice).

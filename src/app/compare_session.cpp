@@ -10,6 +10,7 @@
 #include "bandwidth.h"
 #include "budget_verdict.h"
 #include "best_fit_normals.h"
+#include "forward_mask.h"
 #include "compare_memory.h"
 #include "compare_timings.h"
 #include "env_flag.h"
@@ -75,6 +76,17 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
     referenceLayout_ = loadLayout(kReferenceLayout);
     inputs_ = loadSceneInputs(o.scenePath, o.envPath, float(o.width) / float(o.height),
                               GltfLoadOptions{o.allowOutsideScene});
+    // A scene with materials drawn forward (transmission, volume): their pixels are left out of
+    // every metric, which the CPU evaluation does, on whole frames (RunMetricsOptions::excluded).
+    forwardScene_ = hasForwardMaterials(inputs_.scene);
+    if (forwardScene_ && o.evalWhere == "gpu")
+        throwUserError("gbufferlab compare: " + inputs_.scene.source +
+                       " has materials drawn forward (KHR_materials_transmission or _volume), whose pixels only the CPU "
+                       "evaluation leaves out of the metrics; give --eval cpu or auto");
+    if (forwardScene_ && o.bandRowsGiven.value_or(0) > 0)
+        throwUserError("gbufferlab compare: " + inputs_.scene.source +
+                       " has materials drawn forward (KHR_materials_transmission or _volume), whose pixels are left out "
+                       "of the metrics on whole frames only; give --band-rows 0 or auto");
 
     std::optional<HostScope> contextScope(std::in_place, "set-up: Vulkan context");
     std::optional<VulkanContext>& context = shared ? shared->ctx : ownCtx_;
@@ -90,7 +102,7 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
     // (device memory is host memory) at 4K-class sizes; never against the user's --eval cpu or for
     // a ground truth (it converges over the whole frame).
     const uint32_t bandRows = o.bandRowsGiven ? *o.bandRowsGiven
-                              : (o.evalWhere == "cpu" || o.groundTruthAsked)
+                              : (o.evalWhere == "cpu" || o.groundTruthAsked || forwardScene_)
                                   ? 0u
                                   : autoBandRows(ctx.info.type == VK_PHYSICAL_DEVICE_TYPE_CPU, o.width, o.height);
     bandPlan_ = planBands(o.height, bandRows, bandRows ? flipHaloRows() : 0u);
@@ -98,8 +110,8 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
     // the peak memory is the point. (The device memory recycler on lavapipe as well, on top of
     // this: 18% more minor faults and 250 MB more peak for no faster run, 6 layouts x 3 views.)
     retainHostBlocks(!bandPlan_.banded());
-    gpuEval_ = bandPlan_.banded() || o.evalWhere == "gpu" ||
-               (o.evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU);
+    gpuEval_ = !forwardScene_ && (bandPlan_.banded() || o.evalWhere == "gpu" ||
+                                  (o.evalWhere == "auto" && ctx.info.type != VK_PHYSICAL_DEVICE_TYPE_CPU));
     // A refusal of whole frames advises bands only where the other flags allow them.
     const std::string wholeFrameAdvice =
         o.temporalFrames > 1 ? "give a smaller --size or fewer --layouts (--temporal resolves whole frames, so it "

@@ -110,6 +110,9 @@ private:
     const VulkanContext* ctx_ = nullptr;  // &*ownCtx_, or the shared one
     BandPlan bandPlan_;
     bool gpuEval_ = false;
+    // Some material of the scene is drawn forward (transmission, volume: render/forward_mask.h):
+    // each view's references carry the mask of its pixels, left out of every metric.
+    bool forwardScene_ = false;
     WiringOptions wiringOptions_;
     ReportModel model_;
     std::unique_ptr<GpuEvaluator> evaluator_;

@@ -5,6 +5,7 @@
 #include "compare_session.h"
 #include "compare_temporal.h"
 #include "compare_text.h"
+#include "forward_mask.h"
 #include "host_profile.h"
 #include "ibl_figure.h"
 #include "image_io.h"
@@ -31,6 +32,30 @@ CompareSession::References CompareSession::renderReferences(int view) {
     const bool firstView = view == 0;
     const std::string viewLabel = o.viewCount > 1 ? " [view " + std::to_string(view) + "]" : "";
     References references;
+    // The view's pixels drawn forward (render/forward_mask.h): counted here, left out of every
+    // metric of every run measured against these references.
+    std::shared_ptr<const std::vector<uint8_t>> forwardMask;
+    if (forwardScene_) {
+        progress_->begin("forward-drawn pixels" + viewLabel);
+        auto mask = std::make_shared<std::vector<uint8_t>>(
+            renderForwardMask(*renderer_, inputs_.scene, settingsFor(o.modes[0], view)));
+        size_t count = 0;
+        for (uint8_t m : *mask) count += m ? 1 : 0;
+        const double percent = mask->empty() ? 0.0 : 100.0 * double(count) / double(mask->size());
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "%.2f %% of pixels forward, excluded", percent);
+        progress_->end(buf);
+        std::string materials;
+        for (const Material& m : inputs_.scene.materials)
+            if (!m.forward.empty() && materials.find(m.forward) == std::string::npos)
+                materials += (materials.empty() ? "" : ", ") + m.forward;
+        {
+            std::lock_guard lock(modelMutex_);
+            model_.run.notes.push_back(std::string(buf) + " from every metric (materials drawn forward by deferred "
+                                       "engines: " + materials + ")" + viewLabel);
+        }
+        forwardMask = std::move(mask);
+    }
     for (size_t m = 0; m < o.modes.size(); ++m) {
         progress_->begin("reference / " + o.modeNames[m] + viewLabel);
         ReferenceRender ref;
@@ -106,6 +131,8 @@ CompareSession::References CompareSession::renderReferences(int view) {
                        std::to_string(int(ref.output.timings.lightingMs)) + " ms" +
                        (gtNote.empty() ? "" : ", " + std::to_string(ref.output.groundTruth.batches) + " batches") +
                        (nothing.empty() ? "" : "; this view is not measured: " + nothing));
+        ref.forwardMask = forwardMask;
+        if (ref.firstFrame) ref.firstFrame->forwardMask = forwardMask;
         ReferenceRender& stored = references[o.modeNames[m]] = std::move(ref);
         if (gpuEval_) {
             stored.evaluator = evaluator_.get();

@@ -39,6 +39,7 @@ void measureSingleFrame(RunReport& run, const RenderOutput& testFirst, const Ref
     RunMetricsOptions options;
     options.hdrFlip = hdrFlip;
     options.prepared = referenceFirst.prepared.get();
+    options.excluded = referenceFirst.forwardMask.get();
     const RunMetrics m = computeRunMetrics(referenceFirst.output.surfaces, testFirst.surfaces,
                                            referenceFirst.output.hdr, testFirst.hdr, exposure, options);
     RunReport single;

@@ -1,8 +1,10 @@
 #include "search_reference.h"
 
 #include <algorithm>
+#include <optional>
 #include <regex>
 
+#include "cpu_codec.h"
 #include "file_io.h"
 #include "layout_catalog.h"
 #include "wiring_codegen.h"
@@ -48,15 +50,38 @@ Layout referenceWithDepth(const Layout& reference, const DepthKey& key) {
     return l;
 }
 
-RenderSettings referenceSettings(uint32_t width, uint32_t height, const Camera& camera) {
+RenderSettings referenceSettings(uint32_t width, uint32_t height, const Camera& camera, bool layers) {
     RenderSettings settings;
     settings.width = width;
     settings.height = height;
     settings.specularIbl = IblMode::SplitSum;  // the mode the CPU re-shade models
     settings.decodeSurfaces = true;
-    settings.readTargetWords = false;
+    settings.readTargetWords = layers;  // the layers are not in the decoded images: from the words
     settings.camera = camera;
     return settings;
+}
+
+// The material layers of the reference's Surfaces (not among the decoded images, which hold the
+// attributes compare measures): its float32 words decoded by the CPU codec, exact.
+void addLayers(const CpuCodec& codec, const RenderOutput& r, uint32_t width, uint32_t height,
+               std::vector<Surface>& surfaces) {
+    CpuGBuffer words;
+    words.width = int(width);
+    words.height = int(height);
+    words.targetWords = r.targetWords;
+    std::vector<Surface> decoded;
+    codec.decode(words, decoded);
+    for (size_t i = 0; i < surfaces.size() && i < decoded.size(); ++i) {
+        const Surface& d = decoded[i];
+        Surface& s = surfaces[i];
+        s.coat = d.coat;
+        s.coatRoughness = d.coatRoughness;
+        s.coatNormal = d.coatNormal;
+        s.sheenColor = d.sheenColor;
+        s.sheenRoughness = d.sheenRoughness;
+        s.anisotropyStrength = d.anisotropyStrength;
+        s.anisotropyDirection = d.anisotropyDirection;
+    }
 }
 
 }  // namespace
@@ -71,8 +96,12 @@ SearchReference renderSearchReference(Renderer& renderer, const std::vector<Came
             variantWirings.emplace_back(key, generateWiring(referenceWithDepth(reference, key)));
     SearchReference out;
     const size_t n = size_t(width) * height;
+    // A scene with layers: the re-shade lights them, so the reference's Surfaces carry them.
+    const bool layers = renderer.sceneLayers() != 0;
+    std::optional<CpuCodec> codec;
+    if (layers) codec.emplace(reference);
     for (const Camera& camera : cameras) {
-        RenderOutput r = renderer.render(wiring, referenceSettings(width, height, camera));
+        RenderOutput r = renderer.render(wiring, referenceSettings(width, height, camera, layers));
         const SurfaceImages& s = r.surfaces;
         search::EvalView v;
         v.shade.width = int(width);
@@ -86,12 +115,14 @@ SearchReference renderSearchReference(Renderer& renderer, const std::vector<Came
         v.view = m.view;
         v.invViewProj = m.invViewProj;
         v.reference = surfacesOf(s, n);
+        if (codec) addLayers(*codec, r, width, height, v.reference);
         for (const auto& [key, variantWiring] : variantWirings) {
-            RenderOutput rv = renderer.render(variantWiring, referenceSettings(width, height, camera));
+            RenderOutput rv = renderer.render(variantWiring, referenceSettings(width, height, camera, layers));
             search::DepthVariant d;
             d.format = key.format;
             d.reversedZ = key.reversedZ;
             d.surfaces = surfacesOf(rv.surfaces, n);
+            if (codec) addLayers(*codec, rv, width, height, d.surfaces);
             d.covered = rv.surfaces.coverage;
             d.depth = std::move(rv.depth);
             d.invViewProj = computeCameraMatrices(camera, float(width) / float(height), key.reversedZ).invViewProj;

@@ -460,64 +460,37 @@ GBL_SIMD_CLONES void applyFallbacks(const CodecPlan& plan, int n, DecodeBlock& b
     }
 }
 
-// The block's member-major floats out as n Surfaces. Where the block's first Surface is 16-byte
-// aligned (an even pixel of a std::vector's image), 4 Surfaces (352 bytes = 22 aligned 16-byte
-// chunks) are assembled in registers from 4 x 4 transposes and streamed straight to the image:
-// the even pixels' chunks are the transposed rows as they are, the odd pixels' (8 bytes off)
-// join the high half of one row and the low half of the next. Otherwise they are interleaved
-// into b.pixels and copied by streamCopy (that copy was ~40 % of this function's time).
+// The block's member-major floats out as n Surfaces. A Surface is 9 groups of 4 floats (144
+// bytes), so where the block's first Surface is 16-byte aligned (a std::vector's image) every one
+// is: 4 Surfaces at a time are 4 x 4 transposes per group, streamed straight to the image.
+// Otherwise they are interleaved into b.pixels and copied by streamCopy (that copy was ~40 % of
+// this function's time).
 GBL_SIMD_CLONES void writeSurfaces(DecodeBlock& b, int n, Surface* out) {
     int j = 0;
 #if defined(__SSE2__)
-    static_assert(kSurfaceFloats == 22 && sizeof(Surface) == 88, "5 groups of 4 members + 2");
-    if (reinterpret_cast<uintptr_t>(out) % 16 == 0) {
-        float* dst = reinterpret_cast<float*>(out);
-        for (; j + 4 <= n; j += 4) {
-            __m128 r[4][5];  // r[p][g]: floats 4g .. 4g + 3 of pixel j + p
-            for (int g = 0; g < 5; ++g) {
-                __m128 r0 = _mm_load_ps(&b.s[4 * g][j]), r1 = _mm_load_ps(&b.s[4 * g + 1][j]);
-                __m128 r2 = _mm_load_ps(&b.s[4 * g + 2][j]), r3 = _mm_load_ps(&b.s[4 * g + 3][j]);
-                _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
-                r[0][g] = r0;
-                r[1][g] = r1;
-                r[2][g] = r2;
-                r[3][g] = r3;
-            }
-            const __m128 t20 = _mm_load_ps(&b.s[20][j]), t21 = _mm_load_ps(&b.s[21][j]);
-            const __m128 tails01 = _mm_unpacklo_ps(t20, t21);  // p0.20 p0.21 p1.20 p1.21
-            const __m128 tails23 = _mm_unpackhi_ps(t20, t21);  // p2.20 p2.21 p3.20 p3.21
-            float* o = dst + size_t(j) * kSurfaceFloats;
-            for (int h = 0; h < 2; ++h) {  // pixels 2h (aligned) and 2h + 1 (8 bytes off): 11 chunks
-                const __m128* even = r[2 * h];
-                const __m128* odd = r[2 * h + 1];
-                const __m128 tails = h == 0 ? tails01 : tails23;
-                float* c = o + 44 * h;
-                for (int g = 0; g < 5; ++g) _mm_stream_ps(c + 4 * g, even[g]);
-                _mm_stream_ps(c + 20, _mm_shuffle_ps(tails, odd[0], _MM_SHUFFLE(1, 0, 1, 0)));
-                for (int g = 0; g < 4; ++g)
-                    _mm_stream_ps(c + 24 + 4 * g, _mm_shuffle_ps(odd[g], odd[g + 1], _MM_SHUFFLE(1, 0, 3, 2)));
-                _mm_stream_ps(c + 40, _mm_shuffle_ps(odd[4], tails, _MM_SHUFFLE(3, 2, 3, 2)));
+    static_assert(kSurfaceFloats == 36 && sizeof(Surface) == 144, "9 groups of 4 members");
+    const bool aligned = reinterpret_cast<uintptr_t>(out) % 16 == 0;
+    float* __restrict dst = aligned ? reinterpret_cast<float*>(out) : b.pixels;
+    for (; j + 4 <= n; j += 4) {
+        float* o = dst + size_t(j) * kSurfaceFloats;
+        for (int k = 0; k < kSurfaceFloats; k += 4) {
+            __m128 r0 = _mm_load_ps(&b.s[k][j]), r1 = _mm_load_ps(&b.s[k + 1][j]);
+            __m128 r2 = _mm_load_ps(&b.s[k + 2][j]), r3 = _mm_load_ps(&b.s[k + 3][j]);
+            _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+            if (aligned) {
+                _mm_stream_ps(o + 0 * kSurfaceFloats + k, r0);
+                _mm_stream_ps(o + 1 * kSurfaceFloats + k, r1);
+                _mm_stream_ps(o + 2 * kSurfaceFloats + k, r2);
+                _mm_stream_ps(o + 3 * kSurfaceFloats + k, r3);
+            } else {
+                _mm_storeu_ps(o + 0 * kSurfaceFloats + k, r0);
+                _mm_storeu_ps(o + 1 * kSurfaceFloats + k, r1);
+                _mm_storeu_ps(o + 2 * kSurfaceFloats + k, r2);
+                _mm_storeu_ps(o + 3 * kSurfaceFloats + k, r3);
             }
         }
-    } else {
-        float* __restrict o = b.pixels;
-        for (; j + 4 <= n; j += 4) {
-            for (int k = 0; k < 20; k += 4) {
-                __m128 r0 = _mm_load_ps(&b.s[k][j]), r1 = _mm_load_ps(&b.s[k + 1][j]);
-                __m128 r2 = _mm_load_ps(&b.s[k + 2][j]), r3 = _mm_load_ps(&b.s[k + 3][j]);
-                _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
-                _mm_storeu_ps(o + (j + 0) * kSurfaceFloats + k, r0);
-                _mm_storeu_ps(o + (j + 1) * kSurfaceFloats + k, r1);
-                _mm_storeu_ps(o + (j + 2) * kSurfaceFloats + k, r2);
-                _mm_storeu_ps(o + (j + 3) * kSurfaceFloats + k, r3);
-            }
-            for (int p = 0; p < 4; ++p) {
-                o[(j + p) * kSurfaceFloats + 20] = b.s[20][j + p];
-                o[(j + p) * kSurfaceFloats + 21] = b.s[21][j + p];
-            }
-        }
-        streamCopy(out, o, size_t(j) * sizeof(Surface));
     }
+    if (!aligned) streamCopy(out, b.pixels, size_t(j) * sizeof(Surface));
 #endif
     // The rest (n not a multiple of 4, or no SSE2): interleaved, then copied.
     float* __restrict o = b.pixels;

@@ -26,7 +26,7 @@ using namespace enc;
 
 namespace {
 
-// The Surfaces as one array of floats (22 per pixel, static_assert in cpu_codec_plan.h): member
+// The Surfaces as one array of floats (36 per pixel, static_assert in cpu_codec_plan.h): member
 // `index` of pixel j is floats(px)[j * kSurfaceFloats + index]. Plain float loads: a byte-wise
 // copy here made GCC assemble the gathered vectors through the stack (store-forwarding stalls).
 GBL_CLONE_INLINE const float* floats(const Surface* px) { return reinterpret_cast<const float*>(px); }
@@ -134,7 +134,7 @@ class SurfacePrefetch {
 };
 
 // The block's Surfaces member-major (b.s[k][j] = float k of pixel j): 4 x 4 transposes (4 pixels
-// by 4 members at a time, the last 2 members one by one), cheaper than gathering each field's
+// by 4 members at a time: the Surface is 9 groups of 4), cheaper than gathering each field's
 // members with strided loads. Its lines were prefetched while the blocks before computed
 // (SurfacePrefetch). Only the groups of 4
 // members the layout reads (plan.encodeGroups) are transposed: 4 of the 6 for crysis3-thin and
@@ -143,9 +143,9 @@ GBL_SIMD_CLONES_AVX512 void loadSurfaces(const Surface* px, int n, uint32_t grou
     const float* __restrict in = floats(px);
     int j = 0;
 #if defined(__SSE2__)
-    static_assert(kSurfaceFloats == 22, "5 groups of 4 members + 2");
+    static_assert(kSurfaceFloats == 36, "9 groups of 4 members");
     for (; j + 4 <= n; j += 4) {
-        for (int k = 0; k < 20; k += 4) {
+        for (int k = 0; k < kSurfaceFloats; k += 4) {
             if (!(groups & (1u << (k / 4)))) continue;  // no field reads these members
             __m128 r0 = _mm_loadu_ps(in + (j + 0) * kSurfaceFloats + k);
             __m128 r1 = _mm_loadu_ps(in + (j + 1) * kSurfaceFloats + k);
@@ -157,11 +157,6 @@ GBL_SIMD_CLONES_AVX512 void loadSurfaces(const Surface* px, int n, uint32_t grou
             _mm_store_ps(&b.s[k + 2][j], r2);
             _mm_store_ps(&b.s[k + 3][j], r3);
         }
-        if (groups & (1u << 5))
-            for (int p = 0; p < 4; ++p) {
-                b.s[20][j + p] = in[(j + p) * kSurfaceFloats + 20];
-                b.s[21][j + p] = in[(j + p) * kSurfaceFloats + 21];
-            }
     }
 #endif
     for (; j < n; ++j)

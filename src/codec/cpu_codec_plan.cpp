@@ -166,6 +166,13 @@ int surfaceOffset(Attribute a) {
         case Attribute::Emissive: return int(offsetof(Surface, emissive)) / kFloat;
         case Attribute::Position: return int(offsetof(Surface, position)) / kFloat;
         case Attribute::Depth: return int(offsetof(Surface, position)) / kFloat + 2;  // position.z (wiring_plan.h)
+        case Attribute::Coat: return int(offsetof(Surface, coat)) / kFloat;
+        case Attribute::CoatRoughness: return int(offsetof(Surface, coatRoughness)) / kFloat;
+        case Attribute::CoatNormal: return int(offsetof(Surface, coatNormal)) / kFloat;
+        case Attribute::SheenColor: return int(offsetof(Surface, sheenColor)) / kFloat;
+        case Attribute::SheenRoughness: return int(offsetof(Surface, sheenRoughness)) / kFloat;
+        case Attribute::AnisotropyStrength: return int(offsetof(Surface, anisotropyStrength)) / kFloat;
+        case Attribute::AnisotropyDirection: return int(offsetof(Surface, anisotropyDirection)) / kFloat;
         default: return -1;
     }
 }

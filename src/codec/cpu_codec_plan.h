@@ -15,8 +15,8 @@ namespace gbl::codec {
 
 // Surface as an array of floats: Surface members are addressed by their first float.
 inline constexpr int kSurfaceFloats = int(sizeof(Surface) / sizeof(float));
-static_assert(sizeof(Surface) == 22 * sizeof(float) && std::is_standard_layout_v<Surface>,
-              "Surface is 22 packed floats (shaders/surface.glsl), read and written as a float array");
+static_assert(sizeof(Surface) == 36 * sizeof(float) && std::is_standard_layout_v<Surface>,
+              "Surface is 36 packed floats (shaders/surface.glsl), read and written as a float array");
 
 // Pixels per block: the loops run field by field over a block of one row (inputs, codes and the
 // decoded Surfaces of a block stay in L1).

@@ -465,9 +465,7 @@ std::vector<ExportMember> exportSurfaceMembers(const Layout& layout) {
         for (Attribute in : fallbackInputs(fb->kind)) inputs = inputs && (layout.stores(in) || derived.count(in));
         if (inputs) derived.insert(fb->attribute);
     }
-    for (Attribute a : {Attribute::Normal, Attribute::BaseColor, Attribute::Metallic, Attribute::Roughness,
-                        Attribute::Specular, Attribute::SpecularColor, Attribute::DiffuseColor, Attribute::Occlusion,
-                        Attribute::Emissive, Attribute::Position}) {
+    for (Attribute a : surfaceAttributes()) {
         const bool stored = layout.stores(a);
         if (!stored && !derived.count(a)) continue;
         ExportMember m;

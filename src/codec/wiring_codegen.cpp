@@ -328,18 +328,19 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         }
     }
     // Unstored attributes without a fallback (position: the lighting pass rebuilds it from depth).
-    for (Attribute a : {Attribute::Normal, Attribute::BaseColor, Attribute::Metallic, Attribute::Roughness,
-                        Attribute::Specular, Attribute::SpecularColor, Attribute::DiffuseColor, Attribute::Occlusion,
-                        Attribute::Emissive, Attribute::Position})
+    // The layers a layout does not store decode as 0, "no layer" (layouts/README.md, Attributes).
+    for (Attribute a : surfaceAttributes())
         if (!layout.stores(a) && !layout.findFallback(a)) {
             const bool depthInZ = a == Attribute::Position && layout.stores(Attribute::Depth);
             o << "    s." << (depthInZ ? "position.xy" : surfaceMemberName(a)) << " = "
               << (depthInZ ? "vec2(0.0)" : zeroOf(a)) << ";  // not stored"
-              << (a != Attribute::Position ? ""
+              << (isLayerAttribute(a)       ? ": no layer"
+                  : a != Attribute::Position ? ""
                   : depthInZ              ? ": z holds the stored depth, the lighting pass rebuilds position from it"
                                           : ": rebuilt from depth by the lighting pass")
               << "\n";
         }
+    o << "    s.shadingModel = 0.0;  // the shading-model selector: no layout stores it yet\n";
     for (const Fallback* fb : orderedFallbacks(layout)) emitFallback(o, *fb, layout);
     o << "    return s;\n}\n#endif\n";
     return o.str();

@@ -20,8 +20,25 @@ const char* surfaceMemberName(Attribute a) {
         case Attribute::Occlusion: return "occlusion";
         case Attribute::Emissive: return "emissive";
         case Attribute::Position: return "position";
+        case Attribute::Coat: return "coat";
+        case Attribute::CoatRoughness: return "coatRoughness";
+        case Attribute::CoatNormal: return "coatNormal";
+        case Attribute::SheenColor: return "sheenColor";
+        case Attribute::SheenRoughness: return "sheenRoughness";
+        case Attribute::AnisotropyStrength: return "anisotropyStrength";
+        case Attribute::AnisotropyDirection: return "anisotropyDirection";
         default: return nullptr;
     }
+}
+
+const std::vector<Attribute>& surfaceAttributes() {
+    static const std::vector<Attribute> list = {
+        Attribute::Normal,   Attribute::BaseColor,          Attribute::Metallic,      Attribute::Roughness,
+        Attribute::Specular, Attribute::SpecularColor,      Attribute::DiffuseColor,  Attribute::Occlusion,
+        Attribute::Emissive, Attribute::Position,           Attribute::Coat,          Attribute::CoatRoughness,
+        Attribute::CoatNormal, Attribute::SheenColor,       Attribute::SheenRoughness, Attribute::AnisotropyStrength,
+        Attribute::AnisotropyDirection};
+    return list;
 }
 
 const char* surfaceSlotName(Attribute a) { return a == Attribute::Depth ? "position.z" : surfaceMemberName(a); }

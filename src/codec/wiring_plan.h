@@ -41,8 +41,11 @@ std::vector<Attribute> fallbackInputs(FallbackKind kind);
 // Surface member name of a shading / geometry attribute ("baseColor"); nullptr for extras and
 // for `depth`, which is no member of its own (an exported Surface gives it one, `depth`).
 const char* surfaceMemberName(Attribute a);
+// The attributes with a Surface member, in the Surface's order (shaders/surface.glsl): the shading
+// attributes, position, the layers. (The Surface's last member, shadingModel, is no attribute yet.)
+const std::vector<Attribute>& surfaceAttributes();
 // Where gbufferlab's own Surface holds an attribute: its member, or for a stored window `depth`
-// "position.z" (a layout stores position or depth, not both: the Surface stays 22 floats, the
+// "position.z" (a layout stores position or depth, not both: the Surface keeps its 36 floats, the
 // shape the CPU codec's transposes and the bit tests share). The lighting and decode passes read
 // it back as the pixel's depth. nullptr for extras.
 const char* surfaceSlotName(Attribute a);

@@ -32,6 +32,21 @@ const std::vector<AttributeInfo>& attributeTable() {
         {Attribute::Occlusion, "occlusion", 1, AC::Shading, VT::Float, VD::Unit, "ambient occlusion"},
         {Attribute::Emissive, "emissive", 3, AC::Shading, VT::Float, VD::NonNegative,
          "emitted radiance, linear, may exceed 1"},
+        {Attribute::Coat, "coat", 1, AC::Shading, VT::Float, VD::Unit,
+         "clear-coat amount (KHR_materials_clearcoat clearcoat); 0 = no coat, what a layout without it decodes"},
+        {Attribute::CoatRoughness, "coat_roughness", 1, AC::Shading, VT::Float, VD::Unit,
+         "clear-coat perceptual roughness (clearcoatRoughness); GGX alpha = coat_roughness^2"},
+        {Attribute::CoatNormal, "coat_normal", 3, AC::Shading, VT::Float, VD::Signed,
+         "the clear coat's unit normal, in the normal's [space] (0 = the base normal)"},
+        {Attribute::SheenColor, "sheen_color", 3, AC::Shading, VT::Float, VD::Unit,
+         "sheen colour, linear (KHR_materials_sheen sheenColor); black = no sheen"},
+        {Attribute::SheenRoughness, "sheen_roughness", 1, AC::Shading, VT::Float, VD::Unit,
+         "sheen perceptual roughness (sheenRoughness); Charlie alpha = sheen_roughness^2"},
+        {Attribute::AnisotropyStrength, "anisotropy_strength", 1, AC::Shading, VT::Float, VD::Unit,
+         "anisotropy strength (KHR_materials_anisotropy); 0 = isotropic"},
+        {Attribute::AnisotropyDirection, "anisotropy_direction", 3, AC::Shading, VT::Float, VD::Signed,
+         "unit tangent the highlights stretch along (anisotropyRotation applied), in the normal's [space], "
+         "orthogonal to the normal (0 = none)"},
         {Attribute::Position, "position", 3, AC::Geometry, VT::Float, VD::Any,
          "view-space position; a layout that does not store it reconstructs it from depth"},
         {Attribute::Depth, "depth", 1, AC::Geometry, VT::Float, VD::Unit,
@@ -228,6 +243,12 @@ const AttributeInfo* findAttribute(std::string_view name) {
 std::string knownAttributeNames() { return joinNames(attributeTable()); }
 
 bool isShadingAttribute(Attribute a) { return attributeInfo(a).cls == AttributeClass::Shading; }
+
+bool isLayerAttribute(Attribute a) { return a >= Attribute::Coat && a <= Attribute::AnisotropyDirection; }
+
+bool isDirectionAttribute(Attribute a) {
+    return a == Attribute::Normal || a == Attribute::CoatNormal || a == Attribute::AnisotropyDirection;
+}
 
 // ---- formats ----------------------------------------------------------------------------------
 
@@ -462,7 +483,7 @@ std::string codeLabel(const Field& field, size_t code) {
     if (info.components == 1) return "";
     static const char* xyz[] = {"x", "y", "z"};
     static const char* rgb[] = {"r", "g", "b"};
-    const bool vector = field.attribute == Attribute::Normal || field.attribute == Attribute::Position;
+    const bool vector = isDirectionAttribute(field.attribute) || field.attribute == Attribute::Position;
     if (info.components == 3 && code < 3) return vector ? xyz[code] : rgb[code];
     return std::to_string(code);
 }

@@ -35,6 +35,15 @@ enum class Attribute : uint8_t {
     DiffuseColor,   // vec3 Lambert albedo = base_color * (1 - metallic)
     Occlusion,      // [0,1], ambient occlusion
     Emissive,       // vec3 linear radiance >= 0
+    // shading, the material layers of glTF's PBR extensions: optional, a layout that does not store
+    // one decodes it as "no layer" (0), the layer dropped as an engine without it drops it
+    Coat,                 // KHR_materials_clearcoat clearcoat, [0,1]
+    CoatRoughness,        // clearcoatRoughness, perceptual [0,1]
+    CoatNormal,           // vec3 unit, the coat's normal (0 = the base normal)
+    SheenColor,           // vec3 KHR_materials_sheen sheenColor, linear [0,1]
+    SheenRoughness,       // sheenRoughness, perceptual [0,1]
+    AnisotropyStrength,   // KHR_materials_anisotropy strength, [0,1]
+    AnisotropyDirection,  // vec3 unit tangent the highlight stretches along (0 = none)
     // geometry
     Position,  // vec3 view-space position; when not stored, reconstructed from depth
     Depth,     // window-space depth (gl_FragCoord.z) the lighting reads instead of the depth attachment
@@ -88,6 +97,12 @@ const char* attributeName(Attribute a);
 const AttributeInfo* findAttribute(std::string_view name);  // nullptr when unknown
 std::string knownAttributeNames();                          // "normal, base_color, ..."
 bool isShadingAttribute(Attribute a);
+// The layers' attributes (Coat .. AnisotropyDirection): shading attributes a layout need not store
+// nor give a fallback; unstored, they decode as 0 ("no layer").
+bool isLayerAttribute(Attribute a);
+// Unit vectors stored like the normal, in the layout's [space]: normal, coat_normal,
+// anisotropy_direction (normal encodings take them).
+bool isDirectionAttribute(Attribute a);
 
 // ---------------------------------------------------------------------------------------------
 // Formats

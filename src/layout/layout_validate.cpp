@@ -55,10 +55,10 @@ private:
         const std::string a = squote(attr.name), e = squote(enc.name);
         switch (enc.kind) {
             case AttributeKind::Normal:
-                if (attr.id != Attribute::Normal) return e + " encodes unit normals, not " + a;
+                if (!isDirectionAttribute(attr.id)) return e + " encodes unit normals, not " + a;
                 return "";
             case AttributeKind::Color:
-                if (attr.components != 3 || attr.id == Attribute::Normal || attr.id == Attribute::Position)
+                if (attr.components != 3 || isDirectionAttribute(attr.id) || attr.id == Attribute::Position)
                     return e + " encodes RGB colours, not " + a;
                 if (!enc.reads.empty() && attr.id != Attribute::Emissive)
                     return e + " stores emissive relative to " + enc.reads + ", not " + a;
@@ -369,6 +369,7 @@ private:
         }
         for (const AttributeInfo& a : listAttributes()) {
             if (a.cls != AttributeClass::Shading || a.id == Attribute::Normal || a.id == Attribute::Roughness) continue;
+            if (isLayerAttribute(a.id)) continue;  // unstored: "no layer" (0), as an engine without the layer
             if (!layout_.stores(a.id) && !fb.count(a.id))
                 error(fallbackTablePlace(), "the layout does not store " + squote(a.name) +
                                                 " and declares no fallback for it: add " + std::string(a.name) +

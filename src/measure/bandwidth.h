@@ -33,7 +33,8 @@ namespace gbl {
 
 constexpr int kLitOutputBytesPerPixel = 8;  // RGBA16F, the usual HDR scene colour
 // The visibility buffer's resolve, per pixel (modelled, see above): 3 x (4-byte index + 48-byte
-// vertex: 12 position + 12 normal + 16 tangent + 8 uv, GpuScene's Vertex).
+// vertex: 12 position + 12 normal + 16 tangent + 8 uv, GpuScene's Vertex without its second uv set,
+// which only a scene whose textures read TEXCOORD_1 fetches: the resolve compiles it out elsewhere).
 constexpr int kVisibilityVertexBytes = 3 * (4 + 48);
 constexpr int kVisibilityTextureBytes = 5 * 8 * 4;
 // ... and with clusters ([ids] cluster_triangles: Nanite, Bevy's meshlets) the cluster table's

@@ -243,6 +243,17 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     RunMetrics out;
     RunErrorMaps* maps = options.maps;
     const size_t n = referenceHdr.pixelCount();
+    // The pixels every metric is over (RunMetricsOptions::excluded): null for all of them.
+    const bool excluding = options.excluded && !options.excluded->empty();
+    if (excluding && options.excluded->size() != n)
+        throw std::invalid_argument("computeRunMetrics: the excluded mask has " + std::to_string(options.excluded->size()) +
+                                    " entries for " + std::to_string(n) + " pixels");
+    Mask includedMask;
+    if (excluding) {
+        includedMask.resize(n);
+        for (size_t i = 0; i < n; ++i) includedMask[i] = (*options.excluded)[i] ? 0 : 1;
+    }
+    const Mask* included = excluding ? &includedMask : nullptr;
 
     // Coverage and material classes.
     std::optional<HostScope> scope(std::in_place, "metrics: coverage");
@@ -250,6 +261,10 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     const bool haveMetallic = !reference.metallic.empty();
     out.coverage.pixels = n;
     for (size_t i = 0; i < n; ++i) {
+        if (included && !(*included)[i]) {
+            ++out.coverage.excluded;
+            continue;
+        }
         const bool r = reference.coverage[i] != 0, t = test.coverage[i] != 0;
         if (r && t) {
             measured[i] = 1;
@@ -311,7 +326,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
 
     // The shaded image, every pixel, RGB.
     tasks.push_back([&] {
-        const ImageErrorStats linear = imageErrorStats(referenceHdr, testHdr, nullptr, PsnrPeak::ReferenceMax, 3);
+        const ImageErrorStats linear = imageErrorStats(referenceHdr, testHdr, included, PsnrPeak::ReferenceMax, 3);
         out.image.rmseLinear = linear.rmse;
         out.image.psnrLinear = linear.psnr;
         out.image.peakLinear = linear.peak;
@@ -326,7 +341,8 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     if (!prepared) prepared = &local.emplace(referenceHdr, exposure);
     Image testSrgb = toneMapToSrgb8AsFloat(testHdr, exposure);
     tasks.push_back([&] {
-        const double mse = meanSquaredError(*prepared->srgb, testSrgb, 3);  // imageErrorStats' mse
+        const double mse = included ? imageErrorStats(*prepared->srgb, testSrgb, included, PsnrPeak::One, 3).mse
+                                    : meanSquaredError(*prepared->srgb, testSrgb, 3);  // imageErrorStats' mse
         out.image.rmseToneMapped = std::sqrt(mse);
         out.image.psnrToneMapped = psnrFromMse(mse, 1.0);
     });
@@ -340,7 +356,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         HdrFlipResult result = flipHdr(referenceHdr, testHdr);
         out.image.hdrFlipExposures = result.range.count;
         hdrFlip = std::move(result.flip);
-        out.image.hdrFlipMean = flipStats(hdrFlip).mean;
+        out.image.hdrFlipMean = flipStats(hdrFlip, included).mean;
         out.image.hdrFlipComputed = true;
     }
 
@@ -350,10 +366,10 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     const double floor = prepared->luminanceFloor;
     tasks.clear();
     tasks.push_back([&] {
-        const FlipStats fs = flipStats(flip);
+        const FlipStats fs = flipStats(flip, included);
         out.image.flipMean = fs.mean;
         out.image.flipMedian = fs.median;
-        out.image.flipTiles = tileMeans(flip);
+        out.image.flipTiles = tileMeans(flip, kSignificanceTileColumns, kSignificanceTileRows, included);
     });
     tasks.push_back([&] {
         if (maps) rel = relativeLuminanceErrorImage(referenceHdr, testHdr, floor);
@@ -396,6 +412,12 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         out.image.covered = finish(all);
     });
     parallelInvoke(tasks);
+    if (maps && included) {  // excluded pixels hold 0 in every map (no worst region among them)
+        for (Image* m : {&flip, &hdrFlip, &rel})
+            if (!m->empty())
+                for (size_t i = 0; i < n; ++i)
+                    if (!(*included)[i]) m->pixels[i] = 0.0f;
+    }
     if (maps) maps->relLuminance = std::move(rel);
 
     scope.emplace("metrics: maps");
@@ -408,7 +430,8 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
         for (size_t i = 0; i < n; ++i)
             for (size_t c = 0; c < 3; ++c)
-                maps->absLinear.pixels[i * 3 + c] = std::abs(testHdr.pixels[i * tc + c] - referenceHdr.pixels[i * rc + c]);
+                maps->absLinear.pixels[i * 3 + c] =
+                    included && !(*included)[i] ? 0.0f : std::abs(testHdr.pixels[i * tc + c] - referenceHdr.pixels[i * rc + c]);
         maps->measured = std::move(measured);
     }
     return out;

@@ -60,6 +60,7 @@ struct CoverageCounts {
     size_t testOnly = 0;       // mismatches: geometry the reference does not have
     size_t metal = 0;          // of `both`
     size_t dielectric = 0;     // of `both`
+    size_t excluded = 0;       // left out of every metric (RunMetricsOptions::excluded), of `pixels`
 };
 
 // Image errors over the pixels of one material class (covered in both, as the attributes; see
@@ -140,6 +141,13 @@ struct RunMetricsOptions {
     // The reference's per-pixel noise: standard error of its luminance (1 channel, absolute), e.g.
     // a progressive ground truth's (render/renderer.h RenderOutput::noise). Reported per class.
     const Image* referenceNoise = nullptr;
+    // Pixels left out of every metric, one byte per pixel (non-zero: excluded), e.g. where the
+    // visible material is drawn forward by a deferred engine (transmission, volume: the view's
+    // forward mask, render/forward_mask.h). Attribute errors skip them (CoverageCounts::excluded
+    // counts them); every image error (RMSE, PSNR, max, p99, mean, LDR- and HDR-FLIP, the FLIP
+    // tiles, the classes) is over the other pixels; the per-pixel maps hold 0 there. Null or
+    // empty: no pixel excluded, the numbers of a run without it, bit for bit.
+    const std::vector<uint8_t>* excluded = nullptr;
 };
 
 // Throws UserError when sizes disagree or an attribute image has too few channels. An attribute

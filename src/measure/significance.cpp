@@ -6,7 +6,7 @@
 
 namespace gbl {
 
-std::vector<float> tileMeans(const Image& map, int columns, int rows) {
+std::vector<float> tileMeans(const Image& map, int columns, int rows, const std::vector<uint8_t>* included) {
     std::vector<float> out;
     if (map.empty() || columns < 1 || rows < 1) return out;
     for (int r = 0; r < rows; ++r) {
@@ -15,6 +15,18 @@ std::vector<float> tileMeans(const Image& map, int columns, int rows) {
             const int x0 = int(int64_t(c) * map.width / columns), x1 = int(int64_t(c + 1) * map.width / columns);
             if (x1 <= x0 || y1 <= y0) continue;
             double sum = 0.0;
+            if (included) {
+                size_t count = 0;
+                for (int y = y0; y < y1; ++y)
+                    for (int x = x0; x < x1; ++x) {
+                        const size_t i = size_t(y) * map.width + x;
+                        if (!(*included)[i]) continue;
+                        sum += map.pixels[i * map.channels];
+                        ++count;
+                    }
+                out.push_back(count ? float(sum / double(count)) : 0.0f);
+                continue;
+            }
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) sum += map.pixels[(size_t(y) * map.width + x) * map.channels];
             out.push_back(float(sum / (double(x1 - x0) * (y1 - y0))));

@@ -27,9 +27,11 @@ inline constexpr double kSignificanceAlpha = 0.05;
 
 // The mean of a 1-channel map over each tile of a columns x rows grid (tile (c, r) covers
 // x in [c W / columns, (c + 1) W / columns), rows likewise), row-major. A tile with no pixel
-// (an image narrower than the grid) is left out.
+// (an image narrower than the grid) is left out. With `included` (one byte per pixel), the mean of
+// the included pixels only, 0 for a tile without any (kept, so that every run of a view has the
+// same tiles: the mask is the view's, run_metrics.h RunMetricsOptions::excluded).
 std::vector<float> tileMeans(const Image& map, int columns = kSignificanceTileColumns,
-                             int rows = kSignificanceTileRows);
+                             int rows = kSignificanceTileRows, const std::vector<uint8_t>* included = nullptr);
 
 // Two-sided paired sign-flip permutation test of `differences` (A - B per unit) against 0.
 // Returns 1 for no units or all-zero differences.

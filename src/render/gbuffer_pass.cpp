@@ -66,17 +66,18 @@ VkPipeline createGBufferPipelineSpirv(const VulkanContext& ctx, const GBufferWir
     stages[1].pName = "main";
 
     VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    VkVertexInputAttributeDescription attributes[4] = {
+    VkVertexInputAttributeDescription attributes[5] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
         {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
         {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+        {4, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv1)},
     };
     VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     if (sceneVertices) {
         vertexInput.vertexBindingDescriptionCount = 1;
         vertexInput.pVertexBindingDescriptions = &binding;
-        vertexInput.vertexAttributeDescriptionCount = 4;
+        vertexInput.vertexAttributeDescriptionCount = 5;
         vertexInput.pVertexAttributeDescriptions = attributes;
     }
 
@@ -209,13 +210,17 @@ constexpr VkShaderStageFlags kGBufferStages = VK_SHADER_STAGE_VERTEX_BIT | VK_SH
 // 268-315 ms at 1080p with every slot sampled, 247-259 ms so (gpu_pass_bench, alternated; the
 // material's index in single-texture slots too: 254-287 ms). Every material's index in a slot is
 // one of its listed textures or GBL_NO_TEXTURE (then the fallback is taken): the same texels.
-void addMaterialSlotDefines(ShaderSource& fs, const MaterialTextureSlots& slots) {
+// With KHR_texture_transform in the scene (`gradients`), every sample takes the slot's own
+// gradients (material.glsl gblUvDx, gblUvDy; material_eval.glsl materialSlotUv says why).
+void addMaterialSlotDefines(ShaderSource& fs, const MaterialTextureSlots& slots, bool gradients) {
     fs.defines.push_back({"GBL_MATERIAL_SLOTS", "1"});
+    const std::string tail = gradients ? ", uv, gblUvDx, gblUvDy)" : ", uv)";
+    const std::string call = gradients ? "textureGrad(" : "texture(";
     for (size_t k = 0; k < kMaterialTextureSlotCount; ++k) {
         const std::vector<uint32_t>& t = slots[k];
         const std::string sample = t.empty()       ? "vec4(0.0)"
-                                   : t.size() == 1 ? "texture(textures[" + std::to_string(t[0]) + "], uv)"
-                                                   : "texture(textures[index], uv)";
+                                   : t.size() == 1 ? call + "textures[" + std::to_string(t[0]) + "]" + tail
+                                                   : call + "textures[index]" + tail;
         fs.defines.push_back({std::string("GBL_MATERIAL_SLOT_") + kMaterialTextureSlotNames[k] + "(index, uv)", sample});
     }
 }
@@ -228,7 +233,8 @@ PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& 
     const ShaderSource vs = loadShaderFile("gbuffer_pass.vert.glsl");
     ShaderSource fs = loadShaderFile("gbuffer_pass.frag.glsl");
     fs.defines.push_back({"TEXTURE_COUNT", std::to_string(textureCount)});
-    addMaterialSlotDefines(fs, scene.texturesBySlot);
+    addMaterialSlotDefines(fs, scene.texturesBySlot, scene.uvTransforms);
+    addSceneFeatureDefines(fs, scene.layers, scene.uvTransforms);  // material_eval.glsl
     // The encoders' threshold tables from GBufferPass::codecTables, not constant arrays: llvmpipe
     // JIT-compiles their binary searches far faster so (codec_tables.glsl).
     fs.defines.push_back({"GBL_CODEC_TABLES_SET", "0"});
@@ -287,6 +293,8 @@ GBufferPass createGBufferPass(const VulkanContext& ctx, const GBufferWiring& wir
                      scene.textureSampler, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
     writer.flush(ctx.device);
     pass.pipelineFromMemo = true;
+    pass.sceneLayers = scene.layers;
+    pass.sceneUvTransforms = scene.uvTransforms;
     pass.writesStencil = writesStencil(wiring);
     pass.wiring.stencilFields = wiring.stencilFields;
     if (wiring.visibilityBuffer) {

@@ -7,18 +7,63 @@
 
 namespace gbl {
 
+namespace {
+
+// KHR_materials_ior's dielectric F0, ((ior - 1) / (ior + 1))^2 (0.04 at 1.5, rounded from double:
+// the float 0.04 the shaders wrote before the extension); ior 0, the specular-glossiness
+// compatibility mode, is an infinite ior: F0 = 1.
+float dielectricF0OfIor(float ior) {
+    if (ior == 0.0f) return 1.0f;
+    const double r = (double(ior) - 1.0) / (double(ior) + 1.0);
+    return float(r * r);
+}
+
+// The identity transform of a slot sampling TEXCOORD_0: what a scene without transforms reads.
+void packUvTransforms(const Material& m, gpu::GpuMaterial& g) {
+    for (size_t k = 0; k < kTextureSlotCount; ++k) {
+        const TextureTransform& t = m.uvTransforms[k];
+        const glm::mat2 a = t.matrix();
+        g.uvTransforms[2 * k] = glm::vec4(a[0][0], a[0][1], a[1][0], a[1][1]);
+        g.uvTransforms[2 * k + 1] = glm::vec4(t.offset, float(t.texCoord), t.transforms() ? 1.0f : 0.0f);
+    }
+}
+
+}  // namespace
+
+std::array<int, kMaterialTextureSlotCount> materialSlotTextures(const gpu::GpuMaterial& m) {
+    return {m.textures0.x, m.textures0.y, m.textures0.z, m.textures0.w, m.textures1.x, m.textures1.y, m.textures1.z,
+            m.textures1.w, m.textures2.x, m.textures2.y, m.textures2.z, m.textures2.w, m.textures3.x};
+}
+
+SceneShaderFeatures sceneShaderFeatures(const Scene& scene) {
+    SceneShaderFeatures f;
+    for (const Material& m : scene.materials) {
+        f.layers |= m.layers();
+        for (const TextureTransform& t : m.uvTransforms) f.uvTransforms = f.uvTransforms || t.transforms() || t.texCoord != 0;
+    }
+    return f;
+}
+
 std::vector<gpu::GpuMaterial> packMaterials(const Scene& scene) {
     std::vector<gpu::GpuMaterial> out;
     for (const Material& m : scene.materials) {
         gpu::GpuMaterial g{};
         g.baseColorFactor = m.baseColorFactor;
-        g.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
+        // emissiveStrength 1 leaves the factor's bits as they were.
+        g.emissiveNormalScale = glm::vec4(m.emissiveFactor * m.emissiveStrength, m.normalScale);
         g.specularColorSpecular = glm::vec4(m.specularColorFactor, m.specularFactor);
         g.metallicRoughnessOcclusion =
             glm::vec4(m.metallicFactor, m.roughnessFactor, m.occlusionStrength, m.doubleSided ? 1.0f : 0.0f);
         g.textures0 = glm::ivec4(m.baseColorTexture, m.metallicRoughnessTexture, m.normalTexture, m.occlusionTexture);
-        g.textures1 = glm::ivec4(m.emissiveTexture, m.specularTexture, m.specularColorTexture, kNoTexture);
-        g.alphaMaskCutoff = glm::vec4(m.alphaMask ? 1.0f : 0.0f, m.alphaCutoff, 0.0f, 0.0f);
+        g.textures1 = glm::ivec4(m.emissiveTexture, m.specularTexture, m.specularColorTexture, m.clearcoatTexture);
+        g.alphaMaskCutoff = glm::vec4(m.alphaMask ? 1.0f : 0.0f, m.alphaCutoff, dielectricF0OfIor(m.ior), float(m.layers()));
+        g.clearcoat = glm::vec4(m.clearcoatFactor, m.clearcoatRoughnessFactor, m.clearcoatNormalScale, 0.0f);
+        g.sheen = glm::vec4(m.sheenColorFactor, m.sheenRoughnessFactor);
+        g.anisotropy = glm::vec4(m.anisotropyStrength, std::cos(m.anisotropyRotation), std::sin(m.anisotropyRotation), 0.0f);
+        g.textures2 = glm::ivec4(m.clearcoatRoughnessTexture, m.clearcoatNormalTexture, m.sheenColorTexture,
+                                 m.sheenRoughnessTexture);
+        g.textures3 = glm::ivec4(m.anisotropyTexture, kNoTexture, kNoTexture, kNoTexture);
+        packUvTransforms(m, g);
         out.push_back(g);
     }
     if (out.empty()) {
@@ -27,7 +72,9 @@ std::vector<gpu::GpuMaterial> packMaterials(const Scene& scene) {
         g.emissiveNormalScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
         g.specularColorSpecular = glm::vec4(1.0f);
         g.metallicRoughnessOcclusion = glm::vec4(0.0f, 0.5f, 1.0f, 0.0f);
-        g.textures0 = g.textures1 = glm::ivec4(kNoTexture);
+        g.textures0 = g.textures1 = g.textures2 = g.textures3 = glm::ivec4(kNoTexture);
+        g.alphaMaskCutoff = glm::vec4(0.0f, 0.5f, dielectricF0OfIor(1.5f), 0.0f);
+        packUvTransforms(Material{}, g);
         out.push_back(g);
     }
     return out;
@@ -36,8 +83,7 @@ std::vector<gpu::GpuMaterial> packMaterials(const Scene& scene) {
 MaterialTextureSlots materialTextureSlots(const std::vector<gpu::GpuMaterial>& materials, uint32_t textureCount) {
     MaterialTextureSlots slots;
     for (const gpu::GpuMaterial& m : materials) {
-        const int indices[kMaterialTextureSlotCount] = {m.textures0.x, m.textures0.y, m.textures0.z, m.textures0.w,
-                                                        m.textures1.x, m.textures1.y, m.textures1.z};
+        const std::array<int, kMaterialTextureSlotCount> indices = materialSlotTextures(m);
         for (size_t k = 0; k < kMaterialTextureSlotCount; ++k)
             if (indices[k] >= 0 && uint32_t(indices[k]) < textureCount) slots[k].push_back(uint32_t(indices[k]));
     }
@@ -67,6 +113,9 @@ std::vector<gpu::GpuLight> packLights(const Scene& scene) {
 GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
     GpuScene g;
     for (const Material& m : scene.materials) g.materialStencilValues.push_back(m.stencilValues);
+    const SceneShaderFeatures features = sceneShaderFeatures(scene);
+    g.layers = features.layers;
+    g.uvTransforms = features.uvTransforms;
     g.vertices = createBufferWithData(ctx, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     g.indices = createBufferWithData(ctx, scene.indices.data(), scene.indices.size() * sizeof(uint32_t),

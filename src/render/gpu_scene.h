@@ -11,13 +11,20 @@
 
 namespace gbl {
 
-// The seven texture slots of a GpuMaterial, in material_eval.glsl's order: textures0.xyzw (base
-// colour, metallic-roughness, normal, occlusion), then textures1.xyz (emissive, specular,
-// specular colour). The names are the shaders' (material_eval.glsl's slot names, pasted into
-// GBL_RESOLVE_SLOT_<name> and GBL_MATERIAL_SLOT_<name>).
-inline constexpr size_t kMaterialTextureSlotCount = 7;
+// The texture slots of a GpuMaterial, in material_eval.glsl's order (shared_types.h GBL_SLOT_*,
+// scene.h TextureSlot): textures0.xyzw (base colour, metallic-roughness, normal, occlusion),
+// textures1.xyzw (emissive, specular, specular colour, clear coat), textures2.xyzw (clear-coat
+// roughness, clear-coat normal, sheen colour, sheen roughness), textures3.x (anisotropy). The names
+// are the shaders' (material_eval.glsl's slot names, pasted into GBL_RESOLVE_SLOT_<name> and
+// GBL_MATERIAL_SLOT_<name>).
+inline constexpr size_t kMaterialTextureSlotCount = GBL_SLOT_COUNT;
 inline constexpr std::array<const char*, kMaterialTextureSlotCount> kMaterialTextureSlotNames = {
-    "BASE_COLOR", "METALLIC_ROUGHNESS", "NORMAL", "OCCLUSION", "EMISSIVE", "SPECULAR", "SPECULAR_COLOR"};
+    "BASE_COLOR", "METALLIC_ROUGHNESS", "NORMAL",         "OCCLUSION",   "EMISSIVE",
+    "SPECULAR",   "SPECULAR_COLOR",     "CLEARCOAT",      "CLEARCOAT_ROUGHNESS",
+    "CLEARCOAT_NORMAL", "SHEEN_COLOR",  "SHEEN_ROUGHNESS", "ANISOTROPY"};
+static_assert(kMaterialTextureSlotCount == kTextureSlotCount, "scene.h TextureSlot and shared_types.h GBL_SLOT_*");
+// A material's texture index per slot (GBL_SLOT_* order).
+std::array<int, kMaterialTextureSlotCount> materialSlotTextures(const gpu::GpuMaterial& m);
 // Per slot, the textures some material binds there: ascending, each in [0, textureCount) (an index
 // outside it samples nothing in the resolve, as before these lists). Why: lavapipe runs both sides
 // of a branch under a lane mask, so a slot's texture calls ran for every pixel. A visibility
@@ -43,7 +50,18 @@ struct GpuScene {
     Buffer drawTable;
     std::vector<Draw> drawRanges;
     std::vector<std::vector<std::pair<std::string, uint32_t>>> materialStencilValues;  // Material::stencilValues
+    // What the passes compile in for this scene (sceneShaderFeatures): the layers some material has
+    // (GBL_LAYERS, kLayer* bits), and whether some slot transforms its uv or samples TEXCOORD_1
+    // (GBL_UV_TRANSFORMS). A scene with neither compiles the code it compiled before them.
+    int layers = 0;
+    bool uvTransforms = false;
 };
+
+struct SceneShaderFeatures {
+    int layers = 0;
+    bool uvTransforms = false;
+};
+SceneShaderFeatures sceneShaderFeatures(const Scene& scene);
 
 GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene);
 void destroyGpuScene(const VulkanContext& ctx, GpuScene& gpuScene);

@@ -22,6 +22,8 @@ std::vector<Binding> targetReadBindings(size_t targetCount, const TargetReadScen
 
 TargetReadScene targetReadScene(const GBufferPass& pass) {
     TargetReadScene s;
+    s.layers = pass.sceneLayers;
+    s.uvTransforms = pass.sceneUvTransforms;
     if (const GpuScene* scene = pass.visibilityScene) {
         s.visibility = true;
         s.textureCount = uint32_t(scene->textures.size());
@@ -33,9 +35,16 @@ TargetReadScene targetReadScene(const GBufferPass& pass) {
 }
 
 TargetReadScene targetReadScene(const VulkanContext& ctx, const GBufferWiring& wiring, const GpuScene& scene) {
-    if (!wiring.visibilityBuffer) return {};
-    return {true, uint32_t(scene.textures.size()), ctx.nonUniformSampledImageIndexing, scene.texturesBySlot,
-            wiring.visibilityIds.clusterTriangles > 0};
+    TargetReadScene s;
+    s.layers = scene.layers;
+    s.uvTransforms = scene.uvTransforms;
+    if (!wiring.visibilityBuffer) return s;
+    s.visibility = true;
+    s.textureCount = uint32_t(scene.textures.size());
+    s.nonUniformIndexing = ctx.nonUniformSampledImageIndexing;
+    s.texturesBySlot = scene.texturesBySlot;
+    s.clusters = wiring.visibilityIds.clusterTriangles > 0;
+    return s;
 }
 
 std::vector<Binding> targetReadBindings(const GBufferPass& pass) {
@@ -61,10 +70,18 @@ void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBu
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i);
 }
 
+void addSceneFeatureDefines(ShaderSource& s, int layers, bool uvTransforms) {
+    // Only what the scene has: a scene without layers or uv transforms compiles the passes as
+    // before them (no define at all, so the shader text and its memo key are unchanged).
+    if (layers != 0) s.defines.push_back({"GBL_LAYERS", std::to_string(layers)});
+    if (uvTransforms) s.defines.push_back({"GBL_UV_TRANSFORMS", "1"});
+}
+
 void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene) {
     // The encodings' tables from the storage buffer, not constant arrays (codec_tables.glsl).
     s.defines.push_back({"GBL_CODEC_TABLES_SET", "1"});
     s.defines.push_back({"GBL_CODEC_TABLES_BINDING", std::to_string(enc::kCodecTablesBinding)});
+    addSceneFeatureDefines(s, scene.layers, scene.uvTransforms);
     if (!scene.visibility) return;
     s.defines.push_back({"TEXTURE_COUNT", std::to_string(scene.textureCount)});
     if (scene.nonUniformIndexing) {
@@ -96,6 +113,7 @@ std::vector<Binding> lightingSet0(bool lightPrePass) {
         {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // emissive = forward: scene-colour emissive (else depth)
         {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},  // ground truth: the environment's sampling table
         {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},   // ground truth: the progressive accumulation
+        {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},  // the sheen's albedo table (1 x 1 without sheen)
     };
     if (lightPrePass) set0.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
     return set0;
@@ -204,7 +222,9 @@ LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& w
                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
         .buffer(pass.sets[0], 10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, in.ibl->environmentSampling.buffer)
         .image(pass.sets[0], 11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, pass.accumulation.view, VK_NULL_HANDLE,
-               VK_IMAGE_LAYOUT_GENERAL);
+               VK_IMAGE_LAYOUT_GENERAL)
+        .image(pass.sets[0], 12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, in.sheenAlbedo->view, in.ibl->lutSampler,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     writer.image(pass.sets[0], 8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                  emissive ? in.gbuffer->emissive.view : in.gbuffer->depth.view, in.nearestSampler,
                  emissive ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);

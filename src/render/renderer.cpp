@@ -1,5 +1,7 @@
 #include "renderer.h"
 
+#include "sheen_albedo.h"
+
 #include "cpu_decode.h"
 #include "decode_pass.h"
 
@@ -19,6 +21,7 @@
 #include "ibl_cache.h"
 #include "parallel_invoke.h"
 #include "renderer_passes.h"
+#include "sheen_albedo.h"
 #include "stage_clock.h"
 #include "warm_up_times.h"
 #include "wiring_plan.h"
@@ -173,6 +176,24 @@ void Renderer::init(const EnvironmentMap& environment, const IblMaps& ibl) {
                                         VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
     nearestSampler_ = createSampler(ctx_, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST,
                                     VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+    // The sheen's albedo table (lighting_pass.comp.glsl binding 12): built (once per process) only
+    // for a scene with sheen; otherwise a 1 x 1 zero that no pass reads.
+    {
+        ImageDesc t;
+        t.format = VK_FORMAT_R32_SFLOAT;
+        t.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        const float zero = 0.0f;
+        const float* texels = &zero;
+        t.width = t.height = 1;
+        if (gpuScene_.layers & kLayerSheen) {
+            const shading::SheenAlbedoTable& table = shading::sheenAlbedoTable();
+            t.width = t.height = uint32_t(table.size);
+            texels = table.values.data();
+        }
+        sheenAlbedo_ = createImage(ctx_, t);
+        uploadImage(ctx_, sheenAlbedo_, texels, VkDeviceSize(t.width) * t.height * sizeof(float),
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, false);
+    }
     codecTables_.codecTables = createCodecTablesBuffer(ctx_);
     // The binding is in every G-buffer pass's set layout; a shader without best-fit normals never
     // reads it, so any valid buffer serves.
@@ -191,6 +212,7 @@ Renderer::~Renderer() {
     vkDeviceWaitIdle(ctx_.device);
     destroyGpuScene(ctx_, gpuScene_);
     destroyImage(ctx_, environmentTexture_);
+    destroyImage(ctx_, sheenAlbedo_);
     destroyIblGpu(ctx_, ibl_);
     vkDestroySampler(ctx_.device, environmentSampler_, nullptr);
     vkDestroySampler(ctx_.device, nearestSampler_, nullptr);
@@ -307,8 +329,8 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, settings.readTargetWords);
     const bool groundTruth = settings.specularIbl == IblMode::GroundTruth;
     LightingInputs inputs{&frameBuffer, &gpuScene_.lights, &gbuffer, &environmentTexture_, environmentSampler_,
-                          nearestSampler_, &ibl_, material, lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth,
-                          variant};
+                          nearestSampler_, &ibl_, &sheenAlbedo_, material,
+                          lightBuffers.buffer ? &lightBuffers : nullptr, groundTruth, variant};
     LightingPass lighting = createLightingPass(ctx_, wiring, inputs, w, rows, pipelines_);
     if (gbuffer.needsWarmUp || (material && material->needsWarmUp) || lighting.needsWarmUp) {
         // New pipelines: one draw clipped to a pixel and one workgroup each, so that a driver that

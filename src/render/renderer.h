@@ -187,6 +187,8 @@ public:
 
     const Scene& scene() const { return scene_; }
     const IblGpu& ibl() const { return ibl_; }
+    // The material layers some material of the scene has (GpuScene::layers, kLayer* bits).
+    int sceneLayers() const { return gpuScene_.layers; }
     // Pipelines built so far (G-buffer, material, lighting, decode): each layout's are built at its
     // first render and reused by every later one, whatever the camera or size; the lighting
     // pass's once per IBL mode (and Fresnel).
@@ -201,6 +203,7 @@ private:
     VkSampler environmentSampler_ = VK_NULL_HANDLE;
     VkSampler nearestSampler_ = VK_NULL_HANDLE;
     IblGpu ibl_;
+    GpuImage sheenAlbedo_;  // shading::sheenAlbedoTable() as R32F (1 x 1 zero without sheen)
     PipelineMemo ownPipelines_;
     PipelineMemo& pipelines_;  // ownPipelines_, or the memo shared by several renderers
     // The tables a G-buffer pass binds (tablesFor): the encodings' (uploaded at init) and the

@@ -21,6 +21,10 @@ struct TargetReadScene {
     bool nonUniformIndexing = false;
     MaterialTextureSlots texturesBySlot;  // the resolve's candidates per slot (without non-uniform indexing)
     bool clusters = false;  // [ids] cluster_triangles: the cluster table at set 1, binding 6
+    // The scene's shader features (gpu_scene.h sceneShaderFeatures), for every layout: the lighting
+    // pass compiles the layers' shading (GBL_LAYERS), a resolve the material's (and its uv transforms).
+    int layers = 0;
+    bool uvTransforms = false;
 };
 
 struct GBufferPass {
@@ -57,6 +61,8 @@ struct GBufferPass {
     // A visibility buffer (GBufferWiring::visibilityBuffer): the one target holds ids, and the
     // passes that read it resolve Surfaces from this scene's geometry, materials and textures.
     const GpuScene* visibilityScene = nullptr;
+    int sceneLayers = 0;              // GpuScene::layers of the scene drawn
+    bool sceneUvTransforms = false;   // GpuScene::uvTransforms
     // ... and whether its resolve may index the textures per pixel (VulkanContext::
     // nonUniformSampledImageIndexing; without it, visibility_resolve.glsl loops over them).
     bool nonUniformTextureIndexing = false;
@@ -186,6 +192,7 @@ struct LightingInputs {
     VkSampler environmentSampler;
     VkSampler nearestSampler;
     const IblGpu* ibl;  // environment cube, pre-filtered cube, BRDF LUT (bindings 5, 6, 7)
+    const GpuImage* sheenAlbedo;  // R32F E(NoV, sheen roughness) (binding 12; Renderer::sheenAlbedo_)
     const GBufferPass* materialPass = nullptr;  // deferred lighting's second geometry pass (set 2)
     const Buffer* lightBufferWords = nullptr;  // deferred lighting's light buffers (set 0, binding 9)
     bool accumulate = false;  // ground truth: batches accumulate into LightingPass::accumulation
@@ -210,6 +217,8 @@ void writeTargetReadSet(DescriptorWriter& writer, VkDescriptorSet set, const GBu
 // resolve, and GBL_NONUNIFORM_TEXTURE_INDEXING where the device has it, else the candidate
 // textures of each material slot (GBL_RESOLVE_SLOT_<name>: the scene's texturesBySlot).
 void addTargetReadDefines(ShaderSource& s, const TargetReadScene& scene);
+// GBL_LAYERS and GBL_UV_TRANSFORMS for a scene that has them (material_eval.glsl, lighting_pass.comp.glsl).
+void addSceneFeatureDefines(ShaderSource& s, int layers, bool uvTransforms);
 
 // in.gbuffer and in.materialPass must be the wiring's (their target counts are the set layouts').
 LightingPass createLightingPass(const VulkanContext& ctx, const GBufferWiring& wiring, const LightingInputs& in,

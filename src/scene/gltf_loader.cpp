@@ -21,10 +21,14 @@
 namespace gbl {
 namespace {
 
-// Extensions whose data this loader reads (or, for quantization, whose types it accepts).
+// Extensions whose data this loader reads (or, for quantization, whose types it accepts; for
+// transmission and volume, whose materials it masks out of the metrics as drawn forward).
 // A file that *requires* any other one cannot be shown correctly, so it is refused.
-constexpr std::array kSupportedRequiredExtensions = {"KHR_materials_specular", "KHR_lights_punctual",
-                                                     "KHR_mesh_quantization"};
+constexpr std::array kSupportedRequiredExtensions = {
+    "KHR_materials_specular",   "KHR_lights_punctual",        "KHR_mesh_quantization",
+    "KHR_texture_transform",    "KHR_materials_clearcoat",    "KHR_materials_sheen",
+    "KHR_materials_anisotropy", "KHR_materials_ior",          "KHR_materials_emissive_strength",
+    "KHR_materials_transmission", "KHR_materials_volume"};
 
 bool startsWithGlbMagic(const std::vector<unsigned char>& bytes) {
     return bytes.size() >= 4 && std::equal(bytes.begin(), bytes.begin() + 4, "glTF");

@@ -1,9 +1,24 @@
 // Scene-wide helpers shared by the glTF loader and the built-in scene.
 #include "scene.h"
 
+#include <cmath>
 #include <limits>
 
 namespace gbl {
+
+glm::mat2 TextureTransform::matrix() const {
+    // rotation * scale, the rotation of glTF issue 1563 (scene.h): columns (c, -s) and (s, c).
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    return glm::mat2(glm::vec2(c, -s) * scale.x, glm::vec2(s, c) * scale.y);
+}
+
+int Material::layers() const {
+    int bits = 0;
+    if (clearcoatFactor > 0.0f) bits |= kLayerCoat;
+    if (sheenColorFactor.x > 0.0f || sheenColorFactor.y > 0.0f || sheenColorFactor.z > 0.0f) bits |= kLayerSheen;
+    if (anisotropyStrength > 0.0f) bits |= kLayerAnisotropy;
+    return bits;
+}
 
 Light defaultSun() {
     Light sun;

@@ -2,6 +2,7 @@
 // A scene flattened for rendering: one vertex and one index array for all meshes, one draw per
 // glTF primitive with its world matrix, materials with factors and texture indices, textures
 // decoded to RGBA8, a camera and punctual lights. Loaded from glTF 2.0 or built in code.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -16,6 +17,7 @@ struct Vertex {
     glm::vec3 normal;
     glm::vec4 tangent;  // xyz tangent, w = bitangent sign (glTF convention: B = cross(N, T) * w)
     glm::vec2 uv;
+    glm::vec2 uv1{0.0f};  // TEXCOORD_1, for textures whose texCoord is 1 (0 where the primitive has none)
 };
 
 struct Texture {
@@ -28,7 +30,35 @@ struct Texture {
 
 constexpr int kNoTexture = -1;
 
-// glTF metallic-roughness material, with KHR_materials_specular when present.
+// A material's texture slots, in shaders/shared_types.h's order (GBL_SLOT_*).
+enum class TextureSlot : int {
+    BaseColor, MetallicRoughness, Normal, Occlusion, Emissive, Specular, SpecularColor,
+    Clearcoat, ClearcoatRoughness, ClearcoatNormal, SheenColor, SheenRoughness, Anisotropy, Count
+};
+constexpr size_t kTextureSlotCount = size_t(TextureSlot::Count);
+
+// The texture coordinates a slot samples: TEXCOORD_<texCoord>, through KHR_texture_transform's
+// uv' = offset + rotation * (scale * uv) (its README: translation * rotation * scale; the rotation
+// "counter-clockwise" in UV space, whose v axis points down, i.e. (u, v) -> (cos u + sin v,
+// -sin u + cos v): the matrix of glTF issue 1563 that Babylon.js, Blender's importer, three.js and
+// the TextureTransformTest sample model agree on, not the README's GLSL listing).
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;  // radians
+    glm::vec2 scale{1.0f};
+    int texCoord = 0;       // 0 or 1 (the loader refuses others)
+    bool transforms() const { return offset != glm::vec2(0.0f) || rotation != 0.0f || scale != glm::vec2(1.0f); }
+    // The 2x2 linear part, column-major: m[0] = first column.
+    glm::mat2 matrix() const;
+};
+
+// The material layers (shaders/brdf_layers.glsl GBL_LAYER_*).
+constexpr int kLayerCoat = 1;
+constexpr int kLayerSheen = 2;
+constexpr int kLayerAnisotropy = 4;
+
+// glTF metallic-roughness material, with the KHR_materials_* extensions the loader reads
+// (specular, ior, emissive_strength, clearcoat, sheen, anisotropy) and KHR_texture_transform.
 struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
@@ -47,6 +77,37 @@ struct Material {
     int emissiveTexture = kNoTexture;
     int specularTexture = kNoTexture;           // A = specular
     int specularColorTexture = kNoTexture;      // RGB = specular colour (sRGB)
+    // KHR_materials_ior: dielectric F0 = ((ior - 1) / (ior + 1))^2; 0 is the specular-glossiness
+    // compatibility mode (F0 = 1: the Fresnel term "MUST evaluate to 1.0").
+    float ior = 1.5f;
+    // KHR_materials_emissive_strength: multiplies emissiveFactor (which stays in [0, 1]).
+    float emissiveStrength = 1.0f;
+    // KHR_materials_clearcoat: clearcoat = factor * texture.r, roughness = factor * texture.g, the
+    // coat's normal from its own normal texture (none: the geometry's normal, not the base's map).
+    float clearcoatFactor = 0.0f;
+    int clearcoatTexture = kNoTexture;
+    float clearcoatRoughnessFactor = 0.0f;
+    int clearcoatRoughnessTexture = kNoTexture;
+    int clearcoatNormalTexture = kNoTexture;
+    float clearcoatNormalScale = 1.0f;
+    // KHR_materials_sheen: colour = factor * texture.rgb (sRGB), roughness = factor * texture.a.
+    glm::vec3 sheenColorFactor{0.0f};
+    int sheenColorTexture = kNoTexture;
+    float sheenRoughnessFactor = 0.0f;
+    int sheenRoughnessTexture = kNoTexture;
+    // KHR_materials_anisotropy: strength = factor * texture.b, direction = rotation applied to
+    // texture.rg * 2 - 1 (or +x) in the tangent frame.
+    float anisotropyStrength = 0.0f;
+    float anisotropyRotation = 0.0f;  // radians, counter-clockwise from the tangent
+    int anisotropyTexture = kNoTexture;
+    // Per slot (TextureSlot): KHR_texture_transform and the texCoord set.
+    std::array<TextureTransform, kTextureSlotCount> uvTransforms{};
+    // KHR_materials_transmission / KHR_materials_volume: deferred engines draw such materials
+    // forward, after the G-buffer's lighting; gbufferlab masks their pixels out of every metric and
+    // counts them (`forward` names the extension).
+    std::string forward;
+    // The layers the material has (kLayer* bits): a factor above 0 enables each.
+    int layers() const;
     bool doubleSided = false;
     // glTF alphaMode MASK: fragments whose alpha (base colour factor x texture) is below
     // alphaCutoff are discarded (glTF 2.0, 3.9.4). OPAQUE and BLEND render opaque.

@@ -68,10 +68,14 @@ std::optional<PrimitiveGeometry> loadTrianglePrimitive(const GltfContext& ctx, s
     const std::vector<float> normals = readMatching("NORMAL", GltfVertexAttribute::Normal);
     const std::vector<float> tangents = readMatching("TANGENT", GltfVertexAttribute::Tangent);
     const std::vector<float> uvs = readMatching("TEXCOORD_0", GltfVertexAttribute::TexCoord);
-    if (size_t bad = 0; !allFinite(uvs, bad))
-        ctx.fail(where + ": TEXCOORD_0 accessor " + std::to_string(attributeAccessor(prim, "TEXCOORD_0")),
-                 "vertex " + std::to_string(bad / 2) + " has a non-finite texture coordinate",
-                 "fix the UVs in the source model and re-export");
+    // The second set, for textures whose texCoord (or KHR_texture_transform texCoord) is 1.
+    const std::vector<float> uvs1 = readMatching("TEXCOORD_1", GltfVertexAttribute::TexCoord);
+    for (const auto& [set, values] : {std::pair<const char*, const std::vector<float>*>{"TEXCOORD_0", &uvs},
+                                      std::pair<const char*, const std::vector<float>*>{"TEXCOORD_1", &uvs1}})
+        if (size_t bad = 0; !allFinite(*values, bad))
+            ctx.fail(where + ": " + set + " accessor " + std::to_string(attributeAccessor(prim, set)),
+                     "vertex " + std::to_string(bad / 2) + " has a non-finite texture coordinate",
+                     "fix the UVs in the source model and re-export");
 
     PrimitiveGeometry geometry;
     geometry.vertices.resize(vertexCount);
@@ -82,6 +86,7 @@ std::optional<PrimitiveGeometry> loadTrianglePrimitive(const GltfContext& ctx, s
         v.tangent = tangents.empty() ? glm::vec4(0.0f)
                                      : glm::vec4(tangents[4 * i], tangents[4 * i + 1], tangents[4 * i + 2], tangents[4 * i + 3]);
         v.uv = uvs.empty() ? glm::vec2(0.0f) : glm::vec2(uvs[2 * i], uvs[2 * i + 1]);
+        v.uv1 = uvs1.empty() ? glm::vec2(0.0f) : glm::vec2(uvs1[2 * i], uvs1[2 * i + 1]);
     }
 
     if (prim.indices >= 0) {

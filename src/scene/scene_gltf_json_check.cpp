@@ -16,7 +16,7 @@ namespace {
 using nlohmann::json;
 
 // What a property must hold. `Index` is a glTF integer >= 0; `Unit` a number in [0, 1].
-enum class Kind { Object, ObjectArray, IndexArray, NumberArray, StringArray, Index, Number, Unit, NonNegative, String, Boolean };
+enum class Kind { Object, ObjectArray, IndexArray, NumberArray, StringArray, Index, Number, Unit, NonNegative, Ior, String, Boolean };
 
 struct Schema;
 struct Property {
@@ -32,6 +32,48 @@ struct Schema {
 
 const Schema kTextureInfo{{{"index", Kind::Index}, {"texCoord", Kind::Index}}};
 const Schema kNormalTextureInfo{{{"index", Kind::Index}, {"texCoord", Kind::Index}, {"scale", Kind::Number}}};
+
+// The extensions whose data the loader reads (their READMEs' schemas): an object under
+// `extensions` with one of these names is checked against it, so a bad factor is refused at its
+// place, e.g. materials[3].extensions.KHR_materials_clearcoat.clearcoatFactor: 1.5 is outside [0, 1].
+const Schema kTextureTransform{{{"offset", Kind::NumberArray, nullptr, 2},
+                                {"rotation", Kind::Number},
+                                {"scale", Kind::NumberArray, nullptr, 2},
+                                {"texCoord", Kind::Index}}};
+const Schema kClearcoat{{{"clearcoatFactor", Kind::Unit},
+                         {"clearcoatTexture", Kind::Object, &kTextureInfo},
+                         {"clearcoatRoughnessFactor", Kind::Unit},
+                         {"clearcoatRoughnessTexture", Kind::Object, &kTextureInfo},
+                         {"clearcoatNormalTexture", Kind::Object, &kNormalTextureInfo}}};
+const Schema kSheen{{{"sheenColorFactor", Kind::NumberArray, nullptr, 3, true},
+                     {"sheenColorTexture", Kind::Object, &kTextureInfo},
+                     {"sheenRoughnessFactor", Kind::Unit},
+                     {"sheenRoughnessTexture", Kind::Object, &kTextureInfo}}};
+const Schema kAnisotropy{{{"anisotropyStrength", Kind::Unit},
+                          {"anisotropyRotation", Kind::Number},
+                          {"anisotropyTexture", Kind::Object, &kTextureInfo}}};
+const Schema kIor{{{"ior", Kind::Ior}}};
+const Schema kEmissiveStrength{{{"emissiveStrength", Kind::NonNegative}}};
+const Schema kSpecular{{{"specularFactor", Kind::Unit},
+                        {"specularTexture", Kind::Object, &kTextureInfo},
+                        {"specularColorFactor", Kind::NumberArray, nullptr, 3},
+                        {"specularColorTexture", Kind::Object, &kTextureInfo}}};
+const Schema kTransmission{{{"transmissionFactor", Kind::Unit}, {"transmissionTexture", Kind::Object, &kTextureInfo}}};
+const Schema kVolume{{{"thicknessFactor", Kind::NonNegative},
+                      {"thicknessTexture", Kind::Object, &kTextureInfo},
+                      {"attenuationDistance", Kind::Number},
+                      {"attenuationColor", Kind::NumberArray, nullptr, 3, true}}};
+
+const Schema* extensionSchema(const std::string& name) {
+    static const std::map<std::string, const Schema*> schemas = {
+        {"KHR_texture_transform", &kTextureTransform},   {"KHR_materials_clearcoat", &kClearcoat},
+        {"KHR_materials_sheen", &kSheen},                {"KHR_materials_anisotropy", &kAnisotropy},
+        {"KHR_materials_ior", &kIor},                    {"KHR_materials_emissive_strength", &kEmissiveStrength},
+        {"KHR_materials_specular", &kSpecular},          {"KHR_materials_transmission", &kTransmission},
+        {"KHR_materials_volume", &kVolume}};
+    const auto it = schemas.find(name);
+    return it == schemas.end() ? nullptr : it->second;
+}
 const Schema kOcclusionTextureInfo{{{"index", Kind::Index}, {"texCoord", Kind::Index}, {"strength", Kind::Unit}}};
 const Schema kPbr{{{"baseColorFactor", Kind::NumberArray, nullptr, 4, true},
                    {"baseColorTexture", Kind::Object, &kTextureInfo},
@@ -174,6 +216,11 @@ public:
                 need(v.is_number(), "a number");
                 if (!(v.get<double>() >= 0.0)) fail(where, numberText(v.get<double>()) + " is negative");
                 break;
+            case Kind::Ior:  // KHR_materials_ior: >= 1, or 0 (the specular-glossiness compatibility mode)
+                need(v.is_number(), "a number");
+                if (!(v.get<double>() >= 1.0 || v.get<double>() == 0.0))
+                    fail(where, numberText(v.get<double>()) + " is below 1 (an index of refraction is >= 1, or 0)");
+                break;
             case Kind::String: need(v.is_string(), "a string"); break;
             case Kind::Boolean: need(v.is_boolean(), "true or false"); break;
         }
@@ -189,7 +236,10 @@ public:
         if (const auto ext = object.find("extensions"); ext != object.end()) {
             const std::string at = where.empty() ? "extensions" : where + ".extensions";
             expectType(*ext, Kind::Object, at);
-            for (const auto& [name, value] : ext->items()) expectType(value, Kind::Object, at + "." + escapeText(name));
+            for (const auto& [name, value] : ext->items()) {
+                expectType(value, Kind::Object, at + "." + escapeText(name));
+                if (const Schema* known = extensionSchema(name)) checkObject(value, *known, at + "." + name);
+            }
         }
         for (const Property& p : schema.properties) {
             const auto it = object.find(p.name);
@@ -259,6 +309,9 @@ public:
                 const size_t mat = prim["material"].get<size_t>();
                 forEachTexCoord(materials[mat], "materials[" + std::to_string(mat) + "]", [&](const std::string& at, uint64_t set) {
                     const std::string attribute = "TEXCOORD_" + std::to_string(set);
+                    if (set > 1)  // scene.h Vertex: uv and uv1
+                        fail(at + ".texCoord", std::to_string(set) + " names " + attribute +
+                                                   ": gbufferlab reads TEXCOORD_0 and TEXCOORD_1 only");
                     if (!prim.contains("attributes") || !prim["attributes"].contains(attribute))
                         fail(at + ".texCoord", std::to_string(set) + " names " + attribute + ", which meshes[" +
                                                    std::to_string(m) + "].primitives[" + std::to_string(p) +
@@ -268,11 +321,19 @@ public:
         }
     }
 
+    // Every texture the loader samples, with the set it samples: its texCoord, or where its
+    // KHR_texture_transform gives one, that ("Overrides the textureInfo texCoord value").
     template <class Fn>
     static void forEachTexCoord(const json& material, const std::string& where, Fn&& fn) {
         auto visit = [&](const json& info, const std::string& at) {
-            if (info.is_object() && info.contains("index") && info.contains("texCoord"))
-                fn(at, info["texCoord"].get<uint64_t>());
+            if (!info.is_object() || !info.contains("index")) return;
+            const auto ext = info.find("extensions");
+            if (ext != info.end() && ext->contains("KHR_texture_transform") &&
+                (*ext)["KHR_texture_transform"].contains("texCoord")) {
+                fn(at + ".extensions.KHR_texture_transform", (*ext)["KHR_texture_transform"]["texCoord"].get<uint64_t>());
+                return;
+            }
+            if (info.contains("texCoord")) fn(at, info["texCoord"].get<uint64_t>());
         };
         for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"})
             if (material.contains(key)) visit(material[key], where + "." + key);
@@ -280,6 +341,18 @@ public:
             for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
                 if (material["pbrMetallicRoughness"].contains(key))
                     visit(material["pbrMetallicRoughness"][key], where + ".pbrMetallicRoughness." + key);
+        const auto ext = material.find("extensions");
+        if (ext == material.end()) return;
+        static const std::pair<const char*, std::vector<const char*>> kExtensionTextures[] = {
+            {"KHR_materials_clearcoat", {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}},
+            {"KHR_materials_sheen", {"sheenColorTexture", "sheenRoughnessTexture"}},
+            {"KHR_materials_anisotropy", {"anisotropyTexture"}},
+            {"KHR_materials_specular", {"specularTexture", "specularColorTexture"}}};
+        for (const auto& [name, keys] : kExtensionTextures) {
+            if (!ext->contains(name)) continue;
+            for (const char* key : keys)
+                if ((*ext)[name].contains(key)) visit((*ext)[name][key], where + ".extensions." + name + "." + key);
+        }
     }
 
 private:

@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "brdf.h"
+#include "brdf_layers.h"
 #include "ibl_math.h"
+#include "sheen_albedo.h"
 #include "parallel_for.h"
 
 namespace gbl::search {
@@ -132,12 +134,75 @@ glm::vec3 lightRadianceAndDirection(const ShadeLight& light, glm::vec3 position,
     return light.radiance * falloff;
 }
 
+// lighting_pass.comp.glsl gblLayersOf: the decoded Surface's layers, "no layer" where 0.
+shading::Layers layersOf(const Surface& s, glm::vec3 N) {
+    shading::Layers ly;
+    ly.coat = std::clamp(s.coat, 0.0f, 1.0f);
+    ly.coatRoughness = std::clamp(s.coatRoughness, 0.0f, 1.0f);
+    ly.coatNormal = glm::dot(s.coatNormal, s.coatNormal) > 0.0f ? glm::normalize(s.coatNormal) : N;
+    ly.sheenColor = glm::max(s.sheenColor, glm::vec3(0.0f));
+    ly.sheenRoughness = std::clamp(s.sheenRoughness, 0.0f, 1.0f);
+    const glm::vec3 t = s.anisotropyDirection - N * glm::dot(N, s.anisotropyDirection);
+    const float tt = glm::dot(t, t);
+    const bool aniso = tt > 1e-12f;
+    ly.anisotropy = aniso ? std::clamp(s.anisotropyStrength, 0.0f, 1.0f) : 0.0f;
+    ly.anisotropyT = aniso ? t * (1.0f / std::sqrt(tt)) : glm::vec3(0.0f);
+    ly.anisotropyB = glm::cross(N, ly.anisotropyT);
+    return ly;
+}
+
+bool hasLayers(const shading::Layers& ly) {
+    return ly.coat > 0.0f || shading::max3(ly.sheenColor) > 0.0f || ly.anisotropy > 0.0f;
+}
+
+// The layered pixel as lighting_pass.comp.glsl shades it with GBL_LAYERS, the split-sum IBL of
+// image_based_light.glsl evaluateImageBasedLightLayered.
+glm::vec3 shadeLayeredPixel(const Surface& s, glm::vec3 N, glm::vec3 V, const shading::Layers& ly, glm::vec3 position,
+                            const std::vector<ShadeLight>& lights, const CpuIbl& ibl, glm::vec3 forwardEmissive) {
+    const shading::SheenAlbedoTable& table = shading::sheenAlbedoTable();
+    const bool sheen = shading::max3(ly.sheenColor) > 0.0f;
+    const float sheenV = sheen ? table.lookup(std::clamp(glm::dot(N, V), 0.0f, 1.0f), ly.sheenRoughness) : 0.0f;
+    glm::vec3 color(0.0f);
+    for (const ShadeLight& light : lights) {
+        glm::vec3 L;
+        const glm::vec3 radiance = lightRadianceAndDirection(light, position, L);
+        const float sheenL = sheen ? table.lookup(std::clamp(glm::dot(N, L), 0.0f, 1.0f), ly.sheenRoughness) : 0.0f;
+        color += shading::evaluateDirectLightLayeredMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, ly, sheenV,
+                                                         sheenL, radiance, shading::FRESNEL_KARIS);
+    }
+    const float roughness = std::clamp(s.roughness, 0.0f, 1.0f);
+    const float NoV = std::max(std::clamp(glm::dot(N, V), 0.0f, 1.0f), shading::kMinIblNoV);
+    const glm::vec3 Rn = 2.0f * glm::dot(N, V) * N - V;  // reflect(-V, N)
+    const glm::vec3 R = ly.anisotropy > 0.0f
+                            ? shading::anisotropicReflection(N, V, ly.anisotropyB, ly.anisotropy, roughness)
+                            : Rn;
+    const glm::vec3 specular = ibl.prefiltered(R, roughness) * shading::envBRDF(s.specularColor, ibl.lut(NoV, roughness));
+    const glm::vec3 diffuse = s.diffuseColor * (1.0f / shading::kPi) * ibl.irradiance(N);
+    glm::vec3 indirect = diffuse + specular;
+    if (sheen) {
+        const float sheenIbl = table.lookup(NoV, ly.sheenRoughness);  // the IBL's NoV floor, as the GLSL's
+        indirect = ly.sheenColor * sheenIbl * ibl.prefiltered(Rn, ly.sheenRoughness) +
+                   indirect * (1.0f - shading::max3(ly.sheenColor) * sheenIbl);
+    }
+    if (ly.coat > 0.0f) {
+        const float NcoV = std::max(shading::coatNoV(ly.coatNormal, V), shading::kMinIblNoV);
+        const float fc = ly.coat * shading::coatFresnel(NcoV);
+        const glm::vec3 Rc = 2.0f * glm::dot(ly.coatNormal, V) * ly.coatNormal - V;
+        const glm::vec2 AB = ibl.lut(NcoV, ly.coatRoughness);
+        indirect = indirect * (1.0f - fc) + fc * ibl.prefiltered(Rc, ly.coatRoughness) * (AB.x + AB.y);
+    }
+    color += indirect * s.occlusion;
+    return color + shading::coatedEmission(s.emissive, ly, V) + shading::coatedEmission(forwardEmissive, ly, V);
+}
+
 }  // namespace
 
 glm::vec3 shadePixel(const Surface& s, glm::vec3 position, glm::vec3 cameraPosition,
                      const std::vector<ShadeLight>& lights, const CpuIbl& ibl, glm::vec3 forwardEmissive) {
     const glm::vec3 V = glm::normalize(cameraPosition - position);
     const glm::vec3 N = glm::normalize(s.normal);
+    if (const shading::Layers ly = layersOf(s, N); hasLayers(ly))
+        return shadeLayeredPixel(s, N, V, ly, position, lights, ibl, forwardEmissive);
     glm::vec3 color(0.0f);
     for (const ShadeLight& light : lights) {
         glm::vec3 L;

@@ -143,6 +143,8 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
         }
         Surface s = input[i];
         s.normal = directionToStored(s.normal, normalSpace, v.view);
+        s.coatNormal = directionToStored(s.coatNormal, normalSpace, v.view);  // the layers' directions too
+        s.anisotropyDirection = directionToStored(s.anisotropyDirection, normalSpace, v.view);
         if (storesPosition) s.position = pointToStored(positions[i], layout.space.position, v.view);
         if (storesDepth) s.position = glm::vec3(0.0f, 0.0f, ownDepth(i));
         stored[i] = s;
@@ -155,6 +157,8 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
     if (storesPosition) storedPositions.resize(n);
     for (size_t i = 0; i < n; ++i) {
         decoded[i].normal = directionFromStored(decoded[i].normal, normalSpace, v.view);
+        decoded[i].coatNormal = directionFromStored(decoded[i].coatNormal, normalSpace, v.view);
+        decoded[i].anisotropyDirection = directionFromStored(decoded[i].anisotropyDirection, normalSpace, v.view);
         if (storesPosition) storedPositions[i] = pointFromStored(decoded[i].position, layout.space.position, v.view);
     }
     if (storesDepth) {  // the lighting rebuilds position from the decoded depth (lighting_pass.comp.glsl)

@@ -173,6 +173,28 @@ TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
 // errors add up to the covered pixels' and the ground truth reports its noise beside each run.
 // compare --views N: every metric is the mean of its per-view values, with a spread >= 0; the
 // views are different cameras, so their errors differ. Bad counts are one line naming the flag.
+// ToyCar's glass (KHR_materials_transmission) is drawn forward by deferred engines: compare says
+// how many pixels it leaves out of every metric, per view, in the report's notes and on the
+// console, and measures the rest.
+TEST(Cli, CompareCountsAndExcludesForwardDrawnPixels) {
+    const fs::path toyCar = fs::path(GBL_SHARED_DIR) / "assets" / "models" / "ToyCar" / "ToyCar.gltf";
+    if (!fs::exists(toyCar)) GTEST_SKIP() << "missing input " << toyCar.string();
+    RunResult r = run("compare --scene " + toyCar.string() + " --out toycar --size 96x64 --views 1 --layouts ue4");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(slurp(scratch() / "toycar" / "report.json"));
+    std::string note;
+    for (const auto& n : report["run"]["notes"])
+        if (n.get<std::string>().find("forward") != std::string::npos) note = n.get<std::string>();
+    EXPECT_NE(note.find("% of pixels forward, excluded from every metric"), std::string::npos) << note;
+    EXPECT_NE(note.find("KHR_materials_transmission"), std::string::npos) << note;
+    const double percent = std::stod(note);
+    EXPECT_GT(percent, 0.1) << note;
+    EXPECT_LT(percent, 20.0) << note;
+    EXPECT_NE((r.out + r.err).find("% of pixels forward, excluded"), std::string::npos);
+    ASSERT_EQ(report["runs"].size(), 1u);
+    EXPECT_TRUE(report["runs"][0]["image_errors"].contains("flip_mean"));
+}
+
 TEST(Cli, CompareViewsReportTheMeanOverViewsAndItsSpread) {
     for (const std::string bad : {"0", "abc", "-1", "2x", "17"}) {
         const RunResult b = run("compare --out badviews --size 32x32 --layouts ue4 --views " + bad);

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "cli_runner.h"
+#include "test_paths.h"
 
 namespace fs = std::filesystem;
 
@@ -138,4 +139,16 @@ TEST(Messages, ASuiteGivenAsAGltfSaysSo) {
     const RunResult r = run("compare --scene outer.toml --size 32x32 --layouts ue4 --out nested");
     expectOneLineError(r, {"outer.toml:2:8:", "'inner.toml' is a scene suite"});
     EXPECT_FALSE(fs::exists(scratch() / "nested"));
+}
+
+// A scene with materials drawn forward (ToyCar's glass: KHR_materials_transmission) is masked on
+// the CPU evaluation, on whole frames: asking for the device evaluator or for bands is refused, in
+// one line, before any device work, with what to give instead.
+TEST(Messages, ForwardDrawnMaterialsNeedTheCpuEvaluation) {
+    const fs::path toyCar = sharedAssets() / "models" / "ToyCar" / "ToyCar.gltf";
+    GBL_REQUIRE_FILE(toyCar);
+    expectOneLineError(run("compare --scene " + toyCar.string() + " --eval gpu --out fw"),
+                       {"ToyCar.gltf", "drawn forward", "KHR_materials_transmission", "--eval cpu or auto"});
+    expectOneLineError(run("compare --scene " + toyCar.string() + " --band-rows 64 --out fw"),
+                       {"ToyCar.gltf", "drawn forward", "--band-rows 0 or auto"});
 }

@@ -29,10 +29,10 @@ namespace {
 
 constexpr uint32_t kSize = 256;
 constexpr size_t kPixels = size_t(kSize) * kSize;
-constexpr int kFloatsPerSurface = 28;  // 7 vec4, see kSurfaceIn
+constexpr int kFloatsPerSurface = 40;  // 10 vec4, see kSurfaceIn
 
 const char* kSurfaceIn = R"(
-struct SurfaceIn { vec4 a[7]; };
+struct SurfaceIn { vec4 a[10]; };
 layout(set = 0, binding = 0, std430) readonly buffer Surfaces { SurfaceIn surfaces[]; };
 Surface fetchSurface(ivec2 p) {
     SurfaceIn i = surfaces[p.y * SIZE + p.x];
@@ -41,8 +41,11 @@ Surface fetchSurface(ivec2 p) {
     s.baseColor = i.a[1].xyz; s.roughness = i.a[1].w;
     s.specularColor = i.a[2].xyz; s.specular = i.a[2].w;
     s.diffuseColor = i.a[3].xyz; s.occlusion = i.a[3].w;
-    s.emissive = i.a[4].xyz;
-    s.position = i.a[5].xyz;
+    s.emissive = i.a[4].xyz; s.coat = i.a[4].w;
+    s.position = i.a[5].xyz; s.coatRoughness = i.a[5].w;
+    s.coatNormal = i.a[7].xyz; s.sheenRoughness = i.a[7].w;
+    s.sheenColor = i.a[8].xyz; s.anisotropyStrength = i.a[8].w;
+    s.anisotropyDirection = i.a[9].xyz; s.shadingModel = i.a[9].w;
     return s;
 }
 )";
@@ -71,14 +74,17 @@ layout(set = 0, binding = 0, std430) writeonly buffer Out { vec4 decoded[]; };
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     Surface s = readGBuffer(p);
-    uint i = uint(p.y * SIZE + p.x) * 7u;
+    uint i = uint(p.y * SIZE + p.x) * 10u;
     decoded[i + 0u] = vec4(s.normal, s.metallic);
     decoded[i + 1u] = vec4(s.baseColor, s.roughness);
     decoded[i + 2u] = vec4(s.specularColor, s.specular);
     decoded[i + 3u] = vec4(s.diffuseColor, s.occlusion);
-    decoded[i + 4u] = vec4(s.emissive, 0.0);
-    decoded[i + 5u] = vec4(s.position, 0.0);
+    decoded[i + 4u] = vec4(s.emissive, s.coat);
+    decoded[i + 5u] = vec4(s.position, s.coatRoughness);
     decoded[i + 6u] = vec4(0.0);
+    decoded[i + 7u] = vec4(s.coatNormal, s.sheenRoughness);
+    decoded[i + 8u] = vec4(s.sheenColor, s.anisotropyStrength);
+    decoded[i + 9u] = vec4(s.anisotropyDirection, s.shadingModel);
 }
 )";
 }
@@ -98,8 +104,11 @@ std::vector<float> packSurfaces(const std::vector<Surface>& v) {
         put(1, s.baseColor, s.roughness);
         put(2, s.specularColor, s.specular);
         put(3, s.diffuseColor, s.occlusion);
-        put(4, s.emissive, 0.0f);
-        put(5, s.position, 0.0f);
+        put(4, s.emissive, s.coat);
+        put(5, s.position, s.coatRoughness);
+        put(7, s.coatNormal, s.sheenRoughness);
+        put(8, s.sheenColor, s.anisotropyStrength);
+        put(9, s.anisotropyDirection, s.shadingModel);
     }
     return f;
 }
@@ -118,7 +127,15 @@ std::vector<Surface> unpackSurfaces(const float* f, size_t n) {
         s.diffuseColor = {p[12], p[13], p[14]};
         s.occlusion = p[15];
         s.emissive = {p[16], p[17], p[18]};
+        s.coat = p[19];
         s.position = {p[20], p[21], p[22]};
+        s.coatRoughness = p[23];
+        s.coatNormal = {p[28], p[29], p[30]};
+        s.sheenRoughness = p[31];
+        s.sheenColor = {p[32], p[33], p[34]};
+        s.anisotropyStrength = p[35];
+        s.anisotropyDirection = {p[36], p[37], p[38]};
+        s.shadingModel = p[39];
     }
     return v;
 }
@@ -240,12 +257,18 @@ void checkWordsAndDecodes(VulkanContext& c, const Layout& layout, const std::vec
                                g.metallic, g.roughness, g.specular, g.specularColor.x, g.specularColor.y,
                                g.specularColor.z, g.diffuseColor.x, g.diffuseColor.y, g.diffuseColor.z,
                                g.occlusion, g.emissive.x, g.emissive.y, g.emissive.z, g.position.x, g.position.y,
-                               g.position.z};
+                               g.position.z, g.coat, g.coatRoughness, g.coatNormal.x, g.coatNormal.y, g.coatNormal.z,
+                               g.sheenColor.x, g.sheenColor.y, g.sheenColor.z, g.sheenRoughness, g.anisotropyStrength,
+                               g.anisotropyDirection.x, g.anisotropyDirection.y, g.anisotropyDirection.z,
+                               g.shadingModel};
             const float b[] = {s.normal.x, s.normal.y, s.normal.z, s.baseColor.x, s.baseColor.y, s.baseColor.z,
                                s.metallic, s.roughness, s.specular, s.specularColor.x, s.specularColor.y,
                                s.specularColor.z, s.diffuseColor.x, s.diffuseColor.y, s.diffuseColor.z,
                                s.occlusion, s.emissive.x, s.emissive.y, s.emissive.z, s.position.x, s.position.y,
-                               s.position.z};
+                               s.position.z, s.coat, s.coatRoughness, s.coatNormal.x, s.coatNormal.y, s.coatNormal.z,
+                               s.sheenColor.x, s.sheenColor.y, s.sheenColor.z, s.sheenRoughness, s.anisotropyStrength,
+                               s.anisotropyDirection.x, s.anisotropyDirection.y, s.anisotropyDirection.z,
+                               s.shadingModel};
             for (size_t k = 0; k < std::size(a); ++k) {
                 worst = std::max(worst, std::abs(a[k] - b[k]));
                 if (!test::within4Ulp(a[k], b[k]) && decodeMismatches++ < 5)

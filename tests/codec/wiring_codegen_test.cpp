@@ -120,7 +120,7 @@ TEST(WiringCodegen, WiringFlagsAndFormats) {
                                                         VK_FORMAT_R8G8B8A8_UNORM}));
     const GBufferWiring ref = makeReferenceWiring();
     EXPECT_EQ(ref.layoutName, "reference");
-    EXPECT_EQ(ref.targetFormats.size(), 5u);
+    EXPECT_EQ(ref.targetFormats.size(), 8u);  // five of the base attributes, three (and an alpha) of the layers
     // Bits inside a channel keep a target UINT under native formats, and the GLSL says why.
     const GBufferWiring c3n = generateWiring(test::shippedLayout("crysis3-thin"), WiringOptions{true});
     EXPECT_EQ(c3n.targetFormats[0], VK_FORMAT_R32_UINT);

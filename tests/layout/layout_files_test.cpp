@@ -57,7 +57,7 @@ TEST(LayoutFiles, SeedLayoutsArePresent) {
 // Hand-computed: targets' nominal sizes + the depth-stencil's (D24S8 = 4, D32 = 4, D32S8 = 5).
 TEST(LayoutFiles, BytesPerPixel) {
     const std::map<std::string, int> expected = {
-        {"reference", 5 * 16 + 4},         // five RGBA32F + D32
+        {"reference", 8 * 16 + 4},         // eight RGBA32F (the material layers among them) + D32
         {"crysis2-slim", 4 + 4},           // A8B8G8R8 + D24S8
         {"crysis3-thin", 4 + 4 + 4},       // 2x A8B8G8R8 + D24S8
         {"ryse", 3 * 4 + 4},               // 3x RGBA8 + D24S8

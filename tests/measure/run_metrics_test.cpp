@@ -395,3 +395,81 @@ TEST(RunMetrics, RelativeLuminanceError) {
 // Speed at 1920x1080 is measured by bench/compare_bench.cpp, not asserted here.
 
 }  // namespace
+
+namespace {
+
+// A test surface and render that differ from the reference everywhere, and more (garbage) in a
+// block of `excluded` pixels.
+struct ExclusionCase {
+    SurfaceImages ref, test, testGarbage;
+    Image refHdr, testHdr, testHdrGarbage;
+    std::vector<uint8_t> excluded;
+};
+
+ExclusionCase exclusionCase(int w, int h) {
+    ExclusionCase c{makeSurface(w, h, 7), makeSurface(w, h, 8), makeSurface(w, h, 8), makeHdr(w, h, 3), makeHdr(w, h, 4),
+                    makeHdr(w, h, 4), std::vector<uint8_t>(size_t(w) * size_t(h), 0)};
+    for (int y = h / 4; y < h / 2; ++y)
+        for (int x = w / 4; x < w / 2; ++x) {
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            c.excluded[i] = 1;
+            for (int k = 0; k < 3; ++k) {
+                c.testHdrGarbage.pixels[i * 4 + size_t(k)] = 1e4f;
+                c.testGarbage.baseColor.pixels[i * 3 + size_t(k)] = 0.0f;
+                c.testGarbage.normal.pixels[i * 3 + size_t(k)] = k == 0 ? 1.0f : 0.0f;
+            }
+            c.testGarbage.roughness.pixels[i] = 1.0f;
+        }
+    return c;
+}
+
+}  // namespace
+
+// RunMetricsOptions::excluded: the masked pixels count in no metric. What the test holds there
+// (here: garbage, radiance 1e4, a wrong normal and colour) changes none of the attribute errors
+// and pointwise image errors, and the masked pixels are counted apart; the FLIP map holds 0 there.
+// Without a mask the garbage dominates (the case is not vacuous).
+TEST(RunMetrics, ExcludedPixelsCountInNoMetric) {
+    const int w = 64, h = 48;
+    const ExclusionCase c = exclusionCase(w, h);
+    gbl::RunMetricsOptions opt;
+    opt.hdrFlip = false;
+    opt.excluded = &c.excluded;
+    gbl::RunErrorMaps maps;
+    gbl::RunMetricsOptions withMaps = opt;
+    withMaps.maps = &maps;
+    const gbl::RunMetrics clean = gbl::computeRunMetrics(c.ref, c.test, c.refHdr, c.testHdr, 1.0f, opt);
+    const gbl::RunMetrics garbage = gbl::computeRunMetrics(c.ref, c.testGarbage, c.refHdr, c.testHdrGarbage, 1.0f, withMaps);
+    const size_t excluded = size_t(w / 4) * size_t(h / 4);
+    EXPECT_EQ(garbage.coverage.excluded, excluded);
+    EXPECT_EQ(garbage.coverage.both, clean.coverage.both);
+    EXPECT_EQ(garbage.normal.all.error.mean, clean.normal.all.error.mean);
+    EXPECT_EQ(garbage.baseColor.all.error.max, clean.baseColor.all.error.max);
+    EXPECT_EQ(garbage.roughness.all.error.p99, clean.roughness.all.error.p99);
+    EXPECT_EQ(garbage.image.rmseLinear, clean.image.rmseLinear);
+    EXPECT_EQ(garbage.image.maxAbs, clean.image.maxAbs);
+    EXPECT_EQ(garbage.image.psnrToneMapped, clean.image.psnrToneMapped);
+    EXPECT_EQ(garbage.image.covered.rmseLinear, clean.image.covered.rmseLinear);
+    EXPECT_LT(garbage.image.maxAbs, 100.0);
+    EXPECT_EQ(garbage.image.flipTiles.size(), clean.image.flipTiles.size());
+    for (size_t i = 0; i < c.excluded.size(); ++i)
+        if (c.excluded[i]) {
+            ASSERT_EQ(maps.flip.pixels[i], 0.0f) << i;
+            ASSERT_EQ(maps.measured[i], 0) << i;
+        }
+    // FLIP's filters reach across the mask's edge, so its mean moves a little, not by the garbage.
+    EXPECT_NEAR(garbage.image.flipMean, clean.image.flipMean, 0.1 * clean.image.flipMean);
+    gbl::RunMetricsOptions none;
+    none.hdrFlip = false;
+    const gbl::RunMetrics unmasked = gbl::computeRunMetrics(c.ref, c.testGarbage, c.refHdr, c.testHdrGarbage, 1.0f, none);
+    EXPECT_GT(unmasked.image.maxAbs, 1000.0);
+    EXPECT_EQ(unmasked.coverage.excluded, 0u);
+    EXPECT_EQ(unmasked.coverage.both, garbage.coverage.both + excluded);  // the excluded block is covered
+    // An empty mask is no mask: the same numbers, bit for bit.
+    const std::vector<uint8_t> empty;
+    gbl::RunMetricsOptions emptyMask = none;
+    emptyMask.excluded = &empty;
+    const gbl::RunMetrics same = gbl::computeRunMetrics(c.ref, c.testGarbage, c.refHdr, c.testHdrGarbage, 1.0f, emptyMask);
+    EXPECT_EQ(same.image.flipMean, unmasked.image.flipMean);
+    EXPECT_EQ(same.image.rmseLinear, unmasked.image.rmseLinear);
+}

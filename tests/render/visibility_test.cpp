@@ -318,21 +318,25 @@ TEST_F(VisibilityTest, TooManyClustersForTheIdsIsOneLineNamingTheFix) {
 // indexing): every texture a material binds to the slot, once, in order; none that is out of
 // range or absent. A texture missing here would resolve to zero texels on lavapipe.
 TEST(MaterialTextureSlots, EachSlotListsTheTexturesItsMaterialsBindThere) {
-    auto material = [](glm::ivec4 t0, glm::ivec4 t1) {
+    const int none = kNoTexture;
+    auto material = [none](glm::ivec4 t0, glm::ivec4 t1, glm::ivec4 t2 = glm::ivec4(-1), glm::ivec4 t3 = glm::ivec4(-1)) {
         gpu::GpuMaterial m{};
         m.textures0 = t0;
         m.textures1 = t1;
+        m.textures2 = t2;
+        m.textures3 = glm::ivec4(t3.x, none, none, none);  // textures3.yzw are no slot
         return m;
     };
-    const int none = kNoTexture;
     const std::vector<gpu::GpuMaterial> materials = {
         material({4, 2, none, 2}, {none, none, none, none}),  // one texture in two slots (ORM-style)
         material({1, none, 0, none}, {3, none, 5, 6}),       // 6: past the 6 textures, left out
-        material({4, 2, 0, none}, {3, 5, none, 1}),          // textures1.w is no slot
+        material({4, 2, 0, none}, {3, 5, none, 1}),          // textures1.w: the clear coat
         material({-7, none, none, none}, {none, 4, none, none}),
+        material({none, none, none, none}, {none, none, none, none}, {2, none, 3, 3}, {5, 0, 0, 0}),  // the layers' slots
     };
     const MaterialTextureSlots slots = materialTextureSlots(materials, 6);
-    const MaterialTextureSlots expected = {std::vector<uint32_t>{1, 4}, {2}, {0}, {2}, {3}, {4, 5}, {5}};
+    const MaterialTextureSlots expected = {std::vector<uint32_t>{1, 4}, {2}, {0}, {2}, {3}, {4, 5}, {5},
+                                           {1}, {2}, {}, {3}, {3}, {5}};
     for (size_t k = 0; k < kMaterialTextureSlotCount; ++k)
         EXPECT_EQ(slots[k], expected[k]) << "slot " << kMaterialTextureSlotNames[k];
     EXPECT_TRUE(materialTextureSlots({}, 6)[0].empty());

@@ -4,12 +4,15 @@
 // (the reference scores zero, fewer bits score worse).
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "brdf.h"
 #include "cpu_reshade.h"
+#include "sheen_albedo.h"
 #include "fast_eval.h"
 #include "ibl_math.h"
 #include "layout.h"
@@ -68,6 +71,55 @@ TEST(CpuReshade, ConstantEnvironmentGivesTheSplitSumClosedForm) {
     // UE4's EnvBRDF with the 2 % rule: saturate(50 F0.g) = 1 here.
     const glm::vec3 expected = (s.diffuseColor * L + L * (s.specularColor * ab.x + ab.y)) * s.occlusion + 0.25f;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 2e-5f * expected[c]) << c;
+}
+
+// The layers in the search's re-shade, as the lighting pass layers them (image_based_light.glsl
+// evaluateImageBasedLightLayered, split-sum): on a constant environment L every look-up is L, so
+// the pixel is, written out from the glTF layering: the sheen's c E(NoV) L over the base scaled
+// by 1 - max3(c) E(NoV), under the coat's weight clearcoat * fc(NcoV) with its lobe L (A + B) at
+// (NcoV, coat roughness), all of it times occlusion; emission under the coat. A pixel with the same
+// base and no layer shades
+// as before the layers (the base's closed form of the test above).
+TEST(CpuReshade, LayersOnAConstantEnvironment) {
+    const glm::vec3 L(0.7f, 0.9f, 1.3f);
+    IblMaps maps = test::syntheticIbl();
+    for (CubeMip& m : maps.prefiltered)
+        for (size_t i = 0; i < m.rgba.size(); i += 4)
+            for (int c = 0; c < 3; ++c) m.rgba[i + size_t(c)] = L[c];
+    maps.irradianceSh = {};
+    maps.irradianceSh[0] = L * (shading::kPi / 0.282095f);
+    const CpuIbl ibl(maps);
+    Surface s;
+    s.normal = glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f));
+    s.diffuseColor = glm::vec3(0.5f, 0.3f, 0.2f);
+    s.specularColor = glm::vec3(0.04f);
+    s.roughness = 0.4f;
+    s.occlusion = 0.8f;
+    s.emissive = glm::vec3(0.1f, 0.2f, 0.3f);
+    const glm::vec3 camera(0.0f, 3.0f, 4.0f), V = glm::normalize(camera);
+    const glm::vec3 bare = shadePixel(s, glm::vec3(0.0f), camera, {}, ibl, glm::vec3(0.0f));
+    s.coat = 0.75f;
+    s.coatRoughness = 0.3f;
+    s.coatNormal = glm::normalize(glm::vec3(0.0f, 1.0f, 0.3f));
+    s.sheenColor = glm::vec3(0.8f, 0.4f, 0.2f);
+    s.sheenRoughness = 0.5f;
+    const glm::vec3 got = shadePixel(s, glm::vec3(0.0f), camera, {}, ibl, glm::vec3(0.0f));
+    const float NoV = glm::dot(s.normal, V), NcoV = glm::dot(s.coatNormal, V);
+    const float E = shading::sheenAlbedoTable().lookup(NoV, s.sheenRoughness);
+    const glm::vec2 ab = ibl.lut(NcoV, s.coatRoughness);
+    const float fc = s.coat * (0.04f + 0.96f * std::pow(1.0f - NcoV, 5.0f));
+    const glm::vec3 base = (bare - s.emissive) / s.occlusion;  // the base's IBL, checked in closed form above
+    const glm::vec3 sheened = s.sheenColor * E * L + base * (1.0f - 0.8f * E);
+    // Occlusion darkens the whole indirect light, the layers' included.
+    const glm::vec3 expected = (sheened * (1.0f - fc) + fc * L * (ab.x + ab.y)) * s.occlusion + s.emissive * (1.0f - fc);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 1e-5f + 2e-5f * expected[c]) << c;
+    EXPECT_GT(E, 0.05f);  // the sheen takes part
+    // No layer: the base alone, bit for bit.
+    Surface none = s;
+    none.coat = 0.0f;
+    none.sheenColor = glm::vec3(0.0f);
+    const glm::vec3 again = shadePixel(none, glm::vec3(0.0f), camera, {}, ibl, glm::vec3(0.0f));
+    EXPECT_EQ(std::memcmp(&again, &bare, sizeof(bare)), 0);
 }
 
 TEST(CpuReshade, DepthQuantisationFollowsTheFormats) {

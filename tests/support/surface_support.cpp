@@ -10,15 +10,26 @@
 
 namespace gbl::test {
 
+namespace {
+
+glm::vec3 randomUnitVector(std::mt19937& rng) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    glm::vec3 n;
+    do n = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
+    while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
+    return glm::normalize(n);
+}
+
+}  // namespace
+
+// The layers come from a stream of their own, so the other members are what they were before the
+// layers; a quarter of the Surfaces carry no layer at all.
 std::vector<Surface> randomSurfaces(size_t count, uint32_t seed) {
-    std::mt19937 rng(seed);
+    std::mt19937 rng(seed), layers(seed ^ 0x9e3779b9u);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     std::vector<Surface> v(count);
     for (Surface& s : v) {
-        glm::vec3 n;
-        do n = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
-        while (glm::dot(n, n) > 1.0f || glm::dot(n, n) < 1e-4f);
-        s.normal = glm::normalize(n);
+        s.normal = randomUnitVector(rng);
         s.baseColor = {u(rng), u(rng), u(rng)};
         s.metallic = u(rng);
         s.roughness = u(rng);
@@ -29,6 +40,14 @@ std::vector<Surface> randomSurfaces(size_t count, uint32_t seed) {
         s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 8.0f;
         s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 100.0f;
         s.position.z = u(rng) * 1.2f - 0.1f;
+        if (u(layers) < 0.25f) continue;  // no layer
+        s.coat = u(layers);
+        s.coatRoughness = u(layers);
+        s.coatNormal = randomUnitVector(layers);
+        s.sheenColor = {u(layers), u(layers), u(layers)};
+        s.sheenRoughness = u(layers);
+        s.anisotropyStrength = u(layers);
+        s.anisotropyDirection = randomUnitVector(layers);
     }
     return v;
 }
@@ -46,6 +65,13 @@ float* memberOf(Surface& s, Attribute a) {
         case Attribute::Emissive: return &s.emissive.x;
         case Attribute::Position: return &s.position.x;
         case Attribute::Depth: return &s.position.z;
+        case Attribute::Coat: return &s.coat;
+        case Attribute::CoatRoughness: return &s.coatRoughness;
+        case Attribute::CoatNormal: return &s.coatNormal.x;
+        case Attribute::SheenColor: return &s.sheenColor.x;
+        case Attribute::SheenRoughness: return &s.sheenRoughness;
+        case Attribute::AnisotropyStrength: return &s.anisotropyStrength;
+        case Attribute::AnisotropyDirection: return &s.anisotropyDirection.x;
         default: return nullptr;
     }
 }

@@ -15,7 +15,9 @@ namespace gbl::test {
 
 // Seeded random Surfaces: every member uniform over its range, normals unit and uniform in
 // direction, emissive up to 8, positions within +-100 with z mostly in [0, 1] and some outside (a
-// stored window depth rides in position.z: wiring_plan.h).
+// stored window depth rides in position.z: wiring_plan.h). The layers (coat, coat roughness, sheen
+// colour and roughness, anisotropy strength uniform in [0, 1], the coat normal and the anisotropy
+// direction unit and uniform in direction) are 0 on a quarter of the Surfaces.
 std::vector<Surface> randomSurfaces(size_t count, uint32_t seed);
 
 // The Surface member that holds `a` (its first component), nullptr for an attribute a Surface
