@@ -251,7 +251,7 @@ TEST(DefaultScene, CarriesOcclusionMapsThatAreNotConstant) {
         for (int y = 0; y < t.height; ++y)
             for (int x = 0; x < t.width; ++x) lo = std::min(lo, red(t, x, y)), hi = std::max(hi, red(t, x, y));
         EXPECT_LT(lo, 100) << m.name;
-        EXPECT_EQ(hi, 255) << m.name;
+        EXPECT_GE(hi, 250) << m.name;  // open sky: the ground far from every sphere, a tile away from its grooves
         packed = packed || m.occlusionTexture == m.metallicRoughnessTexture;
         if (m.name.rfind("ground", 0) == 0) ground = &t;
     }
