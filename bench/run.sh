@@ -8,7 +8,7 @@
 #   gpu      gpu_pass_bench: G-buffer and lighting pass per layout (GBL_BENCH_4K=1 adds 3840x2160)
 #   compare  compare_bench: computeRunMetrics and FLIP at 1080p
 #   png      png_bench: one 4K RGB PNG by the old stb encoder and by encodePng on 1 and several cores
-#   e2e      `gbufferlab compare` of all layouts at 1080p, run twice per --eval gpu / cpu (the second,
+#   e2e      `gbufferlab compare --scene builtin` of all layouts at 1080p, run twice per --eval gpu / cpu (the second,
 #            warm, is timed by stage: its timings.json), then at 3840x2160 with the layouts
 #            GBL_BENCH_4K_LAYOUTS (default ue4,ryse,crysis3-thin) as mem4k does, and
 #            `gbufferlab render` at 3840x2160 whole and with --band-rows 256 and 64 (peak memory;
@@ -25,7 +25,7 @@
 #   search   `gbufferlab search --budget 16` at 480x270, 3 views, 600 candidates, confirmed by full
 #            renders: candidates per minute, CPU seconds per candidate and the goals in
 #            results/search-16/search.json and search-report.md (GBL_BENCH_SEARCH_THREADS, default 2)
-#   coldwarm[:WxH] `gbufferlab compare` at WxH (default GBL_BENCH_COLD_SIZE, else 480x270) on fresh
+#   coldwarm[:WxH] `gbufferlab compare --scene builtin` at WxH (default GBL_BENCH_COLD_SIZE, else 480x270) on fresh
 #            caches (an empty GBL_CACHE_DIR: SPIR-V, pipeline and IBL caches), then again (warm).
 #            Mesa's own disk shader cache (the only cache of llvmpipe's JIT-compiled code) per
 #            GBL_BENCH_COLD_MESA: "off" (default: MESA_SHADER_CACHE_DISABLE=true in both runs, so it
@@ -33,8 +33,9 @@
 #            fills: what a user's first and second run see). GBL_BENCH_COLD_ARGS: more compare
 #            flags (e.g. "--layouts ue4,crysis2-slim --views 1"). Wall times and both timings.json
 #            in results/coldwarm_<WxH>_<mesa>_*; e.g. bench/run.sh coldwarm:480x270 coldwarm:1920x1080
-#   ratio    issue 14's lavapipe goal (warm 1080p compare <= 1.5x its GPU passes): the default
-#            comparison after a warm-up run, GBL_BENCH_REPETITIONS times alternating the files'
+#   ratio    issue 14's lavapipe goal (warm 1080p compare <= 1.5x its GPU passes): the built-in
+#            scene's comparison (`compare --scene builtin`, the default before the bundled suite:
+#            every layout, 1920x1080, 3 views) after a warm-up run, GBL_BENCH_REPETITIONS times alternating the files'
 #            encoders at nice 0 (the default) and at nice 19 (GBL_WRITER_NICE), where they take the
 #            time the passes leave and no longer stretch the passes' timestamps (lavapipe renders on
 #            the same cores); wall, CPU and peak memory per run in results/ratio_nice<N>_<i>.txt,
@@ -93,7 +94,7 @@ run_mem4k() {
         local flags=(--band-rows 0 --eval "$mode")
         [ "$mode" = bands ] && flags=(--band-rows auto)
         echo "== gbufferlab compare at 3840x2160, $layouts, one view, ${flags[*]} (peak memory)"
-        /usr/bin/time -f '%M KiB %e s' -o "$results/compare_4k_rss_$mode.txt" "$build/gbufferlab" compare \
+        /usr/bin/time -f '%M KiB %e s' -o "$results/compare_4k_rss_$mode.txt" "$build/gbufferlab" compare --scene builtin \
             --device "${GBL_BENCH_DEVICE:-cpu}" "${flags[@]}" --size 3840x2160 --views 1 --layouts "$layouts" \
             --out "$results/compare-4k-$mode" --force >/dev/null
         cat "$results/compare_4k_rss_$mode.txt"
@@ -109,7 +110,7 @@ run_gpu4k() {
     for run in cold warm1 warm2 warm3; do
         echo "== gbufferlab compare --device $device, 3840x2160, the seed layouts, 3 views ($run)"
         GBL_CACHE_DIR="$cache" /usr/bin/time -f '%e %U %S %M' -o "$results/gpu4k_${run}_time.txt" \
-            "$build/gbufferlab" compare --device "$device" --size 3840x2160 --layouts ue4,ryse,crysis2-slim,crysis3-thin \
+            "$build/gbufferlab" compare --scene builtin --device "$device" --size 3840x2160 --layouts ue4,ryse,crysis2-slim,crysis3-thin \
             --out "$results/compare-gpu4k-$run" --force >"$results/gpu4k_${run}_console.txt"
         cp "$results/compare-gpu4k-$run/timings.json" "$results/gpu4k_${run}.json"
         grep -E '^time by stage|^total' "$results/gpu4k_${run}_console.txt"
@@ -136,9 +137,9 @@ for w in "${what[@]}"; do
             for ev in gpu cpu; do
                 out="$results/compare-e2e-$ev"
                 echo "== gbufferlab compare --eval $ev (warm-up run)"
-                "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --out "$out" --force >/dev/null
+                "$build/gbufferlab" compare --scene builtin --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --out "$out" --force >/dev/null
                 echo "== gbufferlab compare --eval $ev (timed run)"
-                "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --out "$out" --force >/dev/null
+                "$build/gbufferlab" compare --scene builtin --device "${GBL_BENCH_DEVICE:-cpu}" --eval "$ev" --out "$out" --force >/dev/null
                 cp "$out/timings.json" "$results/compare_e2e_$ev.json"
             done
             run_mem4k
@@ -155,12 +156,12 @@ for w in "${what[@]}"; do
         ratio)
             out="$results/compare-ratio"
             echo "== gbufferlab compare (warm-up run)"
-            "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force >/dev/null 2>&1
+            "$build/gbufferlab" compare --scene builtin --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force >/dev/null 2>&1
             for ((i = 1; i <= reps; ++i)); do
                 for nice in 0 19; do
                     echo "== gbufferlab compare, the files' encoders at nice $nice ($i of $reps)"
                     GBL_WRITER_NICE=$nice /usr/bin/time -f '%e %U %S %M' -o "$results/ratio_nice${nice}_$i.time" \
-                        "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force \
+                        "$build/gbufferlab" compare --scene builtin --device "${GBL_BENCH_DEVICE:-cpu}" --out "$out" --force \
                         >"$results/ratio_nice${nice}_$i.log" 2>&1
                     python3 - "$out/timings.json" "$results/ratio_nice${nice}_$i.time" "$nice" \
                         > "$results/ratio_nice${nice}_$i.txt" <<'PY'
@@ -199,7 +200,7 @@ PY
                 # wall, user and system seconds: on a machine shared with other jobs the CPU time
                 # (user + system) is the steadier figure
                 env GBL_CACHE_DIR="$cache/gbl" "${mesa_env[@]}" /usr/bin/time -f '%e %U %S' -o "$results/${tag}_${run}_time.txt" \
-                    "$build/gbufferlab" compare --device "${GBL_BENCH_DEVICE:-cpu}" --size "$size" "${extra[@]}" \
+                    "$build/gbufferlab" compare --scene builtin --device "${GBL_BENCH_DEVICE:-cpu}" --size "$size" "${extra[@]}" \
                     --out "$results/compare-$tag-$run" --force >"$results/${tag}_${run}_console.txt"
                 cp "$results/compare-$tag-$run/timings.json" "$results/${tag}_${run}.json"
                 tail -n 4 "$results/${tag}_${run}_console.txt"

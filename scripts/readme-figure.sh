@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-build/gbufferlab compare --layouts crysis3-thin --size 960x540 --views 1 --out "$out/run" >/dev/null
+build/gbufferlab compare --scene builtin --layouts crysis3-thin --size 960x540 --views 1 --out "$out/run" >/dev/null
 run="$out/run/runs/crysis3-thin/split-sum"
 # flip.png carries a title band above the map: the same crop sits that many rows lower.
 title=$(python3 -c 'import struct, sys

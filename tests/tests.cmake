@@ -95,6 +95,7 @@ gbl_test(measure/png16_diff_test LABELS unit DEPS gbl_measure)  # 16-bit PNGs at
 gbl_test(report/report_test LABELS unit DEPS gbl_report)
 gbl_test(report/visibility_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/budget_verdict_test LABELS unit DEPS gbl_report)
+gbl_test(report/suite_verdict_test LABELS unit DEPS gbl_report)  # the verdict across scenes, agreement in words
 gbl_test(report/rank_agreement_test LABELS unit DEPS gbl_report)  # Kendall's tau, tied ranks
 gbl_test(report/plot_labels_test LABELS unit DEPS gbl_report)
 gbl_test(report/report_html_glance_test LABELS unit DEPS gbl_report)
@@ -109,10 +110,12 @@ gbl_test(search/search_constraints_test LABELS unit DEPS gbl_search)  # constrai
 gbl_test(search/search_gpu_test LABELS gpu DEPS gbl_search gbl_render gbl_app gbl_test_support_vk)  # fast evaluation vs full renders
 gbl_test(app/compare_bands_test LABELS unit DEPS gbl_app)
 gbl_test(app/scene_suite_test LABELS unit DEPS gbl_app)  # --scene and suite files, refused before rendering
+gbl_test(app/bundled_scenes_test LABELS unit DEPS gbl_app)  # scenes/: licences, provenance, the default suite
 gbl_test(app/search_report_test LABELS unit DEPS gbl_app nlohmann_json::nlohmann_json)  # confirmation over several scenes
 # The comparison and the search through the library's API, in this process: no command line.
 gbl_test(app/app_api_test LABELS gpu DEPS gbl_app nlohmann_json::nlohmann_json)
 gbl_test(cli/search_cli_test LABELS gpu DEPS gbufferlab)
+gbl_test(cli/compare_flags_test LABELS unit DEPS gbl_cli)  # compare's default: the bundled suite
 gbl_test(cli/cli_test LABELS gpu DEPS gbufferlab gbl_report gbl_image nlohmann_json::nlohmann_json)
 gbl_test(cli/compare_scenes_cli_test LABELS gpu DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)  # several scenes
 gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)

@@ -1,7 +1,8 @@
 #pragma once
 // What a comparison is asked to do: the scenes, layouts, IBL modes, size, views, output folder and
-// the rest, each field's default the one of `gbufferlab compare` without its flag (the command
-// line reads its flags into it: cli/compare_flags.h; app/compare_api.h runs it).
+// the rest, each field's default the one of `gbufferlab compare` without its flag, but for the
+// scenes (below, kDefaultSuiteWidth) (the command line reads its flags into it: cli/compare_flags.h;
+// app/compare_api.h runs it).
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -21,6 +22,14 @@ inline constexpr const char* kReferenceLayout = "reference";
 inline constexpr const char* kGroundTruth = "ground-truth";  // the IBL mode's name
 // compare --temporal N: at most this many frames (a frame costs a full G-buffer and lighting pass).
 inline constexpr int kMaxTemporalFrames = 256;
+
+// `gbufferlab compare` without --scene runs the bundled scenes as a suite (scene_suite.h
+// defaultSuitePath(): the built-in scene, FlightHelmet and WaterBottle) at this size and view count
+// unless --size / --views are given: chosen so that it takes no longer than the built-in scene
+// alone at 1920x1080, the default before it (bench/RESULTS.md). A CompareOptions without sceneArgs
+// is the built-in scene alone, at its own width, height and viewCount.
+inline constexpr uint32_t kDefaultSuiteWidth = 480, kDefaultSuiteHeight = 270;
+inline constexpr int kDefaultSuiteViews = 3;
 
 struct CompareOptions {
     std::string scenePath;  // empty: the built-in scene

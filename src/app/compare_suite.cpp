@@ -171,6 +171,7 @@ app::CompareResult runCompareSuite(const CompareOptions& options, const app::Run
             const CompareOptions so = sceneOptions(o, spec);
             SuiteScene entry;
             entry.name = spec.name;
+            entry.builtin = spec.gltfPath.empty();
             entry.scene = spec.gltfPath.empty() ? "built-in scene" : spec.gltfPath;
             entry.environment = spec.envPath.empty() ? "built-in procedural sky" : spec.envPath;
             if (control.progress)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 
 #include "option_values.h"
 #include "error.h"
@@ -307,6 +308,25 @@ std::vector<SceneSpec> parseSceneSuite(const std::string& text, const std::strin
 std::vector<SceneSpec> loadSceneSuite(const fs::path& path) {
     return parseSceneSuite(readTextFile(path), path.string());
 }
+
+fs::path bundledSceneDirectory() {
+    std::error_code ec;
+    if (const char* env = std::getenv("GBL_SCENE_DIR"); env && *env) {
+        const fs::path dir(env);
+        if (!fs::is_directory(dir, ec))
+            throwUserError("GBL_SCENE_DIR=" + escapeText(dir.string()) +
+                           ": not a directory (point it at gbufferlab's scenes/ or unset it)");
+        return dir;
+    }
+    const fs::path dir(GBL_SOURCE_SCENE_DIR);
+    if (!fs::is_directory(dir, ec))
+        throwUserError(escapeText(dir.string()) +
+                       ": the bundled scenes' directory is missing; set GBL_SCENE_DIR to gbufferlab's scenes/ "
+                       "directory, or give --scene builtin (or a glTF, or a suite .toml)");
+    return dir;
+}
+
+fs::path defaultSuitePath() { return bundledSceneDirectory() / "default-suite.toml"; }
 
 std::vector<SceneSpec> resolveScenes(const std::vector<std::string>& sceneArgs, const std::string& envPath) {
     std::vector<SceneSpec> scenes;

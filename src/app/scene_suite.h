@@ -40,6 +40,13 @@ struct SceneSpec {
 std::vector<SceneSpec> parseSceneSuite(const std::string& text, const std::string& fileName);
 std::vector<SceneSpec> loadSceneSuite(const std::filesystem::path& path);
 
+// The bundled scenes' folder (scenes/ of the repository: real CC0 assets with their licences, and
+// default-suite.toml): $GBL_SCENE_DIR, else the source tree's scenes/ fixed at build time, as
+// layouts/ and shaders/ are found. Throws UserError naming GBL_SCENE_DIR when it is not a folder.
+std::filesystem::path bundledSceneDirectory();
+// What compare runs without --scene: the bundled suite, <bundledSceneDirectory()>/default-suite.toml.
+std::filesystem::path defaultSuitePath();
+
 // Every --scene in order (none: the built-in scene), each a glTF path, `builtin` or a suite file
 // (.toml), expanded; `--env` applies to the scenes named on the command line. Files that do not
 // exist, a scene given twice (by its name, or by the same glTF and environment) are UserErrors.

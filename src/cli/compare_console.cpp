@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "budget_verdict.h"
+#include "suite_verdict.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
 
@@ -91,11 +92,17 @@ void printTable(const ReportModel& model) {
     printVerdict(model);
 }
 
+namespace {
+
+void printVerdictLines(const BudgetVerdict& v, const char* title) {
+    std::printf("\n%s %s\n", title, v.basis.c_str());
+    for (const BudgetLine& line : v.lines) std::printf("  %s\n", line.sentence.c_str());
+}
+
+}  // namespace
+
 void printVerdict(const ReportModel& model) {
-    const auto v = budgetVerdict(model);
-    if (!v) return;
-    std::printf("\nVerdict. %s\n", v->basis.c_str());
-    for (const BudgetLine& line : v->lines) std::printf("  %s\n", line.sentence.c_str());
+    if (const auto v = budgetVerdict(model)) printVerdictLines(*v, "Verdict.");
 }
 
 void printTimings(const CompareTimings& t) {
@@ -147,6 +154,12 @@ void printSuiteTable(const SuiteModel& model) {
                     g.sceneB.c_str(), g.iblMode.c_str(), g.tau, int(g.swaps.size()), g.pairs);
     for (const SuiteScene& s : model.scenes)
         if (!s.ok) std::printf("scene %s FAILED: %s\n", s.name.c_str(), s.error.c_str());
+    // The headline: how far the scenes agree, then the verdict across them (suite_verdict.h).
+    if (const auto words = suiteAgreementWords(model)) {
+        std::printf("\nAgreement. %s\n", words->sentence.c_str());
+        if (!words->movesSentence.empty()) std::printf("%s\n", words->movesSentence.c_str());
+    }
+    if (const auto v = suiteBudgetVerdict(model)) printVerdictLines(*v, "Verdict across the scenes.");
 }
 
 void printReport(const app::CompareResult& result) {

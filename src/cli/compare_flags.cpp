@@ -11,17 +11,24 @@
 #include "error.h"
 #include "file_io.h"
 #include "ibl_cache.h"
+#include "scene_suite.h"
 
 namespace gbl::compare {
 
 namespace {
 
+std::string sizeText(uint32_t width, uint32_t height) { return std::to_string(width) + "x" + std::to_string(height); }
+
 std::vector<FlagSpec> compareFlags() {
     return {
         {"scene", "FILE", "glTF 2.0 scene (.gltf/.glb), builtin (the built-in scene: the sphere grid and its "
-                          "surroundings; the default) or a scene-suite .toml; give it several times to compare "
-                          "every layout on every scene (docs/compare.md)", true},
-        {"env", "FILE", "equirectangular environment (.hdr/.exr); default: the built-in sky"},
+                          "surroundings) or a scene-suite .toml; give it several times to compare every layout on "
+                          "every scene. Default: the bundled suite, scenes/default-suite.toml (the built-in scene, "
+                          "FlightHelmet and WaterBottle), at " + sizeText(kDefaultSuiteWidth, kDefaultSuiteHeight) +
+                          " and " + std::to_string(kDefaultSuiteViews) + " views unless --size / --views "
+                          "(docs/compare.md)", true},
+        {"env", "FILE", "equirectangular environment (.hdr/.exr) of the scenes given by --scene; default: the "
+                        "built-in sky"},
         {"allow-outside-scene", "", "let the scene's buffer and image URIs point outside its folder"},
         {"layouts", "A,B,...", "layouts to compare (names in layouts/ or .toml paths), or all (default)"},
         {"ibl", "MODES", "specular IBL modes, comma-separated (default split-sum; known: " +
@@ -33,7 +40,8 @@ std::vector<FlagSpec> compareFlags() {
         {"gt-max-batches", "N", "ground truth: stop after N batches even if the noise target is not met (default 256)"},
         {"brdf-lut", "VARIANT", "split-sum BRDF LUT: converged (visible-normal sampling, 4096 samples; default) or "
                                 "seed (the seed's IntegrateBRDF, 1024 samples)"},
-        {"size", "WxH", "image size (default 1920x1080)"},
+        {"size", "WxH", "image size (default 1920x1080; without --scene " +
+                            sizeText(kDefaultSuiteWidth, kDefaultSuiteHeight) + ")"},
         {"views", "N", "cameras measured (default 3: the scene camera, an orbit about the scene's centre, a grazing "
                        "view of the ground; more add orbit views); every metric is the mean over them with its "
                        "spread; per-pixel images are the first view's"},
@@ -76,27 +84,37 @@ void printCompareHelp(const std::vector<FlagSpec>& specs) {
                                  "[--size WxH] [--out DIR]",
                                  "Renders the float reference and each layout at the same camera, and reports "
                                  "what each loses\n(attribute and image error, FLIP, error images) and costs "
-                                 "(bytes per pixel, bandwidth).\nWith --ibl listing several modes and "
+                                 "(bytes per pixel, bandwidth).\nWithout --scene: every layout on the bundled "
+                                 "scenes (the built-in scene, FlightHelmet, WaterBottle),\nwith the verdict across "
+                                 "them and how far they agree; --scene builtin: the built-in scene alone.\nWith --ibl listing several modes and "
                                  "ground-truth among them, the reference under each mode is also\ncompared with "
                                  "the reference under ground-truth: the error of the lighting approximation.",
                                  specs)
                            .c_str());
 }
 
-// The scenes, the layouts, the size, the exposure and the views.
+// The scenes, the layouts, the size, the exposure and the views. Without --scene: the bundled
+// suite, at its own size and views where --size / --views do not say (compare_options.h).
 void readScenesAndViews(const ParsedArgs& parsed, CompareOptions& o) {
+    const bool defaultSuite = !parsed.has("scene");
+    if (defaultSuite && parsed.has("env"))
+        throwUserError("gbufferlab compare: --env without --scene: the default compares the bundled scenes, each "
+                       "under its own environment (scenes/default-suite.toml); give --scene builtin (or a glTF) "
+                       "with --env");
     o.scenePath = parsed.get("scene");
     o.envPath = parsed.get("env");
-    o.sceneArgs = parsed.all("scene");
+    o.sceneArgs = defaultSuite ? std::vector<std::string>{defaultSuitePath().string()} : parsed.all("scene");
     if (o.sceneArgs.size() == 1 && o.sceneArgs[0] == "builtin") o.scenePath.clear();
     o.allowOutsideScene = parsed.has("allow-outside-scene");
     if (parsed.has("layouts")) o.layoutsSpec = parsed.get("layouts");
-    const auto [width, height] = parseSize(parsed.get("size", "1920x1080"), "--size");
+    const auto [width, height] =
+        parseSize(parsed.get("size", defaultSuite ? sizeText(kDefaultSuiteWidth, kDefaultSuiteHeight) : "1920x1080"),
+                  "--size");
     o.width = width;
     o.height = height;
     o.exposure = parsePositiveFloatFlag(parsed, "exposure", 1.0f);
     o.autoExposure = !parsed.has("exposure");
-    o.viewCount = parseIntFlag(parsed, "views", 3, 1, 16);
+    o.viewCount = parseIntFlag(parsed, "views", defaultSuite ? kDefaultSuiteViews : 3, 1, 16);
 }
 
 // The IBL modes, their samples, the ground truth's convergence, the BRDF LUT.

@@ -56,24 +56,34 @@ double pairedSignFlipPValue(const std::vector<double>& differences, int resample
         }
         return double(hits) / double(assignments);
     }
-    // splitmix64 (Steele, Lea, Flood 2014): a fixed seed, so a report is reproducible.
-    uint64_t state = seed;
-    auto next = [&state] {
-        uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    // splitmix64 (Steele, Lea, Flood 2014): a fixed seed, so a report is reproducible. Its j-th
+    // output (from 0) is mix(seed + (j + 1) gamma); assignment k reads outputs k W .. k W + W - 1,
+    // W = ceil(n / 64), one bit per unit from the lowest. Several assignments are summed side by
+    // side, each in the order of the units, as one after the other would: the same sums to the
+    // last bit, without waiting on one long chain of additions.
+    constexpr uint64_t kGamma = 0x9e3779b97f4a7c15ULL;
+    auto output = [seed](uint64_t j) {
+        uint64_t z = seed + (j + 1) * kGamma;
         z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
         z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
         return z ^ (z >> 31);
     };
+    const uint64_t words = (n + 63) / 64;
+    constexpr int kLanes = 8;
     uint64_t hits = 0;
-    for (int k = 0; k < resamples; ++k) {
-        double sum = 0.0;
-        uint64_t bits = 0;
+    for (int k0 = 0; k0 < resamples; k0 += kLanes) {
+        double sum[kLanes] = {};
+        uint64_t bits[kLanes] = {};
         for (size_t i = 0; i < n; ++i) {
-            if (i % 64 == 0) bits = next();
-            sum += (bits & 1u) ? -d[i] : d[i];
-            bits >>= 1;
+            if (i % 64 == 0)
+                for (int l = 0; l < kLanes; ++l) bits[l] = output(uint64_t(k0 + l) * words + i / 64);
+            for (int l = 0; l < kLanes; ++l) {
+                sum[l] += (bits[l] & 1u) ? -d[i] : d[i];
+                bits[l] >>= 1;
+            }
         }
-        if (std::abs(sum) >= observed - tolerance) ++hits;
+        for (int l = 0; l < kLanes && k0 + l < resamples; ++l)
+            if (std::abs(sum[l]) >= observed - tolerance) ++hits;
     }
     return double(1 + hits) / double(1 + resamples);
 }

@@ -42,7 +42,7 @@ std::string notRunText(const BudgetLine& line, const std::string& interruptedBy)
     return s;
 }
 
-std::string sentenceOf(const BudgetLine& line, int views, const std::string& interruptedBy) {
+std::string sentenceOf(const BudgetLine& line, const std::string& over, const std::string& interruptedBy) {
     std::string s = budgetText(line.budget) + ": ";
     if (!line.best) {
         s += interruptedBy.empty() ? "no layout fits" : "no layout that ran fits";
@@ -51,8 +51,8 @@ std::string sentenceOf(const BudgetLine& line, int views, const std::string& int
                  " B/px";
         return s + notRunText(line, interruptedBy) + ".";
     }
-    s += line.best->layout + " (" + bytesText(*line.best) + ") has the lowest mean FLIP over " +
-         std::to_string(views) + (views == 1 ? " view, " : " views, ") + printed("%.4f", line.best->flipMean);
+    s += line.best->layout + " (" + bytesText(*line.best) + ") has the lowest mean FLIP over " + over + ", " +
+         printed("%.4f", line.best->flipMean);
     for (size_t i = 0; i < line.tiedWith.size(); ++i)
         s += (i == 0 ? ", tied with " : i + 1 == line.tiedWith.size() ? " and " : ", ") + line.tiedWith[i].layout +
              " (" + bytesText(line.tiedWith[i]) + ")";
@@ -85,24 +85,11 @@ std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model) {
             views = std::max(views, measured);
         }
         if (entries.empty()) continue;
-        // Best first; among equal means the fewer counted bytes, then the name, so ties read the same
-        // way in every run.
-        std::stable_sort(entries.begin(), entries.end(), [](const VerdictEntry& a, const VerdictEntry& b) {
-            if (a.flipMean != b.flipMean) return a.flipMean < b.flipMean;
-            if (a.countedBytes != b.countedBytes) return a.countedBytes < b.countedBytes;
-            return a.layout < b.layout;
-        });
-        const VerdictEntry smallest = *std::min_element(
-            entries.begin(), entries.end(),
-            [](const VerdictEntry& a, const VerdictEntry& b) { return a.countedBytes < b.countedBytes; });
-        // What an interruption left unrun under this mode, by counted bytes then name.
+        // What an interruption left unrun under this mode.
         std::vector<VerdictEntry> notRun;
         if (model.interruption)
             for (const PlannedRun& p : model.interruption->notRun)
                 if (p.iblMode == mode) notRun.push_back({p.layout, p.bytesPerPixel, p.countedBytes, false, 0.0});
-        std::stable_sort(notRun.begin(), notRun.end(), [](const VerdictEntry& a, const VerdictEntry& b) {
-            return a.countedBytes != b.countedBytes ? a.countedBytes < b.countedBytes : a.layout < b.layout;
-        });
         BudgetVerdict v;
         v.iblMode = mode;
         v.views = views;
@@ -121,26 +108,49 @@ std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model) {
                        std::to_string(model.interruption->runsFinished) + " of " +
                        std::to_string(model.interruption->runsPlanned) +
                        " runs: the lines speak only of the layouts that ran and name those that fit but did not.";
-        std::vector<std::optional<int>> budgets(std::begin(kVerdictBudgets), std::end(kVerdictBudgets));
-        budgets.push_back(std::nullopt);
-        for (const std::optional<int>& budget : budgets) {
-            BudgetLine line;
-            line.budget = budget;
-            for (const VerdictEntry& e : entries) {
-                if (budget && e.countedBytes > *budget) continue;
-                if (!line.best) line.best = e;
-                else if (e.flipMean == line.best->flipMean) line.tiedWith.push_back(e);
-                else break;
-            }
-            if (!line.best) line.smallest = smallest;
-            for (const VerdictEntry& e : notRun)
-                if (!budget || e.countedBytes <= *budget) line.notRun.push_back(e);
-            line.sentence = sentenceOf(line, views, v.interruptedBy);
-            v.lines.push_back(std::move(line));
-        }
+        v.lines = verdictLines(std::move(entries), std::move(notRun),
+                               std::to_string(views) + (views == 1 ? " view" : " views"), v.interruptedBy);
         return v;
     }
     return std::nullopt;
+}
+
+std::vector<BudgetLine> verdictLines(std::vector<VerdictEntry> entries, std::vector<VerdictEntry> notRun,
+                                     const std::string& over, const std::string& interruptedBy) {
+    std::vector<BudgetLine> lines;
+    if (entries.empty()) return lines;
+    // Best first; among equal means the fewer counted bytes, then the name, so ties read the same
+    // way in every run.
+    std::stable_sort(entries.begin(), entries.end(), [](const VerdictEntry& a, const VerdictEntry& b) {
+        if (a.flipMean != b.flipMean) return a.flipMean < b.flipMean;
+        if (a.countedBytes != b.countedBytes) return a.countedBytes < b.countedBytes;
+        return a.layout < b.layout;
+    });
+    const VerdictEntry smallest = *std::min_element(
+        entries.begin(), entries.end(),
+        [](const VerdictEntry& a, const VerdictEntry& b) { return a.countedBytes < b.countedBytes; });
+    // The unrun, by counted bytes then name.
+    std::stable_sort(notRun.begin(), notRun.end(), [](const VerdictEntry& a, const VerdictEntry& b) {
+        return a.countedBytes != b.countedBytes ? a.countedBytes < b.countedBytes : a.layout < b.layout;
+    });
+    std::vector<std::optional<int>> budgets(std::begin(kVerdictBudgets), std::end(kVerdictBudgets));
+    budgets.push_back(std::nullopt);
+    for (const std::optional<int>& budget : budgets) {
+        BudgetLine line;
+        line.budget = budget;
+        for (const VerdictEntry& e : entries) {
+            if (budget && e.countedBytes > *budget) continue;
+            if (!line.best) line.best = e;
+            else if (e.flipMean == line.best->flipMean) line.tiedWith.push_back(e);
+            else break;
+        }
+        if (!line.best) line.smallest = smallest;
+        for (const VerdictEntry& e : notRun)
+            if (!budget || e.countedBytes <= *budget) line.notRun.push_back(e);
+        line.sentence = sentenceOf(line, over, interruptedBy);
+        lines.push_back(std::move(line));
+    }
+    return lines;
 }
 
 }  // namespace gbl

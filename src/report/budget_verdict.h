@@ -50,6 +50,7 @@ struct BudgetLine {
 struct BudgetVerdict {
     std::string iblMode;  // the first IBL mode with a measured layout run
     int views = 1;        // the FLIP means are over this many views
+    int scenes = 0;       // across several scenes (suite_verdict.h): the FLIP means are over them; 0: one scene
     std::string basis;    // how the lines are decided, one paragraph
     std::string interruptedBy;  // "SIGINT" when the report is an interrupted one's, else 
     std::vector<BudgetLine> lines;  // kVerdictBudgets in order, then unlimited
@@ -61,5 +62,12 @@ double verdictCountedBytes(const RunReport& run);
 // nullopt when no layout run was measured (failed runs, the reference itself and the lighting
 // comparisons never count).
 std::optional<BudgetVerdict> budgetVerdict(const ReportModel& model);
+
+// The lines of a verdict, kVerdictBudgets then unlimited, from the measured layouts (`entries`,
+// any order) and those an interruption left unrun: each budget's best, the layouts tied with it
+// and, when none fits, the smallest. `over` ends "has the lowest mean FLIP over ..." ("3 views",
+// "3 scenes"); `interruptedBy` the signal of an interrupted report, else "".
+std::vector<BudgetLine> verdictLines(std::vector<VerdictEntry> entries, std::vector<VerdictEntry> notRun,
+                                     const std::string& over, const std::string& interruptedBy);
 
 }  // namespace gbl

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "parallel_for.h"
 #include "significance.h"
 
 namespace gbl {
@@ -54,10 +55,16 @@ SignificanceReport rankWithSignificance(const std::vector<LayoutUnits>& layouts)
                          [&](size_t a, size_t b) { return layouts[a].meanError < layouts[b].meanError; });
         const size_t n = members.size();
         std::vector<std::vector<char>> significant(n, std::vector<char>(n, 0));
+        // Every pair (i < k), tested on the cores (the tests are independent; the order of the
+        // report's pairs is the loop's).
+        std::vector<std::pair<size_t, size_t>> order;
         for (size_t i = 0; i < n; ++i)
-            for (size_t k = i + 1; k < n; ++k) {
-                const LayoutUnits& a = layouts[members[i]];  // the lower (or equal) mean error
-                const LayoutUnits& b = layouts[members[k]];
+            for (size_t k = i + 1; k < n; ++k) order.emplace_back(i, k);
+        std::vector<PairSignificance> pairs(order.size());
+        parallelFor(int64_t(order.size()), 0, [&](int64_t begin, int64_t end) {
+            for (int64_t q = begin; q < end; ++q) {
+                const LayoutUnits& a = layouts[members[order[size_t(q)].first]];  // the lower (or equal) mean error
+                const LayoutUnits& b = layouts[members[order[size_t(q)].second]];
                 std::vector<double> d;
                 for (size_t s = 0; s < a.unitsPerScene.size() && s < b.unitsPerScene.size(); ++s) {
                     const auto& ua = a.unitsPerScene[s];
@@ -65,7 +72,7 @@ SignificanceReport rankWithSignificance(const std::vector<LayoutUnits>& layouts)
                     if (ua.empty() || ua.size() != ub.size()) continue;
                     for (size_t u = 0; u < ua.size(); ++u) d.push_back(ub[u] - ua[u]);
                 }
-                PairSignificance p;
+                PairSignificance& p = pairs[size_t(q)];
                 p.better = a.layout;
                 p.worse = b.layout;
                 p.iblMode = mode;
@@ -73,9 +80,13 @@ SignificanceReport rankWithSignificance(const std::vector<LayoutUnits>& layouts)
                 p.units = int(d.size());
                 p.pValue = pairedSignFlipPValue(d);
                 p.significant = !d.empty() && p.pValue < kSignificanceAlpha && p.meanDifference > 0.0;
-                significant[i][k] = significant[k][i] = p.significant;
-                report.pairs.push_back(std::move(p));
             }
+        });
+        for (size_t q = 0; q < order.size(); ++q) {
+            const auto [i, k] = order[q];
+            significant[i][k] = significant[k][i] = pairs[q].significant;
+            report.pairs.push_back(std::move(pairs[q]));
+        }
         for (size_t i = 0; i < n; ++i) {
             RankRange r;
             r.layout = layouts[members[i]].layout;

@@ -141,11 +141,12 @@ Json verdictJson(const BudgetVerdict& v) {
         b["sentence"] = line.sentence;
         budgets.push_back(std::move(b));
     }
-    return Json{{"ibl_mode", v.iblMode},
-                {"metric", "flip_mean"},
-                {"views", v.views},
-                {"basis", v.basis},
-                {"budgets", std::move(budgets)}};
+    Json j{{"ibl_mode", v.iblMode}, {"metric", "flip_mean"}};
+    if (v.scenes > 0) j["scenes"] = v.scenes;  // across several scenes: the means are over them
+    else j["views"] = v.views;
+    j["basis"] = v.basis;
+    j["budgets"] = std::move(budgets);
+    return j;
 }
 
 // The atlas table (report_atlas.h), flat in its grouped order: one object per layout.
@@ -295,6 +296,8 @@ Json runJson(const RunReport& r) {
 }
 
 }  // namespace
+
+Json budgetVerdictToJson(const BudgetVerdict& verdict) { return verdictJson(verdict); }
 
 Json reportToJson(const ReportModel& model) {
     const ReportRunInfo& run = model.run;

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "budget_verdict.h"
 #include "report_model.h"
 
 namespace gbl {
@@ -20,6 +21,9 @@ ReportModel reportFromJson(const nlohmann::ordered_json& json);
 // nlohmann's conversion hooks (found by ADL): `json j = model;` and `j.get<ReportModel>()`.
 void to_json(nlohmann::ordered_json& json, const ReportModel& model);
 void from_json(const nlohmann::ordered_json& json, ReportModel& model);
+
+// A verdict per byte budget as report.json's "verdict" holds it (one scene's, or across several).
+nlohmann::ordered_json budgetVerdictToJson(const BudgetVerdict& verdict);
 
 // Writes report.json (indented) atomically.
 void writeReportJson(const std::filesystem::path& path, const ReportModel& model);

@@ -6,6 +6,7 @@
 #include "report_html.h"
 #include "report_html_template.h"
 #include "suite_report.h"
+#include "suite_verdict.h"
 
 namespace gbl {
 
@@ -44,6 +45,26 @@ std::string suiteHtml(const SuiteModel& model) {
                " scenes; this report covers only the scenes that finished. Not finished: " + names + ".</div>\n";
     }
     out += "</header>\n";
+
+    // The headline: the verdict across the scenes, and how far they agree (suite_verdict.h).
+    const auto verdict = suiteBudgetVerdict(model);
+    const auto words = suiteAgreementWords(model);
+    if (verdict || words) {
+        out += "<section id=\"verdict\">\n<h2>Verdict across the scenes</h2>\n";
+        if (words) {
+            out += "<p class=\"agreement\">" + htmlEscape(words->sentence) + "</p>\n";
+            if (!words->movesSentence.empty()) out += "<p class=\"moves\">" + htmlEscape(words->movesSentence) + "</p>\n";
+        }
+        if (verdict) {
+            out += "<ul class=\"verdict-lines\">\n";
+            for (const BudgetLine& line : verdict->lines)
+                out += "<li data-budget=\"" + (line.budget ? std::to_string(*line.budget) : std::string("unlimited")) +
+                       "\"" + (line.best ? "" : " class=\"none-fits\"") + ">" + htmlEscape(line.sentence) + "</li>\n";
+            out += "</ul>\n<p class=\"hint\">" + htmlEscape(verdict->basis) + "</p>\n";
+        }
+        out += "<p class=\"hint\">Each scene's own ranking and verdict: its section below and its full report.</p>\n"
+               "</section>\n";
+    }
 
     // The summary: one row per layout and mode, one error (rank) column per scene.
     out += "<h2 id=\"summary\">Across the scenes</h2>\n<p class=\"muted\">Error: mean LDR-FLIP over each scene's "

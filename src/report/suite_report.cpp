@@ -10,6 +10,7 @@
 #include "rank_agreement.h"
 #include "rank_significance.h"
 #include "report_json.h"
+#include "suite_verdict.h"
 
 namespace gbl {
 
@@ -181,6 +182,21 @@ nlohmann::ordered_json suiteToJson(const SuiteModel& model) {
                              {"units", p.units},
                              {"p_value", jsonNumber(p.pValue)},
                              {"significant", p.significant}});
+    Json inWords;  // how far the scenes agree, in words (suite_verdict.h)
+    if (const auto w = suiteAgreementWords(model)) {
+        Json moves = Json::array();
+        for (const LayoutMove& m : w->moves) {
+            Json ranks = Json::object();
+            for (size_t i = 0; i < model.scenes.size(); ++i)
+                if (model.scenes[i].ok) ranks[model.scenes[i].name] = m.ranks[i] ? Json(*m.ranks[i]) : Json(nullptr);
+            moves.push_back(Json{{"layout", m.layout}, {"rank_per_scene", std::move(ranks)}, {"spread", m.spread}});
+        }
+        inWords = Json{{"ibl_mode", w->iblMode},
+                       {"mean_kendall_tau", jsonNumber(w->meanTau)},
+                       {"sentence", w->sentence},
+                       {"largest_moves", std::move(moves)},
+                       {"moves_sentence", w->movesSentence}};
+    }
     Json agreement = Json::array();
     for (const SceneAgreement& g : model.agreement) {
         Json swaps = Json::array();
@@ -204,6 +220,7 @@ nlohmann::ordered_json suiteToJson(const SuiteModel& model) {
                 {"status", model.interruption ? "interrupted" : "complete"}};
     if (model.interruption) j["interruption"] = std::move(interruption);
     j["run"] = std::move(run);
+    if (const auto v = suiteBudgetVerdict(model)) j["verdict"] = budgetVerdictToJson(*v);
     Json rest{
                 {"scenes", std::move(scenes)},
                 {"summary", Json{{"error", "image_errors.flip_mean"},
@@ -216,6 +233,7 @@ nlohmann::ordered_json suiteToJson(const SuiteModel& model) {
                 {"rank_agreement", Json{{"method", "Kendall's tau-b between two scenes' orders of the layouts both "
                                                    "ranked (by mean LDR-FLIP); swapped_pairs: [better in scene_a, "
                                                    "better in scene_b]"},
+                                        {"in_words", std::move(inWords)},
                                         {"pairs", std::move(agreement)}}}};
     for (auto& [key, value] : rest.items()) j[key] = std::move(value);
     return j;

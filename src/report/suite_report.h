@@ -18,6 +18,7 @@ struct SuiteScene {
     std::string name;         // its folder: scenes/<name>/
     std::string scene;        // glTF file, or the built-in scene's name
     std::string environment;  // environment file, or the built-in sky
+    bool builtin = false;     // the built-in scene (whatever its name)
     bool ok = true;           // false: the scene failed before its runs (it could not be loaded)
     std::string error;        // why ("" when ok)
     int exitStatus = 0;       // of its comparison (0, 1 a file not written, 4 some runs failed)

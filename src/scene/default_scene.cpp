@@ -4,7 +4,10 @@
 // grid, makeSphereGridScene); around it, filling the frame: textured albedo with saturated
 // chroma detail, a tiled metal/dielectric panel with sharp boundaries, a large sphere with fine
 // normal detail facing every axis, an emissive sign, an alpha-tested wire fence, and buildings
-// from 100 m to 400 m away on a ground that reaches the horizon (depth precision).
+// from 100 m to 400 m away on a ground that reaches the horizon (depth precision). Occlusion maps
+// as real assets carry them: the ground's, baked from the spheres above it (contact shadows), and
+// the tiles' grooves, packed with their roughness and metallic (a layout that drops occlusion
+// loses here as on real content).
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene.h"
@@ -94,13 +97,16 @@ void addColouredSpecularRow(SceneParts& parts) {
     for (int c = 0; c < kColumns; ++c) parts.addSphere(row[c], xOfColumn(c), kColouredRowY);
 }
 
+constexpr float kGroundSize = 14.0f;  // metres
+const char* const kGroundName = "ground, detail normal map";
+
 void addGround(Scene& scene) {
     scene.textures.push_back(makeDetailNormalMap(1024));
-    Material ground = makeMaterial("ground, detail normal map", glm::vec3(0.45f, 0.43f, 0.40f), 0.0f, 0.6f);
+    Material ground = makeMaterial(kGroundName, glm::vec3(0.45f, 0.43f, 0.40f), 0.0f, 0.6f);
     ground.normalTexture = static_cast<int>(scene.textures.size()) - 1;
     scene.materials.push_back(ground);
     // 14 m wide: 1.4 cm per texel, so the detail is fine compared with a pixel's footprint.
-    Draw draw = appendMesh(scene, makeGroundPlane(14.0f, 8));
+    Draw draw = appendMesh(scene, makeGroundPlane(kGroundSize, 8));
     draw.material = static_cast<int>(scene.materials.size()) - 1;
     scene.draws.push_back(draw);
 }
@@ -144,6 +150,7 @@ void addSurroundings(Scene& scene, const Draw& sphere) {
     Material tiles = makeMaterial("metal and paint tiles", glm::vec3(1.0f), 1.0f, 1.0f);
     tiles.baseColorTexture = addTexture(scene, makeTileBaseColor(256));
     tiles.metallicRoughnessTexture = addTexture(scene, makeTileMetalRoughness(256));
+    tiles.occlusionTexture = tiles.metallicRoughnessTexture;  // packed: R occlusion, G roughness, B metallic
     addPanel(scene, plane, material(tiles), {4.6f, 1.9f, -0.6f}, {2.8f, 3.8f}, {0, 0, 1});
 
     // An emissive sign above the tiles, and a small glowing sphere in front of the grid.
@@ -196,6 +203,20 @@ void addSurroundings(Scene& scene, const Draw& sphere) {
     }
 }
 
+// The ground's occlusion map, baked from every sphere drawn above it (the grid, the glowing one,
+// the large one that touches it): each draw of the shared sphere mesh, its centre and radius from
+// its model matrix (a translation and a uniform scale).
+void addGroundOcclusion(Scene& scene, const Draw& sphere) {
+    std::vector<OccludingSphere> spheres;
+    for (const Draw& d : scene.draws)
+        if (d.firstIndex == sphere.firstIndex && d.vertexOffset == sphere.vertexOffset)
+            spheres.push_back({glm::vec3(d.model[3]), kSphereRadius * glm::length(glm::vec3(d.model[0]))});
+    // 512 texels over 14 m: 2.7 cm each, finer than the contact shadows' falloff (tens of cm).
+    const int texture = addTexture(scene, makeGroundOcclusion(512, kGroundSize, spheres));
+    for (Material& m : scene.materials)
+        if (m.name == kGroundName) m.occlusionTexture = texture;
+}
+
 Camera makeGridCamera() {
     Camera camera;
     // In front of the grid and a little above it, looking slightly down at its middle; the
@@ -238,6 +259,7 @@ Scene makeDefaultScene() {
     scene.source = "built-in default scene";
     const Draw sphere = scene.draws.front();  // the grid's shared sphere mesh
     addSurroundings(scene, sphere);
+    addGroundOcclusion(scene, sphere);
     scene.camera.zFar = 2000.0f;  // the far ground and buildings (100-400 m) stay inside
     scene.bounds = worldBounds(scene);
     return scene;

@@ -1,7 +1,10 @@
 #include "procedural_textures.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+
+#include <glm/glm.hpp>
 
 #include "integer_hash.h"
 
@@ -49,6 +52,12 @@ Texture makeMosaicAlbedo(int size) {
     return t;
 }
 
+// A tile's occlusion by its distance in texels from the nearest groove (the tile's edge).
+uint8_t tileOcclusion(int x, int y) {
+    const int fromEdge = std::min({x % kTile, kTile - 1 - x % kTile, y % kTile, kTile - 1 - y % kTile});
+    return fromEdge == 0 ? 89 : fromEdge == 1 ? 179 : 255;  // 0.35, 0.7, 1
+}
+
 Texture makeTileMetalRoughness(int size) {
     Texture t = blank(size, false);
     for (int y = 0; y < size; ++y)
@@ -56,7 +65,7 @@ Texture makeTileMetalRoughness(int size) {
             const int tx = x / kTile, ty = y / kTile;
             const bool metal = tileKind(tx, ty) < 3;
             const uint8_t r = uint8_t(tileRoughness(tx, ty) * 255.0f + 0.5f);
-            put(t, x, y, {255, r, uint8_t(metal ? 255 : 0), 255});
+            put(t, x, y, {tileOcclusion(x, y), r, uint8_t(metal ? 255 : 0), 255});
         }
     return t;
 }
@@ -99,6 +108,24 @@ Texture makeEmissiveStripes(int size) {
             const auto& h = kHues[size_t(band / 3) % kHues.size()];
             const int scale = (y / 32) % 2 ? 255 : 128;
             put(t, x, y, {uint8_t(h[0] * scale / 255), uint8_t(h[1] * scale / 255), uint8_t(h[2] * scale / 255), 255});
+        }
+    return t;
+}
+
+Texture makeGroundOcclusion(int size, float groundSize, const std::vector<OccludingSphere>& spheres) {
+    Texture t = blank(size, false);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            // The texel's centre on the ground: uv (x + 0.5) / size, (y + 0.5) / size.
+            const glm::vec3 p(((float(x) + 0.5f) / float(size) - 0.5f) * groundSize, 0.0f,
+                              ((float(y) + 0.5f) / float(size) - 0.5f) * groundSize);
+            double occlusion = 1.0;
+            for (const OccludingSphere& s : spheres) {
+                const double h = s.centre.y, d = glm::length(s.centre - p);
+                if (h <= 0.0 || d <= 0.0) continue;
+                occlusion *= 1.0 - std::min(1.0, h * double(s.radius) * double(s.radius) / (d * d * d));
+            }
+            put(t, x, y, {uint8_t(occlusion * 255.0 + 0.5), 255, 255, 255});
         }
     return t;
 }

@@ -120,7 +120,7 @@ TEST(Cli, RenderWritesExrAndPng) {
 }
 
 TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
-    RunResult r = run("compare --out cmp --size 96x64 --layouts ue4,crysis3-thin");
+    RunResult r = run("compare --scene builtin --out cmp --size 96x64 --layouts ue4,crysis3-thin");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json report = scratch.json("cmp/report.json");
     ASSERT_EQ(report["runs"].size(), 2u);
@@ -155,7 +155,7 @@ TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
     EXPECT_EQ(t["gpu_passes_share_host_cores"], true);
     EXPECT_NE(r.out.find("on this CPU device the passes share the cores"), std::string::npos) << r.out;
 
-    r = run("compare --out cmp-hdr --size 96x64 --layouts crysis3-thin --hdr-flip");
+    r = run("compare --scene builtin --out cmp-hdr --size 96x64 --layouts crysis3-thin --hdr-flip");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json hdr = scratch.json("cmp-hdr/report.json");
     const auto& errors = hdr["runs"][0]["image_errors"];
@@ -163,7 +163,7 @@ TEST(Cli, CompareReportsEveryRunAndTimesItsStages) {
     EXPECT_GT(errors["hdr_flip_mean"].get<double>(), 0.0);  // crysis3-thin loses visible colour
     EXPECT_GE(errors["hdr_flip_exposures"].get<int>(), 2);
 
-    r = run("compare --out cmp-both --size 96x64 --hdr-flip --no-hdr-flip");
+    r = run("compare --scene builtin --out cmp-both --size 96x64 --hdr-flip --no-hdr-flip");
     expectOneLineError(r, {"--hdr-flip", "--no-hdr-flip"});
     EXPECT_FALSE(fs::exists(scratch() / "cmp-both"));
 }
@@ -197,11 +197,11 @@ TEST(Cli, CompareCountsAndExcludesForwardDrawnPixels) {
 
 TEST(Cli, CompareViewsReportTheMeanOverViewsAndItsSpread) {
     for (const std::string bad : {"0", "abc", "-1", "2x", "17"}) {
-        const RunResult b = run("compare --out badviews --size 32x32 --layouts ue4 --views " + bad);
+        const RunResult b = run("compare --scene builtin --out badviews --size 32x32 --layouts ue4 --views " + bad);
         expectOneLineError(b, {"--views"});
         EXPECT_FALSE(fs::exists(scratch() / "badviews")) << bad;
     }
-    const RunResult r = run("compare --out views2 --size 96x64 --layouts ue4,crysis3-thin --views 2");
+    const RunResult r = run("compare --scene builtin --out views2 --size 96x64 --layouts ue4,crysis3-thin --views 2");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json report = scratch.json("views2/report.json");
     ASSERT_EQ(report["run"]["views"].size(), 2u);
@@ -248,7 +248,7 @@ TEST(Cli, CompareViewsReportTheMeanOverViewsAndItsSpread) {
 }
 
 TEST(Cli, CompareDrawsTheSeedsIblFigureWithTheReportsNumbers) {
-    const RunResult r = run("compare --out fig --size 160x90 --layouts ue4 --ibl bo2,ground-truth,split-sum "
+    const RunResult r = run("compare --scene builtin --out fig --size 160x90 --layouts ue4 --ibl bo2,ground-truth,split-sum "
                             "--gt-noise 0.05 --gt-batch-samples 16");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json report = scratch.json("fig/report.json");
@@ -411,7 +411,7 @@ TEST(Cli, CompareExitsNonZeroWhenARunFailsAndStillReportsIt) {
     // A file named "runs" where compare makes its runs/ folder: every layout's images fail to write.
     fs::create_directories(scratch() / "cmp-fail");
     { std::ofstream(scratch() / "cmp-fail" / "runs") << "in the way"; }
-    const RunResult r = run("compare --out cmp-fail --force --size 64x32 --layouts crysis3-thin,ue4");
+    const RunResult r = run("compare --scene builtin --out cmp-fail --force --size 64x32 --layouts crysis3-thin,ue4");
     EXPECT_EQ(r.exitCode, 4) << r.err;
     EXPECT_NE(r.err.find("2 of 2 runs failed"), std::string::npos) << r.err;
     const nlohmann::json report = scratch.json("cmp-fail/report.json");
@@ -435,7 +435,7 @@ TEST(Cli, DirectoriesAndFifosWhereFilesBelongAreOneLine) {
     r = run("layouts check fifo.toml", "timeout 60");  // a read would block forever
     EXPECT_NE(r.exitCode, 124) << "hung on a FIFO";
     EXPECT_NE((r.out + r.err).find("is not a regular file"), std::string::npos) << r.out << r.err;
-    r = run("compare --out fifo-out --size 32x32 --layouts ./fifo.toml", "timeout 60");
+    r = run("compare --scene builtin --out fifo-out --size 32x32 --layouts ./fifo.toml", "timeout 60");
     expectOneLineError(r, {"fifo.toml", "is not a regular file"});
     fs::remove(scratch() / "fifo.hdr");
     ASSERT_EQ(::mkfifo((scratch() / "fifo.hdr").c_str(), 0600), 0);
@@ -456,7 +456,7 @@ TEST(Cli, FlagsAreStrict) {
     expectOneLineError(r, {"--size is given twice"});
     for (const std::string bad : {"--layouts ,", "--layouts ''", "--layouts all,ue4", "--layouts ue4,,ryse",
                                   "--ibl ,split-sum"}) {
-        r = run("compare --out strict --size 32x32 " + bad);
+        r = run("compare --scene builtin --out strict --size 32x32 " + bad);
         expectOneLineError(r, {bad.substr(0, bad.find(' '))});
         EXPECT_FALSE(fs::exists(scratch() / "strict")) << bad;
     }
@@ -474,7 +474,7 @@ TEST(Cli, InterruptedCompareLeavesAMarkedFolderWithAReportOfFinishedRuns) {
         const fs::path out = scratch() / ("interrupted-" + name);
         // 640x360: each run takes long enough (hundreds of ms on lavapipe) that the signal lands
         // mid-compare even on a loaded machine, not after the last run.
-        Background b(name, {"compare", "--out", out.string(), "--size", "640x360", "--layouts", "all"});
+        Background b(name, {"compare", "--scene", "builtin", "--out", out.string(), "--size", "640x360", "--layouts", "all"});
         // Wait for the second layout's run folder: at least one run has finished by then.
         size_t started = 0;
         waitFor([&] {
@@ -563,9 +563,9 @@ TEST(Cli, InterruptedSuiteWritesTheTopReportOfTheScenesThatFinished) {
 TEST(Cli, SecondRunIntoTheSameOutputIsRefused) {
     const fs::path out = scratch() / "locked";
     // Large enough that the first is still running while the second and the render are tried.
-    Background first("first", {"compare", "--out", out.string(), "--size", "640x360", "--layouts", "ue4,ryse"});
+    Background first("first", {"compare", "--scene", "builtin", "--out", out.string(), "--size", "640x360", "--layouts", "ue4,ryse"});
     ASSERT_TRUE(waitFor([&] { return fs::exists(out / "INCOMPLETE"); }, 120)) << first.err();
-    const RunResult second = run("compare --out locked --force --size 64x32 --layouts crysis3-thin");
+    const RunResult second = run("compare --scene builtin --out locked --force --size 64x32 --layouts crysis3-thin");
     expectOneLineError(second, {"--out", "another gbufferlab run is writing into this directory"});
     const RunResult render = run("render --out locked --force --size 32x32");
     expectOneLineError(render, {"another gbufferlab run"});

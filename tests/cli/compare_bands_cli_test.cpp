@@ -30,7 +30,7 @@ std::vector<std::pair<std::string, double>> reportNumbers(const std::string& dir
 
 TEST(CompareBandsCli, BandsGiveTheWholeFramesNumbersAndImages) {
     const std::string common =
-        "compare --size 200x120 --layouts crysis3-thin,crysis2-slim,visibility-32 --views 2 --eval gpu --hdr-flip ";
+        "compare --scene builtin --size 200x120 --layouts crysis3-thin,crysis2-slim,visibility-32 --views 2 --eval gpu --hdr-flip ";
     const RunResult whole = run(common + "--band-rows 0 --out whole");
     ASSERT_EQ(whole.exitCode, 0) << whole.err;
     const RunResult bands = run(common + "--band-rows 24 --out bands");  // 120 = 5 x 24
@@ -73,12 +73,12 @@ TEST(CompareBandsCli, BandsGiveTheWholeFramesNumbersAndImages) {
 }
 
 TEST(CompareBandsCli, BadUsesAreOneLine) {
-    expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows 12 --out e1"), {"--band-rows", "multiple of 8"});
-    expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows 16 --eval cpu --out e2"),
+    expectOneLineError(run("compare --scene builtin --size 64x48 --layouts ue4 --band-rows 12 --out e1"), {"--band-rows", "multiple of 8"});
+    expectOneLineError(run("compare --scene builtin --size 64x48 --layouts ue4 --band-rows 16 --eval cpu --out e2"),
                        {"--band-rows", "--eval cpu"});
-    expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows 16 --ibl ground-truth,split-sum --out e3"),
+    expectOneLineError(run("compare --scene builtin --size 64x48 --layouts ue4 --band-rows 16 --ibl ground-truth,split-sum --out e3"),
                        {"--band-rows", "ground-truth"});
-    expectOneLineError(run("compare --size 64x48 --layouts ue4 --band-rows many --out e4"), {"--band-rows"});
+    expectOneLineError(run("compare --scene builtin --size 64x48 --layouts ue4 --band-rows many --out e4"), {"--band-rows"});
     for (const char* d : {"e1", "e2", "e3", "e4"}) EXPECT_FALSE(fs::exists(scratch / d)) << d;
 }
 

@@ -33,6 +33,36 @@ const Json* runOf(const Json& report, const std::string& layout) {
 
 }  // namespace
 
+// The default, no --scene: the built-in scene and the bundled assets (scenes/default-suite.toml)
+// as a suite, at whatever --size and --views say; its report leads with the verdict across the
+// scenes and their rank agreement in words. Tiny frames, two layouts.
+TEST(CompareScenes, WithoutASceneTheBundledSuiteAndItsHeadline) {
+    const RunResult r = runGbufferlab(scratch(), "compare --size 64x36 --views 1 --layouts ue4,ue5-nostatic --out default");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("Across 3 scenes"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\nAgreement. "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\nVerdict across the scenes. "), std::string::npos) << r.out;
+    const Json top = readJson(scratch() / "default/report.json");
+    EXPECT_EQ(top["schema"], "gbufferlab-scene-suite");
+    EXPECT_EQ(top["run"]["width"], 64);
+    ASSERT_EQ(top["scenes"].size(), 3u);
+    const char* names[] = {"builtin", "FlightHelmet", "WaterBottle"};
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(top["scenes"][i]["name"], names[i]);
+        EXPECT_EQ(top["scenes"][i]["status"], "ok");
+        EXPECT_TRUE(fs::exists(scratch() / "default/scenes" / names[i] / "report.html")) << names[i];
+    }
+    EXPECT_EQ(top["verdict"]["scenes"], 3);
+    EXPECT_EQ(top["verdict"]["budgets"].size(), 6u);
+    const std::string words = top["rank_agreement"]["in_words"]["sentence"];
+    EXPECT_NE(words.find(" agree"), std::string::npos) << words;
+    EXPECT_NE(words.find(" at tau "), std::string::npos) << words;
+    EXPECT_NE(r.out.find(words), std::string::npos);  // the console prints the same sentence
+    EXPECT_EQ(top["rank_agreement"]["pairs"].size(), 3u);
+    const std::string html = slurp(scratch() / "default/report.html");
+    EXPECT_NE(html.find("Verdict across the scenes"), std::string::npos);
+}
+
 TEST(CompareScenes, EveryLayoutOnEveryScene) {
     const fs::path avocado = sharedAssets() / "models/Avocado/Avocado.gltf";
     const fs::path studio = sharedAssets() / "envmaps/studio_small_03_1k.hdr";

@@ -22,7 +22,7 @@ const CliScratch scratch("gbl_compare_temporal_test_");
 
 RunResult run(const std::string& args) { return scratch.run(args); }
 
-const std::string kCommon = "compare --size 96x54 --layouts niagara,crysis3-thin --views 1 ";
+const std::string kCommon = "compare --scene builtin --size 96x54 --layouts niagara,crysis3-thin --views 1 ";
 
 TEST(CompareTemporalCli, TemporalOneIsTheComparisonWithoutTheFlagBitForBit) {
     const RunResult plain = run(kCommon + "--out plain");
@@ -92,7 +92,7 @@ TEST(CompareTemporalCli, ResolvedAndSingleFrameSideBySide) {
 }
 
 TEST(CompareTemporalCli, BadValuesAreOneLine) {
-    const std::string c = "compare --size 64x36 --layouts ue4 ";
+    const std::string c = "compare --scene builtin --size 64x36 --layouts ue4 ";
     expectOneLineError(run(c + "--temporal 0 --out e1"), {"--temporal 0", "1 to 256"});
     expectOneLineError(run(c + "--temporal eight --out e2"), {"--temporal eight", "whole number"});
     expectOneLineError(run(c + "--temporal 100000 --out e3"), {"--temporal 100000", "1 to 256"});
@@ -112,7 +112,7 @@ TEST(CompareTemporalCli, BadValuesAreOneLine) {
 // refusal advises only what the command accepts with the flags given (search has no bands at all).
 TEST(CompareTemporalCli, AMemoryRefusalAdvisesOnlyWhatTheFlagsAllow) {
     const std::string budget = "GBL_MEMORY_BUDGET=4G";  // refused on any machine
-    const RunResult r = scratch.run("compare --temporal 4 --size 16384x16384 --layouts ue4 --views 1 --out huge", budget);
+    const RunResult r = scratch.run("compare --scene builtin --temporal 4 --size 16384x16384 --layouts ue4 --views 1 --out huge", budget);
     expectOneLineError(r, {"--size 16384x16384", "--temporal"});
     EXPECT_EQ(r.err.find("--band-rows 64"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(scratch / "huge"));
@@ -121,6 +121,6 @@ TEST(CompareTemporalCli, AMemoryRefusalAdvisesOnlyWhatTheFlagsAllow) {
     EXPECT_EQ(s.err.find("--band-rows"), std::string::npos) << s.err;
     // Without --temporal, compare can still advise bands.
     const RunResult whole =
-        scratch.run("compare --size 16384x16384 --layouts ue4 --views 1 --band-rows 0 --out huge-whole", budget);
+        scratch.run("compare --scene builtin --size 16384x16384 --layouts ue4 --views 1 --band-rows 0 --out huge-whole", budget);
     expectOneLineError(whole, {"--size 16384x16384", "--band-rows 64"});
 }

@@ -137,7 +137,7 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
         SCOPED_TRACE("--eval " + eval);
         const bool exact = eval == "cpu";
         const std::string dir = "rep-" + eval + "/";
-        const RunResult c = run("compare --size 96x54 --layouts crysis2-slim,ue4 --hdr-flip --float32-exr --eval " + eval +
+        const RunResult c = run("compare --scene builtin --size 96x54 --layouts crysis2-slim,ue4 --hdr-flip --float32-exr --eval " + eval +
                               (exact ? " --error-exr" : "") + " --out " + dir);
         ASSERT_EQ(c.exitCode, 0) << c.err;
         const auto& report = reports[eval] = nlohmann::json::parse(slurp(scratch() / dir / "report.json"));
@@ -203,7 +203,7 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
                 EXPECT_NEAR(num(ga[name]["all"]["mean"]), mean, 1e-4 * mean + 1e-9) << name;
             }
         }
-    const RunResult bad = run("compare --size 32x32 --layouts ue4 --eval fpga --out rep-bad");
+    const RunResult bad = run("compare --scene builtin --size 32x32 --layouts ue4 --eval fpga --out rep-bad");
     expectOneLineError(bad, {"--eval fpga", "auto, gpu or cpu"});
     EXPECT_FALSE(fs::exists(scratch() / "rep-bad"));
 }
@@ -212,7 +212,7 @@ TEST(Diff, ReportNumbersAreReproducibleFromWrittenFiles) {
 // run names and writes none, yet every number stays recomputable (the test above); --error-exr
 // writes it, and is refused where no float maps exist (the device evaluator, bands).
 TEST(Diff, ErrorExrIsWrittenOnlyOnRequest) {
-    const RunResult c = run("compare --size 96x54 --layouts ue4 --views 1 --eval cpu --out noerrexr");
+    const RunResult c = run("compare --scene builtin --size 96x54 --layouts ue4 --views 1 --eval cpu --out noerrexr");
     ASSERT_EQ(c.exitCode, 0) << c.err;
     const auto report = scratch.json("noerrexr/report.json");
     EXPECT_EQ(report["runs"][0]["images"]["errors_exr"], "");
@@ -220,7 +220,7 @@ TEST(Diff, ErrorExrIsWrittenOnlyOnRequest) {
         EXPECT_NE(entry.path().filename(), "errors.exr") << entry.path();
     ASSERT_FALSE(report["runs"][0]["images"]["render_exr"].get<std::string>().empty());
 
-    const RunResult w = run("compare --size 96x54 --layouts ue4 --views 1 --error-exr --out errexr");
+    const RunResult w = run("compare --scene builtin --size 96x54 --layouts ue4 --views 1 --error-exr --out errexr");
     ASSERT_EQ(w.exitCode, 0) << w.err;
     const auto withExr = scratch.json("errexr/report.json");
     const std::string path = withExr["runs"][0]["images"]["errors_exr"];
@@ -229,9 +229,9 @@ TEST(Diff, ErrorExrIsWrittenOnlyOnRequest) {
     // The numbers do not depend on it.
     EXPECT_EQ(withExr["runs"][0]["image_errors"].dump(), report["runs"][0]["image_errors"].dump());
 
-    expectOneLineError(run("compare --size 96x54 --layouts ue4 --error-exr --eval gpu --out errexr-gpu"),
+    expectOneLineError(run("compare --scene builtin --size 96x54 --layouts ue4 --error-exr --eval gpu --out errexr-gpu"),
                        {"--error-exr", "--eval cpu"});
-    expectOneLineError(run("compare --size 96x54 --layouts ue4 --error-exr --band-rows 16 --out errexr-bands"),
+    expectOneLineError(run("compare --scene builtin --size 96x54 --layouts ue4 --error-exr --band-rows 16 --out errexr-bands"),
                        {"--error-exr", "--band-rows 0"});
     EXPECT_FALSE(fs::exists(scratch() / "errexr-gpu"));
     EXPECT_FALSE(fs::exists(scratch() / "errexr-bands"));
@@ -244,7 +244,7 @@ TEST(Diff, ErrorExrIsWrittenOnlyOnRequest) {
 // <= 2^-11 (RMS(t) + RMS(r)) + 2^-24. PSNR = 20 log10(peak / RMSE) moves with the RMSE and the
 // peak (the reference's maximum, also rounded). The PNG numbers do not depend on the EXRs: exact.
 TEST(Diff, HalfExrsReproduceTheReportWithinHalfsRounding) {
-    const RunResult c = run("compare --size 96x54 --layouts ue4 --views 1 --error-exr --out half");
+    const RunResult c = run("compare --scene builtin --size 96x54 --layouts ue4 --views 1 --error-exr --out half");
     ASSERT_EQ(c.exitCode, 0) << c.err;
     const auto report = scratch.json("half/report.json");
     EXPECT_EQ(report["run"]["exr_precision"], "half");

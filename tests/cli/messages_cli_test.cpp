@@ -44,20 +44,20 @@ TEST(Messages, SearchNamesWhatItHasForAUsedFolder) {
 
 // 1e-300 is positive; a float cannot hold it.
 TEST(Messages, AFloatFlagSaysTooSmallOrTooLarge) {
-    const RunResult small = run("compare --gt-noise 1e-300 --out gt");
+    const RunResult small = run("compare --scene builtin --gt-noise 1e-300 --out gt");
     expectOneLineError(small, {"--gt-noise", "1e-300", "too small"});
     expectAbsent(small, "positive");
-    expectOneLineError(run("compare --gt-noise 1e39 --out gt"), {"--gt-noise", "too large"});
-    expectOneLineError(run("compare --gt-noise -1 --out gt"), {"--gt-noise", "positive"});
+    expectOneLineError(run("compare --scene builtin --gt-noise 1e39 --out gt"), {"--gt-noise", "too large"});
+    expectOneLineError(run("compare --scene builtin --gt-noise -1 --out gt"), {"--gt-noise", "positive"});
 }
 
 // 99992 is a multiple of 8; what is wrong is its size.
 TEST(Messages, BandRowsSaysTheLimitItBreaks) {
-    const RunResult r = run("compare --band-rows 99992 --out br");
+    const RunResult r = run("compare --scene builtin --band-rows 99992 --out br");
     expectOneLineError(r, {"--band-rows", "99992", "at most 65536"});
     expectAbsent(r, "multiple of 8");
-    expectOneLineError(run("compare --band-rows 99999999999 --out br"), {"at most 65536"});
-    expectOneLineError(run("compare --band-rows 12 --out br"), {"multiple of 8"});
+    expectOneLineError(run("compare --scene builtin --band-rows 99999999999 --out br"), {"at most 65536"});
+    expectOneLineError(run("compare --scene builtin --band-rows 12 --out br"), {"multiple of 8"});
 }
 
 // A symbolic link that loops is not a missing file.
@@ -67,7 +67,7 @@ TEST(Messages, ALayoutSymlinkLoopIsNamedAsOne) {
     const RunResult r = run("layouts show loop_a.toml");
     expectOneLineError(r, {"loop_a.toml", "loops"});
     expectAbsent(r, "no such");
-    expectOneLineError(run("compare --layouts loop_a.toml --out lp"), {"loop_a.toml", "loops"});
+    expectOneLineError(run("compare --scene builtin --layouts loop_a.toml --out lp"), {"loop_a.toml", "loops"});
 }
 
 // layouts glsl PATH said "generated from layouts/ue4.toml" for a file elsewhere.
@@ -99,7 +99,7 @@ TEST(Messages, UnicodePathsPrintAsUtf8) {
 TEST(Messages, ForceIntoAFolderHoldingAnInputIsRefused) {
     fs::create_directories(scratch() / "kept");
     { std::ofstream(scratch() / "kept" / "sky.hdr") << "the user's sky"; }
-    for (const std::string command : {"render --size 32x32", "compare --size 32x32 --layouts ue4", "ibl"}) {
+    for (const std::string command : {"render --size 32x32", "compare --scene builtin --size 32x32 --layouts ue4", "ibl"}) {
         const RunResult r = run(command + " --env kept/sky.hdr --out kept --force");
         expectOneLineError(r, {"--out kept", "holds the input kept/sky.hdr"});
     }

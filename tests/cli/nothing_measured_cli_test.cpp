@@ -25,7 +25,7 @@ RunResult run(const std::string& args) { return scratch.run(args); }
 }  // namespace
 
 TEST(NothingMeasured, AReferenceClippedToBlackIsNoPerfectScore) {
-    const RunResult r = run("compare --size 64x36 --views 1 --layouts ue4,crysis3-thin --exposure 1e-30 --out black");
+    const RunResult r = run("compare --scene builtin --size 64x36 --views 1 --layouts ue4,crysis3-thin --exposure 1e-30 --out black");
     EXPECT_EQ(r.exitCode, 4) << r.err;
     EXPECT_NE(r.err.find("no view had anything to measure"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("NOT MEASURED"), std::string::npos) << r.out;

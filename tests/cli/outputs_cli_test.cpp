@@ -109,7 +109,7 @@ TEST(Outputs, ForceIntoAFolderHoldingASpecialFileIsRefusedBeforeTheWork) {
     fs::create_directories(scratch() / "used" / "runs");
     { std::ofstream(scratch() / "used" / "notes.txt") << "x"; }
     ASSERT_EQ(::mkfifo((scratch() / "used" / "runs" / "report.json").c_str(), 0600), 0);
-    for (const std::string command : {"compare --size 32x32 --layouts ue4", "render --size 32x32", "ibl"}) {
+    for (const std::string command : {"compare --scene builtin --size 32x32 --layouts ue4", "render --size 32x32", "ibl"}) {
         SCOPED_TRACE(command);
         const RunResult r = run(command + " --out used --force");
         expectOneLineError(r, {"--out used", "report.json", "a FIFO", "not a regular file"});
@@ -122,7 +122,7 @@ TEST(Outputs, ForceIntoAFolderHoldingASpecialFileIsRefusedBeforeTheWork) {
 TEST(Outputs, AnEmptyOutIsAnError) {
     writeSmallPngs();
     for (const std::string command : {"layouts export ue4 --lang glsl --out ''", "layouts export ue4 --lang glsl --out=",
-                                      "diff a.png b.png --out ''", "compare --size 32x32 --layouts ue4 --out ''",
+                                      "diff a.png b.png --out ''", "compare --scene builtin --size 32x32 --layouts ue4 --out ''",
                                       "render --size 32x32 --out ''", "ibl --out ''", "search --budget 12 --out ''"}) {
         SCOPED_TRACE(command);
         const RunResult r = run(command);

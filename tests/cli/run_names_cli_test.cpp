@@ -17,7 +17,7 @@ using namespace gbl::test;
 
 const CliScratch scratch("gbl_run_names_test_");
 
-RunResult compare(const std::string& args) { return scratch.run("compare --size 32x32 --out out " + args); }
+RunResult compare(const std::string& args) { return scratch.run("compare --scene builtin --size 32x32 --out out " + args); }
 
 }  // namespace
 

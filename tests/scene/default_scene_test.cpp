@@ -8,6 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "procedural_textures.h"
 #include "scene.h"
 #include "scene_detail_normal_map.h"
 #include "tangents.h"
@@ -228,6 +229,64 @@ TEST(DefaultScene, SurroundingsStressChromaMetalEdgesEmissiveCutOutsAndDepth) {
     for (const Draw& d : s.draws) farthest = std::max(farthest, glm::length(glm::vec3(d.model[3]) - s.camera.position));
     EXPECT_GE(farthest, 100.0f);
     EXPECT_LT(farthest, s.camera.zFar);
+}
+
+// Occlusion maps as real assets carry them: the ground's, baked from the spheres above it, and the
+// tiles', packed with their roughness and metallic (R, G, B of one texture, as FlightHelmet and
+// WaterBottle pack theirs). Neither is constant, so a layout that drops occlusion (UE with static
+// lighting decodes AO = 1) loses on the built-in scene as on real content.
+TEST(DefaultScene, CarriesOcclusionMapsThatAreNotConstant) {
+    const Scene s = makeDefaultScene();
+    auto red = [](const Texture& t, int x, int y) { return int(t.rgba[(size_t(y) * size_t(t.width) + size_t(x)) * 4]); };
+    int maps = 0;
+    bool packed = false;
+    const Texture* ground = nullptr;
+    for (const Material& m : s.materials) {
+        if (m.occlusionTexture == kNoTexture) continue;
+        ++maps;
+        const Texture& t = s.textures[size_t(m.occlusionTexture)];
+        EXPECT_FALSE(t.srgb) << m.name;  // linear data, as glTF's occlusionTexture
+        EXPECT_EQ(m.occlusionStrength, 1.0f) << m.name;
+        int lo = 255, hi = 0;
+        for (int y = 0; y < t.height; ++y)
+            for (int x = 0; x < t.width; ++x) lo = std::min(lo, red(t, x, y)), hi = std::max(hi, red(t, x, y));
+        EXPECT_LT(lo, 100) << m.name;
+        EXPECT_GE(hi, 250) << m.name;  // open sky: the ground far from every sphere, a tile away from its grooves
+        packed = packed || m.occlusionTexture == m.metallicRoughnessTexture;
+        if (m.name.rfind("ground", 0) == 0) ground = &t;
+    }
+    EXPECT_EQ(maps, 2);
+    EXPECT_TRUE(packed);
+    ASSERT_NE(ground, nullptr);
+    // The 14 m ground, uv 0..1 across it: black where the large sphere (centre (-2.6, 0.8, 2.0),
+    // radius 0.8) touches it, open sky at its corner, far from every sphere.
+    const auto at = [&](float x, float z) {
+        return red(*ground, int((x / 14.0f + 0.5f) * float(ground->width)), int((z / 14.0f + 0.5f) * float(ground->height)));
+    };
+    EXPECT_LE(at(-2.6f, 2.0f), 5);
+    EXPECT_GE(at(-6.9f, -6.9f), 250);
+    EXPECT_LT(at(0.0f, 0.0f), at(0.0f, 3.0f));  // under the grid's middle, darker than in front of it
+    // The grid's columns do not touch the ground (their lowest point is 0.1 m above it): grey, not black.
+    EXPECT_GT(at(-2.5f, 0.0f), 40);
+}
+
+// The occlusion a baker writes: one sphere of radius r, its centre h above the ground and d from a
+// texel, hides h r^2 / d^3 of the texel's cosine-weighted sky; several multiply what they leave.
+TEST(DefaultScene, GroundOcclusionIsTheSpheresFormFactor) {
+    // 101 texels over 10.1 m: texel 50's centre is the origin, texel 60's is 1 m along +X.
+    const Texture t = makeGroundOcclusion(101, 10.1f, {{glm::vec3(0.0f, 1.0f, 0.0f), 0.5f}});
+    auto red = [&](int x, int y) { return int(t.rgba[(size_t(y) * 101 + size_t(x)) * 4]); };
+    EXPECT_EQ(red(50, 50), 191);  // 1 - 0.25, in 8 bits
+    const double d = std::sqrt(2.0);
+    EXPECT_EQ(red(60, 50), int(std::lround((1.0 - 0.25 / (d * d * d)) * 255.0)));
+    EXPECT_EQ(red(60, 50), red(40, 50));
+    EXPECT_EQ(red(60, 50), red(50, 60));
+    for (size_t i = 1; i < t.rgba.size(); i += 4) ASSERT_EQ(t.rgba[i], 255);  // G, B, A
+    const Texture two = makeGroundOcclusion(101, 10.1f, {{glm::vec3(0.0f, 1.0f, 0.0f), 0.5f},
+                                                         {glm::vec3(0.0f, 2.0f, 0.0f), 0.5f}});
+    EXPECT_EQ(two.rgba[(50 * 101 + 50) * 4], std::lround(0.75 * (1.0 - 2.0 * 0.25 / 8.0) * 255.0));
+    const Texture touching = makeGroundOcclusion(101, 10.1f, {{glm::vec3(0.0f, 0.5f, 0.0f), 0.5f}});
+    EXPECT_EQ(touching.rgba[(50 * 101 + 50) * 4], 0);
 }
 
 }  // namespace
