@@ -10,6 +10,7 @@
 #include "budget_verdict.h"
 #include "json_number.h"
 #include "report_atlas.h"
+#include "report_bandwidth.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
 
@@ -286,6 +287,7 @@ Json runJson(const RunReport& r) {
         j["view_spread"] = viewSpreadJson(views);
         j["views"] = std::move(views);
     }
+    if (r.effective) j["effective_bandwidth"] = effectiveBandwidthJson(*r.effective);  // report_bandwidth.h
     if (r.singleFrame) {  // compare --temporal N: frame 0 alone, beside the resolve above
         Json single{{"attribute_errors", attributesJson(r.singleFrame->attributes)}};
         if (r.singleFrame->image) single["image_errors"] = imageErrorsJson(*r.singleFrame->image);
@@ -369,6 +371,8 @@ Json reportToJson(const ReportModel& model) {
     if (!model.atlas.empty()) j["atlas"] = atlasJson(model);
     if (model.significance) j["significance"] = significanceJson(*model.significance);
     if (const auto v = budgetVerdict(model)) j["verdict"] = verdictJson(*v);
+    j["run"]["lighting"] = run.lighting;
+    if (!effectiveRuns(model).empty()) j["bandwidth_as_paid"] = bandwidthAsPaidJson(model);  // report_bandwidth.h
     return j;
 }
 
