@@ -89,6 +89,7 @@ gbl_test(measure/effective_bandwidth_test LABELS unit DEPS gbl_measure gbl_layou
 gbl_test(measure/view_content_test LABELS unit DEPS gbl_measure)  # views with nothing to measure
 gbl_test(measure/png16_diff_test LABELS unit DEPS gbl_measure)  # 16-bit PNGs at 16 bits
 gbl_test(report/report_test LABELS unit DEPS gbl_report)
+gbl_test(report/report_bandwidth_test LABELS unit DEPS gbl_report gbl_layout)  # effective bytes per GPU class in json / csv / html
 gbl_test(report/visibility_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/budget_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/rank_agreement_test LABELS unit DEPS gbl_report)  # Kendall's tau, tied ranks
