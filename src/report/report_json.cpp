@@ -287,12 +287,12 @@ Json runJson(const RunReport& r) {
         j["view_spread"] = viewSpreadJson(views);
         j["views"] = std::move(views);
     }
-    if (r.effective) j["effective_bandwidth"] = effectiveBandwidthJson(*r.effective);  // report_bandwidth.h
     if (r.singleFrame) {  // compare --temporal N: frame 0 alone, beside the resolve above
         Json single{{"attribute_errors", attributesJson(r.singleFrame->attributes)}};
         if (r.singleFrame->image) single["image_errors"] = imageErrorsJson(*r.singleFrame->image);
         j["single_frame"] = std::move(single);
     }
+    if (r.effective) j["effective_bandwidth"] = effectiveBandwidthJson(*r.effective);  // report_bandwidth.h
     return j;
 }
 
