@@ -26,6 +26,7 @@ gbl_test(scene/scene_models_test LABELS unit DEPS gbl_scene nlohmann_json::nlohm
 gbl_test(scene/gltf_loader_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_json)
 gbl_test(scene/scene_geometry_test LABELS unit DEPS gbl_scene nlohmann_json::nlohmann_json)
 gbl_test(scene/default_scene_test LABELS unit DEPS gbl_scene)
+gbl_test(scene/light_coverage_test LABELS unit DEPS gbl_scene)  # compare --lighting volumes: light volumes per pixel
 gbl_test(encoding/encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # normals; checks their stats too
 gbl_test(encoding/scalar_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
 gbl_test(encoding/color_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)
@@ -90,9 +91,12 @@ gbl_test(measure/significance_test LABELS unit DEPS gbl_measure)  # the sign-fli
 gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/encoding_stats_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)
+gbl_test(measure/framebuffer_compression_test LABELS unit DEPS gbl_measure gbl_layout)  # container arithmetic, calibration vs published GPUs
+gbl_test(measure/effective_bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)  # tile fits, lighting reads, traffic per GPU class
 gbl_test(measure/view_content_test LABELS unit DEPS gbl_measure)  # views with nothing to measure
 gbl_test(measure/png16_diff_test LABELS unit DEPS gbl_measure)  # 16-bit PNGs at 16 bits
 gbl_test(report/report_test LABELS unit DEPS gbl_report)
+gbl_test(report/report_bandwidth_test LABELS unit DEPS gbl_report gbl_layout)  # effective bytes per GPU class in json / csv / html
 gbl_test(report/visibility_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/budget_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/suite_verdict_test LABELS unit DEPS gbl_report)  # the verdict across scenes, agreement in words

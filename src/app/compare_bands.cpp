@@ -123,9 +123,11 @@ BandedRun evaluateRunInBands(Renderer& renderer, const GBufferWiring& reference,
     evaluator.beginRun(options);
     for (const EvalBand& band : plan.bands) {
         const RenderSettings s = bandSettings(settings, band);
+        RenderSettings referenceSettings = s;
+        referenceSettings.onTargetWords = nullptr;  // the compression model measures the layout's words only
         // Both renders of the band live until it is measured; the next band allocates afresh
         // (rows a render never touches are never resident on lavapipe).
-        const RenderOutput ref = renderer.render(reference, s);
+        const RenderOutput ref = renderer.render(reference, referenceSettings);
         const RenderOutput out = renderer.render(test, s);
         addTimes(run.reference, ref.timings);
         addTimes(run.test, out.timings);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ibl_precompute.h"
+#include "effective_bandwidth.h"
 #include "image_io.h"
 #include "layout.h"
 #include "renderer.h"
@@ -68,6 +69,11 @@ struct CompareOptions {
     int temporalFrames = 1;
     ResolveMethod resolve = ResolveMethod::Mean;
     std::string commandLine;  // "gbufferlab compare" and the arguments, for the report ("": none)
+    // --lighting (measure/effective_bandwidth.h): how the lighting pass reads the G-buffer in every
+    // traffic figure; volumes without L: counted from the scene's lights at view 0's camera.
+    LightingModel lighting;
+    // The framebuffer-compression model on view 0's words (report_bandwidth.h); --no-compression: off.
+    bool compressionModel = true;
 
     // Several modes with ground-truth among them: each mode's reference is also compared with the
     // ground truth's (the error of the lighting approximation).

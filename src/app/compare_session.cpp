@@ -8,6 +8,7 @@
 
 #include "auto_exposure.h"
 #include "bandwidth.h"
+#include "light_coverage.h"
 #include "budget_verdict.h"
 #include "best_fit_normals.h"
 #include "forward_mask.h"
@@ -178,6 +179,14 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
 
     views_ = o.cameras.empty() ? compareViews(inputs_.scene, o.viewCount, float(o.width) / float(o.height)) : placedViews(inputs_.scene, o.cameras);
     for (const CompareView& v : views_) model_.run.views.push_back(v.description);
+    // --lighting volumes: the mean light volumes covering a pixel of view 0 (scene/light_coverage.h).
+    lighting_ = o.lighting;
+    if (lighting_.kind == LightingModel::Kind::Volumes && lighting_.counted && !views_.empty())
+        lighting_.readsPerPixel = meanLightVolumesPerPixel(inputs_.scene.lights, views_.front().camera, o.width, o.height);
+    model_.run.lighting = lighting_.text();
+    if (lighting_.kind != LightingModel::Kind::Tiled)
+        model_.run.notes.push_back("--lighting " + lighting_.text() + ": every traffic figure reads the G-buffer and "
+                                   "depth that many times per pixel (light volumes)");
     viewExposures_.assign(views_.size(), o.exposure);
     if (o.viewCount > 1)
         model_.run.notes.push_back("every metric is the mean over " + std::to_string(o.viewCount) +
@@ -322,6 +331,14 @@ std::string CompareSession::viewNotMeasured(int view) {
 
 void CompareSession::finishRuns(ReportModel& model) const {
     for (RunReport& r : model.runs) finishViews(r, model.run.viewNotMeasured);
+    // Bandwidth as GPUs pay it: every run of a layout whose view-0 words were measured (the
+    // G-buffer is the same under every IBL mode).
+    for (RunReport& r : model.runs) {
+        const auto c = compression_.find(r.layout);
+        if (c == compression_.end() || r.status != RunStatus::Ok) continue;
+        for (const Layout& layout : layouts_)
+            if (layout.name == r.layout) r.effective = computeEffectiveBandwidth(layout, c->second, 1, lighting_);
+    }
     // The note that says what the means are over says which views they leave out.
     for (size_t v = 0; v < model.run.viewNotMeasured.size(); ++v)
         if (!model.run.viewNotMeasured[v].empty())
@@ -339,6 +356,8 @@ RunReport CompareSession::makeRun(const Layout& layout, const std::string& mode)
     const BandwidthReport bw = computeBandwidth(layout, options_.width, options_.height);
     run.bytesPerPixel = bytesPerPixelOf(bw);
     run.bandwidth = bw.frames;
+    if (lighting_.readsPerPixel != 1.0)  // --lighting volumes: the lighting pass reads that many times
+        for (FrameTraffic& f : run.bandwidth) f = computeFrameTraffic(layout, f.width, f.height, f.samples, lighting_);
     return run;
 }
 

@@ -24,6 +24,7 @@
 #include "background_writer.h"
 #include "compare_api.h"
 #include "compare_bands.h"
+#include "compare_compression.h"
 #include "compare_options.h"
 #include "compare_runs.h"
 #include "compare_views.h"
@@ -132,6 +133,10 @@ private:
     GBufferWiring referenceWiring_;
     size_t runIndex_ = 0;  // the row of the next run recorded in this view
     size_t bandedReferenceMode_ = 0;  // in bands: the mode whose reference statistics the evaluator holds
+    // Bandwidth as GPUs pay it: the lighting model resolved (volumes counted from the scene's lights),
+    // and each layout's compressed sizes from view 0's words (compare_compression.h), by layout name.
+    LightingModel lighting_;
+    std::map<std::string, FrameCompression> compression_;
     // The cancel action (set by the constructor) uses the members above: this clears it before
     // any of them is destroyed, on every way out, a constructor that throws included (a member
     // declared last is destroyed first; a destructor's body would not run then).

@@ -248,16 +248,23 @@ void CompareSession::runLayouts(int view, const References& references) {
             try {
                 const std::string prefix = "runs/" + layout.name + "/" + o.modeNames[m] + "/";
                 const GBufferWiring wiring = generateWiring(layout, wiringOptions_);
+                RenderSettings settings = settingsFor(o.modes[m], view);
+                // Bandwidth as GPUs pay it: view 0's words under the first mode into the compression
+                // model (compare_compression.h) as they are read back.
+                std::optional<CompressionCapture> capture;
+                if (o.compressionModel && firstView && m == 0) {
+                    capture.emplace(layout, o.width, o.height);
+                    settings.onTargetWords = capture->callback();
+                }
                 if (bandPlan_.banded()) {
                     const PassTimings t =
-                        measureRunInBands(run, *renderer_, referenceWiring_, wiring, settingsFor(o.modes[m], view),
+                        measureRunInBands(run, *renderer_, referenceWiring_, wiring, settings,
                                           bandPlan_, *evaluator_, o.outDir, prefix, o.hdrFlip, firstView,
                                           imageOutput_, gpuPassMs_);
                     run.times = PassTimes{t.gbufferMs, t.lightingMs, ctx_->info.name};
                 } else if (o.temporalFrames > 1) {
                     // N jittered frames resolved; frame 0 measured alone beside the resolve.
-                    TemporalRender t = renderTemporal(*renderer_, wiring, settingsFor(o.modes[m], view),
-                                                      o.temporalFrames, o.resolve);
+                    TemporalRender t = renderTemporal(*renderer_, wiring, settings, o.temporalFrames, o.resolve);
                     gpuPassMs_ += t.resolved.timings.gbufferMs + t.resolved.timings.lightingMs;
                     const double frames = double(o.temporalFrames);  // the times of one frame: their mean
                     run.times = PassTimes{t.resolved.timings.gbufferMs / frames, t.resolved.timings.lightingMs / frames,
@@ -267,11 +274,16 @@ void CompareSession::runLayouts(int view, const References& references) {
                     measureRun(run, t.resolved, ref, o.outDir, prefix, exposure(view), o.hdrFlip, true, firstView,
                                imageOutput_);
                 } else {
-                    RenderOutput out = renderer_->render(wiring, settingsFor(o.modes[m], view));
+                    RenderOutput out = renderer_->render(wiring, settings);
                     gpuPassMs_ += out.timings.gbufferMs + out.timings.lightingMs;
                     run.times = PassTimes{out.timings.gbufferMs, out.timings.lightingMs, ctx_->info.name};
                     measureRun(run, out, ref, o.outDir, prefix, exposure(view), o.hdrFlip, true, firstView, imageOutput_);
                 }
+                if (capture)
+                    if (std::optional<FrameCompression> f = capture->finish()) {
+                        std::lock_guard lock(modelMutex_);
+                        compression_[layout.name] = std::move(*f);
+                    }
                 if (!nothing.empty())
                     progress_->end("not measured: " + nothing);
                 else

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "compare_views.h"
+#include "effective_bandwidth.h"
 #include "error.h"
 #include "file_io.h"
 #include "flip.h"
@@ -100,6 +101,15 @@ struct SearchRun {
             each.push_back(evalThreads > 1 ? scene->evaluator->evaluate(layout, evalThreads)
                                            : scene->evaluator->evaluate(layout));
         return each;
+    }
+    // search --budget-model: the layout's effective bytes per pixel under the class, the mean over
+    // the scenes of view 0's (the CPU codec's words of the reference Surfaces, compressed).
+    double effectiveBytes(const Layout& layout, int evalThreads) const {
+        double sum = 0.0;
+        for (const auto& scene : scenes)
+            sum += effectiveBytesPerPixel(layout, scene->evaluator->compressWords(layout, 0, std::max(1, evalThreads)),
+                                          options.budgetModel);
+        return scenes.empty() ? 0.0 : sum / double(scenes.size());
     }
     // ... and over the scenes: the mean of each scene's.
     search::Evaluation evaluate(const Layout& layout, int evalThreads) const {
@@ -202,7 +212,8 @@ std::string journalKey(const SearchRun& run) {
             sceneKey += (i ? ";" : "") + run.scenes[i]->spec.name + ":" + run.scenes[i]->inputs.scene.source + ":" +
                         run.scenes[i]->inputs.environment.source;
     }
-    return "budget=" + std::to_string(o.budget) + sceneKey + " size=" + std::to_string(o.width) + "x" +
+    return "budget=" + std::to_string(o.budget) + (o.budgetModel == "nominal" ? "" : " budget_model=" + o.budgetModel) +
+           sceneKey + " size=" + std::to_string(o.width) + "x" +
            std::to_string(o.height) + " views=" + std::to_string(o.viewCount) +
            " objective=" + search::objectiveName(o.objective) + " seed=" + std::to_string(o.seed) + " " +
            search::constraintsKey(o.constraints);
@@ -212,7 +223,8 @@ std::string journalKey(const SearchRun& run) {
 search::SearchResult exploreCandidates(const SearchRun& run) {
     const SearchOptions& o = run.options;
     search::SearchOptions options;
-    options.budgetBytes = o.budget;
+    // --budget-model: nominal bytes up to twice the budget are explored; the effective bytes decide.
+    options.budgetBytes = o.budgetModel == "nominal" ? o.budget : std::min(64, 2 * o.budget);
     options.seed = o.seed;
     options.candidates = o.candidates;
     options.threads = run.threads;
@@ -244,6 +256,43 @@ search::SearchResult exploreCandidates(const SearchRun& run) {
     return result;
 }
 
+// search --budget-model: every candidate's bytes become its effective bytes under the class
+// (rounded up to whole bytes, as the front files name them); those over the budget leave the
+// running, and the front is taken again over what is left. The journal keeps the nominal bytes.
+search::SearchResult applyBudgetModel(const SearchRun& run, search::SearchResult found) {
+    const SearchOptions& o = run.options;
+    if (o.budgetModel == "nominal") return found;
+    std::vector<double> effective(found.evaluated.size(), 0.0);
+    parallelFor(int64_t(found.evaluated.size()), run.threads, [&](int64_t begin, int64_t end) {
+        for (int64_t i = begin; i < end; ++i) {
+            const search::Candidate& c = found.evaluated[size_t(i)];
+            effective[size_t(i)] =
+                run.effectiveBytes(parseLayout(search::layoutText("candidate", "", c.body), "candidate.toml"), 1);
+        }
+    });
+    std::vector<search::Candidate> kept;
+    std::vector<int> keptIndex;
+    int over = 0;
+    for (size_t i = 0; i < found.evaluated.size(); ++i) {
+        search::Candidate c = found.evaluated[i];
+        c.bytes = int(std::ceil(effective[i] - 1e-9));
+        found.evaluated[i].bytes = c.bytes;
+        if (c.bytes > o.budget) {
+            ++over;
+            continue;
+        }
+        kept.push_back(c);
+        keptIndex.push_back(int(i));
+    }
+    found.front.clear();
+    for (int k : search::paretoFront(kept)) found.front.push_back(keptIndex[size_t(k)]);
+    found.overBudget += over;
+    note(run.control, "search: --budget-model " + o.budgetModel + ": " + std::to_string(kept.size()) + " of " +
+                          std::to_string(found.evaluated.size()) + " candidates fit " + std::to_string(o.budget) +
+                          " B/px in effective bytes; the front is over effective bytes");
+    return found;
+}
+
 // The report's facts of the run, and its whole front.
 SearchSummary summarise(const SearchRun& run, const search::SearchResult& result) {
     const SearchOptions& o = run.options;
@@ -266,6 +315,10 @@ SearchSummary summarise(const SearchRun& run, const search::SearchResult& result
                      std::to_string(result.duplicates) + " duplicates, " + std::to_string(result.unpackable) +
                      " unpackable, " + std::to_string(result.rejectedByValidation) + " rejected by validation";
     summary.constraints = search::describeConstraints(o.constraints);
+    if (o.budgetModel != "nominal")  // search --budget-model: what the bytes of the front and the rows count
+        summary.constraints.push_back("Bytes per pixel are effective bytes under " + o.budgetModel +
+                                      " (--budget-model): the targets as the framebuffer-compression model stores the "
+                                      "CPU codec's words of view 0, depth nominal, rounded up (docs/bandwidth.md)");
     for (int i : result.front) summary.front.push_back(result.evaluated[size_t(i)]);
     return summary;
 }
@@ -278,7 +331,7 @@ void writeFrontRows(const SearchRun& run, const search::SearchResult& result, Se
     for (const Layout& l : run.publishedLayouts) {
         SearchRow row;
         row.name = l.name;
-        row.bytes = bytesPerPixel(l);
+        row.bytes = o.budgetModel == "nominal" ? bytesPerPixel(l) : int(std::ceil(run.effectiveBytes(l, run.threads) - 1e-9));
         if (run.severalScenes()) {
             row.fastPerScene = run.evaluatePerScene(l, run.threads);
             row.fast = search::meanEvaluation(row.fastPerScene);
@@ -373,7 +426,7 @@ SearchResult runSearch(const SearchOptions& options, const RunControl& control) 
     choosePublishedLayouts(run);
     renderReferences(run);
     if (const int signal = control.cancelSignal()) return interrupted(signal);
-    const search::SearchResult found = exploreCandidates(run);
+    const search::SearchResult found = applyBudgetModel(run, exploreCandidates(run));
     if (const int signal = control.cancelSignal()) return interrupted(signal);
     if (found.front.empty())
         note(control, "search: no candidate fits in " + std::to_string(options.budget) + " B/px (" +

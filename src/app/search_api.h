@@ -41,6 +41,12 @@ struct SearchOptions {
     int candidates = 600;
     int threads = 0;      // candidates evaluated at once; 0: every core. Does not change the result
     bool confirm = true;  // full renders of the front and the published layouts (search --no-confirm: false)
+    // search --budget-model: what the budget and the front's bytes count: "nominal" (the formats'
+    // bytes), or a GPU class's effective bytes ("desktop-dcc", "mali-afbc": the targets as the
+    // framebuffer-compression model stores the words the CPU codec writes for view 0 of each scene,
+    // depth nominal; measure/effective_bandwidth.h). With a class, candidates up to twice the budget
+    // in nominal bytes (at most 64) are explored, and those whose effective bytes fit are kept.
+    std::string budgetModel = "nominal";
     std::filesystem::path outDir;  // new, empty, or holding a journal to resume
     std::string device;   // as compare's --device; empty: lavapipe
     // The command as the front files quote it, without what does not change the result (--out,

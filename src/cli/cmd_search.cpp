@@ -1,5 +1,6 @@
 // `gbufferlab search`: its flags read into app::SearchOptions, the search run (app/search_api.h),
 // its closing lines printed.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -31,6 +32,9 @@ std::vector<FlagSpec> searchFlags() {
         {"size", "WxH", "image size of the evaluation and the confirmation (default 480x270)"},
         {"views", "N", "cameras, as compare --views (default 3)"},
         {"objective", "NAME", "flip (default), psnr or attributes: what the front minimises"},
+        {"budget-model", "MODEL", "what the budget counts: nominal (default: the formats' bytes), desktop-dcc or "
+                                  "mali-afbc (the targets' effective bytes under that class's compression model, "
+                                  "on view 0's words; docs/bandwidth.md)"},
         {"seed", "S", "seed of the search (default 1); a seed gives the same front every time"},
         {"candidates", "N", "layouts to evaluate (default 600)"},
         {"threads", "N", "candidates evaluated at once (default: every core); does not change the result"},
@@ -89,7 +93,11 @@ std::optional<app::SearchOptions> parseSearchOptions(const std::vector<std::stri
     o.budget = parseIntFlag(parsed, "budget", 16, 4, 64);
     o.constraints.searchDepth = parsed.has("search-depth");
     if (parsed.has("min-bits")) search::parseMinBits(parsed.get("min-bits"), o.constraints);
-    app::requirePackableBudget(o.budget, o.constraints);
+    o.budgetModel = parsed.get("budget-model", "nominal");
+    if (o.budgetModel != "nominal" && o.budgetModel != "desktop-dcc" && o.budgetModel != "mali-afbc")
+        throwUserError("gbufferlab search: --budget-model " + o.budgetModel + ": give nominal, desktop-dcc or mali-afbc");
+    // With a class's effective bytes, nominal layouts up to twice the budget are explored.
+    app::requirePackableBudget(o.budgetModel == "nominal" ? o.budget : std::min(64, 2 * o.budget), o.constraints);
     const auto [width, height] = parseSize(parsed.get("size", "480x270"), "--size");
     o.width = width;
     o.height = height;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "budget_verdict.h"
+#include "report_bandwidth.h"
 #include "suite_verdict.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
@@ -90,6 +91,38 @@ void printTable(const ReportModel& model) {
                     model.significance->method.c_str());
     if (const auto v = gbufferOrVisibility(model)) std::printf("\nG-buffer or visibility buffer? %s\n", v->answer.c_str());
     printVerdict(model);
+    printBandwidthAsPaid(model);
+}
+
+// Bandwidth as GPUs pay it (report_bandwidth.h): per layout, nominal and effective bytes per pixel
+// and 1080p60 traffic per GPU class, the tile families it fits, and the budget lines that change.
+void printBandwidthAsPaid(const ReportModel& model) {
+    const std::vector<const RunReport*> runs = effectiveRuns(model);
+    if (runs.empty()) return;
+    int w = 6;
+    for (const RunReport* r : runs) w = std::max(w, int(r->layout.size()));
+    std::printf("\nBandwidth as GPUs pay it (1080p60, lit output included; lighting %s; docs/bandwidth.md):\n",
+                model.run.lighting.c_str());
+    std::printf("%-*s %13s %17s %17s %17s  %s\n", w, "layout", "nominal", "desktop-dcc", "mali-afbc", "tile-subpass",
+                "fits tile memory of");
+    for (const RunReport* r : runs) {
+        const EffectiveBandwidth& e = *r->effective;
+        char cells[3][40];
+        int i = 0;
+        for (const char* c : kGpuClasses) {
+            const ClassTraffic* t = e.find(c);
+            std::snprintf(cells[i++], sizeof(cells[0]), "%5.1f B %5.2f GB/s", t ? t->bytesPerPixel : 0.0,
+                          t ? t->gbPerSecond : 0.0);
+        }
+        std::string fits;
+        for (const TileFit& f : e.tile)
+            if (f.fits) fits += (fits.empty() ? "" : " ") + f.family;
+        std::printf("%-*s %3.0f B %5.2f GB/s %s %s %s  %s\n", w, r->layout.c_str(), e.nominalBytesPerPixel,
+                    e.nominalGbPerSecond, cells[0], cells[1], cells[2], fits.empty() ? "none" : fits.c_str());
+    }
+    const std::vector<std::string> changes = verdictChanges(effectiveVerdicts(model));
+    if (changes.empty()) std::printf("the best layout at each budget is the same with every class's effective bytes\n");
+    for (const std::string& c : changes) std::printf("  %s\n", c.c_str());
 }
 
 namespace {

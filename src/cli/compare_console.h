@@ -15,6 +15,8 @@ void printTable(const ReportModel& model);
 // The verdict per byte budget (budget_verdict.h): its basis, then one line per budget, the same
 // sentences report.html and report.json hold.
 void printVerdict(const ReportModel& model);
+// The effective bandwidth per GPU class (report_bandwidth.h), after the verdict.
+void printBandwidthAsPaid(const ReportModel& model);
 
 // Where the time went, stage by stage (stage_clock.h), against the GPU passes' own time (the
 // timestamp queries of every frame rendered): what timings.json holds (compare_timings.h).

@@ -74,6 +74,11 @@ std::vector<FlagSpec> compareFlags() {
         {"resolve", "HOW", "--temporal's resolve: mean (default: the uniform mean of the frames in linear HDR, the "
                            "converged history of a still camera) or exp (exponential history, current-frame weight "
                            "0.1)"},
+        {"lighting", "HOW", "how the lighting pass reads the G-buffer in the traffic figures: tiled (default) or "
+                            "clustered, once per pixel; volumes:L, once per covering light volume, L the mean per "
+                            "pixel; volumes, L counted from the scene's lights (docs/bandwidth.md)"},
+        {"no-compression", "", "skip the framebuffer-compression model (the report's effective bytes per GPU "
+                               "class; docs/bandwidth.md)"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
     };
@@ -217,6 +222,8 @@ std::optional<CompareOptions> parseCompareOptions(const std::vector<std::string>
     o.device = parsed.get("device");
     o.validation = parsed.has("validation");
     o.nativeFormats = parsed.has("native-formats");
+    o.lighting = parseLightingModel(parsed.get("lighting", "tiled"), "--lighting");
+    o.compressionModel = !parsed.has("no-compression");
     o.commandLine = "gbufferlab compare";
     for (const auto& a : args) o.commandLine += " " + a;
     return o;

@@ -429,8 +429,15 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     }
     std::optional<HostScope> wordsScope(std::in_place, "read-back: G-buffer words, depth (and a decode pass)");
     for (const GpuImage& t : gbuffer.targets) {
-        if (!settings.readTargetWords && !cpuDecode) break;
+        if (!settings.readTargetWords && !cpuDecode && !settings.onTargetWords) break;
         out.targetWords.push_back(downloadWords(ctx_, t, size_t(w) * rows, band.first, band.rows));  // R8 / R16 widened
+    }
+    if (settings.onTargetWords) {
+        wordsScope.reset();
+        HostScope scope("read-back: G-buffer words to the compression model");
+        for (size_t i = 0; i < out.targetWords.size(); ++i) settings.onTargetWords(i, band.first, band.rows, out.targetWords[i]);
+        if (!settings.readTargetWords && !cpuDecode) out.targetWords.clear();
+        wordsScope.emplace("read-back: G-buffer words, depth (and a decode pass)");
     }
     if (settings.keepOnDevice) {
         if (settings.decodeSurfaces)

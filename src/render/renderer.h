@@ -2,6 +2,7 @@
 // Renders one scene, under one environment, through any G-buffer wiring: the G-buffer raster
 // pass, then the lighting compute pass, timed with timestamp queries, then read back.
 #include <array>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -75,6 +76,13 @@ struct RenderSettings {
     // projection and the G-buffer codes of a render without them, bit for bit.
     float jitterX = 0.0f, jitterY = 0.0f;
     uint32_t frameIndex = 0;
+    // Called once per G-buffer target (a visibility buffer's: its id target) with the target's raw
+    // words as read back (RenderOutput::targetWords' layout) for the rows [firstRow, firstRow +
+    // rows) of the frame (a band's rows, its halo included), before the decode: what the
+    // framebuffer-compression model (measure/framebuffer_compression.h) measures. Set, the words
+    // are read back even where the decode does not need them, and freed after the call unless
+    // readTargetWords. Not with keepOnDevice's GPU decode only: there too the words are read back.
+    std::function<void(size_t target, uint32_t firstRow, uint32_t rows, const std::vector<uint32_t>& words)> onTargetWords;
 };
 
 struct PassTimings {

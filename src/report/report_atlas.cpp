@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "report_bandwidth.h"
 #include "report_html.h"
 
 namespace gbl {
@@ -93,6 +94,7 @@ void writeAtlasHtml(std::string& out, const ReportModel& model) {
             std::string bytes = std::to_string(e.bytesPerPixel);
             if (e.bytesKind != "attributes") bytes += " " + htmlEscape(e.bytesKind);
             if (e.lightBufferBytesPerPixel > 0) bytes += " +" + std::to_string(e.lightBufferBytesPerPixel);
+            bytes += atlasEffectiveBytesHtml(model, e.layout);  // report_bandwidth.h
             std::string attrs;
             for (const AtlasAttribute& a : e.attributes) {
                 attrs += "<span class=\"attr" + std::string(a.bits ? "" : " derived") + "\">" + htmlEscape(a.name) +

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "file_io.h"
+#include "report_bandwidth.h"
 #include "view_stats.h"
 
 namespace gbl {
@@ -194,6 +195,7 @@ constexpr const char* kReportStatusColumn = "report_status";
 std::vector<std::string> reportCsvHeader() {
     std::vector<std::string> names;
     for (const Column& c : columns()) names.push_back(c.name);
+    for (const std::string& c : effectiveCsvHeader()) names.push_back(c);  // report_bandwidth.h
     names.push_back(kReportStatusColumn);
     return names;
 }
@@ -204,9 +206,11 @@ std::string reportCsv(const ReportModel& model) {
         model.interruption ? "interrupted by " + model.interruption->signal : std::string("complete");
     std::string out;
     for (size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i].name;
+    for (const std::string& c : effectiveCsvHeader()) out += "," + c;  // report_bandwidth.h
     out += std::string(",") + kReportStatusColumn + "\n";
     for (const RunReport& run : model.runs) {
         for (size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + csvField(cols[i].value(run));
+        for (const std::string& f : effectiveCsvFields(run)) out += "," + csvField(f);
         out += "," + csvField(status) + "\n";
     }
     return out;

@@ -12,6 +12,7 @@
 #include "report_atlas.h"
 #include "report_csv.h"
 #include "budget_verdict.h"
+#include "report_bandwidth.h"
 #include "report_html_plot.h"
 #include "report_html_table.h"
 #include "report_html_template.h"
@@ -432,6 +433,11 @@ std::string reportHtml(const ReportModel& model) {
     if (temporal)
         out += "<button type=\"button\" data-plot=\"flip-1f\" aria-pressed=\"false\">FLIP mean, single frame</button>"
                "<button type=\"button\" data-plot=\"psnr-1f\" aria-pressed=\"false\">PSNR, single frame</button>";
+    // Against the bytes each GPU class pays (report_bandwidth.h), when the runs have them.
+    const bool effective = !effectiveRuns(model).empty();
+    if (effective)
+        out += "<button type=\"button\" data-plot=\"flip-dcc\" aria-pressed=\"false\">FLIP, desktop DCC bytes</button>"
+               "<button type=\"button\" data-plot=\"flip-afbc\" aria-pressed=\"false\">FLIP, Mali AFBC bytes</button>";
     out += "</div>\n";
     if (temporal)
         out += "<p class=\"hint\">--temporal " + std::to_string(model.run.temporalFrames) +
@@ -453,7 +459,19 @@ std::string reportHtml(const ReportModel& model) {
         psnr1.singleFrame = true;
         writePlot(out, model, ids, psnr1, true);
     }
+    if (effective) {
+        PlotSpec dcc{"flip-dcc", "FLIP mean", false, true, true, &ImageErrors::flipMean, flip4};
+        dcc.xClass = "desktop-dcc";
+        writePlot(out, model, ids, dcc, true);
+        PlotSpec afbc{"flip-afbc", "FLIP mean", false, true, true, &ImageErrors::flipMean, flip4};
+        afbc.xClass = "mali-afbc";
+        writePlot(out, model, ids, afbc, true);
+        out += "<p class=\"hint\">FLIP against effective bytes: each layout's bytes per pixel as the class stores "
+               "them, from the compression model on view 0's words (section <a href=\"#bandwidth-as-paid\">Bandwidth "
+               "as GPUs pay it</a>).</p>\n";
+    }
     out += "</section>\n";
+    out += bandwidthSectionHtml(model);  // report_bandwidth.h
 
     for (size_t i = 0; i < model.runs.size(); ++i) writeRunSection(out, model, model.runs[i], ids[i]);
     out += "<footer>Written by gbufferlab. Images are files beside this page; numbers are also in report.csv and "

@@ -125,6 +125,12 @@ PlotPoints collectPoints(const ReportModel& model, const PlotSpec& spec) {
         p.x = r.bytesPerPixel.total;
         p.visibility = r.isVisibilityBuffer();
         p.counted = p.visibility ? verdictCountedBytes(r) : p.x;
+        if (*spec.xClass) {  // effective bytes (report_bandwidth.h): the visibility buffer's fetch share kept
+            const ClassTraffic* e = r.effective ? r.effective->find(spec.xClass) : nullptr;
+            if (!e) continue;
+            p.counted = e->bytesPerPixel + (p.counted - p.x);
+            p.x = e->bytesPerPixel;
+        }
         p.y = y;
         p.series = size_t(std::find(c.modes.begin(), c.modes.end(), r.iblMode) - c.modes.begin());
         p.run = i;
@@ -309,7 +315,9 @@ void writeAxes(std::string& out, const PlotPoints& c, const PlotFrame& f, double
                f1(f.left) + "\" y1=\"" + f1(f.py(0)) + "\" x2=\"" + f1(f.left + f.plotW) + "\" y2=\"" + f1(f.py(0)) +
                "\" stroke=\"#e3e7eb\" stroke-dasharray=\"3 3\"/>\n";
     out += "<text x=\"" + f1(f.left + f.plotW / 2) + "\" y=\"" + f1(f.xTitleY) +
-           "\" text-anchor=\"middle\" fill=\"#1d232b\">Bytes per pixel: targets + depth + light buffers" +
+           "\" text-anchor=\"middle\" fill=\"#1d232b\">" +
+           std::string(*spec.xClass ? std::string("Effective bytes per pixel (") + spec.xClass + "): targets as stored + depth + light buffers"
+                                    : std::string("Bytes per pixel: targets + depth + light buffers")) +
            (c.anyVisibility ? "; a visibility buffer also at what the verdict counts (hollow diamond)" : "") +
            "</text>\n";
     out += "<text transform=\"translate(16 " + f1(f.top + f.plotH / 2) + ") rotate(-90)\" text-anchor=\"middle\" "

@@ -28,6 +28,9 @@ struct PlotSpec {
     // compare --temporal N: the value of the run's first frame alone (RunReport::singleFrame)
     // instead of its resolve's.
     bool singleFrame = false;
+    // The x axis: "" the table's bytes per pixel; a GPU class ("desktop-dcc", "mali-afbc") its
+    // effective bytes (RunReport::effective; runs without them are left out).
+    const char* xClass = "";
 };
 
 // Appends the plot of `spec.field` against bytes per pixel. `runIds` are the runs' section ids,

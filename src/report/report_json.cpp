@@ -10,6 +10,7 @@
 #include "budget_verdict.h"
 #include "json_number.h"
 #include "report_atlas.h"
+#include "report_bandwidth.h"
 #include "view_stats.h"
 #include "visibility_verdict.h"
 
@@ -292,6 +293,7 @@ Json runJson(const RunReport& r) {
         if (r.singleFrame->image) single["image_errors"] = imageErrorsJson(*r.singleFrame->image);
         j["single_frame"] = std::move(single);
     }
+    if (r.effective) j["effective_bandwidth"] = effectiveBandwidthJson(*r.effective);  // report_bandwidth.h
     return j;
 }
 
@@ -372,6 +374,8 @@ Json reportToJson(const ReportModel& model) {
     if (!model.atlas.empty()) j["atlas"] = atlasJson(model);
     if (model.significance) j["significance"] = significanceJson(*model.significance);
     if (const auto v = budgetVerdict(model)) j["verdict"] = verdictJson(*v);
+    j["run"]["lighting"] = run.lighting;
+    if (!effectiveRuns(model).empty()) j["bandwidth_as_paid"] = bandwidthAsPaidJson(model);  // report_bandwidth.h
     return j;
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bandwidth.h"
+#include "effective_bandwidth.h"
 #include "layout.h"
 #include "layout_atlas.h"
 #include "metrics.h"
@@ -55,6 +56,9 @@ struct ReportRunInfo {
     int temporalFrames = 1;
     std::string temporalResolve = "mean";
     std::vector<std::pair<double, double>> temporalJitter;
+    // compare --lighting (measure/effective_bandwidth.h LightingModel::text): how the lighting
+    // pass reads the G-buffer in every traffic figure ("tiled": once per pixel).
+    std::string lighting = "tiled";
 };
 
 struct ReferenceImage {
@@ -263,6 +267,10 @@ struct RunReport {
     // A visibility buffer's run (pipeline = "visibility-buffer"): its bytes leave out the vertex
     // fetch of the resolve, which the verdicts and the plot count apart.
     bool isVisibilityBuffer() const { return pipeline == pipelineName(Pipeline::VisibilityBuffer); }
+
+    // Bandwidth as GPUs pay it (report_bandwidth.h): the compressed sizes of the words the run's
+    // view 0 wrote, per GPU class; absent when not measured (a failed run, compare --no-compression).
+    std::optional<EffectiveBandwidth> effective;
 
     // The 1920x1080, 1-sample frame's traffic at 60 fps in GB/s; nullopt when not in `bandwidth`.
     std::optional<double> gigabytesPerSecond1080p60() const {

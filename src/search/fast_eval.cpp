@@ -95,7 +95,14 @@ void addAttributeErrors(const std::vector<Surface>& reference, const std::vector
                         const std::vector<uint8_t>& covered, Evaluation& e);
 }  // namespace
 
-Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Evaluation* errors) const {
+FrameCompression FastEvaluator::compressWords(const Layout& layout, size_t v, int threads) const {
+    FrameCompression f;
+    renderImpl(layout, v, threads, nullptr, &f);
+    return f;
+}
+
+Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Evaluation* errors,
+                                FrameCompression* compression) const {
     if (layout.pipeline != Pipeline::DeferredShading)
         throwUserError("layout '" + layout.name + "': the fast evaluation models deferred shading only");
     const EvalView& v = views_[vi];
@@ -152,6 +159,10 @@ Image FastEvaluator::renderImpl(const Layout& layout, size_t vi, int threads, Ev
     CpuCodec codec(layout, CpuCodecOptions{std::max(threads, 1)});
     gbuffer.covered = covered;
     codec.encode(stored, w, h, gbuffer);
+    if (compression) {
+        *compression = compressFrame(layout, gbuffer.targetWords, uint32_t(w), uint32_t(h));
+        return Image{};
+    }
     codec.decode(gbuffer, decoded);
     std::vector<glm::vec3> storedPositions;
     if (storesPosition) storedPositions.resize(n);

@@ -24,6 +24,7 @@
 #include <glm/glm.hpp>
 
 #include "cpu_reshade.h"
+#include "framebuffer_compression.h"
 #include "layout.h"
 #include "surface.h"
 
@@ -99,12 +100,17 @@ public:
     const Image& referenceHdr(size_t v) const;
     // The CPU re-shade of `layout` in view v.
     Image renderLayout(const Layout& layout, size_t v, int threads) const;
+    // View v's G-buffer words as the CPU codec encodes them (bit for bit the GPU pass's),
+    // compressed by measure/framebuffer_compression.h: search --budget-model's effective bytes.
+    FrameCompression compressWords(const Layout& layout, size_t v, int threads) const;
 
 private:
     struct Prepared;
     // The re-shade of view vi; with `errors`, the decoded Surfaces' attribute errors are added to it
     // (normalDeg .. occlusion, attributes).
-    Image renderImpl(const Layout& layout, size_t vi, int threads, Evaluation* errors) const;
+    // With `compression`, the encoded words are compressed into it and nothing is shaded.
+    Image renderImpl(const Layout& layout, size_t vi, int threads, Evaluation* errors,
+                     FrameCompression* compression = nullptr) const;
     std::vector<EvalView> views_;
     std::vector<ShadeLight> lights_;
     CpuIbl ibl_;
