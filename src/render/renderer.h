@@ -21,6 +21,9 @@
 
 namespace gbl {
 
+struct RenderBand;
+class HostScope;
+
 struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
@@ -204,6 +207,31 @@ public:
 
 private:
     void init(const EnvironmentMap& environment, const IblMaps& ibl);
+    // render()'s steps (renderer_frame.cpp), in the order it runs them.
+    struct FramePasses;
+    struct FramePipelines {
+        TargetReadScene readScene;
+        LightingVariant variant;
+        bool cpuDecode = false;  // decodesOnCpu
+    };
+    gpu::FrameConstants frameConstants(const GBufferWiring& wiring, const RenderSettings& settings,
+                                       const RenderBand& band) const;
+    FramePipelines framePipelines(const GBufferWiring& wiring, const RenderSettings& settings);
+    void createFramePasses(FramePasses& passes, const GBufferWiring& wiring, const RenderSettings& settings,
+                           const RenderBand& band, const gpu::FrameConstants& frame, const FramePipelines& pipes);
+    void warmUpFramePasses(const GBufferWiring& wiring, const RenderSettings& settings, FramePasses& passes);
+    PassTimings drawFrame(FramePasses& passes);
+    void convergeGroundTruth(const RenderSettings& settings, FramePasses& passes, RenderOutput& out);
+    void readHdr(const FramePasses& passes, RenderOutput& out);
+    void readLightBufferWords(const GBufferWiring& wiring, const RenderSettings& settings, const RenderBand& band,
+                              FramePasses& passes, RenderOutput& out);
+    void readTargetWords(const RenderSettings& settings, const RenderBand& band, bool cpuDecode,
+                         const FramePasses& passes, RenderOutput& out, std::optional<HostScope>& wordsScope);
+    void readDepth(const GBufferWiring& wiring, const RenderSettings& settings, const RenderBand& band,
+                   const FramePasses& passes, RenderOutput& out);
+    void decodeOnHost(const GBufferWiring& wiring, const RenderSettings& settings, const gpu::FrameConstants& frame,
+                      FramePasses& passes, RenderOutput& out, std::optional<HostScope>& wordsScope);
+    void destroyGeometryPasses(FramePasses& passes);
     const VulkanContext& ctx_;
     const Scene& scene_;
     GpuScene gpuScene_;

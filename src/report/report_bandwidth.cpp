@@ -15,8 +15,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json number(double v) { return jsonNumber(v); }
-
 std::string numberText(double v) {
     if (std::isnan(v)) return "nan";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
@@ -56,19 +54,19 @@ Json effectiveBandwidthJson(const EffectiveBandwidth& e) {
         targets.push_back(Json{{"name", t.name},
                                {"format", t.format},
                                {"bytes_per_pixel", t.bytesPerPixel},
-                               {"desktop_dcc_bytes_per_pixel", number(t.dccBytesPerPixel)},
-                               {"dcc_uncompressed_blocks", number(t.dccUncompressedFraction)},
+                               {"desktop_dcc_bytes_per_pixel", jsonNumber(t.dccBytesPerPixel)},
+                               {"dcc_uncompressed_blocks", jsonNumber(t.dccUncompressedFraction)},
                                {"afbc", t.afbc},
-                               {"mali_afbc_read_bytes_per_pixel", number(t.afbcBytesPerPixel)},
-                               {"mali_afbc_write_bytes_per_pixel", number(t.afbcWriteBytesPerPixel)},
-                               {"afbc_solid_superblocks", number(t.afbcSolidFraction)},
-                               {"afbc_uncompressed_subblocks", number(t.afbcUncompressedFraction)}});
+                               {"mali_afbc_read_bytes_per_pixel", jsonNumber(t.afbcBytesPerPixel)},
+                               {"mali_afbc_write_bytes_per_pixel", jsonNumber(t.afbcWriteBytesPerPixel)},
+                               {"afbc_solid_superblocks", jsonNumber(t.afbcSolidFraction)},
+                               {"afbc_uncompressed_subblocks", jsonNumber(t.afbcUncompressedFraction)}});
     Json classes = Json::array();
     for (const ClassTraffic& c : e.classes)
         classes.push_back(Json{{"class", c.gpuClass},
-                               {"bytes_per_pixel", number(c.bytesPerPixel)},
-                               {"traffic_bytes_1080p", number(c.trafficBytes)},
-                               {"gb_per_s_1080p60", number(c.gbPerSecond)},
+                               {"bytes_per_pixel", jsonNumber(c.bytesPerPixel)},
+                               {"traffic_bytes_1080p", jsonNumber(c.trafficBytes)},
+                               {"gb_per_s_1080p60", jsonNumber(c.gbPerSecond)},
                                {"assumes", c.assumes}});
     Json tile = Json::array();
     for (const TileFit& f : e.tile)
@@ -82,10 +80,10 @@ Json effectiveBandwidthJson(const EffectiveBandwidth& e) {
                 {"width", e.width},
                 {"height", e.height},
                 {"lighting", e.lighting.text()},
-                {"lighting_reads_per_pixel", number(e.lighting.readsPerPixel)},
-                {"nominal_bytes_per_pixel", number(e.nominalBytesPerPixel)},
-                {"nominal_traffic_bytes_1080p", number(e.nominalTrafficBytes)},
-                {"nominal_gb_per_s_1080p60", number(e.nominalGbPerSecond)},
+                {"lighting_reads_per_pixel", jsonNumber(e.lighting.readsPerPixel)},
+                {"nominal_bytes_per_pixel", jsonNumber(e.nominalBytesPerPixel)},
+                {"nominal_traffic_bytes_1080p", jsonNumber(e.nominalTrafficBytes)},
+                {"nominal_gb_per_s_1080p60", jsonNumber(e.nominalGbPerSecond)},
                 {"targets", std::move(targets)},
                 {"classes", std::move(classes)},
                 {"tile_memory", std::move(tile)}};
@@ -181,8 +179,8 @@ Json bandwidthAsPaidJson(const ReportModel& model) {
             Json line{{"budget_bytes_per_pixel", l.budget ? Json(*l.budget) : Json("inf")}};
             if (!l.best.empty()) {
                 line["best"] = l.best;
-                line["bytes_per_pixel"] = number(l.bytes);
-                line["flip_mean"] = number(l.flipMean);
+                line["bytes_per_pixel"] = jsonNumber(l.bytes);
+                line["flip_mean"] = jsonNumber(l.flipMean);
             }
             lines.push_back(std::move(line));
         }

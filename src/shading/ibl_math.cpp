@@ -351,9 +351,6 @@ float powerHeuristic(float a, float b) {
     return d > 0.0f ? a2 / d : 0.0f;
 }
 
-// GLSL fract: x - floor(x), per component.
-static glm::vec2 fractGlsl(glm::vec2 x) { return x - glm::floor(x); }
-
 // [Veach97 ch. 9]: one GGX and one environment sample per step, power heuristic (ibl_math.glsl).
 glm::vec3 specularIBLGroundTruthMis(const EnvironmentLodFn& sampleEnvironmentLod,
                                     const std::vector<float>& environmentSampling, glm::vec3 specularColor,

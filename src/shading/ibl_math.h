@@ -64,6 +64,8 @@ glm::dvec2 hammersleyDouble(uint32_t i, uint32_t N);
 
 // GGX half vector around N (unit N), tangent frame from up = |N.z| < 0.999 ? +z : +x.
 glm::vec3 importanceSampleGGX(glm::vec2 Xi, float roughness, glm::vec3 N);
+// GLSL fract: x - floor(x), per component (the Cranley-Patterson shifts of the ground truth).
+inline glm::vec2 fractGlsl(glm::vec2 x) { return x - glm::floor(x); }
 glm::dvec3 importanceSampleGGXDouble(glm::dvec2 Xi, double roughness, glm::dvec3 N);
 
 // D NoH / (4 VoH): solid-angle pdf of the reflected L.

@@ -42,7 +42,7 @@ TEST(CompareScenes, WithoutASceneTheBundledSuiteAndItsHeadline) {
     EXPECT_NE(r.out.find("Across 3 scenes"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\nAgreement. "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\nVerdict across the scenes. "), std::string::npos) << r.out;
-    const Json top = readJson(scratch() / "default/report.json");
+    const Json top = scratch.json("default/report.json");
     EXPECT_EQ(top["schema"], "gbufferlab-scene-suite");
     EXPECT_EQ(top["run"]["width"], 64);
     ASSERT_EQ(top["scenes"].size(), 3u);
