@@ -59,11 +59,23 @@ CompareShared::~CompareShared() {
 
 CompareSession::CompareSession(const CompareOptions& options, const app::RunControl& control, CompareShared* shared)
     : options_(options), control_(control), shared_(shared) {
-    const CompareOptions& o = options_;
     std::optional<ScopedStage> timedSetup(std::in_place, Stage::Setup);
-    checkOutputDirectory(o.outDir, o.force, "--out");
+    checkOutputDirectory(options_.outDir, options_.force, "--out");
+    loadInputs();  // everything the user gave is read and validated before the first pixel is rendered
+    openDevice();
+    describeRun();
+    placeViews();
+    openOutput();
+    timedSetup.reset();
+    createRenderer();
+    referenceWiring_ = generateWiring(referenceLayout_, {});
+    preparePipelines();
+}
 
-    // Everything the user gave is read and validated before the first pixel is rendered.
+// The layouts, the reference layout, the scene and its environment; a scene with materials drawn
+// forward is refused where its mask cannot be applied.
+void CompareSession::loadInputs() {
+    const CompareOptions& o = options_;
     layouts_ = resolveLayouts(o.layoutsSpec);
     if (o.force) {
         std::vector<std::string> inputs = {o.scenePath, o.envPath};
@@ -89,8 +101,14 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
                        " has materials drawn forward (KHR_materials_transmission or _volume), whose pixels are left out "
                        "of the metrics on whole frames only; give --band-rows 0 or auto");
 
+}
+
+// The Vulkan context (the suite's shared one, or the session's own), then where and how the
+// metrics run (bands, the device evaluator), and the size and memory checks that depend on it.
+void CompareSession::openDevice() {
+    const CompareOptions& o = options_;
     std::optional<HostScope> contextScope(std::in_place, "set-up: Vulkan context");
-    std::optional<VulkanContext>& context = shared ? shared->ctx : ownCtx_;
+    std::optional<VulkanContext>& context = shared_ ? shared_->ctx : ownCtx_;
     if (!context) context.emplace(DeviceOptions{o.device, o.validation});
     ctx_ = &*context;
     contextScope.reset();
@@ -134,7 +152,12 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
                       (o.temporalFrames > 1 ? " and --temporal " + std::to_string(o.temporalFrames) : ""),
                   bandImageRows ? "give a smaller --size or fewer --layouts" : wholeFrameAdvice);
     wiringOptions_.nativeFormats = o.nativeFormats;
+}
 
+// The report's description of the run: its inputs, device, flags and the notes they imply.
+void CompareSession::describeRun() {
+    const CompareOptions& o = options_;
+    const VulkanContext& ctx = *ctx_;
     model_.run.scene = inputs_.scene.source;
     model_.run.environment = inputs_.environment.source;
     model_.run.width = int(o.width);
@@ -177,6 +200,12 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
             "times are the layout's own, summed over its bands");
     }
 
+}
+
+// The views (the scene's camera and the placed ones, or a suite's cameras), the lighting model's
+// reads per pixel from view 0, and the progress over every step the comparison will take.
+void CompareSession::placeViews() {
+    const CompareOptions& o = options_;
     views_ = o.cameras.empty() ? compareViews(inputs_.scene, o.viewCount, float(o.width) / float(o.height)) : placedViews(inputs_.scene, o.cameras);
     for (const CompareView& v : views_) model_.run.views.push_back(v.description);
     // --lighting volumes: the mean light volumes covering a pixel of view 0 (scene/light_coverage.h).
@@ -193,7 +222,13 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
                                    " views (--views); images and crops are the first view's (the scene camera)");
     const int modeCount = int(o.modes.size());
     steps_ = o.viewCount * (modeCount * (1 + int(layouts_.size())) + (o.compareLighting() ? modeCount - 1 : 0));
-    progress_.emplace(steps_, control.progress);
+    progress_.emplace(steps_, control_.progress);
+}
+
+// The output folder (marked incomplete until the report is written), the image writer, and the
+// cancel token's action (the report of the runs that finished).
+void CompareSession::openOutput() {
+    const CompareOptions& o = options_;
     prepareOutputDirectory(o.outDir, o.force, "--out");
     // Until the report is complete the folder says so: an interruption (a cancel request: SIGINT,
     // SIGTERM on the command line) writes
@@ -217,28 +252,31 @@ CompareSession::CompareSession(const CompareOptions& options, const app::RunCont
     imageOutput_ = ImageOutput{&*imageWriter_, o.exrType, o.errorExr};
     // Several scenes: the comparison's own action (the report of the scenes that finished) runs
     // after this scene's partial report, and is put back when this scene is done.
-    if (control.cancel) {
-        control.cancel->setAction([this, outer = shared ? shared->onInterrupt : std::function<void(int)>{}](int signal) {
+    if (control_.cancel) {
+        control_.cancel->setAction([this, outer = shared_ ? shared_->onInterrupt : std::function<void(int)>{}](int signal) {
             writeInterruptedReport(signal);
             if (outer) outer(signal);
         });
-        interruptGuard_.token = control.cancel;
-        interruptGuard_.restore = shared ? shared->onInterrupt : std::function<void(int)>{};
+        interruptGuard_.token = control_.cancel;
+        interruptGuard_.restore = shared_ ? shared_->onInterrupt : std::function<void(int)>{};
     }
-    timedSetup.reset();
+}
 
+// The renderer over the session's scene with the environment's IBL (one pre-computation per
+// environment across a suite's scenes).
+void CompareSession::createRenderer() {
+    const CompareOptions& o = options_;
+    const VulkanContext& ctx = *ctx_;
     std::optional<HostScope> rendererScope(std::in_place, "set-up: renderer and IBL");
-    if (shared) {  // one pre-computation per environment, whichever scenes it lights
-        auto ibl = shared->ibl.find(o.envPath);
-        if (ibl == shared->ibl.end())
-            ibl = shared->ibl.emplace(o.envPath, loadOrComputeIbl(ctx, inputs_.environment, o.iblSettings)).first;
-        renderer_.emplace(ctx, inputs_.scene, inputs_.environment, ibl->second, &shared->pipelines);
+    if (shared_) {  // one pre-computation per environment, whichever scenes it lights
+        auto ibl = shared_->ibl.find(o.envPath);
+        if (ibl == shared_->ibl.end())
+            ibl = shared_->ibl.emplace(o.envPath, loadOrComputeIbl(ctx, inputs_.environment, o.iblSettings)).first;
+        renderer_.emplace(ctx, inputs_.scene, inputs_.environment, ibl->second, &shared_->pipelines);
     } else {
         renderer_.emplace(ctx, inputs_.scene, inputs_.environment, loadOrComputeIbl(ctx, inputs_.environment, o.iblSettings));
     }
     rendererScope.reset();
-    referenceWiring_ = generateWiring(referenceLayout_, {});
-    preparePipelines();
 }
 
 CompareSession::InterruptActionGuard::~InterruptActionGuard() {

@@ -92,6 +92,13 @@ private:
     // the views left out named, a run with none measured NotMeasured.
     void finishRuns(ReportModel& model) const;
     void preparePipelines();
+    // The constructor's steps, in its order.
+    void loadInputs();
+    void openDevice();
+    void describeRun();
+    void placeViews();
+    void openOutput();
+    void createRenderer();
     References renderReferences(int view);
     void compareLightingModes(int view, References& references);
     void addIblFigure(const References& references);  // the IBL figure's rows, its file queued

@@ -159,9 +159,25 @@ TEST_F(GpuEvaluatorTest, ErrorImagesMatchTheCpuMaps) {
     ASSERT_FALSE(images.worst.empty());
     const std::vector<Crop> cpuWorst = findWorstRegions(maps.relLuminance, 32, 3);
     ASSERT_FALSE(cpuWorst.empty());
-    // The worst tile-aligned window lies within a tile of the worst exact one.
-    EXPECT_LE(std::abs(images.worst[0].x - cpuWorst[0].x), 8);
-    EXPECT_LE(std::abs(images.worst[0].y - cpuWorst[0].y), 8);
+    // The device searches windows aligned to its 8-pixel tiles: its worst window is the best of
+    // those on the CPU's map too (within float rounding), and no better than the exact worst. (Where
+    // two regions of the scene are about as bad, the two searches may pick different ones.)
+    const Image& m = maps.relLuminance;
+    auto windowMean = [&](int x0, int y0) {
+        double sum = 0.0;
+        for (int y = y0; y < y0 + 32; ++y)
+            for (int x = x0; x < x0 + 32; ++x) sum += m.pixels[(size_t(y) * m.width + x) * m.channels];
+        return sum / (32.0 * 32.0);
+    };
+    double bestAligned = 0.0;
+    for (int y = 0; y + 32 <= m.height; y += 8)
+        for (int x = 0; x + 32 <= m.width; x += 8) bestAligned = std::max(bestAligned, windowMean(x, y));
+    const double chosen = windowMean(images.worst[0].x, images.worst[0].y);
+    EXPECT_EQ(images.worst[0].x % 8, 0);
+    EXPECT_EQ(images.worst[0].y % 8, 0);
+    EXPECT_GE(chosen, 0.99 * bestAligned) << images.worst[0].x << "," << images.worst[0].y;
+    EXPECT_LE(chosen, cpuWorst[0].meanError * 1.0001 + 1e-9);
+    EXPECT_GT(chosen, 0.0);
 }
 
 // Every pixel covered by the same flat dielectric: normal +z, base and diffuse colour 0.5,
