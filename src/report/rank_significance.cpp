@@ -50,7 +50,10 @@ SignificanceReport rankWithSignificance(const std::vector<LayoutUnits>& layouts)
         for (const auto& u : layouts[i].unitsPerScene) any = any || !u.empty();
         if (any) byMode[layouts[i].iblMode].push_back(i);
     }
-    for (auto& [mode, members] : byMode) {
+    for (auto& modeMembers : byMode) {
+        // Named, not a structured binding: clang 14 (the sanitizer build) captures no binding.
+        const std::string& mode = modeMembers.first;
+        std::vector<size_t>& members = modeMembers.second;
         std::stable_sort(members.begin(), members.end(),
                          [&](size_t a, size_t b) { return layouts[a].meanError < layouts[b].meanError; });
         const size_t n = members.size();
