@@ -20,4 +20,8 @@ std::vector<Layout> shippedAttributeLayouts() {
     return v;
 }
 
+std::filesystem::path testLayoutDir() { return shippedLayoutDir().parent_path() / "tests" / "layout" / "data"; }
+
+Layout testLayout(const std::string& name) { return loadLayoutFile(testLayoutDir() / (name + ".toml")); }
+
 }  // namespace gbl::test

@@ -17,5 +17,8 @@ std::vector<Layout> shippedLayouts();
 // The shipped layouts that store attributes: all but the visibility buffers (their ids:
 // tests/render/visibility_test.cpp).
 std::vector<Layout> shippedAttributeLayouts();
+// The tests' own layouts (tests/layout/data/<name>.toml): shading-models, a selector's.
+std::filesystem::path testLayoutDir();
+Layout testLayout(const std::string& name);
 
 }  // namespace gbl::test
