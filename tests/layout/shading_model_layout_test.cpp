@@ -61,15 +61,21 @@ TEST(ShadingModelLayout, TheTestLayoutReadsIntoTheModel) {
 
     // Target D holds four models' fields in the same 32 bits: counted once.
     for (const Target& t : l.targets)
-        if (t.name == "D") EXPECT_EQ(t.usedBits(), 32);
+        if (t.name == "D") {
+            EXPECT_EQ(t.usedBits(), 32);
+        }
     EXPECT_EQ(bytesPerPixel(l), 4 + 4 * 4);
     for (const AttributeBits& b : bitsPerAttribute(l)) {
         if (b.attribute == Attribute::Specular) {
             EXPECT_EQ(b.bits, 8);  // the widest of its fields: 8 under default and cloth, 6 under anisotropic
             EXPECT_EQ(b.models, l.conditionalModels(Attribute::Specular));
         }
-        if (b.attribute == Attribute::ShadingModel) EXPECT_EQ(b.bits, 4);
-        if (b.attribute == Attribute::Metallic) EXPECT_EQ(b.models, 0u);
+        if (b.attribute == Attribute::ShadingModel) {
+            EXPECT_EQ(b.bits, 4);
+        }
+        if (b.attribute == Attribute::Metallic) {
+            EXPECT_EQ(b.models, 0u);
+        }
     }
 }
 
