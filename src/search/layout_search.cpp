@@ -161,14 +161,14 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
         for (int attempt = 0; int(batch.size()) < want && attempt < kAttemptsPerCandidate * want; ++attempt) {
             Candidate c;
             if (round < kRandomRounds || pool.empty() || rng.chance(kRandomChance)) {
-                c.genome = randomGenome(rng);
+                c.genome = randomGenome(rng, options.layers);
                 constrainGenome(c.genome, options.constraints);
                 shrinkToFit(c.genome, rng.range(smallest, std::max(smallest, options.budgetBytes)), rng,
                             options.constraints);
                 c.how = "random";
             } else {
                 const Candidate& parent = cands[size_t(pool[size_t(rng.below(int(pool.size())))])];
-                c.genome = mutateGenome(parent.genome, rng);
+                c.genome = mutateGenome(parent.genome, rng, options.layers);
                 c.how = "mutation of #" + std::to_string(parent.index);
             }
             constrainGenome(c.genome, options.constraints);

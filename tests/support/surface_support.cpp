@@ -62,7 +62,10 @@ void assignLayerPatterns(std::vector<Surface>& surfaces) {
         Surface& s = surfaces[i];
         const unsigned p = layerPattern(i);
         if (p & 1u) {
+            // A coat has a unit normal, as the material evaluation gives it (a zero vector is no
+            // normal: octahedral encodings leave its code to each implementation's NaN handling).
             s.coat = 0.05f + 0.95f * std::abs(s.coat);
+            if (glm::length(s.coatNormal) == 0.0f) s.coatNormal = s.normal;
         } else {
             s.coat = 0.0f;
             s.coatRoughness = 0.0f;
@@ -76,7 +79,7 @@ void assignLayerPatterns(std::vector<Surface>& surfaces) {
         }
         if (p & 4u) {
             s.anisotropyStrength = 0.05f + 0.95f * std::abs(s.anisotropyStrength);
-            if (glm::length(s.anisotropyDirection) == 0.0f) s.anisotropyDirection = glm::vec3(1.0f, 0.0f, 0.0f);
+            if (glm::length(s.anisotropyDirection) == 0.0f) s.anisotropyDirection = glm::vec3(1.0f, 0.0f, 0.0f);  // as the coat's
         } else {
             s.anisotropyStrength = 0.0f;
             s.anisotropyDirection = glm::vec3(0.0f);
