@@ -279,7 +279,10 @@ CodecPlan compilePlan(const Layout& layout) {
         }
     for (const MaterialSlotPlan& s : plan.materialSlots) mark(s.dest, s.components);
     for (const FallbackPlan& f : plan.fallbacks)
-        if (f.kind != FallbackKind::MaterialPass) mark(f.dest, f.components);
+        // An attribute stored under some models starts from 0 as in readGBuffer, whatever sets it
+        // later: a fallback that reads it before its own fallback (a pixel of an id no model has,
+        // where fallbacks derive from each other) reads that 0.
+        if (f.kind != FallbackKind::MaterialPass && f.storedIds == 0) mark(f.dest, f.components);
     for (int k = 0; k < kSurfaceFloats; ++k)
         if (!written[size_t(k)]) plan.unwritten.push_back(k);
 

@@ -528,30 +528,46 @@ private:
                                        ", which the layout neither stores nor derives");
         }
         // derived fallbacks must not feed each other in a circle (metallic from specular_color from
-        // metallic): depth-first search over "derives from" edges, one report per back edge
-        std::map<Attribute, int> state;  // 0 unvisited, 1 on the stack, 2 done
-        std::vector<Attribute> stack;
-        std::function<void(Attribute)> visit = [&](Attribute a) {
-            state[a] = 1;
-            stack.push_back(a);
-            for (Attribute in : inputsOf(fb.at(a)->kind)) {
-                if (layout_.storesAlways(in) || !fb.count(in)) continue;
-                if (state[in] == 1) {
-                    std::string chain;
-                    auto from = std::find(stack.begin(), stack.end(), in);
-                    for (auto it = from; it != stack.end(); ++it) chain += std::string(attributeName(*it)) + " -> ";
-                    chain += attributeName(in);
-                    error(fb.at(in)->place,
-                          "fallbacks form a cycle: " + chain + "; store one of them or give one a constant");
-                } else if (state[in] == 0) {
-                    visit(in);
+        // metallic): depth-first search over "derives from" edges, one report per back edge. With a
+        // selector, per model: an attribute that model stores breaks the circle there (HDRP's
+        // fresnel0 under its standard feature, its metallic under anisotropy), and the layout is
+        // refused only where some model stores none of the circle.
+        const uint32_t named = layout_.selectorModels();
+        bool reportedCycle = false;
+        for (int model = named ? 0 : -1; model < (named ? kShadingModels : 0) && !reportedCycle; ++model) {
+            if (model >= 0 && !((named >> model) & 1u)) continue;
+            auto storedHere = [&](Attribute a) {
+                return layout_.storesAlways(a) ||
+                       (model >= 0 && ((layout_.conditionalModels(a) >> unsigned(model)) & 1u));
+            };
+            std::map<Attribute, int> state;  // 0 unvisited, 1 on the stack, 2 done
+            std::vector<Attribute> stack;
+            std::function<void(Attribute)> visit = [&](Attribute a) {
+                state[a] = 1;
+                stack.push_back(a);
+                for (Attribute in : inputsOf(fb.at(a)->kind)) {
+                    if (storedHere(in) || !fb.count(in)) continue;
+                    if (state[in] == 1) {
+                        std::string chain;
+                        auto from = std::find(stack.begin(), stack.end(), in);
+                        for (auto it = from; it != stack.end(); ++it) chain += std::string(attributeName(*it)) + " -> ";
+                        chain += attributeName(in);
+                        error(fb.at(in)->place,
+                              "fallbacks form a cycle: " + chain +
+                                  (model >= 0 ? " on pixels of model " + squote(shadingModelInfo(ShadingModel(model)).name)
+                                              : std::string()) +
+                                  "; store one of them or give one a constant");
+                        reportedCycle = true;
+                    } else if (state[in] == 0) {
+                        visit(in);
+                    }
                 }
-            }
-            stack.pop_back();
-            state[a] = 2;
-        };
-        for (const Fallback& f : layout_.fallbacks)
-            if (fb.at(f.attribute) == &f && state[f.attribute] == 0) visit(f.attribute);
+                stack.pop_back();
+                state[a] = 2;
+            };
+            for (const Fallback& f : layout_.fallbacks)
+                if (fb.at(f.attribute) == &f && !storedHere(f.attribute) && state[f.attribute] == 0) visit(f.attribute);
+        }
     }
 
     // [clear]: declared, listing every shading or geometry attribute stored in a colour target and

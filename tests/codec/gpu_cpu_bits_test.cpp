@@ -412,6 +412,8 @@ TEST_F(GpuCpuBits, ASelectorLayoutPacksTheSameWordsAndDecodesAlike) {
     std::vector<Surface> surfaces = randomSurfaces(920);
     test::assignLayerPatterns(surfaces);
     checkWordsAndDecodes(ctx(), layout, surfaces);
+    // and fallbacks deriving each other per model (HDRP's fresnel0 and metallic): one order for both
+    checkWordsAndDecodes(ctx(), test::selectorLayoutDerivingEachOther(), surfaces);
 }
 
 // killzone2's specular power (kz2_log_power): roughness on each of its 255 thresholds and the

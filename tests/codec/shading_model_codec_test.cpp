@@ -7,7 +7,10 @@
 // attribute the model does not store. (GPU against this mirror: tests/codec/gpu_cpu_bits_test.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "cpu_codec.h"
 #include "layout_files.h"
@@ -113,6 +116,34 @@ TEST(ShadingModelCodec, ACleanedPixelIsOfTheDefaultModel) {
     ASSERT_EQ(clear.size(), 4u);
     EXPECT_EQ(byteOf(clear[1][0], 3), 1u | 5u << 4);  // default's id 1, the mask 5
     EXPECT_EQ(clear[3][0], unorm8(0.25f) | unorm8(0.5f) << 8 | unorm8(0.75f) << 16 | unorm8(1.0f) << 24);
+}
+
+// HDRP's shape (fresnel0 under its standard feature, metallic under anisotropy, each derived where
+// the other is stored): on a pixel of a model storing metallic, specular_color is derived from the
+// decoded metallic; where specular_color is stored, metallic from it; the fallbacks' order
+// (wiring_plan.h orderedFallbacks) works for every model.
+TEST(ShadingModelCodec, FallbacksDeriveEachOtherPerModel) {
+    const Layout layout = test::selectorLayoutDerivingEachOther();
+    std::vector<Surface> surfaces = test::randomSurfaces(size_t(kW * kH), 43);
+    test::assignLayerPatterns(surfaces);
+    const std::vector<Surface> out = decodeGBuffer(layout, encodeGBuffer(layout, surfaces, kW, kH));
+    const float step = 0.5f / 255.0f + 1e-6f;
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        SCOPED_TRACE("pixel " + std::to_string(i));
+        const uint32_t id = expectedId(test::layerPattern(i));
+        const Surface& s = surfaces[i];
+        const Surface& o = out[i];
+        if (id == 4 || id == 13) {  // metallic stored; specular_color = ue4 of it
+            EXPECT_NEAR(o.metallic, s.metallic, step);
+            const glm::vec3 f0 = glm::mix(glm::vec3(0.08f * o.specular), o.baseColor, o.metallic);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(o.specularColor[c], f0[c], 1e-6f);
+        } else {  // specular_color stored; metallic from it (Unity's reflectivity convention)
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(o.specularColor[c], s.specularColor[c], step);
+            const float m = std::clamp((std::max({o.specularColor.x, o.specularColor.y, o.specularColor.z}) - 0.04f) / 0.96f,
+                                       0.0f, 1.0f);
+            EXPECT_NEAR(o.metallic, m, 1e-6f);
+        }
+    }
 }
 
 }  // namespace

@@ -191,3 +191,27 @@ TEST(ShadingModelLayout, ASecondSelectorIsRefused) {
     expectError(text, placeOf(text, "{ attribute = \"shading_model\", at = \"a[0:2]\""),
                 {"a second shading-model selector (the first is on line 35)"});
 }
+
+// Fallbacks that derive from each other are refused only where some model stores none of them:
+// HDRP keeps fresnel0 (specular_color) under its standard feature and metallic under anisotropy,
+// each deriving the other where it is not stored.
+TEST(ShadingModelLayout, FallbacksMayDeriveFromEachOtherWhereEveryModelStoresOne) {
+    const std::string base = edit(selectorText(), R"({ attribute = "metallic",  encoding = "unorm", at = "r" },)",
+                                  R"({ attribute = "metallic",  encoding = "unorm", at = "r", model = ["anisotropic", "clear_coat"] },)");
+    // metallic from specular_color, specular_color (ue4) from metallic: default and cloth pixels store neither
+    std::string text = edit(base, "specular_color = \"ue4\"         #", "metallic = \"from_specular_color\"\nspecular_color = \"ue4\"         #");
+    expectError(text, placeOf(text, "\"from_specular_color\"\nspecular_color"),
+                {"fallbacks form a cycle: metallic -> specular_color -> metallic on pixels of model 'default'"});
+    // ... with specular_color stored under default and cloth, every model stores one of the two
+    text = edit(text, "[fallback]", R"([[target]]
+name = "E"
+format = "R8G8B8A8_UNORM"
+field = [
+  { attribute = "specular_color", encoding = "unorm", at = ["r", "g", "b"], model = ["default", "cloth"] },
+]
+
+[fallback])");
+    text = edit(text, "occlusion = 1.0\n", "occlusion = 1.0\nspecular_color = 0.04\n");
+    const auto diags = checkLayout(text, kFile);
+    EXPECT_TRUE(diags.empty()) << joined(diags);
+}
