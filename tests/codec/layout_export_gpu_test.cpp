@@ -421,6 +421,7 @@ TEST_F(LayoutExportGpu, ASelectorLayoutEncodesTheMirrorsWords) {
     VulkanContext& c = ctx();
     const test::TestBuffer table = test::TestBuffer::holding(c, enc::bestFitNormalTable());
     checkLayout(c, test::testLayout("shading-models"), 3900, table);
+    checkLayout(c, test::selectorLayoutDerivingEachOther(), 3901, table);  // fallbacks deriving each other per model
 }
 
 }  // namespace
