@@ -190,7 +190,8 @@ std::vector<std::string> describeConstraints(const EngineConstraints& c) {
         if (m.bits > 0) bits += (bits.empty() ? "" : ", ") + m.attribute + " " + std::to_string(m.bits);
     lines.push_back("minimum bits per stored attribute (its widest code; a fallback instead stays allowed): " +
                     (bits.empty() ? std::string("none") : bits) +
-                    ". Defaults: the fewest bits a shipped layout stores each in, occlusion 4 (--min-bits overrides).");
+                    ". Defaults: the fewest bits a shipped layout stores each in, occlusion 4, the layers the fewest an engine "
+                    "stores them in (--min-bits overrides).");
     lines.push_back("stencil: at least " + std::to_string(c.freeStencilBits) +
                     " bits stay free when the depth format has stencil (engines keep run-time flags there).");
     return lines;
