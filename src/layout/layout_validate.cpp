@@ -424,6 +424,9 @@ private:
                                             ", which the selector (" + lineText(sel->place) +
                                             ") does not name: add it to the selector's 'models' (known: " +
                                             shadingModelNames(named) + ")");
+                if (f.attribute == Attribute::Position || f.attribute == Attribute::Depth)
+                    error(f.modelPlace, "field " + a + " is geometry, which the lighting rebuilds every pixel from: it "
+                                            "is stored on every pixel (remove 'model')");
                 const EncodingInfo* enc = findEncoding(f.encoding);
                 if (enc && (enc->needsNeighbours || !enc->reads.empty() || !enc->carries.empty()))
                     error(f.encodingPlace,

@@ -166,6 +166,13 @@ TEST(ShadingModelLayout, NormalAndRoughnessAreStoredOnEveryPixel) {
                 {"'roughness' is stored under default only: normal and roughness are stored on every pixel"});
 }
 
+TEST(ShadingModelLayout, GeometryIsStoredOnEveryPixel) {
+    const std::string text = edit(selectorText(), R"({ attribute = "occlusion", encoding = "unorm", at = "b" },)",
+                                  R"({ attribute = "depth", encoding = "unorm", at = "b", model = "default" },)");
+    expectError(text, placeOf(text, "\"default\" },\n  { attribute = \"flags\""),
+                {"field 'depth' is geometry", "stored on every pixel (remove 'model')"});
+}
+
 TEST(ShadingModelLayout, AConditionalFieldEncodesItsOwnValueOnly) {
     const std::string text = edit(selectorText(), R"({ attribute = "base_color", encoding = "srgb8", at = ["r", "g", "b"] },)",
                                   R"({ attribute = "base_color", encoding = "ycocg_checkerboard", at = ["r", "g"], model = "default" },)");
