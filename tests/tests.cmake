@@ -40,12 +40,14 @@ gbl_test(encoding/codec_tables_test LABELS unit DEPS gbl_encoding gbl_gpu)  # th
 gbl_test(layout/layout_parser_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_syntax_test LABELS unit DEPS gbl_layout)
 gbl_test(layout/layout_reads_test LABELS unit DEPS gbl_layout)  # encodings that read another attribute (niagara)
+gbl_test(layout/shading_model_layout_test LABELS unit DEPS gbl_layout gbl_test_support_layout)  # the selector, conditional fields
 gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout gbl_test_support_layout)
 gbl_test(layout/layout_mutants_test LABELS unit TIMEOUT 900 DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
 gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli gbl_test_support_layout)  # [sources], from / status, `layouts show`
 gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli gbl_test_support_layout)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec gbl_test_support_codec)
+gbl_test(codec/shading_model_codec_test LABELS unit DEPS gbl_codec gbl_test_support_codec)  # the selector's words and decode, from its statement
 gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec gbl_test_support_layout)
 gbl_test(codec/visibility_ids_test LABELS unit DEPS gbl_codec gbl_test_support_layout)  # Nanite's and Bevy's 64-bit ids, reimplemented, vs the packing
 gbl_test(codec/gpu_cpu_bits_test LABELS gpu TIMEOUT 900 DEPS gbl_codec gbl_render gbl_test_support_vk)  # every layout on the GPU: 150 s alone

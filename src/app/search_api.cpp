@@ -231,6 +231,10 @@ search::SearchResult exploreCandidates(const SearchRun& run) {
     options.journalPath = (o.outDir / kJournal).string();
     options.journalKey = journalKey(run);
     options.constraints = o.constraints;
+    // The layers join the search space when a scene carries one (issue 40: a scene without them
+    // searches what it searched before).
+    for (const auto& scene : run.scenes)
+        for (const Material& m : scene->inputs.scene.materials) options.layers = options.layers || m.layers() != 0;
     options.progress = [&](const search::SearchProgress& p) {
         if (!run.control.progress) return;
         char line[256];

@@ -147,7 +147,10 @@ void describeFields(std::ostream& o, const std::vector<Field>& fields, const std
                 attr += " = " + number(f.value[k]);
             }
             o << "  " << pad(placeText(channels, f.codes[i]), 18) << pad(attr, 28) << pad(codeLabel(f, i), 8)
-              << pad(f.encoding, 28) << f.codes[i].bits() << "\n";
+              << pad(f.encoding, 28) << f.codes[i].bits();
+            if (f.conditional()) o << "  under " << shadingModelNames(f.models);
+            if (f.attribute == Attribute::ShadingModel) o << "  the selector";
+            o << "\n";
         }
     }
     o << "  unused: " << unusedText(channels, fields) << "\n";
@@ -191,6 +194,23 @@ std::string describeLayout(const Layout& layout) {
           << (ids.depthWord >= 0 ? ", word 1: the depth's float bits (resolved by a 64-bit max)" : std::string());
         provenanceSuffix(o, ids.provenance, "  ");
     }
+    if (const Field* sel = layout.selector()) {
+        // layouts/README.md, "Shading models: the selector"
+        o << "\nshading models (selector '" << (sel->codes.empty() ? "?" : sel->codes[0].text) << "', "
+          << (sel->codes.empty() ? 0 : sel->codes[0].bits()) << " bits; a pixel is of the first named model whose "
+          << "layer it carries, else default):\n";
+        for (const ShadingModelInfo& m : listShadingModels())
+            for (const Field::ModelId& id : sel->selector)
+                if (id.model == m.id) {
+                    std::string holds;
+                    for (const Target& t : layout.targets)
+                        for (const Field& f : t.fields)
+                            if ((f.models >> unsigned(m.id)) & 1u)
+                                holds += (holds.empty() ? "" : ", ") + std::string(attributeName(f.attribute));
+                    o << "  " << pad(m.name, 14) << pad("id " + std::to_string(id.id), 8) << pad(m.meaning, 60)
+                      << "holds: " << (holds.empty() ? "no conditional field" : holds) << "\n";
+                }
+    }
     const Depth& d = layout.depth;
     o << "\ndepth " << d.format << "  " << depthAttachmentBytes(layout) << " bytes  " << d.depthBits << "-bit "
       << (d.floatDepth ? "float" : "unorm") << (d.reversedZ ? ", reversed Z" : "")
@@ -202,7 +222,8 @@ std::string describeLayout(const Layout& layout) {
     }
     o << "\nbits per attribute:\n";
     for (const AttributeBits& ab : bitsPerAttribute(layout))
-        o << "  " << pad(attributeName(ab.attribute), 24) << ab.bits << "\n";
+        o << "  " << pad(attributeName(ab.attribute), 24) << ab.bits
+          << (ab.models ? "  (under " + shadingModelNames(ab.models) + " only)" : std::string()) << "\n";
     // What an encoding stores besides its attribute (HDRP's AO tag: occlusion in the g code).
     for (const Target& t : layout.targets)
         for (const Field& f : t.fields)
@@ -213,6 +234,9 @@ std::string describeLayout(const Layout& layout) {
         o << "\nfallbacks (not stored):\n";
         for (const Fallback& f : layout.fallbacks) {
             o << "  " << pad(attributeName(f.attribute), 24) << fallbackText(f);
+            if (layout.storesConditionally(f.attribute))
+                o << "  (where the pixel's model stores none: not under "
+                  << shadingModelNames(layout.conditionalModels(f.attribute)) << ")";
             provenanceSuffix(o, f.provenance, "    ");
         }
     }

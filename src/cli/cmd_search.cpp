@@ -44,7 +44,9 @@ std::vector<FlagSpec> searchFlags() {
                              "layout family's format (D24S8 or D32): it serves shadows, SSAO, SSR, fog and decals, "
                              "which gbufferlab does not model"},
         {"min-bits", "LIST", "minimum bits of each stored attribute, e.g. occlusion=4,roughness=6 (defaults: normal 8, "
-                             "roughness 7, base/diffuse/specular colour, metallic and specular 8, occlusion 4; 0: none)"},
+                             "roughness 7, base/diffuse/specular colour, metallic and specular 8, occlusion 4; the "
+                             "layers, searched when a scene carries them: coat and coat_roughness 4, coat_normal, "
+                             "sheen_color, sheen_roughness, anisotropy_strength and anisotropy_direction 8; 0: none)"},
         {"no-confirm", "", "skip the full GPU renders of the front and the published layouts"},
         {"device", "NAME", "cpu (lavapipe, default), gpu, an index or a name from `gbufferlab devices`"},
         {"help", "", "show this help"},

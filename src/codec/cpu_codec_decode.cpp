@@ -35,6 +35,8 @@ struct DecodeBlock {
     alignas(32) float chroma[3][kBlock + 2];
     alignas(32) float cover[3][kBlock + 2];  // gblCovered of the same pixels
     alignas(32) float pixels[kSurfaceFloats * kBlock];  // the block's Surfaces, interleaved
+    alignas(32) uint32_t sel[kBlock];     // the stored shading-model id (a layout with a selector)
+    alignas(32) float keep[3][kBlock];    // a conditional field's attribute before it
 };
 
 // The image border mirror of the former per-pixel codec (x = -1 reads x = 1).
@@ -364,10 +366,45 @@ GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, c
             decodeCheckerboard<Words, yCbCrToRgb>(f, image, covered, width, height, x0, y, n, b);
         } else if (f.codec == Codec::YCoCgCheckerboard) {
             decodeCheckerboard<Words, yCoCgToRgb>(f, image, covered, width, height, x0, y, n, b);
+        } else if (f.ids) {
+            // Conditional (layouts/README.md, "Shading models"): decoded where the stored id is one of
+            // its models', else the attribute keeps what it held (0, a field of another model, or
+            // later its fallback), as the generated readGBuffer's `if`.
+            for (int c = 0; c < f.components; ++c) std::copy(b.s[f.source + c], b.s[f.source + c] + n, b.keep[c]);
+            for (size_t k = 0; k < f.codes.size(); ++k) extractCode<Words>(f.codes[k], n, words, b.code[k]);
+            decodeValues(f, n, b, outputsFor(b, f.source, f.components));
+            const uint32_t ids = f.ids;
+            const uint32_t* __restrict sel = b.sel;
+            for (int c = 0; c < f.components; ++c) {
+                float* __restrict row = b.s[f.source + c];
+                const float* __restrict kept = b.keep[c];
+                for (int j = 0; j < n; ++j) row[j] = ((ids >> sel[j]) & 1u) ? row[j] : kept[j];
+            }
         } else {
             for (size_t k = 0; k < f.codes.size(); ++k) extractCode<Words>(f.codes[k], n, words, b.code[k]);
             decodeValues(f, n, b, outputsFor(b, f.source, f.components));
         }
+    }
+}
+
+// The stored shading-model id of the block's pixels, before any field: conditional fields and
+// fallbacks test it; Surface::shadingModel holds it (as a float, as readGBuffer's float(gblSel)).
+template <int Words>
+GBL_CLONE_INLINE void decodeSelector(const CodecPlan& plan, const uint32_t* image, int width, int x0, int y, int n,
+                                     DecodeBlock& b) {
+    const uint32_t* words = image + (size_t(y) * size_t(width) + size_t(x0)) * Words;
+    extractCode<Words>(plan.selectorCode, n, words, b.sel);
+    float* __restrict out = b.s[surfaceOffset(Attribute::ShadingModel)];
+    for (int j = 0; j < n; ++j) out[j] = float(b.sel[j]);
+}
+
+GBL_SIMD_CLONES void decodeSelectorBlock(const CodecPlan& plan, const ConstWordViews& in, int width, int x0, int y,
+                                         int n, DecodeBlock& b) {
+    const uint32_t* image = in.targets[plan.selectorTarget];
+    switch (plan.selectorWords) {
+        case 1: decodeSelector<1>(plan, image, width, x0, y, n, b); return;
+        case 2: decodeSelector<2>(plan, image, width, x0, y, n, b); return;
+        default: decodeSelector<4>(plan, image, width, x0, y, n, b); return;
     }
 }
 
@@ -427,7 +464,19 @@ GBL_SIMD_CLONES void applyFallbacks(const CodecPlan& plan, int n, DecodeBlock& b
         float* __restrict x = o.c[0];
         float* __restrict y = o.c[1];
         float* __restrict z = o.c[2];
+        const uint32_t storedIds = fb.storedIds;
+        const uint32_t* __restrict sel = b.sel;
         auto each = [&](auto fn) {
+            if (storedIds) {  // stored under some models: the fallback where the pixel's model does not store it
+                for (int j = 0; j < n; ++j) {
+                    if ((storedIds >> sel[j]) & 1u) continue;
+                    const vec3 v = fn(j);
+                    x[j] = v.x;
+                    y[j] = v.y;
+                    z[j] = v.z;
+                }
+                return;
+            }
             for (int j = 0; j < n; ++j) {
                 const vec3 v = fn(j);
                 x[j] = v.x;
@@ -511,6 +560,7 @@ void decodeRows(const CodecPlan& plan, const ConstWordViews& in, int width, int 
             const size_t first = size_t(y) * size_t(width) + size_t(x0);
             // Surface(0), readGBuffer's start: only the floats nothing below sets need it.
             for (const int k : plan.unwritten) std::fill(b.s[k], b.s[k] + kBlock, 0.0f);
+            if (plan.selectorTarget >= 0) decodeSelectorBlock(plan, in, width, x0, y, n, b);
             for (size_t t = 0; t < plan.targets.size(); ++t)
                 decodeTargetBlock(plan.targets[t], in.targets[t], in.covered, width, height, x0, y, n, b);
             decodeMaterial(plan, in.material, first, n, b);

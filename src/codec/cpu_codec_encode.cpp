@@ -187,6 +187,40 @@ GBL_CLONE_INLINE void placeCode(const CodePlan& code, int n, const uint32_t* __r
     }
 }
 
+// The pixel's shading model by the encoder's rule (src/layout/shading_models.cpp, as the generated
+// writeGBuffer's gblModel): the tests in reverse order of preference, so that the first that holds
+// is the last written; Default (0) where none does.
+GBL_CLONE_INLINE void pickModels(const CodecPlan& plan, int n, EncodeBlock& b) {
+    uint32_t* __restrict model = b.model;
+    std::fill(model, model + n, 0u);
+    for (auto it = plan.modelTests.rbegin(); it != plan.modelTests.rend(); ++it) {
+        const uint32_t m = it->model;
+        for (int c = 0; c < it->components; ++c) {
+            const float* __restrict x = b.s[it->first + c];
+            for (int j = 0; j < n; ++j) model[j] = x[j] > 0.0f ? m : model[j];
+        }
+    }
+}
+
+// Codes of a field that depend on the pixel's model: the selector's id, and a conditional field's
+// codes kept on the pixels of its models only (0 elsewhere: its bits are left to the fields of the
+// pixel's own model).
+GBL_CLONE_INLINE void modelCodes(const FieldPlan& f, int n, EncodeBlock& b) {
+    const uint32_t* __restrict model = b.model;
+    if (f.selector) {
+        uint32_t* __restrict c = b.code[0];
+        for (int j = 0; j < n; ++j) c[j] = f.modelIds[model[j] & 3u];
+        return;
+    }
+    if (f.codec == Codec::Id)  // a conditional integer extra: its declared value is the code
+        for (size_t k = 0; k < f.codes.size(); ++k) std::fill(b.code[k], b.code[k] + n, f.idValue[k]);
+    const uint32_t models = f.models;
+    for (size_t k = 0; k < f.codes.size(); ++k) {
+        uint32_t* __restrict c = b.code[k];
+        for (int j = 0; j < n; ++j) c[j] = ((models >> model[j]) & 1u) ? c[j] : 0u;
+    }
+}
+
 // Every pixel starts from the target's constant words, then the fields are ORed in; the block's
 // words are then interleaved into the image (Words per pixel).
 template <int Words>
@@ -195,8 +229,11 @@ GBL_CLONE_INLINE void encodeTarget(const TargetPlan& t, int n, int x0, int y, En
     for (int k = 0; k < Words; ++k) std::fill(b.words[k], b.words[k] + kBlock, t.constantWords[k]);
     for (const FieldPlan& f : t.encodeFields) {
         ahead.step();
-        gatherInputs(f, n, b);
-        encodeCodes(f, n, x0, y, b);
+        if (!f.selector) {
+            gatherInputs(f, n, b);
+            encodeCodes(f, n, x0, y, b);
+        }
+        if (f.selector || f.models) modelCodes(f, n, b);
         for (size_t k = 0; k < f.codes.size(); ++k) placeCode(f.codes[k], n, b.code[k], b.words);
     }
     int j = 0;
@@ -437,6 +474,7 @@ void encodeRows(const CodecPlan& plan, const Surface* surfaces, int width, int y
             SurfacePrefetch ahead(px + 2 * kBlock, kBlock, steps);
             ahead.step();
             loadSurfaces(px, n, plan.encodeGroups, b);
+            if (plan.selectorTarget >= 0) pickModels(plan, n, b);
             for (size_t t = 0; t < plan.targets.size(); ++t) {
                 const TargetPlan& tp = plan.targets[t];
                 encodeBlock(tp, n, x0, y, b, out.targets[t] + first * size_t(tp.words), ahead);

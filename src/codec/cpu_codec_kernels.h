@@ -19,6 +19,7 @@ struct EncodeBlock {
     alignas(32) uint32_t code[4][kBlock];
     alignas(32) uint32_t words[4][kBlock];
     alignas(32) uint32_t pixels[4 * kBlock];  // the block's words interleaved, as in the image
+    alignas(32) uint32_t model[kBlock];       // each pixel's shading model (a layout with a selector)
 };
 
 // Codes of field `f` for the pixels (x0 + j, y), j < n, from b.src into b.code (mirror of the

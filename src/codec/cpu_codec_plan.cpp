@@ -173,13 +173,21 @@ int surfaceOffset(Attribute a) {
         case Attribute::SheenRoughness: return int(offsetof(Surface, sheenRoughness)) / kFloat;
         case Attribute::AnisotropyStrength: return int(offsetof(Surface, anisotropyStrength)) / kFloat;
         case Attribute::AnisotropyDirection: return int(offsetof(Surface, anisotropyDirection)) / kFloat;
+        case Attribute::ShadingModel: return int(offsetof(Surface, shadingModel)) / kFloat;
         default: return -1;
     }
 }
 
 CodecPlan compilePlan(const Layout& layout) {
     CodecPlan plan;
-    for (const Target& t : layout.targets) {
+    const uint32_t named = layout.selectorModels();
+    if (named)
+        for (const ShadingModelInfo& m : listShadingModels()) {
+            if (m.id == ShadingModel::Default || !((named >> unsigned(m.id)) & 1u)) continue;
+            plan.modelTests.push_back({uint32_t(m.id), surfaceOffset(m.test), attributeInfo(m.test).components});
+        }
+    for (size_t ti = 0; ti < layout.targets.size(); ++ti) {
+        const Target& t = layout.targets[ti];
         TargetPlan tp;
         tp.words = wordsPerPixel(t);
         if (tp.words != 1 && tp.words != 2 && tp.words != 4)
@@ -187,6 +195,26 @@ CodecPlan compilePlan(const Layout& layout) {
                                    " words per pixel");
         for (const Field& f : t.fields) {
             FieldPlan fp = planField(t, f, tp.words);
+            if (f.attribute == Attribute::ShadingModel) {
+                // The selector: its code per pixel from the model (encode), the stored id decoded
+                // before every field (decodeRows), into Surface::shadingModel.
+                fp.selector = true;
+                for (const Field::ModelId& m : f.selector) fp.modelIds[size_t(m.model)] = m.id;
+                plan.selectorTarget = int(ti);
+                plan.selectorWords = tp.words;
+                plan.selectorCode = fp.codes.at(0);
+                tp.encodeFields.push_back(std::move(fp));
+                continue;
+            }
+            if (f.conditional()) {
+                fp.models = f.models;
+                for (size_t i = 0; i < 4; ++i)
+                    fp.idValue[i] = uint32_t(f.value.empty() ? 0.0 : f.value[std::min(i, f.value.size() - 1)]);
+                fp.ids = layout.selectorIds(f.models);
+                if (fp.source >= 0) tp.decodeFields.push_back(fp);
+                tp.encodeFields.push_back(std::move(fp));  // never folded: its bits depend on the pixel's model
+                continue;
+            }
             if (fp.source >= 0) {
                 if (fp.codec == Codec::Id && !plan.decodeError)
                     plan.decodeError = "cpu codec: no scalar decoder for id";
@@ -225,6 +253,8 @@ CodecPlan compilePlan(const Layout& layout) {
         FallbackPlan p;
         p.kind = fb->kind;
         p.dest = surfaceOffset(fb->attribute);
+        if (layout.storesConditionally(fb->attribute))
+            p.storedIds = layout.selectorIds(layout.conditionalModels(fb->attribute));
         if (p.dest < 0) continue;  // an extra: nothing in the Surface to set
         // The decode loop writes a fallback straight into its attribute while reading its inputs.
         for (const Attribute in : fallbackInputs(fb->kind))
@@ -240,23 +270,29 @@ CodecPlan compilePlan(const Layout& layout) {
     auto mark = [&](int first, int count) {
         for (int c = 0; c < count; ++c) written.at(size_t(first + c)) = true;
     };
+    if (plan.selectorTarget >= 0) mark(surfaceOffset(Attribute::ShadingModel), 1);
     for (const TargetPlan& t : plan.targets)
         for (const FieldPlan& f : t.decodeFields) {
+            if (f.ids) continue;  // conditional: elsewhere the attribute keeps 0 (or its fallback's value)
             mark(f.source, f.components);
             if (f.carries) mark(f.reads, 1);
         }
     for (const MaterialSlotPlan& s : plan.materialSlots) mark(s.dest, s.components);
     for (const FallbackPlan& f : plan.fallbacks)
-        if (f.kind != FallbackKind::MaterialPass) mark(f.dest, f.components);
+        // An attribute stored under some models starts from 0 as in readGBuffer, whatever sets it
+        // later: a fallback that reads it before its own fallback (a pixel of an id no model has,
+        // where fallbacks derive from each other) reads that 0.
+        if (f.kind != FallbackKind::MaterialPass && f.storedIds == 0) mark(f.dest, f.components);
     for (int k = 0; k < kSurfaceFloats; ++k)
         if (!written[size_t(k)]) plan.unwritten.push_back(k);
 
     auto read = [&](int first, int count) {
         for (int c = 0; c < count; ++c) plan.encodeGroups |= 1u << ((first + c) / 4);
     };
+    for (const ModelTest& m : plan.modelTests) read(m.first, m.components);
     for (const TargetPlan& t : plan.targets)
         for (const FieldPlan& f : t.encodeFields)
-            if (f.source >= 0) {
+            if (f.source >= 0 && !f.selector) {
                 read(f.source, f.inputs);
                 if (f.reads >= 0) read(f.reads, 3);
             }

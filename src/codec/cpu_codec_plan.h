@@ -95,6 +95,16 @@ struct FieldPlan {
     // (CpuCodecOptions::frameIndex), as the GPU's gblFrameIndex().
     bool ditherPerFrame = false;
     uint32_t frameIndex = 0;
+    // A conditional field (Field::models; layouts/README.md, "Shading models"): encoded on pixels
+    // whose model m has bit m of `models` (its codes elsewhere 0), decoded where the stored id i has
+    // bit i of `ids` (elsewhere the attribute keeps what the fields before, or 0, gave it).
+    // 0: every pixel.
+    uint32_t models = 0;
+    uint32_t ids = 0;
+    // The selector: its code is modelIds[the pixel's model].
+    bool selector = false;
+    uint32_t modelIds[4] = {0, 0, 0, 0};
+    uint32_t idValue[4] = {0, 0, 0, 0};  // a conditional integer extra's codes (its declared value)
 };
 
 struct TargetPlan {
@@ -106,6 +116,9 @@ struct TargetPlan {
 
 struct FallbackPlan {
     FallbackKind kind = FallbackKind::Constant;
+    // An attribute stored under some models only: the fallback applies where the stored id i has
+    // no bit i here (0: every pixel, the attribute is not stored at all).
+    uint32_t storedIds = 0;
     int dest = 0;        // first float of the attribute in Surface
     int components = 0;
     float value[3] = {0.0f, 0.0f, 0.0f};  // Constant
@@ -119,7 +132,21 @@ struct MaterialSlotPlan {
     int firstFloat = 0;      // float index over all material targets (target = /4, channel = %4)
 };
 
+// One test of the encoder's rule for the pixel's model (src/layout/shading_models.cpp): the pixel
+// is of `model` when some of the `components` Surface floats from `first` is > 0.
+struct ModelTest {
+    uint32_t model = 0;
+    int first = 0;
+    int components = 0;
+};
+
 struct CodecPlan {
+    // The shading-model selector (none: selectorTarget < 0): the named models' tests in the rule's
+    // order of preference, and where the selector's code lies (decode reads it before the fields).
+    int selectorTarget = -1;
+    int selectorWords = 1;
+    CodePlan selectorCode;
+    std::vector<ModelTest> modelTests;
     std::vector<TargetPlan> targets;
     int materialTargets = 0;
     std::vector<int> materialSource;  // per material float (4 per target): Surface float, or -1 (0)

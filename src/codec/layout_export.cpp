@@ -160,6 +160,10 @@ private:
         o_ << "// Base pass: the surface -> the values for each render target.\n";
         o_ << p_ << "_Targets " << p_ << "_encode(" << p_ << "_Surface s" << (pixel ? ", ivec2 pixel" : "") << ") {\n";
         o_ << "    " << p_ << "_Targets t;\n";
+        // The shading-model selector (layouts/README.md, "Shading models"): the model by the rule the
+        // renderer's writeGBuffer and the CPU codec take (src/layout/shading_models.cpp), from the
+        // surface's layers; the surface's shadingModel member is what decode read back, not an input.
+        if (l_.selector()) emitModelPick(o_, "    ", l_, "gblModel");
         for (size_t t = 0; t < l_.targets.size(); ++t) {
             const Target& tg = l_.targets[t];
             const std::string ts = std::to_string(t);
@@ -170,13 +174,21 @@ private:
                 const std::string id = "e" + ts + "_" + std::to_string(fi);
                 std::string at;
                 for (const CodePlace& cp : f.codes) at += (at.empty() ? "" : ", ") + glslCommentText(cp.text);
-                o_ << "    // " << attributeName(f.attribute) << ": " << f.encoding << " at " << at << "\n";
-                const std::vector<std::string> codes = emitEncodeField(o_, "    ", f, id, true);
+                o_ << "    // " << attributeName(f.attribute) << ": " << f.encoding << " at " << at
+                   << (f.conditional() ? " (under " + shadingModelNames(f.models) + ")" : "") << "\n";
+                if (f.attribute == Attribute::ShadingModel) {
+                    emitPlaceCode(o_, "    ", tg, f.codes[0], "w" + ts, modelIdExpr(f, "gblModel"));
+                    continue;
+                }
+                const std::string ind = f.conditional() ? "        " : "    ";
+                if (f.conditional()) o_ << "    if (" << maskTest(f.models, "gblModel") << ") {\n";
+                const std::vector<std::string> codes = emitEncodeField(o_, ind, f, id, true);
                 for (size_t i = 0; i < codes.size(); ++i) {
                     const std::string cv = id + "_c" + std::to_string(i);
-                    o_ << "    uint " << cv << " = " << codes[i] << ";\n";
-                    emitPlaceCode(o_, "    ", tg, f.codes[i], "w" + ts, cv);
+                    o_ << ind << "uint " << cv << " = " << codes[i] << ";\n";
+                    emitPlaceCode(o_, ind, tg, f.codes[i], "w" + ts, cv);
                 }
+                if (f.conditional()) o_ << "    }\n";
             }
             o_ << "    t." << targetMember(t) << " = " << p_ << "_rt" << ts << "Values(w" << ts << ");\n";
         }
@@ -208,6 +220,12 @@ private:
         o_ << ") {\n    " << p_ << "_Surface s = " << p_ << "_surfaceDefaults();\n";
         for (size_t t = 0; t < l_.targets.size(); ++t)
             o_ << "    uvec4 w" << t << " = " << p_ << "_rt" << t << "Words(t." << targetMember(t) << ");\n";
+        // The stored model id first: the conditional fields and fallbacks test it.
+        for (size_t t = 0; t < l_.targets.size(); ++t)
+            for (const Field& f : l_.targets[t].fields)
+                if (&f == l_.selector())
+                    o_ << "    uint gblSel = " << extractCode(l_.targets[t], f.codes[0], "w" + std::to_string(t))
+                       << ";  // the shading-model selector\n";
         for (size_t t = 0; t < l_.targets.size(); ++t) {
             const Target& tg = l_.targets[t];
             const std::string ts = std::to_string(t);
@@ -215,7 +233,8 @@ private:
                 const Field& f = tg.fields[fi];
                 const char* sm = surfaceMemberName(f.attribute);
                 const std::string member = sm ? std::string(sm) : extraMemberName(f.attribute);
-                const std::string lhs = "    s." + member + " = ";
+                const std::string lhs = (f.conditional() ? "    if (" + maskTest(l_.selectorIds(f.models), "gblSel") + ")" : std::string("   ")) +
+                                        " s." + member + " = ";
                 if (fieldNeedsNeighbours(f)) {
                     std::string fwd, inv;
                     colorTransform(f.encoding, fwd, inv);
@@ -251,8 +270,18 @@ private:
             }
         }
         for (const Fallback* fb : orderedFallbacks(l_))
-            for (const ExportMember& m : members_)
-                if (!m.stored && m.attribute == fb->attribute) emitFallback(o_, *fb, l_);
+            for (const ExportMember& m : members_) {
+                if (m.stored || m.attribute != fb->attribute) continue;
+                if (l_.storesConditionally(fb->attribute)) {
+                    // where the pixel's model stores none of its fields
+                    o_ << "    if (!(" << maskTest(l_.selectorIds(l_.conditionalModels(fb->attribute)), "gblSel")
+                       << ")) {\n    ";
+                    emitFallback(o_, *fb, l_);
+                    o_ << "    }\n";
+                    continue;
+                }
+                emitFallback(o_, *fb, l_);
+            }
         o_ << "    return s;\n}\n\n";
     }
 
@@ -465,9 +494,16 @@ std::vector<ExportMember> exportSurfaceMembers(const Layout& layout) {
         for (Attribute in : fallbackInputs(fb->kind)) inputs = inputs && (layout.stores(in) || derived.count(in));
         if (inputs) derived.insert(fb->attribute);
     }
+    // The layers the selector's rule tests (src/layout/shading_models.cpp) are read by encode even
+    // where the layout stores none of their fields.
+    std::set<Attribute> tested;
+    for (const ShadingModelInfo& sm : listShadingModels())
+        if (sm.id != ShadingModel::Default && ((layout.selectorModels() >> unsigned(sm.id)) & 1u)) tested.insert(sm.test);
     for (Attribute a : surfaceAttributes()) {
-        const bool stored = layout.stores(a);
-        if (!stored && !derived.count(a)) continue;
+        // An attribute stored under some models only is a member that decode may also derive
+        // (its fallback, where the pixel's model does not store it).
+        const bool stored = layout.stores(a) && !(layout.storesConditionally(a) && layout.findFallback(a));
+        if (!layout.stores(a) && !derived.count(a) && !tested.count(a)) continue;
         ExportMember m;
         m.name = surfaceMemberName(a);
         m.attribute = a;
@@ -475,9 +511,11 @@ std::vector<ExportMember> exportSurfaceMembers(const Layout& layout) {
         m.stored = stored;
         add(m);
     }
+    std::set<Attribute> extras;
     for (const Target& t : layout.targets)
         for (const Field& f : t.fields) {
             if (surfaceMemberName(f.attribute)) continue;
+            if (!extras.insert(f.attribute).second) continue;  // an extra stored under two models: one member
             ExportMember m;
             m.name = extraMemberName(f.attribute);
             m.attribute = f.attribute;

@@ -139,6 +139,10 @@ std::string nativeFormatObstacle(const Target& target) {
     for (const Channel& c : target.channels) anyUint |= c.type == ChannelType::Uint;
     if (anyUint) return target.format + " is an integer format";
     for (const Field& f : target.fields)
+        if (f.conditional() || f.attribute == Attribute::ShadingModel)
+            return "field '" + std::string(attributeName(f.attribute)) +
+                   "' depends on the shading model: its bits are integer-placed per pixel";
+    for (const Field& f : target.fields)
         if (!nativeField(target, f))
             return "field '" + std::string(attributeName(f.attribute)) + "' (" + f.encoding +
                    ") packs codes that " + target.format + " cannot express as whole channels of its own encoding";
@@ -200,6 +204,8 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         o << "layout(location = " << layout.targets.size()
           << ") out vec4 gblSceneColorEmissive;  // emissive = forward: scene colour, RGBA32F, unquantised\n";
     o << "void writeGBuffer(Surface s, ivec2 pixel) {\n";
+    const Field* selector = layout.selector();
+    if (selector) emitModelPick(o, "    ", layout, "gblModel");
     if (emissiveForward)
         o << "    // emissive = forward: into scene colour, as UE4's base pass does; the lighting pass adds it\n"
              "    gblSceneColorEmissive = vec4(s.emissive, 0.0);\n";
@@ -217,7 +223,24 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
             const std::string id = "e" + ts + "_" + std::to_string(fi);
             std::string at;
             for (const CodePlace& cp : f.codes) at += (at.empty() ? "" : ", ") + cp.text;
-            o << "    // " << attributeName(f.attribute) << ": " << f.encoding << " at " << at << "\n";
+            o << "    // " << attributeName(f.attribute) << ": " << f.encoding << " at " << at
+              << (f.conditional() ? " (under " + shadingModelNames(f.models) + ")" : "") << "\n";
+            if (f.attribute == Attribute::ShadingModel) {  // the selector: the id of the pixel's model
+                emitPlaceCode(o, "    ", tg, f.codes[0], "w" + ts, modelIdExpr(f, "gblModel"));
+                continue;
+            }
+            if (f.conditional()) {
+                // Written on the pixels of its models only: elsewhere its bits belong to another model's fields.
+                o << "    if (" << maskTest(f.models, "gblModel") << ") {\n";
+                const std::vector<std::string> codes = emitEncodeField(o, "        ", f, id);
+                for (size_t i = 0; i < codes.size(); ++i) {
+                    const std::string cv = id + "_c" + std::to_string(i);
+                    o << "        uint " << cv << " = " << codes[i] << ";\n";
+                    emitPlaceCode(o, "        ", tg, f.codes[i], "w" + ts, cv);
+                }
+                o << "    }\n";
+                continue;
+            }
             if (native[t]) {
                 const std::vector<std::string> v = emitNativeEncode(o, "    ", f, id);
                 for (size_t i = 0; i < v.size(); ++i) {
@@ -288,13 +311,36 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
           << ", pixel, 0);\n";
     for (int i = 0; i < materialTargets; ++i)
         o << "    uvec4 m" << i << " = texelFetch(materialTarget" << i << ", pixel, 0);\n";
+    const Field* readSelector = layout.selector();
+    if (readSelector) {
+        // The stored model id, before any field: the conditional fields and fallbacks test it.
+        for (size_t t = 0; t < layout.targets.size(); ++t)
+            for (const Field& f : layout.targets[t].fields)
+                if (&f == readSelector)
+                    o << "    uint gblSel = " << extractCode(layout.targets[t], f.codes[0], "w" + std::to_string(t))
+                      << ";  // the shading-model selector\n";
+        o << "    s.shadingModel = float(gblSel);\n";
+        // An attribute stored under some models only starts as 0 ("no layer"); its fields and its
+        // fallback set it where they hold.
+        for (Attribute a : surfaceAttributes())
+            if (layout.storesConditionally(a))
+                o << "    s." << surfaceSlotName(a) << " = " << zeroOf(a) << ";  // stored under "
+                  << shadingModelNames(layout.conditionalModels(a)) << " only\n";
+    }
     for (size_t t = 0; t < layout.targets.size(); ++t) {
         const Target& tg = layout.targets[t];
         const std::string ts = std::to_string(t);
         for (size_t fi = 0; fi < tg.fields.size(); ++fi) {
             const Field& f = tg.fields[fi];
             const char* m = surfaceSlotName(f.attribute);
-            if (!m) continue;  // extras: no shading meaning
+            if (!m) continue;  // extras (and the selector, above): no shading meaning
+            if (f.conditional()) {
+                std::vector<std::string> codes;
+                for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, "w" + ts));
+                o << "    if (" << maskTest(layout.selectorIds(f.models), "gblSel") << ") s." << m << " = "
+                  << decodeFieldExpr(f, codes) << ";  // under " << shadingModelNames(f.models) << "\n";
+                continue;
+            }
             const std::string lhs = std::string("    s.") + m + " = ";
             if (native[t]) {
                 std::vector<std::string> u;
@@ -340,8 +386,18 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
                                           : ": rebuilt from depth by the lighting pass")
               << "\n";
         }
-    o << "    s.shadingModel = 0.0;  // the shading-model selector: no layout stores it yet\n";
-    for (const Fallback* fb : orderedFallbacks(layout)) emitFallback(o, *fb, layout);
+    if (!readSelector) o << "    s.shadingModel = 0.0;  // no shading-model selector\n";
+    for (const Fallback* fb : orderedFallbacks(layout)) {
+        if (layout.storesConditionally(fb->attribute) && surfaceMemberName(fb->attribute)) {
+            // Where the pixel's model does not store it.
+            o << "    if (!(" << maskTest(layout.selectorIds(layout.conditionalModels(fb->attribute)), "gblSel")
+              << ")) {\n    ";
+            emitFallback(o, *fb, layout);
+            o << "    }\n";
+            continue;
+        }
+        emitFallback(o, *fb, layout);
+    }
     o << "    return s;\n}\n#endif\n";
     return o.str();
 }

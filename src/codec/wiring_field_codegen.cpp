@@ -380,4 +380,37 @@ std::string nativeDecodeExpr(const Field& f, const std::vector<std::string>& u) 
     return inv + "(vec3(" + u[0] + ", " + u[1] + ", " + u[2] + "))";
 }
 
+void emitModelPick(std::ostream& o, const std::string& ind, const Layout& layout, const std::string& var) {
+    const uint32_t named = layout.selectorModels();
+    o << ind << "// the pixel's shading model: the first the selector names whose layer it carries, else default\n";
+    o << ind << "uint " << var << " = 0u;  // default\n";
+    const std::vector<ShadingModelInfo>& models = listShadingModels();
+    for (auto it = models.rbegin(); it != models.rend(); ++it) {
+        if (it->id == ShadingModel::Default || !((named >> unsigned(it->id)) & 1u)) continue;
+        const std::string m = std::string("s.") + surfaceMemberName(it->test);
+        const int n = attributeComponents(it->test);
+        std::string test;
+        for (int c = 0; c < n; ++c)
+            test += (c ? " || " : "") + (n == 1 ? m : m + "." + kComp[c]) + " > 0.0";
+        o << ind << "if (" << test << ") " << var << " = " << ulit(uint64_t(it->id)) << ";  // " << it->name << "\n";
+    }
+}
+
+std::string modelIdExpr(const Field& selector, const std::string& var) {
+    uint32_t ids[kShadingModels] = {0, 0, 0, 0};
+    uint32_t named = 0;
+    for (const Field::ModelId& m : selector.selector) {
+        ids[size_t(m.model)] = m.id;
+        named |= 1u << unsigned(m.model);
+    }
+    std::string e = ulit(ids[0]);  // default (and any model the selector does not name: never picked)
+    for (int m = kShadingModels - 1; m >= 1; --m)
+        if ((named >> m) & 1u) e = var + " == " + ulit(uint64_t(m)) + " ? " + ulit(ids[m]) + " : (" + e + ")";
+    return "(" + e + ")";
+}
+
+std::string maskTest(uint32_t mask, const std::string& var) {
+    return "((" + ulit(mask) + " >> " + var + ") & 1u) != 0u";
+}
+
 }  // namespace gbl::wiring

@@ -51,6 +51,16 @@ void emitPlaceCode(std::ostream& o, const std::string& ind, const Target& t, con
                    const std::string& words, const std::string& code);
 std::string extractCode(const Target& t, const CodePlace& cp, const std::string& words);
 std::string maskLit(int bits);
+// The shading-model selector (layouts/README.md, "Shading models"), from the one statement of the
+// encoder's rule (src/layout/shading_models.cpp), which the CPU codec's plan also reads:
+// `uint <var> = 0u;` and one `if` per model the selector names, in reverse order of preference,
+// so the pixel's model (ShadingModel's index) is the first whose layer the Surface `s` carries.
+void emitModelPick(std::ostream& o, const std::string& ind, const Layout& layout, const std::string& var);
+// The selector's code of the model in `var` ("var == 1u ? 4u : var == 2u ? 8u : 1u"; GLSL and HLSL).
+std::string modelIdExpr(const Field& selector, const std::string& var);
+// "((18u >> var) & 1u) != 0u": whether bit `var` of `mask` is set (a model or id in a set).
+std::string maskTest(uint32_t mask, const std::string& var);
+
 // `s.member = ...;` for a fallback (constant or derived; forward and material_pass as the renderer reads them).
 void emitFallback(std::ostream& o, const Fallback& fb, const Layout& layout);
 

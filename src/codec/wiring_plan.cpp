@@ -149,15 +149,29 @@ std::vector<const Fallback*> orderedFallbacks(const Layout& layout) {
     for (const Fallback& f : layout.fallbacks) pending.insert(f.attribute);
     std::vector<const Fallback*> out;
     std::vector<bool> done(layout.fallbacks.size(), false);
-    for (size_t round = 0; round <= layout.fallbacks.size(); ++round) {
+    for (size_t round = 0; round <= 2 * layout.fallbacks.size(); ++round) {
+        bool progress = false;
         for (size_t i = 0; i < layout.fallbacks.size(); ++i) {
             if (done[i]) continue;
             bool ready = true;
             for (Attribute a : fallbackInputs(layout.fallbacks[i].kind)) ready &= pending.count(a) == 0;
             if (!ready) continue;
             done[i] = true;
+            progress = true;
             pending.erase(layout.fallbacks[i].attribute);
             out.push_back(&layout.fallbacks[i]);
+        }
+        if (progress) continue;
+        // Stuck on fallbacks that derive from each other: allowed only between attributes stored
+        // under some models, where every model stores one of them (validation: HDRP's fresnel0
+        // under its standard feature, its metallic under anisotropy). The first of them in file
+        // order goes first; on a pixel of a model storing it, its fallback is skipped.
+        for (size_t i = 0; i < layout.fallbacks.size(); ++i) {
+            if (done[i] || !layout.storesConditionally(layout.fallbacks[i].attribute)) continue;
+            done[i] = true;
+            pending.erase(layout.fallbacks[i].attribute);
+            out.push_back(&layout.fallbacks[i]);
+            break;
         }
     }
     if (out.size() != layout.fallbacks.size())

@@ -104,6 +104,9 @@ const std::vector<AttributeInfo>& attributeTable() {
          "1 when the object is lightmapped (HDRP with probe volumes, GBuffer0.a bit 7)"},
         {Attribute::SpecularOcclusion, "specular_occlusion", 1, AC::Extra, VT::Float, VD::Unit,
          "specular occlusion (HDRP GBuffer0.a: 1 for a Lit material without a mask map); kept, not shaded"},
+        {Attribute::ShadingModel, "shading_model", 1, AC::Selector, VT::Integer, VD::Id,
+         "the shading-model selector: the id of the model the pixel's other bits hold (UE's shading model id, "
+         "HDRP's material feature id); its field names the models and their ids"},
     };
     return table;
 }
@@ -366,8 +369,26 @@ int Target::bits() const {
 }
 
 int Target::usedBits() const {
+    // Bits, counted once: conditional fields of different models may share them.
+    std::vector<bool> used(size_t(std::max(bits(), 0)), false);
     int n = 0;
-    for (const Field& f : fields) n += f.totalBits();
+    for (const Field& f : fields)
+        for (const CodePlace& c : f.codes)
+            for (const BitRange& r : c.pieces) {
+                if (size_t(r.channel) >= channels.size()) {
+                    n += r.count;
+                    continue;
+                }
+                for (int b = 0; b < r.count; ++b) {
+                    const size_t at = size_t(channels[size_t(r.channel)].offset + r.first + b);
+                    if (at >= used.size()) {
+                        ++n;
+                    } else if (!used[at]) {
+                        used[at] = true;
+                        ++n;
+                    }
+                }
+            }
     return n;
 }
 
@@ -398,6 +419,51 @@ const Field* Layout::findField(Attribute a) const {
     for (const Field& f : depth.stencil)
         if (f.attribute == a) return &f;
     return nullptr;
+}
+
+bool Layout::storesAlways(Attribute a) const {
+    for (const Target& t : targets)
+        for (const Field& f : t.fields) {
+            if (f.conditional()) continue;
+            if (f.attribute == a) return true;
+            if (const EncodingInfo* e = findEncoding(f.encoding); e && !e->carries.empty() && e->carries == attributeName(a))
+                return true;
+        }
+    for (const Field& f : depth.stencil)
+        if (f.attribute == a) return true;
+    return false;
+}
+
+const Field* Layout::selector() const {
+    for (const Target& t : targets)
+        for (const Field& f : t.fields)
+            if (f.attribute == Attribute::ShadingModel) return &f;
+    return nullptr;
+}
+
+uint32_t Layout::selectorIds(uint32_t models) const {
+    const Field* s = selector();
+    uint32_t set = 0;
+    if (!s) return 0;
+    for (const Field::ModelId& m : s->selector)
+        if ((models >> unsigned(m.model)) & 1u && m.id < 32) set |= 1u << m.id;
+    return set;
+}
+
+uint32_t Layout::selectorModels() const {
+    const Field* s = selector();
+    uint32_t models = 0;
+    if (s)
+        for (const Field::ModelId& m : s->selector) models |= 1u << unsigned(m.model);
+    return models;
+}
+
+uint32_t Layout::conditionalModels(Attribute a) const {
+    uint32_t models = 0;
+    for (const Target& t : targets)
+        for (const Field& f : t.fields)
+            if (f.attribute == a) models |= f.models;
+    return models;
 }
 
 const Fallback* Layout::findFallback(Attribute a) const {
@@ -431,18 +497,25 @@ int lightBufferBytesPerPixel(const Layout& layout) {
 std::vector<AttributeBits> bitsPerAttribute(const Layout& layout) {
     std::vector<AttributeBits> out;
     for (const AttributeInfo& info : attributeTable()) {
-        int bits = 0;
-        bool found = false;
+        int bits = 0, widestConditional = 0;
+        uint32_t models = 0;
+        bool found = false, always = false;
         auto count = [&](const std::vector<Field>& fields) {
             for (const Field& f : fields)
                 if (f.attribute == info.id) {
-                    bits += f.totalBits();
                     found = true;
+                    if (f.conditional()) {
+                        widestConditional = std::max(widestConditional, f.totalBits());
+                        models |= f.models;
+                    } else {
+                        bits += f.totalBits();
+                        always = true;
+                    }
                 }
         };
         for (const Target& t : layout.targets) count(t.fields);
         count(layout.depth.stencil);
-        if (found) out.push_back({info.id, bits});
+        if (found) out.push_back({info.id, bits + widestConditional, always ? 0u : models});
     }
     return out;
 }

@@ -74,9 +74,13 @@ enum class Attribute : uint8_t {
     SubsurfaceColor,
     IsLightmap,
     SpecularOcclusion,
+    // the shading-model selector (layouts/README.md, "Shading models"): an id per pixel, the model
+    // the encoder picked from the Surface's layers; it says which conditional fields hold the pixel
+    ShadingModel,
 };
 
-enum class AttributeClass : uint8_t { Shading, Geometry, Extra };
+// Selector: the shading-model selector's class, neither a shading value nor a declared constant.
+enum class AttributeClass : uint8_t { Shading, Geometry, Extra, Selector };
 enum class ValueType : uint8_t { Float, Integer };
 // What values an attribute's components take (used to reject encodings that cannot hold them).
 enum class ValueDomain : uint8_t { Unit, Signed, NonNegative, Any, Id };
@@ -103,6 +107,34 @@ bool isLayerAttribute(Attribute a);
 // Unit vectors stored like the normal, in the layout's [space]: normal, coat_normal,
 // anisotropy_direction (normal encodings take them).
 bool isDirectionAttribute(Attribute a);
+
+// ---------------------------------------------------------------------------------------------
+// Shading models (layouts/README.md, "Shading models: the selector"; src/layout/shading_models.cpp
+// is the one statement of the encoder's rule, which the generated GLSL and the CPU codec both take).
+// A layout's selector field stores, per pixel, the id of one of these models; a conditional field
+// (Field::models) holds its attribute only on pixels of the models it names.
+
+enum class ShadingModel : uint8_t { Default, ClearCoat, Cloth, Anisotropic };
+inline constexpr int kShadingModels = 4;
+// The selector's widest place: ids 0..31, so a set of ids is one 32-bit mask (UE's id takes 4 bits,
+// HDRP's feature id 3).
+inline constexpr int kMaxSelectorBits = 5;
+
+struct ShadingModelInfo {
+    ShadingModel id;
+    const char* name;  // layout-language name: "default", "clear_coat", "cloth", "anisotropic"
+    // The layer whose presence picks the model: some component of this Surface attribute > 0.
+    // Default has none (Attribute::Normal, unused).
+    Attribute test;
+    const char* meaning;
+};
+// In the encoder's order of preference: clear_coat, cloth, anisotropic, then default.
+const std::vector<ShadingModelInfo>& listShadingModels();
+const ShadingModelInfo& shadingModelInfo(ShadingModel m);
+const ShadingModelInfo* findShadingModel(std::string_view name);  // nullptr when unknown
+std::string knownShadingModelNames();  // "default, clear_coat, cloth, anisotropic"
+// "clear_coat", "clear_coat, cloth" for a mask of models (bit m = ShadingModel m).
+std::string shadingModelNames(uint32_t models);
 
 // ---------------------------------------------------------------------------------------------
 // Formats
@@ -242,6 +274,19 @@ struct Field {
     bool ditherDeclared = false;   // the key was given
     bool incomplete = false;       // a parse error was reported for it: validation skips it
                                    // (never set in a Layout that parseLayout returns)
+    // A conditional field (`model = ...`): bit m set for each ShadingModel m it holds its attribute
+    // under; 0: an unconditional field, written and read on every pixel.
+    uint32_t models = 0;
+    FilePlace modelPlace;  // the "model" value
+    // The selector (attribute shading_model): its `models` table, model -> id, in file order.
+    struct ModelId {
+        ShadingModel model = ShadingModel::Default;
+        uint32_t id = 0;
+        FilePlace place;
+    };
+    std::vector<ModelId> selector;
+    FilePlace selectorPlace;  // the "models" value
+    bool conditional() const { return models != 0; }
 
     // Bits of the encoding's main codes (the primitive's `bits` parameter). For per-component
     // (scalar) encodings each component may differ: bitsOfCode(i).
@@ -440,6 +485,19 @@ struct Layout {
     const ClearValue* findClear(Attribute a) const;  // nullptr when [clear] does not list it
     const Citation* findCitation(std::string_view key) const;  // nullptr when [sources] has no such key
     bool stores(Attribute a) const { return findField(a) != nullptr; }
+    // Stored by an unconditional field (or carried by one's encoding): on every pixel.
+    bool storesAlways(Attribute a) const;
+    // Stored by conditional fields only: on the pixels of some models (a fallback, or "no layer",
+    // gives the others).
+    bool storesConditionally(Attribute a) const { return stores(a) && !storesAlways(a); }
+    // The selector field (attribute shading_model); nullptr when the layout has none.
+    const Field* selector() const;
+    // The ids (bit i = id i) the selector gives the models of the mask `models`.
+    uint32_t selectorIds(uint32_t models) const;
+    // The models (bit m = ShadingModel m) the selector names; 0 without a selector.
+    uint32_t selectorModels() const;
+    // The models under which `a` is stored by a conditional field (0 when none is).
+    uint32_t conditionalModels(Attribute a) const;
 };
 
 // G-buffer bytes per pixel: all targets plus the depth-stencil attachment (a visibility buffer:
@@ -454,8 +512,10 @@ int lightBufferBytesPerPixel(const Layout& layout);
 struct AttributeBits {
     Attribute attribute;
     int bits;
+    uint32_t models = 0;  // the models it is stored under when only conditional fields store it (else 0)
 };
-// Bits each stored attribute takes (all its codes, stencil included), in attribute order.
+// Bits each stored attribute takes (all its codes, stencil included), in attribute order; an
+// attribute stored by several conditional fields (under different models) counts its widest.
 std::vector<AttributeBits> bitsPerAttribute(const Layout& layout);
 
 // Every entry of a layout that carries provenance, in file order of sections: depth and its

@@ -217,6 +217,105 @@ void readValue(Parser& p, const toml::table& t, const AttributeInfo& attr, const
     field.value = *values;
 }
 
+// model (a conditional field) and models (the selector): layouts/README.md, "Shading models".
+void readModels(Parser& p, const toml::table& t, const AttributeInfo& attr, const std::string& what, bool stencil,
+                Field& field) {
+    const toml::node* model = t.get("model");
+    const toml::node* models = t.get("models");
+    const bool selector = attr.id == Attribute::ShadingModel;
+    if (selector && stencil) {
+        p.error(field.place, "the shading-model selector lives in a colour target, not in the stencil: the lighting "
+                             "pass reads it with the fields it selects");
+        field.incomplete = true;
+        return;
+    }
+    if (model && selector) {
+        p.error(placeOf(*model), "the selector itself is not conditional: remove 'model' (its 'models' names the "
+                                 "models and their ids)");
+        field.incomplete = true;
+    }
+    if (models && !selector) {
+        p.error(placeOf(*models), "'models' belongs to the selector (attribute = \"shading_model\"); a field held "
+                                  "under some models says model = \"clear_coat\" or model = [...]");
+        field.incomplete = true;
+    }
+    if (selector) {
+        if (!models) {
+            p.error(field.place, what + " has no 'models': name the models and their ids, e.g. models = { default "
+                                        "= 1, clear_coat = 4, cloth = 8 } (known models: " +
+                                        knownShadingModelNames() + ")");
+            field.incomplete = true;
+            return;
+        }
+        field.selectorPlace = placeOf(*models);
+        const toml::table* table = models->as_table();
+        if (!table) {
+            p.error(placeOf(*models), "'models' must be a table of model = id, not " + std::string(typeName(*models)));
+            field.incomplete = true;
+            return;
+        }
+        for (auto&& [key, node] : *table) {
+            const ShadingModelInfo* info = findShadingModel(key.str());
+            if (!info) {
+                p.error(placeOf(key.source()), "unknown shading model " + squote(key.str()) +
+                                                   " (known: " + knownShadingModelNames() + ")");
+                field.incomplete = true;
+                continue;
+            }
+            auto id = p.getInteger(node, "the id of model " + squote(key.str()));
+            if (!id) {
+                field.incomplete = true;
+                continue;
+            }
+            if (*id < 0 || *id > 0xffffffffLL) {
+                p.error(placeOf(node), "the id of model " + squote(key.str()) + " must be a non-negative integer, not " +
+                                           std::to_string(*id));
+                field.incomplete = true;
+                continue;
+            }
+            field.selector.push_back({info->id, uint32_t(*id), placeOf(node)});
+        }
+        // toml++ iterates a table by key; the model table is kept in file order.
+        std::stable_sort(field.selector.begin(), field.selector.end(), [](const Field::ModelId& a, const Field::ModelId& b) {
+            return a.place.line != b.place.line ? a.place.line < b.place.line : a.place.column < b.place.column;
+        });
+        return;
+    }
+    if (!model) return;
+    field.modelPlace = placeOf(*model);
+    if (stencil) {
+        p.error(placeOf(*model), "a stencil field is written per draw, not per pixel: it cannot be conditional on "
+                                 "the shading model; remove 'model'");
+        field.incomplete = true;
+        return;
+    }
+    auto add = [&](const toml::node& n) {
+        if (!n.is_string()) {
+            p.error(placeOf(n), "a model in 'model' must be a string (" + knownShadingModelNames() + "), not " +
+                                    std::string(typeName(n)));
+            field.incomplete = true;
+            return;
+        }
+        const std::string& name = n.as_string()->get();
+        const ShadingModelInfo* info = findShadingModel(name);
+        if (!info) {
+            p.error(placeOf(n), "unknown shading model " + squote(name) + " (known: " + knownShadingModelNames() + ")");
+            field.incomplete = true;
+            return;
+        }
+        field.models |= 1u << unsigned(info->id);
+    };
+    if (const toml::array* a = model->as_array()) {
+        if (a->empty()) {
+            p.error(placeOf(*model), what + ": 'model' is empty: name the models the field holds its attribute under");
+            field.incomplete = true;
+        }
+        for (const toml::node& n : *a) add(n);
+    } else {
+        add(*model);
+    }
+}
+
 }  // namespace
 
 // Reads one field: attribute, encoding (+ transform / interleave), at, bits, value.
@@ -231,10 +330,11 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
     Field field;
     field.place = placeOf(node);
     if (stencil)
-        checkKeys(*t, {"attribute", "encoding", "at", "bits", "value", "from", "status", "differs"}, "a stencil field");
+        checkKeys(*t, {"attribute", "encoding", "at", "bits", "value", "model", "models", "from", "status", "differs"},
+                  "a stencil field");
     else
-        checkKeys(*t, {"attribute", "encoding", "transform", "interleave", "at", "bits", "value", "dither_per_frame", "from",
-                       "status", "differs"},
+        checkKeys(*t, {"attribute", "encoding", "transform", "interleave", "at", "bits", "value", "dither_per_frame",
+                       "model", "models", "from", "status", "differs"},
                   "a field");
     readProvenance(*t, field.provenance, field.place);
 
@@ -253,6 +353,7 @@ std::optional<Field> Parser::parseField(const toml::node& node, const std::vecto
     parsePlaces(*t, channels, formatName, what, field);
     checkBits(*this, *t, what, field);
     readValue(*this, *t, *attr, what, field);
+    readModels(*this, *t, *attr, what, stencil, field);
     return field;
 }
 

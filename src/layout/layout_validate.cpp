@@ -28,6 +28,7 @@ public:
     void run() {
         checkTargets();
         checkStencil();
+        checkSelector();
         checkStoredOnce();
         checkReads();
         checkRequired();
@@ -196,42 +197,61 @@ private:
     // Bits of one target (or the stencil): total fits, no two codes share a bit.
     void checkPacking(const std::vector<Field>& fields, const std::vector<Channel>& channels, int totalBits,
                       const std::string& where, const std::string& format, FilePlace place) {
+        // Bits counted once: conditional fields of disjoint models may share them (overlaps of
+        // other fields are reported below, bit by bit).
+        std::vector<std::vector<bool>> taken(channels.size());
+        for (size_t c = 0; c < channels.size(); ++c) taken[c].assign(static_cast<size_t>(channels[c].bits), false);
         int used = 0;
-        for (const Field& f : fields)
-            if (!f.incomplete) used += f.totalBits();
+        for (const Field& f : fields) {
+            if (f.incomplete) continue;
+            for (const CodePlace& code : f.codes)
+                for (const BitRange& r : code.pieces)
+                    for (int b = r.first; b < r.first + r.count; ++b) {
+                        auto& t = taken[static_cast<size_t>(r.channel)];
+                        if (b >= static_cast<int>(t.size())) {
+                            ++used;
+                        } else if (!t[static_cast<size_t>(b)]) {
+                            t[static_cast<size_t>(b)] = true;
+                            ++used;
+                        }
+                    }
+        }
         if (used > totalBits)
             error(place, "fields of " + where + " need " + bitsText(used) + " but " + format + " holds " +
                              std::to_string(totalBits) + " (" + bitsText(used - totalBits) + " over)");
 
-        // owner[channel][bit] = index of the field holding it
+        // owners[channel][bit] = the fields holding it: one, or several conditional fields of
+        // disjoint models (layouts/README.md, "Shading models")
         struct Owner {
             int field = -1;
             const CodePlace* code = nullptr;
         };
-        std::vector<std::vector<Owner>> owner(channels.size());
-        for (size_t c = 0; c < channels.size(); ++c) owner[c].resize(static_cast<size_t>(channels[c].bits));
+        std::vector<std::vector<std::vector<Owner>>> owners(channels.size());
+        for (size_t c = 0; c < channels.size(); ++c) owners[c].resize(static_cast<size_t>(channels[c].bits));
         std::map<std::pair<int, int>, bool> reported;
+        auto compatible = [&](const Field& a, const Field& b) {
+            return &a != &b && a.conditional() && b.conditional() && (a.models & b.models) == 0;
+        };
         for (size_t fi = 0; fi < fields.size(); ++fi) {
             const Field& f = fields[fi];
             if (f.incomplete) continue;
             for (const CodePlace& code : f.codes) {
                 for (const BitRange& r : code.pieces) {
-                    auto& bits = owner[static_cast<size_t>(r.channel)];
+                    auto& bits = owners[static_cast<size_t>(r.channel)];
                     int clashFirst = -1, clashLast = -1, other = -1;
                     const CodePlace* otherCode = nullptr;
                     for (int b = r.first; b < r.first + r.count && b < static_cast<int>(bits.size()); ++b) {
-                        Owner& o = bits[static_cast<size_t>(b)];
-                        if (o.field >= 0) {
+                        auto& list = bits[static_cast<size_t>(b)];
+                        for (const Owner& o : list) {
+                            if (compatible(f, fields[static_cast<size_t>(o.field)])) continue;
                             if (clashFirst < 0) {
                                 clashFirst = b;
                                 other = o.field;
                                 otherCode = o.code;
                             }
                             if (o.field == other) clashLast = b;
-                        } else {
-                            o.field = static_cast<int>(fi);
-                            o.code = &code;
                         }
+                        list.push_back({static_cast<int>(fi), &code});
                     }
                     if (clashFirst < 0) continue;
                     if (reported[{other, static_cast<int>(fi)}]) continue;
@@ -239,11 +259,19 @@ private:
                     const Field& g = fields[static_cast<size_t>(other)];
                     const BitRange clash{r.channel, clashFirst, clashLast - clashFirst + 1};
                     const std::string self = other == static_cast<int>(fi) ? " (the same field)" : "";
+                    std::string why;
+                    if (other != static_cast<int>(fi) && f.conditional() && g.conditional())
+                        why = "; both are held under " + shadingModelNames(f.models & g.models) +
+                              ": fields may share bits only under disjoint models";
+                    else if (other != static_cast<int>(fi) && (f.conditional() || g.conditional()))
+                        why = std::string("; only fields of different models may share bits, and ") +
+                              squote(attributeName(f.conditional() ? g.attribute : f.attribute)) +
+                              " is written on every pixel";
                     error(code.place, "bits " + bitRangeText(channels, clash) + " of field " +
                                           squote(attributeName(f.attribute)) + " at " + squote(code.text) +
                                           " overlap field " + squote(attributeName(g.attribute)) + " at " +
                                           squote(otherCode ? otherCode->text : "?") + " (" + lineText(g.place) + ")" +
-                                          self);
+                                          self + why);
                 }
             }
         }
@@ -302,12 +330,27 @@ private:
     }
 
     void checkStoredOnce() {
-        std::map<Attribute, const Field*> seen;
+        // An attribute is stored by one unconditional field, or by conditional fields of disjoint
+        // models (layouts/README.md, "Shading models").
+        std::map<Attribute, std::vector<const Field*>> seen;
         auto visit = [&](const Field& f) {
-            auto [it, fresh] = seen.emplace(f.attribute, &f);
-            if (!fresh)
-                error(f.place, "attribute " + squote(attributeName(f.attribute)) + " is already stored (" +
-                                   lineText(it->second->place) + "); store each attribute once");
+            auto& list = seen[f.attribute];
+            for (const Field* g : list) {
+                if (f.conditional() && g->conditional() && (f.models & g->models) == 0) continue;
+                if (f.conditional() && g->conditional())
+                    error(f.modelPlace, "attribute " + squote(attributeName(f.attribute)) + " is already stored under " +
+                                            shadingModelNames(f.models & g->models) + " (" + lineText(g->place) +
+                                            "); store each attribute once per model");
+                else if (f.conditional() || g->conditional())
+                    error(f.place, "attribute " + squote(attributeName(f.attribute)) + " is already stored (" +
+                                       lineText(g->place) + ") by a" + (g->conditional() ? " conditional" : "n unconditional") +
+                                       " field; an attribute is stored on every pixel or under some models, not both");
+                else
+                    error(f.place, "attribute " + squote(attributeName(f.attribute)) + " is already stored (" +
+                                       lineText(g->place) + "); store each attribute once");
+                return;
+            }
+            list.push_back(&f);
         };
         for (const Target& t : layout_.targets)
             for (const Field& f : t.fields) visit(f);
@@ -318,11 +361,93 @@ private:
                 const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
                 const AttributeInfo* c = enc && !enc->carries.empty() ? findAttribute(enc->carries) : nullptr;
                 if (!c) continue;
-                auto [it, fresh] = seen.emplace(c->id, &f);
-                if (!fresh)
+                auto& list = seen[c->id];
+                if (!list.empty())
                     error(f.encodingPlace, "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) +
                                                " also stores " + squote(enc->carries) + ", which is already stored (" +
-                                               lineText(it->second->place) + "); store each attribute once");
+                                               lineText(list.front()->place) + "); store each attribute once");
+                list.push_back(&f);
+            }
+    }
+
+    // The selector and the conditional fields (layouts/README.md, "Shading models: the selector").
+    void checkSelector() {
+        const Field* sel = nullptr;
+        for (const Target& t : layout_.targets)
+            for (const Field& f : t.fields) {
+                if (f.attribute != Attribute::ShadingModel) continue;
+                if (sel) {
+                    error(f.place, "a second shading-model selector (the first is on " + lineText(sel->place) +
+                                       "): a layout has at most one");
+                    continue;
+                }
+                sel = &f;
+            }
+        uint32_t named = 0;
+        if (sel && !sel->incomplete) {
+            const int bits = sel->codes.empty() ? 0 : sel->codes[0].bits();
+            if (bits > kMaxSelectorBits)
+                error(sel->codes[0].place, "the selector at " + squote(sel->codes[0].text) + " has " + bitsText(bits) +
+                                               "; it takes 1.." + bitsText(kMaxSelectorBits) +
+                                               " (ids 0..31: UE's shading model id takes 4, HDRP's feature id 3)");
+            std::map<uint32_t, const Field::ModelId*> ids;
+            for (const Field::ModelId& m : sel->selector) {
+                named |= 1u << unsigned(m.model);
+                const char* name = shadingModelInfo(m.model).name;
+                if (bits > 0 && bits <= 32 && double(m.id) >= std::ldexp(1.0, bits))
+                    error(m.place, "id " + std::to_string(m.id) + " of " + squote(name) + " does not fit the selector's " +
+                                       bitsText(bits) + " (0.." +
+                                       std::to_string(static_cast<long long>(std::ldexp(1.0, bits)) - 1) + ")");
+                auto [it, fresh] = ids.emplace(m.id, &m);
+                if (!fresh)
+                    error(m.place, "models " + squote(shadingModelInfo(it->second->model).name) + " and " + squote(name) +
+                                       " have the same id " + std::to_string(m.id) +
+                                       ": the decoder could not tell their pixels apart");
+            }
+            if (!(named & 1u))
+                error(sel->selectorPlace, "the selector's 'models' has no 'default': name the id of pixels without a "
+                                          "layer its other models hold (e.g. default = 1, UE's DefaultLit)");
+        }
+        for (const Target& t : layout_.targets)
+            for (const Field& f : t.fields) {
+                if (f.incomplete || !f.conditional()) continue;
+                const std::string a = squote(attributeName(f.attribute));
+                if (!sel) {
+                    error(f.modelPlace, "field " + a + " is held under " + shadingModelNames(f.models) +
+                                            " but the layout has no selector: add a field { attribute = "
+                                            "\"shading_model\", at = ..., models = { default = ..., ... } } that "
+                                            "stores each pixel's model, or remove 'model'");
+                    continue;
+                }
+                if (!sel->incomplete && (f.models & ~named) != 0)
+                    error(f.modelPlace, "field " + a + " is held under " + shadingModelNames(f.models & ~named) +
+                                            ", which the selector (" + lineText(sel->place) +
+                                            ") does not name: add it to the selector's 'models' (known: " +
+                                            shadingModelNames(named) + ")");
+                if (f.attribute == Attribute::Position || f.attribute == Attribute::Depth)
+                    error(f.modelPlace, "field " + a + " is geometry, which the lighting rebuilds every pixel from: it "
+                                            "is stored on every pixel (remove 'model')");
+                const EncodingInfo* enc = findEncoding(f.encoding);
+                if (enc && (enc->needsNeighbours || !enc->reads.empty() || !enc->carries.empty()))
+                    error(f.encodingPlace,
+                          "encoding " + squote(enc->name) + " of the conditional field " + a + " reads " +
+                              (enc->needsNeighbours ? std::string("the neighbouring pixels, which may be of another model")
+                                                    : squote(!enc->reads.empty() ? enc->reads : enc->carries) +
+                                                          " with it") +
+                              ": a conditional field takes an encoding of its own value only (store it unconditionally, "
+                              "or choose another encoding)");
+            }
+        // An encoding that reads another attribute reads it on every pixel: not one stored per model.
+        for (const Target& t : layout_.targets)
+            for (const Field& f : t.fields) {
+                const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
+                if (!enc || enc->reads.empty()) continue;
+                const AttributeInfo* r = findAttribute(enc->reads);
+                if (r && layout_.storesConditionally(r->id))
+                    error(f.encodingPlace, "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) +
+                                               " reads " + squote(enc->reads) +
+                                               ", which the layout stores under some models only: store " +
+                                               enc->reads + " on every pixel, or choose another encoding");
             }
     }
 
@@ -336,6 +461,11 @@ private:
                 error({1, 1}, "the layout stores no " + squote(attributeName(a)) +
                                   ": every layout must store normal and roughness (the lighting pass reads them "
                                   "from the G-buffer)");
+            else if (!layout_.storesAlways(a))
+                error(layout_.findField(a)->modelPlace,
+                      squote(attributeName(a)) + " is stored under " +
+                          shadingModelNames(layout_.conditionalModels(a)) +
+                          " only: normal and roughness are stored on every pixel (remove 'model')");
     }
 
     // What each derived fallback reads.
@@ -363,13 +493,21 @@ private:
         for (const Fallback& f : layout_.fallbacks) {
             auto [it, fresh] = fb.emplace(f.attribute, &f);
             if (!fresh) error(f.place, "second fallback for " + squote(attributeName(f.attribute)));
-            if (const Field* stored = layout_.findField(f.attribute))
+            if (const Field* stored = layout_.storesAlways(f.attribute) ? layout_.findField(f.attribute) : nullptr)
                 error(f.place, "fallback for " + squote(attributeName(f.attribute)) + " but the layout stores it (" +
                                    lineText(stored->place) + "); remove one");
         }
         for (const AttributeInfo& a : listAttributes()) {
             if (a.cls != AttributeClass::Shading || a.id == Attribute::Normal || a.id == Attribute::Roughness) continue;
             if (isLayerAttribute(a.id)) continue;  // unstored: "no layer" (0), as an engine without the layer
+            if (layout_.storesConditionally(a.id) && !fb.count(a.id)) {
+                error(fallbackTablePlace(), "the layout stores " + squote(a.name) + " under " +
+                                                shadingModelNames(layout_.conditionalModels(a.id)) +
+                                                " only and declares no fallback for the other pixels: add " +
+                                                std::string(a.name) + " = ... to [fallback] (what the decoder yields "
+                                                "where the pixel's model does not store it)");
+                continue;
+            }
             if (!layout_.stores(a.id) && !fb.count(a.id))
                 error(fallbackTablePlace(), "the layout does not store " + squote(a.name) +
                                                 " and declares no fallback for it: add " + std::string(a.name) +
@@ -393,30 +531,46 @@ private:
                                        ", which the layout neither stores nor derives");
         }
         // derived fallbacks must not feed each other in a circle (metallic from specular_color from
-        // metallic): depth-first search over "derives from" edges, one report per back edge
-        std::map<Attribute, int> state;  // 0 unvisited, 1 on the stack, 2 done
-        std::vector<Attribute> stack;
-        std::function<void(Attribute)> visit = [&](Attribute a) {
-            state[a] = 1;
-            stack.push_back(a);
-            for (Attribute in : inputsOf(fb.at(a)->kind)) {
-                if (layout_.stores(in) || !fb.count(in)) continue;
-                if (state[in] == 1) {
-                    std::string chain;
-                    auto from = std::find(stack.begin(), stack.end(), in);
-                    for (auto it = from; it != stack.end(); ++it) chain += std::string(attributeName(*it)) + " -> ";
-                    chain += attributeName(in);
-                    error(fb.at(in)->place,
-                          "fallbacks form a cycle: " + chain + "; store one of them or give one a constant");
-                } else if (state[in] == 0) {
-                    visit(in);
+        // metallic): depth-first search over "derives from" edges, one report per back edge. With a
+        // selector, per model: an attribute that model stores breaks the circle there (HDRP's
+        // fresnel0 under its standard feature, its metallic under anisotropy), and the layout is
+        // refused only where some model stores none of the circle.
+        const uint32_t named = layout_.selectorModels();
+        bool reportedCycle = false;
+        for (int model = named ? 0 : -1; model < (named ? kShadingModels : 0) && !reportedCycle; ++model) {
+            if (model >= 0 && !((named >> model) & 1u)) continue;
+            auto storedHere = [&](Attribute a) {
+                return layout_.storesAlways(a) ||
+                       (model >= 0 && ((layout_.conditionalModels(a) >> unsigned(model)) & 1u));
+            };
+            std::map<Attribute, int> state;  // 0 unvisited, 1 on the stack, 2 done
+            std::vector<Attribute> stack;
+            std::function<void(Attribute)> visit = [&](Attribute a) {
+                state[a] = 1;
+                stack.push_back(a);
+                for (Attribute in : inputsOf(fb.at(a)->kind)) {
+                    if (storedHere(in) || !fb.count(in)) continue;
+                    if (state[in] == 1) {
+                        std::string chain;
+                        auto from = std::find(stack.begin(), stack.end(), in);
+                        for (auto it = from; it != stack.end(); ++it) chain += std::string(attributeName(*it)) + " -> ";
+                        chain += attributeName(in);
+                        error(fb.at(in)->place,
+                              "fallbacks form a cycle: " + chain +
+                                  (model >= 0 ? " on pixels of model " + squote(shadingModelInfo(ShadingModel(model)).name)
+                                              : std::string()) +
+                                  "; store one of them or give one a constant");
+                        reportedCycle = true;
+                    } else if (state[in] == 0) {
+                        visit(in);
+                    }
                 }
-            }
-            stack.pop_back();
-            state[a] = 2;
-        };
-        for (const Fallback& f : layout_.fallbacks)
-            if (fb.at(f.attribute) == &f && state[f.attribute] == 0) visit(f.attribute);
+                stack.pop_back();
+                state[a] = 2;
+            };
+            for (const Fallback& f : layout_.fallbacks)
+                if (fb.at(f.attribute) == &f && !storedHere(f.attribute) && state[f.attribute] == 0) visit(f.attribute);
+        }
     }
 
     // [clear]: declared, listing every shading or geometry attribute stored in a colour target and
@@ -459,6 +613,11 @@ private:
         std::map<Attribute, const ClearValue*> seen;
         for (const ClearValue& c : layout_.clears) {
             seen.emplace(c.attribute, &c);
+            if (c.attribute == Attribute::ShadingModel) {
+                error(c.place, "the selector takes no clear value: a cleared pixel's model follows from its [clear] "
+                               "values by the encoder's rule (no layer: 'default')");
+                continue;
+            }
             if (attributeInfo(c.attribute).cls == AttributeClass::Extra) {
                 error(c.place, "extra " + squote(attributeName(c.attribute)) +
                                    " takes no clear value: it holds its declared value in every pixel");
@@ -474,7 +633,8 @@ private:
         }
         for (const Target& t : layout_.targets)
             for (const Field& f : t.fields) {
-                if (attributeInfo(f.attribute).cls != AttributeClass::Extra && !seen.count(f.attribute))
+                const AttributeClass cls = attributeInfo(f.attribute).cls;
+                if (cls != AttributeClass::Extra && cls != AttributeClass::Selector && !seen.count(f.attribute))
                     error(layout_.clearPlace, "[clear] has no value for " + squote(attributeName(f.attribute)) +
                                                   ", which target " + squote(t.name) + " stores (" +
                                                   lineText(f.place) + ")");

@@ -84,6 +84,43 @@ bool placeBin(const std::vector<const PlannedField*>& fields, Placement& out) {
     return false;
 }
 
+// A selector's target: each model's fields placed on their own from bit 0 (they share the bits),
+// in the smallest format that holds every model's.
+bool placeShared(const std::vector<const PlannedField*>& fields, const std::vector<std::string>& models, Placement& out) {
+    int bits = 0;
+    for (const std::string& m : models) {
+        int mb = 0;
+        for (const auto* f : fields)
+            if (f->model == m) mb += f->totalBits();
+        bits = std::max(bits, mb);
+    }
+    for (const auto& size : formatsBySize())
+        for (const char* name : size) {
+            const TargetFormatInfo* info = findTargetFormat(name);
+            if (!info || info->bits < bits) continue;
+            out.format = info;
+            out.places.assign(fields.size(), {});
+            bool ok = true;
+            for (const std::string& m : models) {
+                std::vector<const PlannedField*> mine;
+                std::vector<size_t> at;
+                for (size_t i = 0; i < fields.size(); ++i)
+                    if (fields[i]->model == m) {
+                        mine.push_back(fields[i]);
+                        at.push_back(i);
+                    }
+                Placement p;
+                if (!place(*info, mine, p)) {
+                    ok = false;
+                    break;
+                }
+                for (size_t k = 0; k < at.size(); ++k) out.places[at[k]] = p.places[k];
+            }
+            if (ok) return true;
+        }
+    return false;
+}
+
 // What a pixel without geometry holds: UE4 clears its G-buffer to zero; a +z normal, full
 // roughness, black colours, no metal, UE4's default specular 0.5, no occlusion.
 std::string clearValue(const std::string& attribute) {
@@ -91,6 +128,7 @@ std::string clearValue(const std::string& attribute) {
     if (attribute == "roughness") return "1.0";
     if (attribute == "specular") return "0.5";
     if (attribute == "occlusion") return "1.0";
+    if (attribute == "coat_normal" || attribute == "anisotropy_direction") return "[0.0, 0.0, 1.0]";
     return "0.0";
 }
 
@@ -113,6 +151,26 @@ std::vector<PlannedField> plannedFields(const Genome& g) {
         out.push_back(encoded("specular_color", specColour, g.specularColourBits));
     }
     if (g.occlusionBits > 0) out.push_back(unorm("occlusion", g.occlusionBits));
+    // The material layers (Genome::coatBits ...): what each stores, and under which model with a selector.
+    const bool selector = g.layerSelector && (g.coatBits || g.sheenBits || g.anisotropyBits);
+    auto layer = [&](PlannedField f, const char* model) {
+        if (selector) f.model = model;
+        out.push_back(std::move(f));
+    };
+    if (g.coatBits) {
+        layer(unorm("coat", g.coatBits), "clear_coat");
+        layer(unorm("coat_roughness", g.coatBits), "clear_coat");
+        if (g.coatNormalBits) layer({"coat_normal", "normal_octahedral", {g.coatNormalBits, g.coatNormalBits}}, "clear_coat");
+    }
+    if (g.sheenBits) {
+        layer({"sheen_color", "unorm", {g.sheenBits, g.sheenBits, g.sheenBits}}, "cloth");
+        layer(unorm("sheen_roughness", g.sheenBits), "cloth");
+    }
+    if (g.anisotropyBits) {
+        layer(unorm("anisotropy_strength", g.anisotropyBits), "anisotropic");
+        layer({"anisotropy_direction", "normal_octahedral", {g.anisotropyBits, g.anisotropyBits}}, "anisotropic");
+    }
+    if (selector) out.push_back({"shading_model", "id", {2}, ""});
     return out;
 }
 
@@ -150,8 +208,10 @@ int smallestPackedBytes() {
 PackResult packGenome(const Genome& g, int budgetBytes) {
     PackResult r;
     const std::vector<PlannedField> fields = plannedFields(g);
-    std::vector<size_t> order(fields.size());
-    std::iota(order.begin(), order.end(), size_t(0));
+    // Conditional fields (a selector's models) go to a target of their own, below; the rest here.
+    std::vector<size_t> order;
+    for (size_t i = 0; i < fields.size(); ++i)
+        if (fields[i].model.empty()) order.push_back(i);
     std::stable_sort(order.begin(), order.end(),
                      [&](size_t a, size_t b) { return fields[a].totalBits() > fields[b].totalBits(); });
     struct Bin {
@@ -175,6 +235,18 @@ PackResult packGenome(const Genome& g, int budgetBytes) {
             }
         if (!placed) bins.push_back({bits > 32 ? 64 : 32, bits, {i}});
     }
+    // The selector's models' fields: one target whose every model's fields are placed from bit 0,
+    // in the smallest real format that holds each model's.
+    std::vector<std::string> models;
+    for (const PlannedField& f : fields)
+        if (!f.model.empty() && std::find(models.begin(), models.end(), f.model) == models.end()) models.push_back(f.model);
+    const bool shared = !models.empty();
+    if (shared) {
+        Bin b;
+        for (size_t i = 0; i < fields.size(); ++i)
+            if (!fields[i].model.empty()) b.fields.push_back(i);
+        bins.push_back(b);
+    }
     if (bins.size() > 8) {
         r.why = "needs " + std::to_string(bins.size()) + " targets (at most 8)";
         return r;
@@ -185,7 +257,8 @@ PackResult packGenome(const Genome& g, int budgetBytes) {
     for (size_t b = 0; b < bins.size(); ++b) {
         std::vector<const PlannedField*> binFields;
         for (size_t i : bins[b].fields) binFields.push_back(&fields[i]);
-        if (!placeBin(binFields, placements[b])) {
+        const bool sharedBin = shared && b + 1 == bins.size();
+        if (sharedBin ? !placeShared(binFields, models, placements[b]) : !placeBin(binFields, placements[b])) {
             r.why = "the codes of target " + std::to_string(b) + " fit no real format unsplit";
             return r;
         }
@@ -216,6 +289,8 @@ PackResult packGenome(const Genome& g, int budgetBytes) {
                 for (size_t p = 0; p < places.size(); ++p) t << (p ? ", " : "") << "\"" << places[p] << "\"";
                 t << "]";
             }
+            if (f.attribute == "shading_model") t << ", models = { default = 0, clear_coat = 1, cloth = 2, anisotropic = 3 }";
+            if (!f.model.empty()) t << ", model = \"" << f.model << "\"";
             t << " },\n";
         }
         t << "]\n";
@@ -236,7 +311,8 @@ PackResult packGenome(const Genome& g, int budgetBytes) {
     if (!stores("occlusion")) t << "occlusion = 1.0\n";
     t << "emissive = \"forward\"\n";
     t << "\n[clear]\n";
-    for (const PlannedField& f : fields) t << f.attribute << " = " << clearValue(f.attribute) << "\n";
+    for (const PlannedField& f : fields)
+        if (f.attribute != "shading_model") t << f.attribute << " = " << clearValue(f.attribute) << "\n";
     r.body = t.str();
     r.ok = true;
     return r;

@@ -18,6 +18,10 @@ struct PlannedField {
     std::string attribute;
     std::string encoding;
     std::vector<int> codeBits;
+    // A layer's field under a shading-model selector (Genome::layerSelector): the model it is held
+    // under ("clear_coat", "cloth", "anisotropic"); empty: an unconditional field. The selector
+    // itself is attribute "shading_model", encoding "id".
+    std::string model;
     int totalBits() const;
 };
 
@@ -32,7 +36,10 @@ struct PackResult {
 
 // Packs the genome's fields: first-fit decreasing by bits into 32-bit bins (64-bit for a field
 // wider than 32), each bin then given the smallest real format whose channels hold its codes
-// without splitting one across channels. Fails over `budgetBytes` or past 8 targets.
+// without splitting one across channels. Fails over `budgetBytes` or past 8 targets. With a
+// selector, the layers' fields of each model are placed in one target of their own, every model's
+// from its first bit (they share the bits: each pixel holds one model's), and the selector (2 bits:
+// default 0, clear_coat 1, cloth 2, anisotropic 3) is packed like any field.
 PackResult packGenome(const Genome& g, int budgetBytes);
 
 // The fewest bytes per pixel a genome packs into: every encoding at its fewest bits, the

@@ -73,7 +73,20 @@ void shrinkToFit(Genome& g, int targetBytes, SplitMix64& rng, const EngineConstr
     for (int move = 0; move < kMoves; ++move) {
         const PackResult p = packGenome(g, targetBytes);
         if (p.ok) return;
-        switch (rng.below(9)) {
+        // With layers (a scene that carries them) two moves more: put them under a selector (one
+        // shared target), or drop one. Without, the same draws as before.
+        const bool layers = g.coatBits || g.sheenBits || g.anisotropyBits;
+        const int pick = layers ? rng.below(11) : rng.below(9);
+        if (pick == 9) {
+            g.layerSelector = true;
+        } else if (pick == 10) {
+            int& drop = g.coatNormalBits ? g.coatNormalBits : g.anisotropyBits ? g.anisotropyBits
+                                                            : g.sheenBits      ? g.sheenBits
+                                                                               : g.coatBits;
+            drop = 0;
+        }
+        switch (pick >= 9 ? -1 : pick) {
+            case -1: break;
             case 0: g.occlusionBits = 0; break;
             case 1: g.metallicBits = 0; break;
             case 2: g.specularMode = SpecularMode::FromMetallic; break;
@@ -161,14 +174,14 @@ SearchResult runSearch(const EvaluateFn& evaluate, const SearchOptions& options)
         for (int attempt = 0; int(batch.size()) < want && attempt < kAttemptsPerCandidate * want; ++attempt) {
             Candidate c;
             if (round < kRandomRounds || pool.empty() || rng.chance(kRandomChance)) {
-                c.genome = randomGenome(rng);
+                c.genome = randomGenome(rng, options.layers);
                 constrainGenome(c.genome, options.constraints);
                 shrinkToFit(c.genome, rng.range(smallest, std::max(smallest, options.budgetBytes)), rng,
                             options.constraints);
                 c.how = "random";
             } else {
                 const Candidate& parent = cands[size_t(pool[size_t(rng.below(int(pool.size())))])];
-                c.genome = mutateGenome(parent.genome, rng);
+                c.genome = mutateGenome(parent.genome, rng, options.layers);
                 c.how = "mutation of #" + std::to_string(parent.index);
             }
             constrainGenome(c.genome, options.constraints);

@@ -53,6 +53,10 @@ struct SearchOptions {
     std::string journalPath;  // empty: no journal
     std::string journalKey;
     EngineConstraints constraints;  // on by default (search_constraints.h)
+    // The scenes carry material layers (clear coat, sheen, anisotropy): the genomes choose whether
+    // and in how many bits to store each, and whether under a shading-model selector
+    // (search_space.h). Off: the search space, and its random draws, are those of before.
+    bool layers = false;
     std::function<void(const SearchProgress&)> progress;  // after every round
     // Before every round: true ends the search there (what was evaluated is the result; the
     // journal holds it, so the same options resume). Unset: it runs to `candidates`.

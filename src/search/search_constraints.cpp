@@ -28,7 +28,8 @@ int searchMaxBits(const std::string& attribute) {
     if (attribute == "roughness" || attribute == "base_color" || attribute == "diffuse_color" ||
         attribute == "specular_color")
         return 12;
-    return 8;  // metallic, specular, occlusion
+    if (attribute == "coat_normal") return 12;
+    return 8;  // metallic, specular, occlusion, the other layers
 }
 
 // The first encoding from `index` on (wrapping) whose range reaches `minBits`; `index` itself if none.
@@ -51,13 +52,21 @@ void raise(const std::vector<EncodingChoice>& menu, int& encoding, int& bits, in
 
 std::vector<MinBits> EngineConstraints::defaultMinBits() {
     // search_constraints.h says why: the fewest bits a shipped layout stores each in; occlusion 4.
-    return {{"normal", 8},   {"roughness", 7}, {"base_color", 8}, {"diffuse_color", 8},
-            {"specular_color", 8}, {"metallic", 8}, {"specular", 8}, {"occlusion", 4}};
+    // The layers (searched when the scenes carry them): the fewest bits an engine stores each in.
+    // Bevy's clear coat byte: 4-bit strength, 4-bit roughness (bevyengine/bevy pull request 23359);
+    // UE5's ClearCoat bottom normal and Cloth fuzz colour: bytes of CustomData (B8G8R8A8); HDRP's
+    // anisotropy and tangent angle: 8 bits each in GBuffer2; the sheen roughness as the sheen colour.
+    return {{"normal", 8},         {"roughness", 7},       {"base_color", 8},      {"diffuse_color", 8},
+            {"specular_color", 8}, {"metallic", 8},        {"specular", 8},        {"occlusion", 4},
+            {"coat", 4},           {"coat_roughness", 4},  {"coat_normal", 8},     {"sheen_color", 8},
+            {"sheen_roughness", 8}, {"anisotropy_strength", 8}, {"anisotropy_direction", 8}};
 }
 
 const std::vector<std::string>& minBitsAttributes() {
-    static const std::vector<std::string> v = {"normal",         "roughness", "base_color", "diffuse_color",
-                                               "specular_color", "metallic",  "specular",   "occlusion"};
+    static const std::vector<std::string> v = {
+        "normal",      "roughness",   "base_color",      "diffuse_color",       "specular_color",
+        "metallic",    "specular",    "occlusion",       "coat",                "coat_roughness",
+        "coat_normal", "sheen_color", "sheen_roughness", "anisotropy_strength", "anisotropy_direction"};
     return v;
 }
 
@@ -121,6 +130,15 @@ void constrainGenome(Genome& g, const EngineConstraints& c) {
     if (g.metallicBits > 0) g.metallicBits = std::clamp(std::max(g.metallicBits, minBitsOf(c, "metallic")), 1, 8);
     g.specularBits = std::clamp(std::max(g.specularBits, minBitsOf(c, "specular")), 1, 8);
     if (g.occlusionBits > 0) g.occlusionBits = std::clamp(std::max(g.occlusionBits, minBitsOf(c, "occlusion")), 1, 8);
+    // A layer stored at all holds its attributes' minimum bits (one width per layer: search_space.h).
+    if (g.coatBits > 0)
+        g.coatBits = std::clamp(std::max({g.coatBits, minBitsOf(c, "coat"), minBitsOf(c, "coat_roughness")}), 1, 8);
+    if (g.coatNormalBits > 0) g.coatNormalBits = std::clamp(std::max(g.coatNormalBits, minBitsOf(c, "coat_normal")), 2, 12);
+    if (g.sheenBits > 0)
+        g.sheenBits = std::clamp(std::max({g.sheenBits, minBitsOf(c, "sheen_color"), minBitsOf(c, "sheen_roughness")}), 1, 8);
+    if (g.anisotropyBits > 0)
+        g.anisotropyBits = std::clamp(
+            std::max({g.anisotropyBits, minBitsOf(c, "anisotropy_strength"), minBitsOf(c, "anisotropy_direction")}), 2, 8);
     const auto& depths = depthFormats();
     for (size_t k = 0; k < depths.size(); ++k) {
         const size_t i = (size_t(g.depthFormat) + k) % depths.size();
@@ -172,7 +190,8 @@ std::vector<std::string> describeConstraints(const EngineConstraints& c) {
         if (m.bits > 0) bits += (bits.empty() ? "" : ", ") + m.attribute + " " + std::to_string(m.bits);
     lines.push_back("minimum bits per stored attribute (its widest code; a fallback instead stays allowed): " +
                     (bits.empty() ? std::string("none") : bits) +
-                    ". Defaults: the fewest bits a shipped layout stores each in, occlusion 4 (--min-bits overrides).");
+                    ". Defaults: the fewest bits a shipped layout stores each in, occlusion 4, the layers the fewest an engine "
+                    "stores them in (--min-bits overrides).");
     lines.push_back("stencil: at least " + std::to_string(c.freeStencilBits) +
                     " bits stay free when the depth format has stencil (engines keep run-time flags there).");
     return lines;

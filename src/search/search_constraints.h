@@ -14,7 +14,9 @@
 //    stores colours, metallic and specular in 8 bits per channel; normals in 8 or more per code
 //    (Crysis 3's best-fit and xy + z sign, URP's snorm); roughness in 7 or more (Crysis 3 and URP
 //    gloss)), except occlusion: 4 bits, 16 levels of a term that only scales ambient light, where
-//    a 1-bit occlusion passed a search on a scene without baked occlusion.
+//    a 1-bit occlusion passed a search on a scene without baked occlusion. The material layers
+//    (searched when the scenes carry them): the fewest bits an engine stores each in (Bevy's 4-bit
+//    coat and coat roughness, UE5's CustomData and HDRP's GBuffer2 bytes for the rest).
 //  * Free stencil: when the depth format has stencil, at least 4 of its bits stay free. Engines
 //    keep run-time flags there for passes gbufferlab does not model (layouts/ue4.toml: receive
 //    decals, lighting channels; crysis3-thin.toml: the ambient-volume id and the decal mask;

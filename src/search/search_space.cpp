@@ -78,9 +78,18 @@ void clampGenome(Genome& g) {
     g.specularColourBits = clampBits(g.specularColourBits, colourEncodings()[size_t(g.specularColourEncoding)]);
     g.occlusionBits = std::clamp(g.occlusionBits, 0, 8);
     g.depthFormat = std::clamp(g.depthFormat, 0, int(depthFormats().size()) - 1);
+    // The layers' minimum bits: a unorm code of 1 bit, an octahedral direction of 2 per code
+    // (layouts/README.md's ranges); at most 8 and 12.
+    g.coatBits = std::clamp(g.coatBits, 0, 8);
+    g.coatNormalBits = g.coatBits == 0 ? 0 : std::clamp(g.coatNormalBits, 0, 12);
+    if (g.coatNormalBits == 1) g.coatNormalBits = 2;
+    g.sheenBits = std::clamp(g.sheenBits, 0, 8);
+    g.anisotropyBits = std::clamp(g.anisotropyBits, 0, 8);
+    if (g.anisotropyBits == 1) g.anisotropyBits = 2;
+    if (g.coatBits + g.sheenBits + g.anisotropyBits == 0) g.layerSelector = false;
 }
 
-Genome randomGenome(SplitMix64& rng) {
+Genome randomGenome(SplitMix64& rng, bool layers) {
     Genome g;
     g.normalEncoding = rng.below(int(normalEncodings().size()));
     g.normalBits = randomBits(rng, normalEncodings()[size_t(g.normalEncoding)]);
@@ -97,17 +106,34 @@ Genome randomGenome(SplitMix64& rng) {
     g.specularColourBits = randomBits(rng, colourEncodings()[size_t(g.specularColourEncoding)]);
     g.occlusionBits = rng.chance(0.5) ? 0 : rng.range(1, 8);
     g.depthFormat = rng.below(int(depthFormats().size()));
+    if (layers) {
+        g.coatBits = rng.chance(0.3) ? 0 : rng.range(1, 8);
+        g.coatNormalBits = rng.chance(0.5) ? 0 : rng.range(2, 12);
+        g.sheenBits = rng.chance(0.3) ? 0 : rng.range(1, 8);
+        g.anisotropyBits = rng.chance(0.3) ? 0 : rng.range(2, 8);
+        g.layerSelector = rng.chance(0.5);
+    }
     clampGenome(g);
     return g;
 }
 
-Genome mutateGenome(const Genome& parent, SplitMix64& rng) {
+Genome mutateGenome(const Genome& parent, SplitMix64& rng, bool layers) {
     Genome g = parent;
     const int changes = 1 + rng.below(3);
     for (int c = 0; c < changes; ++c) {
         // Bits change by one or two more often than encodings: small steps along the front.
         const int step = rng.chance(0.5) ? 1 : 2;
         const int delta = rng.chance(0.5) ? step : -step;
+        if (layers && rng.chance(0.25)) {
+            switch (rng.below(5)) {
+                case 0: g.coatBits = g.coatBits == 0 ? rng.range(1, 8) : (rng.chance(0.3) ? 0 : g.coatBits + delta); break;
+                case 1: g.coatNormalBits = g.coatNormalBits == 0 ? rng.range(2, 12) : (rng.chance(0.3) ? 0 : g.coatNormalBits + delta); break;
+                case 2: g.sheenBits = g.sheenBits == 0 ? rng.range(1, 8) : (rng.chance(0.3) ? 0 : g.sheenBits + delta); break;
+                case 3: g.anisotropyBits = g.anisotropyBits == 0 ? rng.range(2, 8) : (rng.chance(0.3) ? 0 : g.anisotropyBits + delta); break;
+                default: g.layerSelector = !g.layerSelector; break;
+            }
+            continue;
+        }
         switch (rng.below(16)) {
             case 0: g.normalEncoding = rng.below(int(normalEncodings().size())); break;
             case 1:
@@ -156,6 +182,12 @@ std::string describeGenome(const Genome& g) {
     }
     s += g.occlusionBits ? ", occlusion unorm " + std::to_string(g.occlusionBits) : ", occlusion 1 (fallback)";
     s += std::string(", depth ") + depthFormats()[size_t(g.depthFormat)].format;
+    if (g.coatBits)
+        s += ", coat unorm " + std::to_string(g.coatBits) +
+             (g.coatNormalBits ? " + coat_normal octahedral " + std::to_string(g.coatNormalBits) : "");
+    if (g.sheenBits) s += ", sheen unorm " + std::to_string(g.sheenBits);
+    if (g.anisotropyBits) s += ", anisotropy unorm + octahedral " + std::to_string(g.anisotropyBits);
+    if (g.layerSelector) s += " (layers under a shading-model selector)";
     return s;
 }
 

@@ -48,6 +48,18 @@ struct Genome {
     int occlusionBits = 0;
     // An index into depthFormats().
     int depthFormat = 1;
+    // The material layers (SearchOptions::layers: only when the scenes carry them; 0 = not stored,
+    // decoded "no layer"): coat and coat roughness unorm at coatBits, the coat normal octahedral at
+    // coatNormalBits (0: the base normal, as Bevy's coat); sheen colour and roughness unorm at
+    // sheenBits; anisotropy strength unorm and direction octahedral at anisotropyBits.
+    int coatBits = 0;
+    int coatNormalBits = 0;
+    int sheenBits = 0;
+    int anisotropyBits = 0;
+    // The stored layers share one target under a shading-model selector (layouts/README.md,
+    // "Shading models"), each pixel keeping its model's layer only, as UE's CustomData; false: each
+    // layer in bits of its own.
+    bool layerSelector = false;
 
     bool operator==(const Genome&) const = default;
 };
@@ -75,9 +87,11 @@ const std::vector<DepthChoice>& depthFormats();
 
 // Brings every member into its menu's range (after a mutation).
 void clampGenome(Genome& g);
-Genome randomGenome(SplitMix64& rng);
+// With `layers` (the scenes carry material layers), the layers' choices too; without, the same
+// draws from `rng` as before they existed, and no layer stored.
+Genome randomGenome(SplitMix64& rng, bool layers = false);
 // Changes 1 to 3 choices (an encoding, bits up or down, a fallback instead of storing, ...).
-Genome mutateGenome(const Genome& parent, SplitMix64& rng);
+Genome mutateGenome(const Genome& parent, SplitMix64& rng, bool layers = false);
 
 // One line: "normal octahedral 12 (world z-up), roughness unorm 8, base_color srgb8, ...".
 std::string describeGenome(const Genome& g);

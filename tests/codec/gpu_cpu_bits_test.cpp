@@ -401,6 +401,21 @@ TEST_F(GpuCpuBits, EngineEncodingsWithoutASeedLayoutPackTheSameWords) {
     checkWordsAndDecodes(ctx(), layout, surfaces);
 }
 
+// A layout with a shading-model selector (tests/layout/data/shading-models.toml): Surfaces with
+// every combination of layers (test::assignLayerPatterns), so that every model of the rule is
+// picked, its conditional fields written over the same bits as the other models', and decoded where
+// the stored id says; the GPU's generated wiring and the CPU codec agree on every word and value
+// (the stored id, decoded into shadingModel, included). What the words hold is checked against the
+// statement itself in tests/codec/shading_model_codec_test.cpp.
+TEST_F(GpuCpuBits, ASelectorLayoutPacksTheSameWordsAndDecodesAlike) {
+    const Layout layout = test::testLayout("shading-models");
+    std::vector<Surface> surfaces = randomSurfaces(920);
+    test::assignLayerPatterns(surfaces);
+    checkWordsAndDecodes(ctx(), layout, surfaces);
+    // and fallbacks deriving each other per model (HDRP's fresnel0 and metallic): one order for both
+    checkWordsAndDecodes(ctx(), test::selectorLayoutDerivingEachOther(), surfaces);
+}
+
 // killzone2's specular power (kz2_log_power): roughness on each of its 255 thresholds and the
 // floats beside them, on its two ends and beyond them, so that the GLSL search is held to the CPU's
 // code at every boundary, not only at the random Surfaces' roughnesses.

@@ -63,6 +63,7 @@ std::vector<uint32_t> compileFor(ExportLanguage l, const std::string& name, cons
 
 std::vector<Surface> randomSurfaces(uint32_t seed) {
     std::vector<Surface> v = test::randomSurfaces(kPixels, seed);
+    test::assignLayerPatterns(v);  // every shading model of a selector's rule, and their ties
     // Edge values: 0 and 1 everywhere in one pixel, an axis normal in another.
     v[1] = Surface{};
     v[1].baseColor = v[1].specularColor = v[1].diffuseColor = glm::vec3(1.0f);
@@ -107,7 +108,9 @@ size_t compareDecoded(const Layout& layout, const uint32_t* out, size_t stride, 
             for (int c = 0; c < m.components; ++c) {
                 const uint32_t w = out[i * stride + size_t(m.firstFloat + c)];
                 if (m.isUint) {
-                    const uint32_t want = uint32_t(m.defaultValue.empty() ? 0.0 : m.defaultValue[std::min<size_t>(size_t(c), m.defaultValue.size() - 1)]);
+                    // the selector's member: the id decode read, as the CPU decode's shadingModel
+                    const uint32_t want = m.attribute == Attribute::ShadingModel ? uint32_t(cpu[i].shadingModel)
+                        : uint32_t(m.defaultValue.empty() ? 0.0 : m.defaultValue[std::min<size_t>(size_t(c), m.defaultValue.size() - 1)]);
                     if (w != want && bad++ < 5) ADD_FAILURE() << what << " pixel " << i << " " << m.name << ": " << w << " != " << want;
                     continue;
                 }
@@ -409,6 +412,16 @@ TEST_F(LayoutExportGpu, EveryLayoutEncodesTheMirrorsWordsInItsRealFormats) {
         else checkLayout(c, layout, seed + uint32_t(at), table);
     }
     EXPECT_GT(ran, 0u) << "no layout ran";
+}
+
+// A layout with a shading-model selector (tests/layout/data/shading-models.toml): the export picks
+// each pixel's model by the renderer's rule, places the conditional fields of that model only, and
+// decodes them where the stored id says; the Surfaces carry every combination of layers.
+TEST_F(LayoutExportGpu, ASelectorLayoutEncodesTheMirrorsWords) {
+    VulkanContext& c = ctx();
+    const test::TestBuffer table = test::TestBuffer::holding(c, enc::bestFitNormalTable());
+    checkLayout(c, test::testLayout("shading-models"), 3900, table);
+    checkLayout(c, test::selectorLayoutDerivingEachOther(), 3901, table);  // fallbacks deriving each other per model
 }
 
 }  // namespace

@@ -396,3 +396,43 @@ TEST(LayoutFiles, Commands) {
     EXPECT_NE(err.str().find("usage"), std::string::npos);
     unsetenv("GBL_LAYOUT_DIR");
 }
+
+// `layouts show` of a layout with a shading-model selector (tests/layout/data/shading-models.toml):
+// every model of the selector with its id and the fields it holds, each conditional field's bits
+// with its models, the bits per attribute of those stored under some models only, and where their
+// fallbacks apply, all as the parsed layout says.
+TEST(LayoutFiles, ShowNamesTheSelectorsModelsAndTheConditionalFields) {
+    const std::filesystem::path file =
+        std::filesystem::path(GBL_SOURCE_LAYOUT_DIR).parent_path() / "tests" / "layout" / "data" / "shading-models.toml";
+    const Layout layout = loadLayoutFile(file);
+    std::ostringstream out, err;
+    ASSERT_EQ(showLayoutCommand(file.string(), out, err), 0) << err.str();
+    const std::string show = out.str();
+    EXPECT_NE(show.find("shading models (selector 'a[0:3]', 4 bits"), std::string::npos) << show;
+    for (const Field::ModelId& m : layout.selector()->selector) {
+        const std::string name = shadingModelInfo(m.model).name;
+        const size_t at = show.find("\n  " + name + " ");
+        ASSERT_NE(at, std::string::npos) << name << "\n" << show;
+        const std::string line = show.substr(at + 1, show.find('\n', at + 1) - at - 1);
+        EXPECT_NE(line.find("id " + std::to_string(m.id)), std::string::npos) << line;
+        for (const Target& t : layout.targets)
+            for (const Field& f : t.fields)
+                if ((f.models >> unsigned(m.model)) & 1u) {
+                    EXPECT_NE(line.find(attributeName(f.attribute)), std::string::npos) << line;
+                }
+    }
+    // a conditional field's row: its bits, then "under" its models
+    size_t conditionalRows = 0;
+    std::istringstream lines(show);
+    for (std::string line; std::getline(lines, line);)
+        if (line.find("  under ") != std::string::npos) ++conditionalRows;
+    size_t codes = 0;
+    for (const Target& t : layout.targets)
+        for (const Field& f : t.fields)
+            if (f.conditional()) codes += f.codes.size();
+    EXPECT_EQ(conditionalRows, codes) << show;
+    EXPECT_NE(show.find("specular                8  (under default, cloth, anisotropic only)"), std::string::npos) << show;
+    EXPECT_NE(show.find("not under default, cloth, anisotropic"), std::string::npos) << show;
+    EXPECT_NE(show.find("the selector"), std::string::npos) << show;
+    EXPECT_NE(show.find("bytes per pixel: 20"), std::string::npos) << show;
+}

@@ -180,8 +180,14 @@ TEST(LayoutMutants, WhatCheckAcceptsCompiles) {
     std::map<std::string, int> perLayout;
     size_t exported = 0;
     const std::regex place(R"(^mutant\.toml:[0-9]+:[0-9]+: )");
-    for (const std::string& name : names) {
-        for (const Mutant& mutant : mutants(readAll(dir / (name + ".toml")))) {
+    // ... and the tests' selector layout (tests/layout/data/shading-models.toml): its ids, bits and
+    // models mutated too, every accepted mutant's gblModel / gblSel wiring compiled.
+    std::vector<std::filesystem::path> files;
+    for (const std::string& name : names) files.push_back(dir / (name + ".toml"));
+    files.push_back(dir.parent_path() / "tests" / "layout" / "data" / "shading-models.toml");
+    for (const std::filesystem::path& file : files) {
+        const std::string name = file.stem().string();
+        for (const Mutant& mutant : mutants(readAll(file))) {
             const std::string& text = mutant.text;
             ++total;
             const std::vector<LayoutDiagnostic> problems = checkLayout(text, "mutant.toml");

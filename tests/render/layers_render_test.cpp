@@ -14,6 +14,7 @@
 #include "gbuffer_wiring.h"
 #include "ibl_precompute.h"
 #include "layout_catalog.h"
+#include "layout_files.h"
 #include "procedural_sky.h"
 #include "renderer.h"
 #include "scene.h"
@@ -187,6 +188,31 @@ TEST_F(LayersRenderTest, ALayoutWithoutLayersDropsThem) {
     rs.specularIbl = IblMode::SplitSum;
     const RenderOutput ra = withLayers.render(makeReferenceWiring(), rs), rb = without.render(makeReferenceWiring(), rs);
     EXPECT_GT(meanAbsCovered(ra.hdr, rb.hdr), 1e-3);
+}
+
+// A layout with a shading-model selector (tests/layout/data/shading-models.toml: each layer in 8
+// bits, under its model, all in one shared target) carries the layers through the renderer: on the
+// layered grid (one layer per material, so none is dropped) its image is far nearer the reference's
+// than that of a layout without layers (ue4), in every IBL mode's split-sum path.
+TEST_F(LayersRenderTest, ASelectorLayoutCarriesTheLayers) {
+    const EnvironmentMap white = constantEnvironment(1.0f);
+    IblSettings s;
+    s.sourceFaceSize = 32;
+    s.prefilteredFaceSize = 32;
+    const IblMaps maps = computeIblMaps(ctx(), white, s);
+    Scene layered = layeredGrid(true);
+    layered.lights.push_back(defaultSun());
+    Renderer renderer(ctx(), layered, white, maps);
+    RenderSettings rs;
+    rs.width = 96;
+    rs.height = 54;
+    rs.specularIbl = IblMode::SplitSum;
+    const RenderOutput ref = renderer.render(makeReferenceWiring(), rs);
+    const RenderOutput selector = renderer.render(generateWiring(test::testLayout("shading-models")), rs);
+    const RenderOutput ue4 = renderer.render(generateWiring(loadLayout("ue4")), rs);
+    const double kept = meanAbsCovered(selector.hdr, ref.hdr), dropped = meanAbsCovered(ue4.hdr, ref.hdr);
+    std::printf("  mean |layout - reference|: shading-models %.5f, ue4 (no layers) %.5f\n", kept, dropped);
+    EXPECT_LT(kept, 0.25 * dropped);
 }
 
 // The forward mask is the pixels of the transmissive material's draws: every pixel where the

@@ -48,6 +48,20 @@ std::map<std::string, int> expectedBits(const Genome& g) {
         m["specular_color"] = sc.codes * g.specularColourBits;
     }
     if (g.occlusionBits) m["occlusion"] = g.occlusionBits;
+    // The layers (search_space.h): unorm amounts and colours, octahedral directions (2 codes).
+    if (g.coatBits) {
+        m["coat"] = m["coat_roughness"] = g.coatBits;
+        if (g.coatNormalBits) m["coat_normal"] = 2 * g.coatNormalBits;
+    }
+    if (g.sheenBits) {
+        m["sheen_color"] = 3 * g.sheenBits;
+        m["sheen_roughness"] = g.sheenBits;
+    }
+    if (g.anisotropyBits) {
+        m["anisotropy_strength"] = g.anisotropyBits;
+        m["anisotropy_direction"] = 2 * g.anisotropyBits;
+    }
+    if (g.layerSelector) m["shading_model"] = 2;
     return m;
 }
 
@@ -93,6 +107,68 @@ TEST(LayoutPacker, EveryPackedGenomeIsAValidLayoutWithinBudgetOfRealFormats) {
     EXPECT_GT(over, 300);
     for (const char* f : {"R8_UNORM", "R8G8B8A8_UNORM", "A2B10G10R10_UNORM_PACK32", "R32_UINT"})
         EXPECT_TRUE(formatsSeen.count(f)) << f;
+}
+
+// With layers (a scene that carries them): every packed genome is a valid layout storing exactly
+// the bits asked for; under a selector, each layer's fields are held under its model (clear_coat,
+// cloth, anisotropic: layouts/README.md, "Shading models"), all of them in one target whose bits
+// every model starts from, and the selector names the four models.
+TEST(LayoutPacker, LayersPackAsFieldsOfTheirOwnOrUnderASelector) {
+    SplitMix64 rng(11);
+    int ok = 0, selectors = 0, shared = 0;
+    for (int i = 0; i < 1500; ++i) {
+        Genome g = randomGenome(rng, true);
+        for (int m = 0; m < i % 4; ++m) g = mutateGenome(g, rng, true);
+        const int budget = 16 + (i % 4) * 8;  // 16 .. 40
+        const PackResult p = packGenome(g, budget);
+        if (!p.ok) continue;
+        ++ok;
+        const std::string text = layoutText("candidate", "", p.body);
+        const auto diags = checkLayout(text, "candidate.toml");
+        ASSERT_TRUE(diags.empty()) << diags.front().text() << "\n" << text;
+        const Layout l = parseLayout(text, "candidate.toml");
+        EXPECT_EQ(bytesPerPixel(l), p.bytesPerPixel);
+        std::map<std::string, int> stored;
+        for (const AttributeBits& ab : bitsPerAttribute(l)) stored[attributeName(ab.attribute)] = ab.bits;
+        EXPECT_EQ(stored, expectedBits(g)) << describeGenome(g);
+        if (!g.layerSelector) {
+            EXPECT_EQ(l.selector(), nullptr);
+            continue;
+        }
+        ++selectors;
+        ASSERT_NE(l.selector(), nullptr);
+        EXPECT_EQ(l.selectorModels(), 0xfu);
+        const std::map<std::string, ShadingModel> modelOf = {
+            {"coat", ShadingModel::ClearCoat},          {"coat_roughness", ShadingModel::ClearCoat},
+            {"coat_normal", ShadingModel::ClearCoat},   {"sheen_color", ShadingModel::Cloth},
+            {"sheen_roughness", ShadingModel::Cloth},   {"anisotropy_strength", ShadingModel::Anisotropic},
+            {"anisotropy_direction", ShadingModel::Anisotropic}};
+        std::set<std::string> layerTargets;
+        int models = 0;
+        for (const Target& t : l.targets)
+            for (const Field& f : t.fields) {
+                const auto it = modelOf.find(attributeName(f.attribute));
+                if (it == modelOf.end()) {
+                    EXPECT_FALSE(f.conditional()) << attributeName(f.attribute);
+                    continue;
+                }
+                EXPECT_EQ(f.models, 1u << unsigned(it->second)) << attributeName(f.attribute);
+                layerTargets.insert(t.name);
+                models |= int(f.models);
+            }
+        EXPECT_EQ(layerTargets.size(), 1u);
+        shared += __builtin_popcount(unsigned(models)) > 1;
+    }
+    EXPECT_GT(ok, 500);
+    EXPECT_GT(selectors, 100);
+    EXPECT_GT(shared, 50);  // two or more models' fields over the same bits
+    // Without layers the genomes store none: the space of a scene without them is unchanged.
+    SplitMix64 plain(11);
+    for (int i = 0; i < 200; ++i) {
+        const Genome g = mutateGenome(randomGenome(plain), plain);
+        EXPECT_EQ(g.coatBits + g.sheenBits + g.anisotropyBits, 0);
+        EXPECT_FALSE(g.layerSelector);
+    }
 }
 
 TEST(LayoutPacker, OverBudgetSaysByHowMuch) {

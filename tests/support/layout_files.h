@@ -17,5 +17,13 @@ std::vector<Layout> shippedLayouts();
 // The shipped layouts that store attributes: all but the visibility buffers (their ids:
 // tests/render/visibility_test.cpp).
 std::vector<Layout> shippedAttributeLayouts();
+// The tests' own layouts (tests/layout/data/<name>.toml): shading-models, a selector's.
+std::filesystem::path testLayoutDir();
+Layout testLayout(const std::string& name);
+// shading-models with HDRP's shape of fallbacks (fresnel0 under its standard feature, metallic under
+// anisotropy, each derived where the other is stored): metallic held under anisotropic and
+// clear_coat, a target E holding specular_color under default and cloth, metallic =
+// "from_specular_color" beside specular_color = "ue4".
+Layout selectorLayoutDerivingEachOther();
 
 }  // namespace gbl::test

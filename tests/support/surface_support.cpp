@@ -52,6 +52,45 @@ std::vector<Surface> randomSurfaces(size_t count, uint32_t seed) {
     return v;
 }
 
+unsigned layerPattern(size_t i) {
+    static const unsigned kPatterns[8] = {0u, 1u, 2u, 4u, 3u, 6u, 7u, 0u};
+    return kPatterns[i % 8];
+}
+
+void assignLayerPatterns(std::vector<Surface>& surfaces) {
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        Surface& s = surfaces[i];
+        const unsigned p = layerPattern(i);
+        if (p & 1u) {
+            // A coat has a unit normal, as the material evaluation gives it (a zero vector is no
+            // normal: octahedral encodings leave its code to each implementation's NaN handling).
+            s.coat = 0.05f + 0.95f * std::abs(s.coat);
+            if (glm::length(s.coatNormal) == 0.0f) s.coatNormal = s.normal;
+        } else {
+            s.coat = 0.0f;
+            s.coatRoughness = 0.0f;
+            s.coatNormal = glm::vec3(0.0f);
+        }
+        if (p & 2u) {
+            s.sheenColor = glm::vec3(0.0f, 0.05f + 0.95f * std::abs(s.sheenColor.y), std::abs(s.sheenColor.z));
+        } else {
+            s.sheenColor = glm::vec3(0.0f);
+            s.sheenRoughness = 0.0f;
+        }
+        if (p & 4u) {
+            s.anisotropyStrength = 0.05f + 0.95f * std::abs(s.anisotropyStrength);
+            if (glm::length(s.anisotropyDirection) == 0.0f) s.anisotropyDirection = glm::vec3(1.0f, 0.0f, 0.0f);  // as the coat's
+        } else {
+            s.anisotropyStrength = 0.0f;
+            s.anisotropyDirection = glm::vec3(0.0f);
+        }
+        if (i % 8 == 7) {
+            s.coat = -0.0f;
+            s.anisotropyStrength = -0.0f;
+        }
+    }
+}
+
 float* memberOf(Surface& s, Attribute a) {
     switch (a) {
         case Attribute::Normal: return &s.normal.x;

@@ -20,6 +20,15 @@ namespace gbl::test {
 // direction unit and uniform in direction) are 0 on a quarter of the Surfaces.
 std::vector<Surface> randomSurfaces(size_t count, uint32_t seed);
 
+// The layers of Surface i set by pattern i % 8, so that every shading model of a selector's rule
+// (src/layout/shading_models.cpp) and every tie between them occurs: 0 none, 1 coat only, 2 sheen
+// only (its colour's red 0), 3 anisotropy only, 4 coat and sheen, 5 sheen and anisotropy, 6 all
+// three, 7 none but with -0.0 coat and strength (not > 0). Each layer kept is the Surface's own value
+// (made > 0), each dropped is 0.
+void assignLayerPatterns(std::vector<Surface>& surfaces);
+// Which layers pattern i % 8 gives Surface i: bit 0 coat, 1 sheen, 2 anisotropy.
+unsigned layerPattern(size_t i);
+
 // The Surface member that holds `a` (its first component), nullptr for an attribute a Surface
 // does not hold; a stored window depth rides in position.z (wiring_plan.h).
 float* memberOf(Surface& s, Attribute a);
