@@ -440,9 +440,12 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         wordsScope.emplace("read-back: G-buffer words, depth (and a decode pass)");
     }
     if (settings.keepOnDevice) {
-        if (settings.decodeSurfaces)
-            out.device->surfaces =
+        if (settings.decodeSurfaces) {
+            const std::array<GpuImage, 8> images =
                 decodeSurfacesOnDevice(ctx_, wiring, gbuffer, frameBuffer, nearestSampler_, material, rows, pipelines_);
+            std::copy(images.begin(), images.begin() + 4, out.device->surfaces.begin());
+            std::copy(images.begin() + 4, images.end(), out.device->layers.begin());
+        }
         if (material) destroyGBufferPass(ctx_, materialPass);
         destroyGBufferPass(ctx_, gbuffer);
         destroyBuffer(ctx_, frameBuffer);
@@ -490,7 +493,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
         wordsScope.reset();
         HostScope scope("read-back: decode on the host");
         out.surfaces = decodeSurfacesOnCpu(*wiring.cpuDecoder, words, out.depth, frame, wiring.normalSpace, wiring.depthFormat,
-                                           wiring.storesDepth);
+                                           wiring.storesDepth, gpuScene_.layers != 0);
         out.targetWords.clear();
         if (settings.readTargetWords) out.targetWords = std::move(words.targetWords);
         return out;
@@ -507,6 +510,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
 DeviceRenderImages::~DeviceRenderImages() {
     destroyImage(ctx, hdr);
     for (GpuImage& s : surfaces) destroyImage(ctx, s);
+    for (GpuImage& l : layers) destroyImage(ctx, l);
 }
 
 Image DeviceRenderImages::downloadHdr() const { return downloadRgba32f(ctx, hdr, VK_IMAGE_LAYOUT_GENERAL); }
