@@ -6,6 +6,7 @@
 // or columns. Tiny frames.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -114,4 +115,36 @@ TEST(CompareLayers, ASceneWithoutLayersWritesNoneOfTheirKeys) {
     EXPECT_EQ(csvHeader.find("image_plain"), std::string::npos);
     EXPECT_EQ(slurp(scratch() / "plain/report.html").find("id=\"layers\""), std::string::npos);
     EXPECT_EQ(r.out.find("Material layers"), std::string::npos);
+}
+
+// The device evaluator, whole frames and in bands, measures the layers as the CPU path does
+// (gpu_evaluator.h's tolerances: float angles 1e-4 relative, quantiles from histograms).
+TEST(CompareLayers, DeviceEvaluatorWholeAndInBandsAgreesWithTheCpu) {
+    const fs::path scene = sharedAssets() / "models/ClearcoatWicker/ClearcoatWicker.gltf";
+    const std::string common = "compare --scene " + scene.string() + " --layouts ue4 --size 96x54 --views 1 ";
+    for (const char* run : {"cpu", "gpu", "bands"}) {
+        const std::string flags = std::string(run) == "cpu"   ? "--eval cpu"
+                                  : std::string(run) == "gpu" ? "--eval gpu"
+                                                              : "--eval gpu --band-rows 16";
+        const RunResult r = runGbufferlab(scratch(), common + flags + " --out eval_" + run);
+        ASSERT_EQ(r.exitCode, 0) << run << r.out << r.err;
+    }
+    const Json cpu = runOf(scratch.json("eval_cpu/report.json"), "ue4");
+    for (const char* run : {"gpu", "bands"}) {
+        const Json g = runOf(scratch.json(std::string("eval_") + run + "/report.json"), "ue4");
+        for (const char* a : {"coat", "coat_roughness", "coat_normal"}) {
+            const Json& ca = cpu["attribute_errors"][a]["all"];
+            const Json& ga = g["attribute_errors"][a]["all"];
+            EXPECT_EQ(ga["count"], ca["count"]) << run << " " << a;
+            const double c = ca["mean"], v = ga["mean"];
+            EXPECT_NEAR(v, c, 1e-4 * std::max(1.0, c)) << run << " " << a;
+        }
+        const Json& cc = cpu["image_errors"]["by_class"]["coated"];
+        const Json& gc = g["image_errors"]["by_class"]["coated"];
+        EXPECT_EQ(gc["pixels"], cc["pixels"]) << run;
+        EXPECT_NEAR(gc["flip_mean"].get<double>(), cc["flip_mean"].get<double>(), 1e-4) << run;
+        EXPECT_NEAR(gc["rmse_linear"].get<double>(), cc["rmse_linear"].get<double>(),
+                    1e-9 * cc["rmse_linear"].get<double>())
+            << run;
+    }
 }

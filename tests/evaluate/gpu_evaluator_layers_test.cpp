@@ -6,7 +6,9 @@
 // images as the decode pass, and a scene without layers measures none (absent, not zero).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "gpu_evaluator.h"
@@ -71,7 +73,8 @@ DeviceRender deviceRender(const RenderOutput& r) {
 
 TEST_F(GpuEvaluatorLayersTest, AgreesWithTheCpuOracleOnALayeredRender) {
     const EnvironmentMap sky = makeProceduralSky(64);
-    Renderer renderer(ctx(), layeredGrid(true), sky);
+    const Scene scene = layeredGrid(true);  // the renderer keeps a reference to it
+    Renderer renderer(ctx(), scene, sky);
     const RenderSettings rs = test::decodedFrame(160, 90);
     const RenderOutput ref = renderer.render(makeReferenceWiring(), rs);
     const RenderOutput ue4 = renderer.render(generateWiring(loadLayout("ue4")), rs);
@@ -84,6 +87,8 @@ TEST_F(GpuEvaluatorLayersTest, AgreesWithTheCpuOracleOnALayeredRender) {
     const RunMetrics c = computeRunMetrics(ref.surfaces, ue4.surfaces, ref.hdr, ue4.hdr, exposure, cpuOptions);
     ASSERT_TRUE(c.layers.has_value());
     ASSERT_TRUE(c.image.layerClasses.has_value());
+    for (LayerClass k : kLayerClasses)
+        std::printf("%s: %zu pixels\n", layerClassName(k), (*c.image.layerClasses)[size_t(k)].pixels);
     // ue4 drops the coat: its coat error is the reference's coat amount, 1 on every coated pixel.
     const ClassStats& coat = (*c.layers)[LayerAttribute::Coat].all;
     ASSERT_GT(coat.error.count, 100u);
