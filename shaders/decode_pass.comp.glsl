@@ -4,6 +4,11 @@
 // Decodes the layout's G-buffer with its generated readGBuffer() -- exactly what the lighting
 // pass sees -- and writes every Surface attribute as floats, so attribute errors can be measured
 // against the reference layout's decode.
+// GBL_LAYERS as the C++ side passed it (a scene with layers: decode_pass.cpp reads their vec4s),
+// taken before the includes: a visibility buffer's resolve (material_eval.glsl) defines it as 0.
+#if defined(GBL_LAYERS) && GBL_LAYERS != 0
+#define GBL_DECODE_LAYERS 1
+#endif
 #include "shared_types.h"
 #include "surface.glsl"
 #define GBUFFER_READ 1
@@ -37,7 +42,7 @@ struct DecodedPixel {
     vec4 diffuseOcclusion;     // rgb diffuse colour, a occlusion
     vec4 specularColorSpecular;  // rgb F0, a UE4 scalar specular
     vec4 emissiveViewDepth;    // rgb emissive, a view depth (0 where uncovered)
-#ifdef GBL_LAYERS  // a scene with material layers: decode_pass.cpp reads 36 floats per pixel, not 20
+#ifdef GBL_DECODE_LAYERS  // a scene with material layers: decode_pass.cpp reads 36 floats per pixel, not 20
     vec4 coatNormalCoat;       // xyz coat normal (world; 0 = the base normal), w coat
     vec4 sheenColorRoughness;  // rgb sheen colour, a sheen roughness
     vec4 tangentStrength;      // xyz anisotropy direction (world; 0 = none), w anisotropy strength
@@ -48,7 +53,7 @@ struct DecodedPixel {
 // The surfaces stay in device memory for the GPU evaluation (src/evaluate/): the first four
 // vec4 of DecodedPixel as four RGBA32F images (emissive is not measured), whole frame.
 // With GBL_LAYERS four more: the layers' vec4s (decode_pass.cpp, gpu_evaluator.h DeviceRender::layers).
-#ifdef GBL_LAYERS
+#ifdef GBL_DECODE_LAYERS
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D decodedImages[8];
 #else
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D decodedImages[4];
@@ -59,7 +64,7 @@ void store(uint index, ivec2 pixel, DecodedPixel d) {
     imageStore(decodedImages[1], pixel, d.baseColorMetallic);
     imageStore(decodedImages[2], pixel, d.diffuseOcclusion);
     imageStore(decodedImages[3], pixel, vec4(d.specularColorSpecular.rgb, d.emissiveViewDepth.a));
-#ifdef GBL_LAYERS
+#ifdef GBL_DECODE_LAYERS
     imageStore(decodedImages[4], pixel, d.coatNormalCoat);
     imageStore(decodedImages[5], pixel, d.sheenColorRoughness);
     imageStore(decodedImages[6], pixel, d.tangentStrength);
@@ -89,7 +94,7 @@ void main() {
         d.diffuseOcclusion = vec4(0.0);
         d.specularColorSpecular = vec4(0.0);
         d.emissiveViewDepth = vec4(0.0);
-#ifdef GBL_LAYERS
+#ifdef GBL_DECODE_LAYERS
         d.coatNormalCoat = vec4(0.0);
         d.sheenColorRoughness = vec4(0.0);
         d.tangentStrength = vec4(0.0);
@@ -116,7 +121,7 @@ void main() {
     d.diffuseOcclusion = vec4(s.diffuseColor, s.occlusion);
     d.specularColorSpecular = vec4(s.specularColor, s.specular);
     d.emissiveViewDepth = vec4(s.emissive, viewDepth);
-#ifdef GBL_LAYERS
+#ifdef GBL_DECODE_LAYERS
     d.coatNormalCoat = vec4(s.coatNormal, s.coat);
     d.sheenColorRoughness = vec4(s.sheenColor, s.sheenRoughness);
     d.tangentStrength = vec4(s.anisotropyDirection, s.anisotropyStrength);
