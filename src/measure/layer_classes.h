@@ -61,9 +61,10 @@ inline const float* effectiveCoatNormal(const float* coatNormal, const float* no
 
 // The anisotropy direction's error in degrees: the angle between the two tangent LINES, each
 // first made orthogonal to its own side's normal as the lighting pass does (gblLayersOf's
-// Gram-Schmidt). Lines, not vectors: anisotropic GGX depends on (T.H)^2 and (B.H)^2 only
-// (Burley 2012, "Physically-Based Shading at Disney", appendix B.2, eq. 13; KHR_materials_anisotropy
-// README, "Anisotropic GGX"), so t and -t shade alike and the error lies in [0, 90]. ok = false
+// Gram-Schmidt). Lines, not vectors: anisotropic GGX's D depends on (T.H)^2 and (B.H)^2 only, its
+// height-correlated V on (T.V)^2, (B.V)^2, (T.L)^2, (B.L)^2 (Burley 2012, "Physically-Based
+// Shading at Disney", appendix B.2; the KHR_materials_anisotropy README's BRDF section;
+// shaders/brdf_layers.glsl), so t and -t shade alike and the error lies in [0, 90]. ok = false
 // (and 0) where either tangent vanishes after the projection (|t|^2 <= 1e-12, the lighting's
 // "no direction") or a value is not finite.
 double anisotropyDirectionErrorDeg(const float* referenceTangent, const float* referenceNormal,
