@@ -4,6 +4,11 @@
 // Decodes the layout's G-buffer with its generated readGBuffer() -- exactly what the lighting
 // pass sees -- and writes every Surface attribute as floats, so attribute errors can be measured
 // against the reference layout's decode.
+// GBL_LAYERS as the C++ side passed it (a scene with layers: decode_pass.cpp reads their vec4s),
+// taken before the includes: a visibility buffer's resolve (material_eval.glsl) defines it as 0.
+#if defined(GBL_LAYERS) && GBL_LAYERS != 0
+#define GBL_DECODE_LAYERS 1
+#endif
 #include "shared_types.h"
 #include "surface.glsl"
 #define GBUFFER_READ 1
@@ -37,17 +42,34 @@ struct DecodedPixel {
     vec4 diffuseOcclusion;     // rgb diffuse colour, a occlusion
     vec4 specularColorSpecular;  // rgb F0, a UE4 scalar specular
     vec4 emissiveViewDepth;    // rgb emissive, a view depth (0 where uncovered)
+#ifdef GBL_DECODE_LAYERS  // a scene with material layers: decode_pass.cpp reads 36 floats per pixel, not 20
+    vec4 coatNormalCoat;       // xyz coat normal (world; 0 = the base normal), w coat
+    vec4 sheenColorRoughness;  // rgb sheen colour, a sheen roughness
+    vec4 tangentStrength;      // xyz anisotropy direction (world; 0 = none), w anisotropy strength
+    vec4 coatRoughness;        // x coat roughness, yzw 0
+#endif
 };
 #ifdef GBL_DECODE_TO_IMAGES
 // The surfaces stay in device memory for the GPU evaluation (src/evaluate/): the first four
 // vec4 of DecodedPixel as four RGBA32F images (emissive is not measured), whole frame.
+// With GBL_LAYERS four more: the layers' vec4s (decode_pass.cpp, gpu_evaluator.h DeviceRender::layers).
+#ifdef GBL_DECODE_LAYERS
+layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D decodedImages[8];
+#else
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D decodedImages[4];
+#endif
 layout(push_constant) uniform Band { uint firstRow; } band;  // 0
 void store(uint index, ivec2 pixel, DecodedPixel d) {
     imageStore(decodedImages[0], pixel, d.normalRoughness);
     imageStore(decodedImages[1], pixel, d.baseColorMetallic);
     imageStore(decodedImages[2], pixel, d.diffuseOcclusion);
     imageStore(decodedImages[3], pixel, vec4(d.specularColorSpecular.rgb, d.emissiveViewDepth.a));
+#ifdef GBL_DECODE_LAYERS
+    imageStore(decodedImages[4], pixel, d.coatNormalCoat);
+    imageStore(decodedImages[5], pixel, d.sheenColorRoughness);
+    imageStore(decodedImages[6], pixel, d.tangentStrength);
+    imageStore(decodedImages[7], pixel, d.coatRoughness);
+#endif
 }
 #else
 // The frame is decoded in bands of rows (bounded read-back memory at 4K): this dispatch covers
@@ -72,6 +94,12 @@ void main() {
         d.diffuseOcclusion = vec4(0.0);
         d.specularColorSpecular = vec4(0.0);
         d.emissiveViewDepth = vec4(0.0);
+#ifdef GBL_DECODE_LAYERS
+        d.coatNormalCoat = vec4(0.0);
+        d.sheenColorRoughness = vec4(0.0);
+        d.tangentStrength = vec4(0.0);
+        d.coatRoughness = vec4(0.0);
+#endif
         store(index, outPixel, d);
         return;
     }
@@ -93,5 +121,11 @@ void main() {
     d.diffuseOcclusion = vec4(s.diffuseColor, s.occlusion);
     d.specularColorSpecular = vec4(s.specularColor, s.specular);
     d.emissiveViewDepth = vec4(s.emissive, viewDepth);
+#ifdef GBL_DECODE_LAYERS
+    d.coatNormalCoat = vec4(s.coatNormal, s.coat);
+    d.sheenColorRoughness = vec4(s.sheenColor, s.sheenRoughness);
+    d.tangentStrength = vec4(s.anisotropyDirection, s.anisotropyStrength);
+    d.coatRoughness = vec4(s.coatRoughness, 0.0, 0.0, 0.0);
+#endif
     store(index, outPixel, d);
 }

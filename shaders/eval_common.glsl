@@ -25,6 +25,10 @@ layout(set = 0, binding = 7, std430) buffer Out8 { uint px[]; } out8[EVAL_OUT8_C
 layout(set = 0, binding = 8, std430) readonly buffer Constants { uint viridis[256]; float kernels[]; };
 layout(set = 0, binding = 9, std430) buffer Result { double result[]; };
 layout(set = 0, binding = 10, std430) buffer Tiles { float tiles[]; };
+// The decoded material layers (issue 40), four RGBA32F images per side (eval_layers.comp.glsl);
+// the HDR images are bound in their place where a run has none (no pass reads them then).
+layout(set = 0, binding = 11, rgba32f) uniform readonly image2D refLayer[4];
+layout(set = 0, binding = 12, rgba32f) uniform readonly image2D testLayer[4];
 
 layout(push_constant) uniform Push {
     uint width, height;

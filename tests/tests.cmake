@@ -83,11 +83,13 @@ gbl_test(render/cpu_decode_test LABELS gpu DEPS gbl_render gbl_layout gbl_test_s
 gbl_test(evaluate/histogram_test LABELS unit DEPS gbl_evaluate)
 gbl_test(evaluate/eval_profile_test LABELS unit DEPS gbl_evaluate)
 gbl_test(evaluate/gpu_evaluator_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_layout gbl_test_support_vk)
+gbl_test(evaluate/gpu_evaluator_layers_test LABELS gpu DEPS gbl_evaluate gbl_render gbl_codec gbl_layout gbl_test_support_vk)  # issue 40: the layers on the device
 gbl_test(evaluate/gpu_evaluator_band_test LABELS gpu DEPS gbl_evaluate gbl_codec gbl_layout gbl_test_support_vk)
 gbl_test(measure/metrics_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/flip_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/flip_mean_test LABELS unit DEPS gbl_measure)  # the mean against an exact sum, and NVIDIA's float sum
 gbl_test(measure/run_metrics_test LABELS unit DEPS gbl_measure)
+gbl_test(measure/layer_metrics_test LABELS unit DEPS gbl_measure)  # issue 40: the layers measured
 gbl_test(measure/float_sort_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/significance_test LABELS unit DEPS gbl_measure)  # the sign-flip test: Fisher's Zea mays
 gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
@@ -98,6 +100,7 @@ gbl_test(measure/effective_bandwidth_test LABELS unit DEPS gbl_measure gbl_layou
 gbl_test(measure/view_content_test LABELS unit DEPS gbl_measure)  # views with nothing to measure
 gbl_test(measure/png16_diff_test LABELS unit DEPS gbl_measure)  # 16-bit PNGs at 16 bits
 gbl_test(report/report_test LABELS unit DEPS gbl_report)
+gbl_test(report/report_layers_test LABELS unit DEPS gbl_report nlohmann_json::nlohmann_json)  # issue 40: the layers in the report
 gbl_test(report/report_bandwidth_test LABELS unit DEPS gbl_report gbl_layout)  # effective bytes per GPU class in json / csv / html
 gbl_test(report/visibility_verdict_test LABELS unit DEPS gbl_report)
 gbl_test(report/budget_verdict_test LABELS unit DEPS gbl_report)
@@ -126,6 +129,7 @@ gbl_test(cli/cli_test LABELS gpu DEPS gbufferlab gbl_report gbl_image nlohmann_j
 gbl_test(cli/compare_scenes_cli_test LABELS gpu DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)  # several scenes
 gbl_test(cli/compare_bands_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)
 gbl_test(cli/compare_temporal_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # --temporal N
+gbl_test(cli/compare_layers_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # issue 40: the layers measured
 gbl_test(cli/nothing_measured_cli_test LABELS gpu DEPS gbufferlab nlohmann_json::nlohmann_json)  # views with nothing to measure
 gbl_test(cli/diff_cli_test LABELS gpu DEPS gbufferlab gbl_measure gbl_image nlohmann_json::nlohmann_json)
 # Hostile input, run as the executable and measured (peak memory, time); refusals need no driver.

@@ -44,6 +44,12 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
     run.attributes[ErrorAttribute::Metallic] = toReport(m.metallic, false);
     run.attributes[ErrorAttribute::Occlusion] = toReport(m.occlusion, false);
     run.attributes[ErrorAttribute::Depth] = toReport(m.depth, false);
+    if (m.layers) {  // a scene with material layers: each over the pixels carrying it
+        for (size_t k = 0; k < kLayerAttributeCount; ++k) {
+            const ErrorAttribute a = kLayerErrorAttributes[k];
+            run.attributes[a] = toReport(m.layers->byAttribute[k], errorAttributeIsColor(a));
+        }
+    }
     ImageErrors e;
     e.rmseLinear = m.image.rmseLinear;
     e.psnrLinear = m.image.psnrLinear;
@@ -67,6 +73,13 @@ void fillMetrics(RunReport& run, const RunMetrics& m) {
     e.covered = cls(m.image.covered);
     e.metal = cls(m.image.metal);
     e.dielectric = cls(m.image.dielectric);
+    if (m.image.layerClasses)
+        for (LayerClass c : kLayerClasses) {
+            const ClassImageErrors& k = (*m.image.layerClasses)[size_t(c)];
+            std::optional<ImageClassErrors>& dst = e.*(layerImageClasses()[size_t(c)].second);
+            dst = cls(k);
+            if (dst) dst->flipTiles = k.flipTiles;
+        }
     if (m.image.hdrFlipComputed) {
         e.hdrFlipMean = m.image.hdrFlipMean;
         e.hdrFlipExposures = m.image.hdrFlipExposures;
@@ -81,6 +94,8 @@ DeviceRender deviceView(const RenderOutput& r) {
     d.hdr = &r.device->hdr;
     if (r.device->surfaces[0].image)
         for (size_t k = 0; k < 4; ++k) d.surfaces[k] = &r.device->surfaces[k];
+    if (r.device->layers[0].image)
+        for (size_t k = 0; k < 4; ++k) d.layers[k] = &r.device->layers[k];
     return d;
 }
 
@@ -116,6 +131,7 @@ void measureRunGpu(RunReport& run, RenderOutput& test, const ReferenceRender& re
     if (releaseTest)  // the test's surfaces go as soon as the attributes are measured (peak memory at 4K)
         options.surfacesDone = [&] {
             for (GpuImage& image : test.device->surfaces) destroyImage(test.device->ctx, image);
+            for (GpuImage& image : test.device->layers) destroyImage(test.device->ctx, image);
         };
     const RunMetrics m = evaluator.evaluate(deviceView(test), options);
     fillMetrics(run, m);

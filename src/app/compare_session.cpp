@@ -490,6 +490,7 @@ app::CompareResult CompareSession::finish() {
         finishRuns(model_);
         ScopedStage timed(Stage::Report);
         model_.significance = rankWithSignificance(model_);
+        model_.classSignificance = rankLayerClassesWithSignificance(model_);
     }
 
     app::CompareResult result;

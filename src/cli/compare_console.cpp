@@ -12,6 +12,57 @@
 
 namespace gbl::compare {
 
+namespace {
+
+// Material layers (a scene with them): each layer attribute's mean error over the pixels whose
+// reference carries the layer, then LDR-FLIP per layer class with its tied rank in that class.
+void printLayerTable(const ReportModel& model, int w) {
+    if (!model.hasLayerMetrics()) return;
+    std::printf("\nMaterial layers: mean attribute error over the covered pixels whose reference carries the layer "
+                "(coat, roughnesses, strength: |d|; normals, direction: degrees; sheen colour: CIEDE2000); "
+                "LDR-FLIP per material class (a pixel may be in several; rank as above, within the class):\n");
+    std::printf("%-*s %-16s %6s %6s %7s %7s %6s %6s %7s", w, "layout", "ibl", "coat", "coatR", "coatN°", "sheenΔE",
+                "sheenR", "aniso", "aniso°");
+    for (const auto& [name, member] : layerImageClasses()) std::printf(" %17s", name);
+    std::printf("\n");
+    auto findSig = [&](const char* name) -> const SignificanceReport* {
+        for (const auto& [n, sig] : model.classSignificance)
+            if (n == name) return &sig;
+        return nullptr;
+    };
+    for (const RunReport& r : model.runs) {
+        if (r.status != RunStatus::Ok) continue;
+        std::printf("%-*s %-16s", w, r.layout.c_str(), r.iblMode.c_str());
+        const int widths[] = {6, 6, 7, 7, 6, 6, 7};
+        for (size_t k = 0; k < kLayerErrorAttributeCount; ++k) {
+            const auto& a = r.attributes[kLayerErrorAttributes[k]].all;
+            if (a) std::printf(" %*.3f", widths[k], a->error.mean);
+            else std::printf(" %*s", widths[k], "-");
+        }
+        for (const auto& [name, member] : layerImageClasses()) {
+            const std::optional<ImageClassErrors>& c = r.image ? (*r.image).*member : std::nullopt;
+            char cell[40] = "-";
+            if (c) {
+                const SignificanceReport* sig = findSig(name);
+                const RankRange* rank = sig ? sig->find(r.layout, r.iblMode) : nullptr;
+                std::snprintf(cell, sizeof cell, "%.4f (%s)", c->flipMean, rank ? rank->text().c_str() : "");
+            }
+            std::printf(" %17s", cell);
+        }
+        std::printf("\n");
+    }
+    std::printf("pixels per class:");
+    for (const RunReport& r : model.runs) {
+        if (r.status != RunStatus::Ok || !r.image) continue;
+        for (const auto& [name, member] : layerImageClasses())
+            if (const auto& c = (*r.image).*member) std::printf(" %s %lld", name, (long long)c->pixels);
+        break;  // the reference's classes: the same for every layout (of the pixels covered in both)
+    }
+    std::printf("\n");
+}
+
+}  // namespace
+
 void printTable(const ReportModel& model) {
     // The layout column is as wide as its longest name ("reference (split-sum-shader vs ground-truth)").
     int w = 20;
@@ -89,6 +140,7 @@ void printTable(const ReportModel& model) {
     if (model.significance && !model.significance->ranks.empty())
         std::printf("rank: by mean FLIP; a range (4-6) where the differences are not significant (%s)\n",
                     model.significance->method.c_str());
+    printLayerTable(model, w);
     if (const auto v = gbufferOrVisibility(model)) std::printf("\nG-buffer or visibility buffer? %s\n", v->answer.c_str());
     printVerdict(model);
     printBandwidthAsPaid(model);

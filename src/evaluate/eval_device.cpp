@@ -30,7 +30,7 @@ uint32_t profileKind(Pass p, const Push& push) {
 }
 std::vector<std::string> profileKinds() {
     const char* names[] = {"Image", "Reduce", "FlipOpponent", "FlipFilter", "FlipLab", "FlipFeatures", "FlipCombine",
-                           "FlipStats", "Attributes", "Tiles", "Luminance", "NormalMap"};
+                           "FlipStats", "Attributes", "Tiles", "Luminance", "NormalMap", "Layers"};
     static_assert(std::size(names) == size_t(Pass::Count));
     std::vector<std::string> k(kKinds);
     for (uint32_t p = 0; p < uint32_t(Pass::Count); ++p) {
@@ -56,6 +56,7 @@ const char* shaderFile(Pass p) {
         case Pass::Tiles: return "eval_tiles.comp.glsl";
         case Pass::Luminance: return "eval_luminance.comp.glsl";
         case Pass::NormalMap: return "eval_normal_map.comp.glsl";
+        case Pass::Layers: return "eval_layers.comp.glsl";
         case Pass::Count: break;
     }
     throw std::logic_error("evaluate: no shader for this pass");
@@ -67,7 +68,8 @@ std::vector<Binding> bindings() {
             {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kPlaneCount}, {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
             {6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},        {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kOut8Count},
             {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},        {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-            {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+            {10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},       {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
+            {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4}};
 }
 
 }  // namespace
@@ -110,6 +112,7 @@ EvalDevice::EvalDevice(const VulkanContext& c, uint32_t w, uint32_t h, uint32_t 
         s.defines.push_back({"EVAL_PLANE_COUNT", std::to_string(kPlaneCount)});
         s.defines.push_back({"EVAL_OUT8_COUNT", std::to_string(kOut8Count)});
         s.defines.push_back({"EVAL_HIST_BINS", std::to_string(kHistBins) + "u"});
+        s.defines.push_back({"EVAL_LAYER_HIST", std::to_string(kHistLayers) + "u"});
         VkShaderModule module = createShaderModule(ctx.device, compileGlsl(s));
         pipelines_[p] = createComputePipeline(ctx, pipelineLayout_, module);
         vkDestroyShaderModule(ctx.device, module, nullptr);
@@ -160,7 +163,8 @@ void EvalDevice::rebindBuffers() {
 }
 
 void EvalDevice::bindImages(const GpuImage& refHdr, const GpuImage& testHdr, const GpuImage* const refSurfaces[4],
-                            const GpuImage* const testSurfaces[4]) {
+                            const GpuImage* const testSurfaces[4], const GpuImage* const refLayers[4],
+                            const GpuImage* const testLayers[4]) {
     DescriptorWriter w;
     auto image = [&](uint32_t binding, const GpuImage& im, uint32_t element) {
         w.image(set_, binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, im.view, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL,
@@ -171,6 +175,8 @@ void EvalDevice::bindImages(const GpuImage& refHdr, const GpuImage& testHdr, con
     for (uint32_t k = 0; k < 4; ++k) {
         image(2, refSurfaces && refSurfaces[k] ? *refSurfaces[k] : refHdr, k);
         image(3, testSurfaces && testSurfaces[k] ? *testSurfaces[k] : testHdr, k);
+        image(11, refLayers && refLayers[k] ? *refLayers[k] : refHdr, k);
+        image(12, testLayers && testLayers[k] ? *testLayers[k] : testHdr, k);
     }
     w.flush(ctx.device);
 }
@@ -323,7 +329,7 @@ void EvalDevice::clearHistograms(VkCommandBuffer cmd) const {
         vkCmdFillBuffer(c, histograms_.buffer, 0, VK_WHOLE_SIZE, 0);
         fullBarrier(c);
     };
-    if (profile_) return profiled(kKinds - 1, record);  // NormalMap never splits: its second slot is free
+    if (profile_) return profiled(kKinds - 1, record);  // Layers never splits: its second slot is free
     record(cmd);
 }
 

@@ -33,7 +33,8 @@ enum PlaneSlot : uint32_t {
 enum Out8Slot : uint32_t { kOutRender = 0, kOutDifference, kOutHeat, kOutFlip, kOutNormal, kOutReference, kOut8Count };
 // Histograms (binding 6).
 enum HistSlot : uint32_t { kHistAbsLinear = 0, kHistFlip = 1, kHistAttributes = 2 /* + 2 attribute + class */,
-                           kHistLuminance = 18, kHistRefine = 19, kHistCount = 20 };
+                           kHistLuminance = 18, kHistRefine = 19,
+                           kHistLayers = 20 /* + 2 layer attribute + class (eval_layers.comp.glsl) */, kHistCount = 34 };
 // Workgroups of 64 per grid-stride pass. On a CPU device (lavapipe) 128 groups, 8192 invocations:
 // a few per core, each walking many pixels. A GPU holds far more (an H200: 270,336 resident
 // invocations), so it gets kGpuGroups. Measured on the H200 at 4K: no change in the evaluation's
@@ -55,7 +56,7 @@ struct Push {
 };
 
 enum class Pass { Image, Reduce, FlipOpponent, FlipFilter, FlipLab, FlipFeatures, FlipCombine, FlipStats, Attributes,
-                  Tiles, Luminance, NormalMap, Count };
+                  Tiles, Luminance, NormalMap, Layers, Count };
 
 class EvalDevice {
 public:
@@ -78,10 +79,12 @@ public:
     void setWholeFrameView() { viewRows_ = countedRows_ = height, countedFirst_ = 0; }
     uint32_t viewRows() const { return viewRows_; }
 
-    // Binds the images (RGBA32F, GENERAL) of binding 0-3; surfaces may be null (the HDR image is
-    // bound in their place and attribute passes must not run).
+    // Binds the images (RGBA32F, GENERAL) of binding 0-3 and the layers' of 11-12; surfaces and
+    // layers may be null (the HDR image is bound in their place and the passes reading them must
+    // not run).
     void bindImages(const GpuImage& refHdr, const GpuImage& testHdr, const GpuImage* const refSurfaces[4],
-                    const GpuImage* const testSurfaces[4]);
+                    const GpuImage* const testSurfaces[4], const GpuImage* const refLayers[4] = nullptr,
+                    const GpuImage* const testLayers[4] = nullptr);
     // Allocates plane `slot` (width x planeRows floats) if not yet there (and rebinds).
     void ensurePlane(uint32_t slot);
     void ensureOut8();   // the 8-bit output images (host visible)

@@ -19,6 +19,10 @@ inline constexpr uint32_t kImageFields = 15, kImageAt = 0;
 inline constexpr uint32_t kRefLuminanceAt = 16;  // banded reference statistics: its maximum luminance
 inline constexpr uint32_t kAttrs = 8, kPerAttr = 11, kAttrFields = kAttrs * kPerAttr + 5, kAttrAt = 96;
 inline constexpr uint32_t kFlipFields = 5, kFlipAt = 200, kHdrFlipAt = 210;
+// The material layers (eval_layers.comp.glsl): mode 0's attribute and class fields, mode 1's
+// LDR-FLIP sums per layer class.
+inline constexpr uint32_t kLayerAttrs = 7, kLayerFields = kLayerAttrs * kPerAttr + 16, kLayerAt = 220;
+inline constexpr uint32_t kLayerFlipFields = 4, kLayerFlipAt = 320;
 inline constexpr uint32_t kResultDoubles = 4 * kMaxFields;
 inline constexpr int kTile = 8;
 
@@ -26,10 +30,12 @@ using FieldMask = std::array<uint32_t, 4>;
 FieldMask maskOf(std::initializer_list<uint32_t> fields);
 FieldMask imageMaxMask();      // the image pass's maxima (|d|, reference value)
 FieldMask attributeMaxMask();  // the attribute pass's maxima (per attribute and class)
+FieldMask layerMaxMask();      // the layer pass's (mode 0) maxima
 
 // What one run's error passes need (pass 1 of evaluate(); the first half of a band).
 struct ErrorPassSettings {
     bool images = false, noise = false, attributes = false, crops = false;
+    bool layers = false;  // both sides have layer images (and surfaces): eval_layers.comp.glsl
     float exposure = 1.0f, amplification = 8.0f, heatMax = 0.1f, floorY = 1e-6f;
 };
 ErrorPassSettings errorPassSettings(const GpuEvalOptions& o, float exposure, float floorY);
@@ -37,14 +43,15 @@ ErrorPassSettings errorPassSettings(const GpuEvalOptions& o, float exposure, flo
 // result fields; the histograms add up (the caller clears them once per run).
 void recordErrorPasses(VkCommandBuffer cmd, const EvalDevice& d, const ErrorPassSettings& s);
 // LDR-FLIP (and its 8-bit image), then HDR-FLIP over `range` when hdrFlip, reduced into their fields.
+// `layers`: LDR-FLIP summed per layer class too (the reference's layers bound).
 void recordFlipPasses(VkCommandBuffer cmd, const EvalDevice& d, GpuFlip& flip, float exposure, bool images,
-                      bool hdrFlip, const FlipExposureRange& range);
+                      bool hdrFlip, const FlipExposureRange& range, bool layers = false);
 // The normal-error picture's scale: the run's p99 normal angle (both classes), at least minDeg.
 float normalImageScale(const double* result, const EvalDevice& d, float minDeg);
 // Every RunMetrics number from the result fields (laid out as above, over the whole frame of
 // n pixels) and the device's histograms (over the whole frame).
 RunMetrics assembleMetrics(const double* result, const EvalDevice& d, size_t n, bool attributes, bool hdrFlip,
-                           bool noise, const FlipExposureRange& range);
+                           bool noise, const FlipExposureRange& range, bool layers = false);
 // The worst regions from the mean relative error of the frame's 8 x 8 tiles (tw x th).
 std::vector<Crop> worstCrops(const Image& tiles, uint32_t width, uint32_t height, int cropSize, int cropCount);
 // A user error unless `r` (and its surfaces, where set) are w x h.

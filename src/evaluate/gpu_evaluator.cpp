@@ -35,6 +35,16 @@ FieldMask attributeMaxMask() {
     return mask;
 }
 
+FieldMask layerMaxMask() {
+    FieldMask mask{};
+    for (uint32_t k = 0; k < kLayerAttrs; ++k)
+        for (uint32_t c = 0; c < 2; ++c) {
+            const uint32_t f = k * kPerAttr + c * 5 + 3;
+            mask[f / 32] |= 1u << (f % 32);
+        }
+    return mask;
+}
+
 void unpackRows(const uint32_t* packed, uint32_t rows, Image8& out, uint32_t row) {
     const size_t w = size_t(out.width), first = size_t(row) * w;
     for (size_t i = 0; i < size_t(rows) * w; ++i) {
@@ -98,6 +108,14 @@ void recordErrorPasses(VkCommandBuffer cmd, const EvalDevice& d, const ErrorPass
         d.dispatch(cmd, Pass::Attributes, a);
         d.reduce(cmd, kAttrFields, attributeMaxMask(), kAttrAt);
     }
+    if (s.layers) {
+        Push l;
+        l.flags = s.noise ? 2u : 0u;
+        l.u[0] = kNoise;
+        l.f3 = s.floorY;
+        d.dispatch(cmd, Pass::Layers, l);
+        d.reduce(cmd, kLayerFields, layerMaxMask(), kLayerAt);
+    }
     if (s.crops) {
         Push t;
         t.u[0] = kTile;
@@ -107,13 +125,20 @@ void recordErrorPasses(VkCommandBuffer cmd, const EvalDevice& d, const ErrorPass
 }
 
 void recordFlipPasses(VkCommandBuffer cmd, const EvalDevice& d, GpuFlip& flip, float exposure, bool images,
-                      bool hdrFlip, const FlipExposureRange& range) {
+                      bool hdrFlip, const FlipExposureRange& range, bool layers) {
     flip.ldr(cmd, exposure);
     Push fs;
     fs.flags = 2u | (images ? 1u : 0u);
     fs.u[0] = kFlipMap, fs.u[1] = kHistFlip;
     d.dispatch(cmd, Pass::FlipStats, fs);
     d.reduce(cmd, kFlipFields, {}, kFlipAt);
+    if (layers) {
+        Push ls;
+        ls.mode = 1;
+        ls.u[0] = kFlipMap;
+        d.dispatch(cmd, Pass::Layers, ls);
+        d.reduce(cmd, kLayerFlipFields, {}, kLayerFlipAt);
+    }
     if (hdrFlip) {
         flip.hdr(cmd, range);
         Push hs;
@@ -133,7 +158,7 @@ float normalImageScale(const double* result, const EvalDevice& d, float minDeg) 
 }
 
 RunMetrics assembleMetrics(const double* r, const EvalDevice& d, size_t n, bool attributes, bool hdrFlip, bool noise,
-                           const FlipExposureRange& range) {
+                           const FlipExposureRange& range, bool layers) {
     RunMetrics m;
     const double nd = double(n);
     ShadedErrors& e = m.image;
@@ -170,22 +195,34 @@ RunMetrics assembleMetrics(const double* r, const EvalDevice& d, size_t n, bool 
     const double all[4] = {r[7] + r[11], r[8] + r[12], r[9] + r[13], r[10] + r[14]};
     e.covered = cls(all, f[1] + f[3]);
 
-    const double* a = r + kAttrAt;
-    AttributeMetrics* out[kAttrs] = {&m.normal, &m.baseColor, &m.diffuseColor, &m.specularColor,
-                                     &m.roughness, &m.metallic, &m.occlusion, &m.depth};
-    for (uint32_t k = 0; k < kAttrs; ++k) {
-        const bool colour = k >= 1 && k <= 3;
-        const double* dl = a + k * kPerAttr;  // dielectric
-        const double* mt = dl + 5;            // metal
-        std::span<const uint32_t> hd{d.histogram(kHistAttributes + 2 * k), kHistBins};
-        std::span<const uint32_t> hm{d.histogram(kHistAttributes + 2 * k + 1), kHistBins};
+    // An attribute's three classes from its fields at `a` and its two histograms from `hist`.
+    auto attribute = [&](const double* dl, uint32_t hist, bool colour) {
+        const double* mt = dl + 5;  // dielectric, then metal
+        std::span<const uint32_t> hd{d.histogram(hist), kHistBins};
+        std::span<const uint32_t> hm{d.histogram(hist + 1), kHistBins};
         std::vector<uint32_t> both(kHistBins);
         for (uint32_t b = 0; b < kHistBins; ++b) both[b] = hd[b] + hm[b];
         const double merged[5] = {dl[0] + mt[0], dl[1] + mt[1], dl[2] + mt[2], std::max(dl[3], mt[3]), dl[4] + mt[4]};
-        out[k]->dielectric = classStats(dl, hd, colour);
-        out[k]->metal = classStats(mt, hm, colour);
-        out[k]->all = classStats(merged, both, colour);
-        out[k]->skipped = size_t(dl[10]);
+        AttributeMetrics out;
+        out.dielectric = classStats(dl, hd, colour);
+        out.metal = classStats(mt, hm, colour);
+        out.all = classStats(merged, both, colour);
+        out.skipped = size_t(dl[10]);
+        return out;
+    };
+    const double* a = r + kAttrAt;
+    AttributeMetrics* out[kAttrs] = {&m.normal, &m.baseColor, &m.diffuseColor, &m.specularColor,
+                                     &m.roughness, &m.metallic, &m.occlusion, &m.depth};
+    for (uint32_t k = 0; k < kAttrs; ++k)
+        *out[k] = attribute(a + k * kPerAttr, kHistAttributes + 2 * k, k >= 1 && k <= 3);
+    if (layers) {
+        const double* l = r + kLayerAt;
+        LayerMetrics& lm = m.layers.emplace();
+        for (uint32_t k = 0; k < kLayerAttrs; ++k)
+            lm.byAttribute[k] = attribute(l + k * kPerAttr, kHistLayers + 2 * k, LayerAttribute(k) == LayerAttribute::SheenColor);
+        auto& classes = e.layerClasses.emplace();
+        for (size_t c = 0; c < kLayerClassCount; ++c)
+            classes[c] = cls(l + kLayerAttrs * kPerAttr + 4 * c, r[kLayerFlipAt + c]);
     }
     const double* c = a + kAttrs * kPerAttr;
     m.coverage.pixels = n;
@@ -291,9 +328,11 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
     ErrorPassSettings pass = errorPassSettings(o, s.exposure, s.floorY);
     pass.noise = s.noise;
     pass.attributes = test.surfaces[0] && s.reference.surfaces[0];
+    pass.layers = pass.attributes && test.layers[0] && s.reference.layers[0];
     const size_t n = size_t(d.width) * d.height;
     d.bindImages(*s.reference.hdr, *test.hdr, pass.attributes ? s.reference.surfaces.data() : nullptr,
-                 pass.attributes ? test.surfaces.data() : nullptr);
+                 pass.attributes ? test.surfaces.data() : nullptr, pass.layers ? s.reference.layers.data() : nullptr,
+                 pass.layers ? test.layers.data() : nullptr);
     if (pass.images) d.ensureOut8();
     const uint32_t tw = (d.width + kTile - 1) / kTile, th = (d.height + kTile - 1) / kTile;
     if (pass.crops) d.ensureTiles(size_t(tw) * th);
@@ -316,22 +355,23 @@ RunMetrics GpuEvaluator::evaluate(const DeviceRender& test, const GpuEvalOptions
             d.dispatch(cmd, Pass::Attributes, p);
         });
     }
-    if (pass.attributes) {
-        d.bindImages(*s.reference.hdr, *test.hdr, s.reference.surfaces.data(), nullptr);
+    if (pass.attributes) {  // the reference's layers stay bound: the FLIP sums per layer class read them
+        d.bindImages(*s.reference.hdr, *test.hdr, s.reference.surfaces.data(), nullptr,
+                     pass.layers ? s.reference.layers.data() : nullptr, nullptr);
         if (o.surfacesDone) o.surfacesDone();
     }
     // 3: LDR- and HDR-FLIP, on planes that exist only for this.
     phase.emplace("evaluate: FLIP");
     s.flip.allocate();
     d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        recordFlipPasses(cmd, d, s.flip, s.exposure, pass.images, o.hdrFlip, s.hdrRange);
+        recordFlipPasses(cmd, d, s.flip, s.exposure, pass.images, o.hdrFlip, s.hdrRange, pass.layers);
     });
     // Freed after every run: on a CPU device that is the 4K peak; on a GPU the context's
     // recycler (memory_recycler.h) hands the same blocks to the next run's planes.
     s.flip.release();
 
     phase.emplace("evaluate: assemble (histogram copy)");
-    const RunMetrics m = assembleMetrics(d.result(), d, n, pass.attributes, o.hdrFlip, s.noise, s.hdrRange);
+    const RunMetrics m = assembleMetrics(d.result(), d, n, pass.attributes, o.hdrFlip, s.noise, s.hdrRange, pass.layers);
     phase.emplace("evaluate: 8-bit images and crops");
     if (pass.images) {
         GpuErrorImages& out = *o.images;
@@ -415,11 +455,25 @@ UploadedRender::UploadedRender(const VulkanContext& context, const Image& image,
         }
         surfaces[size_t(k)] = uploadRgba(ctx, image.width, image.height, rgba);
     }
+    hasLayers = s->hasLayers();
+    if (!hasLayers) return;
+    // decode_pass.comp.glsl's GBL_LAYERS images.
+    const Image* layerRgb[4] = {&s->coatNormal, &s->sheenColor, &s->anisotropyDirection, &s->coatRoughness};
+    const Image* layerAlpha[4] = {&s->coat, &s->sheenRoughness, &s->anisotropyStrength, nullptr};
+    for (int k = 0; k < 4; ++k) {
+        for (size_t i = 0; i < n; ++i) {
+            for (int c = 0; c < 3; ++c)
+                rgba[i * 4 + size_t(c)] = k == 3 ? (c == 0 ? at(*layerRgb[k], i, 0) : 0.0f) : at(*layerRgb[k], i, c);
+            rgba[i * 4 + 3] = layerAlpha[k] ? at(*layerAlpha[k], i, 0) : 0.0f;
+        }
+        layers[size_t(k)] = uploadRgba(ctx, image.width, image.height, rgba);
+    }
 }
 
 UploadedRender::~UploadedRender() {
     destroyImage(ctx, hdr);
     for (GpuImage& s : surfaces) destroyImage(ctx, s);
+    for (GpuImage& l : layers) destroyImage(ctx, l);
 }
 
 DeviceRender UploadedRender::view() const {
@@ -427,6 +481,8 @@ DeviceRender UploadedRender::view() const {
     r.hdr = &hdr;
     if (hasSurfaces)
         for (size_t k = 0; k < 4; ++k) r.surfaces[k] = &surfaces[k];
+    if (hasLayers)
+        for (size_t k = 0; k < 4; ++k) r.layers[k] = &layers[k];
     return r;
 }
 

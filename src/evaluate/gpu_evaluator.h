@@ -50,6 +50,11 @@ namespace gbl {
 struct DeviceRender {
     const GpuImage* hdr = nullptr;
     std::array<const GpuImage*, 4> surfaces{};  // all set, or all null (no attribute metrics)
+    // The material layers in a scene with them (decode_pass.comp.glsl's GBL_LAYERS images: coat
+    // normal + coat, sheen colour + sheen roughness, anisotropy direction + strength, coat
+    // roughness): all set, or all null (no layer metrics; RunMetrics::layers absent). Measured
+    // when both sides have them and their surfaces.
+    std::array<const GpuImage*, 4> layers{};
 };
 
 // The evaluator's 8-bit outputs of one run still in its host-visible buffers, packed (one uint per
@@ -165,7 +170,8 @@ struct UploadedRender {
     const VulkanContext& ctx;
     GpuImage hdr;
     std::array<GpuImage, 4> surfaces{};
-    bool hasSurfaces = false;
+    std::array<GpuImage, 4> layers{};  // when the surfaces have layers (SurfaceImages::hasLayers)
+    bool hasSurfaces = false, hasLayers = false;
 };
 
 }  // namespace gbl

@@ -157,8 +157,10 @@ void GpuEvaluator::addBand(const DeviceRender& reference, const DeviceRender& te
     checkRender(reference, d.width, band.imageRows, "reference band's");
     checkRender(test, d.width, band.imageRows, "layout's band");
     const bool attributes = test.surfaces[0] && reference.surfaces[0];
-    if (run.bands == 0) run.pass.attributes = attributes;
+    const bool layers = attributes && test.layers[0] && reference.layers[0];
+    if (run.bands == 0) run.pass.attributes = attributes, run.pass.layers = layers;
     else if (attributes != run.pass.attributes) misuse("surfaces in some bands of a run only");
+    else if (layers != run.pass.layers) misuse("layers in some bands of a run only");
     if (run.pass.crops && band.firstRow % kTile != 0)
         misuse("with crops every band starts on a multiple of " + std::to_string(kTile) + " rows (row " +
                std::to_string(band.firstRow) + ")");
@@ -166,7 +168,8 @@ void GpuEvaluator::addBand(const DeviceRender& reference, const DeviceRender& te
     const uint32_t counted = band.firstRow - band.imageFirstRow;
     const float* angles = normalImage ? d.hostPlane(kBandOut) : nullptr;
     d.bindImages(*reference.hdr, *test.hdr, attributes ? reference.surfaces.data() : nullptr,
-                 attributes ? test.surfaces.data() : nullptr);
+                 attributes ? test.surfaces.data() : nullptr, layers ? reference.layers.data() : nullptr,
+                 layers ? test.layers.data() : nullptr);
     d.setView(band.imageRows, counted, band.rows);
     d.ctx.submitAndWait([&](VkCommandBuffer cmd) {
         recordErrorPasses(cmd, d, run.pass);
@@ -177,7 +180,7 @@ void GpuEvaluator::addBand(const DeviceRender& reference, const DeviceRender& te
             p.u[0] = kBandOut;
             d.dispatch(cmd, Pass::Attributes, p);
         }
-        recordFlipPasses(cmd, d, s.flip, s.exposure, run.pass.images, run.options.hdrFlip, s.hdrRange);
+        recordFlipPasses(cmd, d, s.flip, s.exposure, run.pass.images, run.options.hdrFlip, s.hdrRange, layers);
     });
     d.setWholeFrameView();
 
@@ -186,6 +189,10 @@ void GpuEvaluator::addBand(const DeviceRender& reference, const DeviceRender& te
     const double* r = d.result();
     fold(acc, r, kImageAt, kImageFields, imageMaxMask(), first);
     if (attributes) fold(acc, r, kAttrAt, kAttrFields, attributeMaxMask(), first);
+    if (layers) {
+        fold(acc, r, kLayerAt, kLayerFields, layerMaxMask(), first);
+        fold(acc, r, kLayerFlipAt, kLayerFlipFields, {}, first);
+    }
     fold(acc, r, kFlipAt, kFlipFields, {}, first);
     if (run.options.hdrFlip) fold(acc, r, kHdrFlipAt, kFlipFields, {}, first);
     if (run.pass.images) {
@@ -238,7 +245,7 @@ RunMetrics GpuEvaluator::finishRun() {
     if (run.nextRow != d.height)
         misuse("the run's bands end at row " + std::to_string(run.nextRow) + " of " + std::to_string(d.height));
     const RunMetrics m = assembleMetrics(run.result.data(), d, size_t(d.width) * d.height, run.pass.attributes,
-                                         run.options.hdrFlip, false, s.hdrRange);
+                                         run.options.hdrFlip, false, s.hdrRange, run.pass.layers);
     if (run.pass.images) {
         GpuErrorImages& out = *run.options.images;
         out = std::move(run.images);

@@ -55,7 +55,11 @@ namespace {
 constexpr Image SurfaceImages::*kAttributes[] = {
     &SurfaceImages::normal,   &SurfaceImages::baseColor, &SurfaceImages::diffuseColor, &SurfaceImages::specularColor,
     &SurfaceImages::roughness, &SurfaceImages::metallic, &SurfaceImages::occlusion,    &SurfaceImages::emissive,
-    &SurfaceImages::depth,    &SurfaceImages::viewDepth};
+    &SurfaceImages::depth,    &SurfaceImages::viewDepth,
+    // The layers (empty in a scene without them: no channel summed). Their directions are plain
+    // means: the metrics measure them by angle, which does not depend on their length.
+    &SurfaceImages::coat, &SurfaceImages::coatRoughness, &SurfaceImages::coatNormal, &SurfaceImages::sheenColor,
+    &SurfaceImages::sheenRoughness, &SurfaceImages::anisotropyStrength, &SurfaceImages::anisotropyDirection};
 }  // namespace
 
 void SurfaceMean::add(const SurfaceImages& frame) {

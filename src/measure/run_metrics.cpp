@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -34,7 +36,9 @@ void checkSurface(const SurfaceImages& s, int width, int height, const char* sid
         {&s.normal, "normal"},       {&s.baseColor, "base colour"}, {&s.diffuseColor, "diffuse colour"},
         {&s.specularColor, "specular colour"}, {&s.roughness, "roughness"}, {&s.metallic, "metallic"},
         {&s.occlusion, "occlusion"}, {&s.emissive, "emissive"},     {&s.depth, "depth"},
-        {&s.viewDepth, "view depth"}};
+        {&s.viewDepth, "view depth"}, {&s.coat, "coat"}, {&s.coatRoughness, "coat roughness"},
+        {&s.coatNormal, "coat normal"}, {&s.sheenColor, "sheen colour"}, {&s.sheenRoughness, "sheen roughness"},
+        {&s.anisotropyStrength, "anisotropy strength"}, {&s.anisotropyDirection, "anisotropy direction"}};
     for (const auto& [image, name] : images) checkSize(*image, width, height, (prefix + " " + name).c_str());
     if (s.coverage.size() != size_t(width) * size_t(height))
         throwUserError("compare: the " + prefix + " coverage mask has " + std::to_string(s.coverage.size()) +
@@ -167,6 +171,53 @@ AttributeMetrics scalarAttribute(const Image& ref, const Image& test, const Mask
     });
 }
 
+// The layers' attribute errors (run_metrics.h "Material layers"): each over the measured pixels
+// whose reference carries its layer (`bits`: layerBitsAt where measured).
+void layerAttributes(const SurfaceImages& reference, const SurfaceImages& test, const Mask& measured,
+                     const std::vector<uint8_t>& bits, const Mask& metal, LayerMetrics& out,
+                     std::vector<std::function<void()>>& tasks) {
+    auto over = [&](uint8_t bit) {
+        auto mask = std::make_shared<Mask>(measured.size(), 0);
+        for (size_t i = 0; i < measured.size(); ++i) (*mask)[i] = measured[i] && (bits[i] & bit) ? 1 : 0;
+        return mask;
+    };
+    // Built up front (cheap), shared by the tasks of one layer.
+    std::shared_ptr<Mask> coated = over(kCarriesCoat), sheen = over(kCarriesSheen), aniso = over(kCarriesAnisotropy);
+    tasks.push_back([&, coated] {
+        out[LayerAttribute::Coat] = scalarAttribute(reference.coat, test.coat, *coated, metal, nullptr, "coat");
+        out[LayerAttribute::CoatRoughness] = scalarAttribute(reference.coatRoughness, test.coatRoughness, *coated, metal,
+                                                             nullptr, "coat roughness");
+        if (!usable(reference.coatNormal, test.coatNormal, 3, "coat normal") ||
+            !usable(reference.normal, test.normal, 3, "normal"))
+            return;
+        const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
+        out[LayerAttribute::CoatNormal] = measure(*coated, metal, nullptr, false, [&](size_t i, bool& ok, double&) {
+            const float* r = effectiveCoatNormal(&reference.coatNormal.pixels[i * 3], &reference.normal.pixels[i * rc]);
+            const float* t = effectiveCoatNormal(&test.coatNormal.pixels[i * 3], &test.normal.pixels[i * tc]);
+            return normalAngleDeg(r, t, ok);
+        });
+    });
+    tasks.push_back([&, sheen] {
+        out[LayerAttribute::SheenColor] =
+            colorAttribute(reference.sheenColor, test.sheenColor, *sheen, metal, nullptr, "sheen colour");
+        out[LayerAttribute::SheenRoughness] = scalarAttribute(reference.sheenRoughness, test.sheenRoughness, *sheen,
+                                                              metal, nullptr, "sheen roughness");
+    });
+    tasks.push_back([&, aniso] {
+        out[LayerAttribute::AnisotropyStrength] = scalarAttribute(reference.anisotropyStrength, test.anisotropyStrength,
+                                                                  *aniso, metal, nullptr, "anisotropy strength");
+        if (!usable(reference.anisotropyDirection, test.anisotropyDirection, 3, "anisotropy direction") ||
+            !usable(reference.normal, test.normal, 3, "normal"))
+            return;
+        const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
+        out[LayerAttribute::AnisotropyDirection] = measure(*aniso, metal, nullptr, false, [&](size_t i, bool& ok, double&) {
+            return anisotropyDirectionErrorDeg(&reference.anisotropyDirection.pixels[i * 3],
+                                               &reference.normal.pixels[i * rc],
+                                               &test.anisotropyDirection.pixels[i * 3], &test.normal.pixels[i * tc], ok);
+        });
+    });
+}
+
 double luminance(const float* p, int channels) {
     if (channels < 3) return p[0];
     return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
@@ -280,10 +331,20 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         }
     }
 
+    // The layers each measured pixel's reference carries (layer_classes.h), in a scene with them.
+    const bool layers = reference.hasLayers() && test.hasLayers();
+    std::vector<uint8_t> layerBits;
+    if (layers) {
+        layerBits.assign(n, 0);
+        for (size_t i = 0; i < n; ++i)
+            if (measured[i]) layerBits[i] = layerBitsAt(reference, i);
+    }
+
     // Attributes, side by side (each task fills its own fields and maps; each is computed exactly
     // as alone, so results do not depend on the thread count).
     scope.emplace("metrics: attributes and image errors");
     std::vector<std::function<void()>> tasks;
+    if (layers) layerAttributes(reference, test, measured, layerBits, metal, out.layers.emplace(), tasks);
     if (usable(reference.normal, test.normal, 3, "normal")) tasks.push_back([&] {
         const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
         out.normal = measure(measured, metal, mapOrNull(maps, &RunErrorMaps::normalDeg, w, h, true), false,
@@ -410,6 +471,41 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         out.image.dielectric = finish(acc[0]);
         out.image.metal = finish(acc[1]);
         out.image.covered = finish(all);
+    });
+    if (layers) tasks.push_back([&] {
+        // The same sums over each layer class's pixels (a pixel may count in several).
+        std::array<ClassImageErrors, kLayerClassCount>& classes = out.image.layerClasses.emplace();
+        const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
+        for (LayerClass c : kLayerClasses) {
+            size_t pixels = 0;
+            double relSum = 0.0, sq = 0.0, flipSum = 0.0, noiseSum = 0.0;
+            Mask in(n, 0);
+            for (size_t i = 0; i < n; ++i) {
+                if (!measured[i] || !inLayerClass(layerBits[i], c)) continue;
+                in[i] = 1;
+                ++pixels;
+                const float r = relativeLuminanceAt(referenceHdr, testHdr, i, floor);
+                relSum += std::isfinite(r) ? r : 0.0;
+                for (size_t k = 0; k < 3; ++k) {
+                    const double d = double(testHdr.pixels[i * tc + k]) - double(referenceHdr.pixels[i * rc + k]);
+                    sq += d * d;
+                }
+                flipSum += flip.pixels[i];
+                if (noise) {
+                    const double y = luminance(&referenceHdr.pixels[i * rc], referenceHdr.channels);
+                    noiseSum += double(noise->pixels[i]) / std::max(std::isfinite(y) ? y : 0.0, floor);
+                }
+            }
+            ClassImageErrors& e = classes[size_t(c)];
+            e.pixels = pixels;
+            if (pixels) {
+                e.relLuminanceMean = relSum / double(pixels);
+                e.rmseLinear = std::sqrt(sq / double(3 * pixels));
+                e.flipMean = flipSum / double(pixels);
+                if (noise) e.referenceNoise = noiseSum / double(pixels);
+                e.flipTiles = tileMeans(flip, kSignificanceTileColumns, kSignificanceTileRows, &in);
+            }
+        }
     });
     parallelInvoke(tasks);
     if (maps && included) {  // excluded pixels hold 0 in every map (no worst region among them)

@@ -28,14 +28,31 @@
 //  * HDR-FLIP:               flipHdr on the linear images, as written to render.exr (32-bit float)
 //                            (exposure range from the reference;
 //                            the exposure factor cancels out).
+//
+// Material layers (issue 40; only when both sides' surfaces have layers, SurfaceImages::hasLayers:
+// a scene some material of which has clear coat, sheen or anisotropy; RunMetrics::layers and
+// ShadedErrors::layerClasses are absent otherwise). Classes and per-pixel errors: layer_classes.h.
+//  * Each layer attribute is measured over the covered pixels whose REFERENCE carries that layer
+//    only (a pixel without a coat has no coat roughness to lose), split metal / dielectric as the
+//    others:
+//    coat, coat roughness, sheen roughness, anisotropy strength: |test - reference|;
+//    coat normal: degrees between the coat normals the lighting shades with (0 = the base normal);
+//    sheen colour: CIEDE2000 (+ RMSE of linear RGB), as base colour;
+//    anisotropy direction: degrees between the tangent lines (layer_classes.h), [0, 90].
+//  * Image errors per layer class (coated, sheen, anisotropic, plain; a pixel may be in several):
+//    the class errors above (relative luminance, linear RMSE, LDR-FLIP, reference noise) over the
+//    class's covered pixels, and LDR-FLIP's tile means over them (the significance test's units).
 // The reference against itself gives exactly 0 everywhere and PSNR = +infinity.
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <limits>
 #include <vector>
 #include <memory>
 
 #include "flip.h"
 #include "image.h"
+#include "layer_classes.h"
 #include "metrics.h"
 #include "surface_images.h"
 
@@ -73,6 +90,9 @@ struct ClassImageErrors {
     // With RunMetricsOptions::referenceNoise: the reference's own noise over the class, in the
     // same unit as relLuminanceMean (mean of noise / max(Y_ref, floor)); -1 when not given.
     double referenceNoise = -1.0;
+    // Layer classes only: LDR-FLIP's mean per tile of significance.h's grid over the class's pixels
+    // (0 for a tile without any), the units of its significance test. Empty otherwise.
+    std::vector<float> flipTiles;
 };
 
 struct ShadedErrors {
@@ -91,7 +111,32 @@ struct ShadedErrors {
     bool hdrFlipComputed = false;
     int hdrFlipExposures = 0;  // how many exposures HDR-FLIP evaluated (its cost is ~ this x LDR-FLIP)
     ClassImageErrors covered, metal, dielectric;  // covered = metal + dielectric pixels
+    // Per layer class (kLayerClasses order: coated, sheen, anisotropic, plain); absent in a scene
+    // without layers.
+    std::optional<std::array<ClassImageErrors, kLayerClassCount>> layerClasses;
 };
+
+// The layers' attribute errors (see "Material layers" above): each over the pixels carrying it.
+enum class LayerAttribute : uint8_t {
+    Coat, CoatRoughness, CoatNormal, SheenColor, SheenRoughness, AnisotropyStrength, AnisotropyDirection
+};
+constexpr size_t kLayerAttributeCount = 7;
+struct LayerMetrics {
+    std::array<AttributeMetrics, kLayerAttributeCount> byAttribute{};
+    AttributeMetrics& operator[](LayerAttribute a) { return byAttribute[size_t(a)]; }
+    const AttributeMetrics& operator[](LayerAttribute a) const { return byAttribute[size_t(a)]; }
+};
+// The class whose pixels a layer attribute is measured over: coated for the coat's three.
+inline LayerClass layerAttributeClass(LayerAttribute a) {
+    switch (a) {
+        case LayerAttribute::Coat:
+        case LayerAttribute::CoatRoughness:
+        case LayerAttribute::CoatNormal: return LayerClass::Coated;
+        case LayerAttribute::SheenColor:
+        case LayerAttribute::SheenRoughness: return LayerClass::Sheen;
+        default: return LayerClass::Anisotropic;
+    }
+}
 
 struct RunMetrics {
     CoverageCounts coverage;
@@ -103,6 +148,7 @@ struct RunMetrics {
     AttributeMetrics metallic;       // absolute
     AttributeMetrics occlusion;      // absolute
     AttributeMetrics depth;          // relative
+    std::optional<LayerMetrics> layers;  // absent in a scene without layers
     ShadedErrors image;
 };
 

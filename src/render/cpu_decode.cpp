@@ -26,7 +26,7 @@ float viewDepthAt(const gpu::FrameConstants& frame, float depth) {
 
 SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, const std::vector<float>& depth,
                                   const gpu::FrameConstants& frame, int normalSpace, VkFormat depthFormat,
-                                  bool storesDepth) {
+                                  bool storesDepth, bool layers) {
     const int w = words.width, h = words.height;
     const size_t pixels = size_t(w) * size_t(h);
     const float clearDepth = frame.shading.y;
@@ -46,6 +46,7 @@ SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, cons
     s.depth = Image(w, h, 1);
     std::copy(depth.begin(), depth.end(), s.depth.pixels.begin());
     s.coverage = words.covered;
+    if (layers) s.allocateLayers(w, h);
 
     const StoredSpace space = StoredSpace(normalSpace);
     // The depth as the decode pass's texelFetch sees it. A 24-bit UNORM depth reads back here as
@@ -81,6 +82,19 @@ SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, cons
                     s.occlusion.pixels[i] = d.occlusion;
                     // A layout's stored window depth is the one its lighting reads (decode_pass).
                     s.viewDepth.pixels[i] = viewDepthAt(frame, storesDepth ? d.position.z : sampled(depth[i]));
+                    if (!layers) continue;
+                    // decode_pass.comp.glsl's layer vec4s (gblSurfaceFromStored turns both directions).
+                    const glm::vec3 coatN = directionFromStored(d.coatNormal, space, view);
+                    const glm::vec3 tangent = directionFromStored(d.anisotropyDirection, space, view);
+                    for (int c = 0; c < 3; ++c) {
+                        s.coatNormal.pixels[i * 3 + size_t(c)] = coatN[c];
+                        s.sheenColor.pixels[i * 3 + size_t(c)] = d.sheenColor[c];
+                        s.anisotropyDirection.pixels[i * 3 + size_t(c)] = tangent[c];
+                    }
+                    s.coat.pixels[i] = d.coat;
+                    s.coatRoughness.pixels[i] = d.coatRoughness;
+                    s.sheenRoughness.pixels[i] = d.sheenRoughness;
+                    s.anisotropyStrength.pixels[i] = d.anisotropyStrength;
                 }
         }
     });

@@ -24,9 +24,11 @@ namespace gbl {
 // constants (view, inverse view-projection, extent). `normalSpace`, `depthFormat`: the wiring's
 // (a 24-bit depth's view depth is computed from the value as the device's sampler converts it).
 // `storesDepth`: the wiring's; the view depth then comes from the layout's stored window depth.
+// `layers`: the scene has material layers (GpuScene::layers != 0): the seven layer images are
+// filled too (directions to world space, as the normal), as the decode pass does with GBL_LAYERS.
 // Runs on hardwareThreads() threads, a band of rows at a time per thread.
 SurfaceImages decodeSurfacesOnCpu(const CpuCodec& codec, CpuGBuffer& words, const std::vector<float>& depth,
                                   const gpu::FrameConstants& frame, int normalSpace, VkFormat depthFormat,
-                                  bool storesDepth);
+                                  bool storesDepth, bool layers = false);
 
 }  // namespace gbl

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <span>
 
 #include "parallel_for.h"
 #include "shader_compiler.h"
@@ -13,20 +14,22 @@ namespace gbl {
 
 namespace {
 constexpr int kFloatsPerPixel = 20;  // five vec4, see DecodedPixel in decode_pass.comp.glsl
+constexpr int kLayerFloatsPerPixel = 36;  // nine with GBL_LAYERS (a scene with material layers)
 // Rows per band: the read-back buffer holds one band, not the frame (at 3840x2160 the whole
 // frame would be 663 MB on top of the SurfaceImages it is copied into). A multiple of the
 // shader's 8-row workgroups.
 constexpr size_t kBandBytes = size_t(64) << 20;
-uint32_t bandRows(uint32_t width, uint32_t height) {
-    const size_t rowBytes = size_t(width) * kFloatsPerPixel * sizeof(float);
+uint32_t bandRows(uint32_t width, uint32_t height, int floatsPerPixel) {
+    const size_t rowBytes = size_t(width) * size_t(floatsPerPixel) * sizeof(float);
     const uint32_t rows = uint32_t(std::max<size_t>(8, kBandBytes / rowBytes / 8 * 8));
     return std::min(rows, (height + 7) / 8 * 8);
 }
-std::vector<Binding> decodeToImagesSet0() {
+// `layers`: the scene's GBL_LAYERS variant writes eight images (the layers' four after the surfaces').
+std::vector<Binding> decodeToImagesSet0(bool layers) {
     return {
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
+        {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, layers ? 8u : 4u},
     };
 }
 std::vector<Binding> decodeSet0() {
@@ -62,7 +65,7 @@ PassPipeline decodePipeline(const VulkanContext& ctx, const GBufferWiring& wirin
         for (uint32_t i = 0; i < materialTargets; ++i)
             materialBindings.push_back({i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
         MemoPipeline p;
-        p.setLayouts = {createSetLayout(ctx.device, toImages ? decodeToImagesSet0() : decodeSet0(),
+        p.setLayouts = {createSetLayout(ctx.device, toImages ? decodeToImagesSet0(scene.layers != 0) : decodeSet0(),
                                         VK_SHADER_STAGE_COMPUTE_BIT),
                         createSetLayout(ctx.device, targetReadBindings(wiring.targetFormats.size(), scene),
                                         VK_SHADER_STAGE_COMPUTE_BIT)};
@@ -110,12 +113,15 @@ PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& w
     return decodePipeline(ctx, wiring, scene, memo, toImages);
 }
 
-std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
+std::array<GpuImage, 8> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
                                                const GBufferPass& gbuffer, const Buffer& frameConstants,
                                                VkSampler nearestSampler, const GBufferPass* materialPass,
                                                uint32_t rows, PipelineMemo& memo) {
     const uint32_t w = gbuffer.depth.extent.width, h = rows;
-    std::array<GpuImage, 4> images;
+    const TargetReadScene readScene = targetReadScene(gbuffer);
+    const uint32_t count = readScene.layers != 0 ? 8u : 4u;  // the layers' four in a scene with them
+    std::array<GpuImage, 8> all;
+    const std::span<GpuImage> images(all.data(), count);
     for (GpuImage& im : images) {
         ImageDesc desc;
         desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
@@ -124,12 +130,12 @@ std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const G
         desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         im = createImage(ctx, desc);
     }
-    const PassPipeline built = decodePipeline(ctx, wiring, targetReadScene(gbuffer), memo, true);
+    const PassPipeline built = decodePipeline(ctx, wiring, readScene, memo, true);
     DescriptorWriter writer;
-    DecodeSets d = writeDecodeSets(ctx, built.entry->setLayouts, decodeToImagesSet0(), gbuffer, materialPass,
+    DecodeSets d = writeDecodeSets(ctx, built.entry->setLayouts, decodeToImagesSet0(count == 8), gbuffer, materialPass,
                                    frameConstants, nearestSampler, writer);
     std::vector<VkDescriptorSet>& sets = d.sets;
-    for (uint32_t k = 0; k < 4; ++k)
+    for (uint32_t k = 0; k < count; ++k)
         writer.image(sets[0], 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, images[k].view, VK_NULL_HANDLE,
                      VK_IMAGE_LAYOUT_GENERAL, k);
     writer.flush(ctx.device);
@@ -151,7 +157,7 @@ std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const G
     }
     ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, (w + 7) / 8, (h + 7) / 8); });
     vkDestroyDescriptorPool(ctx.device, d.pool, nullptr);
-    return images;
+    return all;
 }
 
 SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiring, const GBufferPass& gbuffer,
@@ -160,11 +166,14 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
                              uint32_t bandRowsWanted, PipelineMemo& memo) {
     const uint32_t w = gbuffer.depth.extent.width, h = uint32_t(depthValues.size() / w);
     const size_t pixels = size_t(w) * h;
-    const uint32_t band = bandRowsWanted ? std::max(8u, bandRowsWanted / 8 * 8) : bandRows(w, h);
-    Buffer output =
-        createBuffer(ctx, size_t(w) * band * kFloatsPerPixel * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    const TargetReadScene readScene = targetReadScene(gbuffer);
+    const bool layers = readScene.layers != 0;  // the shader's DecodedPixel has the layers' vec4s
+    const int floatsPerPixel = layers ? kLayerFloatsPerPixel : kFloatsPerPixel;
+    const uint32_t band = bandRowsWanted ? std::max(8u, bandRowsWanted / 8 * 8) : bandRows(w, h, floatsPerPixel);
+    Buffer output = createBuffer(ctx, size_t(w) * band * size_t(floatsPerPixel) * sizeof(float),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
 
-    const PassPipeline built = decodePassPipeline(ctx, wiring, targetReadScene(gbuffer), memo);
+    const PassPipeline built = decodePassPipeline(ctx, wiring, readScene, memo);
     const uint32_t setCount = uint32_t(built.entry->setLayouts.size());
     const VkPipelineLayout pipelineLayout = built.entry->layout;
     const VkPipeline pipeline = built.entry->pipeline;
@@ -204,6 +213,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
     s.viewDepth = Image(iw, ih, 1);
     s.depth = Image(iw, ih, 1);
     s.coverage.assign(pixels, 0);
+    if (layers) s.allocateLayers(iw, ih);
     const float clearDepth = gbuffer.clearDepth;
     for (uint32_t firstRow = 0; firstRow < h; firstRow += band) {
         const uint32_t rows = std::min(band, h - firstRow);
@@ -213,7 +223,7 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
         // Split across threads: much of this loop's time is the kernel faulting in fresh pages.
         parallelFor(int64_t(rows), 0, [&](int64_t y0, int64_t y1) {
             for (size_t i = first + size_t(y0) * w; i < first + size_t(y1) * w; ++i) {
-                const float* p = src + (i - first) * kFloatsPerPixel;
+                const float* p = src + (i - first) * size_t(floatsPerPixel);
                 for (int c = 0; c < 3; ++c) {
                     s.normal.pixels[i * 3 + c] = p[0 + c];
                     s.baseColor.pixels[i * 3 + c] = p[4 + c];
@@ -227,6 +237,16 @@ SurfaceImages decodeSurfaces(const VulkanContext& ctx, const GBufferWiring& wiri
                 s.viewDepth.pixels[i] = p[19];
                 s.depth.pixels[i] = depthValues[i];
                 s.coverage[i] = depthValues[i] != clearDepth;
+                if (!layers) continue;
+                for (int c = 0; c < 3; ++c) {
+                    s.coatNormal.pixels[i * 3 + c] = p[20 + c];
+                    s.sheenColor.pixels[i * 3 + c] = p[24 + c];
+                    s.anisotropyDirection.pixels[i * 3 + c] = p[28 + c];
+                }
+                s.coat.pixels[i] = p[23];
+                s.sheenRoughness.pixels[i] = p[27];
+                s.anisotropyStrength.pixels[i] = p[31];
+                s.coatRoughness.pixels[i] = p[32];
             }
         });
     }

@@ -28,8 +28,10 @@ PassPipeline decodePassPipeline(const VulkanContext& ctx, const GBufferWiring& w
 // The same decode, kept in device memory for the GPU evaluation (src/evaluate/gpu_evaluator.h):
 // four RGBA32F images (STORAGE, left in GENERAL) of the render's `rows` rows (FrameConstants::band): normal + roughness, base
 // colour + metallic, diffuse colour + occlusion, specular colour + view depth. Zero where no
-// geometry covers the pixel (the HDR image's alpha says which). The caller destroys them.
-std::array<GpuImage, 4> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
+// geometry covers the pixel (the HDR image's alpha says which). In a scene with material layers
+// (GBL_LAYERS) four more, the layers' (gpu_evaluator.h DeviceRender::layers); else those four are
+// empty. The caller destroys them.
+std::array<GpuImage, 8> decodeSurfacesOnDevice(const VulkanContext& ctx, const GBufferWiring& wiring,
                                                const GBufferPass& gbuffer, const Buffer& frameConstants,
                                                VkSampler nearestSampler, const GBufferPass* materialPass,
                                                uint32_t rows, PipelineMemo& memo);

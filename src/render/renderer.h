@@ -117,6 +117,7 @@ struct DeviceRenderImages {
     const VulkanContext& ctx;
     GpuImage hdr;  // RGBA32F, GENERAL: linear radiance, alpha 1 where geometry covers the pixel
     std::array<GpuImage, 4> surfaces{};  // decode_pass.h decodeSurfacesOnDevice; empty without decodeSurfaces
+    std::array<GpuImage, 4> layers{};    // its layers' images in a scene with layers; else empty
 };
 
 struct RenderOutput {

@@ -3,6 +3,7 @@
 #include "renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -311,7 +312,7 @@ void Renderer::decodeOnHost(const GBufferWiring& wiring, const RenderSettings& s
     wordsScope.reset();
     HostScope scope("read-back: decode on the host");
     out.surfaces = decodeSurfacesOnCpu(*wiring.cpuDecoder, words, out.depth, frame, wiring.normalSpace, wiring.depthFormat,
-                                       wiring.storesDepth);
+                                       wiring.storesDepth, gpuScene_.layers != 0);
     out.targetWords.clear();
     if (settings.readTargetWords) out.targetWords = std::move(words.targetWords);
 }
@@ -345,9 +346,12 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
     std::optional<HostScope> wordsScope(std::in_place, "read-back: G-buffer words, depth (and a decode pass)");
     readTargetWords(settings, band, pipes.cpuDecode, passes, out, wordsScope);
     if (settings.keepOnDevice) {
-        if (settings.decodeSurfaces)
-            out.device->surfaces = decodeSurfacesOnDevice(ctx_, wiring, passes.gbuffer, passes.frameBuffer, nearestSampler_,
-                                                          passes.material(), band.rows, pipelines_);
+        if (settings.decodeSurfaces) {
+            const std::array<GpuImage, 8> images = decodeSurfacesOnDevice(
+                ctx_, wiring, passes.gbuffer, passes.frameBuffer, nearestSampler_, passes.material(), band.rows, pipelines_);
+            std::copy(images.begin(), images.begin() + 4, out.device->surfaces.begin());
+            std::copy(images.begin() + 4, images.end(), out.device->layers.begin());
+        }
         destroyGeometryPasses(passes);
         return out;
     }
@@ -366,6 +370,7 @@ RenderOutput Renderer::render(const GBufferWiring& wiring, const RenderSettings&
 DeviceRenderImages::~DeviceRenderImages() {
     destroyImage(ctx, hdr);
     for (GpuImage& s : surfaces) destroyImage(ctx, s);
+    for (GpuImage& l : layers) destroyImage(ctx, l);
 }
 
 Image DeviceRenderImages::downloadHdr() const { return downloadRgba32f(ctx, hdr, VK_IMAGE_LAYOUT_GENERAL); }

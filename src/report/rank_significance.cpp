@@ -112,6 +112,40 @@ SignificanceReport rankWithSignificance(const std::vector<LayoutUnits>& layouts)
     return report;
 }
 
+namespace {
+// runUnits over one class's pixels.
+std::vector<double> classUnits(const RunReport& run, ImageClassMember member) {
+    std::vector<double> units;
+    auto add = [&](const ImageErrors& e) {
+        const std::optional<ImageClassErrors>& c = e.*member;
+        if (!c) return;
+        if (c->flipTiles.empty()) units.push_back(c->flipMean);
+        else units.insert(units.end(), c->flipTiles.begin(), c->flipTiles.end());
+    };
+    if (run.views.empty()) add(*run.image);
+    else
+        for (const ViewMetrics& v : run.views)
+            if (v.image) add(*v.image);
+    return units;
+}
+}  // namespace
+
+std::vector<std::pair<std::string, SignificanceReport>> rankLayerClassesWithSignificance(const ReportModel& model) {
+    std::vector<std::pair<std::string, SignificanceReport>> out;
+    for (const auto& [name, member] : layerImageClasses()) {
+        std::vector<LayoutUnits> layouts;
+        for (const RunReport& r : model.runs) {
+            if (r.isLightingComparison() || r.status != RunStatus::Ok || !r.image || !((*r.image).*member)) continue;
+            layouts.push_back({r.layout, r.iblMode, ((*r.image).*member)->flipMean, {classUnits(r, member)}});
+        }
+        if (layouts.empty()) continue;
+        SignificanceReport sr = rankWithSignificance(layouts);
+        sr.method += std::string("; LDR-FLIP over the ") + name + " class's pixels only (a tile without any counts 0)";
+        out.emplace_back(name, std::move(sr));
+    }
+    return out;
+}
+
 SignificanceReport rankWithSignificance(const ReportModel& model) {
     std::vector<LayoutUnits> layouts;
     for (const RunReport& r : model.runs) {

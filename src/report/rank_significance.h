@@ -32,4 +32,10 @@ SignificanceReport rankWithSignificance(const std::vector<LayoutUnits>& layouts)
 // Of one comparison's layout runs (lighting comparisons left out).
 SignificanceReport rankWithSignificance(const ReportModel& model);
 
+// The same per layer class (measure/layer_classes.h): each run's units are its per-tile LDR-FLIP
+// over the class's pixels of every view (a tile without any: 0 for every layout, a zero
+// difference), its mean error the class's flip_mean. One (class name, report) per class that
+// some run measured, in kLayerClasses order; empty in a scene without layers.
+std::vector<std::pair<std::string, SignificanceReport>> rankLayerClassesWithSignificance(const ReportModel& model);
+
 }  // namespace gbl

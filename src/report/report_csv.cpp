@@ -36,16 +36,21 @@ Column metricColumn(std::string name, Metric metric) {
 
 const char* unitSuffix(ErrorAttribute a) {
     switch (a) {
-        case ErrorAttribute::Normal: return "deg";
+        case ErrorAttribute::Normal:
+        case ErrorAttribute::CoatNormal:
+        case ErrorAttribute::AnisotropyDirection: return "deg";
         case ErrorAttribute::BaseColor:
         case ErrorAttribute::DiffuseColor:
-        case ErrorAttribute::SpecularColor: return "de2000";
+        case ErrorAttribute::SpecularColor:
+        case ErrorAttribute::SheenColor: return "de2000";
         case ErrorAttribute::Depth: return "rel";
         default: return "abs";
     }
 }
 
-std::vector<Column> columns() {
+// `layers`: a report some run of which measured the material layers (ReportModel::hasLayerMetrics):
+// their columns follow the attributes'; a report without them has the columns it always had.
+std::vector<Column> columns(bool layers) {
     std::vector<Column> c;
     const auto text = [&](std::string name, std::string RunReport::*field) {
         c.push_back({std::move(name), [field](const RunReport& r) { return r.*field; }});
@@ -82,11 +87,10 @@ std::vector<Column> columns() {
         if (!r.image) return std::nullopt;
         return r.image->hdrFlipMean;
     }));
-    using ImageClassMember = std::optional<ImageClassErrors> ImageErrors::*;
     const std::pair<const char*, ImageClassMember> imageClasses[] = {{"covered", &ImageErrors::covered},
                                                                      {"metal", &ImageErrors::metal},
                                                                      {"dielectric", &ImageErrors::dielectric}};
-    for (const auto& [className, member] : imageClasses) {
+    const auto imageClass = [&](const char* className, ImageClassMember member) {
         const std::string prefix = std::string("image_") + className + "_";
         const std::pair<const char*, double ImageClassErrors::*> fields[] = {
             {"rel_luminance_mean", &ImageClassErrors::relLuminanceMean},
@@ -101,7 +105,8 @@ std::vector<Column> columns() {
             if (!r.image || !(*r.image.*member)) return std::nullopt;
             return (*r.image.*member)->referenceNoise;
         }));
-    }
+    };
+    for (const auto& [className, member] : imageClasses) imageClass(className, member);
     c.push_back({"ground_truth_batches", [](const RunReport& r) {
                      return r.groundTruth ? std::to_string(r.groundTruth->batches) : std::string();
                  }});
@@ -142,6 +147,26 @@ std::vector<Column> columns() {
                     return s->rmse;
                 }));
         }
+    if (layers) {
+        // The layers' attributes over the pixels carrying them (`all`), then the image per layer class.
+        for (ErrorAttribute a : kLayerErrorAttributes) {
+            const std::string prefix = std::string(errorAttributeName(a)) + "_all_";
+            for (const auto& [statName, stat] : stats)
+                c.push_back(metricColumn(prefix + statName + "_" + unitSuffix(a),
+                                         [a, stat = stat](const RunReport& r) -> std::optional<double> {
+                                             const auto& s = r.attributes[a].all;
+                                             if (!s) return std::nullopt;
+                                             return s->error.*stat;
+                                         }));
+            if (errorAttributeIsColor(a))
+                c.push_back(metricColumn(prefix + "rmse_linear", [a](const RunReport& r) -> std::optional<double> {
+                    const auto& s = r.attributes[a].all;
+                    if (!s) return std::nullopt;
+                    return s->rmse;
+                }));
+        }
+        for (const auto& [className, member] : layerImageClasses()) imageClass(className, member);
+    }
     // Several views (compare --views): the metrics above are means over the views; each one's
     // spread follows, at the end so that the columns above keep their places.
     c.push_back({"views", [](const RunReport& r) { return std::to_string(std::max<size_t>(1, r.views.size())); }, {}});
@@ -192,16 +217,16 @@ std::string csvField(const std::string& text) {
 // (the rows are then only the runs that finished).
 constexpr const char* kReportStatusColumn = "report_status";
 
-std::vector<std::string> reportCsvHeader() {
+std::vector<std::string> reportCsvHeader(bool layers) {
     std::vector<std::string> names;
-    for (const Column& c : columns()) names.push_back(c.name);
+    for (const Column& c : columns(layers)) names.push_back(c.name);
     for (const std::string& c : effectiveCsvHeader()) names.push_back(c);  // report_bandwidth.h
     names.push_back(kReportStatusColumn);
     return names;
 }
 
 std::string reportCsv(const ReportModel& model) {
-    const std::vector<Column> cols = columns();
+    const std::vector<Column> cols = columns(model.hasLayerMetrics());
     const std::string status =
         model.interruption ? "interrupted by " + model.interruption->signal : std::string("complete");
     std::string out;

@@ -12,7 +12,9 @@
 
 namespace gbl {
 
-std::vector<std::string> reportCsvHeader();
+// `layers`: with the material layers' columns (a report where some run measured them,
+// ReportModel::hasLayerMetrics); without, the columns of every report before them.
+std::vector<std::string> reportCsvHeader(bool layers = false);
 std::string reportCsv(const ReportModel& model);  // header + rows
 void writeReportCsv(const std::filesystem::path& path, const ReportModel& model);  // atomic
 

@@ -1,4 +1,5 @@
 #include "report_html.h"
+#include "report_html_layers.h"
 
 #include <algorithm>
 #include <cctype>
@@ -171,19 +172,23 @@ void textRow(std::string& out, const char* name, const std::string& valueHtml) {
 
 void writeAttributeTable(std::string& out, const AttributeErrorTable& table) {
     bool any = false;
-    for (ErrorAttribute a : kErrorAttributes) any = any || !table[a].empty();
+    for (ErrorAttribute a : kAllErrorAttributes) any = any || !table[a].empty();
     if (!any) return;
     out += "<table class=\"small\"><thead><tr><th>Attribute</th><th>Unit</th><th>Class</th>"
            "<th class=\"num\">Mean</th><th class=\"num\">p99</th><th class=\"num\">Max</th>"
            "<th class=\"num\">RMSE</th></tr></thead><tbody>\n";
     const std::pair<const char*, std::optional<AttributeStats> AttributeErrors::*> classes[] = {
         {"all", &AttributeErrors::all}, {"metal", &AttributeErrors::metal}, {"dielectric", &AttributeErrors::dielectric}};
-    for (ErrorAttribute a : kErrorAttributes)
+    for (ErrorAttribute a : kAllErrorAttributes)  // the layers' over the pixels carrying the layer only
         for (const auto& [className, member] : classes) {
             const auto& s = table[a].*member;
             if (!s) continue;
+            const std::string cls = !errorAttributeIsLayer(a) ? std::string(className)
+                                    : member == &AttributeErrors::all
+                                        ? std::string(errorAttributeLayerClass(a))
+                                        : std::string(errorAttributeLayerClass(a)) + ", " + className;
             out += std::string("<tr><td>") + errorAttributeName(a) + "</td><td class=\"muted\">" +
-                   errorAttributeUnit(a) + "</td><td class=\"muted\">" + className + "</td><td class=\"num\">" +
+                   errorAttributeUnit(a) + "</td><td class=\"muted\">" + cls + "</td><td class=\"num\">" +
                    formatSignificant(s->error.mean, 3) + "</td><td class=\"num\">" + formatSignificant(s->error.p99, 3) +
                    "</td><td class=\"num\">" + formatSignificant(s->error.max, 3) + "</td><td class=\"num\">" +
                    (s->rmse ? formatSignificant(*s->rmse, 3) : std::string()) + "</td></tr>\n";
@@ -235,7 +240,9 @@ void writeRunSection(std::string& out, const ReportModel& model, const RunReport
         if (e.hdrFlipMean)
             statRow(out, "HDR-FLIP mean", formatFixed(*e.hdrFlipMean, 4),
                     (std::to_string(e.hdrFlipExposures) + " exposures").c_str());
-        for (const auto& [name, c] : {std::pair{"metal", &e.metal}, std::pair{"dielectric", &e.dielectric}}) {
+        for (const auto& [name, c] : {std::pair{"metal", &e.metal}, std::pair{"dielectric", &e.dielectric},
+                                      std::pair{"coated", &e.coated}, std::pair{"sheen", &e.sheen},
+                                      std::pair{"anisotropic", &e.anisotropic}, std::pair{"plain", &e.plain}}) {
             if (!*c) continue;
             const std::string label = std::string("Rel. luminance error, ") + name;
             statRow(out, label.c_str(), formatSignificant((*c)->relLuminanceMean, 3),
@@ -421,6 +428,7 @@ std::string reportHtml(const ReportModel& model) {
            "reference; means are over covered pixels. Also in <a href=\"report.csv\">report.csv</a> and "
            "<a href=\"report.json\">report.json</a>.</p>\n</section>\n";
 
+    writeLayerSection(out, model);  // report_html_layers.h: nothing without layers
     writeVisibilityVerdict(out, model);
     writeAtlasHtml(out, model);
 

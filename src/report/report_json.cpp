@@ -35,10 +35,11 @@ Json attributeStatsJson(const AttributeStats& a) {
 
 Json attributesJson(const AttributeErrorTable& table) {
     Json j = Json::object();
-    for (ErrorAttribute a : kErrorAttributes) {
+    for (ErrorAttribute a : kAllErrorAttributes) {  // a layer's absent in a scene without layers
         const AttributeErrors& e = table[a];
         if (e.empty()) continue;
         Json entry{{"unit", errorAttributeUnit(a)}};
+        if (errorAttributeIsLayer(a)) entry["over"] = errorAttributeLayerClass(a);  // the pixels carrying the layer
         if (e.all) entry["all"] = attributeStatsJson(*e.all);
         if (e.metal) entry["metal"] = attributeStatsJson(*e.metal);
         if (e.dielectric) entry["dielectric"] = attributeStatsJson(*e.dielectric);
@@ -88,6 +89,7 @@ Json imageErrorsJson(const ImageErrors& e) {
     put("covered", e.covered);
     put("metal", e.metal);
     put("dielectric", e.dielectric);
+    for (const auto& [name, member] : layerImageClasses()) put(name, e.*member);  // absent without layers
     if (!classes.empty()) j["by_class"] = std::move(classes);
     return j;
 }
@@ -373,6 +375,11 @@ Json reportToJson(const ReportModel& model) {
     }
     if (!model.atlas.empty()) j["atlas"] = atlasJson(model);
     if (model.significance) j["significance"] = significanceJson(*model.significance);
+    if (!model.classSignificance.empty()) {  // per layer class: absent in a scene without layers
+        Json byClass = Json::object();
+        for (const auto& [name, sig] : model.classSignificance) byClass[name] = significanceJson(sig);
+        j["significance_by_class"] = std::move(byClass);
+    }
     if (const auto v = budgetVerdict(model)) j["verdict"] = verdictJson(*v);
     j["run"]["lighting"] = run.lighting;
     if (!effectiveRuns(model).empty()) j["bandwidth_as_paid"] = bandwidthAsPaidJson(model);  // report_bandwidth.h

@@ -90,7 +90,7 @@ AttributeErrorTable readAttributes(const Node& n) {
     for (auto it = n.j.begin(); it != n.j.end(); ++it) {
         const Node entry{it.value(), n.child(it.key())};
         bool known = false;
-        for (ErrorAttribute a : kErrorAttributes) {
+        for (ErrorAttribute a : kAllErrorAttributes) {
             if (it.key() != errorAttributeName(a)) continue;
             known = true;
             if (entry["unit"].str() != errorAttributeUnit(a))
@@ -151,6 +151,7 @@ ImageErrors readImageErrors(const Node& n) {
         get("covered", e.covered);
         get("metal", e.metal);
         get("dielectric", e.dielectric);
+        for (const auto& [name, member] : layerImageClasses()) get(name, e.*member);
     }
     return e;
 }
@@ -298,6 +299,28 @@ ReportModel reportFromJson(const Json& json) {
         model.interruption = std::move(in);
     } else if (root.has("status") && root["status"].str() == "interrupted") {
         root.fail("\"status\" is \"interrupted\" but there is no \"interruption\"");
+    }
+    auto readSignificance = [](const Node& sig) {
+        SignificanceReport sr;
+        sr.method = sig["method"].str();
+        for (size_t i = 0; i < sig["pairs"].array().size(); ++i) {
+            const Node p = sig["pairs"].at(i);
+            if (!p["significant"].j.is_boolean()) p["significant"].fail("expected true or false");
+            sr.pairs.push_back({p["better"].str(), p["worse"].str(), p["ibl_mode"].str(), p["mean_difference"].num(),
+                                p["units"].i32(), p["p_value"].num(), p["significant"].j.get<bool>()});
+        }
+        for (size_t i = 0; i < sig["ranks"].array().size(); ++i) {
+            const Node r = sig["ranks"].at(i);
+            sr.ranks.push_back({r["layout"].str(), r["ibl_mode"].str(), r["mean_error"].num(), r["rank"].i32(),
+                                r["rank_low"].i32(), r["rank_high"].i32()});
+        }
+        return sr;
+    };
+    if (root.has("significance_by_class")) {
+        const Node byClass = root["significance_by_class"];
+        byClass.object();
+        for (auto it = byClass.j.begin(); it != byClass.j.end(); ++it)
+            model.classSignificance.emplace_back(it.key(), readSignificance(Node{it.value(), byClass.child(it.key())}));
     }
     if (root.has("significance")) {
         const Node sig = root["significance"];

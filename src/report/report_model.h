@@ -97,34 +97,72 @@ inline BytesPerPixel bytesPerPixelOf(const BandwidthReport& bandwidth) {
             bandwidth.targetBytesPerPixel + bandwidth.depthBytesPerPixel + bandwidth.lightBufferBytesPerPixel};
 }
 
-// The G-buffer attributes whose error is measured, in report order.
-enum class ErrorAttribute : uint8_t { Normal, BaseColor, DiffuseColor, SpecularColor, Roughness, Metallic, Occlusion, Depth };
-constexpr size_t kErrorAttributeCount = 8;
+// The G-buffer attributes whose error is measured, in report order: the eight of every scene,
+// then the seven of the material layers (issue 40), measured only in a scene with layers and
+// only over the pixels whose reference carries the layer (errorAttributeLayerClass).
+enum class ErrorAttribute : uint8_t {
+    Normal, BaseColor, DiffuseColor, SpecularColor, Roughness, Metallic, Occlusion, Depth,
+    Coat, CoatRoughness, CoatNormal, SheenColor, SheenRoughness, AnisotropyStrength, AnisotropyDirection
+};
+constexpr size_t kErrorAttributeCount = 8;  // of kErrorAttributes: every scene's
 constexpr std::array<ErrorAttribute, kErrorAttributeCount> kErrorAttributes = {
     ErrorAttribute::Normal,        ErrorAttribute::BaseColor, ErrorAttribute::DiffuseColor,
     ErrorAttribute::SpecularColor, ErrorAttribute::Roughness, ErrorAttribute::Metallic,
     ErrorAttribute::Occlusion,     ErrorAttribute::Depth};
+constexpr size_t kLayerErrorAttributeCount = 7;
+constexpr std::array<ErrorAttribute, kLayerErrorAttributeCount> kLayerErrorAttributes = {
+    ErrorAttribute::Coat,           ErrorAttribute::CoatRoughness,      ErrorAttribute::CoatNormal,
+    ErrorAttribute::SheenColor,     ErrorAttribute::SheenRoughness,     ErrorAttribute::AnisotropyStrength,
+    ErrorAttribute::AnisotropyDirection};
+constexpr size_t kAllErrorAttributeCount = kErrorAttributeCount + kLayerErrorAttributeCount;
+constexpr std::array<ErrorAttribute, kAllErrorAttributeCount> kAllErrorAttributes = {
+    ErrorAttribute::Normal,        ErrorAttribute::BaseColor,          ErrorAttribute::DiffuseColor,
+    ErrorAttribute::SpecularColor, ErrorAttribute::Roughness,          ErrorAttribute::Metallic,
+    ErrorAttribute::Occlusion,     ErrorAttribute::Depth,              ErrorAttribute::Coat,
+    ErrorAttribute::CoatRoughness, ErrorAttribute::CoatNormal,         ErrorAttribute::SheenColor,
+    ErrorAttribute::SheenRoughness, ErrorAttribute::AnisotropyStrength, ErrorAttribute::AnisotropyDirection};
+inline bool errorAttributeIsLayer(ErrorAttribute a) { return size_t(a) >= kErrorAttributeCount; }
 // "normal", "base_color", ... (the JSON / CSV keys)
 inline const char* errorAttributeName(ErrorAttribute a) {
-    constexpr const char* kNames[] = {"normal",    "base_color", "diffuse_color", "specular_color",
-                                      "roughness", "metallic",   "occlusion",     "depth"};
+    constexpr const char* kNames[] = {"normal",       "base_color",     "diffuse_color",   "specular_color",
+                                      "roughness",    "metallic",       "occlusion",       "depth",
+                                      "coat",         "coat_roughness", "coat_normal",     "sheen_color",
+                                      "sheen_roughness", "anisotropy_strength", "anisotropy_direction"};
     return kNames[size_t(a)];
 }
 // "degrees" (angle), "delta_e_2000" (CIEDE2000), "absolute" (|test - reference|),
 // "relative" (|test - reference| / reference)
 inline const char* errorAttributeUnit(ErrorAttribute a) {
     switch (a) {
-        case ErrorAttribute::Normal: return "degrees";
+        case ErrorAttribute::Normal:
+        case ErrorAttribute::CoatNormal:
+        case ErrorAttribute::AnisotropyDirection: return "degrees";
         case ErrorAttribute::BaseColor:
         case ErrorAttribute::DiffuseColor:
-        case ErrorAttribute::SpecularColor: return "delta_e_2000";
+        case ErrorAttribute::SpecularColor:
+        case ErrorAttribute::SheenColor: return "delta_e_2000";
         case ErrorAttribute::Depth: return "relative";
         default: return "absolute";
     }
 }
-// Base / diffuse / specular colour: measured in CIEDE2000, with an RMSE of linear RGB too.
+// Base / diffuse / specular / sheen colour: measured in CIEDE2000, with an RMSE of linear RGB too.
 inline bool errorAttributeIsColor(ErrorAttribute a) {
-    return a == ErrorAttribute::BaseColor || a == ErrorAttribute::DiffuseColor || a == ErrorAttribute::SpecularColor;
+    return a == ErrorAttribute::BaseColor || a == ErrorAttribute::DiffuseColor || a == ErrorAttribute::SpecularColor ||
+           a == ErrorAttribute::SheenColor;
+}
+// The material class (measure/layer_classes.h) a layer attribute is measured over: "coated",
+// "sheen" or "anisotropic"; "" for the eight of every scene (all covered pixels).
+inline const char* errorAttributeLayerClass(ErrorAttribute a) {
+    switch (a) {
+        case ErrorAttribute::Coat:
+        case ErrorAttribute::CoatRoughness:
+        case ErrorAttribute::CoatNormal: return "coated";
+        case ErrorAttribute::SheenColor:
+        case ErrorAttribute::SheenRoughness: return "sheen";
+        case ErrorAttribute::AnisotropyStrength:
+        case ErrorAttribute::AnisotropyDirection: return "anisotropic";
+        default: return "";
+    }
 }
 
 // Errors of one attribute over one set of pixels.
@@ -134,7 +172,8 @@ struct AttributeStats {
 };
 
 // One attribute, over all covered pixels and per material class; absent when not applicable
-// (the attribute is not measured, or no pixel of that class is covered).
+// (the attribute is not measured, or no pixel of that class is covered). A layer attribute's
+// pixels are those of its layer class only (errorAttributeLayerClass): `all` is all of those.
 struct AttributeErrors {
     std::optional<AttributeStats> all;
     std::optional<AttributeStats> metal;       // pixels of metal materials (as the compare command classes them)
@@ -143,7 +182,7 @@ struct AttributeErrors {
 };
 
 struct AttributeErrorTable {
-    std::array<AttributeErrors, kErrorAttributeCount> byAttribute{};
+    std::array<AttributeErrors, kAllErrorAttributeCount> byAttribute{};  // the layers' empty without layers
     AttributeErrors& operator[](ErrorAttribute a) { return byAttribute[size_t(a)]; }
     const AttributeErrors& operator[](ErrorAttribute a) const { return byAttribute[size_t(a)]; }
 };
@@ -157,6 +196,9 @@ struct ImageClassErrors {
     // The reference's own estimated noise over the same pixels, in the unit of relLuminanceMean
     // (present when the reference is a progressive ground truth).
     std::optional<double> referenceNoise;
+    // Layer classes, CPU evaluation only: LDR-FLIP's mean per tile over the class's pixels, the
+    // units of the class's significance test (not written to report.json).
+    std::vector<float> flipTiles;
 };
 
 // How the ground-truth reference converged (render/renderer.h GroundTruthStats).
@@ -187,7 +229,20 @@ struct ImageErrors {
     int hdrFlipExposures = 0;
     // Per material class (absent in reports written before they existed).
     std::optional<ImageClassErrors> covered, metal, dielectric;
+    // Per layer class (measure/layer_classes.h: a pixel may be in several); absent in a scene
+    // without layers, and a class without pixels.
+    std::optional<ImageClassErrors> coated, sheen, anisotropic, plain;
 };
+// The layer classes' members of ImageErrors with their names, in kLayerClasses order.
+using ImageClassMember = std::optional<ImageClassErrors> ImageErrors::*;
+inline const std::array<std::pair<const char*, ImageClassMember>, 4>& layerImageClasses() {
+    static const std::array<std::pair<const char*, ImageClassMember>, 4> kClasses = {{
+        {"coated", &ImageErrors::coated},
+        {"sheen", &ImageErrors::sheen},
+        {"anisotropic", &ImageErrors::anisotropic},
+        {"plain", &ImageErrors::plain}}};
+    return kClasses;
+}
 
 struct PassTimes {
     double gbufferMs = 0.0;   // geometry (G-buffer) pass
@@ -345,6 +400,20 @@ struct ReportModel {
     // written before it existed.
     std::vector<AtlasEntry> atlas;
     std::optional<SignificanceReport> significance;
+    // The same test per layer class (rank_significance.h), on LDR-FLIP over the class's pixels:
+    // (class name, report) for each layer class some run measured; empty in a scene without layers.
+    std::vector<std::pair<std::string, SignificanceReport>> classSignificance;
+    // Some run measured the material layers: the layer columns of report.csv are written.
+    bool hasLayerMetrics() const {
+        for (const RunReport& r : runs) {
+            for (ErrorAttribute a : kLayerErrorAttributes)
+                if (!r.attributes[a].empty()) return true;
+            if (r.image)
+                for (const auto& [name, m] : layerImageClasses())
+                    if ((*r.image).*m) return true;
+        }
+        return false;
+    }
 };
 
 }  // namespace gbl

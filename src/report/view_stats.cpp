@@ -103,7 +103,7 @@ std::optional<ImageClassErrors> meanClass(const std::vector<const std::optional<
 
 void averageViews(RunReport& run) {
     if (run.views.empty()) return;
-    for (ErrorAttribute a : kErrorAttributes) {
+    for (ErrorAttribute a : kAllErrorAttributes) {
         using Member = std::optional<AttributeStats> AttributeErrors::*;
         for (Member m : {&AttributeErrors::all, &AttributeErrors::metal, &AttributeErrors::dielectric}) {
             std::vector<const std::optional<AttributeStats>*> in;
@@ -133,7 +133,8 @@ void averageViews(RunReport& run) {
     e.hdrFlipMean = meanOf(images, [](const ImageErrors* p) { return p->hdrFlipMean; });
     e.hdrFlipExposures = images.front()->hdrFlipExposures;
     using ClassMember = std::optional<ImageClassErrors> ImageErrors::*;
-    for (ClassMember m : {&ImageErrors::covered, &ImageErrors::metal, &ImageErrors::dielectric}) {
+    for (ClassMember m : {&ImageErrors::covered, &ImageErrors::metal, &ImageErrors::dielectric, &ImageErrors::coated,
+                          &ImageErrors::sheen, &ImageErrors::anisotropic, &ImageErrors::plain}) {
         std::vector<const std::optional<ImageClassErrors>*> in;
         for (const ImageErrors* p : images) in.push_back(&(p->*m));
         e.*m = meanClass(in);

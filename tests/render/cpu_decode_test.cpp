@@ -70,13 +70,20 @@ void compareDecodes(const char* name, const char* view, const RenderOutput& host
     ASSERT_GT(covered, a.coverage.size() / 4) << "too little geometry to compare";
     ASSERT_LT(covered, a.coverage.size()) << "no background pixel to compare";
 
+    // The layers' images in a scene with layers (issue 40), as both decodes fill them.
+    ASSERT_EQ(a.hasLayers(), b.hasLayers());
     const std::pair<const Image*, const Image*> planes[] = {
         {&a.normal, &b.normal},       {&a.baseColor, &b.baseColor}, {&a.diffuseColor, &b.diffuseColor},
         {&a.specularColor, &b.specularColor}, {&a.roughness, &b.roughness}, {&a.metallic, &b.metallic},
         {&a.occlusion, &b.occlusion}, {&a.emissive, &b.emissive}, {&a.depth, &b.depth},
-        {&a.viewDepth, &b.viewDepth}};
+        {&a.viewDepth, &b.viewDepth}, {&a.coat, &b.coat}, {&a.coatRoughness, &b.coatRoughness},
+        {&a.coatNormal, &b.coatNormal}, {&a.sheenColor, &b.sheenColor}, {&a.sheenRoughness, &b.sheenRoughness},
+        {&a.anisotropyStrength, &b.anisotropyStrength}, {&a.anisotropyDirection, &b.anisotropyDirection}};
     const char* names[] = {"normal",    "base colour", "diffuse colour", "specular colour", "roughness",
-                           "metallic",  "occlusion",   "emissive",       "depth",           "view depth"};
+                           "metallic",  "occlusion",   "emissive",       "depth",           "view depth",
+                           "coat",      "coat roughness", "coat normal", "sheen colour",    "sheen roughness",
+                           "anisotropy strength", "anisotropy direction"};
+    static_assert(std::size(planes) == std::size(names));
     size_t beyond = 0, differ = 0, values = 0;
     for (size_t p = 0; p < std::size(planes); ++p) {
         const PlaneDiff d = comparePlane(*planes[p].first, *planes[p].second, names[p]);
@@ -136,6 +143,42 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
     }
 }
 
+
+// The same with material layers (issue 40): the sphere grid with a clear coat, a sheen or
+// anisotropy on every fourth sphere (layers_render_test's), where both decodes fill the seven
+// layer images: the reference's float32 layers, and 0 from ue4, which stores none.
+TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
+    Scene scene = makeSphereGridScene();
+    for (size_t i = 0; i + 1 < scene.materials.size(); ++i) {
+        Material& m = scene.materials[i];
+        if (i % 4 == 1) {
+            m.clearcoatFactor = 1.0f;
+            m.clearcoatRoughnessFactor = 0.15f;
+        } else if (i % 4 == 2) {
+            m.sheenColorFactor = glm::vec3(0.9f, 0.7f, 0.4f);
+            m.sheenRoughnessFactor = 0.5f;
+        } else if (i % 4 == 3) {
+            m.anisotropyStrength = 0.8f;
+            m.anisotropyRotation = 0.7f;
+        }
+    }
+    const EnvironmentMap sky = makeProceduralSky(64);
+    Renderer renderer(test::sharedContext(), scene, sky);
+    const RenderSettings pass = test::decodedFrame(160, 90);
+    RenderSettings cpu = pass;
+    cpu.decodeOnCpu = true;
+    for (const char* name : {"reference", "ue4"}) {
+        SCOPED_TRACE(name);
+        const GBufferWiring wiring = generateWiring(loadLayout(name));
+        const RenderOutput host = renderer.render(wiring, cpu), device = renderer.render(wiring, pass);
+        ASSERT_TRUE(host.surfaces.hasLayers());
+        compareDecodes(name, "scene camera", host, device);
+        size_t coated = 0;
+        for (float c : device.surfaces.coat.pixels) coated += c > 0.0f;
+        if (std::string(name) == "reference") EXPECT_GT(coated, 100u);  // the coated spheres are in view
+        else EXPECT_EQ(coated, 0u);  // ue4 drops the coat: it decodes 0
+    }
+}
 
 // The decoded view depth against the exact view depth of each stored depth value: the float
 // projection the depth was rasterised with, solved for view z in double precision.
