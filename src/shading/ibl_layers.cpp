@@ -13,7 +13,6 @@
 namespace gbl::shading {
 
 namespace {
-float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
 glm::vec2 fractGlsl(glm::vec2 x) { return x - glm::floor(x); }
 glm::vec3 reflectAbout(glm::vec3 V, glm::vec3 H) { return 2.0f * glm::dot(V, H) * H - V; }
 }  // namespace
