@@ -15,7 +15,7 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json number(double v) { return jsonNumber(v); }
+Json bwNumber(double v) { return jsonNumber(v); }
 
 std::string numberText(double v) {
     if (std::isnan(v)) return "nan";
@@ -56,19 +56,19 @@ Json effectiveBandwidthJson(const EffectiveBandwidth& e) {
         targets.push_back(Json{{"name", t.name},
                                {"format", t.format},
                                {"bytes_per_pixel", t.bytesPerPixel},
-                               {"desktop_dcc_bytes_per_pixel", number(t.dccBytesPerPixel)},
-                               {"dcc_uncompressed_blocks", number(t.dccUncompressedFraction)},
+                               {"desktop_dcc_bytes_per_pixel", bwNumber(t.dccBytesPerPixel)},
+                               {"dcc_uncompressed_blocks", bwNumber(t.dccUncompressedFraction)},
                                {"afbc", t.afbc},
-                               {"mali_afbc_read_bytes_per_pixel", number(t.afbcBytesPerPixel)},
-                               {"mali_afbc_write_bytes_per_pixel", number(t.afbcWriteBytesPerPixel)},
-                               {"afbc_solid_superblocks", number(t.afbcSolidFraction)},
-                               {"afbc_uncompressed_subblocks", number(t.afbcUncompressedFraction)}});
+                               {"mali_afbc_read_bytes_per_pixel", bwNumber(t.afbcBytesPerPixel)},
+                               {"mali_afbc_write_bytes_per_pixel", bwNumber(t.afbcWriteBytesPerPixel)},
+                               {"afbc_solid_superblocks", bwNumber(t.afbcSolidFraction)},
+                               {"afbc_uncompressed_subblocks", bwNumber(t.afbcUncompressedFraction)}});
     Json classes = Json::array();
     for (const ClassTraffic& c : e.classes)
         classes.push_back(Json{{"class", c.gpuClass},
-                               {"bytes_per_pixel", number(c.bytesPerPixel)},
-                               {"traffic_bytes_1080p", number(c.trafficBytes)},
-                               {"gb_per_s_1080p60", number(c.gbPerSecond)},
+                               {"bytes_per_pixel", bwNumber(c.bytesPerPixel)},
+                               {"traffic_bytes_1080p", bwNumber(c.trafficBytes)},
+                               {"gb_per_s_1080p60", bwNumber(c.gbPerSecond)},
                                {"assumes", c.assumes}});
     Json tile = Json::array();
     for (const TileFit& f : e.tile)
@@ -82,10 +82,10 @@ Json effectiveBandwidthJson(const EffectiveBandwidth& e) {
                 {"width", e.width},
                 {"height", e.height},
                 {"lighting", e.lighting.text()},
-                {"lighting_reads_per_pixel", number(e.lighting.readsPerPixel)},
-                {"nominal_bytes_per_pixel", number(e.nominalBytesPerPixel)},
-                {"nominal_traffic_bytes_1080p", number(e.nominalTrafficBytes)},
-                {"nominal_gb_per_s_1080p60", number(e.nominalGbPerSecond)},
+                {"lighting_reads_per_pixel", bwNumber(e.lighting.readsPerPixel)},
+                {"nominal_bytes_per_pixel", bwNumber(e.nominalBytesPerPixel)},
+                {"nominal_traffic_bytes_1080p", bwNumber(e.nominalTrafficBytes)},
+                {"nominal_gb_per_s_1080p60", bwNumber(e.nominalGbPerSecond)},
                 {"targets", std::move(targets)},
                 {"classes", std::move(classes)},
                 {"tile_memory", std::move(tile)}};
@@ -181,8 +181,8 @@ Json bandwidthAsPaidJson(const ReportModel& model) {
             Json line{{"budget_bytes_per_pixel", l.budget ? Json(*l.budget) : Json("inf")}};
             if (!l.best.empty()) {
                 line["best"] = l.best;
-                line["bytes_per_pixel"] = number(l.bytes);
-                line["flip_mean"] = number(l.flipMean);
+                line["bytes_per_pixel"] = bwNumber(l.bytes);
+                line["flip_mean"] = bwNumber(l.flipMean);
             }
             lines.push_back(std::move(line));
         }
