@@ -407,4 +407,81 @@ vec3 decodeNormalXyFloat16(uvec2 code) {
     return normalize(vec3(x, y, z));
 }
 
+// ---------------------------------------------------------------------------------------------
+// Material layers as the engines store them (issue 40; layouts/README.md, "Codes of each encoding").
+// ---------------------------------------------------------------------------------------------
+
+// unorm_round_even: saturate(x) * (2^bits - 1) rounded to the nearest code with ties to even, as
+// WGSL's round() does: Bevy 0.19's clear-coat strength, u32(round(saturate(clearcoat) * 15.0))
+// (bevyengine/bevy v0.19.0 c6f634ca, crates/bevy_pbr/src/deferred/pbr_deferred_functions.wgsl:42;
+// pull request 23359). quantizeUnorm rounds ties up: 0.3 * 15 = 4.5 is code 4 here, 5 there.
+// Decoded as unorm, code / (2^bits - 1) (:115). Error <= half a step.
+uint quantizeUnormRoundEven(float x, uint bits) {
+    precise float s = float((1u << bits) - 1u);
+    precise float q = roundEven(clamp(x, 0.0, 1.0) * s);
+    return min(uint(q), (1u << bits) - 1u);
+}
+
+// coat_roughness_bevy: Bevy 0.19's clear-coat perceptual roughness, clamped to [0, 0.5] and
+// spread over the codes: u32(round(clamp(r, 0.0, 0.5) * 30.0)) at 4 bits (30 = 2 (2^4 - 1)), ties
+// to even (pbr_deferred_functions.wgsl:43-44); read back f32(code) / 30.0 (:116). A coat rougher
+// than 0.5 reads 0.5 ("greater than 0.5 and the specular lobe is so diffuse, you can't tell it's
+// there", the pull request). Error inside [0, 0.5] <= half a step, 1/60 at 4 bits.
+uint encodeCoatRoughnessBevy(float r, uint bits) {
+    precise float s = float(((1u << bits) - 1u) * 2u);
+    precise float q = roundEven(clamp(r, 0.0, 0.5) * s);
+    return min(uint(q), (1u << bits) - 1u);
+}
+
+float decodeCoatRoughnessBevy(uint code, uint bits) { return float(code) / float(((1u << bits) - 1u) * 2u); }
+
+// unorm_signed: x in [-1, 1] stored as the unorm of x * 0.5 + 0.5 and read back code / (2^bits - 1)
+// * 2 - 1: UE's EncodeWorldTangentAndAnisotropy, Anisotropy * 0.5 + 0.5 into GBufferF.a, and its
+// read InGBufferF.a * 2 - 1 (UE 5.3.2, DeferredShadingCommon.ush:222-228, 1018). x * 0.5 is exact,
+// so a fused multiply-add gives the same code. 0 has no code of its own: it reads 1 / (2^bits - 1).
+uint quantizeUnormSigned(float x, uint bits) { return quantizeUnorm(x * 0.5 + 0.5, bits); }
+
+float dequantizeUnormSigned(uint code, uint bits) { return dequantizeUnorm(code, bits) * 2.0 - 1.0; }
+
+// UE's clear-coat bottom normal (CLEAR_COAT_BOTTOM_NORMAL, r.ClearCoatNormal = 1): GBufferA holds
+// the top (coat) normal, CustomData.a and .z the octahedral delta of the bottom normal,
+// (oct(bottom) - oct(top)) * 0.25 + 128/255 (ShadingModelsMaterial.ush:96-116), read back as
+// oct = code / (2^bits - 1) * 4 - 512/255 + oct(top) and unfolded (ClearCoatCommon.ush:5-14).
+// UE's octahedron (OctahedralCommon.ush:18-34): n.xy / |n|_1, folded where n.z <= 0 with
+// select(n.xy >= 0, 1, -1); the unfold subtracts t = max(-z, 0) towards zero, then normalises.
+vec2 octEncodeUe(vec3 n) {
+    precise float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    precise float x = n.x / l1;
+    precise float y = n.y / l1;
+    if (n.z <= 0.0) {
+        precise float fx = (1.0 - abs(y)) * (x >= 0.0 ? 1.0 : -1.0);
+        precise float fy = (1.0 - abs(x)) * (y >= 0.0 ? 1.0 : -1.0);
+        return vec2(fx, fy);
+    }
+    return vec2(x, y);
+}
+
+vec3 octDecodeUe(vec2 o) {
+    precise vec3 n = vec3(o.x, o.y, 1.0 - abs(o.x) - abs(o.y));
+    precise float t = max(-n.z, 0.0);
+    n.x += n.x >= 0.0 ? -t : t;
+    n.y += n.y >= 0.0 ? -t : t;
+    return normalize(n);
+}
+
+uvec2 encodeNormalOctahedralDeltaUe(vec3 bottom, vec3 top, uint bits) {
+    vec2 o1 = octEncodeUe(bottom);
+    vec2 o2 = octEncodeUe(top);
+    precise float dx = (o1.x - o2.x) * 0.25 + 128.0 / 255.0;
+    precise float dy = (o1.y - o2.y) * 0.25 + 128.0 / 255.0;
+    return uvec2(quantizeUnorm(dx, bits), quantizeUnorm(dy, bits));
+}
+
+vec3 decodeNormalOctahedralDeltaUe(uvec2 code, vec3 top, uint bits) {
+    vec2 o2 = octEncodeUe(top);
+    precise float ox = (dequantizeUnorm(code.x, bits) * 4.0 - 512.0 / 255.0) + o2.x;
+    precise float oy = (dequantizeUnorm(code.y, bits) * 4.0 - 512.0 / 255.0) + o2.y;
+    return octDecodeUe(vec2(ox, oy));
+}
+
 #endif  // GBL_ENGINE_ENCODINGS_GLSL

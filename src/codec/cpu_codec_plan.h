@@ -36,6 +36,9 @@ enum class Codec : uint8_t {
     SmoothnessCry,
     Reflectance,
     ReflectanceBevyWebgl2,
+    UnormRoundEven,
+    CoatRoughnessBevy,
+    UnormSigned,
     CryGlossPower,
     Kz2LogPower,  // the last scalar (isScalar)
     Srgb8,
