@@ -150,6 +150,7 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
                     map1(n, c, out, [bk](uint x) { return decodeCoatRoughnessBevy(x, bk); });
                     break;
                 case Codec::UnormSigned: map1(n, c, out, [bk](uint x) { return dequantizeUnormSigned(x, bk); }); break;
+                case Codec::UnormSqrt: map1(n, c, out, [](uint x) { return decodeUnormSqrt(x); }); break;
                 case Codec::ReflectanceBevyWebgl2:
                     map1(n, c, out, [bk](uint x) { return specularFromReflectanceBevyWebgl2(dequantizeUnorm(x, bk)); });
                     break;

@@ -34,6 +34,7 @@ Codec resolveCodec(const std::string& e) {
         {"unorm_round_even", Codec::UnormRoundEven},
         {"coat_roughness_bevy", Codec::CoatRoughnessBevy},
         {"unorm_signed", Codec::UnormSigned},
+        {"unorm_sqrt", Codec::UnormSqrt},
         {"srgb8", Codec::Srgb8},
         {"luma", Codec::Luma},
         {"ycbcr", Codec::YCbCr},

@@ -39,6 +39,7 @@ enum class Codec : uint8_t {
     UnormRoundEven,
     CoatRoughnessBevy,
     UnormSigned,
+    UnormSqrt,
     CryGlossPower,
     Kz2LogPower,  // the last scalar (isScalar)
     Srgb8,

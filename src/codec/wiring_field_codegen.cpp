@@ -87,6 +87,7 @@ std::string scalarEncode(const std::string& enc, const std::string& x, int bits)
     if (enc == "unorm_round_even") return "quantizeUnormRoundEven(" + x + ", " + b + ")";
     if (enc == "coat_roughness_bevy") return "encodeCoatRoughnessBevy(" + x + ", " + b + ")";
     if (enc == "unorm_signed") return "quantizeUnormSigned(" + x + ", " + b + ")";
+    if (enc == "unorm_sqrt") return "encodeUnormSqrt(" + x + ")";
     throw std::logic_error("wiring: no scalar encoder for " + enc);
 }
 
@@ -109,6 +110,7 @@ std::string scalarDecode(const std::string& enc, const std::string& c, int bits)
     if (enc == "unorm_round_even") return "dequantizeUnorm(" + c + ", " + b + ")";
     if (enc == "coat_roughness_bevy") return "decodeCoatRoughnessBevy(" + c + ", " + b + ")";
     if (enc == "unorm_signed") return "dequantizeUnormSigned(" + c + ", " + b + ")";
+    if (enc == "unorm_sqrt") return "decodeUnormSqrt(" + c + ")";
     throw std::logic_error("wiring: no scalar decoder for " + enc);
 }
 

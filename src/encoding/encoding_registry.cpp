@@ -65,6 +65,10 @@ std::vector<EncodingInfo> makeRegistry() {
                  "over [0, 0.5], error <= 1/60 inside",
                  "bevyengine/bevy v0.19.0 c6f634ca crates/bevy_pbr/src/deferred/pbr_deferred_functions.wgsl:43-44, "
                  "116 (clear-coat perceptual roughness, pull request 23359)"});
+    v.push_back({"unorm_sqrt", K::Scalar, 1, 8, 8, 8, 0, false, "[0,1]",
+                 "sqrt(saturate(x)) as 8-bit unorm, exact via 255 thresholds (no sqrt); decodes (code / 255)^2",
+                 "UE 5.3.2 DeferredShadingCommon.ush:189-192, 1031-1034 (EncodeSubsurfaceColor / "
+                 "ExtractSubsurfaceColor: the Cloth model's fuzz colour, ShadingModelsMaterial.ush:133-139)"});
     v.push_back({"unorm_signed", K::Scalar, 1, 8, 2, 16, 0, false, "[-1,1]",
                  "x * 0.5 + 0.5 as unorm; decoded code / (2^b - 1) * 2 - 1 (0 reads 1 / (2^b - 1))",
                  "UE 5.3.2 DeferredShadingCommon.ush:222-228, 1018 (EncodeWorldTangentAndAnisotropy: GBufferF.a "

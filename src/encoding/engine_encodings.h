@@ -206,6 +206,24 @@ inline uint quantizeUnormSigned(float x, uint bits) { return quantizeUnorm(x * 0
 
 inline float dequantizeUnormSigned(uint code, uint bits) { return dequantizeUnorm(code, bits) * 2.0f - 1.0f; }
 
+// unorm_sqrt (8 bits): code = round(255 sqrt(saturate(x))) by thresholds, decoded (code / 255)^2:
+// UE's EncodeSubsurfaceColor / ExtractSubsurfaceColor (the Cloth model's fuzz colour).
+extern const float kUnormSqrtEncodeThresholds[255];
+inline uint encodeUnormSqrt(float x) {
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kUnormSqrtEncodeThresholds[mid] <= x) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+inline float decodeUnormSqrt(uint code) {
+    float d = dequantizeUnorm(code & 255u, 8u);
+    return d * d;
+}
+
 // UE's clear-coat bottom normal (CLEAR_COAT_BOTTOM_NORMAL): the octahedral point of the bottom
 // normal minus that of the pixel's (top) normal, * 0.25 + 128/255, as two unorm codes; decoded
 // code / (2^bits - 1) * 4 - 512/255 + oct(top), unfolded and normalised. UE's octahedron

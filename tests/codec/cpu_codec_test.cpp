@@ -76,6 +76,7 @@ uint scalarEncode(const Field& f, float x, size_t i) {
     if (e == "unorm_round_even") return quantizeUnormRoundEven(x, b);
     if (e == "coat_roughness_bevy") return encodeCoatRoughnessBevy(x, b);
     if (e == "unorm_signed") return quantizeUnormSigned(x, b);
+    if (e == "unorm_sqrt") return encodeUnormSqrt(x);
     throw std::logic_error("cpu codec: no scalar encoder for " + e);
 }
 
@@ -98,6 +99,7 @@ float scalarDecode(const Field& f, uint c, size_t i) {
     if (e == "unorm_round_even") return dequantizeUnorm(c, b);
     if (e == "coat_roughness_bevy") return decodeCoatRoughnessBevy(c, b);
     if (e == "unorm_signed") return dequantizeUnormSigned(c, b);
+    if (e == "unorm_sqrt") return decodeUnormSqrt(c);
     throw std::logic_error("cpu codec: no scalar decoder for " + e);
 }
 

@@ -69,6 +69,7 @@ std::vector<Surface> makeSurfaces(int w, int h, uint32_t seed) {
             s.coat = u(rng);
             s.coatRoughness = u(rng);
             s.anisotropyStrength = u(rng);
+            s.sheenColor = glm::vec3(u(rng), u(rng), u(rng));
             glm::vec3 t;
             do t = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
             while (glm::dot(t, t) > 1.0f || glm::dot(t, t) < 1e-4f);
@@ -197,6 +198,7 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                             case Attribute::CoatRoughness: return glm::vec3(s.coatRoughness);
                             case Attribute::AnisotropyStrength: return glm::vec3(s.anisotropyStrength);
                             case Attribute::AnisotropyDirection: return s.anisotropyDirection;
+                            case Attribute::SheenColor: return s.sheenColor;
                             default: return glm::vec3(0.0f);
                         }
                     };
@@ -245,6 +247,10 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                     } else if (e == "coat_roughness_bevy") {  // clamps to [0, 0.5], half a step of 2 (2^b - 1)
                         err = std::abs(std::clamp(x.x, 0.0f, 0.5f) - y.x);
                         bound = 0.5 / (2.0 * (std::ldexp(1.0, b) - 1.0)) + 1e-7;
+                    } else if (e == "unorm_sqrt") {  // half a code in sqrt(x), times 2 sqrt(x) <= 2
+                        for (int c = 0; c < 3; ++c)
+                            err = std::max(err, double(std::abs(std::clamp(x[c], 0.0f, 1.0f) - y[c])));
+                        bound = 1.0 / 255.0 + 1e-6;
                     } else if (e == "unorm_signed") {  // a step of 2 / (2^b - 1) in x
                         err = std::abs(x.x - y.x);
                         bound = 2.0 * unormBound(b);

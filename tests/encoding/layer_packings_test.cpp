@@ -225,8 +225,8 @@ TEST(LayerPackings, Ue5ClearCoatCustomDataEqualsSetGBufferForShadingModel) {
     auto make = [&](size_t i) {
         Surface s;
         s.normal = glm::vec3(0, 0, 1);
-        s.coat = scalarInput(rng, i % 1024, 255, 1.0f);
-        s.coatRoughness = scalarInput(rng, (i / 1024) % 1024, 255, 1.0f);
+        s.coat = scalarInput(rng, i % 4096, 255, 1.0f);  // the ties in a fifth of each
+        s.coatRoughness = scalarInput(rng, (i * 7919u) % 4093u, 255, 1.0f);
         keep[i % kImage] = s;
         return s;
     };
@@ -247,6 +247,76 @@ TEST(LayerPackings, Ue5ClearCoatCustomDataEqualsSetGBufferForShadingModel) {
     CpuGBuffer one;
     codec.encode(std::vector<Surface>(1, Surface{}), 1, 1, one);
     EXPECT_EQ(one.targetWords.at(targetIndex(layout, "GBufferB"))[0] >> 24u, 0x84u);
+}
+
+// ==================================================================================================
+// UE 5.3.2, Cloth: CustomData.rgb = EncodeSubsurfaceColor(SubsurfaceColor) = sqrt(saturate(c))
+// (ShadingModelsMaterial.ush:133-139, DeferredShadingCommon.ush:189-192) into UNORM bytes, read
+// Square(CustomData.rgb) (:1031-1034); GBufferB.a = SHADINGMODELID_CLOTH (8) | 1 << 7.
+// ==================================================================================================
+
+TEST(LayerPackings, UnormSqrtThresholdsAreTheExactSquares) {
+    // kUnormSqrtEncodeThresholds[k] >= (2k + 1)^2 / 260100 > the float below it; T * 260100 is exact
+    // in double (24 + 18 bits).
+    for (int k = 0; k < 255; ++k) {
+        const double t = double(gbl::enc::kUnormSqrtEncodeThresholds[k]);
+        const double below = double(std::nextafter(gbl::enc::kUnormSqrtEncodeThresholds[k], 0.0f));
+        const double square = double((2 * k + 1) * (2 * k + 1));
+        ASSERT_GE(t * 260100.0, square) << k;
+        ASSERT_LT(below * 260100.0, square) << k;
+    }
+    EXPECT_EQ(gbl::enc::encodeUnormSqrt(-1.0f), 0u);
+    EXPECT_EQ(gbl::enc::encodeUnormSqrt(2.0f), 255u);
+    EXPECT_EQ(gbl::enc::decodeUnormSqrt(255u), 1.0f);
+}
+
+TEST(LayerPackings, Ue5ClothCustomDataEqualsEncodeSubsurfaceColor) {
+    const Layout layout = gbl::loadLayout("ue5-cloth");
+    const size_t d = targetIndex(layout, "GBufferD");
+    Rng rng(8128);
+    std::vector<Surface> keep(kImage);
+    auto make = [&](size_t i) {
+        Surface s;
+        s.normal = glm::vec3(0, 0, 1);
+        // sqrt's ties: c = ((k + 0.5) / 255)^2 and the floats beside it, then anything.
+        auto one = [&](size_t j) {
+            if (j < 255 * 3) {
+                const float t = float(std::pow((double(j / 3) + 0.5) / 255.0, 2.0));
+                return j % 3 == 0 ? t : j % 3 == 1 ? std::nextafter(t, -1.0f) : std::nextafter(t, 2.0f);
+            }
+            return float(rng.u01() * 1.2 - 0.1);
+        };
+        s.sheenColor = glm::vec3(one(i % 4096), one((i * 7919u) % 4093u), one(4096));  // ties in a fifth of r, g
+        keep[i % kImage] = s;
+        return s;
+    };
+    Tally custom;
+    runCodec(layout, d, make, [&](size_t i, int, int, const uint32_t* w) {
+        const Surface& s = keep[i % kImage];
+        HardwareCode c[3];
+        for (int k = 0; k < 3; ++k) c[k] = hardwareUnorm(std::sqrt(clamp01(s.sheenColor[k])), 8);
+        ++custom.compared;
+        if (c[0].nearTie || c[1].nearTie || c[2].nearTie) ++custom.nearTies;
+        const uint32_t r = (w[0] >> 16u) & 0xFFu, g = (w[0] >> 8u) & 0xFFu, b = w[0] & 0xFFu;
+        if (!accepts(c[0], r) || !accepts(c[1], g) || !accepts(c[2], b) || (w[0] >> 24u) != 0u)
+            custom.fail("fuzz colour " + vec(s.sheenColor) + ": GBufferD " + hex(w[0]));
+    });
+    std::printf("[ ue5 cloth] %zu CustomData words (%zu near a tie)\n", custom.compared, custom.nearTies);
+    EXPECT_EQ(custom.mismatches, 0u);
+    EXPECT_GT(custom.nearTies, 0u);
+    // The read: Square(code / 255) for every code, and GBufferB.a = 0x88.
+    const gbl::CpuCodec codec(layout);
+    std::vector<Surface> all(256);
+    for (int k = 0; k < 256; ++k) all[size_t(k)].sheenColor = glm::vec3(float(k) / 255.0f * (float(k) / 255.0f));
+    CpuGBuffer one;
+    codec.encode(all, 256, 1, one);
+    const std::vector<Surface> back = codec.decode(one);
+    for (int k = 0; k < 256; ++k) {
+        const uint32_t code = (one.targetWords.at(d)[size_t(k)] >> 16u) & 0xFFu;
+        const float v = float(code) / 255.0f;
+        EXPECT_EQ(back[size_t(k)].sheenColor.x, v * v) << k;
+    }
+    EXPECT_EQ(one.targetWords.at(targetIndex(layout, "GBufferB"))[0] >> 24u, 0x88u);
 }
 
 // ==================================================================================================

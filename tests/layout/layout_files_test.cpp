@@ -96,6 +96,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
         {"bevy-deferred-webgl2", 16 + 1 + 4},  // the same targets; the depth also in word b's 20 bits
         {"bevy-deferred-clearcoat", 16 + 1 + 4},  // Bevy 0.19: the same targets, the clear coat in b's spare byte
         {"ue5-clearcoat", 4 + 4 * 4 + 5},      // ue5's targets; CustomData holds the coat
+        {"ue5-cloth", 4 + 4 * 4 + 5},          // ue5's targets; CustomData holds the fuzz colour
         {"granite", 4 + 4 + 4 + 2 + 4},        // B10G11R11 + RGBA8 + A2B10G10R10 + RG8 + D24S8
         {"granite-2025", 4 + 4 + 4 + 2 + 4},   // the same targets + D32_SFLOAT (no stencil)
         // Valient, Develop 2007: four RGBA8 + D24S8 = 20 bytes; the talk's "36 MB" is this at
@@ -110,7 +111,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     EXPECT_NEAR(bytesPerPixel(load("killzone2")) * 1280.0 * 720.0 * 2.0 / 1e6, 36.0, 1.0);
     EXPECT_GE(listLayoutNames(layoutsDir()).size(), 25u);  // issue 28: at least 24 layouts + the reference
-    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 32u);  // 31 and the reference: layouts/README.md's atlas
+    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 33u);  // 32 and the reference: layouts/README.md's atlas
 }
 
 // Where the atlas layouts put their bits (each engine's source, as the layout files cite it).
@@ -161,6 +162,10 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(bitsOf(ue5Coat, Attribute::Coat), 8);
     EXPECT_EQ(bitsOf(ue5Coat, Attribute::CoatRoughness), 8);
     EXPECT_EQ(ue5Coat.findField(Attribute::ShadingModelId)->value, std::vector<double>{4.0});
+    const Layout ue5Cloth = load("ue5-cloth");  // Cloth: sqrt(fuzz colour) in CustomData.rgb
+    EXPECT_EQ(bitsOf(ue5Cloth, Attribute::SheenColor), 24);
+    EXPECT_EQ(ue5Cloth.findField(Attribute::SheenColor)->encoding, "unorm_sqrt");
+    EXPECT_EQ(ue5Cloth.findField(Attribute::ShadingModelId)->value, std::vector<double>{8.0});
     EXPECT_EQ(bitsOf(load("killzone2"), Attribute::Normal), 32);  // two FP16
     EXPECT_EQ(bitsOf(load("urp-deferred"), Attribute::Roughness), 7);  // smoothness in an SNORM byte
     // UE 5's default base pass writes neither GBufferF nor velocity; r.VelocityOutputPass = 1 adds
