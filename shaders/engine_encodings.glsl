@@ -407,4 +407,138 @@ vec3 decodeNormalXyFloat16(uvec2 code) {
     return normalize(vec3(x, y, z));
 }
 
+// ---------------------------------------------------------------------------------------------
+// Material layers as the engines store them (issue 40; layouts/README.md, "Codes of each encoding").
+// ---------------------------------------------------------------------------------------------
+
+// unorm_round_even: saturate(x) * (2^bits - 1) rounded to the nearest code with ties to even, as
+// WGSL's round() does: Bevy 0.19's clear-coat strength, u32(round(saturate(clearcoat) * 15.0))
+// (bevyengine/bevy v0.19.0 c6f634ca, crates/bevy_pbr/src/deferred/pbr_deferred_functions.wgsl:42;
+// pull request 23359). quantizeUnorm rounds ties up: 0.3 * 15 = 4.5 is code 4 here, 5 there.
+// Decoded as unorm, code / (2^bits - 1) (:115). Error <= half a step.
+uint quantizeUnormRoundEven(float x, uint bits) {
+    precise float s = float((1u << bits) - 1u);
+    precise float q = roundEven(clamp(x, 0.0, 1.0) * s);
+    return min(uint(q), (1u << bits) - 1u);
+}
+
+// coat_roughness_bevy: Bevy 0.19's clear-coat perceptual roughness, clamped to [0, 0.5] and
+// spread over the codes: u32(round(clamp(r, 0.0, 0.5) * 30.0)) at 4 bits (30 = 2 (2^4 - 1)), ties
+// to even (pbr_deferred_functions.wgsl:43-44); read back f32(code) / 30.0 (:116). A coat rougher
+// than 0.5 reads 0.5 ("greater than 0.5 and the specular lobe is so diffuse, you can't tell it's
+// there", the pull request). Error inside [0, 0.5] <= half a step, 1/60 at 4 bits.
+uint encodeCoatRoughnessBevy(float r, uint bits) {
+    precise float s = float(((1u << bits) - 1u) * 2u);
+    precise float q = roundEven(clamp(r, 0.0, 0.5) * s);
+    return min(uint(q), (1u << bits) - 1u);
+}
+
+float decodeCoatRoughnessBevy(uint code, uint bits) { return float(code) / float(((1u << bits) - 1u) * 2u); }
+
+// unorm_signed: x in [-1, 1] stored as the unorm of x * 0.5 + 0.5 and read back code / (2^bits - 1)
+// * 2 - 1: UE's EncodeWorldTangentAndAnisotropy, Anisotropy * 0.5 + 0.5 into GBufferF.a, and its
+// read InGBufferF.a * 2 - 1 (UE 5.3.2, DeferredShadingCommon.ush:222-228, 1018). x * 0.5 is exact,
+// so a fused multiply-add gives the same code. 0 has no code of its own: it reads 1 / (2^bits - 1).
+uint quantizeUnormSigned(float x, uint bits) { return quantizeUnorm(x * 0.5 + 0.5, bits); }
+
+float dequantizeUnormSigned(uint code, uint bits) { return dequantizeUnorm(code, bits) * 2.0 - 1.0; }
+
+// unorm_sqrt (8 bits): UE's EncodeSubsurfaceColor, sqrt(saturate(c)) into a UNORM byte, read back
+// Square(CustomData.rgb) by ExtractSubsurfaceColor (UE 5.3.2 DeferredShadingCommon.ush:189-192,
+// 1031-1034): the Cloth model's fuzz colour (ShadingModelsMaterial.ush:133-139). The code is
+// round(255 sqrt(x)), found as the number of thresholds <= x, kUnormSqrtEncodeThresholds[k] = the
+// smallest float >= ((k + 0.5) / 255)^2, exact (GLSL leaves sqrt's precision to the driver; the
+// table keeps GPU and CPU to the bit). Error: half a code in sqrt(x), times 2 sqrt(x): <= 1/255.
+const float kUnormSqrtEncodeThresholds[255] = float[255](
+    3.8446756e-06, 3.460208e-05, 9.6116884e-05, 0.0001883891, 0.0003114187, 0.0004652057, 0.0006497501, 0.00086505193,
+    0.0011111111, 0.0013879278, 0.0016955017, 0.0020338332, 0.0024029221, 0.0028027683, 0.003233372, 0.003694733,
+    0.0041868514, 0.004709727, 0.0052633607, 0.005847751, 0.006462899, 0.007108805, 0.0077854674, 0.008492888,
+    0.009231065, 0.010000001, 0.010799693, 0.011630143, 0.01249135, 0.013383315, 0.014306037, 0.015259516,
+    0.016243754, 0.017258748, 0.018304499, 0.019381009, 0.020488275, 0.0216263, 0.02279508, 0.023994619,
+    0.025224915, 0.026485968, 0.027777778, 0.029100347, 0.030453673, 0.031837758, 0.033252597, 0.034698196,
+    0.03617455, 0.03768166, 0.039219532, 0.04078816, 0.042387545, 0.044017687, 0.045678586, 0.047370244,
+    0.049092658, 0.05084583, 0.05262976, 0.054444447, 0.05628989, 0.05816609, 0.06007305, 0.06201077,
+    0.063979246, 0.065978475, 0.06800846, 0.07006921, 0.07216071, 0.074282974, 0.07643599, 0.07861976,
+    0.0808343, 0.08307959, 0.08535564, 0.08766244, 0.09, 0.09236833, 0.0947674, 0.097197235,
+    0.099657826, 0.10214917, 0.104671285, 0.10722415, 0.10980777, 0.112422146, 0.11506729, 0.11774318,
+    0.12044983, 0.12318724, 0.1259554, 0.12875433, 0.13158402, 0.13444445, 0.13733564, 0.1402576,
+    0.1432103, 0.14619377, 0.14920801, 0.15225299, 0.15532872, 0.15843523, 0.16157249, 0.16474049,
+    0.16793926, 0.17116879, 0.17442907, 0.17772011, 0.18104191, 0.18439446, 0.18777779, 0.19119185,
+    0.19463669, 0.19811228, 0.20161861, 0.20515572, 0.20872357, 0.21232219, 0.21595156, 0.21961169,
+    0.22330259, 0.22702423, 0.23077664, 0.23455979, 0.23837371, 0.24221839, 0.24609382, 0.25,
+    0.25393698, 0.25790468, 0.26190314, 0.26593235, 0.26999232, 0.27408305, 0.27820456, 0.2823568,
+    0.2865398, 0.29075357, 0.29499808, 0.29927337, 0.30357942, 0.3079162, 0.31228375, 0.31668207,
+    0.3211111, 0.32557094, 0.33006153, 0.33458287, 0.33913496, 0.3437178, 0.34833142, 0.3529758,
+    0.3576509, 0.3623568, 0.36709344, 0.37186083, 0.376659, 0.3814879, 0.38634756, 0.391238,
+    0.39615917, 0.40111113, 0.40609384, 0.41110727, 0.4161515, 0.42122647, 0.4263322, 0.4314687,
+    0.4366359, 0.4418339, 0.44706267, 0.45232219, 0.45761248, 0.4629335, 0.4682853, 0.47366783,
+    0.47908112, 0.4845252, 0.49, 0.4955056, 0.50104195, 0.506609, 0.51220685, 0.5178355,
+    0.52349484, 0.52918494, 0.53490585, 0.54065746, 0.5464399, 0.552253, 0.55809695, 0.5639716,
+    0.569877, 0.5758132, 0.58178014, 0.5877778, 0.59380627, 0.59986544, 0.6059554, 0.61207616,
+    0.61822766, 0.62440985, 0.63062286, 0.6368666, 0.64314115, 0.64944637, 0.6557824, 0.6621492,
+    0.66854674, 0.67497504, 0.6814341, 0.6879239, 0.6944445, 0.7009958, 0.7075779, 0.7141907,
+    0.7208343, 0.72750866, 0.73421377, 0.7409497, 0.7477163, 0.7545137, 0.7613418, 0.7682007,
+    0.7750904, 0.7820108, 0.78896195, 0.7959439, 0.8029566, 0.81, 0.81707424, 0.8241792,
+    0.8313149, 0.83848137, 0.8456786, 0.8529066, 0.86016536, 0.8674548, 0.8747751, 0.88212615,
+    0.8895079, 0.89692044, 0.90436375, 0.91183776, 0.9193426, 0.92687815, 0.9344445, 0.9420416,
+    0.94966936, 0.95732796, 0.9650173, 0.97273743, 0.9804883, 0.9882699, 0.9960823
+);
+
+uint encodeUnormSqrt(float x) {
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kUnormSqrtEncodeThresholds[mid] <= x) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+float decodeUnormSqrt(uint code) {
+    precise float d = dequantizeUnorm(code & 255u, 8u);
+    precise float s = d * d;
+    return s;
+}
+
+// UE's clear-coat bottom normal (CLEAR_COAT_BOTTOM_NORMAL, r.ClearCoatNormal = 1): GBufferA holds
+// the top (coat) normal, CustomData.a and .z the octahedral delta of the bottom normal,
+// (oct(bottom) - oct(top)) * 0.25 + 128/255 (ShadingModelsMaterial.ush:96-116), read back as
+// oct = code / (2^bits - 1) * 4 - 512/255 + oct(top) and unfolded (ClearCoatCommon.ush:5-14).
+// UE's octahedron (OctahedralCommon.ush:18-34): n.xy / |n|_1, folded where n.z <= 0 with
+// select(n.xy >= 0, 1, -1); the unfold subtracts t = max(-z, 0) towards zero, then normalises.
+vec2 octEncodeUe(vec3 n) {
+    precise float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    precise float x = n.x / l1;
+    precise float y = n.y / l1;
+    if (n.z <= 0.0) {
+        precise float fx = (1.0 - abs(y)) * (x >= 0.0 ? 1.0 : -1.0);
+        precise float fy = (1.0 - abs(x)) * (y >= 0.0 ? 1.0 : -1.0);
+        return vec2(fx, fy);
+    }
+    return vec2(x, y);
+}
+
+vec3 octDecodeUe(vec2 o) {
+    precise vec3 n = vec3(o.x, o.y, 1.0 - abs(o.x) - abs(o.y));
+    precise float t = max(-n.z, 0.0);
+    n.x += n.x >= 0.0 ? -t : t;
+    n.y += n.y >= 0.0 ? -t : t;
+    return normalize(n);
+}
+
+uvec2 encodeNormalOctahedralDeltaUe(vec3 bottom, vec3 top, uint bits) {
+    vec2 o1 = octEncodeUe(bottom);
+    vec2 o2 = octEncodeUe(top);
+    precise float dx = (o1.x - o2.x) * 0.25 + 128.0 / 255.0;
+    precise float dy = (o1.y - o2.y) * 0.25 + 128.0 / 255.0;
+    return uvec2(quantizeUnorm(dx, bits), quantizeUnorm(dy, bits));
+}
+
+vec3 decodeNormalOctahedralDeltaUe(uvec2 code, vec3 top, uint bits) {
+    vec2 o2 = octEncodeUe(top);
+    precise float ox = (dequantizeUnorm(code.x, bits) * 4.0 - 512.0 / 255.0) + o2.x;
+    precise float oy = (dequantizeUnorm(code.y, bits) * 4.0 - 512.0 / 255.0) + o2.y;
+    return octDecodeUe(vec2(ox, oy));
+}
+
 #endif  // GBL_ENGINE_ENCODINGS_GLSL

@@ -34,6 +34,8 @@ gbl_test(encoding/engine_encodings_test LABELS unit DEPS gbl_encoding gbl_measur
 gbl_test(encoding/niagara_encodings_test LABELS unit DEPS gbl_encoding gbl_measure)  # emissive/albedo ratio, dithered octahedral
 gbl_test(encoding/engine_packings_test LABELS unit DEPS gbl_codec)  # each engine's published packing, reimplemented, vs the codec's words
 gbl_test(encoding/bevy_packings_test LABELS unit DEPS gbl_codec gbl_layout)  # Bevy's native and WebGL2 packings, reimplemented
+gbl_test(encoding/layer_packings_test LABELS unit DEPS gbl_codec gbl_layout)  # the material layers as Bevy, HDRP and UE pack them, reimplemented
+gbl_test(encoding/layer_encodings_gpu_test LABELS gpu DEPS gbl_codec gbl_layout gbl_test_support_vk)  # their GLSL twins at the ties, and UE's bottom-normal delta
 gbl_test(encoding/encodings_fast_test LABELS unit DEPS gbl_encoding)
 gbl_test(encoding/light_buffer_encodings_test LABELS unit DEPS gbl_encoding)
 gbl_test(encoding/codec_tables_test LABELS unit DEPS gbl_encoding gbl_gpu)  # the tables buffer = the shaders' arrays

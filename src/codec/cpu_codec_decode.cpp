@@ -147,6 +147,12 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
                 case Codec::Reflectance:
                     map1(n, c, out, [bk](uint x) { return specularFromReflectance(dequantizeUnorm(x, bk)); });
                     break;
+                case Codec::UnormRoundEven: map1(n, c, out, [bk](uint x) { return dequantizeUnorm(x, bk); }); break;
+                case Codec::CoatRoughnessBevy:
+                    map1(n, c, out, [bk](uint x) { return decodeCoatRoughnessBevy(x, bk); });
+                    break;
+                case Codec::UnormSigned: map1(n, c, out, [bk](uint x) { return dequantizeUnormSigned(x, bk); }); break;
+                case Codec::UnormSqrt: map1(n, c, out, [](uint x) { return decodeUnormSqrt(x); }); break;
                 case Codec::ReflectanceBevyWebgl2:
                     map1(n, c, out, [bk](uint x) { return specularFromReflectanceBevyWebgl2(dequantizeUnorm(x, bk)); });
                     break;

@@ -345,6 +345,16 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
                     break;
                 case Codec::CryGlossPower: map1(n, in, out, [](float x) { return encodeCryGlossPower(x); }); break;
                 case Codec::Kz2LogPower: map1(n, in, out, [](float x) { return encodeKz2LogPower(x); }); break;
+                case Codec::UnormRoundEven:
+                    map1(n, in, out, [bk](float x) { return quantizeUnormRoundEven(x, bk); });
+                    break;
+                case Codec::CoatRoughnessBevy:
+                    map1(n, in, out, [bk](float x) { return encodeCoatRoughnessBevy(x, bk); });
+                    break;
+                case Codec::UnormSigned:
+                    map1(n, in, out, [bk](float x) { return quantizeUnormSigned(x, bk); });
+                    break;
+                case Codec::UnormSqrt: map1(n, in, out, [](float x) { return encodeUnormSqrt(x); }); break;
                 case Codec::Reflectance:
                 case Codec::ReflectanceBevyWebgl2:  // the bias is the read's alone
                     map1(n, in, out, [bk](float x) { return quantizeUnorm(reflectanceFromSpecular(x), bk); });

@@ -36,6 +36,10 @@ enum class Codec : uint8_t {
     SmoothnessCry,
     Reflectance,
     ReflectanceBevyWebgl2,
+    UnormRoundEven,
+    CoatRoughnessBevy,
+    UnormSigned,
+    UnormSqrt,
     CryGlossPower,
     Kz2LogPower,  // the last scalar (isScalar)
     Srgb8,

@@ -83,6 +83,9 @@ const std::map<std::string, std::string>& hlslNames() {
         {"ivec4", "int4"},    {"bvec2", "bool2"},   {"bvec3", "bool3"},   {"bvec4", "bool4"},
         {"floatBitsToUint", "asuint"}, {"floatBitsToInt", "asint"}, {"uintBitsToFloat", "asfloat"},
         {"intBitsToFloat", "asfloat"}, {"fract", "frac"}, {"mix", "lerp"}, {"inversesqrt", "rsqrt"},
+        // HLSL's round rounds halfway cases to the nearest even integer, as GLSL's roundEven
+        // (unorm_round_even, coat_roughness_bevy: Bevy's WGSL round).
+        {"roundEven", "round"},
     };
     return m;
 }

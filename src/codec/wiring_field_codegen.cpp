@@ -84,6 +84,10 @@ std::string scalarEncode(const std::string& enc, const std::string& x, int bits)
     if (enc == "kz2_log_power") return "encodeKz2LogPower(" + x + ")";
     if (enc == "reflectance" || enc == "reflectance_bevy_webgl2")
         return "quantizeUnorm(reflectanceFromSpecular(" + x + "), " + b + ")";
+    if (enc == "unorm_round_even") return "quantizeUnormRoundEven(" + x + ", " + b + ")";
+    if (enc == "coat_roughness_bevy") return "encodeCoatRoughnessBevy(" + x + ", " + b + ")";
+    if (enc == "unorm_signed") return "quantizeUnormSigned(" + x + ", " + b + ")";
+    if (enc == "unorm_sqrt") return "encodeUnormSqrt(" + x + ")";
     throw std::logic_error("wiring: no scalar encoder for " + enc);
 }
 
@@ -103,6 +107,10 @@ std::string scalarDecode(const std::string& enc, const std::string& c, int bits)
     if (enc == "reflectance") return "specularFromReflectance(dequantizeUnorm(" + c + ", " + b + "))";
     if (enc == "reflectance_bevy_webgl2")
         return "specularFromReflectanceBevyWebgl2(dequantizeUnorm(" + c + ", " + b + "))";
+    if (enc == "unorm_round_even") return "dequantizeUnorm(" + c + ", " + b + ")";
+    if (enc == "coat_roughness_bevy") return "decodeCoatRoughnessBevy(" + c + ", " + b + ")";
+    if (enc == "unorm_signed") return "dequantizeUnormSigned(" + c + ", " + b + ")";
+    if (enc == "unorm_sqrt") return "decodeUnormSqrt(" + c + ")";
     throw std::logic_error("wiring: no scalar decoder for " + enc);
 }
 

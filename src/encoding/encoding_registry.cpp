@@ -54,6 +54,26 @@ std::vector<EncodingInfo> makeRegistry() {
                  "- 0.03333333333), specular = 2 r^2 (code 8 of 4 bits reads 0.5; the others half a step low)",
                  "bevyengine/bevy v0.16.0 crates/bevy_pbr/src/deferred/pbr_deferred_functions.wgsl:36-40, 104-106"});
 
+    // Material layers as the engines store them (issue 40; engine_encodings.h).
+    v.push_back({"unorm_round_even", K::Scalar, 1, 4, 1, 16, 0, false, "[0,1]",
+                 "unorm rounded with ties to even (WGSL's round): code = roundEven(saturate(x) * (2^b - 1)); "
+                 "decoded as unorm",
+                 "bevyengine/bevy v0.19.0 c6f634ca crates/bevy_pbr/src/deferred/pbr_deferred_functions.wgsl:42, "
+                 "115 (clear-coat strength, pull request 23359)"});
+    v.push_back({"coat_roughness_bevy", K::Scalar, 1, 4, 1, 16, 0, false, "coat roughness in [0,0.5] (clamps)",
+                 "clamp(r, 0, 0.5) * 2 (2^b - 1) rounded with ties to even; decoded code / (2 (2^b - 1)): 4 bits "
+                 "over [0, 0.5], error <= 1/60 inside",
+                 "bevyengine/bevy v0.19.0 c6f634ca crates/bevy_pbr/src/deferred/pbr_deferred_functions.wgsl:43-44, "
+                 "116 (clear-coat perceptual roughness, pull request 23359)"});
+    v.push_back({"unorm_sqrt", K::Scalar, 1, 8, 8, 8, 0, false, "[0,1]",
+                 "sqrt(saturate(x)) as 8-bit unorm, exact via 255 thresholds (no sqrt); decodes (code / 255)^2",
+                 "UE 5.3.2 DeferredShadingCommon.ush:189-192, 1031-1034 (EncodeSubsurfaceColor / "
+                 "ExtractSubsurfaceColor: the Cloth model's fuzz colour, ShadingModelsMaterial.ush:133-139)"});
+    v.push_back({"unorm_signed", K::Scalar, 1, 8, 2, 16, 0, false, "[-1,1]",
+                 "x * 0.5 + 0.5 as unorm; decoded code / (2^b - 1) * 2 - 1 (0 reads 1 / (2^b - 1))",
+                 "UE 5.3.2 DeferredShadingCommon.ush:222-228, 1018 (EncodeWorldTangentAndAnisotropy: GBufferF.a "
+                 "= anisotropy * 0.5 + 0.5)"});
+
     v.push_back({"srgb8", K::Color, 3, 8, 8, 8, 0, false, "[0,1]^3 linear",
                  "exact sRGB 8-bit per channel via 255 linear thresholds (no pow)",
                  "IEC 61966-2-1 sRGB transfer function"});

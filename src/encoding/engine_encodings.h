@@ -176,4 +176,92 @@ inline vec3 decodeNormalXyFloat16(uvec2 code) {
     return normalize(vec3(x, y, z));
 }
 
+// ---------------------------------------------------------------------------------------------
+// Material layers as the engines store them (issue 40; the GLSL twin carries the sources).
+// ---------------------------------------------------------------------------------------------
+
+// roundEvenF: to the nearest integer, ties to even (GLSL roundEven, WGSL round); std::nearbyint
+// in the default rounding mode, which no code here changes.
+inline float roundEvenF(float x) { return std::nearbyint(x); }
+
+// unorm_round_even: saturate(x) * (2^bits - 1) rounded with ties to even (Bevy's clear-coat
+// strength); decoded as unorm.
+inline uint quantizeUnormRoundEven(float x, uint bits) {
+    float s = float((1u << bits) - 1u);
+    float q = roundEvenF(clamp(x, 0.0f, 1.0f) * s);
+    return min(uint(q), (1u << bits) - 1u);
+}
+
+// coat_roughness_bevy: clamp(r, 0, 0.5) * 2 (2^bits - 1), ties to even; decoded code / (2 (2^bits - 1)).
+inline uint encodeCoatRoughnessBevy(float r, uint bits) {
+    float s = float(((1u << bits) - 1u) * 2u);
+    float q = roundEvenF(clamp(r, 0.0f, 0.5f) * s);
+    return min(uint(q), (1u << bits) - 1u);
+}
+
+inline float decodeCoatRoughnessBevy(uint code, uint bits) { return float(code) / float(((1u << bits) - 1u) * 2u); }
+
+// unorm_signed: x * 0.5 + 0.5 as unorm (x in [-1, 1]); decoded code / (2^bits - 1) * 2 - 1.
+inline uint quantizeUnormSigned(float x, uint bits) { return quantizeUnorm(x * 0.5f + 0.5f, bits); }
+
+inline float dequantizeUnormSigned(uint code, uint bits) { return dequantizeUnorm(code, bits) * 2.0f - 1.0f; }
+
+// unorm_sqrt (8 bits): code = round(255 sqrt(saturate(x))) by thresholds, decoded (code / 255)^2:
+// UE's EncodeSubsurfaceColor / ExtractSubsurfaceColor (the Cloth model's fuzz colour).
+extern const float kUnormSqrtEncodeThresholds[255];
+inline uint encodeUnormSqrt(float x) {
+    uint lo = 0u;
+    uint hi = 255u;
+    for (int i = 0; i < 8; ++i) {
+        uint mid = (lo + hi) >> 1u;
+        if (kUnormSqrtEncodeThresholds[mid] <= x) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+inline float decodeUnormSqrt(uint code) {
+    float d = dequantizeUnorm(code & 255u, 8u);
+    return d * d;
+}
+
+// UE's clear-coat bottom normal (CLEAR_COAT_BOTTOM_NORMAL): the octahedral point of the bottom
+// normal minus that of the pixel's (top) normal, * 0.25 + 128/255, as two unorm codes; decoded
+// code / (2^bits - 1) * 4 - 512/255 + oct(top), unfolded and normalised. UE's octahedron
+// (UnitVectorToOctahedron: the fold where z <= 0, select(n >= 0, 1, -1)).
+inline vec2 octEncodeUe(vec3 n) {
+    float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    float x = n.x / l1;
+    float y = n.y / l1;
+    if (n.z <= 0.0f) {
+        float fx = (1.0f - abs(y)) * (x >= 0.0f ? 1.0f : -1.0f);
+        float fy = (1.0f - abs(x)) * (y >= 0.0f ? 1.0f : -1.0f);
+        return vec2(fx, fy);
+    }
+    return vec2(x, y);
+}
+
+// OctahedronToUnitVector: z = 1 - |x| - |y|; where z < 0, xy -= sign-select(t) with t = -z.
+inline vec3 octDecodeUe(vec2 o) {
+    vec3 n = vec3(o.x, o.y, 1.0f - abs(o.x) - abs(o.y));
+    float t = max(-n.z, 0.0f);
+    n.x += n.x >= 0.0f ? -t : t;
+    n.y += n.y >= 0.0f ? -t : t;
+    return normalize(n);
+}
+
+inline uvec2 encodeNormalOctahedralDeltaUe(vec3 bottom, vec3 top, uint bits) {
+    vec2 o1 = octEncodeUe(bottom);
+    vec2 o2 = octEncodeUe(top);
+    float dx = (o1.x - o2.x) * 0.25f + 128.0f / 255.0f;
+    float dy = (o1.y - o2.y) * 0.25f + 128.0f / 255.0f;
+    return uvec2(quantizeUnorm(dx, bits), quantizeUnorm(dy, bits));
+}
+
+inline vec3 decodeNormalOctahedralDeltaUe(uvec2 code, vec3 top, uint bits) {
+    vec2 o2 = octEncodeUe(top);
+    float ox = (dequantizeUnorm(code.x, bits) * 4.0f - 512.0f / 255.0f) + o2.x;
+    float oy = (dequantizeUnorm(code.y, bits) * 4.0f - 512.0f / 255.0f) + o2.y;
+    return octDecodeUe(vec2(ox, oy));
+}
+
 }  // namespace gbl::enc

@@ -74,6 +74,8 @@ private:
             return e + " stores roughness only, not " + a;
         if ((enc.name == "reflectance" || enc.name == "reflectance_bevy_webgl2") && attr.id != Attribute::Specular)
             return e + " stores specular only, not " + a;
+        if (enc.name == "coat_roughness_bevy" && attr.id != Attribute::CoatRoughness)
+            return e + " stores coat_roughness only, not " + a;
         if (attr.domain == ValueDomain::Signed && enc.name != "snorm" && enc.name != "float16" && enc.name != "float32")
             return a + " has components in [-1,1] but " + e + " takes " + enc.inputRange +
                    " (use a normal_* encoding, snorm, float16 or float32)";

@@ -189,6 +189,10 @@ float roundTripScalar(std::string_view name, int bits, float x) {
             enc::dequantizeUnorm(enc::quantizeUnorm(enc::smoothnessFromRoughnessCry(x), b), b));
     if (info.name == "cry_gloss_power") return enc::decodeCryGlossPower(enc::encodeCryGlossPower(x));
     if (info.name == "kz2_log_power") return enc::decodeKz2LogPower(enc::encodeKz2LogPower(x));
+    if (info.name == "unorm_round_even") return enc::dequantizeUnorm(enc::quantizeUnormRoundEven(x, b), b);
+    if (info.name == "coat_roughness_bevy") return enc::decodeCoatRoughnessBevy(enc::encodeCoatRoughnessBevy(x, b), b);
+    if (info.name == "unorm_signed") return enc::dequantizeUnormSigned(enc::quantizeUnormSigned(x, b), b);
+    if (info.name == "unorm_sqrt") return enc::decodeUnormSqrt(enc::encodeUnormSqrt(x));
     if (info.name == "reflectance_bevy_webgl2")
         return enc::specularFromReflectanceBevyWebgl2(
             enc::dequantizeUnorm(enc::quantizeUnorm(enc::reflectanceFromSpecular(x), b), b));

@@ -73,6 +73,10 @@ uint scalarEncode(const Field& f, float x, size_t i) {
     if (e == "cry_gloss_power") return encodeCryGlossPower(x);
     if (e == "kz2_log_power") return encodeKz2LogPower(x);
     if (e == "reflectance" || e == "reflectance_bevy_webgl2") return quantizeUnorm(reflectanceFromSpecular(x), b);
+    if (e == "unorm_round_even") return quantizeUnormRoundEven(x, b);
+    if (e == "coat_roughness_bevy") return encodeCoatRoughnessBevy(x, b);
+    if (e == "unorm_signed") return quantizeUnormSigned(x, b);
+    if (e == "unorm_sqrt") return encodeUnormSqrt(x);
     throw std::logic_error("cpu codec: no scalar encoder for " + e);
 }
 
@@ -92,6 +96,10 @@ float scalarDecode(const Field& f, uint c, size_t i) {
     if (e == "kz2_log_power") return decodeKz2LogPower(c);
     if (e == "reflectance") return specularFromReflectance(dequantizeUnorm(c, b));
     if (e == "reflectance_bevy_webgl2") return specularFromReflectanceBevyWebgl2(dequantizeUnorm(c, b));
+    if (e == "unorm_round_even") return dequantizeUnorm(c, b);
+    if (e == "coat_roughness_bevy") return decodeCoatRoughnessBevy(c, b);
+    if (e == "unorm_signed") return dequantizeUnormSigned(c, b);
+    if (e == "unorm_sqrt") return decodeUnormSqrt(c);
     throw std::logic_error("cpu codec: no scalar decoder for " + e);
 }
 

@@ -66,6 +66,14 @@ std::vector<Surface> makeSurfaces(int w, int h, uint32_t seed) {
             s.occlusion = u(rng);
             s.emissive = glm::vec3(u(rng), u(rng), u(rng)) * 4.0f;
             s.position = (glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f) * 50.0f;
+            s.coat = u(rng);
+            s.coatRoughness = u(rng);
+            s.anisotropyStrength = u(rng);
+            s.sheenColor = glm::vec3(u(rng), u(rng), u(rng));
+            glm::vec3 t;
+            do t = glm::vec3(u(rng), u(rng), u(rng)) * 2.0f - 1.0f;
+            while (glm::dot(t, t) > 1.0f || glm::dot(t, t) < 1e-4f);
+            s.anisotropyDirection = glm::normalize(t);
         }
     return v;
 }
@@ -186,12 +194,18 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                             case Attribute::Roughness: return glm::vec3(s.roughness);
                             case Attribute::Specular: return glm::vec3(s.specular);
                             case Attribute::Occlusion: return glm::vec3(s.occlusion);
+                            case Attribute::Coat: return glm::vec3(s.coat);
+                            case Attribute::CoatRoughness: return glm::vec3(s.coatRoughness);
+                            case Attribute::AnisotropyStrength: return glm::vec3(s.anisotropyStrength);
+                            case Attribute::AnisotropyDirection: return s.anisotropyDirection;
+                            case Attribute::SheenColor: return s.sheenColor;
                             default: return glm::vec3(0.0f);
                         }
                     };
                     const glm::vec3 x = vec(a), y = vec(d);
                     double err = 0.0, bound = 0.0;
-                    if (f.attribute == Attribute::Normal && e.rfind("normal_", 0) == 0) {
+                    const bool direction = f.attribute == Attribute::Normal || f.attribute == Attribute::AnisotropyDirection;
+                    if (direction && e.rfind("normal_", 0) == 0) {
                         err = angleDeg(x, y);
                         const double s8 = 255.0 / (std::ldexp(1.0, b) - 1.0);
                         const double o8 = 127.0 / (std::ldexp(1.0, b - 1) - 1.0);
@@ -227,6 +241,19 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                         for (int c = 0; c < 3; ++c)
                             err = std::max(err, double(std::abs(std::clamp(x[c], 0.0f, 1.0f) - y[c])));
                         bound = unormBound(b);
+                    } else if (e == "unorm_round_even") {  // ties to even: still half a step
+                        err = std::abs(std::clamp(x.x, 0.0f, 1.0f) - y.x);
+                        bound = unormBound(b);
+                    } else if (e == "coat_roughness_bevy") {  // clamps to [0, 0.5], half a step of 2 (2^b - 1)
+                        err = std::abs(std::clamp(x.x, 0.0f, 0.5f) - y.x);
+                        bound = 0.5 / (2.0 * (std::ldexp(1.0, b) - 1.0)) + 1e-7;
+                    } else if (e == "unorm_sqrt") {  // half a code in sqrt(x), times 2 sqrt(x) <= 2
+                        for (int c = 0; c < 3; ++c)
+                            err = std::max(err, double(std::abs(std::clamp(x[c], 0.0f, 1.0f) - y[c])));
+                        bound = 1.0 / 255.0 + 1e-6;
+                    } else if (e == "unorm_signed") {  // a step of 2 / (2^b - 1) in x
+                        err = std::abs(x.x - y.x);
+                        bound = 2.0 * unormBound(b);
                     } else if (e == "cry_gloss_power") {
                         // Clamps to the engine's range, then half a gloss step (encodings.h).
                         err = std::abs(std::clamp(x.x, 0.17673357f, 0.84089643f) - y.x);

@@ -94,6 +94,9 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
         {"urp-deferred-accurate", 3 * 4 + 5},  // the same targets, GBuffer2 UNORM
         {"bevy-deferred", 16 + 1 + 4},         // Rgba32Uint + R8Uint pass id + Depth32Float
         {"bevy-deferred-webgl2", 16 + 1 + 4},  // the same targets; the depth also in word b's 20 bits
+        {"bevy-deferred-clearcoat", 16 + 1 + 4},  // Bevy 0.19: the same targets, the clear coat in b's spare byte
+        {"ue5-clearcoat", 4 + 4 * 4 + 5},      // ue5's targets; CustomData holds the coat
+        {"ue5-cloth", 4 + 4 * 4 + 5},          // ue5's targets; CustomData holds the fuzz colour
         {"granite", 4 + 4 + 4 + 2 + 4},        // B10G11R11 + RGBA8 + A2B10G10R10 + RG8 + D24S8
         {"granite-2025", 4 + 4 + 4 + 2 + 4},   // the same targets + D32_SFLOAT (no stencil)
         // Valient, Develop 2007: four RGBA8 + D24S8 = 20 bytes; the talk's "36 MB" is this at
@@ -108,7 +111,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     EXPECT_NEAR(bytesPerPixel(load("killzone2")) * 1280.0 * 720.0 * 2.0 / 1e6, 36.0, 1.0);
     EXPECT_GE(listLayoutNames(layoutsDir()).size(), 25u);  // issue 28: at least 24 layouts + the reference
-    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 30u);  // 29 and the reference: layouts/README.md's atlas
+    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 33u);  // 32 and the reference: layouts/README.md's atlas
 }
 
 // Where the atlas layouts put their bits (each engine's source, as the layout files cite it).
@@ -143,7 +146,26 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(n->codes[1].pieces.at(1).first, 4);
     EXPECT_EQ(bitsOf(hdrp, Attribute::Emissive), 32);  // B10G11R11
     EXPECT_EQ(bitsOf(hdrp, Attribute::MaterialFeature), 3);
-    EXPECT_EQ(bitsOf(hdrp, Attribute::CoatMask), 5);
+    EXPECT_EQ(bitsOf(hdrp, Attribute::Coat), 5);  // PackFloatInt8bit(coatMask, featureId, 8): the coat's 5 bits
+    EXPECT_EQ(bitsOf(hdrp, Attribute::CoatRoughness), 0);  // a constant in HDRP ...
+    ASSERT_TRUE(hdrp.findFallback(Attribute::CoatRoughness));
+    EXPECT_EQ(hdrp.findFallback(Attribute::CoatRoughness)->value, std::vector<double>{0.1});  // ... sqrt(0.01)
+    // Bevy 0.19: the spare byte of word b, strength in bits 24..27, roughness in 28..31.
+    const Layout bevyCoat = load("bevy-deferred-clearcoat");
+    EXPECT_EQ(bevyCoat.findField(Attribute::Coat)->codes[0].text, "b[24:27]");
+    EXPECT_EQ(bevyCoat.findField(Attribute::CoatRoughness)->codes[0].text, "b[28:31]");
+    EXPECT_EQ(bevyCoat.findField(Attribute::CoatRoughness)->encoding, "coat_roughness_bevy");
+    EXPECT_EQ(bitsOf(bevyCoat, Attribute::CoatNormal), 0);  // the base normal serves
+    EXPECT_EQ(bitsOf(bevy, Attribute::Coat), 0);            // Bevy 0.16: the byte spare
+    // UE5's ClearCoat shading model: CustomData.x, .y.
+    const Layout ue5Coat = load("ue5-clearcoat");
+    EXPECT_EQ(bitsOf(ue5Coat, Attribute::Coat), 8);
+    EXPECT_EQ(bitsOf(ue5Coat, Attribute::CoatRoughness), 8);
+    EXPECT_EQ(ue5Coat.findField(Attribute::ShadingModelId)->value, std::vector<double>{4.0});
+    const Layout ue5Cloth = load("ue5-cloth");  // Cloth: sqrt(fuzz colour) in CustomData.rgb
+    EXPECT_EQ(bitsOf(ue5Cloth, Attribute::SheenColor), 24);
+    EXPECT_EQ(ue5Cloth.findField(Attribute::SheenColor)->encoding, "unorm_sqrt");
+    EXPECT_EQ(ue5Cloth.findField(Attribute::ShadingModelId)->value, std::vector<double>{8.0});
     EXPECT_EQ(bitsOf(load("killzone2"), Attribute::Normal), 32);  // two FP16
     EXPECT_EQ(bitsOf(load("urp-deferred"), Attribute::Roughness), 7);  // smoothness in an SNORM byte
     // UE 5's default base pass writes neither GBufferF nor velocity; r.VelocityOutputPass = 1 adds
@@ -174,13 +196,14 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
         EXPECT_EQ(l.targets[3].name, "GBuffer3") << name;
         EXPECT_FALSE(l.findFallback(Attribute::Occlusion)) << name;
     }
-    // r.AnisotropicMaterials = 1: GBufferF after E, tangent and anisotropy at their clear 0.5.
+    // r.AnisotropicMaterials = 1: GBufferF after E, the tangent and anisotropy carried and shaded.
     const Layout aniso = load("ue5-anisotropy");
     ASSERT_EQ(aniso.targets.size(), 6u);
     EXPECT_EQ(aniso.targets[5].name, "GBufferF");
-    EXPECT_EQ(bitsOf(aniso, Attribute::Tangent), 24);
-    EXPECT_EQ(bitsOf(aniso, Attribute::Anisotropy), 8);
-    EXPECT_EQ(aniso.findField(Attribute::Anisotropy)->value, std::vector<double>{0.5});
+    EXPECT_EQ(bitsOf(aniso, Attribute::AnisotropyDirection), 24);
+    EXPECT_EQ(bitsOf(aniso, Attribute::AnisotropyStrength), 8);
+    EXPECT_EQ(aniso.findField(Attribute::AnisotropyStrength)->encoding, "unorm_signed");
+    EXPECT_EQ(bitsOf(aniso, Attribute::Tangent), 0);
     EXPECT_EQ(aniso.findField(Attribute::SelectiveOutputMask)->value, std::vector<double>{8.0});  // no HAS_ANISOTROPY
     EXPECT_TRUE(load("granite-2025").depth.reversedZ);
     EXPECT_FALSE(load("granite").depth.reversedZ);

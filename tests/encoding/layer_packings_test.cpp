@@ -1,0 +1,447 @@
+// The material layers as shipped engines pack them (issue 40, item 4): each engine's arithmetic
+// written out again here from reading its source (not copied), and compared bit for bit with the
+// words gbufferlab's CPU codec writes for the shipped row, on 2^20 seeded inputs with the edge
+// values (ties of every quantiser, out-of-range values); then the engine's read of those words
+// against the codec's decode. The rows and their pins:
+//   bevy-deferred-clearcoat  bevyengine/bevy v0.19.0 c6f634ca (pull request 23359, fca2279c)
+//   hdrp-lit                 HDRP 13.0.0 c667268a, core 13.0.0 6363fa25
+//   ue5-clearcoat            UE 5.3.2, Mephisto1024/Toon_Engine 1a10ef19
+//   ue5-anisotropy           the same
+// and UE's clear-coat bottom normal (r.ClearCoatNormal = 1), which no row stores yet, against
+// engine_encodings.h's encoder and decoder directly.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "encodings.h"
+#include "engine_packing_support.h"
+#include "layout_catalog.h"
+
+namespace {
+
+using namespace gbl::test::packing;
+
+// The i-th scalar input: ties of the quantiser with `steps` steps over [0, top] and the floats
+// beside them, the ends, out-of-range values, then uniform values over [-0.1, 1.1].
+float scalarInput(Rng& rng, size_t i, int steps, float top) {
+    const size_t ties = size_t(steps) * 3;
+    if (i < ties) {
+        const int k = int(i / 3);
+        const float t = float((k + 0.5) / steps * top);
+        return i % 3 == 0 ? t : i % 3 == 1 ? std::nextafter(t, -1.0f) : std::nextafter(t, 2.0f);
+    }
+    const float edges[] = {0.0f, -0.0f, 1.0f, top, std::nextafter(top, 2.0f), -1e-30f, -1.0f, 2.0f, 1e-40f, 0.5f};
+    if (i < ties + std::size(edges)) return edges[i - ties];
+    if (i % 7 == 0) {  // a tie of a random step, as a float may round it either way
+        const int k = int(rng.u01() * steps);
+        return float((k + 0.5) / steps * top);
+    }
+    return float(rng.u01() * 1.2 - 0.1);
+}
+
+// WGSL's round(): to the nearest integer, a half to the even one (WGSL spec, "round").
+float wgslRound(float x) {
+    const float f = std::floor(x);
+    const float d = x - f;  // exact for the magnitudes here
+    if (d > 0.5f) return f + 1.0f;
+    if (d < 0.5f) return f;
+    return std::fmod(f, 2.0f) == 0.0f ? f : f + 1.0f;
+}
+
+// ==================================================================================================
+// Bevy 0.19: word b's fourth byte (pbr_deferred_functions.wgsl:42-50 at v0.19.0 c6f634ca):
+//   clearcoat = u32(round(saturate(clearcoat) * 15.0))
+//   roughness = u32(round(clamp(clearcoat_perceptual_roughness, 0.0, 0.5) * 30.0))
+//   byte      = pack_unorm4x8_'s w of f32(clearcoat | roughness << 4) / 255.0
+// read back (:113-116): c = u32(round(props.a * 255.0)); clearcoat = f32(c & 15) / 15.0,
+// roughness = f32(c >> 4) / 30.0.
+// ==================================================================================================
+
+uint32_t bevyClearcoatByte(float clearcoat, float roughness) {
+    const uint32_t c = uint32_t(wgslRound(clamp01(clearcoat) * 15.0f));
+    const uint32_t r = uint32_t(wgslRound(std::min(std::max(roughness, 0.0f), 0.5f) * 30.0f));
+    const float props = float(c | (r << 4u)) / 255.0f;
+    return uint32_t(clamp01(props) * 255.0f + 0.5f);  // pack_unorm4x8_, pbr_deferred_types.wgsl:69-72
+}
+
+TEST(LayerPackings, BevyClearcoatByteEqualsPullRequest23359) {
+    const Layout layout = gbl::loadLayout("bevy-deferred-clearcoat");
+    const Layout before = gbl::loadLayout("bevy-deferred");  // Bevy 0.16: the byte spare
+    const size_t target = targetIndex(layout, "deferred");
+    Rng rng(4023);
+    std::vector<Surface> keep(kImage);
+    auto make = [&](size_t i) {
+        Surface s;
+        s.normal = glm::normalize(glm::vec3(float(rng.u01()) - 0.5f, float(rng.u01()) - 0.5f, float(rng.u01()) - 0.5f) + glm::vec3(0, 0, 1e-3f));
+        s.baseColor = glm::vec3(float(rng.u01()), float(rng.u01()), float(rng.u01()));
+        s.roughness = float(rng.u01());
+        s.metallic = float(rng.u01());
+        s.occlusion = float(rng.u01());
+        s.specular = float(rng.u01());
+        s.emissive = glm::vec3(float(rng.u01() * 4.0));
+        // Strength and roughness on their own ties, in every combination over the inputs.
+        s.coat = scalarInput(rng, i % 4096, 15, 1.0f);
+        s.coatRoughness = scalarInput(rng, (i / 4096) % 4096, 30, 1.0f);
+        keep[i % kImage] = s;
+        return s;
+    };
+    // The same Surfaces through Bevy 0.16's row: everything but the byte is unchanged.
+    const CpuCodec older(before);
+    CpuGBuffer g;
+    Tally byte, rest;
+    size_t strengthTies = 0, roughnessTies = 0;
+    std::vector<uint32_t> oldWords;
+    runCodec(layout, target, make, [&](size_t i, int x, int y, const uint32_t* w) {
+        const Surface& s = keep[i % kImage];
+        if (x == 0 && y == 0) {  // once per image: the old row's words of the same Surfaces
+            older.encode(keep, kWidth, kHeight, g);
+            oldWords = g.targetWords.at(0);
+        }
+        const uint32_t want = bevyClearcoatByte(s.coat, s.coatRoughness);
+        ++byte.compared;
+        if ((w[2] >> 24u) != want)
+            byte.fail("coat " + std::to_string(s.coat) + ", roughness " + std::to_string(s.coatRoughness) +
+                      ": gbufferlab byte " + std::to_string(w[2] >> 24u) + ", Bevy " + std::to_string(want));
+        // A tie of WGSL's round, where quantizeUnorm's floor(x + 0.5) would round up.
+        const float c15 = clamp01(s.coat) * 15.0f, r30 = std::min(std::max(s.coatRoughness, 0.0f), 0.5f) * 30.0f;
+        strengthTies += c15 - std::floor(c15) == 0.5f && std::fmod(std::floor(c15), 2.0f) == 0.0f;
+        roughnessTies += r30 - std::floor(r30) == 0.5f && std::fmod(std::floor(r30), 2.0f) == 0.0f;
+        const uint32_t* o = &oldWords[size_t(y * kWidth + x) * 4];
+        ++rest.compared;
+        if (o[0] != w[0] || o[1] != w[1] || o[3] != w[3] || (o[2] & 0x00FFFFFFu) != (w[2] & 0x00FFFFFFu))
+            rest.fail("words beside the byte differ from bevy-deferred's at input " + std::to_string(i));
+    });
+    std::printf("[ bevy 0.19] %zu clear-coat bytes (%zu strength and %zu roughness ties rounded to even)\n",
+                byte.compared, strengthTies, roughnessTies);
+    EXPECT_EQ(byte.mismatches, 0u);
+    EXPECT_EQ(rest.mismatches, 0u);
+    EXPECT_GT(strengthTies, 100u);  // the inputs reach the ties where half-up and half-even part
+    EXPECT_GT(roughnessTies, 100u);
+    // The pull request's own defaults: StandardMaterial's clearcoat 0, roughness 0.5 -> 0xF0.
+    EXPECT_EQ(bevyClearcoatByte(0.0f, 0.5f), 0xF0u);
+    EXPECT_EQ(bevyClearcoatByte(1.0f, 1.0f), 0xFFu);
+    EXPECT_EQ(bevyClearcoatByte(0.3f, 0.15f), 4u | (4u << 4u));  // 4.5 -> 4, 4.5 -> 4: ties to even
+
+    // Bevy's read of every byte against the codec's decode.
+    const gbl::CpuCodec codec(layout);
+    std::vector<Surface> all(256);
+    for (int c = 0; c < 256; ++c) {
+        all[size_t(c)].normal = glm::vec3(0, 0, 1);
+        all[size_t(c)].coat = float(c & 15) / 15.0f;
+        all[size_t(c)].coatRoughness = float(c >> 4) / 30.0f;
+    }
+    CpuGBuffer one;
+    codec.encode(all, 256, 1, one);
+    const std::vector<Surface> back = codec.decode(one);
+    for (int c = 0; c < 256; ++c) {
+        const uint32_t b = one.targetWords.at(target)[size_t(c) * 4 + 2] >> 24u;
+        ASSERT_EQ(b, uint32_t(c));  // every byte is reachable, and each is its own code
+        const float props = float(b) / 255.0f;  // unpack_unorm4x8_ (pbr_deferred_types.wgsl:58-65)
+        const uint32_t read = uint32_t(wgslRound(props * 255.0f));
+        EXPECT_EQ(back[size_t(c)].coat, float(read & 15u) / 15.0f) << c;
+        EXPECT_EQ(back[size_t(c)].coatRoughness, float(read >> 4u) / 30.0f) << c;
+        EXPECT_EQ(back[size_t(c)].coatNormal, glm::vec3(0.0f)) << c;  // clearcoat_N = N: the base normal
+    }
+}
+
+// ==================================================================================================
+// HDRP 13: GBuffer2.a = PackFloatInt8bit(coatMask, materialFeatureId, 8) (Lit.hlsl:664-667 at
+// c667268a), PackFloatInt(f, i, 8, 256) = t1 f + t2 i with t1 = (256 / 8 - 1) / 255 and t2 =
+// (256 / 8) / 255 (core Packing.hlsl:437-465 at 6363fa25), into a UNORM byte by the hardware; read
+// back by UnpackFloatInt (:447-459): i = int(val / t2 + 1 / 255), f = saturate((val - t2 i) / t1).
+// ==================================================================================================
+
+TEST(LayerPackings, HdrpCoatMaskEqualsPackFloatInt8bit) {
+    const Layout layout = gbl::loadLayout("hdrp-lit");
+    const size_t target = targetIndex(layout, "GBuffer2");
+    const float t1 = (256.0f / 8.0f - 1.0f) / 255.0f, t2 = (256.0f / 8.0f) / 255.0f;
+    const uint32_t featureId = 0;  // GBUFFER_LIT_STANDARD (MaterialGBufferMacros.hlsl:29)
+    Rng rng(1313);
+    std::vector<Surface> keep(kImage);
+    auto make = [&](size_t i) {
+        Surface s;
+        s.normal = glm::vec3(0, 1, 0);
+        s.specularColor = glm::vec3(0.04f);
+        s.coat = scalarInput(rng, i, 31, 1.0f);
+        keep[i % kImage] = s;
+        return s;
+    };
+    Tally mask;
+    runCodec(layout, target, make, [&](size_t i, int, int, const uint32_t* w) {
+        const Surface& s = keep[i % kImage];
+        // coatMask is a [0, 1] material property (saturated before it reaches the G-buffer).
+        const float val = t1 * clamp01(s.coat) + t2 * float(featureId);
+        const HardwareCode c = hardwareUnorm(val, 8);
+        ++mask.compared;
+        if (c.nearTie) ++mask.nearTies;
+        if (!accepts(c, w[0] >> 24u))
+            mask.fail("coat " + std::to_string(s.coat) + ": gbufferlab byte " + std::to_string(w[0] >> 24u) +
+                      ", HDRP " + std::to_string(c.nearest));
+    });
+    std::printf("[ hdrp     ] %zu coat-mask bytes (%zu within the hardware's latitude at a tie)\n", mask.compared, mask.nearTies);
+    EXPECT_EQ(mask.mismatches, 0u);
+    EXPECT_GT(mask.nearTies, 0u);            // the inputs reach the byte's ties (a seventh of them aim there) ...
+    EXPECT_LT(mask.nearTies, kInputs / 5);   // ... and the rest are compared exactly
+
+    // The read: every 5-bit mask, HDRP's UnpackFloatInt8bit against the codec's decode.
+    const gbl::CpuCodec codec(layout);
+    std::vector<Surface> all(32);
+    for (int k = 0; k < 32; ++k) {
+        all[size_t(k)].normal = glm::vec3(0, 1, 0);
+        all[size_t(k)].coat = float(k) / 31.0f;
+    }
+    CpuGBuffer one;
+    codec.encode(all, 32, 1, one);
+    const std::vector<Surface> back = codec.decode(one);
+    for (int k = 0; k < 32; ++k) {
+        const float val = float(one.targetWords.at(target)[size_t(k)] >> 24u) / 255.0f;
+        const uint32_t id = uint32_t(int(val / t2 + 1.0f / 255.0f));
+        const float f = clamp01((-t2 * float(id) + val) / t1);
+        EXPECT_EQ(id, featureId) << k;
+        EXPECT_NEAR(back[size_t(k)].coat, f, 1e-6) << k;  // HDRP's division, not code / 31
+        EXPECT_EQ(back[size_t(k)].coatRoughness, 0.1f) << k;  // CLEAR_COAT_ROUGHNESS 0.01, perceptual
+    }
+}
+
+// ==================================================================================================
+// UE 5.3.2, ClearCoat: SetGBufferForShadingModel writes CustomData.x = saturate(ClearCoat), .y =
+// saturate(ClearCoatRoughness), .zw untouched (0) without CLEAR_COAT_BOTTOM_NORMAL
+// (ShadingModelsMaterial.ush:85-117), GBufferD B8G8R8A8_UNORM (B in bits 0..7, G 8..15, R 16..23,
+// A 24..31); GBufferB.a = SHADINGMODELID_CLEAR_COAT (4) | SKIP_VELOCITY_MASK (1 << 7).
+// ==================================================================================================
+
+TEST(LayerPackings, Ue5ClearCoatCustomDataEqualsSetGBufferForShadingModel) {
+    const Layout layout = gbl::loadLayout("ue5-clearcoat");
+    const size_t d = targetIndex(layout, "GBufferD");
+    Rng rng(5324);
+    std::vector<Surface> keep(kImage);
+    auto make = [&](size_t i) {
+        Surface s;
+        s.normal = glm::vec3(0, 0, 1);
+        s.coat = scalarInput(rng, i % 4096, 255, 1.0f);  // the ties in a fifth of each
+        s.coatRoughness = scalarInput(rng, (i * 7919u) % 4093u, 255, 1.0f);
+        keep[i % kImage] = s;
+        return s;
+    };
+    Tally custom;
+    runCodec(layout, d, make, [&](size_t i, int, int, const uint32_t* w) {
+        const Surface& s = keep[i % kImage];
+        const HardwareCode x = hardwareUnorm(clamp01(s.coat), 8), y = hardwareUnorm(clamp01(s.coatRoughness), 8);
+        ++custom.compared;
+        if (x.nearTie || y.nearTie) ++custom.nearTies;
+        const uint32_t r = (w[0] >> 16u) & 0xFFu, g = (w[0] >> 8u) & 0xFFu;
+        if (!accepts(x, r) || !accepts(y, g) || (w[0] & 0xFF0000FFu) != 0u)
+            custom.fail("coat " + std::to_string(s.coat) + ", " + std::to_string(s.coatRoughness) + ": GBufferD " + hex(w[0]));
+    });
+    std::printf("[ ue5 cc   ] %zu CustomData words (%zu near a tie)\n", custom.compared, custom.nearTies);
+    EXPECT_EQ(custom.mismatches, 0u);
+    // GBufferB.a: the shading model id 4 with SKIP_VELOCITY_MASK, 0x84.
+    const gbl::CpuCodec codec(layout);
+    CpuGBuffer one;
+    codec.encode(std::vector<Surface>(1, Surface{}), 1, 1, one);
+    EXPECT_EQ(one.targetWords.at(targetIndex(layout, "GBufferB"))[0] >> 24u, 0x84u);
+}
+
+// ==================================================================================================
+// UE 5.3.2, Cloth: CustomData.rgb = EncodeSubsurfaceColor(SubsurfaceColor) = sqrt(saturate(c))
+// (ShadingModelsMaterial.ush:133-139, DeferredShadingCommon.ush:189-192) into UNORM bytes, read
+// Square(CustomData.rgb) (:1031-1034); GBufferB.a = SHADINGMODELID_CLOTH (8) | 1 << 7.
+// ==================================================================================================
+
+TEST(LayerPackings, UnormSqrtThresholdsAreTheExactSquares) {
+    // kUnormSqrtEncodeThresholds[k] >= (2k + 1)^2 / 260100 > the float below it; T * 260100 is exact
+    // in double (24 + 18 bits).
+    for (int k = 0; k < 255; ++k) {
+        const double t = double(gbl::enc::kUnormSqrtEncodeThresholds[k]);
+        const double below = double(std::nextafter(gbl::enc::kUnormSqrtEncodeThresholds[k], 0.0f));
+        const double square = double((2 * k + 1) * (2 * k + 1));
+        ASSERT_GE(t * 260100.0, square) << k;
+        ASSERT_LT(below * 260100.0, square) << k;
+    }
+    EXPECT_EQ(gbl::enc::encodeUnormSqrt(-1.0f), 0u);
+    EXPECT_EQ(gbl::enc::encodeUnormSqrt(2.0f), 255u);
+    EXPECT_EQ(gbl::enc::decodeUnormSqrt(255u), 1.0f);
+}
+
+TEST(LayerPackings, Ue5ClothCustomDataEqualsEncodeSubsurfaceColor) {
+    const Layout layout = gbl::loadLayout("ue5-cloth");
+    const size_t d = targetIndex(layout, "GBufferD");
+    Rng rng(8128);
+    std::vector<Surface> keep(kImage);
+    auto make = [&](size_t i) {
+        Surface s;
+        s.normal = glm::vec3(0, 0, 1);
+        // sqrt's ties: c = ((k + 0.5) / 255)^2 and the floats beside it, then anything.
+        auto one = [&](size_t j) {
+            if (j < 255 * 3) {
+                const float t = float(std::pow((double(j / 3) + 0.5) / 255.0, 2.0));
+                return j % 3 == 0 ? t : j % 3 == 1 ? std::nextafter(t, -1.0f) : std::nextafter(t, 2.0f);
+            }
+            return float(rng.u01() * 1.2 - 0.1);
+        };
+        s.sheenColor = glm::vec3(one(i % 4096), one((i * 7919u) % 4093u), one(4096));  // ties in a fifth of r, g
+        keep[i % kImage] = s;
+        return s;
+    };
+    Tally custom;
+    runCodec(layout, d, make, [&](size_t i, int, int, const uint32_t* w) {
+        const Surface& s = keep[i % kImage];
+        HardwareCode c[3];
+        for (int k = 0; k < 3; ++k) c[k] = hardwareUnorm(std::sqrt(clamp01(s.sheenColor[k])), 8);
+        ++custom.compared;
+        if (c[0].nearTie || c[1].nearTie || c[2].nearTie) ++custom.nearTies;
+        const uint32_t r = (w[0] >> 16u) & 0xFFu, g = (w[0] >> 8u) & 0xFFu, b = w[0] & 0xFFu;
+        if (!accepts(c[0], r) || !accepts(c[1], g) || !accepts(c[2], b) || (w[0] >> 24u) != 0u)
+            custom.fail("fuzz colour " + vec(s.sheenColor) + ": GBufferD " + hex(w[0]));
+    });
+    std::printf("[ ue5 cloth] %zu CustomData words (%zu near a tie)\n", custom.compared, custom.nearTies);
+    EXPECT_EQ(custom.mismatches, 0u);
+    EXPECT_GT(custom.nearTies, 0u);
+    // The read: Square(code / 255) for every code, and GBufferB.a = 0x88.
+    const gbl::CpuCodec codec(layout);
+    std::vector<Surface> all(256);
+    for (int k = 0; k < 256; ++k) all[size_t(k)].sheenColor = glm::vec3(float(k) / 255.0f * (float(k) / 255.0f));
+    CpuGBuffer one;
+    codec.encode(all, 256, 1, one);
+    const std::vector<Surface> back = codec.decode(one);
+    for (int k = 0; k < 256; ++k) {
+        const uint32_t code = (one.targetWords.at(d)[size_t(k)] >> 16u) & 0xFFu;
+        const float v = float(code) / 255.0f;
+        EXPECT_EQ(back[size_t(k)].sheenColor.x, v * v) << k;
+    }
+    EXPECT_EQ(one.targetWords.at(targetIndex(layout, "GBufferB"))[0] >> 24u, 0x88u);
+}
+
+// ==================================================================================================
+// UE 5.3.2, GBufferF: EncodeWorldTangentAndAnisotropy = (EncodeNormal(T), A * 0.5 + 0.5), EncodeNormal
+// = N * 0.5 + 0.5 (DeferredShadingCommon.ush:122-125, 222-228; AnisotropyPassShader.usf:132-135),
+// B8G8R8A8_UNORM; read back DecodeNormal = rgb * 2 - 1, normalised, and A = a * 2 - 1 (:1015-1022).
+// ==================================================================================================
+
+TEST(LayerPackings, Ue5GBufferFEqualsEncodeWorldTangentAndAnisotropy) {
+    const Layout layout = gbl::loadLayout("ue5-anisotropy");
+    const size_t f = targetIndex(layout, "GBufferF");
+    const std::vector<glm::vec3> edges = edgeNormals();
+    Rng rng(6111);
+    std::vector<Surface> keep(kImage);
+    auto make = [&](size_t i) {
+        Surface s;
+        s.normal = glm::vec3(0, 0, 1);
+        s.anisotropyDirection = i % 13 == 5 ? glm::vec3(0.0f) : normalInput(edges, rng, i);  // 0: no anisotropy
+        s.anisotropyStrength = scalarInput(rng, i, 255, 1.0f) * 2.0f - 1.0f;  // UE's [-1, 1], ties of a * 0.5 + 0.5
+        if (i % 17 == 3) s.anisotropyStrength = float(rng.u01());           // glTF's [0, 1]
+        keep[i % kImage] = s;
+        return s;
+    };
+    Tally words;
+    runCodec(layout, f, make, [&](size_t i, int, int, const uint32_t* w) {
+        const Surface& s = keep[i % kImage];
+        const glm::vec3 t = s.anisotropyDirection * 0.5f + 0.5f;
+        const HardwareCode r = hardwareUnorm(t.x, 8), g = hardwareUnorm(t.y, 8), b = hardwareUnorm(t.z, 8);
+        const HardwareCode a = hardwareUnorm(s.anisotropyStrength * 0.5f + 0.5f, 8);
+        ++words.compared;
+        if (r.nearTie || g.nearTie || b.nearTie || a.nearTie) ++words.nearTies;
+        if (!accepts(r, (w[0] >> 16u) & 0xFFu) || !accepts(g, (w[0] >> 8u) & 0xFFu) || !accepts(b, w[0] & 0xFFu) ||
+            !accepts(a, w[0] >> 24u))
+            words.fail("tangent " + vec(s.anisotropyDirection) + ", anisotropy " + std::to_string(s.anisotropyStrength) +
+                       ": GBufferF " + hex(w[0]));
+    });
+    std::printf("[ ue5 F    ] %zu GBufferF words (%zu near a tie)\n", words.compared, words.nearTies);
+    EXPECT_EQ(words.mismatches, 0u);
+    // No anisotropy writes UE's clear, 0.5 in every channel (code 128).
+    const gbl::CpuCodec codec(layout);
+    CpuGBuffer one;
+    codec.encode(std::vector<Surface>(1, Surface{}), 1, 1, one);
+    EXPECT_EQ(one.targetWords.at(f)[0], 0x80808080u);
+    // The read: UE's DecodeNormal and a * 2 - 1 of the stored codes.
+    std::vector<Surface> some(64);
+    for (size_t i = 0; i < some.size(); ++i) {
+        some[i].normal = glm::vec3(0, 0, 1);
+        some[i].anisotropyDirection = normalInput(edges, rng, 1000 + i);
+        some[i].anisotropyStrength = float(rng.u01());
+    }
+    codec.encode(some, 64, 1, one);
+    const std::vector<Surface> back = codec.decode(one);
+    for (size_t i = 0; i < some.size(); ++i) {
+        const uint32_t w = one.targetWords.at(f)[i];
+        const glm::vec3 rgb(float((w >> 16u) & 0xFFu) / 255.0f, float((w >> 8u) & 0xFFu) / 255.0f, float(w & 0xFFu) / 255.0f);
+        const glm::vec3 tangent = glm::normalize(rgb * 2.0f - 1.0f);
+        EXPECT_LT(glm::length(back[i].anisotropyDirection - tangent), 1e-6f) << i;
+        EXPECT_EQ(back[i].anisotropyStrength, float(w >> 24u) / 255.0f * 2.0f - 1.0f) << i;
+    }
+}
+
+// ==================================================================================================
+// UE 5.3.2's clear-coat bottom normal (CLEAR_COAT_BOTTOM_NORMAL, r.ClearCoatNormal = 1): CustomData.a
+// and .z = (oct(bottom) - oct(top)) * 0.25 + 128/255 (ShadingModelsMaterial.ush:96-116), read back
+// OctahedronToUnitVector((a, z) * 4 - 512/255 + oct(top)) (ClearCoatCommon.ush:5-14), with
+// UnitVectorToOctahedron / OctahedronToUnitVector (OctahedralCommon.ush:18-34). No row stores it
+// yet (it needs GBufferA to hold the coat normal and the selector): its encoder and decoder are
+// held to UE's arithmetic here.
+// ==================================================================================================
+
+glm::vec2 ueUnitVectorToOctahedron(glm::vec3 n) {
+    const float d = std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z);  // dot(1, abs(N))
+    glm::vec2 xy(n.x / d, n.y / d);
+    if (n.z <= 0.0f)
+        xy = glm::vec2((1.0f - std::fabs(xy.y)) * (xy.x >= 0.0f ? 1.0f : -1.0f),
+                       (1.0f - std::fabs(xy.x)) * (xy.y >= 0.0f ? 1.0f : -1.0f));
+    return xy;
+}
+
+glm::vec3 ueOctahedronToUnitVector(glm::vec2 o) {
+    glm::vec3 n(o.x, o.y, 1.0f - (std::fabs(o.x) + std::fabs(o.y)));
+    const float t = std::max(-n.z, 0.0f);
+    n.x += n.x >= 0.0f ? -t : t;
+    n.y += n.y >= 0.0f ? -t : t;
+    return glm::normalize(n);
+}
+
+TEST(LayerPackings, Ue5ClearCoatBottomNormalDeltaEqualsShadingModelsMaterial) {
+    const std::vector<glm::vec3> edges = edgeNormals();
+    Rng rng(7711);
+    Tally codes, reads;
+    double worst = 0.0;
+    for (size_t i = 0; i < kInputs / 4; ++i) {
+        const glm::vec3 top = i < edges.size() ? edges[i] : glm::normalize(randomDirection(rng));
+        // The bottom near the top (a normal map's perturbation), or anywhere.
+        glm::vec3 bottom = i % 5 == 0 ? randomDirection(rng)
+                                      : glm::normalize(top + 0.3f * glm::vec3(float(rng.u01()) - 0.5f, float(rng.u01()) - 0.5f,
+                                                                              float(rng.u01()) - 0.5f));
+        if (!(glm::length(bottom) > 0.5f)) bottom = top;
+        const glm::vec2 o1 = ueUnitVectorToOctahedron(bottom), o2 = ueUnitVectorToOctahedron(top);
+        const HardwareCode ca = hardwareUnorm((o1.x - o2.x) * 0.25f + 128.0f / 255.0f, 8);
+        const HardwareCode cz = hardwareUnorm((o1.y - o2.y) * 0.25f + 128.0f / 255.0f, 8);
+        const glm::uvec2 got = gbl::enc::encodeNormalOctahedralDeltaUe(bottom, top, 8u);
+        ++codes.compared;
+        if (ca.nearTie || cz.nearTie) ++codes.nearTies;
+        if (!accepts(ca, got.x) || !accepts(cz, got.y))
+            codes.fail("bottom " + vec(bottom) + " under " + vec(top) + ": codes (" + std::to_string(got.x) + ", " +
+                       std::to_string(got.y) + "), UE (" + std::to_string(ca.nearest) + ", " + std::to_string(cz.nearest) + ")");
+        // The read, from the stored codes (CustomData.a = code x / 255, .z = code y / 255).
+        const glm::vec2 stored(float(got.x) / 255.0f, float(got.y) / 255.0f);
+        const glm::vec3 ue = ueOctahedronToUnitVector(stored * 4.0f - 512.0f / 255.0f + o2);
+        const glm::vec3 mine = gbl::enc::decodeNormalOctahedralDeltaUe(got, top, 8u);
+        ++reads.compared;
+        if (!(glm::length(ue - mine) < 1e-6f)) reads.fail("decode of " + vec(bottom) + ": " + vec(mine) + ", UE " + vec(ue));
+        // The delta saturates beyond (oct(bottom) - oct(top)) of about +-2: the round trip is good
+        // only for bottoms near the top, as UE intends (a coat over a perturbed base).
+        if (i % 5 != 0) worst = std::max(worst, double(std::acos(std::min(1.0f, glm::dot(mine, bottom)))) * 57.29577951308232);
+    }
+    std::printf("[ ue5 cc n ] %zu bottom-normal deltas (%zu near a tie), worst near-top error %.3f deg\n", codes.compared,
+                codes.nearTies, worst);
+    EXPECT_EQ(codes.mismatches, 0u);
+    EXPECT_EQ(reads.mismatches, 0u);
+    EXPECT_LT(worst, 2.0);  // 8 bits over a delta range of 4: a step of 4/255 in the octahedron
+    // The same normal above and below: the delta is 128/255 itself, code 128 each, and reads back.
+    EXPECT_EQ(gbl::enc::encodeNormalOctahedralDeltaUe(glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), 8u), glm::uvec2(128u, 128u));
+}
+
+}  // namespace
