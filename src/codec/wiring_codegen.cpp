@@ -149,16 +149,11 @@ std::string nativeFormatObstacle(const Target& target) {
     return "";
 }
 
-std::string generateWiringGlsl(const Layout& layout, const WiringOptions& options) {
-    if (layout.pipeline == Pipeline::VisibilityBuffer) return generateVisibilityWiringGlsl(layout);
-    std::ostringstream o;
-    o << "// generated from the layout '" << glslCommentText(layout.name) << "' by gbufferlab -- do not edit\n";
-    o << "// " << glslCommentText(layout.title) << " (" << pipelineName(layout.pipeline) << ")\n";
-    o << "// Integer-only wiring: every code is placed with shifts and masks; src/codec/cpu_codec.cpp mirrors it.\n";
-    if (!layout.depth.stencil.empty())
-        o << "// Stencil extras are constants written by the renderer's stencil reference, not here.\n";
-    o << "#include \"encodings.glsl\"\n";
+namespace {
 
+// Which targets the write keeps in their native format (--native-formats), with a comment for each
+// that stays UINT and why.
+std::vector<bool> nativeTargets(std::ostringstream& o, const Layout& layout, const WiringOptions& options) {
     std::vector<bool> native(layout.targets.size(), false);
     for (size_t t = 0; t < layout.targets.size(); ++t) {
         const Target& tg = layout.targets[t];
@@ -167,10 +162,13 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         native[t] = why.empty();
         if (!why.empty()) o << "// --native-formats: target " << t << " '" << glslCommentText(tg.name) << "' stays UINT: " << why << "\n";
     }
+    return native;
+}
+
+// MATERIAL_PASS_WRITE: the attributes a slim G-buffer leaves to the material pass, as float32 bits.
+void emitMaterialPassWrite(std::ostringstream& o, const Layout& layout) {
     const bool materialPass = materialTargetCount(layout) > 0;
     const int materialTargets = materialTargetCount(layout);
-
-    // ---- write ----
     o << "\n#if defined(MATERIAL_PASS_WRITE)\n";
     if (materialPass) {
         o << "// Material pass: the attributes the G-buffer leaves to it, as float32 bits.\n";
@@ -191,6 +189,55 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
     } else {
         o << "#error \"layout " << glslCommentText(layout.name) << " has no material pass\"\n";
     }
+}
+
+// One field of target t written into the target's words (or its native vector).
+void emitFieldWrite(std::ostringstream& o, const Target& tg, size_t t, size_t fi, bool native) {
+    const std::string ts = std::to_string(t);
+    const Field& f = tg.fields[fi];
+    const std::string id = "e" + ts + "_" + std::to_string(fi);
+    std::string at;
+    for (const CodePlace& cp : f.codes) at += (at.empty() ? "" : ", ") + cp.text;
+    o << "    // " << attributeName(f.attribute) << ": " << f.encoding << " at " << at
+      << (f.conditional() ? " (under " + shadingModelNames(f.models) + ")" : "") << "\n";
+    if (f.attribute == Attribute::ShadingModel) {  // the selector: the id of the pixel's model
+        emitPlaceCode(o, "    ", tg, f.codes[0], "w" + ts, modelIdExpr(f, "gblModel"));
+        return;
+    }
+    if (f.conditional()) {
+        // Written on the pixels of its models only: elsewhere its bits belong to another model's fields.
+        o << "    if (" << maskTest(f.models, "gblModel") << ") {\n";
+        const std::vector<std::string> codes = emitEncodeField(o, "        ", f, id);
+        for (size_t i = 0; i < codes.size(); ++i) {
+            const std::string cv = id + "_c" + std::to_string(i);
+            o << "        uint " << cv << " = " << codes[i] << ";\n";
+            emitPlaceCode(o, "        ", tg, f.codes[i], "w" + ts, cv);
+        }
+        o << "    }\n";
+        return;
+    }
+    if (native) {
+        const std::vector<std::string> v = emitNativeEncode(o, "    ", f, id);
+        for (size_t i = 0; i < v.size(); ++i) {
+            const Channel& ch = tg.channels[size_t(f.codes[i].pieces[0].channel)];
+            o << "    v" << ts << "." << kComp[channelComponent(ch)] << " = " << v[i] << ";\n";
+        }
+        return;
+    }
+    const std::vector<std::string> codes = emitEncodeField(o, "    ", f, id);
+    for (size_t i = 0; i < codes.size(); ++i) {
+        if (f.codes[i].pieces.size() == 1 && codes[i].find('(') != std::string::npos) {
+            emitPlaceCode(o, "    ", tg, f.codes[i], "w" + ts, codes[i]);
+        } else {
+            const std::string cv = id + "_c" + std::to_string(i);
+            o << "    uint " << cv << " = " << codes[i] << ";\n";
+            emitPlaceCode(o, "    ", tg, f.codes[i], "w" + ts, cv);
+        }
+    }
+}
+
+// GBUFFER_WRITE: the outputs, the pixel's shading model (a selector's layout), and every field.
+void emitGBufferWrite(std::ostringstream& o, const Layout& layout, const std::vector<bool>& native) {
     o << "#elif defined(GBUFFER_WRITE)\n";
     for (size_t t = 0; t < layout.targets.size(); ++t) {
         const Target& tg = layout.targets[t];
@@ -218,54 +265,17 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
         } else {
             o << "    uvec4 w" << ts << " = uvec4(0u);\n";
         }
-        for (size_t fi = 0; fi < tg.fields.size(); ++fi) {
-            const Field& f = tg.fields[fi];
-            const std::string id = "e" + ts + "_" + std::to_string(fi);
-            std::string at;
-            for (const CodePlace& cp : f.codes) at += (at.empty() ? "" : ", ") + cp.text;
-            o << "    // " << attributeName(f.attribute) << ": " << f.encoding << " at " << at
-              << (f.conditional() ? " (under " + shadingModelNames(f.models) + ")" : "") << "\n";
-            if (f.attribute == Attribute::ShadingModel) {  // the selector: the id of the pixel's model
-                emitPlaceCode(o, "    ", tg, f.codes[0], "w" + ts, modelIdExpr(f, "gblModel"));
-                continue;
-            }
-            if (f.conditional()) {
-                // Written on the pixels of its models only: elsewhere its bits belong to another model's fields.
-                o << "    if (" << maskTest(f.models, "gblModel") << ") {\n";
-                const std::vector<std::string> codes = emitEncodeField(o, "        ", f, id);
-                for (size_t i = 0; i < codes.size(); ++i) {
-                    const std::string cv = id + "_c" + std::to_string(i);
-                    o << "        uint " << cv << " = " << codes[i] << ";\n";
-                    emitPlaceCode(o, "        ", tg, f.codes[i], "w" + ts, cv);
-                }
-                o << "    }\n";
-                continue;
-            }
-            if (native[t]) {
-                const std::vector<std::string> v = emitNativeEncode(o, "    ", f, id);
-                for (size_t i = 0; i < v.size(); ++i) {
-                    const Channel& ch = tg.channels[size_t(f.codes[i].pieces[0].channel)];
-                    o << "    v" << ts << "." << kComp[channelComponent(ch)] << " = " << v[i] << ";\n";
-                }
-                continue;
-            }
-            const std::vector<std::string> codes = emitEncodeField(o, "    ", f, id);
-            for (size_t i = 0; i < codes.size(); ++i) {
-                if (f.codes[i].pieces.size() == 1 && codes[i].find('(') != std::string::npos) {
-                    emitPlaceCode(o, "    ", tg, f.codes[i], "w" + ts, codes[i]);
-                } else {
-                    const std::string cv = id + "_c" + std::to_string(i);
-                    o << "    uint " << cv << " = " << codes[i] << ";\n";
-                    emitPlaceCode(o, "    ", tg, f.codes[i], "w" + ts, cv);
-                }
-            }
-        }
+        for (size_t fi = 0; fi < tg.fields.size(); ++fi) emitFieldWrite(o, tg, t, fi, native[t]);
         o << "    gbufferTarget" << ts << " = "
           << (native[t] ? "v" + ts : wordsToOut(wordsPerPixel(tg), tg.bits(), "w" + ts)) << ";\n";
     }
     o << "}\n#endif\n";
+}
 
-    // ---- read ----
+// GBUFFER_READ's declarations: the targets' samplers, the material pass's, and the checkerboard
+// chroma helpers.
+void emitReadDeclarations(std::ostringstream& o, const Layout& layout, const std::vector<bool>& native) {
+    const int materialTargets = materialTargetCount(layout);
     o << "\n#ifdef GBUFFER_READ\n";
     for (size_t t = 0; t < layout.targets.size(); ++t)
         o << "layout(set = 1, binding = " << t << ") uniform " << (native[t] ? "sampler2D" : "usampler2D")
@@ -305,6 +315,86 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
              "    p = (size - 1) - abs((size - 1) - p);\n"
              "    return clamp(p, ivec2(0), size - 1);\n"
              "}\n";
+}
+
+// One field of target t read into its Surface member.
+void emitFieldRead(std::ostringstream& o, const Layout& layout, const Target& tg, size_t t, size_t fi, bool native) {
+    const std::string ts = std::to_string(t);
+    const Field& f = tg.fields[fi];
+    const char* m = surfaceSlotName(f.attribute);
+    if (!m) return;  // extras (and the selector, above): no shading meaning
+    if (f.conditional()) {
+        std::vector<std::string> codes;
+        for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, "w" + ts));
+        o << "    if (" << maskTest(layout.selectorIds(f.models), "gblSel") << ") s." << m << " = "
+          << decodeFieldExpr(f, codes) << ";  // under " << shadingModelNames(f.models) << "\n";
+        return;
+    }
+    const std::string lhs = std::string("    s.") + m + " = ";
+    if (native) {
+        std::vector<std::string> u;
+        for (const CodePlace& cp : f.codes)
+            u.push_back("v" + ts + "." + kComp[channelComponent(tg.channels[size_t(cp.pieces[0].channel)])]);
+        o << lhs << nativeDecodeExpr(f, u) << ";\n";
+        return;
+    }
+    if (findEncoding(f.encoding) && findEncoding(f.encoding)->needsNeighbours) {
+        std::string fwd, inv;
+        colorTransform(f.encoding, fwd, inv);
+        const std::string fn = "gblLumaChroma" + ts + "_" + std::to_string(fi);
+        o << "    {\n        ivec2 size = textureSize(gbufferTarget" << ts << ", 0);\n";
+        o << "        vec2 c = " << fn << "(pixel);\n";
+        const char* off[4] = {"ivec2(1, 0)", "ivec2(-1, 0)", "ivec2(0, 1)", "ivec2(0, -1)"};
+        for (int k = 0; k < 4; ++k) {
+            o << "        ivec2 p" << k << " = gblMirror(pixel + " << off[k] << ", size);\n";
+            o << "        vec2 n" << k << " = " << fn << "(p" << k << ");\n";
+        }
+        o << "        vec2 ch = reconstructChroma(pixel, c.x, c.y, vec4(n0.x, n1.x, n2.x, n3.x), "
+             "vec4(n0.y, n1.y, n2.y, n3.y), vec4(gblCovered(p0), gblCovered(p1), gblCovered(p2), "
+             "gblCovered(p3)));\n";
+        o << "    " << lhs << inv << "(vec3(c.x, ch.x, ch.y));\n    }\n";
+        return;
+    }
+    std::vector<std::string> codes;
+    for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, "w" + ts));
+    o << lhs << decodeFieldExpr(f, codes) << ";\n";
+    if (const std::string carried = decodeCarriedStatement(f, codes); !carried.empty())
+        o << "    " << carried << "\n";
+}
+
+// What no field sets: the attributes not stored (zero, "no layer", or rebuilt), then the
+// fallbacks in dependency order (per model where the attribute is stored under some models).
+void emitUnstoredAndFallbacks(std::ostringstream& o, const Layout& layout) {
+    // Unstored attributes without a fallback (position: the lighting pass rebuilds it from depth).
+    // The layers a layout does not store decode as 0, "no layer" (layouts/README.md, Attributes).
+    for (Attribute a : surfaceAttributes())
+        if (!layout.stores(a) && !layout.findFallback(a)) {
+            const bool depthInZ = a == Attribute::Position && layout.stores(Attribute::Depth);
+            o << "    s." << (depthInZ ? "position.xy" : surfaceMemberName(a)) << " = "
+              << (depthInZ ? "vec2(0.0)" : zeroOf(a)) << ";  // not stored"
+              << (isLayerAttribute(a)       ? ": no layer"
+                  : a != Attribute::Position ? ""
+                  : depthInZ              ? ": z holds the stored depth, the lighting pass rebuilds position from it"
+                                          : ": rebuilt from depth by the lighting pass")
+              << "\n";
+        }
+    if (!layout.selector()) o << "    s.shadingModel = 0.0;  // no shading-model selector\n";
+    for (const Fallback* fb : orderedFallbacks(layout)) {
+        if (layout.storesConditionally(fb->attribute) && surfaceMemberName(fb->attribute)) {
+            // Where the pixel's model does not store it.
+            o << "    if (!(" << maskTest(layout.selectorIds(layout.conditionalModels(fb->attribute)), "gblSel")
+              << ")) {\n    ";
+            emitFallback(o, *fb, layout);
+            o << "    }\n";
+            continue;
+        }
+        emitFallback(o, *fb, layout);
+    }
+}
+
+// GBUFFER_READ's readGBuffer: the texels, the stored model id, every field, then what no field sets.
+void emitGBufferRead(std::ostringstream& o, const Layout& layout, const std::vector<bool>& native) {
+    const int materialTargets = materialTargetCount(layout);
     o << "Surface readGBuffer(ivec2 pixel) {\n    Surface s;\n";
     for (size_t t = 0; t < layout.targets.size(); ++t)
         o << "    " << (native[t] ? "vec4 v" : "uvec4 w") << t << " = texelFetch(gbufferTarget" << t
@@ -327,78 +417,29 @@ std::string generateWiringGlsl(const Layout& layout, const WiringOptions& option
                 o << "    s." << surfaceSlotName(a) << " = " << zeroOf(a) << ";  // stored under "
                   << shadingModelNames(layout.conditionalModels(a)) << " only\n";
     }
-    for (size_t t = 0; t < layout.targets.size(); ++t) {
-        const Target& tg = layout.targets[t];
-        const std::string ts = std::to_string(t);
-        for (size_t fi = 0; fi < tg.fields.size(); ++fi) {
-            const Field& f = tg.fields[fi];
-            const char* m = surfaceSlotName(f.attribute);
-            if (!m) continue;  // extras (and the selector, above): no shading meaning
-            if (f.conditional()) {
-                std::vector<std::string> codes;
-                for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, "w" + ts));
-                o << "    if (" << maskTest(layout.selectorIds(f.models), "gblSel") << ") s." << m << " = "
-                  << decodeFieldExpr(f, codes) << ";  // under " << shadingModelNames(f.models) << "\n";
-                continue;
-            }
-            const std::string lhs = std::string("    s.") + m + " = ";
-            if (native[t]) {
-                std::vector<std::string> u;
-                for (const CodePlace& cp : f.codes)
-                    u.push_back("v" + ts + "." + kComp[channelComponent(tg.channels[size_t(cp.pieces[0].channel)])]);
-                o << lhs << nativeDecodeExpr(f, u) << ";\n";
-                continue;
-            }
-            if (findEncoding(f.encoding) && findEncoding(f.encoding)->needsNeighbours) {
-                std::string fwd, inv;
-                colorTransform(f.encoding, fwd, inv);
-                const std::string fn = "gblLumaChroma" + ts + "_" + std::to_string(fi);
-                o << "    {\n        ivec2 size = textureSize(gbufferTarget" << ts << ", 0);\n";
-                o << "        vec2 c = " << fn << "(pixel);\n";
-                const char* off[4] = {"ivec2(1, 0)", "ivec2(-1, 0)", "ivec2(0, 1)", "ivec2(0, -1)"};
-                for (int k = 0; k < 4; ++k) {
-                    o << "        ivec2 p" << k << " = gblMirror(pixel + " << off[k] << ", size);\n";
-                    o << "        vec2 n" << k << " = " << fn << "(p" << k << ");\n";
-                }
-                o << "        vec2 ch = reconstructChroma(pixel, c.x, c.y, vec4(n0.x, n1.x, n2.x, n3.x), "
-                     "vec4(n0.y, n1.y, n2.y, n3.y), vec4(gblCovered(p0), gblCovered(p1), gblCovered(p2), "
-                     "gblCovered(p3)));\n";
-                o << "    " << lhs << inv << "(vec3(c.x, ch.x, ch.y));\n    }\n";
-                continue;
-            }
-            std::vector<std::string> codes;
-            for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, "w" + ts));
-            o << lhs << decodeFieldExpr(f, codes) << ";\n";
-            if (const std::string carried = decodeCarriedStatement(f, codes); !carried.empty())
-                o << "    " << carried << "\n";
-        }
-    }
-    // Unstored attributes without a fallback (position: the lighting pass rebuilds it from depth).
-    // The layers a layout does not store decode as 0, "no layer" (layouts/README.md, Attributes).
-    for (Attribute a : surfaceAttributes())
-        if (!layout.stores(a) && !layout.findFallback(a)) {
-            const bool depthInZ = a == Attribute::Position && layout.stores(Attribute::Depth);
-            o << "    s." << (depthInZ ? "position.xy" : surfaceMemberName(a)) << " = "
-              << (depthInZ ? "vec2(0.0)" : zeroOf(a)) << ";  // not stored"
-              << (isLayerAttribute(a)       ? ": no layer"
-                  : a != Attribute::Position ? ""
-                  : depthInZ              ? ": z holds the stored depth, the lighting pass rebuilds position from it"
-                                          : ": rebuilt from depth by the lighting pass")
-              << "\n";
-        }
-    if (!readSelector) o << "    s.shadingModel = 0.0;  // no shading-model selector\n";
-    for (const Fallback* fb : orderedFallbacks(layout)) {
-        if (layout.storesConditionally(fb->attribute) && surfaceMemberName(fb->attribute)) {
-            // Where the pixel's model does not store it.
-            o << "    if (!(" << maskTest(layout.selectorIds(layout.conditionalModels(fb->attribute)), "gblSel")
-              << ")) {\n    ";
-            emitFallback(o, *fb, layout);
-            o << "    }\n";
-            continue;
-        }
-        emitFallback(o, *fb, layout);
-    }
+    for (size_t t = 0; t < layout.targets.size(); ++t)
+        for (size_t fi = 0; fi < layout.targets[t].fields.size(); ++fi)
+            emitFieldRead(o, layout, layout.targets[t], t, fi, native[t]);
+    emitUnstoredAndFallbacks(o, layout);
     o << "    return s;\n}\n#endif\n";
+}
+
+}  // namespace
+
+std::string generateWiringGlsl(const Layout& layout, const WiringOptions& options) {
+    if (layout.pipeline == Pipeline::VisibilityBuffer) return generateVisibilityWiringGlsl(layout);
+    std::ostringstream o;
+    o << "// generated from the layout '" << glslCommentText(layout.name) << "' by gbufferlab -- do not edit\n";
+    o << "// " << glslCommentText(layout.title) << " (" << pipelineName(layout.pipeline) << ")\n";
+    o << "// Integer-only wiring: every code is placed with shifts and masks; src/codec/cpu_codec.cpp mirrors it.\n";
+    if (!layout.depth.stencil.empty())
+        o << "// Stencil extras are constants written by the renderer's stencil reference, not here.\n";
+    o << "#include \"encodings.glsl\"\n";
+    const std::vector<bool> native = nativeTargets(o, layout, options);
+    emitMaterialPassWrite(o, layout);
+    emitGBufferWrite(o, layout, native);
+    emitReadDeclarations(o, layout, native);
+    emitGBufferRead(o, layout, native);
     return o.str();
 }
 

@@ -275,9 +275,9 @@ RunMetrics computeRunMetrics(const SurfaceImages& reference, const SurfaceImages
 namespace {
 
 // `release`: when set (it is `test`), emptied once the attribute metrics no longer need it.
-RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
-                       const Image& testHdr, float exposure, const RunMetricsOptions& options,
-                       SurfaceImages* release) {
+// The inputs' sizes and channels, checked before any pixel is read.
+void checkRunInputs(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
+                    const Image& testHdr, const RunMetricsOptions& options) {
     const int w = referenceHdr.width, h = referenceHdr.height;
     if (referenceHdr.empty() || referenceHdr.channels < 3)
         throwUserError("compare: the reference render needs 3 or 4 channels (RGB[A]) and pixels");
@@ -290,90 +290,101 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
     if (noise && (noise->width != w || noise->height != h || noise->channels != 1))
         throw std::invalid_argument("computeRunMetrics: the reference noise image must be 1 channel, " +
                                     std::to_string(w) + "x" + std::to_string(h));
-
-    RunMetrics out;
-    RunErrorMaps* maps = options.maps;
     const size_t n = referenceHdr.pixelCount();
-    // The pixels every metric is over (RunMetricsOptions::excluded): null for all of them.
-    const bool excluding = options.excluded && !options.excluded->empty();
-    if (excluding && options.excluded->size() != n)
+    if (options.excluded && !options.excluded->empty() && options.excluded->size() != n)
         throw std::invalid_argument("computeRunMetrics: the excluded mask has " + std::to_string(options.excluded->size()) +
                                     " entries for " + std::to_string(n) + " pixels");
-    Mask includedMask;
-    if (excluding) {
-        includedMask.resize(n);
-        for (size_t i = 0; i < n; ++i) includedMask[i] = (*options.excluded)[i] ? 0 : 1;
-    }
-    const Mask* included = excluding ? &includedMask : nullptr;
+}
 
-    // Coverage and material classes.
-    std::optional<HostScope> scope(std::in_place, "metrics: coverage");
-    Mask measured(n, 0), metal(n, 0);
+// What every metric of a run is over: the pixels both renders cover, less the excluded ones
+// (RunMetricsOptions::excluded; `included` null when none is), their class (metal or dielectric),
+// and the layers each one's reference carries (layer_classes.h; empty in a scene without them).
+struct PixelClasses {
+    Mask includedStorage;
+    const Mask* included = nullptr;
+    Mask measured, metal;
+    std::vector<uint8_t> layerBits;
+};
+
+PixelClasses classifyPixels(const SurfaceImages& reference, const SurfaceImages& test, size_t n,
+                            const RunMetricsOptions& options, bool layers, CoverageCounts& coverage) {
+    PixelClasses p;
+    if (options.excluded && !options.excluded->empty()) {
+        p.includedStorage.resize(n);
+        for (size_t i = 0; i < n; ++i) p.includedStorage[i] = (*options.excluded)[i] ? 0 : 1;
+        p.included = &p.includedStorage;
+    }
+    p.measured.assign(n, 0);
+    p.metal.assign(n, 0);
     const bool haveMetallic = !reference.metallic.empty();
-    out.coverage.pixels = n;
+    coverage.pixels = n;
     for (size_t i = 0; i < n; ++i) {
-        if (included && !(*included)[i]) {
-            ++out.coverage.excluded;
+        if (p.included && !(*p.included)[i]) {
+            ++coverage.excluded;
             continue;
         }
         const bool r = reference.coverage[i] != 0, t = test.coverage[i] != 0;
         if (r && t) {
-            measured[i] = 1;
-            ++out.coverage.both;
+            p.measured[i] = 1;
+            ++coverage.both;
             const bool isMetal =
                 haveMetallic && reference.metallic.pixels[i * size_t(reference.metallic.channels)] > 0.5f;
-            metal[i] = isMetal ? 1 : 0;
-            ++(isMetal ? out.coverage.metal : out.coverage.dielectric);
+            p.metal[i] = isMetal ? 1 : 0;
+            ++(isMetal ? coverage.metal : coverage.dielectric);
         } else if (r) {
-            ++out.coverage.referenceOnly;
+            ++coverage.referenceOnly;
         } else if (t) {
-            ++out.coverage.testOnly;
+            ++coverage.testOnly;
         }
     }
-
-    // The layers each measured pixel's reference carries (layer_classes.h), in a scene with them.
-    const bool layers = reference.hasLayers() && test.hasLayers();
-    std::vector<uint8_t> layerBits;
     if (layers) {
-        layerBits.assign(n, 0);
+        p.layerBits.assign(n, 0);
         for (size_t i = 0; i < n; ++i)
-            if (measured[i]) layerBits[i] = layerBitsAt(reference, i);
+            if (p.measured[i]) p.layerBits[i] = layerBitsAt(reference, i);
     }
+    return p;
+}
 
-    // Attributes, side by side (each task fills its own fields and maps; each is computed exactly
-    // as alone, so results do not depend on the thread count).
-    scope.emplace("metrics: attributes and image errors");
-    std::vector<std::function<void()>> tasks;
+// One task per attribute (each fills its own fields and maps, exactly as alone: the results do
+// not depend on the thread count).
+void addAttributeTasks(const SurfaceImages& reference, const SurfaceImages& test, const PixelClasses& classes,
+                       RunErrorMaps* maps, int w, int h, bool layers, RunMetrics& out,
+                       std::vector<std::function<void()>>& tasks) {
+    // The tasks run after this returns: the references below name the caller's objects, and the
+    // values (w, h, maps) are captured by copy.
+    const Mask& measured = classes.measured;
+    const Mask& metal = classes.metal;
+    const std::vector<uint8_t>& layerBits = classes.layerBits;
     if (layers) layerAttributes(reference, test, measured, layerBits, metal, out.layers.emplace(), tasks);
-    if (usable(reference.normal, test.normal, 3, "normal")) tasks.push_back([&] {
+    if (usable(reference.normal, test.normal, 3, "normal")) tasks.push_back([&, w, h, maps] {
         const size_t rc = size_t(reference.normal.channels), tc = size_t(test.normal.channels);
         out.normal = measure(measured, metal, mapOrNull(maps, &RunErrorMaps::normalDeg, w, h, true), false,
                              [&](size_t i, bool& ok, double&) {
                                  return normalAngleDeg(&reference.normal.pixels[i * rc], &test.normal.pixels[i * tc], ok);
                              });
     });
-    tasks.push_back([&] {
+    tasks.push_back([&, w, h, maps] {
         baseAndDiffuseColor(reference, test, measured, metal, mapOrNull(maps, &RunErrorMaps::baseColorDe, w, h, true),
                             mapOrNull(maps, &RunErrorMaps::diffuseColorDe, w, h, true), out.baseColor,
                             out.diffuseColor);
     });
-    tasks.push_back([&] {
+    tasks.push_back([&, w, h, maps] {
         out.specularColor = colorAttribute(reference.specularColor, test.specularColor, measured, metal,
                                        mapOrNull(maps, &RunErrorMaps::specularColorDe, w, h, true), "specular colour");
     });
-    tasks.push_back([&] {
+    tasks.push_back([&, w, h, maps] {
         out.roughness = scalarAttribute(reference.roughness, test.roughness, measured, metal,
                                     mapOrNull(maps, &RunErrorMaps::roughnessAbs, w, h, true), "roughness");
     });
-    tasks.push_back([&] {
+    tasks.push_back([&, w, h, maps] {
         out.metallic = scalarAttribute(reference.metallic, test.metallic, measured, metal,
                                    mapOrNull(maps, &RunErrorMaps::metallicAbs, w, h, true), "metallic");
     });
-    tasks.push_back([&] {
+    tasks.push_back([&, w, h, maps] {
         out.occlusion = scalarAttribute(reference.occlusion, test.occlusion, measured, metal,
                                     mapOrNull(maps, &RunErrorMaps::occlusionAbs, w, h, true), "occlusion");
     });
-    if (usable(reference.viewDepth, test.viewDepth, 1, "view depth")) tasks.push_back([&] {
+    if (usable(reference.viewDepth, test.viewDepth, 1, "view depth")) tasks.push_back([&, w, h, maps] {
         const size_t rc = size_t(reference.viewDepth.channels), tc = size_t(test.viewDepth.channels);
         out.depth = measure(measured, metal, mapOrNull(maps, &RunErrorMaps::depthRel, w, h, true), false,
                             [&](size_t i, bool& ok, double&) {
@@ -384,7 +395,138 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
                                 return ok ? e : 0.0;
                             });
     });
+}
 
+// The image errors per material class (dielectric, metal, every covered pixel): relative
+// luminance, linear RMSE, FLIP, and the reference's own noise where it has one (a ground truth).
+// `rel` receives the whole relative-luminance map when `maps` asks for it.
+void materialClassErrors(const Image& referenceHdr, const Image& testHdr, const Image& flip, const Image* noise,
+                         const PixelClasses& classes, double floor, RunErrorMaps* maps, Image& rel, ShadedErrors& image) {
+    const Mask& measured = classes.measured;
+    const Mask& metal = classes.metal;
+    const size_t n = referenceHdr.pixelCount();
+    if (maps) rel = relativeLuminanceErrorImage(referenceHdr, testHdr, floor);
+    struct Acc {
+        size_t pixels = 0;
+        double rel = 0.0, sq = 0.0, flip = 0.0, noise = 0.0;
+    } acc[2];  // 0 dielectric, 1 metal
+    const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
+    for (size_t i = 0; i < n; ++i) {
+        if (!measured[i]) continue;
+        Acc& a = acc[metal[i] ? 1 : 0];
+        ++a.pixels;
+        const float r = maps ? rel.pixels[i] : relativeLuminanceAt(referenceHdr, testHdr, i, floor);
+        a.rel += std::isfinite(r) ? r : 0.0;
+        for (size_t c = 0; c < 3; ++c) {
+            const double d = double(testHdr.pixels[i * tc + c]) - double(referenceHdr.pixels[i * rc + c]);
+            a.sq += d * d;
+        }
+        a.flip += flip.pixels[i];
+        if (noise) {
+            const double y = luminance(&referenceHdr.pixels[i * rc], referenceHdr.channels);
+            a.noise += double(noise->pixels[i]) / std::max(std::isfinite(y) ? y : 0.0, floor);
+        }
+    }
+    auto finish = [&](const Acc& a) {
+        ClassImageErrors e;
+        e.pixels = a.pixels;
+        if (a.pixels) {
+            e.relLuminanceMean = a.rel / double(a.pixels);
+            e.rmseLinear = std::sqrt(a.sq / double(3 * a.pixels));
+            e.flipMean = a.flip / double(a.pixels);
+            if (noise) e.referenceNoise = a.noise / double(a.pixels);
+        }
+        return e;
+    };
+    Acc all{acc[0].pixels + acc[1].pixels, acc[0].rel + acc[1].rel, acc[0].sq + acc[1].sq,
+            acc[0].flip + acc[1].flip, acc[0].noise + acc[1].noise};
+    image.dielectric = finish(acc[0]);
+    image.metal = finish(acc[1]);
+    image.covered = finish(all);
+}
+
+// The same sums over each layer class's pixels (a pixel may count in several), with FLIP's tile
+// means per class for the significance test.
+void layerClassErrors(const Image& referenceHdr, const Image& testHdr, const Image& flip, const Image* noise,
+                      const PixelClasses& classes, double floor, ShadedErrors& image) {
+    const Mask& measured = classes.measured;
+    const std::vector<uint8_t>& layerBits = classes.layerBits;
+    const size_t n = referenceHdr.pixelCount();
+    std::array<ClassImageErrors, kLayerClassCount>& perClass = image.layerClasses.emplace();
+    const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
+    for (LayerClass c : kLayerClasses) {
+        size_t pixels = 0;
+        double relSum = 0.0, sq = 0.0, flipSum = 0.0, noiseSum = 0.0;
+        Mask in(n, 0);
+        for (size_t i = 0; i < n; ++i) {
+            if (!measured[i] || !inLayerClass(layerBits[i], c)) continue;
+            in[i] = 1;
+            ++pixels;
+            const float r = relativeLuminanceAt(referenceHdr, testHdr, i, floor);
+            relSum += std::isfinite(r) ? r : 0.0;
+            for (size_t k = 0; k < 3; ++k) {
+                const double d = double(testHdr.pixels[i * tc + k]) - double(referenceHdr.pixels[i * rc + k]);
+                sq += d * d;
+            }
+            flipSum += flip.pixels[i];
+            if (noise) {
+                const double y = luminance(&referenceHdr.pixels[i * rc], referenceHdr.channels);
+                noiseSum += double(noise->pixels[i]) / std::max(std::isfinite(y) ? y : 0.0, floor);
+            }
+        }
+        ClassImageErrors& e = perClass[size_t(c)];
+        e.pixels = pixels;
+        if (pixels) {
+            e.relLuminanceMean = relSum / double(pixels);
+            e.rmseLinear = std::sqrt(sq / double(3 * pixels));
+            e.flipMean = flipSum / double(pixels);
+            if (noise) e.referenceNoise = noiseSum / double(pixels);
+            e.flipTiles = tileMeans(flip, kSignificanceTileColumns, kSignificanceTileRows, &in);
+        }
+    }
+}
+
+// The error maps the report's images are made from; the excluded pixels hold 0 in each.
+void keepErrorMaps(RunErrorMaps& maps, const PreparedReference& prepared, Image&& testSrgb, Image&& flip, Image&& hdrFlip,
+                   Image&& rel, const Image& referenceHdr, const Image& testHdr, PixelClasses&& classes) {
+    const Mask* included = classes.included;
+    const size_t n = referenceHdr.pixelCount();
+    const int w = referenceHdr.width, h = referenceHdr.height;
+    if (included) {  // no worst region among them
+        for (Image* m : {&flip, &hdrFlip, &rel})
+            if (!m->empty())
+                for (size_t i = 0; i < n; ++i)
+                    if (!(*included)[i]) m->pixels[i] = 0.0f;
+    }
+    maps.relLuminance = std::move(rel);
+    maps.referenceSrgb = prepared.srgb;  // shared: outlives `local`
+    maps.testSrgb = std::move(testSrgb);
+    maps.flip = std::move(flip);
+    maps.hdrFlip = std::move(hdrFlip);
+    maps.absLinear = Image(w, h, 3);
+    const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
+    for (size_t i = 0; i < n; ++i)
+        for (size_t c = 0; c < 3; ++c)
+            maps.absLinear.pixels[i * 3 + c] =
+                included && !(*included)[i] ? 0.0f : std::abs(testHdr.pixels[i * tc + c] - referenceHdr.pixels[i * rc + c]);
+    maps.measured = std::move(classes.measured);
+}
+
+RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test, const Image& referenceHdr,
+                       const Image& testHdr, float exposure, const RunMetricsOptions& options,
+                       SurfaceImages* release) {
+    checkRunInputs(reference, test, referenceHdr, testHdr, options);
+    const int w = referenceHdr.width, h = referenceHdr.height;
+    RunMetrics out;
+    RunErrorMaps* maps = options.maps;
+    std::optional<HostScope> scope(std::in_place, "metrics: coverage");
+    const bool layers = reference.hasLayers() && test.hasLayers();
+    PixelClasses classes = classifyPixels(reference, test, referenceHdr.pixelCount(), options, layers, out.coverage);
+    const Mask* included = classes.included;
+
+    scope.emplace("metrics: attributes and image errors");
+    std::vector<std::function<void()>> tasks;
+    addAttributeTasks(reference, test, classes, maps, w, h, layers, out, tasks);
     // The shaded image, every pixel, RGB.
     tasks.push_back([&] {
         const ImageErrorStats linear = imageErrorStats(referenceHdr, testHdr, included, PsnrPeak::ReferenceMax, 3);
@@ -423,7 +565,7 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
 
     // FLIP's statistics and the image errors per material class, side by side (both only read).
     scope.emplace("metrics: FLIP statistics and classes");
-    Image rel;  // the whole map, for the heat map and the worst regions; else per pixel below
+    Image rel;  // the whole map, for the heat map and the worst regions; else per pixel
     const double floor = prepared->luminanceFloor;
     tasks.clear();
     tasks.push_back([&] {
@@ -433,103 +575,17 @@ RunMetrics computeImpl(const SurfaceImages& reference, const SurfaceImages& test
         out.image.flipTiles = tileMeans(flip, kSignificanceTileColumns, kSignificanceTileRows, included);
     });
     tasks.push_back([&] {
-        if (maps) rel = relativeLuminanceErrorImage(referenceHdr, testHdr, floor);
-        struct Acc {
-            size_t pixels = 0;
-            double rel = 0.0, sq = 0.0, flip = 0.0, noise = 0.0;
-        } acc[2];  // 0 dielectric, 1 metal
-        const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
-        for (size_t i = 0; i < n; ++i) {
-            if (!measured[i]) continue;
-            Acc& a = acc[metal[i] ? 1 : 0];
-            ++a.pixels;
-            const float r = maps ? rel.pixels[i] : relativeLuminanceAt(referenceHdr, testHdr, i, floor);
-            a.rel += std::isfinite(r) ? r : 0.0;
-            for (size_t c = 0; c < 3; ++c) {
-                const double d = double(testHdr.pixels[i * tc + c]) - double(referenceHdr.pixels[i * rc + c]);
-                a.sq += d * d;
-            }
-            a.flip += flip.pixels[i];
-            if (noise) {
-                const double y = luminance(&referenceHdr.pixels[i * rc], referenceHdr.channels);
-                a.noise += double(noise->pixels[i]) / std::max(std::isfinite(y) ? y : 0.0, floor);
-            }
-        }
-        auto finish = [&](const Acc& a) {
-            ClassImageErrors e;
-            e.pixels = a.pixels;
-            if (a.pixels) {
-                e.relLuminanceMean = a.rel / double(a.pixels);
-                e.rmseLinear = std::sqrt(a.sq / double(3 * a.pixels));
-                e.flipMean = a.flip / double(a.pixels);
-                if (noise) e.referenceNoise = a.noise / double(a.pixels);
-            }
-            return e;
-        };
-        Acc all{acc[0].pixels + acc[1].pixels, acc[0].rel + acc[1].rel, acc[0].sq + acc[1].sq,
-                acc[0].flip + acc[1].flip, acc[0].noise + acc[1].noise};
-        out.image.dielectric = finish(acc[0]);
-        out.image.metal = finish(acc[1]);
-        out.image.covered = finish(all);
+        materialClassErrors(referenceHdr, testHdr, flip, options.referenceNoise, classes, floor, maps, rel, out.image);
     });
     if (layers) tasks.push_back([&] {
-        // The same sums over each layer class's pixels (a pixel may count in several).
-        std::array<ClassImageErrors, kLayerClassCount>& classes = out.image.layerClasses.emplace();
-        const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
-        for (LayerClass c : kLayerClasses) {
-            size_t pixels = 0;
-            double relSum = 0.0, sq = 0.0, flipSum = 0.0, noiseSum = 0.0;
-            Mask in(n, 0);
-            for (size_t i = 0; i < n; ++i) {
-                if (!measured[i] || !inLayerClass(layerBits[i], c)) continue;
-                in[i] = 1;
-                ++pixels;
-                const float r = relativeLuminanceAt(referenceHdr, testHdr, i, floor);
-                relSum += std::isfinite(r) ? r : 0.0;
-                for (size_t k = 0; k < 3; ++k) {
-                    const double d = double(testHdr.pixels[i * tc + k]) - double(referenceHdr.pixels[i * rc + k]);
-                    sq += d * d;
-                }
-                flipSum += flip.pixels[i];
-                if (noise) {
-                    const double y = luminance(&referenceHdr.pixels[i * rc], referenceHdr.channels);
-                    noiseSum += double(noise->pixels[i]) / std::max(std::isfinite(y) ? y : 0.0, floor);
-                }
-            }
-            ClassImageErrors& e = classes[size_t(c)];
-            e.pixels = pixels;
-            if (pixels) {
-                e.relLuminanceMean = relSum / double(pixels);
-                e.rmseLinear = std::sqrt(sq / double(3 * pixels));
-                e.flipMean = flipSum / double(pixels);
-                if (noise) e.referenceNoise = noiseSum / double(pixels);
-                e.flipTiles = tileMeans(flip, kSignificanceTileColumns, kSignificanceTileRows, &in);
-            }
-        }
+        layerClassErrors(referenceHdr, testHdr, flip, options.referenceNoise, classes, floor, out.image);
     });
     parallelInvoke(tasks);
-    if (maps && included) {  // excluded pixels hold 0 in every map (no worst region among them)
-        for (Image* m : {&flip, &hdrFlip, &rel})
-            if (!m->empty())
-                for (size_t i = 0; i < n; ++i)
-                    if (!(*included)[i]) m->pixels[i] = 0.0f;
-    }
-    if (maps) maps->relLuminance = std::move(rel);
 
     scope.emplace("metrics: maps");
-    if (maps) {
-        maps->referenceSrgb = prepared->srgb;  // shared: outlives `local`
-        maps->testSrgb = std::move(testSrgb);
-        maps->flip = std::move(flip);
-        maps->hdrFlip = std::move(hdrFlip);
-        maps->absLinear = Image(w, h, 3);
-        const size_t rc = size_t(referenceHdr.channels), tc = size_t(testHdr.channels);
-        for (size_t i = 0; i < n; ++i)
-            for (size_t c = 0; c < 3; ++c)
-                maps->absLinear.pixels[i * 3 + c] =
-                    included && !(*included)[i] ? 0.0f : std::abs(testHdr.pixels[i * tc + c] - referenceHdr.pixels[i * rc + c]);
-        maps->measured = std::move(measured);
-    }
+    if (maps)
+        keepErrorMaps(*maps, *prepared, std::move(testSrgb), std::move(flip), std::move(hdrFlip), std::move(rel),
+                      referenceHdr, testHdr, std::move(classes));
     return out;
 }
 
