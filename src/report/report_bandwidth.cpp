@@ -15,9 +15,9 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json number(double v) { return jsonNumber(v); }
+Json bwNumber(double v) { return jsonNumber(v); }
 
-std::string numberText(double v) {
+std::string bwNumberText(double v) {
     if (std::isnan(v)) return "nan";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
     char buffer[64];
@@ -25,7 +25,7 @@ std::string numberText(double v) {
     return std::string(buffer, result.ptr);
 }
 
-std::string fixed(double v, int digits) {
+std::string bwFixed(double v, int digits) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "%.*f", digits, v);
     return buf;
@@ -56,19 +56,19 @@ Json effectiveBandwidthJson(const EffectiveBandwidth& e) {
         targets.push_back(Json{{"name", t.name},
                                {"format", t.format},
                                {"bytes_per_pixel", t.bytesPerPixel},
-                               {"desktop_dcc_bytes_per_pixel", number(t.dccBytesPerPixel)},
-                               {"dcc_uncompressed_blocks", number(t.dccUncompressedFraction)},
+                               {"desktop_dcc_bytes_per_pixel", bwNumber(t.dccBytesPerPixel)},
+                               {"dcc_uncompressed_blocks", bwNumber(t.dccUncompressedFraction)},
                                {"afbc", t.afbc},
-                               {"mali_afbc_read_bytes_per_pixel", number(t.afbcBytesPerPixel)},
-                               {"mali_afbc_write_bytes_per_pixel", number(t.afbcWriteBytesPerPixel)},
-                               {"afbc_solid_superblocks", number(t.afbcSolidFraction)},
-                               {"afbc_uncompressed_subblocks", number(t.afbcUncompressedFraction)}});
+                               {"mali_afbc_read_bytes_per_pixel", bwNumber(t.afbcBytesPerPixel)},
+                               {"mali_afbc_write_bytes_per_pixel", bwNumber(t.afbcWriteBytesPerPixel)},
+                               {"afbc_solid_superblocks", bwNumber(t.afbcSolidFraction)},
+                               {"afbc_uncompressed_subblocks", bwNumber(t.afbcUncompressedFraction)}});
     Json classes = Json::array();
     for (const ClassTraffic& c : e.classes)
         classes.push_back(Json{{"class", c.gpuClass},
-                               {"bytes_per_pixel", number(c.bytesPerPixel)},
-                               {"traffic_bytes_1080p", number(c.trafficBytes)},
-                               {"gb_per_s_1080p60", number(c.gbPerSecond)},
+                               {"bytes_per_pixel", bwNumber(c.bytesPerPixel)},
+                               {"traffic_bytes_1080p", bwNumber(c.trafficBytes)},
+                               {"gb_per_s_1080p60", bwNumber(c.gbPerSecond)},
                                {"assumes", c.assumes}});
     Json tile = Json::array();
     for (const TileFit& f : e.tile)
@@ -82,10 +82,10 @@ Json effectiveBandwidthJson(const EffectiveBandwidth& e) {
                 {"width", e.width},
                 {"height", e.height},
                 {"lighting", e.lighting.text()},
-                {"lighting_reads_per_pixel", number(e.lighting.readsPerPixel)},
-                {"nominal_bytes_per_pixel", number(e.nominalBytesPerPixel)},
-                {"nominal_traffic_bytes_1080p", number(e.nominalTrafficBytes)},
-                {"nominal_gb_per_s_1080p60", number(e.nominalGbPerSecond)},
+                {"lighting_reads_per_pixel", bwNumber(e.lighting.readsPerPixel)},
+                {"nominal_bytes_per_pixel", bwNumber(e.nominalBytesPerPixel)},
+                {"nominal_traffic_bytes_1080p", bwNumber(e.nominalTrafficBytes)},
+                {"nominal_gb_per_s_1080p60", bwNumber(e.nominalGbPerSecond)},
                 {"targets", std::move(targets)},
                 {"classes", std::move(classes)},
                 {"tile_memory", std::move(tile)}};
@@ -147,8 +147,8 @@ std::vector<std::string> verdictChanges(const std::vector<EffectiveVerdict>& ver
             if (a.best == b.best) continue;
             const std::string budget = b.budget ? std::to_string(*b.budget) + " B/px" : std::string("unlimited");
             out.push_back(std::string(classTitle(verdicts[c].gpuClass)) + ", " + budget + ": " +
-                          (b.best.empty() ? std::string("nothing fits") : b.best + " (" + fixed(b.bytes, 1) + " B/px effective)") +
-                          " instead of " + (a.best.empty() ? std::string("nothing") : a.best + " (" + fixed(a.bytes, 0) + " B/px nominal)"));
+                          (b.best.empty() ? std::string("nothing fits") : b.best + " (" + bwFixed(b.bytes, 1) + " B/px effective)") +
+                          " instead of " + (a.best.empty() ? std::string("nothing") : a.best + " (" + bwFixed(a.bytes, 0) + " B/px nominal)"));
         }
     return out;
 }
@@ -181,8 +181,8 @@ Json bandwidthAsPaidJson(const ReportModel& model) {
             Json line{{"budget_bytes_per_pixel", l.budget ? Json(*l.budget) : Json("inf")}};
             if (!l.best.empty()) {
                 line["best"] = l.best;
-                line["bytes_per_pixel"] = number(l.bytes);
-                line["flip_mean"] = number(l.flipMean);
+                line["bytes_per_pixel"] = bwNumber(l.bytes);
+                line["flip_mean"] = bwNumber(l.flipMean);
             }
             lines.push_back(std::move(line));
         }
@@ -216,12 +216,12 @@ std::vector<std::string> effectiveCsvFields(const RunReport& run) {
     if (!run.effective) return f;
     const EffectiveBandwidth& e = *run.effective;
     f[0] = e.lighting.text();
-    f[1] = numberText(e.nominalGbPerSecond);
+    f[1] = bwNumberText(e.nominalGbPerSecond);
     size_t i = 2;
     for (const char* c : kGpuClasses) {
         if (const ClassTraffic* t = e.find(c)) {
-            f[i] = numberText(t->bytesPerPixel);
-            f[i + 1] = numberText(t->gbPerSecond);
+            f[i] = bwNumberText(t->bytesPerPixel);
+            f[i + 1] = bwNumberText(t->gbPerSecond);
         }
         i += 2;
     }
@@ -239,7 +239,7 @@ std::string atlasEffectiveBytesHtml(const ReportModel& model, const std::string&
         const ClassTraffic* m = r->effective->find("mali-afbc");
         if (!d || !m) return "";
         return "<br><small title=\"effective bytes per pixel: desktop DCC-like / Mali AFBC (see Bandwidth as GPUs pay "
-               "it)\">" + fixed(d->bytesPerPixel, 1) + " / " + fixed(m->bytesPerPixel, 1) + "</small>";
+               "it)\">" + bwFixed(d->bytesPerPixel, 1) + " / " + bwFixed(m->bytesPerPixel, 1) + "</small>";
     }
     return "";
 }
@@ -257,11 +257,11 @@ std::string bandwidthSectionHtml(const ReportModel& model) {
     h += "<th>fits tile memory of</th></tr></thead><tbody>\n";
     for (const RunReport* r : runs) {
         const EffectiveBandwidth& e = *r->effective;
-        h += "<tr><td>" + htmlEscape(r->layout) + "</td><td>" + fixed(e.nominalBytesPerPixel, 0) + "</td><td>" +
-             fixed(e.nominalGbPerSecond, 2) + "</td>";
+        h += "<tr><td>" + htmlEscape(r->layout) + "</td><td>" + bwFixed(e.nominalBytesPerPixel, 0) + "</td><td>" +
+             bwFixed(e.nominalGbPerSecond, 2) + "</td>";
         for (const char* c : kGpuClasses) {
             const ClassTraffic* t = e.find(c);
-            h += t ? "<td>" + fixed(t->bytesPerPixel, 1) + "</td><td>" + fixed(t->gbPerSecond, 2) + "</td>"
+            h += t ? "<td>" + bwFixed(t->bytesPerPixel, 1) + "</td><td>" + bwFixed(t->gbPerSecond, 2) + "</td>"
                    : std::string("<td></td><td></td>");
         }
         std::string fits;
@@ -278,10 +278,10 @@ std::string bandwidthSectionHtml(const ReportModel& model) {
     for (const RunReport* r : runs)
         for (const TargetEffective& t : r->effective->targets)
             h += "<tr><td>" + htmlEscape(r->layout) + "</td><td>" + htmlEscape(t.name) + "</td><td>" + htmlEscape(t.format) +
-                 "</td><td>" + std::to_string(t.bytesPerPixel) + "</td><td>" + fixed(t.dccBytesPerPixel, 2) + "</td><td>" +
-                 fixed(100.0 * t.dccUncompressedFraction, 0) + " %</td><td>" + fixed(t.afbcBytesPerPixel, 2) +
-                 (t.afbc ? "" : " (not AFBC)") + "</td><td>" + fixed(100.0 * t.afbcSolidFraction, 0) + " %</td><td>" +
-                 fixed(100.0 * t.afbcUncompressedFraction, 0) + " %</td></tr>\n";
+                 "</td><td>" + std::to_string(t.bytesPerPixel) + "</td><td>" + bwFixed(t.dccBytesPerPixel, 2) + "</td><td>" +
+                 bwFixed(100.0 * t.dccUncompressedFraction, 0) + " %</td><td>" + bwFixed(t.afbcBytesPerPixel, 2) +
+                 (t.afbc ? "" : " (not AFBC)") + "</td><td>" + bwFixed(100.0 * t.afbcSolidFraction, 0) + " %</td><td>" +
+                 bwFixed(100.0 * t.afbcUncompressedFraction, 0) + " %</td></tr>\n";
     h += "</tbody></table></details>\n";
     // Tile memory per family.
     h += "<details><summary>Tile memory: colour bytes per pixel with the lit output (RGBA16F) against each family's "
@@ -304,7 +304,7 @@ std::string bandwidthSectionHtml(const ReportModel& model) {
             for (const EffectiveVerdict& v : verdicts) {
                 const EffectiveBudgetLine& l = v.lines[i];
                 h += "<td>" + (l.best.empty() ? std::string("none fits")
-                                              : htmlEscape(l.best) + " (" + fixed(l.bytes, 1) + ")") + "</td>";
+                                              : htmlEscape(l.best) + " (" + bwFixed(l.bytes, 1) + ")") + "</td>";
             }
             h += "</tr>\n";
         }

@@ -14,7 +14,6 @@
 namespace gbl::shading {
 
 namespace {
-float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
 float mixf(float x, float y, float a) { return x * (1.0f - a) + y * a; }  // GLSL mix
 glm::vec3 safeHalf(glm::vec3 V, glm::vec3 L) {
     glm::vec3 Hu = V + L;

@@ -13,8 +13,7 @@
 namespace gbl::shading {
 
 namespace {
-float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
-glm::vec2 fractGlsl(glm::vec2 x) { return x - glm::floor(x); }
+glm::vec2 fractGlslLayers(glm::vec2 x) { return x - glm::floor(x); }
 glm::vec3 reflectAbout(glm::vec3 V, glm::vec3 H) { return 2.0f * glm::dot(V, H) * H - V; }
 }  // namespace
 
@@ -93,9 +92,9 @@ glm::vec3 iblGroundTruthLayeredMis(const EnvironmentLodFn& sampleEnvironmentLod,
     bool coatEnv = coat && ly.coatRoughness >= kMinMisRoughness;
     for (uint32_t i = 0; i < numSamples; i++) {
         glm::vec2 Xi = hammersley(i, numSamples);
-        glm::vec3 H = aniso ? importanceSampleGGXAnisotropic(fractGlsl(Xi + shiftBase), at, ab, N, ly.anisotropyT,
+        glm::vec3 H = aniso ? importanceSampleGGXAnisotropic(fractGlslLayers(Xi + shiftBase), at, ab, N, ly.anisotropyT,
                                                              ly.anisotropyB)
-                            : importanceSampleGGX(fractGlsl(Xi + shiftBase), roughness, N);
+                            : importanceSampleGGX(fractGlslLayers(Xi + shiftBase), roughness, N);
         glm::vec3 L = reflectAbout(V, H);
         float NoL = saturate(glm::dot(N, L));
         float NoH = saturate(glm::dot(N, H));
@@ -122,7 +121,7 @@ glm::vec3 iblGroundTruthLayeredMis(const EnvironmentLodFn& sampleEnvironmentLod,
             sum += (w * scale * value) * sampleEnvironmentLod(L, 0.0f) * F;
         }
         if (coat) {
-            glm::vec3 Hc = importanceSampleGGX(fractGlsl(Xi + shiftCoat), ly.coatRoughness, Nc);
+            glm::vec3 Hc = importanceSampleGGX(fractGlslLayers(Xi + shiftCoat), ly.coatRoughness, Nc);
             glm::vec3 Lc = reflectAbout(V, Hc);
             float NcoL = saturate(glm::dot(Nc, Lc));
             float NcoH = saturate(glm::dot(Nc, Hc));
@@ -136,7 +135,7 @@ glm::vec3 iblGroundTruthLayeredMis(const EnvironmentLodFn& sampleEnvironmentLod,
             }
         }
         if (sheen) {
-            glm::vec3 Ls = sampleCosineHemisphere(fractGlsl(Xi + shiftSheen), N);
+            glm::vec3 Ls = sampleCosineHemisphere(fractGlslLayers(Xi + shiftSheen), N);
             float NoLs = saturate(glm::dot(N, Ls));
             if (NoLs > 0.0f) {
                 glm::vec3 Hs = glm::normalize(V + Ls);
@@ -150,7 +149,7 @@ glm::vec3 iblGroundTruthLayeredMis(const EnvironmentLodFn& sampleEnvironmentLod,
         }
         if (!(baseEnv || coatEnv || sheen)) continue;
         float pdfEnv;
-        glm::vec3 Le = sampleEnvironmentDirection(environmentSampling, fractGlsl(Xi + shiftEnv), pdfEnv);
+        glm::vec3 Le = sampleEnvironmentDirection(environmentSampling, fractGlslLayers(Xi + shiftEnv), pdfEnv);
         if (!(pdfEnv > 0.0f)) continue;
         glm::vec3 radiance = sampleEnvironmentLod(Le, 0.0f) / pdfEnv;
         glm::vec3 He = glm::normalize(V + Le);
