@@ -68,6 +68,31 @@ def scene_tables(name, report):
     return runs
 
 
+def bytes_table(per_scene):
+    """Nominal against effective bytes per pixel per class, every scene in one table."""
+    names = list(per_scene)
+    layouts = sorted({l for runs in per_scene.values() for l in runs},
+                     key=lambda l: next(runs[l]["effective_bandwidth"]["nominal_bytes_per_pixel"]
+                                        for runs in per_scene.values() if l in runs))
+    print("## Nominal against effective B/px (desktop-dcc / mali-afbc / tile-subpass), per scene")
+    print()
+    print("| layout | nominal | " + " | ".join(names) + " |")
+    print("|---|---|" + "---|" * len(names))
+    for l in layouts:
+        cells, nominal = [], None
+        for n in names:
+            r = per_scene[n].get(l)
+            if not r:
+                cells.append("-")
+                continue
+            e = r["effective_bandwidth"]
+            nominal = e["nominal_bytes_per_pixel"]
+            c = {x["class"]: x for x in e["classes"]}
+            cells.append(" / ".join(f"{c[k]['bytes_per_pixel']:.1f}" for k in CLASSES))
+        print(f"| {l} | {nominal:.0f} | " + " | ".join(cells) + " |")
+    print()
+
+
 def tile_budgets(per_scene):
     """Which layouts fit each tile family's colour storage (the same on every scene: it is bytes)."""
     families = {}
@@ -150,6 +175,7 @@ def main(argv):
     for path in argv:
         for name, report in scene_reports(path):
             per_scene[name] = scene_tables(name, report)
+    bytes_table(per_scene)
     ratio_table(per_scene)
     tile_budgets(per_scene)
     for a, b in pairs:
