@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cost of the framebuffer-compression model (docs/bandwidth.md) in a 1080p compare of every
+# The cost of the framebuffer-compression model (docs/bandwidth.md) in a 1080p compare (the built-in scene) of every
 # layout: the previous binary (OLD, without the model), this one (NEW) and this one with
 # --no-compression (the model off, everything else the same), alternated ROUNDS times in one run
 # of this script; wall and CPU time (GNU time), and NEW's host scope "read-back: G-buffer words to
@@ -27,7 +27,7 @@ for r in $(seq 1 "$rounds"); do
         extra=()
         [ "$kind" = old ] && bin=$old
         [ "$kind" = off ] && extra=(--no-compression)
-        GBL_HOST_PROFILE=1 /usr/bin/time -f "%e %U %S %M" -o "$out/$kind$r.time" "$bin" compare --layouts "$layouts" \
+        GBL_HOST_PROFILE=1 /usr/bin/time -f "%e %U %S %M" -o "$out/$kind$r.time" "$bin" compare --scene builtin --layouts "$layouts" \
             --size "$size" --views "$views" --out "$out/$kind$r" "${extra[@]}" >"$out/$kind$r.log" 2>&1
         echo "$kind round $r: $(cat "$out/$kind$r.time") (wall s, user s, sys s, peak KiB); load $(cut -d' ' -f1-3 /proc/loadavg)"
     done

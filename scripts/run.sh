@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Set-up (packages + Release build), then gbufferlab's main job on the built-in default scene.
+# Set-up (packages + Release build), then gbufferlab's main job: compare on the bundled scenes
+# (scenes/default-suite.toml).
 # Extra arguments go to gbufferlab, e.g. scripts/run.sh render --size 640x360.
 set -euo pipefail
 cd "$(dirname "$0")/.."
