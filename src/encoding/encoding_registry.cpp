@@ -4,10 +4,14 @@ namespace gbl {
 
 namespace {
 
-std::vector<EncodingInfo> makeRegistry() {
-    using K = AttributeKind;
-    std::vector<EncodingInfo> v;
-    // name, kind, codes, default bits, min bits, max bits, extra bits, neighbours, input, description, source
+using K = AttributeKind;
+
+// Each entry: name, kind, codes, default bits, min bits, max bits, extra bits, neighbours, input,
+// description, source. The registry's order is listEncodings()'s.
+
+// The general encodings: fixed point, small floats, sRGB, normals, colour transforms, depth and
+// the packings of the engines before the material layers.
+void addGeneralEncodings(std::vector<EncodingInfo>& v) {
     v.push_back({"unorm", K::Scalar, 1, 8, 1, 24, 0, false, "[0,1]",
                  "unsigned normalised integer: floor(x*(2^b-1)+0.5)",
                  "Vulkan spec, 'Fixed-Point Data Conversions'"});
@@ -53,8 +57,11 @@ std::vector<EncodingInfo> makeRegistry() {
                  "`reflectance` read back as Bevy reads its 4-bit WebGL2 reflectance: r = saturate(code / (2^b - 1) "
                  "- 0.03333333333), specular = 2 r^2 (code 8 of 4 bits reads 0.5; the others half a step low)",
                  "bevyengine/bevy v0.16.0 crates/bevy_pbr/src/deferred/pbr_deferred_functions.wgsl:36-40, 104-106"});
+}
 
-    // Material layers as the engines store them (issue 40; engine_encodings.h).
+// Material layers as the engines store them (engine_encodings.h), then the remaining engine
+// packings.
+void addLayerAndEngineEncodings(std::vector<EncodingInfo>& v) {
     v.push_back({"unorm_round_even", K::Scalar, 1, 4, 1, 16, 0, false, "[0,1]",
                  "unorm rounded with ties to even (WGSL's round): code = roundEven(saturate(x) * (2^b - 1)); "
                  "decoded as unorm",
@@ -161,7 +168,10 @@ std::vector<EncodingInfo> makeRegistry() {
     v.push_back({"normal_xy_float16", K::Normal, 2, 16, 16, 16, 0, false, "unit vector, view space",
                  "x, y as IEEE half floats; z = +sqrt(1 - x^2 - y^2) (facing the camera), no sign bit",
                  "Valient, 'Deferred Rendering in Killzone 2', Develop Conference 2007 (RT1: FP16 normal X, Y)"});
-    // zeux/niagara (src/shaders/mesh.frag.glsl, final.comp.glsl @95f289b7): niagara_encodings.h.
+}
+
+// zeux/niagara (src/shaders/mesh.frag.glsl, final.comp.glsl @95f289b7): niagara_encodings.h.
+void addNiagaraEncodings(std::vector<EncodingInfo>& v) {
     EncodingInfo ratio{"emissive_albedo_ratio", K::Color, 1, 8, 1, 16, 0, false,
                        "[0, inf)^3 emissive, with base_color",
                        "x = log2(1 + L(emissive) / (L(base_color) + 0.001)) / 5 as unorm, L = (0.3, 0.6, 0.1); "
@@ -177,6 +187,13 @@ std::vector<EncodingInfo> makeRegistry() {
                         "(encodeOct), 99-102 (gradientNoise); Jimenez, SIGGRAPH 2014 (gradient noise)"};
     dither.dithered = true;
     v.push_back(dither);
+}
+
+std::vector<EncodingInfo> makeRegistry() {
+    std::vector<EncodingInfo> v;
+    addGeneralEncodings(v);
+    addLayerAndEngineEncodings(v);
+    addNiagaraEncodings(v);
     return v;
 }
 

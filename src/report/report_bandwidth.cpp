@@ -15,7 +15,7 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::string numberText(double v) {
+std::string bandwidthNumberText(double v) {
     if (std::isnan(v)) return "nan";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
     char buffer[64];
@@ -23,7 +23,7 @@ std::string numberText(double v) {
     return std::string(buffer, result.ptr);
 }
 
-std::string fixed(double v, int digits) {
+std::string fixedDigits(double v, int digits) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "%.*f", digits, v);
     return buf;
@@ -145,8 +145,8 @@ std::vector<std::string> verdictChanges(const std::vector<EffectiveVerdict>& ver
             if (a.best == b.best) continue;
             const std::string budget = b.budget ? std::to_string(*b.budget) + " B/px" : std::string("unlimited");
             out.push_back(std::string(classTitle(verdicts[c].gpuClass)) + ", " + budget + ": " +
-                          (b.best.empty() ? std::string("nothing fits") : b.best + " (" + fixed(b.bytes, 1) + " B/px effective)") +
-                          " instead of " + (a.best.empty() ? std::string("nothing") : a.best + " (" + fixed(a.bytes, 0) + " B/px nominal)"));
+                          (b.best.empty() ? std::string("nothing fits") : b.best + " (" + fixedDigits(b.bytes, 1) + " B/px effective)") +
+                          " instead of " + (a.best.empty() ? std::string("nothing") : a.best + " (" + fixedDigits(a.bytes, 0) + " B/px nominal)"));
         }
     return out;
 }
@@ -214,12 +214,12 @@ std::vector<std::string> effectiveCsvFields(const RunReport& run) {
     if (!run.effective) return f;
     const EffectiveBandwidth& e = *run.effective;
     f[0] = e.lighting.text();
-    f[1] = numberText(e.nominalGbPerSecond);
+    f[1] = bandwidthNumberText(e.nominalGbPerSecond);
     size_t i = 2;
     for (const char* c : kGpuClasses) {
         if (const ClassTraffic* t = e.find(c)) {
-            f[i] = numberText(t->bytesPerPixel);
-            f[i + 1] = numberText(t->gbPerSecond);
+            f[i] = bandwidthNumberText(t->bytesPerPixel);
+            f[i + 1] = bandwidthNumberText(t->gbPerSecond);
         }
         i += 2;
     }
@@ -237,7 +237,7 @@ std::string atlasEffectiveBytesHtml(const ReportModel& model, const std::string&
         const ClassTraffic* m = r->effective->find("mali-afbc");
         if (!d || !m) return "";
         return "<br><small title=\"effective bytes per pixel: desktop DCC-like / Mali AFBC (see Bandwidth as GPUs pay "
-               "it)\">" + fixed(d->bytesPerPixel, 1) + " / " + fixed(m->bytesPerPixel, 1) + "</small>";
+               "it)\">" + fixedDigits(d->bytesPerPixel, 1) + " / " + fixedDigits(m->bytesPerPixel, 1) + "</small>";
     }
     return "";
 }
@@ -255,11 +255,11 @@ std::string bandwidthSectionHtml(const ReportModel& model) {
     h += "<th>fits tile memory of</th></tr></thead><tbody>\n";
     for (const RunReport* r : runs) {
         const EffectiveBandwidth& e = *r->effective;
-        h += "<tr><td>" + htmlEscape(r->layout) + "</td><td>" + fixed(e.nominalBytesPerPixel, 0) + "</td><td>" +
-             fixed(e.nominalGbPerSecond, 2) + "</td>";
+        h += "<tr><td>" + htmlEscape(r->layout) + "</td><td>" + fixedDigits(e.nominalBytesPerPixel, 0) + "</td><td>" +
+             fixedDigits(e.nominalGbPerSecond, 2) + "</td>";
         for (const char* c : kGpuClasses) {
             const ClassTraffic* t = e.find(c);
-            h += t ? "<td>" + fixed(t->bytesPerPixel, 1) + "</td><td>" + fixed(t->gbPerSecond, 2) + "</td>"
+            h += t ? "<td>" + fixedDigits(t->bytesPerPixel, 1) + "</td><td>" + fixedDigits(t->gbPerSecond, 2) + "</td>"
                    : std::string("<td></td><td></td>");
         }
         std::string fits;
@@ -276,10 +276,10 @@ std::string bandwidthSectionHtml(const ReportModel& model) {
     for (const RunReport* r : runs)
         for (const TargetEffective& t : r->effective->targets)
             h += "<tr><td>" + htmlEscape(r->layout) + "</td><td>" + htmlEscape(t.name) + "</td><td>" + htmlEscape(t.format) +
-                 "</td><td>" + std::to_string(t.bytesPerPixel) + "</td><td>" + fixed(t.dccBytesPerPixel, 2) + "</td><td>" +
-                 fixed(100.0 * t.dccUncompressedFraction, 0) + " %</td><td>" + fixed(t.afbcBytesPerPixel, 2) +
-                 (t.afbc ? "" : " (not AFBC)") + "</td><td>" + fixed(100.0 * t.afbcSolidFraction, 0) + " %</td><td>" +
-                 fixed(100.0 * t.afbcUncompressedFraction, 0) + " %</td></tr>\n";
+                 "</td><td>" + std::to_string(t.bytesPerPixel) + "</td><td>" + fixedDigits(t.dccBytesPerPixel, 2) + "</td><td>" +
+                 fixedDigits(100.0 * t.dccUncompressedFraction, 0) + " %</td><td>" + fixedDigits(t.afbcBytesPerPixel, 2) +
+                 (t.afbc ? "" : " (not AFBC)") + "</td><td>" + fixedDigits(100.0 * t.afbcSolidFraction, 0) + " %</td><td>" +
+                 fixedDigits(100.0 * t.afbcUncompressedFraction, 0) + " %</td></tr>\n";
     h += "</tbody></table></details>\n";
     // Tile memory per family.
     h += "<details><summary>Tile memory: colour bytes per pixel with the lit output (RGBA16F) against each family's "
@@ -302,7 +302,7 @@ std::string bandwidthSectionHtml(const ReportModel& model) {
             for (const EffectiveVerdict& v : verdicts) {
                 const EffectiveBudgetLine& l = v.lines[i];
                 h += "<td>" + (l.best.empty() ? std::string("none fits")
-                                              : htmlEscape(l.best) + " (" + fixed(l.bytes, 1) + ")") + "</td>";
+                                              : htmlEscape(l.best) + " (" + fixedDigits(l.bytes, 1) + ")") + "</td>";
             }
             h += "</tr>\n";
         }

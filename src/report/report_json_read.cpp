@@ -232,56 +232,54 @@ RunReport readRun(const Node& n) {
     return r;
 }
 
-}  // namespace
-
-ReportModel reportFromJson(const Json& json) {
-    const Node root{json, ""};
-    if (root["schema"].str() != "gbufferlab-report") root["schema"].fail("expected \"gbufferlab-report\"");
-    const int version = root["schema_version"].i32();
-    if (version != kReportSchemaVersion)
-        root["schema_version"].fail("version " + std::to_string(version) + "; this gbufferlab reads version " +
-                                    std::to_string(kReportSchemaVersion));
-    ReportModel model;
-    const Node run = root["run"];
-    model.run.scene = run["scene"].str();
-    model.run.environment = run["environment"].str();
-    model.run.width = run["width"].i32();
-    model.run.height = run["height"].i32();
+// The run's description: scene, size, device, flags, views and the temporal resolve.
+ReportRunInfo readRunInfo(const Node& run) {
+    ReportRunInfo info;
+    info.scene = run["scene"].str();
+    info.environment = run["environment"].str();
+    info.width = run["width"].i32();
+    info.height = run["height"].i32();
     const Node device = run["device"];
-    model.run.device = {device["name"].str(), device["driver"].str(), device["type"].str()};
-    model.run.date = run["date"].str();
-    model.run.commandLine = run["command_line"].str();
-    model.run.iblModes = run["ibl_modes"].strings();
-    model.run.notes = run["notes"].strings();
-    if (run.has("exposure")) model.run.exposure = run["exposure"].num();
-    if (run.has("exposure_method")) model.run.exposureMethod = run["exposure_method"].str();
+    info.device = {device["name"].str(), device["driver"].str(), device["type"].str()};
+    info.date = run["date"].str();
+    info.commandLine = run["command_line"].str();
+    info.iblModes = run["ibl_modes"].strings();
+    info.notes = run["notes"].strings();
+    if (run.has("exposure")) info.exposure = run["exposure"].num();
+    if (run.has("exposure_method")) info.exposureMethod = run["exposure_method"].str();
     if (run.has("view_exposures"))
         for (size_t i = 0; i < run["view_exposures"].array().size(); ++i)
-            model.run.viewExposures.push_back(run["view_exposures"].at(i).num());
+            info.viewExposures.push_back(run["view_exposures"].at(i).num());
     if (run.has("view_coverage"))
         for (size_t i = 0; i < run["view_coverage"].array().size(); ++i)
-            model.run.viewCoverage.push_back(run["view_coverage"].at(i).num());
-    if (run.has("view_not_measured")) model.run.viewNotMeasured = run["view_not_measured"].strings();
-    if (run.has("views")) model.run.views = run["views"].strings();
-    if (run.has("exr_precision")) model.run.exrPrecision = run["exr_precision"].str();
+            info.viewCoverage.push_back(run["view_coverage"].at(i).num());
+    if (run.has("view_not_measured")) info.viewNotMeasured = run["view_not_measured"].strings();
+    if (run.has("views")) info.views = run["views"].strings();
+    if (run.has("exr_precision")) info.exrPrecision = run["exr_precision"].str();
     if (run.has("temporal")) {
         const Node t = run["temporal"];
-        model.run.temporalFrames = t["frames"].i32();
-        model.run.temporalResolve = t["resolve"].str();
+        info.temporalFrames = t["frames"].i32();
+        info.temporalResolve = t["resolve"].str();
         const Node jitter = t["jitter"];
         for (size_t i = 0; i < jitter.array().size(); ++i)
-            model.run.temporalJitter.push_back({jitter.at(i).at(0).num(), jitter.at(i).at(1).num()});
+            info.temporalJitter.push_back({jitter.at(i).at(0).num(), jitter.at(i).at(1).num()});
     }
-    const Node reference = root["reference"];
-    model.reference.layout = reference["layout"].str();
+    return info;
+}
+
+ReportReference readReference(const Node& reference) {
+    ReportReference ref;
+    ref.layout = reference["layout"].str();
     const Node images = reference["images"];
     for (size_t i = 0; i < images.array().size(); ++i)
-        model.reference.images.push_back({images.at(i)["ibl_mode"].str(), images.at(i)["render"].str(),
+        ref.images.push_back({images.at(i)["ibl_mode"].str(), images.at(i)["render"].str(),
                                           images.at(i).has("render_exr") ? images.at(i)["render_exr"].str() : "",
                                           images.at(i).has("hdr_preview") ? images.at(i)["hdr_preview"].str() : ""});
-    const Node runs = root["runs"];
-    for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
-    // An interrupted report says so (reports before `status`: complete).
+    return ref;
+}
+
+// An interrupted report says so (reports before `status`: complete).
+std::optional<ReportInterruption> readInterruption(const Node& root) {
     if (root.has("status") && root["status"].str() != "complete" && root["status"].str() != "interrupted")
         root["status"].fail("expected \"complete\" or \"interrupted\", not \"" + root["status"].str() + "\"");
     if (root.has("interruption")) {
@@ -296,103 +294,108 @@ ReportModel reportFromJson(const Json& json) {
             in.notRun.push_back({p["layout"].str(), p["ibl_mode"].str(), p["bytes_per_pixel"].i32(),
                                  p["counted_bytes_per_pixel"].num()});
         }
-        model.interruption = std::move(in);
+        return in;
     } else if (root.has("status") && root["status"].str() == "interrupted") {
         root.fail("\"status\" is \"interrupted\" but there is no \"interruption\"");
     }
-    auto readSignificance = [](const Node& sig) {
-        SignificanceReport sr;
-        sr.method = sig["method"].str();
-        for (size_t i = 0; i < sig["pairs"].array().size(); ++i) {
-            const Node p = sig["pairs"].at(i);
-            if (!p["significant"].j.is_boolean()) p["significant"].fail("expected true or false");
-            sr.pairs.push_back({p["better"].str(), p["worse"].str(), p["ibl_mode"].str(), p["mean_difference"].num(),
-                                p["units"].i32(), p["p_value"].num(), p["significant"].j.get<bool>()});
-        }
-        for (size_t i = 0; i < sig["ranks"].array().size(); ++i) {
-            const Node r = sig["ranks"].at(i);
-            sr.ranks.push_back({r["layout"].str(), r["ibl_mode"].str(), r["mean_error"].num(), r["rank"].i32(),
-                                r["rank_low"].i32(), r["rank_high"].i32()});
-        }
-        return sr;
-    };
+    return std::nullopt;
+}
+
+SignificanceReport readSignificance(const Node& sig) {
+    SignificanceReport sr;
+    sr.method = sig["method"].str();
+    for (size_t i = 0; i < sig["pairs"].array().size(); ++i) {
+        const Node p = sig["pairs"].at(i);
+        if (!p["significant"].j.is_boolean()) p["significant"].fail("expected true or false");
+        sr.pairs.push_back({p["better"].str(), p["worse"].str(), p["ibl_mode"].str(), p["mean_difference"].num(),
+                            p["units"].i32(), p["p_value"].num(), p["significant"].j.get<bool>()});
+    }
+    for (size_t i = 0; i < sig["ranks"].array().size(); ++i) {
+        const Node r = sig["ranks"].at(i);
+        sr.ranks.push_back({r["layout"].str(), r["ibl_mode"].str(), r["mean_error"].num(), r["rank"].i32(),
+                            r["rank_low"].i32(), r["rank_high"].i32()});
+    }
+    return sr;
+}
+
+AtlasEntry readAtlasEntry(const Node& a) {
+    AtlasEntry e;
+    e.family = a["family"].str();
+    e.layout = a["layout"].str();
+    e.engine = a["engine"].str();
+    e.title = a["title"].str();
+    e.year = a["year"].i32();
+    e.bytesPerPixel = a["bytes_per_pixel"].i32();
+    e.bytesKind = a["bytes_kind"].str();
+    e.lightBufferBytesPerPixel = a["light_buffer_bytes_per_pixel"].i32();
+    const Node attributes = a["attributes"];
+    for (size_t k = 0; k < attributes.array().size(); ++k) {
+        const Node at = attributes.at(k);
+        e.attributes.push_back({at["name"].str(), at["bits"].i32(), at["encoding"].str()});
+    }
+    if (a.has("provenance")) {  // absent in reports written before provenance existed
+        const Node p = a["provenance"];
+        ProvenanceCounts& c = e.provenance;
+        c.entries = p["entries"].i32();
+        c.verified = p["verified"].i32();
+        c.talk = p["talk"].i32();
+        c.lineage = p["lineage"].i32();
+        c.assumed = p["assumed"].i32();
+        c.own = p["own"].i32();
+        c.missing = p["missing"].i32();
+        c.differs = p["differs"].i32();
+        if (c.verified + c.talk + c.lineage + c.assumed + c.own + c.missing != c.entries)
+            p.fail("verified + talk + lineage + assumed + own + missing must equal entries");
+    }
+    return e;
+}
+
+IblFigure readIblFigure(const Node& f) {
+    IblFigure fig;
+    fig.png = f["png"].str();
+    fig.columns = f["columns"].strings();
+    const Node rows = f["rows"];
+    for (size_t i = 0; i < rows.array().size(); ++i) {
+        const Node r = rows.at(i);
+        IblFigureRow row;
+        row.iblMode = r["ibl_mode"].str();
+        row.caption = r["caption"].str();
+        if (r.has("metal_error")) row.metalError = r["metal_error"].num();
+        if (r.has("dielectric_error")) row.dielectricError = r["dielectric_error"].num();
+        if (r.has("metal_noise")) row.metalNoise = r["metal_noise"].num();
+        if (r.has("dielectric_noise")) row.dielectricNoise = r["dielectric_noise"].num();
+        fig.rows.push_back(std::move(row));
+    }
+    return fig;
+}
+
+}  // namespace
+
+ReportModel reportFromJson(const Json& json) {
+    const Node root{json, ""};
+    if (root["schema"].str() != "gbufferlab-report") root["schema"].fail("expected \"gbufferlab-report\"");
+    const int version = root["schema_version"].i32();
+    if (version != kReportSchemaVersion)
+        root["schema_version"].fail("version " + std::to_string(version) + "; this gbufferlab reads version " +
+                                    std::to_string(kReportSchemaVersion));
+    ReportModel model;
+    model.run = readRunInfo(root["run"]);
+    model.reference = readReference(root["reference"]);
+    const Node runs = root["runs"];
+    for (size_t i = 0; i < runs.array().size(); ++i) model.runs.push_back(readRun(runs.at(i)));
+    model.interruption = readInterruption(root);
     if (root.has("significance_by_class")) {
         const Node byClass = root["significance_by_class"];
         byClass.object();
         for (auto it = byClass.j.begin(); it != byClass.j.end(); ++it)
             model.classSignificance.emplace_back(it.key(), readSignificance(Node{it.value(), byClass.child(it.key())}));
     }
-    if (root.has("significance")) {
-        const Node sig = root["significance"];
-        SignificanceReport sr;
-        sr.method = sig["method"].str();
-        for (size_t i = 0; i < sig["pairs"].array().size(); ++i) {
-            const Node p = sig["pairs"].at(i);
-            if (!p["significant"].j.is_boolean()) p["significant"].fail("expected true or false");
-            sr.pairs.push_back({p["better"].str(), p["worse"].str(), p["ibl_mode"].str(), p["mean_difference"].num(),
-                                p["units"].i32(), p["p_value"].num(), p["significant"].j.get<bool>()});
-        }
-        for (size_t i = 0; i < sig["ranks"].array().size(); ++i) {
-            const Node r = sig["ranks"].at(i);
-            sr.ranks.push_back({r["layout"].str(), r["ibl_mode"].str(), r["mean_error"].num(), r["rank"].i32(),
-                                r["rank_low"].i32(), r["rank_high"].i32()});
-        }
-        model.significance = std::move(sr);
-    }
+    if (root.has("significance")) model.significance = readSignificance(root["significance"]);
     if (root.has("atlas")) {
         const Node atlas = root["atlas"];
-        for (size_t i = 0; i < atlas.array().size(); ++i) {
-            const Node a = atlas.at(i);
-            AtlasEntry e;
-            e.family = a["family"].str();
-            e.layout = a["layout"].str();
-            e.engine = a["engine"].str();
-            e.title = a["title"].str();
-            e.year = a["year"].i32();
-            e.bytesPerPixel = a["bytes_per_pixel"].i32();
-            e.bytesKind = a["bytes_kind"].str();
-            e.lightBufferBytesPerPixel = a["light_buffer_bytes_per_pixel"].i32();
-            const Node attributes = a["attributes"];
-            for (size_t k = 0; k < attributes.array().size(); ++k) {
-                const Node at = attributes.at(k);
-                e.attributes.push_back({at["name"].str(), at["bits"].i32(), at["encoding"].str()});
-            }
-            if (a.has("provenance")) {  // absent in reports written before provenance existed
-                const Node p = a["provenance"];
-                ProvenanceCounts& c = e.provenance;
-                c.entries = p["entries"].i32();
-                c.verified = p["verified"].i32();
-                c.talk = p["talk"].i32();
-                c.lineage = p["lineage"].i32();
-                c.assumed = p["assumed"].i32();
-                c.own = p["own"].i32();
-                c.missing = p["missing"].i32();
-                c.differs = p["differs"].i32();
-                if (c.verified + c.talk + c.lineage + c.assumed + c.own + c.missing != c.entries)
-                    p.fail("verified + talk + lineage + assumed + own + missing must equal entries");
-            }
-            model.atlas.push_back(std::move(e));
-        }
+        for (size_t i = 0; i < atlas.array().size(); ++i) model.atlas.push_back(readAtlasEntry(atlas.at(i)));
     }
-    if (root.has("ibl_figure")) {
-        const Node f = root["ibl_figure"];
-        IblFigure fig;
-        fig.png = f["png"].str();
-        fig.columns = f["columns"].strings();
-        const Node rows = f["rows"];
-        for (size_t i = 0; i < rows.array().size(); ++i) {
-            const Node r = rows.at(i);
-            IblFigureRow row;
-            row.iblMode = r["ibl_mode"].str();
-            row.caption = r["caption"].str();
-            if (r.has("metal_error")) row.metalError = r["metal_error"].num();
-            if (r.has("dielectric_error")) row.dielectricError = r["dielectric_error"].num();
-            if (r.has("metal_noise")) row.metalNoise = r["metal_noise"].num();
-            if (r.has("dielectric_noise")) row.dielectricNoise = r["dielectric_noise"].num();
-            fig.rows.push_back(std::move(row));
-        }
-        model.iblFigure = std::move(fig);
-    }
+    if (root.has("ibl_figure")) model.iblFigure = readIblFigure(root["ibl_figure"]);
     return model;
 }
 
