@@ -97,7 +97,7 @@ gbl_test(measure/significance_test LABELS unit DEPS gbl_measure)  # the sign-fli
 gbl_test(measure/pair_memo_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/encoding_stats_test LABELS unit DEPS gbl_measure)
 gbl_test(measure/bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)
-gbl_test(measure/framebuffer_compression_test LABELS unit DEPS gbl_measure gbl_layout)  # container arithmetic, calibration vs published GPUs
+gbl_test(measure/framebuffer_compression_test LABELS unit DEPS gbl_measure gbl_layout gbl_encoding)  # container arithmetic, calibration vs published GPUs
 gbl_test(measure/effective_bandwidth_test LABELS unit DEPS gbl_measure gbl_layout)  # tile fits, lighting reads, traffic per GPU class
 gbl_test(measure/view_content_test LABELS unit DEPS gbl_measure)  # views with nothing to measure
 gbl_test(measure/png16_diff_test LABELS unit DEPS gbl_measure)  # 16-bit PNGs at 16 bits

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "encodings.h"
 #include "framebuffer_compression.h"
 #include "layout_catalog.h"
 
@@ -183,12 +184,9 @@ float channelValue(Pattern p, uint32_t x, uint32_t y, uint32_t w, uint32_t h, in
     }
 }
 
-uint32_t halfBits(float f) {
-    _Float16 h = _Float16(f);
-    uint16_t b;
-    std::memcpy(&b, &h, 2);
-    return b;
-}
+// IEEE binary16 bits, round to nearest even (encodings.h; the patterns are in [0, 1], far from
+// its overflow clamp). clang 14 has no _Float16 on x86-64.
+uint32_t halfBits(float f) { return enc::encodeFloat16(f); }
 
 struct FormatInfo {
     TexelLayout layout;
