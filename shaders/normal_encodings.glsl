@@ -135,10 +135,12 @@ vec3 decodeNormalStereographic(uvec2 code, uint bits) {
 // Efficient Representations for Independent Unit Vectors", JCGT 3(2), 2014, listings 1-2.
 vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
 
-// octEncode: unit n -> [-1,1]^2 (lower hemisphere folded over the diagonals).
+// octEncode: unit n -> [-1,1]^2 (lower hemisphere folded over the diagonals). A zero vector (a
+// layer's unset direction: coat_normal, anisotropy_direction) has none: it encodes as the fold of
+// (0, 0), on the CPU as here, where 0 / 0 would leave the code to each side's NaN conversion.
 vec2 octEncode(vec3 n) {
     precise float l1 = abs(n.x) + abs(n.y) + abs(n.z);
-    precise vec2 p = vec2(n.x / l1, n.y / l1);
+    precise vec2 p = l1 > 0.0 ? vec2(n.x / l1, n.y / l1) : vec2(0.0);
     precise vec2 folded = vec2(1.0 - abs(p.y), 1.0 - abs(p.x)) * signNotZero(p);
     return n.z <= 0.0 ? folded : p;
 }

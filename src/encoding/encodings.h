@@ -291,7 +291,7 @@ inline vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0f ? 1.0f : -1.0f, v.y >=
 // octEncode: unit n -> [-1,1]^2 (lower hemisphere folded over the diagonals).
 inline vec2 octEncode(vec3 n) {
     float l1 = abs(n.x) + abs(n.y) + abs(n.z);
-    vec2 p = vec2(n.x / l1, n.y / l1);
+    vec2 p = l1 > 0.0f ? vec2(n.x / l1, n.y / l1) : vec2(0.0f);  // a zero vector: normal_encodings.glsl
     vec2 folded = vec2(1.0f - abs(p.y), 1.0f - abs(p.x)) * signNotZero(p);
     return n.z <= 0.0f ? folded : p;
 }

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "gpu_evaluator.h"
+#include "layered_scene.h"
 #include "layout_catalog.h"
 #include "procedural_sky.h"
 #include "renderer.h"
@@ -41,24 +42,11 @@ void expectStats(const ClassStats& g, const ClassStats& c, double meanRel, const
     near(g.rmse, c.rmse, 1e-6, 1e-9, "rmse");
 }
 
-// The sphere grid (layers_render_test's layeredGrid): every fourth sphere from the second coated
-// (factor 1), from the third with sheen, from the fourth anisotropic; the rest and the ground plain.
+// The sphere grid with its layers (layered_scene.h), or without.
 Scene layeredGrid(bool layers) {
     Scene scene = makeSphereGridScene();
     if (!layers) return scene;
-    for (size_t i = 0; i + 1 < scene.materials.size(); ++i) {
-        Material& m = scene.materials[i];
-        if (i % 4 == 1) {
-            m.clearcoatFactor = 1.0f;
-            m.clearcoatRoughnessFactor = 0.15f;
-        } else if (i % 4 == 2) {
-            m.sheenColorFactor = glm::vec3(0.9f, 0.7f, 0.4f);
-            m.sheenRoughnessFactor = 0.5f;
-        } else if (i % 4 == 3) {
-            m.anisotropyStrength = 0.8f;
-            m.anisotropyRotation = 0.7f;
-        }
-    }
+    test::addLayersToSphereGrid(scene);
     return scene;
 }
 

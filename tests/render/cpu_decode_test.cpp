@@ -13,6 +13,7 @@
 #include <limits>
 #include <string>
 
+#include "layered_scene.h"
 #include "layout_catalog.h"
 #include "procedural_sky.h"
 #include "renderer.h"
@@ -149,19 +150,7 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
 // layer images: the reference's float32 layers, and 0 from ue4, which stores none.
 TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
     Scene scene = makeSphereGridScene();
-    for (size_t i = 0; i + 1 < scene.materials.size(); ++i) {
-        Material& m = scene.materials[i];
-        if (i % 4 == 1) {
-            m.clearcoatFactor = 1.0f;
-            m.clearcoatRoughnessFactor = 0.15f;
-        } else if (i % 4 == 2) {
-            m.sheenColorFactor = glm::vec3(0.9f, 0.7f, 0.4f);
-            m.sheenRoughnessFactor = 0.5f;
-        } else if (i % 4 == 3) {
-            m.anisotropyStrength = 0.8f;
-            m.anisotropyRotation = 0.7f;
-        }
-    }
+    test::addLayersToSphereGrid(scene);
     const EnvironmentMap sky = makeProceduralSky(64);
     Renderer renderer(test::sharedContext(), scene, sky);
     const RenderSettings pass = test::decodedFrame(160, 90);

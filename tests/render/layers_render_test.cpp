@@ -13,6 +13,7 @@
 #include "forward_mask.h"
 #include "gbuffer_wiring.h"
 #include "ibl_precompute.h"
+#include "layered_scene.h"
 #include "layout_catalog.h"
 #include "layout_files.h"
 #include "procedural_sky.h"
@@ -39,19 +40,7 @@ Scene layeredGrid(bool layers) {
     Scene scene = makeSphereGridScene();
     scene.lights.clear();
     if (!layers) return scene;
-    for (size_t i = 0; i + 1 < scene.materials.size(); ++i) {
-        Material& m = scene.materials[i];
-        if (i % 4 == 1) {
-            m.clearcoatFactor = 1.0f;
-            m.clearcoatRoughnessFactor = 0.15f;
-        } else if (i % 4 == 2) {
-            m.sheenColorFactor = glm::vec3(0.9f, 0.7f, 0.4f);
-            m.sheenRoughnessFactor = 0.5f;
-        } else if (i % 4 == 3) {
-            m.anisotropyStrength = 0.8f;
-            m.anisotropyRotation = 0.7f;
-        }
-    }
+    test::addLayersToSphereGrid(scene);
     return scene;
 }
 
