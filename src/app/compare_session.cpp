@@ -103,7 +103,7 @@ void CompareSession::loadInputs() {
 
 }
 
-// The Vulkan context (the suite's shared one, or the session's own), then where and how the
+// The Vulkan context (the suite's shared one, or this comparison's own), then where and how the
 // metrics run (bands, the device evaluator), and the size and memory checks that depend on it.
 void CompareSession::openDevice() {
     const CompareOptions& o = options_;
@@ -262,7 +262,7 @@ void CompareSession::openOutput() {
     }
 }
 
-// The renderer over the session's scene with the environment's IBL (one pre-computation per
+// The renderer over this comparison's scene with the environment's IBL (one pre-computation per
 // environment across a suite's scenes).
 void CompareSession::createRenderer() {
     const CompareOptions& o = options_;
