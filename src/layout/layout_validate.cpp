@@ -8,708 +8,456 @@
 #include <functional>
 #include <map>
 
-#include "encoding_registry.h"
-#include "layout.h"
+#include "layout_validator.h"
 
 namespace gbl {
 
-namespace {
+namespace layout_validation {
 
-constexpr int kMaxColorTargets = 8;  // Vulkan's guaranteed maxColorAttachments (and lavapipe's)
+void Validator::run() {
+    checkTargets();
+    checkStencil();
+    checkSelector();
+    checkStoredOnce();
+    checkReads();
+    checkRequired();
+    checkFallbacks();
+    checkPipeline();
+    checkClear();
+    checkSpace();
+}
 
-std::string squote(std::string_view s) { return "'" + std::string(s) + "'"; }
-std::string bitsText(int n) { return std::to_string(n) + (n == 1 ? " bit" : " bits"); }
-std::string lineText(FilePlace p) { return "line " + std::to_string(p.line); }
+void Validator::error(FilePlace place, std::string message) {
+    out_.push_back({layout_.sourceFile, place, std::move(message)});
+}
 
-class Validator {
-public:
-    Validator(const Layout& layout, std::vector<LayoutDiagnostic>& out) : layout_(layout), out_(out) {}
-
-    void run() {
-        checkTargets();
-        checkStencil();
-        checkSelector();
-        checkStoredOnce();
-        checkReads();
-        checkRequired();
-        checkFallbacks();
-        checkPipeline();
-        checkClear();
-        checkSpace();
-    }
-
-private:
-    void error(FilePlace place, std::string message) {
-        out_.push_back({layout_.sourceFile, place, std::move(message)});
-    }
-
-    // Number of codes a field's encoding produces for its attribute.
-    static int expectedCodes(const Field& f, const EncodingInfo* enc) {
-        const int components = attributeInfo(f.attribute).components;
-        if (!enc) return components;  // "id": one code per component
-        if (enc->kind == AttributeKind::Scalar) return components * enc->codeCount;
-        return enc->codeCount + (enc->extraBits > 0 ? 1 : 0);
-    }
-
-    // Why `enc` cannot hold `attr` ("" when it can).
-    static std::string unsuitable(const EncodingInfo& enc, const AttributeInfo& attr) {
-        const std::string a = squote(attr.name), e = squote(enc.name);
-        switch (enc.kind) {
-            case AttributeKind::Normal:
-                if (!isDirectionAttribute(attr.id)) return e + " encodes unit normals, not " + a;
-                return "";
-            case AttributeKind::Color:
-                if (attr.components != 3 || isDirectionAttribute(attr.id) || attr.id == Attribute::Position)
-                    return e + " encodes RGB colours, not " + a;
-                if (!enc.reads.empty() && attr.id != Attribute::Emissive)
-                    return e + " stores emissive relative to " + enc.reads + ", not " + a;
-                if (!enc.carries.empty() && attr.id != Attribute::Emissive)
-                    return e + " stores emissive (and " + enc.carries + " in its tag), not " + a;
-                return "";
-            case AttributeKind::Scalar:
-                break;
+void Validator::checkTargets() {
+    std::map<std::string, FilePlace> names;
+    int count = 0;
+    for (const Target& t : layout_.targets) {
+        ++count;
+        if (count == kMaxColorTargets + 1)
+            error(t.place, "more than " + std::to_string(kMaxColorTargets) +
+                               " render targets: Vulkan guarantees (and lavapipe has) 8 colour attachments");
+        if (!t.name.empty()) {
+            auto [it, fresh] = names.emplace(t.name, t.place);
+            if (!fresh)
+                error(t.place, "target name " + squote(t.name) + " is already used (" + lineText(it->second) + ")");
         }
-        if ((enc.name == "gloss" || enc.name == "smoothness_cry" || enc.name == "cry_gloss_power" || enc.name == "kz2_log_power") &&
-            attr.id != Attribute::Roughness)
-            return e + " stores roughness only, not " + a;
-        if ((enc.name == "reflectance" || enc.name == "reflectance_bevy_webgl2") && attr.id != Attribute::Specular)
-            return e + " stores specular only, not " + a;
-        if (enc.name == "coat_roughness_bevy" && attr.id != Attribute::CoatRoughness)
-            return e + " stores coat_roughness only, not " + a;
-        if (attr.domain == ValueDomain::Signed && enc.name != "snorm" && enc.name != "float16" && enc.name != "float32")
-            return a + " has components in [-1,1] but " + e + " takes " + enc.inputRange +
-                   " (use a normal_* encoding, snorm, float16 or float32)";
-        if (attr.domain == ValueDomain::Any && enc.name != "float16" && enc.name != "float32")
-            return a + " is unbounded: store it as float16 or float32, not " + e;
-        return "";
+        if (t.channels.empty()) continue;  // unknown format, reported
+        for (const Field& f : t.fields) checkField(f, t.channels, t.format);
+        checkPacking(t.fields, t.channels, t.bits(), "target " + squote(t.name), t.format, t.formatPlace);
     }
+}
 
-    // Everything about one field that does not involve other fields. `channels` is the target's
-    // (or the stencil's) channel list, `format` its name for messages.
-    void checkField(const Field& f, const std::vector<Channel>& channels, const std::string& format) {
-        if (f.incomplete) return;
-        const AttributeInfo& attr = attributeInfo(f.attribute);
-        const std::string what = "field " + squote(attr.name);
-        const bool isId = f.encoding == kIdEncoding;
-        const EncodingInfo* enc = isId ? nullptr : findEncoding(f.encoding);
-        if (!isId && !enc) return;  // reported by the parser
+void Validator::checkStencil() {
+    const Depth& d = layout_.depth;
+    if (d.stencil.empty() || d.stencilBits == 0) return;
+    const std::vector<Channel> channels = {{"s", d.stencilBits, 0, ChannelType::Uint}};
+    for (const Field& f : d.stencil) checkField(f, channels, "the stencil");
+    checkPacking(d.stencil, channels, d.stencilBits, "the stencil", d.format, d.formatPlace);
+}
 
-        if (enc) {
-            const std::string why = unsuitable(*enc, attr);
-            if (!why.empty()) {
-                error(f.encodingPlace, why);
-                return;
-            }
-        }
-
-        // code count
-        const int want = expectedCodes(f, enc);
-        if (static_cast<int>(f.codes.size()) != want) {
-            std::string names;
-            Field probe = f;
-            probe.codes.resize(static_cast<size_t>(want));
-            for (int i = 0; i < want; ++i) {
-                const std::string l = codeLabel(probe, static_cast<size_t>(i));
-                names += (names.empty() ? "" : ", ") + (l.empty() ? "value" : l);
-            }
-            const FilePlace at = f.atPlace.line > 0 ? f.atPlace : f.place;
-            error(at, "encoding " + squote(f.encoding) + " has " + std::to_string(want) +
-                          (want == 1 ? " code" : " codes") + " (" + names + ") for " + squote(attr.name) + " but " +
-                          std::to_string(f.codes.size()) + (f.codes.size() == 1 ? " place is" : " places are") +
-                          " given in 'at'");
-            return;
-        }
-
-        // widths
-        const int mainCodes = enc && enc->kind != AttributeKind::Scalar ? enc->codeCount : want;
-        for (size_t i = 0; i < f.codes.size(); ++i) {
-            const CodePlace& c = f.codes[i];
-            const std::string label = codeLabel(f, i);
-            const std::string code = label.empty() ? "its code" : "code " + label;
-            const int bits = c.bits();
-            if (isId) {
-                if (bits > 32) {
-                    error(c.place, what + ": an id code holds at most 32 bits, " + squote(c.text) + " has " +
-                                       std::to_string(bits));
-                } else if (i < f.value.size() && f.value[i] >= std::ldexp(1.0, bits)) {
-                    error(c.place, what + ": value " + std::to_string(static_cast<long long>(f.value[i])) +
-                                       " does not fit in " + bitsText(bits) + " at " + squote(c.text) + " (max " +
-                                       std::to_string(static_cast<long long>(std::ldexp(1.0, bits)) - 1) + ")");
-                }
-                continue;
-            }
-            if (static_cast<int>(i) >= mainCodes) {  // the extra code (normal_xy_zsign's sign bit)
-                if (bits != enc->extraBits)
-                    error(c.place, "encoding " + squote(enc->name) + " stores " + code + " in exactly " +
-                                       bitsText(enc->extraBits) + "; " + squote(c.text) + " has " +
-                                       std::to_string(bits));
-                continue;
-            }
-            if (!encodingBitsValid(*enc, bits)) {
-                const std::string range = enc->minBits == enc->maxBits
-                                              ? bitsText(enc->minBits)
-                                              : std::to_string(enc->minBits) + ".." + bitsText(enc->maxBits);
-                error(c.place, "encoding " + squote(enc->name) + " takes " + range + " per code; " + code + " of " +
-                                   squote(attr.name) + " at " + squote(c.text) + " has " + std::to_string(bits));
-            } else if (enc->kind != AttributeKind::Scalar && i > 0 && bits != f.codes[0].bits()) {
-                error(c.place, "encoding " + squote(enc->name) + " takes one bit count for all its codes; " + code +
-                                   " at " + squote(c.text) + " has " + std::to_string(bits) + " but code " +
-                                   codeLabel(f, 0) + " has " + std::to_string(f.codes[0].bits()));
-            }
-        }
-
-        // every piece inside its channel; float and sRGB channels hold only whole codes of their kind
-        for (size_t i = 0; i < f.codes.size(); ++i) {
-            const CodePlace& c = f.codes[i];
-            for (const BitRange& r : c.pieces) {
-                const Channel& ch = channels[static_cast<size_t>(r.channel)];
-                const int end = r.first + r.count;
-                if (end > ch.bits) {
-                    error(c.place, "bit range " + squote(bitRangeText(channels, r)) + " overflows channel " +
-                                       squote(ch.name) + " of " + format + " (" + bitsText(ch.bits) + ") by " +
-                                       bitsText(end - ch.bits));
-                    continue;
-                }
-                const bool whole = c.pieces.size() == 1 && r.first == 0 && r.count == ch.bits;
-                if (ch.type == ChannelType::Sfloat || ch.type == ChannelType::Ufloat) {
-                    const std::string need = ch.type == ChannelType::Sfloat ? (ch.bits == 16 ? "float16" : "float32")
-                                                                            : (ch.bits == 11 ? "float11" : "float10");
-                    // float11_11_10 is B10G11R11's three codes as one colour field (r, g: float11; b: float10).
-                    const bool packedUfloat = (f.encoding == "float11_11_10" || f.encoding == "float11_11_10_hdrp_ao_tag") &&
-                                              ch.type == ChannelType::Ufloat &&
-                                              (ch.bits == 11) == (i < 2);
-                    if (!whole || (f.encoding != need && !packedUfloat))
-                        error(c.place, "channel " + squote(ch.name) + " of " + format +
-                                           " is a float channel: it "
-                                           "holds one whole " +
-                                           need + " code, not " + squote(f.encoding) + " bits at " + squote(c.text) +
-                                           " (use a UNORM or UINT format for bit fields)");
-                } else if (ch.type == ChannelType::Srgb) {
-                    if (!whole || f.encoding != "srgb8")
-                        error(c.place, "channel " + squote(ch.name) + " of " + format +
-                                           " is an sRGB channel: it "
-                                           "holds one whole srgb8 code, not " +
-                                           squote(f.encoding) + " bits at " + squote(c.text) +
-                                           " (use the _UNORM format)");
-                }
-            }
-        }
-    }
-
-    // Bits of one target (or the stencil): total fits, no two codes share a bit.
-    void checkPacking(const std::vector<Field>& fields, const std::vector<Channel>& channels, int totalBits,
-                      const std::string& where, const std::string& format, FilePlace place) {
-        // Bits counted once: conditional fields of disjoint models may share them (overlaps of
-        // other fields are reported below, bit by bit).
-        std::vector<std::vector<bool>> taken(channels.size());
-        for (size_t c = 0; c < channels.size(); ++c) taken[c].assign(static_cast<size_t>(channels[c].bits), false);
-        int used = 0;
-        for (const Field& f : fields) {
-            if (f.incomplete) continue;
-            for (const CodePlace& code : f.codes)
-                for (const BitRange& r : code.pieces)
-                    for (int b = r.first; b < r.first + r.count; ++b) {
-                        auto& t = taken[static_cast<size_t>(r.channel)];
-                        if (b >= static_cast<int>(t.size())) {
-                            ++used;
-                        } else if (!t[static_cast<size_t>(b)]) {
-                            t[static_cast<size_t>(b)] = true;
-                            ++used;
-                        }
-                    }
-        }
-        if (used > totalBits)
-            error(place, "fields of " + where + " need " + bitsText(used) + " but " + format + " holds " +
-                             std::to_string(totalBits) + " (" + bitsText(used - totalBits) + " over)");
-
-        // owners[channel][bit] = the fields holding it: one, or several conditional fields of
-        // disjoint models (layouts/README.md, "Shading models")
-        struct Owner {
-            int field = -1;
-            const CodePlace* code = nullptr;
-        };
-        std::vector<std::vector<std::vector<Owner>>> owners(channels.size());
-        for (size_t c = 0; c < channels.size(); ++c) owners[c].resize(static_cast<size_t>(channels[c].bits));
-        std::map<std::pair<int, int>, bool> reported;
-        auto compatible = [&](const Field& a, const Field& b) {
-            return &a != &b && a.conditional() && b.conditional() && (a.models & b.models) == 0;
-        };
-        for (size_t fi = 0; fi < fields.size(); ++fi) {
-            const Field& f = fields[fi];
-            if (f.incomplete) continue;
-            for (const CodePlace& code : f.codes) {
-                for (const BitRange& r : code.pieces) {
-                    auto& bits = owners[static_cast<size_t>(r.channel)];
-                    int clashFirst = -1, clashLast = -1, other = -1;
-                    const CodePlace* otherCode = nullptr;
-                    for (int b = r.first; b < r.first + r.count && b < static_cast<int>(bits.size()); ++b) {
-                        auto& list = bits[static_cast<size_t>(b)];
-                        for (const Owner& o : list) {
-                            if (compatible(f, fields[static_cast<size_t>(o.field)])) continue;
-                            if (clashFirst < 0) {
-                                clashFirst = b;
-                                other = o.field;
-                                otherCode = o.code;
-                            }
-                            if (o.field == other) clashLast = b;
-                        }
-                        list.push_back({static_cast<int>(fi), &code});
-                    }
-                    if (clashFirst < 0) continue;
-                    if (reported[{other, static_cast<int>(fi)}]) continue;
-                    reported[{other, static_cast<int>(fi)}] = true;
-                    const Field& g = fields[static_cast<size_t>(other)];
-                    const BitRange clash{r.channel, clashFirst, clashLast - clashFirst + 1};
-                    const std::string self = other == static_cast<int>(fi) ? " (the same field)" : "";
-                    std::string why;
-                    if (other != static_cast<int>(fi) && f.conditional() && g.conditional())
-                        why = "; both are held under " + shadingModelNames(f.models & g.models) +
-                              ": fields may share bits only under disjoint models";
-                    else if (other != static_cast<int>(fi) && (f.conditional() || g.conditional()))
-                        why = std::string("; only fields of different models may share bits, and ") +
-                              squote(attributeName(f.conditional() ? g.attribute : f.attribute)) +
-                              " is written on every pixel";
-                    error(code.place, "bits " + bitRangeText(channels, clash) + " of field " +
-                                          squote(attributeName(f.attribute)) + " at " + squote(code.text) +
-                                          " overlap field " + squote(attributeName(g.attribute)) + " at " +
-                                          squote(otherCode ? otherCode->text : "?") + " (" + lineText(g.place) + ")" +
-                                          self + why);
-                }
-            }
-        }
-    }
-
-    void checkTargets() {
-        std::map<std::string, FilePlace> names;
-        int count = 0;
-        for (const Target& t : layout_.targets) {
-            ++count;
-            if (count == kMaxColorTargets + 1)
-                error(t.place, "more than " + std::to_string(kMaxColorTargets) +
-                                   " render targets: Vulkan guarantees (and lavapipe has) 8 colour attachments");
-            if (!t.name.empty()) {
-                auto [it, fresh] = names.emplace(t.name, t.place);
-                if (!fresh)
-                    error(t.place, "target name " + squote(t.name) + " is already used (" + lineText(it->second) + ")");
-            }
-            if (t.channels.empty()) continue;  // unknown format, reported
-            for (const Field& f : t.fields) checkField(f, t.channels, t.format);
-            checkPacking(t.fields, t.channels, t.bits(), "target " + squote(t.name), t.format, t.formatPlace);
-        }
-    }
-
-    void checkStencil() {
-        const Depth& d = layout_.depth;
-        if (d.stencil.empty() || d.stencilBits == 0) return;
-        const std::vector<Channel> channels = {{"s", d.stencilBits, 0, ChannelType::Uint}};
-        for (const Field& f : d.stencil) checkField(f, channels, "the stencil");
-        checkPacking(d.stencil, channels, d.stencilBits, "the stencil", d.format, d.formatPlace);
-    }
-
-    // An encoding that reads another attribute of the pixel (emissive_albedo_ratio reads
-    // base_color) decodes from that attribute's decoded value: it must be stored in a field that
-    // comes before this one (an earlier target, or earlier in the same target), as readGBuffer
-    // and the CPU codec decode fields in layout order.
-    void checkReads() {
-        std::map<Attribute, const Field*> before;
-        for (const Target& t : layout_.targets)
-            for (const Field& f : t.fields) {
-                const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
-                if (enc && !enc->reads.empty()) {
-                    const AttributeInfo* r = findAttribute(enc->reads);
-                    const std::string a = squote(attributeName(f.attribute)), e = squote(enc->name);
-                    if (r && !before.count(r->id)) {
-                        const bool later = layout_.stores(r->id);
-                        error(f.encodingPlace,
-                              "encoding " + e + " of " + a + " reads " + squote(enc->reads) + ", which " +
-                                  (later ? "is stored after it" : "the layout does not store") + ": store " +
-                                  enc->reads + " in a field before " + a +
-                                  " (an earlier target, or earlier in this one), or choose another encoding for " + a);
-                    }
-                }
-                before.emplace(f.attribute, &f);
-            }
-    }
-
-    void checkStoredOnce() {
-        // An attribute is stored by one unconditional field, or by conditional fields of disjoint
-        // models (layouts/README.md, "Shading models").
-        std::map<Attribute, std::vector<const Field*>> seen;
-        auto visit = [&](const Field& f) {
-            auto& list = seen[f.attribute];
-            for (const Field* g : list) {
-                if (f.conditional() && g->conditional() && (f.models & g->models) == 0) continue;
-                if (f.conditional() && g->conditional())
-                    error(f.modelPlace, "attribute " + squote(attributeName(f.attribute)) + " is already stored under " +
-                                            shadingModelNames(f.models & g->models) + " (" + lineText(g->place) +
-                                            "); store each attribute once per model");
-                else if (f.conditional() || g->conditional())
-                    error(f.place, "attribute " + squote(attributeName(f.attribute)) + " is already stored (" +
-                                       lineText(g->place) + ") by a" + (g->conditional() ? " conditional" : "n unconditional") +
-                                       " field; an attribute is stored on every pixel or under some models, not both");
-                else
-                    error(f.place, "attribute " + squote(attributeName(f.attribute)) + " is already stored (" +
-                                       lineText(g->place) + "); store each attribute once");
-                return;
-            }
-            list.push_back(&f);
-        };
-        for (const Target& t : layout_.targets)
-            for (const Field& f : t.fields) visit(f);
-        for (const Field& f : layout_.depth.stencil) visit(f);
-        // What an encoding stores besides its attribute (HDRP's AO tag: occlusion) counts too.
-        for (const Target& t : layout_.targets)
-            for (const Field& f : t.fields) {
-                const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
-                const AttributeInfo* c = enc && !enc->carries.empty() ? findAttribute(enc->carries) : nullptr;
-                if (!c) continue;
-                auto& list = seen[c->id];
-                if (!list.empty())
-                    error(f.encodingPlace, "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) +
-                                               " also stores " + squote(enc->carries) + ", which is already stored (" +
-                                               lineText(list.front()->place) + "); store each attribute once");
-                list.push_back(&f);
-            }
-    }
-
-    // The selector and the conditional fields (layouts/README.md, "Shading models: the selector").
-    void checkSelector() {
-        const Field* sel = nullptr;
-        for (const Target& t : layout_.targets)
-            for (const Field& f : t.fields) {
-                if (f.attribute != Attribute::ShadingModel) continue;
-                if (sel) {
-                    error(f.place, "a second shading-model selector (the first is on " + lineText(sel->place) +
-                                       "): a layout has at most one");
-                    continue;
-                }
-                sel = &f;
-            }
-        uint32_t named = 0;
-        if (sel && !sel->incomplete) {
-            const int bits = sel->codes.empty() ? 0 : sel->codes[0].bits();
-            if (bits > kMaxSelectorBits)
-                error(sel->codes[0].place, "the selector at " + squote(sel->codes[0].text) + " has " + bitsText(bits) +
-                                               "; it takes 1.." + bitsText(kMaxSelectorBits) +
-                                               " (ids 0..31: UE's shading model id takes 4, HDRP's feature id 3)");
-            std::map<uint32_t, const Field::ModelId*> ids;
-            for (const Field::ModelId& m : sel->selector) {
-                named |= 1u << unsigned(m.model);
-                const char* name = shadingModelInfo(m.model).name;
-                if (bits > 0 && bits <= 32 && double(m.id) >= std::ldexp(1.0, bits))
-                    error(m.place, "id " + std::to_string(m.id) + " of " + squote(name) + " does not fit the selector's " +
-                                       bitsText(bits) + " (0.." +
-                                       std::to_string(static_cast<long long>(std::ldexp(1.0, bits)) - 1) + ")");
-                auto [it, fresh] = ids.emplace(m.id, &m);
-                if (!fresh)
-                    error(m.place, "models " + squote(shadingModelInfo(it->second->model).name) + " and " + squote(name) +
-                                       " have the same id " + std::to_string(m.id) +
-                                       ": the decoder could not tell their pixels apart");
-            }
-            if (!(named & 1u))
-                error(sel->selectorPlace, "the selector's 'models' has no 'default': name the id of pixels without a "
-                                          "layer its other models hold (e.g. default = 1, UE's DefaultLit)");
-        }
-        for (const Target& t : layout_.targets)
-            for (const Field& f : t.fields) {
-                if (f.incomplete || !f.conditional()) continue;
-                const std::string a = squote(attributeName(f.attribute));
-                if (!sel) {
-                    error(f.modelPlace, "field " + a + " is held under " + shadingModelNames(f.models) +
-                                            " but the layout has no selector: add a field { attribute = "
-                                            "\"shading_model\", at = ..., models = { default = ..., ... } } that "
-                                            "stores each pixel's model, or remove 'model'");
-                    continue;
-                }
-                if (!sel->incomplete && (f.models & ~named) != 0)
-                    error(f.modelPlace, "field " + a + " is held under " + shadingModelNames(f.models & ~named) +
-                                            ", which the selector (" + lineText(sel->place) +
-                                            ") does not name: add it to the selector's 'models' (known: " +
-                                            shadingModelNames(named) + ")");
-                if (f.attribute == Attribute::Position || f.attribute == Attribute::Depth)
-                    error(f.modelPlace, "field " + a + " is geometry, which the lighting rebuilds every pixel from: it "
-                                            "is stored on every pixel (remove 'model')");
-                const EncodingInfo* enc = findEncoding(f.encoding);
-                if (enc && (enc->needsNeighbours || !enc->reads.empty() || !enc->carries.empty()))
-                    error(f.encodingPlace,
-                          "encoding " + squote(enc->name) + " of the conditional field " + a + " reads " +
-                              (enc->needsNeighbours ? std::string("the neighbouring pixels, which may be of another model")
-                                                    : squote(!enc->reads.empty() ? enc->reads : enc->carries) +
-                                                          " with it") +
-                              ": a conditional field takes an encoding of its own value only (store it unconditionally, "
-                              "or choose another encoding)");
-            }
-        // An encoding that reads another attribute reads it on every pixel: not one stored per model.
-        for (const Target& t : layout_.targets)
-            for (const Field& f : t.fields) {
-                const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
-                if (!enc || enc->reads.empty()) continue;
+// An encoding that reads another attribute of the pixel (emissive_albedo_ratio reads
+// base_color) decodes from that attribute's decoded value: it must be stored in a field that
+// comes before this one (an earlier target, or earlier in the same target), as readGBuffer
+// and the CPU codec decode fields in layout order.
+void Validator::checkReads() {
+    std::map<Attribute, const Field*> before;
+    for (const Target& t : layout_.targets)
+        for (const Field& f : t.fields) {
+            const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
+            if (enc && !enc->reads.empty()) {
                 const AttributeInfo* r = findAttribute(enc->reads);
-                if (r && layout_.storesConditionally(r->id))
-                    error(f.encodingPlace, "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) +
-                                               " reads " + squote(enc->reads) +
-                                               ", which the layout stores under some models only: store " +
-                                               enc->reads + " on every pixel, or choose another encoding");
-            }
-    }
-
-    FilePlace fallbackTablePlace() const {
-        return layout_.fallbackPlace.line > 0 ? layout_.fallbackPlace : FilePlace{1, 1};
-    }
-
-    void checkRequired() {
-        for (Attribute a : {Attribute::Normal, Attribute::Roughness})
-            if (!layout_.stores(a))
-                error({1, 1}, "the layout stores no " + squote(attributeName(a)) +
-                                  ": every layout must store normal and roughness (the lighting pass reads them "
-                                  "from the G-buffer)");
-            else if (!layout_.storesAlways(a))
-                error(layout_.findField(a)->modelPlace,
-                      squote(attributeName(a)) + " is stored under " +
-                          shadingModelNames(layout_.conditionalModels(a)) +
-                          " only: normal and roughness are stored on every pixel (remove 'model')");
-    }
-
-    // What each derived fallback reads.
-    static std::vector<Attribute> inputsOf(FallbackKind k) {
-        using A = Attribute;
-        switch (k) {
-            case FallbackKind::FromMetallic:
-                return {A::BaseColor, A::Metallic};
-            case FallbackKind::Ue4:
-                return {A::BaseColor, A::Metallic, A::Specular};
-            case FallbackKind::FromBaseColor:
-                return {A::BaseColor, A::Metallic};
-            case FallbackKind::FromDiffuseSpecular:
-                return {A::DiffuseColor, A::SpecularColor, A::Metallic};
-            case FallbackKind::FromSpecularColor:
-                return {A::SpecularColor};
-            default:
-                return {};
-        }
-    }
-
-    void checkFallbacks() {
-        // coverage: each shading attribute stored xor given a fallback
-        std::map<Attribute, const Fallback*> fb;
-        for (const Fallback& f : layout_.fallbacks) {
-            auto [it, fresh] = fb.emplace(f.attribute, &f);
-            if (!fresh) error(f.place, "second fallback for " + squote(attributeName(f.attribute)));
-            if (const Field* stored = layout_.storesAlways(f.attribute) ? layout_.findField(f.attribute) : nullptr)
-                error(f.place, "fallback for " + squote(attributeName(f.attribute)) + " but the layout stores it (" +
-                                   lineText(stored->place) + "); remove one");
-        }
-        for (const AttributeInfo& a : listAttributes()) {
-            if (a.cls != AttributeClass::Shading || a.id == Attribute::Normal || a.id == Attribute::Roughness) continue;
-            if (isLayerAttribute(a.id)) continue;  // unstored: "no layer" (0), as an engine without the layer
-            if (layout_.storesConditionally(a.id) && !fb.count(a.id)) {
-                error(fallbackTablePlace(), "the layout stores " + squote(a.name) + " under " +
-                                                shadingModelNames(layout_.conditionalModels(a.id)) +
-                                                " only and declares no fallback for the other pixels: add " +
-                                                std::string(a.name) + " = ... to [fallback] (what the decoder yields "
-                                                "where the pixel's model does not store it)");
-                continue;
-            }
-            if (!layout_.stores(a.id) && !fb.count(a.id))
-                error(fallbackTablePlace(), "the layout does not store " + squote(a.name) +
-                                                " and declares no fallback for it: add " + std::string(a.name) +
-                                                " = ... to [fallback] (a derivation such as " +
-                                                (a.id == Attribute::SpecularColor  ? "\"from_metallic\""
-                                                 : a.id == Attribute::DiffuseColor ? "\"from_base_color\""
-                                                 : a.id == Attribute::Emissive     ? "\"forward\""
-                                                 : a.id == Attribute::Metallic     ? "\"from_specular_color\""
-                                                 : a.id == Attribute::BaseColor    ? "\"from_diffuse_specular\""
-                                                 : layout_.pipeline == Pipeline::DeferredLighting ? "\"material_pass\""
-                                                                                                  : "a constant") +
-                                                ", or a constant)");
-        }
-        // inputs of derived fallbacks exist, without cycles
-        for (const Fallback& f : layout_.fallbacks) {
-            if (f.incomplete) continue;
-            for (Attribute in : inputsOf(f.kind))
-                if (!layout_.stores(in) && !fb.count(in))
-                    error(f.place, "fallback " + squote(fallbackKindName(f.kind)) + " for " +
-                                       squote(attributeName(f.attribute)) + " reads " + squote(attributeName(in)) +
-                                       ", which the layout neither stores nor derives");
-        }
-        // derived fallbacks must not feed each other in a circle (metallic from specular_color from
-        // metallic): depth-first search over "derives from" edges, one report per back edge. With a
-        // selector, per model: an attribute that model stores breaks the circle there (HDRP's
-        // fresnel0 under its standard feature, its metallic under anisotropy), and the layout is
-        // refused only where some model stores none of the circle.
-        const uint32_t named = layout_.selectorModels();
-        bool reportedCycle = false;
-        for (int model = named ? 0 : -1; model < (named ? kShadingModels : 0) && !reportedCycle; ++model) {
-            if (model >= 0 && !((named >> model) & 1u)) continue;
-            auto storedHere = [&](Attribute a) {
-                return layout_.storesAlways(a) ||
-                       (model >= 0 && ((layout_.conditionalModels(a) >> unsigned(model)) & 1u));
-            };
-            std::map<Attribute, int> state;  // 0 unvisited, 1 on the stack, 2 done
-            std::vector<Attribute> stack;
-            std::function<void(Attribute)> visit = [&](Attribute a) {
-                state[a] = 1;
-                stack.push_back(a);
-                for (Attribute in : inputsOf(fb.at(a)->kind)) {
-                    if (storedHere(in) || !fb.count(in)) continue;
-                    if (state[in] == 1) {
-                        std::string chain;
-                        auto from = std::find(stack.begin(), stack.end(), in);
-                        for (auto it = from; it != stack.end(); ++it) chain += std::string(attributeName(*it)) + " -> ";
-                        chain += attributeName(in);
-                        error(fb.at(in)->place,
-                              "fallbacks form a cycle: " + chain +
-                                  (model >= 0 ? " on pixels of model " + squote(shadingModelInfo(ShadingModel(model)).name)
-                                              : std::string()) +
-                                  "; store one of them or give one a constant");
-                        reportedCycle = true;
-                    } else if (state[in] == 0) {
-                        visit(in);
-                    }
+                const std::string a = squote(attributeName(f.attribute)), e = squote(enc->name);
+                if (r && !before.count(r->id)) {
+                    const bool later = layout_.stores(r->id);
+                    error(f.encodingPlace,
+                          "encoding " + e + " of " + a + " reads " + squote(enc->reads) + ", which " +
+                              (later ? "is stored after it" : "the layout does not store") + ": store " +
+                              enc->reads + " in a field before " + a +
+                              " (an earlier target, or earlier in this one), or choose another encoding for " + a);
                 }
-                stack.pop_back();
-                state[a] = 2;
-            };
-            for (const Fallback& f : layout_.fallbacks)
-                if (fb.at(f.attribute) == &f && !storedHere(f.attribute) && state[f.attribute] == 0) visit(f.attribute);
+            }
+            before.emplace(f.attribute, &f);
         }
-    }
+}
 
-    // [clear]: declared, listing every shading or geometry attribute stored in a colour target and
-    // only those (extras hold their declared `value` in every pixel, cleared ones included): what a
-    // pixel without geometry holds is part of the layout, never a default.
-    // [space]: the space normals are stored in is declared, never assumed (issue 11 item 4), and a
-    // stored position's space too; a position space without a stored position is an error.
-    void checkSpace() {
-        const SpaceDecl& sp = layout_.space;
-        if (!sp.declared) {
-            error({1, 1}, "the layout declares no [space] table: say which space its normals are stored in "
-                          "(normal = \"world\" with up = \"y\" or \"z\", or normal = \"view\"); the G-buffer pass "
-                          "transforms into it and the lighting back");
+void Validator::checkStoredOnce() {
+    // An attribute is stored by one unconditional field, or by conditional fields of disjoint
+    // models (layouts/README.md, "Shading models").
+    std::map<Attribute, std::vector<const Field*>> seen;
+    auto visit = [&](const Field& f) {
+        auto& list = seen[f.attribute];
+        for (const Field* g : list) {
+            if (f.conditional() && g->conditional() && (f.models & g->models) == 0) continue;
+            if (f.conditional() && g->conditional())
+                error(f.modelPlace, "attribute " + squote(attributeName(f.attribute)) + " is already stored under " +
+                                        shadingModelNames(f.models & g->models) + " (" + lineText(g->place) +
+                                        "); store each attribute once per model");
+            else if (f.conditional() || g->conditional())
+                error(f.place, "attribute " + squote(attributeName(f.attribute)) + " is already stored (" +
+                                   lineText(g->place) + ") by a" + (g->conditional() ? " conditional" : "n unconditional") +
+                                   " field; an attribute is stored on every pixel or under some models, not both");
+            else
+                error(f.place, "attribute " + squote(attributeName(f.attribute)) + " is already stored (" +
+                                   lineText(g->place) + "); store each attribute once");
             return;
         }
-        if (!sp.normalDeclared)
-            error(sp.place, "[space] has no 'normal': declare the space normals are stored in (\"world\" or \"view\")");
-        const bool position = layout_.stores(Attribute::Position);
-        if (position && !sp.positionDeclared)
-            error(sp.place, "the layout stores 'position' but [space] has no 'position': declare \"view\" or \"world\"");
-        if (!position && sp.positionDeclared)
-            error(sp.positionPlace, "[space] declares a 'position' space but the layout stores no 'position'");
-        // A stored window depth rides in the Surface's position slot (wiring_plan.h surfaceSlotName):
-        // the lighting rebuilds position from the one or the other.
-        if (position)
-            for (const Target& t : layout_.targets)
-                for (const Field& f : t.fields)
-                    if (f.attribute == Attribute::Depth)
-                        error(f.place, "the layout stores both 'position' and 'depth': the lighting rebuilds the "
-                                       "position from one of them; remove one");
-    }
+        list.push_back(&f);
+    };
+    for (const Target& t : layout_.targets)
+        for (const Field& f : t.fields) visit(f);
+    for (const Field& f : layout_.depth.stencil) visit(f);
+    // What an encoding stores besides its attribute (HDRP's AO tag: occlusion) counts too.
+    for (const Target& t : layout_.targets)
+        for (const Field& f : t.fields) {
+            const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
+            const AttributeInfo* c = enc && !enc->carries.empty() ? findAttribute(enc->carries) : nullptr;
+            if (!c) continue;
+            auto& list = seen[c->id];
+            if (!list.empty())
+                error(f.encodingPlace, "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) +
+                                           " also stores " + squote(enc->carries) + ", which is already stored (" +
+                                           lineText(list.front()->place) + "); store each attribute once");
+            list.push_back(&f);
+        }
+}
 
-    void checkClear() {
-        if (!layout_.clearDeclared) {
-            error({1, 1}, "the layout declares no [clear] table: say what a pixel without geometry holds, one value "
-                          "per attribute stored in a target (e.g. normal = [0, 0, 1], roughness = 1.0); the "
-                          "renderer clears each target with the layout's own encoding of these values");
-            return;
-        }
-        std::map<Attribute, const ClearValue*> seen;
-        for (const ClearValue& c : layout_.clears) {
-            seen.emplace(c.attribute, &c);
-            if (c.attribute == Attribute::ShadingModel) {
-                error(c.place, "the selector takes no clear value: a cleared pixel's model follows from its [clear] "
-                               "values by the encoder's rule (no layer: 'default')");
+// The selector and the conditional fields (layouts/README.md, "Shading models: the selector").
+void Validator::checkSelector() {
+    const Field* sel = nullptr;
+    for (const Target& t : layout_.targets)
+        for (const Field& f : t.fields) {
+            if (f.attribute != Attribute::ShadingModel) continue;
+            if (sel) {
+                error(f.place, "a second shading-model selector (the first is on " + lineText(sel->place) +
+                                   "): a layout has at most one");
                 continue;
             }
-            if (attributeInfo(c.attribute).cls == AttributeClass::Extra) {
-                error(c.place, "extra " + squote(attributeName(c.attribute)) +
-                                   " takes no clear value: it holds its declared value in every pixel");
+            sel = &f;
+        }
+    uint32_t named = 0;
+    if (sel && !sel->incomplete) {
+        const int bits = sel->codes.empty() ? 0 : sel->codes[0].bits();
+        if (bits > kMaxSelectorBits)
+            error(sel->codes[0].place, "the selector at " + squote(sel->codes[0].text) + " has " + bitsText(bits) +
+                                           "; it takes 1.." + bitsText(kMaxSelectorBits) +
+                                           " (ids 0..31: UE's shading model id takes 4, HDRP's feature id 3)");
+        std::map<uint32_t, const Field::ModelId*> ids;
+        for (const Field::ModelId& m : sel->selector) {
+            named |= 1u << unsigned(m.model);
+            const char* name = shadingModelInfo(m.model).name;
+            if (bits > 0 && bits <= 32 && double(m.id) >= std::ldexp(1.0, bits))
+                error(m.place, "id " + std::to_string(m.id) + " of " + squote(name) + " does not fit the selector's " +
+                                   bitsText(bits) + " (0.." +
+                                   std::to_string(static_cast<long long>(std::ldexp(1.0, bits)) - 1) + ")");
+            auto [it, fresh] = ids.emplace(m.id, &m);
+            if (!fresh)
+                error(m.place, "models " + squote(shadingModelInfo(it->second->model).name) + " and " + squote(name) +
+                                   " have the same id " + std::to_string(m.id) +
+                                   ": the decoder could not tell their pixels apart");
+        }
+        if (!(named & 1u))
+            error(sel->selectorPlace, "the selector's 'models' has no 'default': name the id of pixels without a "
+                                      "layer its other models hold (e.g. default = 1, UE's DefaultLit)");
+    }
+    for (const Target& t : layout_.targets)
+        for (const Field& f : t.fields) {
+            if (f.incomplete || !f.conditional()) continue;
+            const std::string a = squote(attributeName(f.attribute));
+            if (!sel) {
+                error(f.modelPlace, "field " + a + " is held under " + shadingModelNames(f.models) +
+                                        " but the layout has no selector: add a field { attribute = "
+                                        "\"shading_model\", at = ..., models = { default = ..., ... } } that "
+                                        "stores each pixel's model, or remove 'model'");
                 continue;
             }
-            bool inTarget = false;
-            for (const Target& t : layout_.targets)
-                for (const Field& f : t.fields)
-                    inTarget = inTarget || f.attribute == c.attribute || carriedBy(f) == c.attribute;
-            if (!inTarget)
-                error(c.place, "clear value for " + squote(attributeName(c.attribute)) +
-                                   ", which no target stores (stencil extras are cleared to 0 with the depth)");
+            if (!sel->incomplete && (f.models & ~named) != 0)
+                error(f.modelPlace, "field " + a + " is held under " + shadingModelNames(f.models & ~named) +
+                                        ", which the selector (" + lineText(sel->place) +
+                                        ") does not name: add it to the selector's 'models' (known: " +
+                                        shadingModelNames(named) + ")");
+            if (f.attribute == Attribute::Position || f.attribute == Attribute::Depth)
+                error(f.modelPlace, "field " + a + " is geometry, which the lighting rebuilds every pixel from: it "
+                                        "is stored on every pixel (remove 'model')");
+            const EncodingInfo* enc = findEncoding(f.encoding);
+            if (enc && (enc->needsNeighbours || !enc->reads.empty() || !enc->carries.empty()))
+                error(f.encodingPlace,
+                      "encoding " + squote(enc->name) + " of the conditional field " + a + " reads " +
+                          (enc->needsNeighbours ? std::string("the neighbouring pixels, which may be of another model")
+                                                : squote(!enc->reads.empty() ? enc->reads : enc->carries) +
+                                                      " with it") +
+                          ": a conditional field takes an encoding of its own value only (store it unconditionally, "
+                          "or choose another encoding)");
         }
+    // An encoding that reads another attribute reads it on every pixel: not one stored per model.
+    for (const Target& t : layout_.targets)
+        for (const Field& f : t.fields) {
+            const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
+            if (!enc || enc->reads.empty()) continue;
+            const AttributeInfo* r = findAttribute(enc->reads);
+            if (r && layout_.storesConditionally(r->id))
+                error(f.encodingPlace, "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) +
+                                           " reads " + squote(enc->reads) +
+                                           ", which the layout stores under some models only: store " +
+                                           enc->reads + " on every pixel, or choose another encoding");
+        }
+}
+
+FilePlace Validator::fallbackTablePlace() const {
+    return layout_.fallbackPlace.line > 0 ? layout_.fallbackPlace : FilePlace{1, 1};
+}
+
+void Validator::checkRequired() {
+    for (Attribute a : {Attribute::Normal, Attribute::Roughness})
+        if (!layout_.stores(a))
+            error({1, 1}, "the layout stores no " + squote(attributeName(a)) +
+                              ": every layout must store normal and roughness (the lighting pass reads them "
+                              "from the G-buffer)");
+        else if (!layout_.storesAlways(a))
+            error(layout_.findField(a)->modelPlace,
+                  squote(attributeName(a)) + " is stored under " +
+                      shadingModelNames(layout_.conditionalModels(a)) +
+                      " only: normal and roughness are stored on every pixel (remove 'model')");
+}
+
+// What each derived fallback reads.
+std::vector<Attribute> Validator::inputsOf(FallbackKind k) {
+    using A = Attribute;
+    switch (k) {
+        case FallbackKind::FromMetallic:
+            return {A::BaseColor, A::Metallic};
+        case FallbackKind::Ue4:
+            return {A::BaseColor, A::Metallic, A::Specular};
+        case FallbackKind::FromBaseColor:
+            return {A::BaseColor, A::Metallic};
+        case FallbackKind::FromDiffuseSpecular:
+            return {A::DiffuseColor, A::SpecularColor, A::Metallic};
+        case FallbackKind::FromSpecularColor:
+            return {A::SpecularColor};
+        default:
+            return {};
+    }
+}
+
+void Validator::checkFallbacks() {
+    // coverage: each shading attribute stored xor given a fallback
+    std::map<Attribute, const Fallback*> fb;
+    for (const Fallback& f : layout_.fallbacks) {
+        auto [it, fresh] = fb.emplace(f.attribute, &f);
+        if (!fresh) error(f.place, "second fallback for " + squote(attributeName(f.attribute)));
+        if (const Field* stored = layout_.storesAlways(f.attribute) ? layout_.findField(f.attribute) : nullptr)
+            error(f.place, "fallback for " + squote(attributeName(f.attribute)) + " but the layout stores it (" +
+                               lineText(stored->place) + "); remove one");
+    }
+    for (const AttributeInfo& a : listAttributes()) {
+        if (a.cls != AttributeClass::Shading || a.id == Attribute::Normal || a.id == Attribute::Roughness) continue;
+        if (isLayerAttribute(a.id)) continue;  // unstored: "no layer" (0), as an engine without the layer
+        if (layout_.storesConditionally(a.id) && !fb.count(a.id)) {
+            error(fallbackTablePlace(), "the layout stores " + squote(a.name) + " under " +
+                                            shadingModelNames(layout_.conditionalModels(a.id)) +
+                                            " only and declares no fallback for the other pixels: add " +
+                                            std::string(a.name) + " = ... to [fallback] (what the decoder yields "
+                                            "where the pixel's model does not store it)");
+            continue;
+        }
+        if (!layout_.stores(a.id) && !fb.count(a.id))
+            error(fallbackTablePlace(), "the layout does not store " + squote(a.name) +
+                                            " and declares no fallback for it: add " + std::string(a.name) +
+                                            " = ... to [fallback] (a derivation such as " +
+                                            (a.id == Attribute::SpecularColor  ? "\"from_metallic\""
+                                             : a.id == Attribute::DiffuseColor ? "\"from_base_color\""
+                                             : a.id == Attribute::Emissive     ? "\"forward\""
+                                             : a.id == Attribute::Metallic     ? "\"from_specular_color\""
+                                             : a.id == Attribute::BaseColor    ? "\"from_diffuse_specular\""
+                                             : layout_.pipeline == Pipeline::DeferredLighting ? "\"material_pass\""
+                                                                                              : "a constant") +
+                                            ", or a constant)");
+    }
+    // inputs of derived fallbacks exist, without cycles
+    for (const Fallback& f : layout_.fallbacks) {
+        if (f.incomplete) continue;
+        for (Attribute in : inputsOf(f.kind))
+            if (!layout_.stores(in) && !fb.count(in))
+                error(f.place, "fallback " + squote(fallbackKindName(f.kind)) + " for " +
+                                   squote(attributeName(f.attribute)) + " reads " + squote(attributeName(in)) +
+                                   ", which the layout neither stores nor derives");
+    }
+    // derived fallbacks must not feed each other in a circle (metallic from specular_color from
+    // metallic): depth-first search over "derives from" edges, one report per back edge. With a
+    // selector, per model: an attribute that model stores breaks the circle there (HDRP's
+    // fresnel0 under its standard feature, its metallic under anisotropy), and the layout is
+    // refused only where some model stores none of the circle.
+    const uint32_t named = layout_.selectorModels();
+    bool reportedCycle = false;
+    for (int model = named ? 0 : -1; model < (named ? kShadingModels : 0) && !reportedCycle; ++model) {
+        if (model >= 0 && !((named >> model) & 1u)) continue;
+        auto storedHere = [&](Attribute a) {
+            return layout_.storesAlways(a) ||
+                   (model >= 0 && ((layout_.conditionalModels(a) >> unsigned(model)) & 1u));
+        };
+        std::map<Attribute, int> state;  // 0 unvisited, 1 on the stack, 2 done
+        std::vector<Attribute> stack;
+        std::function<void(Attribute)> visit = [&](Attribute a) {
+            state[a] = 1;
+            stack.push_back(a);
+            for (Attribute in : inputsOf(fb.at(a)->kind)) {
+                if (storedHere(in) || !fb.count(in)) continue;
+                if (state[in] == 1) {
+                    std::string chain;
+                    auto from = std::find(stack.begin(), stack.end(), in);
+                    for (auto it = from; it != stack.end(); ++it) chain += std::string(attributeName(*it)) + " -> ";
+                    chain += attributeName(in);
+                    error(fb.at(in)->place,
+                          "fallbacks form a cycle: " + chain +
+                              (model >= 0 ? " on pixels of model " + squote(shadingModelInfo(ShadingModel(model)).name)
+                                          : std::string()) +
+                              "; store one of them or give one a constant");
+                    reportedCycle = true;
+                } else if (state[in] == 0) {
+                    visit(in);
+                }
+            }
+            stack.pop_back();
+            state[a] = 2;
+        };
+        for (const Fallback& f : layout_.fallbacks)
+            if (fb.at(f.attribute) == &f && !storedHere(f.attribute) && state[f.attribute] == 0) visit(f.attribute);
+    }
+}
+
+// [clear]: declared, listing every shading or geometry attribute stored in a colour target and
+// only those (extras hold their declared `value` in every pixel, cleared ones included): what a
+// pixel without geometry holds is part of the layout, never a default.
+// [space]: the space normals are stored in is declared, never assumed (issue 11 item 4), and a
+// stored position's space too; a position space without a stored position is an error.
+void Validator::checkSpace() {
+    const SpaceDecl& sp = layout_.space;
+    if (!sp.declared) {
+        error({1, 1}, "the layout declares no [space] table: say which space its normals are stored in "
+                      "(normal = \"world\" with up = \"y\" or \"z\", or normal = \"view\"); the G-buffer pass "
+                      "transforms into it and the lighting back");
+        return;
+    }
+    if (!sp.normalDeclared)
+        error(sp.place, "[space] has no 'normal': declare the space normals are stored in (\"world\" or \"view\")");
+    const bool position = layout_.stores(Attribute::Position);
+    if (position && !sp.positionDeclared)
+        error(sp.place, "the layout stores 'position' but [space] has no 'position': declare \"view\" or \"world\"");
+    if (!position && sp.positionDeclared)
+        error(sp.positionPlace, "[space] declares a 'position' space but the layout stores no 'position'");
+    // A stored window depth rides in the Surface's position slot (wiring_plan.h surfaceSlotName):
+    // the lighting rebuilds position from the one or the other.
+    if (position)
         for (const Target& t : layout_.targets)
-            for (const Field& f : t.fields) {
-                const AttributeClass cls = attributeInfo(f.attribute).cls;
-                if (cls != AttributeClass::Extra && cls != AttributeClass::Selector && !seen.count(f.attribute))
-                    error(layout_.clearPlace, "[clear] has no value for " + squote(attributeName(f.attribute)) +
-                                                  ", which target " + squote(t.name) + " stores (" +
-                                                  lineText(f.place) + ")");
-                const Attribute carried = carriedBy(f);
-                if (carried != f.attribute && !seen.count(carried))
-                    error(layout_.clearPlace, "[clear] has no value for " + squote(attributeName(carried)) +
-                                                  ", which the encoding " + squote(f.encoding) + " of " +
-                                                  squote(attributeName(f.attribute)) + " in target " + squote(t.name) +
-                                                  " also stores (" + lineText(f.place) + ")");
+            for (const Field& f : t.fields)
+                if (f.attribute == Attribute::Depth)
+                    error(f.place, "the layout stores both 'position' and 'depth': the lighting rebuilds the "
+                                   "position from one of them; remove one");
+}
+
+void Validator::checkClear() {
+    if (!layout_.clearDeclared) {
+        error({1, 1}, "the layout declares no [clear] table: say what a pixel without geometry holds, one value "
+                      "per attribute stored in a target (e.g. normal = [0, 0, 1], roughness = 1.0); the "
+                      "renderer clears each target with the layout's own encoding of these values");
+        return;
+    }
+    std::map<Attribute, const ClearValue*> seen;
+    for (const ClearValue& c : layout_.clears) {
+        seen.emplace(c.attribute, &c);
+        if (c.attribute == Attribute::ShadingModel) {
+            error(c.place, "the selector takes no clear value: a cleared pixel's model follows from its [clear] "
+                           "values by the encoder's rule (no layer: 'default')");
+            continue;
+        }
+        if (attributeInfo(c.attribute).cls == AttributeClass::Extra) {
+            error(c.place, "extra " + squote(attributeName(c.attribute)) +
+                               " takes no clear value: it holds its declared value in every pixel");
+            continue;
+        }
+        bool inTarget = false;
+        for (const Target& t : layout_.targets)
+            for (const Field& f : t.fields)
+                inTarget = inTarget || f.attribute == c.attribute || carriedBy(f) == c.attribute;
+        if (!inTarget)
+            error(c.place, "clear value for " + squote(attributeName(c.attribute)) +
+                               ", which no target stores (stencil extras are cleared to 0 with the depth)");
+    }
+    for (const Target& t : layout_.targets)
+        for (const Field& f : t.fields) {
+            const AttributeClass cls = attributeInfo(f.attribute).cls;
+            if (cls != AttributeClass::Extra && cls != AttributeClass::Selector && !seen.count(f.attribute))
+                error(layout_.clearPlace, "[clear] has no value for " + squote(attributeName(f.attribute)) +
+                                              ", which target " + squote(t.name) + " stores (" +
+                                              lineText(f.place) + ")");
+            const Attribute carried = carriedBy(f);
+            if (carried != f.attribute && !seen.count(carried))
+                error(layout_.clearPlace, "[clear] has no value for " + squote(attributeName(carried)) +
+                                              ", which the encoding " + squote(f.encoding) + " of " +
+                                              squote(attributeName(f.attribute)) + " in target " + squote(t.name) +
+                                              " also stores (" + lineText(f.place) + ")");
+        }
+}
+
+// The attribute a field's encoding stores besides its own (EncodingInfo::carries), else its own.
+Attribute Validator::carriedBy(const Field& f) {
+    const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
+    const AttributeInfo* c = enc && !enc->carries.empty() ? findAttribute(enc->carries) : nullptr;
+    return c ? c->id : f.attribute;
+}
+
+void Validator::checkPipeline() {
+    const bool lighting = layout_.pipeline == Pipeline::DeferredLighting;
+    for (const Fallback& f : layout_.fallbacks) {
+        if (f.kind == FallbackKind::MaterialPass && !lighting)
+            error(f.place, "fallback 'material_pass' for " + squote(attributeName(f.attribute)) +
+                               " needs pipeline = \"deferred-lighting\" (a deferred-shading layout has no "
+                               "material pass)");
+        if (f.kind == FallbackKind::Forward && lighting)
+            error(f.place, "fallback 'forward' for " + squote(attributeName(f.attribute)) +
+                               " is for deferred shading; a deferred-lighting layout adds it in the "
+                               "material pass ('material_pass')");
+    }
+    if (lighting) {
+        // The light pre-pass G-buffer holds what lighting needs; material colours come later.
+        for (Attribute a : {Attribute::BaseColor, Attribute::DiffuseColor, Attribute::SpecularColor,
+                            Attribute::Metallic, Attribute::Specular})
+            if (const Field* f = layout_.findField(a))
+                error(f->place, "a deferred-lighting layout does not store " + squote(attributeName(a)) +
+                                    ": the material pass reads it (declare " + attributeName(a) +
+                                    " = \"material_pass\" in [fallback])");
+        bool diffuse = false, specular = false;
+        for (const LightBuffer& b : layout_.lightBuffers)
+            for (LightQuantity q : b.holds) {
+                diffuse = diffuse || q == LightQuantity::DiffuseRgb;
+                specular = specular || q != LightQuantity::DiffuseRgb;
             }
-    }
-
-    // The attribute a field's encoding stores besides its own (EncodingInfo::carries), else its own.
-    static Attribute carriedBy(const Field& f) {
-        const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
-        const AttributeInfo* c = enc && !enc->carries.empty() ? findAttribute(enc->carries) : nullptr;
-        return c ? c->id : f.attribute;
-    }
-
-    void checkPipeline() {
-        const bool lighting = layout_.pipeline == Pipeline::DeferredLighting;
-        for (const Fallback& f : layout_.fallbacks) {
-            if (f.kind == FallbackKind::MaterialPass && !lighting)
-                error(f.place, "fallback 'material_pass' for " + squote(attributeName(f.attribute)) +
-                                   " needs pipeline = \"deferred-lighting\" (a deferred-shading layout has no "
-                                   "material pass)");
-            if (f.kind == FallbackKind::Forward && lighting)
-                error(f.place, "fallback 'forward' for " + squote(attributeName(f.attribute)) +
-                                   " is for deferred shading; a deferred-lighting layout adds it in the "
-                                   "material pass ('material_pass')");
-        }
-        if (lighting) {
-            // The light pre-pass G-buffer holds what lighting needs; material colours come later.
-            for (Attribute a : {Attribute::BaseColor, Attribute::DiffuseColor, Attribute::SpecularColor,
-                                Attribute::Metallic, Attribute::Specular})
-                if (const Field* f = layout_.findField(a))
-                    error(f->place, "a deferred-lighting layout does not store " + squote(attributeName(a)) +
-                                        ": the material pass reads it (declare " + attributeName(a) +
-                                        " = \"material_pass\" in [fallback])");
-            bool diffuse = false, specular = false;
-            for (const LightBuffer& b : layout_.lightBuffers)
-                for (LightQuantity q : b.holds) {
-                    diffuse = diffuse || q == LightQuantity::DiffuseRgb;
-                    specular = specular || q != LightQuantity::DiffuseRgb;
-                }
-            if (layout_.lightBuffers.empty())
-                error({1, 1},
-                      "a deferred-lighting layout declares its light buffers: add [[light_buffer]] tables "
-                      "(name, format, holds = diffuse_rgb / specular_rgb / specular_luminance)");
-            else if (!diffuse || !specular)
-                error(layout_.lightBuffers.front().place,
-                      std::string("the light buffers hold no ") + (diffuse ? "specular" : "diffuse") +
-                          " light (holds: diffuse_rgb, and specular_rgb or specular_luminance)");
-            if (!layout_.materialPass.declared)
-                error({1, 1},
-                      "a deferred-lighting layout declares how its material pass combines the light buffers: add "
-                      "[material_pass] with fresnel = \"none\" or \"schlick_nv\"");
-        } else if (!layout_.lightBuffers.empty()) {
+        if (layout_.lightBuffers.empty())
+            error({1, 1},
+                  "a deferred-lighting layout declares its light buffers: add [[light_buffer]] tables "
+                  "(name, format, holds = diffuse_rgb / specular_rgb / specular_luminance)");
+        else if (!diffuse || !specular)
             error(layout_.lightBuffers.front().place,
-                  "light buffers belong to pipeline = \"deferred-lighting\"; a deferred-shading layout lights "
-                  "from the G-buffer directly");
-        }
-        if (!lighting && layout_.materialPass.declared)
-            error(layout_.materialPass.place,
-                  "[material_pass] belongs to pipeline = \"deferred-lighting\" (a deferred-shading layout has no "
-                  "material pass)");
+                  std::string("the light buffers hold no ") + (diffuse ? "specular" : "diffuse") +
+                      " light (holds: diffuse_rgb, and specular_rgb or specular_luminance)");
+        if (!layout_.materialPass.declared)
+            error({1, 1},
+                  "a deferred-lighting layout declares how its material pass combines the light buffers: add "
+                  "[material_pass] with fresnel = \"none\" or \"schlick_nv\"");
+    } else if (!layout_.lightBuffers.empty()) {
+        error(layout_.lightBuffers.front().place,
+              "light buffers belong to pipeline = \"deferred-lighting\"; a deferred-shading layout lights "
+              "from the G-buffer directly");
     }
+    if (!lighting && layout_.materialPass.declared)
+        error(layout_.materialPass.place,
+              "[material_pass] belongs to pipeline = \"deferred-lighting\" (a deferred-shading layout has no "
+              "material pass)");
+}
 
-    const Layout& layout_;
-    std::vector<LayoutDiagnostic>& out_;
-};
-
-}  // namespace
+}  // namespace layout_validation
 
 // layout_visibility.cpp: [ids] and the visibility buffer's rules.
 void validateVisibilityLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out);
@@ -721,7 +469,7 @@ void validateLayout(const Layout& layout, std::vector<LayoutDiagnostic>& out) {
     validateProvenance(layout, out);
     validateVisibilityLayout(layout, out);
     if (layout.pipeline == Pipeline::VisibilityBuffer) return;  // no attributes, so none of the checks below
-    Validator v(layout, out);
+    layout_validation::Validator v(layout, out);
     v.run();
 }
 
