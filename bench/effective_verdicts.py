@@ -68,15 +68,12 @@ def scene_tables(name, report):
     return runs
 
 
-def bytes_table(per_scene):
-    """Nominal against effective bytes per pixel per class, every scene in one table."""
+def scene_table(per_scene, title, nominal_header, layouts, cell):
+    """One row per layout, one column per scene: cell(classes by name, nominal B/px) of its run."""
     names = list(per_scene)
-    layouts = sorted({l for runs in per_scene.values() for l in runs},
-                     key=lambda l: next(runs[l]["effective_bandwidth"]["nominal_bytes_per_pixel"]
-                                        for runs in per_scene.values() if l in runs))
-    print("## Nominal against effective B/px (desktop-dcc / mali-afbc / tile-subpass), per scene")
+    print(title)
     print()
-    print("| layout | nominal | " + " | ".join(names) + " |")
+    print(f"| layout | {nominal_header} | " + " | ".join(names) + " |")
     print("|---|---|" + "---|" * len(names))
     for l in layouts:
         cells, nominal = [], None
@@ -87,10 +84,19 @@ def bytes_table(per_scene):
                 continue
             e = r["effective_bandwidth"]
             nominal = e["nominal_bytes_per_pixel"]
-            c = {x["class"]: x for x in e["classes"]}
-            cells.append(" / ".join(f"{c[k]['bytes_per_pixel']:.1f}" for k in CLASSES))
+            cells.append(cell({x["class"]: x for x in e["classes"]}, nominal))
         print(f"| {l} | {nominal:.0f} | " + " | ".join(cells) + " |")
     print()
+
+
+def bytes_table(per_scene):
+    """Nominal against effective bytes per pixel per class, every scene in one table."""
+    layouts = sorted({l for runs in per_scene.values() for l in runs},
+                     key=lambda l: (next(runs[l]["effective_bandwidth"]["nominal_bytes_per_pixel"]
+                                         for runs in per_scene.values() if l in runs), l))
+    scene_table(per_scene, "## Nominal against effective B/px (desktop-dcc / mali-afbc / tile-subpass), per scene",
+                "nominal", layouts,
+                lambda c, nominal: " / ".join(f"{c[k]['bytes_per_pixel']:.1f}" for k in CLASSES))
 
 
 def tile_budgets(per_scene):
@@ -114,25 +120,11 @@ def tile_budgets(per_scene):
 
 def ratio_table(per_scene):
     """Effective over nominal G-buffer bytes per class, per layout and scene (depth included)."""
-    names = list(per_scene)
     layouts = sorted({l for runs in per_scene.values() for l in runs})
-    print("## Effective over nominal bytes per pixel (desktop-dcc / mali-afbc), per scene")
-    print()
-    print("| layout | nominal B/px | " + " | ".join(names) + " |")
-    print("|---|---|" + "---|" * len(names))
-    for l in layouts:
-        cells, nominal = [], None
-        for n in names:
-            r = per_scene[n].get(l)
-            if not r:
-                cells.append("-")
-                continue
-            e = r["effective_bandwidth"]
-            nominal = e["nominal_bytes_per_pixel"]
-            c = {x["class"]: x for x in e["classes"]}
-            cells.append(f"{c['desktop-dcc']['bytes_per_pixel'] / nominal:.2f} / {c['mali-afbc']['bytes_per_pixel'] / nominal:.2f}")
-        print(f"| {l} | {nominal:.0f} | " + " | ".join(cells) + " |")
-    print()
+    scene_table(per_scene, "## Effective over nominal bytes per pixel (desktop-dcc / mali-afbc), per scene",
+                "nominal B/px", layouts,
+                lambda c, nominal: f"{c['desktop-dcc']['bytes_per_pixel'] / nominal:.2f} / "
+                                   f"{c['mali-afbc']['bytes_per_pixel'] / nominal:.2f}")
 
 
 def pair(per_scene, a, b):
