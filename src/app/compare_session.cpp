@@ -12,6 +12,7 @@
 #include "budget_verdict.h"
 #include "best_fit_normals.h"
 #include "forward_mask.h"
+#include "gpu_scene.h"
 #include "compare_memory.h"
 #include "compare_timings.h"
 #include "env_flag.h"
@@ -86,9 +87,11 @@ void CompareSession::loadInputs() {
     // while the scene loads and the device starts.
     if (std::any_of(layouts_.begin(), layouts_.end(), [](const Layout& l) { return usesBestFitTable(l); }))
         enc::prefetchBestFitNormalTable();
-    referenceLayout_ = loadLayout(kReferenceLayout);
     inputs_ = loadSceneInputs(o.scenePath, o.envPath, float(o.width) / float(o.height),
                               GltfLoadOptions{o.allowOutsideScene});
+    // Only the layers some material has: a scene without layers pays for none of the reference's
+    // layer targets (loadReferenceLayout).
+    referenceLayout_ = loadReferenceLayout(sceneShaderFeatures(inputs_.scene).layers);
     // A scene with materials drawn forward (transmission, volume): their pixels are left out of
     // every metric, which the CPU evaluation does, on whole frames (RunMetricsOptions::excluded).
     forwardScene_ = hasForwardMaterials(inputs_.scene);

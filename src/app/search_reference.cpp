@@ -88,7 +88,7 @@ void addLayers(const CpuCodec& codec, const RenderOutput& r, uint32_t width, uin
 
 SearchReference renderSearchReference(Renderer& renderer, const std::vector<Camera>& cameras, uint32_t width,
                                       uint32_t height, const std::vector<DepthKey>& variants) {
-    const Layout reference = loadLayout("reference");
+    const Layout reference = loadReferenceLayout(renderer.sceneLayers());
     const GBufferWiring wiring = generateWiring(reference);
     std::vector<std::pair<DepthKey, GBufferWiring>> variantWirings;
     for (const DepthKey& key : variants)

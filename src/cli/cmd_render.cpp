@@ -91,10 +91,10 @@ int runRenderCommand(const std::vector<std::string>& args) {
     settings.readTargetWords = false;  // only the HDR image is written
     RenderOutput out;
     if (bandRows == 0 || bandRows >= height) {
-        out = renderer.render(makeReferenceWiring(), settings);
+        out = renderer.render(makeReferenceWiring(renderer.sceneLayers()), settings);
     } else {
         // Band by band (renderer.h RenderSettings::bandRows): only the HDR image is whole.
-        const GBufferWiring reference = makeReferenceWiring();
+        const GBufferWiring reference = makeReferenceWiring(renderer.sceneLayers());
         out.hdr = Image(int(width), int(height), 4);
         for (uint32_t first = 0; first < height; first += bandRows) {
             settings.bandFirstRow = first;

@@ -7,4 +7,6 @@ namespace gbl {
 
 GBufferWiring makeReferenceWiring() { return generateWiring(loadLayout("reference")); }
 
+GBufferWiring makeReferenceWiring(int sceneLayers) { return generateWiring(loadReferenceLayout(sceneLayers)); }
+
 }  // namespace gbl

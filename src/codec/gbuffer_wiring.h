@@ -106,5 +106,7 @@ inline uint32_t stencilReference(const GBufferWiring& w,
 // The float reference: layouts/reference.toml (every attribute as 32-bit float bits in RGBA32_UINT
 // targets) through generateWiring (wiring_codegen.h).
 GBufferWiring makeReferenceWiring();
+// The reference of a scene whose materials have the layers `sceneLayers` (loadReferenceLayout).
+GBufferWiring makeReferenceWiring(int sceneLayers);
 
 }  // namespace gbl

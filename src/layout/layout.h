@@ -104,6 +104,10 @@ bool isShadingAttribute(Attribute a);
 // The layers' attributes (Coat .. AnisotropyDirection): shading attributes a layout need not store
 // nor give a fallback; unstored, they decode as 0 ("no layer").
 bool isLayerAttribute(Attribute a);
+// The material layer a layer attribute belongs to, as scene.h's kLayer* and brdf_layers.glsl's
+// GBL_LAYER_* bits: 1 clear coat (coat, coat_roughness, coat_normal), 2 sheen, 4 anisotropy; 0 for
+// every other attribute.
+int attributeLayerBit(Attribute a);
 // Unit vectors stored like the normal, in the layout's [space]: normal, coat_normal,
 // anisotropy_direction (normal encodings take them).
 bool isDirectionAttribute(Attribute a);

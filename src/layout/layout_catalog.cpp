@@ -64,4 +64,17 @@ fs::path findLayoutFile(const std::string& nameOrPath) {
 
 Layout loadLayout(const std::string& nameOrPath) { return loadLayoutFile(findLayoutFile(nameOrPath)); }
 
+Layout loadReferenceLayout(int sceneLayers) {
+    Layout reference = loadLayout("reference");
+    const auto dropped = [&](Attribute a) {
+        const int bit = attributeLayerBit(a);
+        return bit != 0 && (sceneLayers & bit) == 0;
+    };
+    for (Target& t : reference.targets)
+        std::erase_if(t.fields, [&](const Field& f) { return dropped(f.attribute); });
+    std::erase_if(reference.targets, [](const Target& t) { return t.fields.empty(); });
+    std::erase_if(reference.clears, [&](const ClearValue& c) { return dropped(c.attribute); });
+    return reference;
+}
+
 }  // namespace gbl

@@ -22,4 +22,11 @@ std::vector<std::string> listLayoutNames();
 std::filesystem::path findLayoutFile(const std::string& nameOrPath);
 Layout loadLayout(const std::string& nameOrPath);
 
+// The float reference of a scene whose materials have the layers `sceneLayers` (attributeLayerBit's
+// bits; the renderer's GpuScene::layers): layouts/reference.toml less the fields of every layer no
+// material has, the targets those fields leave empty and their [clear] values. A layer no material
+// has decodes as 0 from either, so the image is the same bit for bit; a scene without layers writes
+// and reads the five targets of a reference without them (80 bytes a pixel, not 128).
+Layout loadReferenceLayout(int sceneLayers);
+
 }  // namespace gbl

@@ -249,6 +249,19 @@ bool isShadingAttribute(Attribute a) { return attributeInfo(a).cls == AttributeC
 
 bool isLayerAttribute(Attribute a) { return a >= Attribute::Coat && a <= Attribute::AnisotropyDirection; }
 
+int attributeLayerBit(Attribute a) {
+    switch (a) {
+        case Attribute::Coat:
+        case Attribute::CoatRoughness:
+        case Attribute::CoatNormal: return 1;
+        case Attribute::SheenColor:
+        case Attribute::SheenRoughness: return 2;
+        case Attribute::AnisotropyStrength:
+        case Attribute::AnisotropyDirection: return 4;
+        default: return 0;
+    }
+}
+
 bool isDirectionAttribute(Attribute a) {
     return a == Attribute::Normal || a == Attribute::CoatNormal || a == Attribute::AnisotropyDirection;
 }

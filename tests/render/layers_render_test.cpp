@@ -179,6 +179,53 @@ TEST_F(LayersRenderTest, ALayoutWithoutLayersDropsThem) {
     EXPECT_GT(meanAbsCovered(ra.hdr, rb.hdr), 1e-3);
 }
 
+// The reference of a scene stores only the layers its materials have (loadReferenceLayout): a
+// scene without layers gets the five targets of a reference without them (48 bytes a pixel fewer),
+// and the image is the full reference's bit for bit, in a scene without layers and in one whose
+// materials have a coat only (the sheen and anisotropy targets dropped, the coat's kept).
+TEST_F(LayersRenderTest, TheReferenceStoresOnlyTheScenesLayers) {
+    const Layout full = loadLayout("reference"), bare = loadReferenceLayout(0), coat = loadReferenceLayout(kLayerCoat);
+    EXPECT_EQ(full.targets.size(), 8u);
+    EXPECT_EQ(bare.targets.size(), 5u);
+    EXPECT_EQ(bytesPerPixel(full) - bytesPerPixel(bare), 48);
+    EXPECT_EQ(coat.targets.size(), 6u);
+    for (const AttributeInfo& a : listAttributes()) {
+        if (!isShadingAttribute(a.id)) continue;
+        const int bit = attributeLayerBit(a.id);
+        EXPECT_EQ(bare.stores(a.id), bit == 0) << a.name;
+        EXPECT_EQ(coat.stores(a.id), bit == 0 || bit == kLayerCoat) << a.name;
+        EXPECT_EQ(loadReferenceLayout(kLayerCoat | kLayerSheen | kLayerAnisotropy).stores(a.id), full.stores(a.id)) << a.name;
+    }
+    EXPECT_EQ(attributeLayerBit(Attribute::SheenRoughness), kLayerSheen);
+    EXPECT_EQ(attributeLayerBit(Attribute::AnisotropyDirection), kLayerAnisotropy);
+
+    const EnvironmentMap sky = makeProceduralSky(64);
+    IblSettings s;
+    s.sourceFaceSize = 32;
+    s.prefilteredFaceSize = 32;
+    const IblMaps maps = computeIblMaps(ctx(), sky, s);
+    Scene plain = layeredGrid(false), coated = layeredGrid(true);
+    plain.lights.push_back(defaultSun());
+    coated.lights.push_back(defaultSun());
+    for (Material& m : coated.materials) m.sheenColorFactor = glm::vec3(0.0f), m.anisotropyStrength = 0.0f;
+    RenderSettings rs;
+    rs.width = 96;
+    rs.height = 54;
+    rs.splitSumShaderSamples = 16;
+    for (Scene* scene : {&plain, &coated}) {
+        Renderer renderer(ctx(), *scene, sky, maps);
+        ASSERT_EQ(renderer.sceneLayers(), scene == &plain ? 0 : kLayerCoat);
+        for (IblMode mode : {IblMode::SplitSumShader, IblMode::SplitSum, IblMode::Bo2}) {
+            rs.specularIbl = mode;
+            const RenderOutput a = renderer.render(makeReferenceWiring(), rs);
+            const RenderOutput b = renderer.render(makeReferenceWiring(renderer.sceneLayers()), rs);
+            ASSERT_EQ(a.hdr.pixels.size(), b.hdr.pixels.size());
+            EXPECT_EQ(std::memcmp(a.hdr.pixels.data(), b.hdr.pixels.data(), a.hdr.pixels.size() * sizeof(float)), 0)
+                << iblModeName(mode) << (scene == &plain ? ", no layers" : ", coat only");
+        }
+    }
+}
+
 // A layout with a shading-model selector (tests/layout/data/shading-models.toml: each layer in 8
 // bits, under its model, all in one shared target) carries the layers through the renderer: on the
 // layered grid (one layer per material, so none is dropped) its image is far nearer the reference's
