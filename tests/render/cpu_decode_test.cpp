@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <tuple>
 
 #include "layered_scene.h"
 #include "layout_catalog.h"
@@ -167,6 +168,16 @@ TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
         const RenderOutput host = renderer.render(wiring, cpu), device = renderer.render(wiring, pass);
         ASSERT_TRUE(host.surfaces.hasLayers());
         compareDecodes(name, "scene camera", host, device);
+        // What the stored id switches decodes bit for bit alike on both paths (the normal and the
+        // directions may differ in the last bit, as ue4's: compareDecodes' 4 ulp).
+        for (const auto& [a, b, what] : {std::tuple{&device.surfaces.coat, &host.surfaces.coat, "coat"},
+                                         {&device.surfaces.coatRoughness, &host.surfaces.coatRoughness, "coat roughness"},
+                                         {&device.surfaces.sheenColor, &host.surfaces.sheenColor, "sheen colour"},
+                                         {&device.surfaces.sheenRoughness, &host.surfaces.sheenRoughness, "sheen roughness"},
+                                         {&device.surfaces.anisotropyStrength, &host.surfaces.anisotropyStrength,
+                                          "anisotropy strength"},
+                                         {&device.surfaces.roughness, &host.surfaces.roughness, "roughness"}})
+            EXPECT_EQ(a->pixels, b->pixels) << what;
         for (const RenderOutput* out : {&device, &host}) {
             const SurfaceImages& s = out->surfaces;
             size_t coated = 0, sheen = 0, anisotropic = 0, sheenRoughnessOff = 0;
