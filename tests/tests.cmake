@@ -47,7 +47,7 @@ gbl_test(layout/visibility_layout_test LABELS unit DEPS gbl_layout gbl_test_supp
 gbl_test(layout/layout_mutants_test LABELS unit TIMEOUT 900 DEPS gbl_codec gbl_gpu gbl_render)  # what `check` accepts compiles
 gbl_test(layout/layout_files_test LABELS unit DEPS gbl_cli)  # describeLayout is `layouts show`'s
 gbl_test(layout/layout_provenance_test LABELS unit DEPS gbl_cli gbl_test_support_layout)  # [sources], from / status, `layouts show`
-gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli gbl_test_support_layout)
+gbl_test(codec/wiring_codegen_test LABELS unit DEPS gbl_codec gbl_cli gbl_test_support_codec)
 gbl_test(codec/cpu_codec_test LABELS unit DEPS gbl_codec gbl_test_support_codec)
 gbl_test(codec/shading_model_codec_test LABELS unit DEPS gbl_codec gbl_test_support_codec)  # the selector's words and decode, from its statement
 gbl_test(codec/cpu_codec_properties_test LABELS unit DEPS gbl_codec gbl_test_support_layout)

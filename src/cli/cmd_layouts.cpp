@@ -60,6 +60,8 @@ std::string fallbackText(const Fallback& f) {
             return "from_diffuse_specular: diffuse_color + metallic * specular_color";
         case FallbackKind::FromSpecularColor:
             return "from_specular_color: clamp((max3(specular_color) - 0.04) / 0.96, 0, 1)";
+        case FallbackKind::FromRoughness:
+            return "from_roughness: roughness";
         case FallbackKind::MaterialPass:
             return "material_pass: read by the material (second geometry) pass";
         case FallbackKind::Forward:

@@ -461,7 +461,7 @@ GBL_SIMD_CLONES void decodeMaterial(const CodecPlan& plan, const uint32_t* const
 GBL_SIMD_CLONES void applyFallbacks(const CodecPlan& plan, int n, DecodeBlock& b) {
     const int base = surfaceOffset(Attribute::BaseColor), met = surfaceOffset(Attribute::Metallic);
     const int spec = surfaceOffset(Attribute::Specular), specColor = surfaceOffset(Attribute::SpecularColor);
-    const int diffuse = surfaceOffset(Attribute::DiffuseColor);
+    const int diffuse = surfaceOffset(Attribute::DiffuseColor), rough = surfaceOffset(Attribute::Roughness);
     auto at = [&](int first, int j) { return vec3(b.s[first][j], b.s[first + 1][j], b.s[first + 2][j]); };
     for (const FallbackPlan& fb : plan.fallbacks) {
         if (fb.kind == FallbackKind::MaterialPass) continue;  // decodeMaterial
@@ -510,6 +510,7 @@ GBL_SIMD_CLONES void applyFallbacks(const CodecPlan& plan, int n, DecodeBlock& b
                     return vec3(clamp((max(f0.x, max(f0.y, f0.z)) - 0.04f) / 0.96f, 0.0f, 1.0f));
                 });
                 break;
+            case FallbackKind::FromRoughness: each([&](int j) { return vec3(b.s[rough][j]); }); break;
             default: each([](int) { return vec3(0.0f); }); break;  // Forward: emissive reads back 0
         }
     }

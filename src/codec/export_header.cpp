@@ -84,6 +84,7 @@ std::string fallbackText(const Fallback& f) {
         case FallbackKind::FromBaseColor: return "baseColor * (1 - metallic) (from_base_color)";
         case FallbackKind::FromDiffuseSpecular: return "diffuseColor + metallic * specularColor (from_diffuse_specular)";
         case FallbackKind::FromSpecularColor: return "clamp((max3(specularColor) - 0.04) / 0.96, 0, 1) (from_specular_color)";
+        case FallbackKind::FromRoughness: return "roughness (from_roughness)";
         case FallbackKind::MaterialPass: return "not here: the material (second geometry) pass supplies it";
         case FallbackKind::Forward: return "not here: written by a forward pass into scene colour (forward)";
     }

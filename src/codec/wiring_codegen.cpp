@@ -112,6 +112,9 @@ void wiring::emitFallback(std::ostream& o, const Fallback& fb, const Layout& lay
               << "clamp((max(s.specularColor.x, max(s.specularColor.y, s.specularColor.z)) - 0.04) / 0.96, 0.0, 1.0);"
                  "  // from_specular_color\n";
             return;
+        case FallbackKind::FromRoughness:
+            o << lhs << "s.roughness;  // from_roughness\n";
+            return;
         case FallbackKind::Forward:
             o << lhs << zeroOf(fb.attribute) << ";  // forward: the renderer adds it in a forward pass\n";
             return;

@@ -140,6 +140,7 @@ std::vector<Attribute> fallbackInputs(FallbackKind kind) {
         case FallbackKind::FromBaseColor: return {A::BaseColor, A::Metallic};
         case FallbackKind::FromDiffuseSpecular: return {A::DiffuseColor, A::Metallic, A::SpecularColor};
         case FallbackKind::FromSpecularColor: return {A::SpecularColor};
+        case FallbackKind::FromRoughness: return {A::Roughness};
         default: return {};
     }
 }

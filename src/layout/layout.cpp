@@ -47,6 +47,8 @@ const char* fallbackKindName(FallbackKind k) {
             return "from_diffuse_specular";
         case FallbackKind::FromSpecularColor:
             return "from_specular_color";
+        case FallbackKind::FromRoughness:
+            return "from_roughness";
         case FallbackKind::MaterialPass:
             return "material_pass";
         case FallbackKind::Forward:

@@ -365,6 +365,7 @@ enum class FallbackKind : uint8_t {
     FromBaseColor,        // diffuse_color = base_color * (1 - metallic)
     FromDiffuseSpecular,  // base_color = diffuse_color + metallic * specular_color
     FromSpecularColor,    // metallic = clamp((max3(specular_color) - 0.04) / 0.96, 0, 1)
+    FromRoughness,        // sheen_roughness = roughness (UE's cloth lobe takes the base roughness)
     MaterialPass,         // deferred lighting: read by the second geometry (material) pass
     Forward,              // emissive: added to the lighting output by the geometry pass, unstored
 };

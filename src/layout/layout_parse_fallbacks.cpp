@@ -20,6 +20,7 @@ constexpr FallbackKeyword kFallbackKeywords[] = {
     {"from_base_color", FallbackKind::FromBaseColor},
     {"from_diffuse_specular", FallbackKind::FromDiffuseSpecular},
     {"from_specular_color", FallbackKind::FromSpecularColor},
+    {"from_roughness", FallbackKind::FromRoughness},
     {"material_pass", FallbackKind::MaterialPass},
     {"forward", FallbackKind::Forward},
 };
@@ -43,6 +44,8 @@ std::vector<FallbackKind> allowedFallbacks(Attribute a) {
             return {F::MaterialPass};
         case Attribute::Emissive:
             return {F::Forward, F::MaterialPass};
+        case Attribute::SheenRoughness:  // UE's Cloth: the fuzz lobe takes the base roughness
+            return {F::FromRoughness};
         default:
             return {};
     }

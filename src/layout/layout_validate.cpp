@@ -236,6 +236,8 @@ std::vector<Attribute> Validator::inputsOf(FallbackKind k) {
             return {A::DiffuseColor, A::SpecularColor, A::Metallic};
         case FallbackKind::FromSpecularColor:
             return {A::SpecularColor};
+        case FallbackKind::FromRoughness:
+            return {A::Roughness};
         default:
             return {};
     }

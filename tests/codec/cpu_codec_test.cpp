@@ -33,7 +33,11 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------
 // The former per-pixel codec, unchanged apart from its namespace and the Surface member lookup,
-// which is the tests' own (surface_support.h).
+// which is the tests' own (surface_support.h), and the shading-model selector added as
+// layouts/README.md states it: the pixel's model by the stated rule (test::statedModel), its id in
+// the selector's bits, only the fields that hold under it written; on decode a field read where the
+// stored id is one of its models', a conditional attribute starting from 0, and its fallback
+// applied where the stored id's model does not store it.
 namespace reference {
 
 using namespace enc;
@@ -283,12 +287,32 @@ void applyFallback(const Fallback& fb, Surface& s) {
             setMember(s, fb.attribute, vec3(clamp((max(f0.x, max(f0.y, f0.z)) - 0.04f) / 0.96f, 0.0f, 1.0f)));
             return;
         }
+        case FallbackKind::FromRoughness:
+            setMember(s, fb.attribute, vec3(s.roughness));
+            return;
         case FallbackKind::Forward:
             setMember(s, fb.attribute, vec3(0.0f));
             return;
         case FallbackKind::MaterialPass:
             return;
     }
+}
+
+// The id the selector gives model m (0 when it names none, never asked then).
+uint selectorId(const Layout& layout, ShadingModel m) {
+    if (const Field* sel = layout.selector())
+        for (const Field::ModelId& e : sel->selector)
+            if (e.model == m) return e.id;
+    return 0;
+}
+
+// Whether a pixel whose selector holds `id` is of one of the models in the mask `models`.
+bool idAmong(const Layout& layout, uint id, uint32_t models) {
+    for (int m = 0; m < kShadingModels; ++m)
+        if (((models >> unsigned(m)) & 1u) && ((layout.selectorModels() >> unsigned(m)) & 1u) &&
+            selectorId(layout, ShadingModel(m)) == id)
+            return true;
+    return false;
 }
 
 CpuGBuffer encodeGBuffer(const Layout& layout, const std::vector<Surface>& surfaces, int width, int height) {
@@ -303,7 +327,13 @@ CpuGBuffer encodeGBuffer(const Layout& layout, const std::vector<Surface>& surfa
             for (int x = 0; x < width; ++x) {
                 const size_t i = size_t(y) * size_t(width) + size_t(x);
                 uint32_t* w = &words[i * size_t(wpp)];
+                const ShadingModel model = test::statedModel(layout, surfaces[i]);
                 for (const Field& f : t.fields) {
+                    if (!f.selector.empty()) {
+                        placeCode(t, f.codes[0], selectorId(layout, model), w);
+                        continue;
+                    }
+                    if (!test::fieldHolds(f, model)) continue;
                     const std::vector<uint> codes = encodeField(f, surfaces[i], ivec2(x, y));
                     for (size_t k = 0; k < codes.size(); ++k) placeCode(t, f.codes[k], codes[k], w);
                 }
@@ -335,6 +365,18 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
             s = Surface{};
             s.normal = vec3(0.0f);
             s.occlusion = 0.0f;
+            uint id = 0;  // the stored id, read first: it decides which fields hold
+            bool hasId = false;
+            for (size_t t = 0; t < layout.targets.size(); ++t)
+                for (const Field& f : layout.targets[t].fields)
+                    if (!f.selector.empty()) {
+                        const size_t wpp = size_t(wordsPerPixel(layout.targets[t]));
+                        id = extractCode(layout.targets[t], f.codes[0], &g.targetWords[t][i * wpp]);
+                        hasId = true;
+                    }
+            if (hasId) s.shadingModel = float(id);
+            for (const AttributeInfo& a : listAttributes())  // stored under some models: from 0
+                if (layout.storesConditionally(a.id)) setMember(s, a.id, vec3(0.0f));
             for (size_t t = 0; t < layout.targets.size(); ++t) {
                 const Target& tg = layout.targets[t];
                 const int wpp = wordsPerPixel(tg);
@@ -344,6 +386,7 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                 const uint32_t* w = wordsAt(x, y);
                 for (const Field& f : tg.fields) {
                     if (!memberOf(s, f.attribute)) continue;
+                    if (f.conditional() && !idAmong(layout, id, f.models)) continue;
                     const EncodingInfo* info = findEncoding(f.encoding);
                     if (info && info->needsNeighbours) {
                         ColorFn fwd = nullptr, inv = nullptr;
@@ -387,7 +430,8 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                 }
                 setMember(s, slot.attribute, v);
             }
-            for (const Fallback* fb : fallbacks) applyFallback(*fb, s);
+            for (const Fallback* fb : fallbacks)
+                if (!idAmong(layout, id, layout.conditionalModels(fb->attribute))) applyFallback(*fb, s);
         }
     return out;
 }
@@ -439,7 +483,16 @@ std::vector<Surface> makeSurfaces(int w, int h, uint32_t seed) {
         s.occlusion = value(1);
         s.emissive = {value(8), value(8), value(8)};
         s.position = {value(100), value(100), value(100)};
+        s.coat = value(1);
+        s.coatRoughness = value(1);
+        s.coatNormal = randomUnit(rng);
+        s.sheenColor = {value(1), value(1), value(1)};
+        s.sheenRoughness = value(1);
+        s.anisotropyStrength = value(1);
+        s.anisotropyDirection = randomUnit(rng);
     }
+    // Each combination of layers (and so each model of a selector's rule) on its own pixels.
+    test::assignLayerPatterns(v);
     return v;
 }
 

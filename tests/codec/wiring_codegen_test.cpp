@@ -1,6 +1,8 @@
 // Generated wiring: the GLSL of every layouts/*.toml compiles inside its includers (G-buffer pass,
 // material pass, lighting, decode), in both bit-exact and native-formats modes; and the CPU mirror
-// round-trips random surfaces within each encoding's documented error bound.
+// round-trips random surfaces within each encoding's documented error bound; in a layout with a
+// shading-model selector, each field on the pixels of the models it is stored under (every model the
+// selector names occurs), not on the others'.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@
 #include "layout_catalog.h"
 #include "shader_compiler.h"
 #include "layout_files.h"
+#include "surface_support.h"
 #include "wiring_codegen.h"
 
 using namespace gbl;
@@ -165,12 +168,28 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
     constexpr int W = 64, H = 48;
     for (const Layout& l : test::shippedAttributeLayouts()) {
         SCOPED_TRACE(l.name);
-        const std::vector<Surface> in = makeSurfaces(W, H, 7u);
+        std::vector<Surface> in = makeSurfaces(W, H, 7u);
+        if (l.selector()) test::assignLayerPatterns(in);  // every model of the rule, on its own pixels
+        std::vector<ShadingModel> model(in.size());
+        for (size_t i = 0; i < in.size(); ++i) model[i] = test::statedModel(l, in[i]);
         const CpuGBuffer g = encodeGBuffer(l, in, W, H);
         ASSERT_EQ(g.targetWords.size(), l.targets.size());
         for (size_t t = 0; t < l.targets.size(); ++t)
             EXPECT_EQ(g.targetWords[t].size(), size_t(W * H * wordsPerPixel(l.targets[t])));
         const std::vector<Surface> out = decodeGBuffer(l, g);
+        if (const Field* sel = l.selector()) {  // the stored id is the model's, and every model occurs
+            uint32_t seen = 0;
+            for (size_t i = 0; i < in.size(); ++i) {
+                seen |= 1u << unsigned(model[i]);
+                uint32_t id = 0;
+                for (const Field::ModelId& m : sel->selector) id = m.model == model[i] ? m.id : id;
+                if (out[i].shadingModel != float(id)) {
+                    ADD_FAILURE() << "pixel " << i << ": stored id " << out[i].shadingModel << ", model's " << id;
+                    break;
+                }
+            }
+            EXPECT_EQ(seen, l.selectorModels());
+        }
         int checked = 0;
         for (const Target& t : l.targets)
             for (const Field& f : t.fields) {
@@ -179,7 +198,10 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                 ++checked;
                 const std::string& e = f.encoding;
                 const int b = f.bitsOfCode(0);
+                size_t held = 0;
                 for (size_t i = 0; i < in.size(); ++i) {
+                    if (!test::fieldHolds(f, model[i])) continue;  // another model's bits on this pixel
+                    ++held;
                     const Surface& a = in[i];
                     const Surface& d = out[i];
                     auto vec = [&](const Surface& s) -> glm::vec3 {
@@ -326,8 +348,14 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                         break;
                     }
                 }
+                EXPECT_GT(held, in.size() / 16) << attributeName(f.attribute) << ": its models' pixels";
             }
         EXPECT_GT(checked, 0);
+        // sheen_roughness = "from_roughness" (UE's cloth lobe): the decoded roughness itself, on every pixel.
+        const Fallback* sr = l.findFallback(Attribute::SheenRoughness);
+        if (sr && sr->kind == FallbackKind::FromRoughness)
+            for (size_t i = 0; i < out.size(); ++i)
+                ASSERT_EQ(out[i].sheenRoughness, out[i].roughness) << "pixel " << i;
         // Emissive forward reads back 0, the material pass at full precision.
         const Fallback* em = l.findFallback(Attribute::Emissive);
         if (em && em->kind == FallbackKind::Forward) {

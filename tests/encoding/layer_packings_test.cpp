@@ -5,10 +5,10 @@
 // against the codec's decode. The rows and their pins:
 //   bevy-deferred-clearcoat  bevyengine/bevy v0.19.0 c6f634ca (pull request 23359, fca2279c)
 //   hdrp-lit                 HDRP 13.0.0 c667268a, core 13.0.0 6363fa25
-//   ue5-clearcoat            UE 5.3.2, Mephisto1024/Toon_Engine 1a10ef19
-//   ue5-anisotropy           the same
-// and UE's clear-coat bottom normal (r.ClearCoatNormal = 1), which no row stores yet, against
-// engine_encodings.h's encoder and decoder directly.
+//   ue5-clearcoat, ue5-cloth UE 5.3.2, Mephisto1024/Toon_Engine 1a10ef19
+//   ue5, ue5-anisotropy      the same, the shading model per pixel (the selector)
+// and UE's clear-coat bottom normal (r.ClearCoatNormal = 1, off by default: no row stores it),
+// against engine_encodings.h's encoder and decoder directly.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -341,8 +341,16 @@ TEST(LayerPackings, Ue5GBufferFEqualsEncodeWorldTangentAndAnisotropy) {
         return s;
     };
     Tally words;
+    size_t cleared = 0;
     runCodec(layout, f, make, [&](size_t i, int, int, const uint32_t* w) {
         const Surface& s = keep[i % kImage];
+        // The anisotropy pass draws only anisotropic materials (the selector's id 17, strength > 0);
+        // elsewhere GBufferF keeps its clear (UE reads it only under HAS_ANISOTROPY, dsc:1015-1018).
+        if (!(s.anisotropyStrength > 0.0f)) {
+            ++cleared;
+            if (w[0] != 0x80808080u) words.fail("no anisotropy: GBufferF " + hex(w[0]) + ", not the clear");
+            return;
+        }
         const glm::vec3 t = s.anisotropyDirection * 0.5f + 0.5f;
         const HardwareCode r = hardwareUnorm(t.x, 8), g = hardwareUnorm(t.y, 8), b = hardwareUnorm(t.z, 8);
         const HardwareCode a = hardwareUnorm(s.anisotropyStrength * 0.5f + 0.5f, 8);
@@ -353,8 +361,10 @@ TEST(LayerPackings, Ue5GBufferFEqualsEncodeWorldTangentAndAnisotropy) {
             words.fail("tangent " + vec(s.anisotropyDirection) + ", anisotropy " + std::to_string(s.anisotropyStrength) +
                        ": GBufferF " + hex(w[0]));
     });
-    std::printf("[ ue5 F    ] %zu GBufferF words (%zu near a tie)\n", words.compared, words.nearTies);
+    std::printf("[ ue5 F    ] %zu GBufferF words (%zu near a tie), %zu cleared\n", words.compared, words.nearTies, cleared);
     EXPECT_EQ(words.mismatches, 0u);
+    EXPECT_GT(words.nearTies, 1000u);
+    EXPECT_GT(cleared, 1000u);
     // No anisotropy writes UE's clear, 0.5 in every channel (code 128).
     const gbl::CpuCodec codec(layout);
     CpuGBuffer one;
@@ -365,7 +375,7 @@ TEST(LayerPackings, Ue5GBufferFEqualsEncodeWorldTangentAndAnisotropy) {
     for (size_t i = 0; i < some.size(); ++i) {
         some[i].normal = glm::vec3(0, 0, 1);
         some[i].anisotropyDirection = normalInput(edges, rng, 1000 + i);
-        some[i].anisotropyStrength = float(rng.u01());
+        some[i].anisotropyStrength = 0.01f + 0.99f * float(rng.u01());  // > 0: anisotropic pixels
     }
     codec.encode(some, 64, 1, one);
     const std::vector<Surface> back = codec.decode(one);
@@ -376,6 +386,173 @@ TEST(LayerPackings, Ue5GBufferFEqualsEncodeWorldTangentAndAnisotropy) {
         EXPECT_LT(glm::length(back[i].anisotropyDirection - tangent), 1e-6f) << i;
         EXPECT_EQ(back[i].anisotropyStrength, float(w >> 24u) / 255.0f * 2.0f - 1.0f) << i;
     }
+}
+
+// ==================================================================================================
+// UE 5.3.2 with the shading model per pixel (ue5, ue5-anisotropy: the selector): GBufferB.a =
+// EncodeShadingModelIdAndSelectiveOutputMask(id, mask) = ((id & 0xF) | mask) / 255 (DeferredShading-
+// Common.ush:280-284; ids ShadingCommon.ush:20-34: Default Lit 1, ClearCoat 4, Cloth 8;
+// HAS_ANISOTROPY_MASK 1 << 4, SKIP_VELOCITY_MASK 1 << 7, :38-41), and GBufferD = CustomData as
+// SetGBufferForShadingModel writes it for the pixel's model (ShadingModelsMaterial.ush:12-140):
+//   Default Lit  no branch (:37-40): CustomData keeps its zero initialisation (BasePassPixelShader.usf:986)
+//   ClearCoat    .x = saturate(ClearCoat), .y = saturate(ClearCoatRoughness) (:85-91); .z, .w only
+//                under CLEAR_COAT_BOTTOM_NORMAL (:96-116), 0 by default (r.ClearCoatNormal = 0,
+//                DeferredShadingRenderer.cpp:114-120): 0; the base roughness clamped to 254/255 (:94)
+//   Cloth        .rgb = EncodeSubsurfaceColor(fuzz colour) = sqrt(saturate(c)) (:133-139,
+//                DeferredShadingCommon.ush:189-192), .a = saturate(cloth amount) (:137)
+// The material's model (:33) is the row's mapping of the glTF layers (ue5.toml's header): a coated
+// material is ClearCoat, a sheen-only one Cloth, the rest Default Lit, with HAS_ANISOTROPY where
+// ue5-anisotropy's material has anisotropy (BasePassPixelShader.usf:737-753). Written here from that
+// statement, not from the codec. The documented differences of the rows (each at its entry's
+// `differs`) are counted apart: the cloth amount (no attribute holds it: 0, where UE stores the
+// material's) and the ClearCoat roughness clamp (gbufferlab stores code 255 where UE stores 254).
+// ==================================================================================================
+
+struct UePixel {
+    uint32_t id = 1;               // SHADINGMODELID_DEFAULT_LIT
+    bool anisotropic = false;      // HAS_ANISOTROPY_MASK set
+};
+
+UePixel ueMaterialModel(const Surface& s, bool anisotropyPass) {
+    UePixel p;
+    if (s.coat > 0.0f) p.id = 4;  // SHADINGMODELID_CLEAR_COAT
+    else if (s.sheenColor.x > 0.0f || s.sheenColor.y > 0.0f || s.sheenColor.z > 0.0f) p.id = 8;  // SHADINGMODELID_CLOTH
+    else p.anisotropic = anisotropyPass && s.anisotropyStrength > 0.0f;
+    return p;
+}
+
+// One input of each layer pattern (i % 8: bit 0 coat, 1 sheen, 2 anisotropy), the values on the
+// ties of their 8-bit codes, and roughness on the ties of its own (254.5 / 255 among them).
+Surface layeredInput(Rng& rng, const std::vector<glm::vec3>& edges, size_t i) {
+    Surface s;
+    s.normal = glm::vec3(0, 0, 1);
+    const size_t k = i / 8;
+    s.roughness = scalarInput(rng, (k * 31u) % 2039u, 255, 1.0f);
+    if (i & 1u) {
+        s.coat = scalarInput(rng, k % 4096, 255, 1.0f);
+        s.coatRoughness = scalarInput(rng, (k * 7919u) % 4093u, 255, 1.0f);
+    }
+    if (i & 2u) {
+        auto one = [&](size_t j) {  // sqrt's ties: ((j + 0.5) / 255)^2 and the floats beside it
+            if (j < 255 * 3) {
+                const float t = float(std::pow((double(j / 3) + 0.5) / 255.0, 2.0));
+                return j % 3 == 0 ? t : j % 3 == 1 ? std::nextafter(t, -1.0f) : std::nextafter(t, 2.0f);
+            }
+            return float(rng.u01() * 1.2 - 0.1);
+        };
+        s.sheenColor = glm::vec3(one(k % 4096), one((k * 7919u) % 4093u), one(4096));
+    }
+    if (i & 4u) {
+        s.anisotropyDirection = normalInput(edges, rng, k);
+        s.anisotropyStrength = scalarInput(rng, (k * 13u) % 4091u, 255, 1.0f);
+    }
+    return s;
+}
+
+void checkUe5SelectorRow(const std::string& name, bool anisotropyPass) {
+    SCOPED_TRACE(name);
+    const Layout layout = gbl::loadLayout(name);
+    const size_t b = targetIndex(layout, "GBufferB"), d = targetIndex(layout, "GBufferD");
+    const size_t f = anisotropyPass ? targetIndex(layout, "GBufferF") : 0;
+    const std::vector<glm::vec3> edges = edgeNormals();
+    Rng rng(5401);
+    std::vector<Surface> keep(kImage);
+    std::vector<Surface> decoded;
+    const CpuCodec codec(layout);
+    Tally alpha, custom, rough, tangent, reads;
+    size_t seen[32] = {}, clampedRoughness = 0, clothAmount = 0;
+    runCodecAllTargets(layout, kInputs / 2, [&](size_t i) { return keep[i % kImage] = layeredInput(rng, edges, i); },
+                       [&](size_t i, const CpuGBuffer& g, size_t j) {
+        const Surface& s = keep[j];
+        if (j == 0) decoded = codec.decode(g);
+        const UePixel ue = ueMaterialModel(s, anisotropyPass);
+        const uint32_t wb = g.targetWords[b][j], wd = g.targetWords[d][j];
+        const std::string at = "input " + std::to_string(i) + " (layers " + std::to_string(i % 8) + ")";
+        // GBufferB.a: (id | mask) / 255 into a UNORM byte is the integer itself.
+        const uint32_t a = (ue.id & 0xFu) | (ue.anisotropic ? 1u << 4 : 0u) | 1u << 7;
+        ++alpha.compared;
+        ++seen[a & 31u];
+        if ((wb >> 24u) != a) alpha.fail(at + ": GBufferB.a " + hex(wb >> 24u) + ", UE " + hex(a));
+        // GBufferB.b: the base roughness, clamped to 254/255 on ClearCoat pixels by UE.
+        const float r = ue.id == 4 ? std::min(clamp01(s.roughness), 254.0f / 255.0f) : clamp01(s.roughness);
+        const HardwareCode rc = hardwareUnorm(r, 8);
+        ++rough.compared;
+        if (!accepts(rc, wb & 0xFFu)) {
+            if (ue.id == 4 && (wb & 0xFFu) == 255u && rc.nearest == 254u) ++clampedRoughness;  // the row's `differs`
+            else rough.fail(at + ": roughness " + std::to_string(s.roughness) + " code " + std::to_string(wb & 0xFFu));
+        }
+        // GBufferD: CustomData of the model (B8G8R8A8: x in R, bits 16..23; y in G; z in B; w in A).
+        ++custom.compared;
+        const uint32_t x = (wd >> 16u) & 0xFFu, y = (wd >> 8u) & 0xFFu, z = wd & 0xFFu, w = wd >> 24u;
+        bool ok = true;
+        if (ue.id == 4) {
+            const HardwareCode cx = hardwareUnorm(clamp01(s.coat), 8), cy = hardwareUnorm(clamp01(s.coatRoughness), 8);
+            if (cx.nearTie || cy.nearTie) ++custom.nearTies;
+            ok = accepts(cx, x) && accepts(cy, y) && z == 0u && w == 0u;
+        } else if (ue.id == 8) {
+            HardwareCode c[3];
+            for (int k = 0; k < 3; ++k) c[k] = hardwareUnorm(std::sqrt(clamp01(s.sheenColor[k])), 8);
+            if (c[0].nearTie || c[1].nearTie || c[2].nearTie) ++custom.nearTies;
+            ok = accepts(c[0], x) && accepts(c[1], y) && accepts(c[2], z) && w == 0u;  // .a: the cloth amount
+            ++clothAmount;
+        } else {
+            ok = wd == 0u;
+        }
+        if (!ok) custom.fail(at + ": model " + std::to_string(ue.id) + ", GBufferD " + hex(wd));
+        // GBufferF (ue5-anisotropy): EncodeWorldTangentAndAnisotropy on the anisotropic pixels, the
+        // pass's clear 0.5 elsewhere (st:581-587), which UE does not read there (dsc:1015-1018).
+        if (anisotropyPass) {
+            const uint32_t wf = g.targetWords[f][j];
+            ++tangent.compared;
+            if (ue.anisotropic) {
+                const glm::vec3 t = s.anisotropyDirection * 0.5f + 0.5f;
+                const HardwareCode tr = hardwareUnorm(t.x, 8), tg = hardwareUnorm(t.y, 8), tb = hardwareUnorm(t.z, 8);
+                const HardwareCode ta = hardwareUnorm(s.anisotropyStrength * 0.5f + 0.5f, 8);
+                if (!accepts(tr, (wf >> 16u) & 0xFFu) || !accepts(tg, (wf >> 8u) & 0xFFu) || !accepts(tb, wf & 0xFFu) ||
+                    !accepts(ta, wf >> 24u))
+                    tangent.fail(at + ": GBufferF " + hex(wf));
+            } else if (wf != 0x80808080u) {
+                tangent.fail(at + ": GBufferF " + hex(wf) + " where UE keeps the clear");
+            }
+        }
+        // UE's reads of the stored codes against the codec's decode: the coat from CustomData.xy
+        // (ClearCoatCommon.ush:16-19), the fuzz colour Square(CustomData.rgb) (dsc:1031-1034) with
+        // the base roughness as the cloth lobe's (ShadingModels.ush:766-767, 775), no layer where
+        // the model holds none.
+        const Surface& o = decoded[j];
+        const float rd = float(wb & 0xFFu) / 255.0f;
+        ++reads.compared;
+        bool read = o.roughness == rd && o.shadingModel == float((wb >> 24u) & (anisotropyPass ? 31u : 15u));
+        if (ue.id == 4) read = read && o.coat == float(x) / 255.0f && o.coatRoughness == float(y) / 255.0f &&
+                               o.sheenColor == glm::vec3(0.0f);
+        else if (ue.id == 8) {
+            const glm::vec3 v(float(x) / 255.0f, float(y) / 255.0f, float(z) / 255.0f);
+            read = read && o.sheenColor == v * v && o.sheenRoughness == o.roughness && o.coat == 0.0f;
+        } else read = read && o.coat == 0.0f && o.sheenColor == glm::vec3(0.0f);
+        if (anisotropyPass && !ue.anisotropic) read = read && o.anisotropyStrength == 0.0f;
+        if (!read) reads.fail(at + ": decoded model " + std::to_string(o.shadingModel) + ", coat " + std::to_string(o.coat) +
+                              ", sheen " + vec(o.sheenColor) + ", sheen roughness " + std::to_string(o.sheenRoughness));
+    });
+    std::printf("[ %-15s] %zu pixels: %zu Default Lit, %zu anisotropic, %zu ClearCoat, %zu Cloth; %zu near a tie; "
+                "documented: %zu clamped roughness codes, %zu cloth amounts\n", name.c_str(), alpha.compared,
+                seen[0x81 & 31], seen[0x91 & 31], seen[0x84 & 31], seen[0x88 & 31], custom.nearTies, clampedRoughness,
+                clothAmount);
+    EXPECT_EQ(alpha.mismatches, 0u);
+    EXPECT_EQ(rough.mismatches, 0u);
+    EXPECT_EQ(custom.mismatches, 0u);
+    EXPECT_EQ(tangent.mismatches, 0u);
+    EXPECT_EQ(reads.mismatches, 0u);
+    // Every model of the row occurs, the ties are reached, and so is the documented clamp.
+    for (uint32_t id : {0x81u, 0x84u, 0x88u}) EXPECT_GT(seen[id & 31u], 1000u) << hex(id);
+    if (anisotropyPass) EXPECT_GT(seen[0x91 & 31], 1000u);
+    else EXPECT_EQ(seen[0x91 & 31], 0u);  // ue5 without the anisotropy pass: no mask bit
+    EXPECT_GT(custom.nearTies, 0u);
+    EXPECT_GT(clampedRoughness, 0u);
+}
+
+TEST(LayerPackings, Ue5SelectorRowsWriteCustomDataAsSetGBufferForShadingModel) {
+    checkUe5SelectorRow("ue5", false);
+    checkUe5SelectorRow("ue5-anisotropy", true);
 }
 
 // ==================================================================================================

@@ -32,6 +32,37 @@ int bitsOf(const Layout& l, Attribute a) {
     return 0;
 }
 
+// The bits of `a` on a pixel of model `m`: its unconditional fields' and those conditional on m,
+// counted from the fields themselves (not bitsPerAttribute, which counts an attribute's widest).
+int bitsUnder(const Layout& l, Attribute a, ShadingModel m) {
+    int bits = 0;
+    for (const Target& t : l.targets)
+        for (const Field& f : t.fields)
+            if (f.attribute == a && (!f.conditional() || ((f.models >> unsigned(m)) & 1u)))
+                for (const CodePlace& c : f.codes) bits += c.bits();
+    return bits;
+}
+
+// All colour-target bits a pixel of model m holds (each field's whose model set has m, or none).
+int pixelBitsUnder(const Layout& l, ShadingModel m) {
+    int bits = 0;
+    for (const Target& t : l.targets)
+        for (const Field& f : t.fields)
+            if (!f.conditional() || ((f.models >> unsigned(m)) & 1u))
+                for (const CodePlace& c : f.codes) bits += c.bits();
+    return bits;
+}
+
+// The selector's table as "model id" pairs, in file order.
+std::string selectorTable(const Layout& l) {
+    std::string s;
+    const Field* sel = l.selector();
+    if (!sel) return s;
+    for (const Field::ModelId& m : sel->selector)
+        s += (s.empty() ? "" : ", ") + std::string(shadingModelInfo(m.model).name) + " " + std::to_string(m.id);
+    return s;
+}
+
 }  // namespace
 
 TEST(LayoutFiles, EveryFileValidates) {
@@ -157,6 +188,41 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(bevyCoat.findField(Attribute::CoatRoughness)->encoding, "coat_roughness_bevy");
     EXPECT_EQ(bitsOf(bevyCoat, Attribute::CoatNormal), 0);  // the base normal serves
     EXPECT_EQ(bitsOf(bevy, Attribute::Coat), 0);            // Bevy 0.16: the byte spare
+    // UE 5.3.2 with the shading model per pixel (ue5): GBufferB.a bits 0..3 the id (ShadingCommon.ush
+    // :20-34), GBufferD CustomData per model (ShadingModelsMaterial.ush:37-40, 85-117, 133-139).
+    {
+        const Layout ue5 = load("ue5");
+        using M = ShadingModel;
+        EXPECT_EQ(selectorTable(ue5), "default 1, clear_coat 4, cloth 8");
+        EXPECT_EQ(ue5.selector()->codes.at(0).text, "a[0:3]");
+        EXPECT_EQ(ue5.selector()->totalBits(), 4);
+        // Default Lit: CustomData's 32 bits, the zero it keeps; no layer.
+        EXPECT_EQ(bitsUnder(ue5, Attribute::CustomData, M::Default), 32);
+        EXPECT_EQ(bitsUnder(ue5, Attribute::Coat, M::Default), 0);
+        EXPECT_EQ(bitsUnder(ue5, Attribute::SheenColor, M::Default), 0);
+        // ClearCoat: coat in .x, coat roughness in .y, 8 bits each; .z, .w unwritten (no bottom
+        // normal at r.ClearCoatNormal = 0); no sheen, no custom_data constant.
+        EXPECT_EQ(bitsUnder(ue5, Attribute::Coat, M::ClearCoat), 8);
+        EXPECT_EQ(bitsUnder(ue5, Attribute::CoatRoughness, M::ClearCoat), 8);
+        EXPECT_EQ(bitsUnder(ue5, Attribute::CoatNormal, M::ClearCoat), 0);
+        EXPECT_EQ(bitsUnder(ue5, Attribute::SheenColor, M::ClearCoat), 0);
+        EXPECT_EQ(bitsUnder(ue5, Attribute::CustomData, M::ClearCoat), 0);
+        // Cloth: the fuzz colour in .rgb, 24 bits; its roughness is the base one (no bits).
+        EXPECT_EQ(bitsUnder(ue5, Attribute::SheenColor, M::Cloth), 24);
+        EXPECT_EQ(bitsUnder(ue5, Attribute::SheenRoughness, M::Cloth), 0);
+        EXPECT_EQ(bitsUnder(ue5, Attribute::Coat, M::Cloth), 0);
+        ASSERT_TRUE(ue5.findFallback(Attribute::SheenRoughness));
+        EXPECT_EQ(ue5.findFallback(Attribute::SheenRoughness)->kind, FallbackKind::FromRoughness);
+        // What each model's pixel holds of GBufferD (the rest of A..E the same for all): 32 bits
+        // for Default Lit's constant, 16 for ClearCoat, 24 for Cloth; the bytes per pixel count
+        // the shared bits once (25, AtlasBytesPerPixel).
+        const int shared = pixelBitsUnder(ue5, M::Default) - 32;
+        EXPECT_EQ(pixelBitsUnder(ue5, M::ClearCoat), shared + 16);
+        EXPECT_EQ(pixelBitsUnder(ue5, M::Cloth), shared + 24);
+        EXPECT_EQ(shared, 4 * 32);  // GBufferA, B, C and E: every bit stored on every pixel
+        EXPECT_EQ(bitsOf(ue5, Attribute::Coat), 8);
+        EXPECT_EQ(bitsOf(ue5, Attribute::SheenColor), 24);
+    }
     // UE5's ClearCoat shading model: CustomData.x, .y.
     const Layout ue5Coat = load("ue5-clearcoat");
     EXPECT_EQ(bitsOf(ue5Coat, Attribute::Coat), 8);
@@ -177,6 +243,8 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(ue5.findFallback(Attribute::Occlusion)->value, std::vector<double>{1.0});
     EXPECT_EQ(bitsOf(ue5, Attribute::PrecomputedIrradiance), 8);
     EXPECT_EQ(ue5.findField(Attribute::SelectiveOutputMask)->value, std::vector<double>{8.0});  // SKIP_VELOCITY
+    EXPECT_EQ(bitsOf(ue5, Attribute::ShadingModel), 4);  // the selector, GBufferB.a bits 0..3
+    EXPECT_EQ(bitsOf(ue5, Attribute::ShadingModelId), 0);  // no constant id any more
     const Layout velocity = load("ue5-velocity");
     EXPECT_EQ(bitsOf(velocity, Attribute::Velocity), 32);
     ASSERT_EQ(velocity.targets.size(), 6u);
@@ -203,8 +271,24 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(bitsOf(aniso, Attribute::AnisotropyDirection), 24);
     EXPECT_EQ(bitsOf(aniso, Attribute::AnisotropyStrength), 8);
     EXPECT_EQ(aniso.findField(Attribute::AnisotropyStrength)->encoding, "unorm_signed");
-    EXPECT_EQ(bitsOf(aniso, Attribute::Tangent), 0);
-    EXPECT_EQ(aniso.findField(Attribute::SelectiveOutputMask)->value, std::vector<double>{8.0});  // no HAS_ANISOTROPY
+    // The selector takes the id and HAS_ANISOTROPY (1 << 4): Default Lit with anisotropy is 17, and
+    // GBufferF holds the tangent and anisotropy on those pixels only; elsewhere the clear's 0.5
+    // (the extras tangent and anisotropy, 24 + 8 bits), which UE does not read.
+    EXPECT_EQ(selectorTable(aniso), "default 1, clear_coat 4, cloth 8, anisotropic 17");
+    EXPECT_EQ(aniso.selector()->codes.at(0).text, "a[0:4]");
+    EXPECT_EQ(aniso.findField(Attribute::SelectiveOutputMask)->value, std::vector<double>{4.0});  // bits 5..7: SKIP_VELOCITY
+    EXPECT_EQ(bitsUnder(aniso, Attribute::AnisotropyDirection, ShadingModel::Anisotropic), 24);
+    EXPECT_EQ(bitsUnder(aniso, Attribute::AnisotropyDirection, ShadingModel::Default), 0);
+    EXPECT_EQ(bitsUnder(aniso, Attribute::Tangent, ShadingModel::Anisotropic), 0);
+    for (ShadingModel m : {ShadingModel::Default, ShadingModel::ClearCoat, ShadingModel::Cloth}) {
+        EXPECT_EQ(bitsUnder(aniso, Attribute::Tangent, m), 24);
+        EXPECT_EQ(bitsUnder(aniso, Attribute::Anisotropy, m), 8);
+        EXPECT_EQ(bitsUnder(aniso, Attribute::AnisotropyStrength, m), 0);
+    }
+    EXPECT_EQ(bitsUnder(aniso, Attribute::Coat, ShadingModel::ClearCoat), 8);
+    EXPECT_EQ(bitsUnder(aniso, Attribute::SheenColor, ShadingModel::Cloth), 24);
+    // ue5-cloth: every pixel Cloth; the sheen roughness is the base roughness.
+    EXPECT_EQ(ue5Cloth.findFallback(Attribute::SheenRoughness)->kind, FallbackKind::FromRoughness);
     EXPECT_TRUE(load("granite-2025").depth.reversedZ);
     EXPECT_FALSE(load("granite").depth.reversedZ);
     // niagara: emissive is one 8-bit ratio to the albedo's luminance, read after the albedo.

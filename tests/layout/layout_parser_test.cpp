@@ -308,6 +308,19 @@ TEST(LayoutParser, UnknownFallbackListsTheAllowedOnes) {
                  "allowed: from_metallic, ue4, material_pass, or a constant"});
 }
 
+// sheen_roughness = "from_roughness" (UE's cloth lobe takes the base roughness): accepted there,
+// decoded as the roughness; refused for any other attribute, with the allowed ones listed.
+TEST(LayoutParser, FromRoughnessIsTheSheenRoughnessOnly) {
+    const std::string ok = edit(kValid, "occlusion = 1.0", "occlusion = 1.0\nsheen_roughness = \"from_roughness\"");
+    EXPECT_TRUE(checkLayout(ok, kFile).empty());
+    const Layout l = parseLayout(ok, kFile);
+    ASSERT_TRUE(l.findFallback(Attribute::SheenRoughness));
+    EXPECT_EQ(l.findFallback(Attribute::SheenRoughness)->kind, FallbackKind::FromRoughness);
+    const std::string bad = edit(kValid, "occlusion = 1.0", "occlusion = \"from_roughness\"");
+    expectError(bad, placeOf(bad, "\"from_roughness\""),
+                {"unknown fallback 'from_roughness' for 'occlusion'", "allowed: material_pass, or a constant"});
+}
+
 TEST(LayoutParser, FallbackForAStoredAttribute) {
     const std::string text = edit(kValid, "occlusion = 1.0", "occlusion = 1.0\nroughness = 0.5");
     expectOnlyError(text, placeOf(text, "roughness = 0.5"), {"'roughness' cannot fall back"});

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <map>
 #include <filesystem>
 #include <regex>
 #include <set>
@@ -380,6 +382,60 @@ TEST(LayoutProvenance, Ue4CountsByHand) {
     EXPECT_EQ(provenanceCounts(test::shippedLayout("visibility-64")).text(), "verified 0/2, own 2");
 }
 
+// Hand-counted from ue5.toml (the shading model per pixel): depth, 5 targets, 14 fields (A 2, B 5
+// with the selector, C 2, D 4: custom_data under default, coat and coat roughness under
+// clear_coat, the sheen colour under cloth; E 1), 5 fallbacks (sheen_roughness = from_roughness
+// among them), 8 clear values (coat, coat roughness, sheen colour among them), [space] = 34; all
+// verified but [space]; 5 differences (the ClearCoat roughness clamp, the cleared pixels' id, the
+// precomputed irradiance, the cloth amount, handedness).
+TEST(LayoutProvenance, Ue5SelectorRowCountsByHand) {
+    const ProvenanceCounts c = provenanceCounts(test::shippedLayout("ue5"));
+    EXPECT_EQ(c.entries, 34);
+    EXPECT_EQ(c.verified, 33);
+    EXPECT_EQ(c.assumed, 1);
+    EXPECT_EQ(c.differs, 5);
+    EXPECT_EQ(c.text(), "verified 33/34, assumed 1, differs 5");
+}
+
+// Each conditional CustomData field of UE's rows cites SetGBufferForShadingModel's branch of its own
+// model (ShadingModelsMaterial.ush @1a10ef19: no branch for Default Lit, :12-40; ClearCoat :85-117;
+// Cloth :133-140), and each selector cites UE's shading model ids (ShadingCommon.ush:20-34).
+TEST(LayoutProvenance, UeConditionalFieldsCiteTheirModelsBranch) {
+    const std::map<ShadingModel, std::pair<long, long>> branch = {
+        {ShadingModel::Default, {12, 40}}, {ShadingModel::ClearCoat, {85, 117}}, {ShadingModel::Cloth, {133, 140}}};
+    int checked = 0;
+    for (const char* name : {"ue5", "ue5-anisotropy"}) {
+        SCOPED_TRACE(name);
+        const Layout l = test::shippedLayout(name);
+        ASSERT_TRUE(l.selector());
+        bool ids = false;
+        for (const CitationRef& r : l.selector()->provenance.refs) {
+            if (r.key != "sc") continue;
+            const size_t dash = r.locator.find('-');
+            ids = ids || (dash != std::string::npos && std::stol(r.locator) <= 20 && std::stol(r.locator.substr(dash + 1)) >= 34);
+        }
+        EXPECT_TRUE(ids) << "the selector cites ShadingCommon.ush:20-34 (the ids)";
+        for (const Target& t : l.targets) {
+            if (t.name != "GBufferD") continue;
+            for (const Field& f : t.fields) {
+                SCOPED_TRACE(attributeName(f.attribute));
+                ASSERT_TRUE(f.conditional()) << "GBufferD's meaning is the model's";
+                ASSERT_EQ(std::popcount(f.models), 1);
+                const auto [first, last] = branch.at(ShadingModel(std::countr_zero(f.models)));
+                bool cites = false;
+                for (const CitationRef& r : f.provenance.refs)
+                    if (r.key == "smm") {
+                        const long from = std::stol(r.locator);
+                        cites = cites || (from >= first && from <= last);
+                    }
+                EXPECT_TRUE(cites) << "no smm citation inside " << first << "-" << last;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_EQ(checked, 8);  // custom_data, coat, coat_roughness, sheen_color in each
+}
+
 // `layouts show` prints each entry's provenance beside it, differences under it, the citations.
 TEST(LayoutProvenance, ShowPrintsProvenance) {
     const std::string show = describeLayout(test::shippedLayout("ue5"));
@@ -387,7 +443,8 @@ TEST(LayoutProvenance, ShowPrintsProvenance) {
              "provenance: verified ",
              "target GBufferA  A2B10G10R10_UNORM_PACK32  4 bytes  [verified  gbi:335, 354, 156-158]\n",
              "    normal                  verified  gbi:418-421; gbh:15-18; sgu:528\n",
-             "      differs: pixels without geometry hold 0 (unlit) in UE; gbufferlab writes 1 in every pixel\n",
+             "      differs: pixels without geometry hold 0 (unlit) in UE; gbufferlab's cleared pixels are of the "
+             "default model, 1\n",
              "depth D32_SFLOAT_S8_UINT  5 bytes  32-bit float, reversed Z  [verified  d3d12:28-31, 105-124; "
              "rhidef:179-189]\n",
              "  occlusion               1  [verified  dsc:964-967]\n",

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <tuple>
 
 #include "layered_scene.h"
 #include "layout_catalog.h"
@@ -147,7 +148,11 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
 
 // The same with material layers (issue 40): the sphere grid with a clear coat, a sheen or
 // anisotropy on every fourth sphere (layers_render_test's), where both decodes fill the seven
-// layer images: the reference's float32 layers, and 0 from ue4, which stores none.
+// layer images: the reference's float32 layers, 0 from ue4, which stores none, and UE 5's rows
+// with the shading model per pixel (ue5, ue5-anisotropy: the selector) and ue5-cloth: the coated
+// spheres' pixels ClearCoat, the sheen ones' Cloth, the anisotropic ones' (ue5-anisotropy) Default
+// Lit with anisotropy, each decoding its own layer; a Cloth pixel's sheen roughness is its decoded
+// roughness (sheen_roughness = "from_roughness", UE's cloth lobe), on both paths.
 TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
     Scene scene = makeSphereGridScene();
     test::addLayersToSphereGrid(scene);
@@ -156,16 +161,46 @@ TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
     const RenderSettings pass = test::decodedFrame(160, 90);
     RenderSettings cpu = pass;
     cpu.decodeOnCpu = true;
-    for (const char* name : {"reference", "ue4"}) {
+    for (const char* name : {"reference", "ue4", "ue5", "ue5-anisotropy", "ue5-cloth"}) {
         SCOPED_TRACE(name);
+        const std::string n = name;
         const GBufferWiring wiring = generateWiring(loadLayout(name));
         const RenderOutput host = renderer.render(wiring, cpu), device = renderer.render(wiring, pass);
         ASSERT_TRUE(host.surfaces.hasLayers());
         compareDecodes(name, "scene camera", host, device);
-        size_t coated = 0;
-        for (float c : device.surfaces.coat.pixels) coated += c > 0.0f;
-        if (std::string(name) == "reference") EXPECT_GT(coated, 100u);  // the coated spheres are in view
-        else EXPECT_EQ(coated, 0u);  // ue4 drops the coat: it decodes 0
+        // What the stored id switches decodes bit for bit alike on both paths (the normal and the
+        // directions may differ in the last bit, as ue4's: compareDecodes' 4 ulp).
+        for (const auto& [a, b, what] : {std::tuple{&device.surfaces.coat, &host.surfaces.coat, "coat"},
+                                         {&device.surfaces.coatRoughness, &host.surfaces.coatRoughness, "coat roughness"},
+                                         {&device.surfaces.sheenColor, &host.surfaces.sheenColor, "sheen colour"},
+                                         {&device.surfaces.sheenRoughness, &host.surfaces.sheenRoughness, "sheen roughness"},
+                                         {&device.surfaces.anisotropyStrength, &host.surfaces.anisotropyStrength,
+                                          "anisotropy strength"},
+                                         {&device.surfaces.roughness, &host.surfaces.roughness, "roughness"}})
+            EXPECT_EQ(a->pixels, b->pixels) << what;
+        for (const RenderOutput* out : {&device, &host}) {
+            const SurfaceImages& s = out->surfaces;
+            size_t coated = 0, sheen = 0, anisotropic = 0, sheenRoughnessOff = 0;
+            for (size_t i = 0; i < s.coverage.size(); ++i) {
+                if (!s.coverage[i]) continue;
+                coated += s.coat.pixels[i] > 0.0f;
+                anisotropic += s.anisotropyStrength.pixels[i] > 0.0f;
+                const bool hasSheen = s.sheenColor.pixels[i * 3] + s.sheenColor.pixels[i * 3 + 1] + s.sheenColor.pixels[i * 3 + 2] > 0.0f;
+                sheen += hasSheen;
+                if (hasSheen && s.sheenRoughness.pixels[i] != s.roughness.pixels[i]) ++sheenRoughnessOff;
+            }
+            SCOPED_TRACE(out == &device ? "decode pass" : "cpu codec");
+            // the coated spheres are in view; ue4 and ue5-cloth drop the coat (it decodes 0)
+            if (n == "ue4" || n == "ue5-cloth") EXPECT_EQ(coated, 0u);
+            else EXPECT_GT(coated, 100u);
+            if (n == "ue4") EXPECT_EQ(sheen, 0u);
+            else EXPECT_GT(sheen, 100u);  // the sheen spheres: Cloth pixels in UE's rows
+            if (n == "reference" || n == "ue5-anisotropy") EXPECT_GT(anisotropic, 100u);
+            else EXPECT_EQ(anisotropic, 0u);
+            // UE's cloth lobe takes the base roughness: the decoded sheen roughness is the decoded roughness
+            if (n.rfind("ue5", 0) == 0) EXPECT_EQ(sheenRoughnessOff, 0u);
+            if (n == "reference") EXPECT_GT(sheenRoughnessOff, 0u);  // the glTF sheen roughness, 0.5, stored apart
+        }
     }
 }
 

@@ -223,6 +223,20 @@ inline void runCodec(const Layout& layout, size_t target, const std::function<Su
     }
 }
 
+// The same for checks that read several targets of one pixel (a selector's id in one target, what
+// it switches in another): check(i, g, j) with the image's words `g` and the pixel's index j.
+inline void runCodecAllTargets(const Layout& layout, size_t inputs, const std::function<Surface(size_t)>& make,
+                               const std::function<void(size_t, const CpuGBuffer&, size_t)>& check) {
+    const CpuCodec codec(layout);
+    std::vector<Surface> surfaces(kImage);
+    CpuGBuffer g;
+    for (size_t first = 0; first < inputs; first += kImage) {
+        for (size_t j = 0; j < kImage; ++j) surfaces[j] = make(first + j);
+        codec.encode(surfaces, kWidth, kHeight, g);
+        for (size_t j = 0; j < kImage; ++j) check(first + j, g, j);
+    }
+}
+
 // The index of the target named `name` in `layout` (a shipped row's target); fails the test when absent.
 inline size_t targetIndex(const Layout& layout, const std::string& name) {
     for (size_t t = 0; t < layout.targets.size(); ++t)

@@ -52,6 +52,16 @@ std::vector<Surface> randomSurfaces(size_t count, uint32_t seed) {
     return v;
 }
 
+ShadingModel statedModel(const Layout& layout, const Surface& s) {
+    const uint32_t named = layout.selectorModels();
+    auto names = [&](ShadingModel m) { return ((named >> unsigned(m)) & 1u) != 0; };
+    if (names(ShadingModel::ClearCoat) && s.coat > 0.0f) return ShadingModel::ClearCoat;
+    if (names(ShadingModel::Cloth) && (s.sheenColor.x > 0.0f || s.sheenColor.y > 0.0f || s.sheenColor.z > 0.0f))
+        return ShadingModel::Cloth;
+    if (names(ShadingModel::Anisotropic) && s.anisotropyStrength > 0.0f) return ShadingModel::Anisotropic;
+    return ShadingModel::Default;
+}
+
 unsigned layerPattern(size_t i) {
     static const unsigned kPatterns[8] = {0u, 1u, 2u, 4u, 3u, 6u, 7u, 0u};
     return kPatterns[i % 8];

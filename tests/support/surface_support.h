@@ -29,6 +29,14 @@ void assignLayerPatterns(std::vector<Surface>& surfaces);
 // Which layers pattern i % 8 gives Surface i: bit 0 coat, 1 sheen, 2 anisotropy.
 unsigned layerPattern(size_t i);
 
+// The model a selector layout gives Surface s, restated from layouts/README.md ("Which model a pixel
+// gets"), not taken from src/layout/shading_models.cpp: the first of clear_coat (coat > 0), cloth
+// (some sheen colour component > 0), anisotropic (anisotropy strength > 0) that the selector
+// names, else default. A layout without a selector: default.
+ShadingModel statedModel(const Layout& layout, const Surface& s);
+// Whether field f holds its attribute on a pixel of model m (an unconditional field always does).
+inline bool fieldHolds(const Field& f, ShadingModel m) { return !f.conditional() || ((f.models >> unsigned(m)) & 1u); }
+
 // The Surface member that holds `a` (its first component), nullptr for an attribute a Surface
 // does not hold; a stored window depth rides in position.z (wiring_plan.h).
 float* memberOf(Surface& s, Attribute a);
