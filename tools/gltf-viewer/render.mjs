@@ -25,11 +25,11 @@ const CHROMIUM = process.env.GLTF_VIEWER_CHROMIUM || "/usr/bin/chromium";
 // The viewer's IBL prefilter sizes (iblSampler's constructor, gltf-viewer.module.js:19239-19245):
 // a 256^2 cube, 5 GGX/Charlie mips (lowestMipLevel 4), 1024/2048/64 samples, two 1024^2 LUTs of 512
 // samples a texel; about 80 s on SwiftShader. The package has no setter (the sampler is a local of
-// _loadEnvironmentFromPanorama, :20164), so the served module reads them from a global the page
+// _loadEnvironmentFromPanorama, :20162), so the served module reads them from a global the page
 // sets. With "ibl": null nothing the prefilter makes is sampled (USE_IBL is off, the LUTs feed
-// only the IBL functions), so the smallest sizes its loops allow are used: a 32^2 cube (2 levels
-// + 1 above lowestMipLevel 4; 16^2 would give one level and a roughness of 0/0, :19685), 16
-// samples, 16^2 LUTs.
+// only the IBL functions), so the smallest sizes its loops allow are used: a 32^2 cube
+// (mipmapLevels = log2(32) + 1 - lowestMipLevel 4 = 2; a 16^2 cube gives 1, and the GGX loop's
+// roughness = level / (mipmapLevels - 1) becomes 0/0, :19665), 16 samples, 16^2 LUTs.
 const IBL_SAMPLER_SOURCE = `        this.textureSize = 256;
         this.ggxSampleCount = 1024;
         this.lambertianSampleCount = 2048;
