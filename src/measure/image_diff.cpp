@@ -74,6 +74,7 @@ DiffInput readDiffInput(const std::string& path) {
         in.kind = DiffKind::Hdr;
         in.image = readPfm(path);
         in.fileChannels = in.image.channels;
+        in.formatHasNoAlpha = true;
         return in;
     }
     throwUserError(path + ": unknown image type '" + ext + "'; give a .png, .jpg, .exr, .hdr or .pfm file");
@@ -122,7 +123,8 @@ DiffResult diffImages(const DiffInput& reference, const DiffInput& test, const s
         throwUserError(testPath + ": is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
                        " but the reference " + referencePath + " is " + std::to_string(r.width) + "x" +
                        std::to_string(r.height) + "; give images of the same size");
-    if (reference.fileChannels != test.fileChannels || r.channels != t.channels)
+    const bool alphaCounts = !reference.formatHasNoAlpha && !test.formatHasNoAlpha;
+    if ((alphaCounts && reference.fileChannels != test.fileChannels) || r.channels != t.channels)
         throwUserError(testPath + ": has " + std::to_string(test.fileChannels) + " channels but the reference " +
                        referencePath + " has " + std::to_string(reference.fileChannels) +
                        "; give images with the same channels");

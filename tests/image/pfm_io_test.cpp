@@ -3,7 +3,8 @@
 // order, one white-space character, floats with rows bottom to top), and the refusals: a
 // truncated raster, trailing bytes, a header claiming a huge image, a bad magic or scale, each one
 // line naming the file and the place. Then diff's kind rule: a PFM is linear float like EXR, so
-// `diff reference.exr viewer.pfm` compares, and a PFM against a PNG is refused.
+// `diff reference.exr viewer.pfm` compares (an RGBA reference's colours against the PFM's RGB),
+// and a PFM against a PNG is refused.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -136,6 +137,20 @@ TEST(PfmIo, DiffComparesExrWithPfmAndRefusesPfmWithPng) {
     moved.at(3, 1, 2) += 0.5f;
     writePfm(pfm, moved);
     EXPECT_FLOAT_EQ(float(diffImages(a, readDiffInput(pfm), exr, pfm).maxAbs), 0.5f);
+
+    // compare's reference EXRs carry alpha (coverage); a PFM cannot: their colours are compared.
+    Image rgba(8, 4, 4, 1.0f);
+    for (size_t p = 0; p < rgba.pixelCount(); ++p)
+        for (int c = 0; c < 3; ++c) rgba.pixels[p * 4 + c] = img.pixels[p * 3 + c];
+    const std::string exrA = (dir / "ref_rgba.exr").string();
+    writeExr(exrA, rgba);
+    writePfm(pfm, img);
+    const DiffInput withAlpha = readDiffInput(exrA);
+    EXPECT_EQ(withAlpha.fileChannels, 4);
+    EXPECT_EQ(diffImages(withAlpha, readDiffInput(pfm), exrA, pfm).maxAbs, 0.0);
+    // Between two formats that can hold alpha the rule stays: RGBA against RGB is refused.
+    const std::string rgbOnly = test::userErrorOf([&] { diffImages(withAlpha, readDiffInput(exr), exrA, exr); });
+    EXPECT_NE(rgbOnly.find("has 3 channels but the reference"), std::string::npos) << rgbOnly;
 
     Image8 ldr{8, 4, 3, std::vector<unsigned char>(8 * 4 * 3, 128)};
     writePng(png, ldr);

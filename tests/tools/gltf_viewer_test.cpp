@@ -16,7 +16,8 @@
 //     uploads it: E = 0, 18 % brighter) or with a wrong one; tolerance 0.5 % (an 8-bit entry
 //     rounded the other way moves E by 1/255; measured: 2.8e-5 at worst over 484 pixels);
 //   - the served table itself (sheen_lut.mjs) against that brute-force integral;
-//   - background pixels are 0 and masked out; bad job files give one line and exit 2.
+//   - background pixels are 0 and masked out; bad job files give one line and exit 2, a frame
+//     that does not come within GLTF_VIEWER_TIMEOUT_S one line and exit 4, and no output.
 // Skipped when Chromium, Node or the pinned npm package is absent (scripts/setup.sh --tests
 // installs them). 17 s on the 2-core machine (ctest -R gltf_viewer_test, load 8).
 #include <gtest/gtest.h>
@@ -69,9 +70,9 @@ struct ToolRun {
     std::string stderrText;
 };
 
-ToolRun node(const fs::path& dir, const std::string& args) {
+ToolRun node(const fs::path& dir, const std::string& args, const std::string& env = "") {
     const fs::path err = dir / "stderr.txt";
-    const int status = std::system(("node " + args + " > /dev/null 2> " + quoted(err.string())).c_str());
+    const int status = std::system((env + " node " + args + " > /dev/null 2> " + quoted(err.string())).c_str());
     ToolRun r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     r.stderrText = test::readFile(err);
@@ -366,6 +367,16 @@ TEST(GltfViewer, BadJobFilesGiveOneLineAndExit2) {
     EXPECT_EQ(broken.exitCode, 2);
     EXPECT_NE(broken.stderrText.find("broken.json: not JSON"), std::string::npos) << broken.stderrText;
     EXPECT_FALSE(fs::exists(dir.path / "viewer.pfm"));
+
+    // A frame that does not come in time: exit 4, one line, no output (Chromium is ended).
+    test::writeFile(dir.path / "slow.json", quadJob().dump());
+    const ToolRun slow = node(dir.path, quoted((kTool / "render.mjs").string()) + " " + quoted((dir.path / "slow.json").string()),
+                              "GLTF_VIEWER_TIMEOUT_S=0.2");
+    EXPECT_EQ(slow.exitCode, 4) << slow.stderrText;
+    EXPECT_NE(slow.stderrText.find("slow.json: the viewer gave no frame within 0.2 s"), std::string::npos) << slow.stderrText;
+    EXPECT_EQ(std::count(slow.stderrText.begin(), slow.stderrText.end(), '\n'), 1) << slow.stderrText;
+    EXPECT_FALSE(fs::exists(dir.path / "viewer.pfm"));
+    EXPECT_FALSE(fs::exists(dir.path / "viewer.mask.pgm"));
 }
 
 }  // namespace

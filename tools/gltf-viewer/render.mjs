@@ -211,15 +211,28 @@ async function run(jobPath) {
   chromium.on("exit", (code, signal) => settle({ error: `Chromium exited (${signal ?? code}) before the page reported` }));
   const timer = setTimeout(() => settle({ timeout: true }), timeoutS * 1000);
 
+  // Chromium runs in its own process group (detached), so a signal to this process does not reach
+  // it: on SIGINT/SIGTERM/SIGHUP the group is ended and the profile removed here, then this
+  // process exits 128 + the signal's number, as a shell reports a death by that signal.
+  const endChromium = () => {
+    try {
+      process.kill(-chromium.pid, "SIGKILL");  // its whole process group: the browser and its children
+    } catch {}
+    fs.rmSync(profile, { recursive: true, force: true });
+  };
+  for (const [sig, num] of [["SIGINT", 2], ["SIGTERM", 15], ["SIGHUP", 1]])
+    process.once(sig, () => {
+      endChromium();
+      for (const f of [job.output, job.mask]) fs.rmSync(`${f}.tmp-${process.pid}`, { force: true });
+      process.exit(128 + num);
+    });
+
   const outcome = await done;
   clearTimeout(timer);
   chromium.removeAllListeners("exit");
-  try {
-    process.kill(-chromium.pid, "SIGKILL");  // its whole process group: the browser and its children
-  } catch {}
+  endChromium();
   server.close();
   server.closeAllConnections?.();
-  fs.rmSync(profile, { recursive: true, force: true });
 
   const tail = () => (log.length ? ` (the page logged: ${log.slice(-3).join(" | ").replace(/\s+/g, " ").slice(0, 600)})` : "");
   if (outcome.timeout)
