@@ -125,7 +125,7 @@ async function run(jobPath) {
   const copy = sceneCopy(job);
   const module = checkPackage();
   if (!fs.existsSync(CHROMIUM)) throw new ViewerError(`${CHROMIUM} does not exist; install Debian's chromium (scripts/setup.sh --tests) or set GLTF_VIEWER_CHROMIUM`);
-  // The viewer's full IBL prefilter took 373 s on the 2-core machine at load 10 (README.md).
+  // The viewer's full IBL prefilter took 357 s on the 2-core machine at load 10-14 (README.md).
   const timeoutS = Number(process.env.GLTF_VIEWER_TIMEOUT_S ?? (job.ibl ? 1200 : 300));
   if (!(timeoutS > 0)) throw new JobError(`GLTF_VIEWER_TIMEOUT_S=${process.env.GLTF_VIEWER_TIMEOUT_S}: not a number > 0; give seconds`);
   const verbose = process.env.GLTF_VIEWER_VERBOSE === "1";
