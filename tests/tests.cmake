@@ -66,6 +66,7 @@ if(TARGET layout_export_gpu_test)  # every shipped layout, in two halves that ct
 endif()
 gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/brdf_layers_test LABELS unit DEPS gbl_shading)  # clear coat, sheen, anisotropy vs the specifications
+gbl_test(shading/brdf_gltf_test LABELS unit DEPS gbl_shading)  # --brdf gltf vs glTF 2.0 Appendix B, written from the text
 gbl_test(shading/sheen_albedo_test LABELS unit DEPS gbl_shading)  # the sheen albedo table vs brute force
 gbl_test(shading/ibl_layers_test LABELS unit DEPS gbl_shading)  # the layered ground truth vs a quadrature
 gbl_test(shading/ibl_math_test LABELS unit DEPS gbl_shading)
@@ -74,6 +75,7 @@ gbl_test(shading/brdf_lut_test LABELS unit DEPS gbl_shading gbl_base)
 gbl_test(shading/ibl_gpu_test LABELS gpu DEPS gbl_render gbl_shading gbl_test_support_vk)
 gbl_test(shading/ibl_ground_truth_test LABELS gpu DEPS gbl_render gbl_shading gbl_test_support_vk)
 gbl_test(shading/ibl_layers_gpu_test LABELS gpu DEPS gbl_shading gbl_test_support_vk)  # the layers' GLSL vs their C++ twins
+gbl_test(shading/brdf_gltf_gpu_test LABELS gpu DEPS gbl_shading gbl_test_support_vk)  # --brdf gltf GLSL vs its C++ twin
 gbl_test(render/render_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
 gbl_test(render/layers_render_test LABELS gpu DEPS gbl_render gbl_test_support_vk)  # the layers in every IBL mode, dropped by a layout, the forward mask
 gbl_test(render/texture_mip_cache_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
