@@ -4,7 +4,8 @@
 # Usage: scripts/setup.sh [--tests | --sanitize] [--target T]... [build-dir [extra cmake args...]]
 #   default:    what building and running `gbufferlab` needs; Release; only the gbufferlab target;
 #   --tests:    also what the tests and benchmarks need (GoogleTest, Google Benchmark, Vulkan's
-#               validation layers, test models, Chromium for the report's browser test); all targets;
+#               validation layers, test models, Chromium for the report's browser test, Node and
+#               the pinned glTF Sample Viewer for tools/gltf-viewer); all targets;
 #   --sanitize: the sanitizer build (default folder build-asan): clang at -O1 with line tables,
 #               ASan + UBSan, the unit tests only, and the libFuzzer targets (tests/fuzz/fuzz.cmake);
 #   --target T: build T (repeatable) instead of the mode's default targets.
@@ -33,8 +34,26 @@ if [ "$mode" != run ]; then
     chromium
   )
 fi
+# Node and npm for tools/gltf-viewer (the Khronos glTF Sample Viewer, the cross-check's independent
+# renderer): Debian's nodejs and npm; npm only when no npm command exists, since NodeSource's nodejs
+# package bundles its own npm and Debian's npm package would clash with its files.
+if [ "$mode" = tests ]; then
+  packages+=(nodejs)
+  command -v npm >/dev/null || packages+=(npm)
+fi
 [ "$mode" = sanitize ] && packages+=(clang libclang-rt-14-dev)
 install_missing "${packages[@]}"
+# The Sample Viewer's npm package at the version package-lock.json pins (integrity hash included),
+# installed only when absent or of another version: quiet and fast when present.
+if [ "$mode" = tests ]; then
+  viewer_dir=tools/gltf-viewer
+  want_viewer=$(node -p "require('./$viewer_dir/package.json').dependencies['@khronosgroup/gltf-viewer']")
+  have_viewer=$(node -p "require('./$viewer_dir/node_modules/@khronosgroup/gltf-viewer/package.json').version" 2>/dev/null || true)
+  if [ "$have_viewer" != "$want_viewer" ]; then
+    echo "${0##*/}: installing @khronosgroup/gltf-viewer $want_viewer into $viewer_dir"
+    npm ci --prefix "$viewer_dir" --no-audit --no-fund --loglevel=error >/dev/null
+  fi
+fi
 
 default_dir=build
 [ "$mode" = sanitize ] && default_dir=build-asan
