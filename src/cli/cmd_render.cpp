@@ -50,6 +50,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         {"brdf", "NAME", "the direct lights' BRDF: ue4 (default: Smith-Schlick with UE4's k, Karis' Fresnel) or gltf (the glTF 2.0 specification's, Appendix B, as the Khronos glTF Sample Viewer computes it)"},
         {"no-ibl", "", "punctual lights only: no image-based light (the environment's radiance scaled by 0, background black)"},
         {"viewer-job", "FILE", "also write the Khronos glTF Sample Viewer job (tools/gltf-viewer/README.md) of this render to FILE, and the coverage mask reference.mask.pgm (needs --scene)"},
+        {"texture-base-level", "", "sample every material texture at its base level only (bilinear, no mips), as a glTF sampler with minFilter LINEAR: a cross-check without filtering differences"},
         {"band-rows", "N", "render N rows of the frame at a time (less memory at large sizes; the same image, bit for bit); default: all"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
@@ -88,8 +89,9 @@ int runRenderCommand(const std::vector<std::string>& args) {
     // allocated: in bands only the HDR image and its PNG are frame-sized.
     requireRenderMemory(width, height, bandRows >= height ? 0u : bandRows, "--size");
 
-    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
+    SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
                                                 GltfLoadOptions{parsed.has("allow-outside-scene")});
+    inputs.scene.textureBaseLevelOnly = parsed.has("texture-base-level");
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
     Renderer renderer(ctx, inputs.scene, inputs.environment);
     RenderSettings settings;

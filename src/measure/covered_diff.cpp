@@ -53,13 +53,45 @@ std::vector<uint8_t> readCoverageMask(const std::string& path, int width, int he
     return mask;
 }
 
+double boxedRelativeRmse(const Image& reference, const Image& test, const std::vector<uint8_t>& referenceMask,
+                         const std::vector<uint8_t>& testMask, int box, size_t* blocks) {
+    const int w = reference.width, h = reference.height;
+    double sumSq = 0.0, sumY = 0.0;
+    size_t n = 0;
+    for (int by = 0; by + box <= h; by += box)
+        for (int bx = 0; bx + box <= w; bx += box) {
+            bool whole = true;
+            double r[3] = {0, 0, 0}, t[3] = {0, 0, 0};
+            for (int y = by; y < by + box && whole; ++y)
+                for (int x = bx; x < bx + box; ++x) {
+                    const size_t i = size_t(y) * size_t(w) + size_t(x);
+                    if (!referenceMask[i] || !testMask[i]) {
+                        whole = false;
+                        break;
+                    }
+                    for (int c = 0; c < 3; ++c) {
+                        r[c] += reference.at(x, y, c);
+                        t[c] += test.at(x, y, c);
+                    }
+                }
+            if (!whole) continue;
+            const double area = double(box) * double(box);
+            for (int c = 0; c < 3; ++c) sumSq += (t[c] - r[c]) * (t[c] - r[c]) / (area * area);
+            sumY += (0.2126 * r[0] + 0.7152 * r[1] + 0.0722 * r[2]) / area;
+            ++n;
+        }
+    if (blocks) *blocks = n;
+    if (n == 0 || sumY <= 0.0) return 0.0;
+    return std::sqrt(sumSq / (3.0 * double(n))) / (sumY / double(n));
+}
+
 CoveredDiff coveredDiff(const Image& reference, const Image& test, const std::vector<uint8_t>& referenceMask,
                         const std::vector<uint8_t>& testMask, double tolerance) {
     const int w = reference.width, h = reference.height;
     CoveredDiff d;
     d.tolerance = tolerance;
     std::vector<uint8_t> both(size_t(w) * size_t(h), 0);
-    double sumY = 0.0;
+    double sumY = 0.0, sumTestY = 0.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * size_t(w) + size_t(x);
@@ -69,10 +101,12 @@ CoveredDiff coveredDiff(const Image& reference, const Image& test, const std::ve
             if (both[i]) {
                 ++d.covered;
                 sumY += luminance(reference, x, y);
+                sumTestY += luminance(test, x, y);
             }
         }
     if (d.covered == 0) return d;
     d.meanLuminance = sumY / double(d.covered);
+    d.meanTestLuminance = sumTestY / double(d.covered);
     const double floor = 0.01 * d.meanLuminance;
     d.error = Image(w, h, 1);
     d.beyondMask.assign(both.size(), 0);

@@ -7,6 +7,7 @@
 //
 // Over the N covered pixels, colour channels c of reference r and test t (linear):
 //   meanLuminance   mean over covered pixels of the reference's luminance Y (Rec. 709 weights)
+//   meanTestLuminance  the same of the test
 //   rmse            sqrt(sum (t - r)^2 / 3N)
 //   relativeRmse    rmse / meanLuminance  (the error as a fraction of the image's mean level)
 //   maxAbs          max |t - r|
@@ -31,6 +32,7 @@ std::vector<uint8_t> readCoverageMask(const std::string& path, int width, int he
 struct CoveredDiff {
     size_t covered = 0, onlyReference = 0, onlyTest = 0, beyond = 0;
     double tolerance = 0.0;
+    double meanTestLuminance = 0.0;  // the test's, over the same pixels: a uniform scale shows here
     double meanLuminance = 0.0, rmse = 0.0, relativeRmse = 0.0, maxAbs = 0.0, maxRelative = 0.0;
     int worstX = -1, worstY = -1;  // the maxRelative pixel
     FlipStats flip;
@@ -38,6 +40,14 @@ struct CoveredDiff {
     Image flipMap;   // FLIP, 0 where uncovered
     std::vector<uint8_t> beyondMask;  // 1 where beyond
 };
+
+// The relative RMSE of the two images' means over box x box blocks that both masks cover whole:
+// what is left of the difference once detail finer than the block is averaged away. A texture
+// filtering difference (another mip, another filter footprint) moves a pixel about its
+// neighbourhood's mean and shrinks under the average; a shading difference (a BRDF term, a light
+// unit, a colour-space step) does not. Also returns the blocks counted.
+double boxedRelativeRmse(const Image& reference, const Image& test, const std::vector<uint8_t>& referenceMask,
+                         const std::vector<uint8_t>& testMask, int box, size_t* blocks = nullptr);
 
 // reference, test: 3 or 4 channels (alpha ignored), the same size; masks 0/1 of that size.
 CoveredDiff coveredDiff(const Image& reference, const Image& test, const std::vector<uint8_t>& referenceMask,

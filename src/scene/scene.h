@@ -168,6 +168,11 @@ struct Scene {
     std::vector<Light> lights;
     Camera camera;
     Bounds bounds;  // world-space bounds of all draws
+    // Sample every material texture at its base level only (bilinear, no mips): what a glTF
+    // sampler with minFilter LINEAR asks for. render --texture-base-level sets it, so that a
+    // cross-check against another renderer (docs/crosscheck.md) sees no mip or filter footprint
+    // difference; off, textures are trilinear (gpu_scene.cpp).
+    bool textureBaseLevelOnly = false;
 };
 
 // Loads a .gltf (external or embedded buffers) or .glb file. Throws UserError naming the file
