@@ -18,6 +18,7 @@ gbl_test(image/tone_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/auto_exposure_test LABELS unit DEPS gbl_image)  # UE4's histogram auto-exposure
 gbl_test(image/color_map_test LABELS unit DEPS gbl_image)
 gbl_test(image/png_writer_test LABELS unit DEPS gbl_image)
+gbl_test(image/pfm_io_test LABELS unit DEPS gbl_image gbl_measure)  # the Sample Viewer's float output; diff's kind rule
 gbl_test(image/temporal_resolve_test LABELS unit DEPS gbl_image gbl_encoding)  # compare --temporal: resolve, Halton, dithers over frames
 gbl_test(gpu/shader_compiler_test LABELS unit DEPS gbl_gpu)
 gbl_test(gpu/shader_cache_test LABELS unit DEPS gbl_gpu)
@@ -116,6 +117,12 @@ gbl_test(report/report_atlas_test LABELS unit DEPS gbl_report)
 gbl_test(report/temporal_report_test LABELS unit DEPS gbl_report)  # --temporal N in report.json / csv / html
 gbl_test(report/report_browser_test LABELS unit DEPS gbl_report)
 gbl_test(report/error_images_test LABELS unit DEPS gbl_report)
+# tools/gltf-viewer: the Khronos glTF Sample Viewer in headless Chromium (issue 45), held to the glTF
+# specification's BRDF; skipped, like report_browser_test, where Chromium, Node or the package is absent.
+gbl_test(tools/gltf_viewer_test LABELS unit DEPS gbl_image nlohmann_json::nlohmann_json)
+if(TARGET gltf_viewer_test)
+  target_compile_definitions(gltf_viewer_test PRIVATE GBL_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
+endif()
 gbl_test(search/layout_packer_test LABELS unit DEPS gbl_search gbl_measure)
 gbl_test(search/cpu_reshade_test LABELS unit DEPS gbl_search)
 gbl_test(search/layout_search_test LABELS unit DEPS gbl_search)
@@ -150,7 +157,7 @@ include(tests/layering/layering.cmake)
 foreach(test_cost IN ITEMS gpu_cpu_bits_test:300 layout_mutants_test:240 layout_export_gpu_test_2:200
                            cpu_codec_test:200 layout_export_gpu_test:110 encodings_fast_test:60 cli_test:50
                            compare_bands_cli_test:45 layout_export_test:45 render_test:40 ibl_gpu_test:40
-                           report_browser_test:35)
+                           report_browser_test:35 gltf_viewer_test:25)
   string(REPLACE ":" ";" test_cost ${test_cost})
   list(GET test_cost 0 test_name)
   list(GET test_cost 1 cost)

@@ -70,7 +70,7 @@ int runDiffCommand(const std::vector<std::string>& args) {
     if (parsed.has("help")) {
         std::printf("%s", formatHelp("gbufferlab diff REFERENCE TEST [--json] [--out MAP]",
                                      "Compares TEST with REFERENCE: RMSE, PSNR, max |difference| and FLIP.\n"
-                                     "PNG/JPEG inputs (8 or 16 bits, read at full precision) are sRGB and get LDR-FLIP (PSNR peak 1); EXR/HDR inputs "
+                                     "PNG/JPEG inputs (8 or 16 bits, read at full precision) are sRGB and get LDR-FLIP (PSNR peak 1); EXR/HDR/PFM inputs "
                                      "are linear and get\nHDR-FLIP (PSNR peak = the reference's largest value). Both "
                                      "files must have the same kind, size and\nchannels, and finite values (a NaN or "
                                      "infinity is refused, naming its pixel). A pair whose comparison\nwould not fit "

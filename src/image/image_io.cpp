@@ -16,6 +16,7 @@
 #include "exr_probe.h"
 #include "file_io.h"
 #include "memory_budget.h"
+#include "pfm_io.h"
 #include "png_writer.h"
 #include "radiance_check.h"
 
@@ -213,9 +214,17 @@ ImageFileInfo probeImageFile(const std::string& path) {
         info.hdr = true;
         return info;
     }
+    if (ext == ".pfm") {
+        const PfmHeader p = probePfm(path);
+        info.width = p.width;
+        info.height = p.height;
+        info.channels = p.channels;
+        info.hdr = true;
+        return info;
+    }
     if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".hdr")
         throwUserError(escapeText(path) + ": unknown image type '" + escapeText(ext) +
-                       "'; give a .png, .jpg, .exr or .hdr file");
+                       "'; give a .png, .jpg, .exr, .hdr or .pfm file");
     const auto bytes = readWholeFile(path);
     const bool hdr = ext == ".hdr";
     if (hdr != bool(stbi_is_hdr_from_memory(bytes.data(), int(bytes.size()))))

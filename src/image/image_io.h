@@ -10,13 +10,13 @@
 namespace gbl {
 
 // What an image file's header says, read without decoding its pixels, by extension: .png,
-// .jpg/.jpeg, .hdr, .exr (others are a UserError). The readers below hold the same numbers
+// .jpg/.jpeg, .hdr, .exr, .pfm (pfm_io.h; others are a UserError). The readers below hold the same numbers
 // against the file and the memory budget (memory_budget.h) before they allocate; a caller that
 // needs more than the decoded image (diff) checks its own estimate from these first.
 struct ImageFileInfo {
     int width = 0, height = 0;
-    int channels = 0;   // as stored: PNG/JPEG 1-4, HDR 3, EXR the file's channel count
-    bool hdr = false;   // linear float (EXR, HDR) rather than 8-bit sRGB (PNG, JPEG)
+    int channels = 0;   // as stored: PNG/JPEG 1-4, HDR 3, EXR the file's channel count, PFM 1 or 3
+    bool hdr = false;   // linear float (EXR, HDR, PFM) rather than 8-bit sRGB (PNG, JPEG)
 };
 ImageFileInfo probeImageFile(const std::string& path);
 // The same from a PNG, JPEG or Radiance .hdr file's bytes (a glTF image); nullopt when stb_image

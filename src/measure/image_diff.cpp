@@ -7,6 +7,7 @@
 
 #include "error.h"
 #include "image_io.h"
+#include "pfm_io.h"
 #include "metrics.h"
 
 namespace gbl {
@@ -25,7 +26,7 @@ std::string shortNumber(double v) {
     return buf;
 }
 
-const char* kindName(DiffKind k) { return k == DiffKind::Ldr ? "sRGB (PNG/JPEG)" : "HDR float (EXR/HDR)"; }
+const char* kindName(DiffKind k) { return k == DiffKind::Ldr ? "sRGB (PNG/JPEG)" : "HDR float (EXR/HDR/PFM)"; }
 
 }  // namespace
 
@@ -68,7 +69,15 @@ DiffInput readDiffInput(const std::string& path) {
         in.fileChannels = 3;
         return in;
     }
-    throwUserError(path + ": unknown image type '" + ext + "'; give a .png, .jpg, .exr or .hdr file");
+    // A PFM (tools/gltf-viewer's output, the Sample Viewer's frame) is linear float like EXR.
+    if (ext == ".pfm") {
+        in.kind = DiffKind::Hdr;
+        in.image = readPfm(path);
+        in.fileChannels = in.image.channels;
+        in.formatHasNoAlpha = true;
+        return in;
+    }
+    throwUserError(path + ": unknown image type '" + ext + "'; give a .png, .jpg, .exr, .hdr or .pfm file");
 }
 
 std::string diffPrecision(const DiffInput& reference, const DiffInput& test) {
@@ -107,14 +116,15 @@ DiffResult diffImages(const DiffInput& reference, const DiffInput& test, const s
                       const std::string& testPath, const DiffOptions& options) {
     if (reference.kind != test.kind)
         throwUserError(testPath + ": is " + kindName(test.kind) + " but the reference " + referencePath + " is " +
-                       kindName(reference.kind) + "; compare like with like (PNG with PNG, EXR with EXR)");
+                       kindName(reference.kind) + "; compare like with like (PNG with PNG, EXR with EXR or PFM)");
     const Image& r = reference.image;
     const Image& t = test.image;
     if (r.width != t.width || r.height != t.height)
         throwUserError(testPath + ": is " + std::to_string(t.width) + "x" + std::to_string(t.height) +
                        " but the reference " + referencePath + " is " + std::to_string(r.width) + "x" +
                        std::to_string(r.height) + "; give images of the same size");
-    if (reference.fileChannels != test.fileChannels || r.channels != t.channels)
+    const bool alphaCounts = !reference.formatHasNoAlpha && !test.formatHasNoAlpha;
+    if ((alphaCounts && reference.fileChannels != test.fileChannels) || r.channels != t.channels)
         throwUserError(testPath + ": has " + std::to_string(test.fileChannels) + " channels but the reference " +
                        referencePath + " has " + std::to_string(reference.fileChannels) +
                        "; give images with the same channels");

@@ -44,6 +44,10 @@ struct DiffInput {
     DiffKind kind = DiffKind::Ldr;
     Image image;        // LDR: sRGB-encoded [0,1]; HDR: linear. Colour channels only (1 or 3).
     int fileChannels = 0;  // channels in the file (alpha included), for the like-for-like check
+    // The format stores no alpha (PFM: 1 or 3 channels). Its colour channels are then compared
+    // with the other file's whatever alpha that one has: an RGBA EXR reference (compare's, alpha =
+    // coverage) against the glTF Sample Viewer's RGB PFM (tools/gltf-viewer) is like for like.
+    bool formatHasNoAlpha = false;
     int bitsPerSample = 0;  // LDR: 8 or 16, the precision its values keep; HDR: 0 (float)
 };
 // How precise the numbers of a pair are: "8-bit", "16-bit", "8-bit reference, 16-bit test" (LDR),

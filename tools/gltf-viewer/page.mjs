@@ -6,15 +6,15 @@
 //   pow(color * u_Exposure, 1/2.2) (:3816 tonemappingShader, linearTosRGB) unless the fragment
 //   shader has LINEAR_OUTPUT, which writes color.rgb as is (:3800 pbrShader, "#ifdef
 //   LINEAR_OUTPUT g_finalColor=vec4(color.rgb,baseColor.a)"; the viewer itself sets it for its
-//   transmission pre-pass, :4328). The page appends LINEAR_OUTPUT to every shader's defines by
-//   wrapping renderer.pushFragParameterDefines (:4610), so no 2.2 power is applied and none has to
+//   transmission pre-pass, :4330). The page appends LINEAR_OUTPUT to every shader's defines by
+//   wrapping renderer.pushFragParameterDefines (:4643), so no 2.2 power is applied and none has to
 //   be undone; render.mjs multiplies by the exposure.
-// - Float target: renderFrame draws to the default framebuffer (it binds null, :4268 and
-//   clearFrame :4111). For that one call the page's bindFramebuffer maps null to its RGBA32F
-//   framebuffer (EXT_color_buffer_float); the IBL prefilter's own binds (:19520) are untouched.
+// - Float target: renderFrame draws to the default framebuffer (it binds null, :4263 and
+//   clearFrame :4112). For that one call the page's bindFramebuffer maps null to its RGBA32F
+//   framebuffer (EXT_color_buffer_float); the IBL prefilter's own binds (filterAll, :19537) are untouched.
 // - Sheen albedo: the viewer creates the u_SheenELUT texture from assets/images/lut_sheen_E.png but
-//   marks it initialized before any upload (:20323 "sheenELut.initialized = true"), so setTexture
-//   (:2176) never uploads the PNG and the shader reads an empty texture (E = 0: no albedo
+//   marks it initialized before any upload (:20322 "sheenELut.initialized = true"), so setTexture
+//   (:2178) never uploads the PNG and the shader reads an empty texture (E = 0: no albedo
 //   scaling under sheen); KhronosGroup/glTF-Sample-Viewer#606, fixed upstream after 1.1.0
 //   (glTF-Sample-Renderer#22). The page clears that flag so the first draw uploads the table
 //   render.mjs serves (sheen_lut.mjs).

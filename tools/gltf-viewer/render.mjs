@@ -25,11 +25,11 @@ const CHROMIUM = process.env.GLTF_VIEWER_CHROMIUM || "/usr/bin/chromium";
 // The viewer's IBL prefilter sizes (iblSampler's constructor, gltf-viewer.module.js:19239-19245):
 // a 256^2 cube, 5 GGX/Charlie mips (lowestMipLevel 4), 1024/2048/64 samples, two 1024^2 LUTs of 512
 // samples a texel; about 80 s on SwiftShader. The package has no setter (the sampler is a local of
-// _loadEnvironmentFromPanorama, :20164), so the served module reads them from a global the page
+// _loadEnvironmentFromPanorama, :20162), so the served module reads them from a global the page
 // sets. With "ibl": null nothing the prefilter makes is sampled (USE_IBL is off, the LUTs feed
-// only the IBL functions), so the smallest sizes its loops allow are used: a 32^2 cube (2 levels
-// + 1 above lowestMipLevel 4; 16^2 would give one level and a roughness of 0/0, :19685), 16
-// samples, 16^2 LUTs.
+// only the IBL functions), so the smallest sizes its loops allow are used: a 32^2 cube
+// (mipmapLevels = log2(32) + 1 - lowestMipLevel 4 = 2; a 16^2 cube gives 1, and the GGX loop's
+// roughness = level / (mipmapLevels - 1) becomes 0/0, :19665), 16 samples, 16^2 LUTs.
 const IBL_SAMPLER_SOURCE = `        this.textureSize = 256;
         this.ggxSampleCount = 1024;
         this.lambertianSampleCount = 2048;
@@ -211,15 +211,28 @@ async function run(jobPath) {
   chromium.on("exit", (code, signal) => settle({ error: `Chromium exited (${signal ?? code}) before the page reported` }));
   const timer = setTimeout(() => settle({ timeout: true }), timeoutS * 1000);
 
+  // Chromium runs in its own process group (detached), so a signal to this process does not reach
+  // it: on SIGINT/SIGTERM/SIGHUP the group is ended and the profile removed here, then this
+  // process exits 128 + the signal's number, as a shell reports a death by that signal.
+  const endChromium = () => {
+    try {
+      process.kill(-chromium.pid, "SIGKILL");  // its whole process group: the browser and its children
+    } catch {}
+    fs.rmSync(profile, { recursive: true, force: true });
+  };
+  for (const [sig, num] of [["SIGINT", 2], ["SIGTERM", 15], ["SIGHUP", 1]])
+    process.once(sig, () => {
+      endChromium();
+      for (const f of [job.output, job.mask]) fs.rmSync(`${f}.tmp-${process.pid}`, { force: true });
+      process.exit(128 + num);
+    });
+
   const outcome = await done;
   clearTimeout(timer);
   chromium.removeAllListeners("exit");
-  try {
-    process.kill(-chromium.pid, "SIGKILL");  // its whole process group: the browser and its children
-  } catch {}
+  endChromium();
   server.close();
   server.closeAllConnections?.();
-  fs.rmSync(profile, { recursive: true, force: true });
 
   const tail = () => (log.length ? ` (the page logged: ${log.slice(-3).join(" | ").replace(/\s+/g, " ").slice(0, 600)})` : "");
   if (outcome.timeout)
