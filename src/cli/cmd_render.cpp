@@ -7,6 +7,7 @@
 #include "cli_args.h"
 #include "commands.h"
 #include "error.h"
+#include "forward_mask.h"
 #include "file_io.h"
 #include "gbuffer_wiring.h"
 #include "image_io.h"
@@ -136,7 +137,15 @@ int runRenderCommand(const std::vector<std::string>& args) {
         job.ibl = job.ibl && !job.environment.empty();  // the built-in sky is no file the viewer can load
         job.output = "viewer.pfm";
         writeFileAtomic(parsed.get("viewer-job"), viewerJobJson(job, inputs.scene));
-        writeCoverageMask((outDir / "reference.mask.pgm").string(), out.hdr);
+        // Pixels a deferred renderer draws forward (transmission, volume: forward_mask.h) or that the
+        // viewer blends (alphaMode BLEND) are not like for like: left out of the mask.
+        Scene notLikeForLike = inputs.scene;
+        for (Material& m : notLikeForLike.materials)
+            if (m.alphaBlend && m.forward.empty()) m.forward = "alphaMode BLEND";
+        RenderSettings maskSettings = settings;
+        maskSettings.bandFirstRow = maskSettings.bandRows = 0;
+        const std::vector<uint8_t> excluded = renderForwardMask(renderer, notLikeForLike, maskSettings);
+        writeCoverageMask((outDir / "reference.mask.pgm").string(), out.hdr, excluded);
     }
     std::printf("rendered %s under %s on %s at %ux%u\n  G-buffer pass %.1f ms, lighting pass %.1f ms\n  wrote %s\n",
                 inputs.scene.source.c_str(), inputs.environment.source.c_str(), ctx.info.name.c_str(), width, height,

@@ -59,11 +59,14 @@ std::string viewerJobJson(const ViewerJob& job, const Scene& scene) {
     return out.dump(2) + "\n";
 }
 
-void writeCoverageMask(const std::string& path, const Image& hdr) {
+void writeCoverageMask(const std::string& path, const Image& hdr, const std::vector<uint8_t>& excluded) {
     std::string pgm = "P5\n" + std::to_string(hdr.width) + " " + std::to_string(hdr.height) + "\n255\n";
     pgm.reserve(pgm.size() + size_t(hdr.width) * size_t(hdr.height));
     for (int y = 0; y < hdr.height; ++y)
-        for (int x = 0; x < hdr.width; ++x) pgm.push_back(hdr.at(x, y, 3) > 0.5f ? char(255) : char(0));
+        for (int x = 0; x < hdr.width; ++x) {
+            const bool out = !excluded.empty() && excluded[size_t(y) * size_t(hdr.width) + size_t(x)] != 0;
+            pgm.push_back(hdr.at(x, y, 3) > 0.5f && !out ? char(255) : char(0));
+        }
     writeFileAtomic(path, pgm);
 }
 

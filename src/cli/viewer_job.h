@@ -5,6 +5,7 @@
 // coverage mask in the format that tool writes its own.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "image.h"
 #include "scene.h"
@@ -26,7 +27,8 @@ struct ViewerJob {
 std::string viewerJobJson(const ViewerJob& job, const Scene& scene);
 
 // A binary PGM (P5, maxval 255, rows top to bottom) of the HDR image's alpha: 255 where the
-// lighting pass shaded geometry (alpha 1), 0 where it drew the environment (alpha 0).
-void writeCoverageMask(const std::string& path, const Image& hdr);
+// lighting pass shaded geometry (alpha 1), 0 where it drew the environment (alpha 0) or where
+// `excluded` (one byte a pixel, or empty) is non-zero.
+void writeCoverageMask(const std::string& path, const Image& hdr, const std::vector<uint8_t>& excluded = {});
 
 }  // namespace gbl

@@ -106,6 +106,9 @@ struct Material {
     // forward, after the G-buffer's lighting; gbufferlab masks their pixels out of every metric and
     // counts them (`forward` names the extension).
     std::string forward;
+    // alphaMode BLEND, rendered opaque here (scene_gltf_materials.cpp); the cross-check leaves its
+    // pixels out, as the Sample Viewer blends them (docs/crosscheck.md).
+    bool alphaBlend = false;
     // The layers the material has (kLayer* bits): a factor above 0 enables each.
     int layers() const;
     bool doubleSided = false;
