@@ -154,6 +154,7 @@ gbl_test(cli/diff_bounds_cli_test LABELS unit DEPS gbufferlab gbl_measure gbl_im
 gbl_test(cli/input_bounds_cli_test LABELS unit DEPS gbufferlab gbl_render gbl_image)
 gbl_test(cli/run_names_cli_test LABELS unit DEPS gbufferlab gbl_base)
 gbl_test(cli/messages_cli_test LABELS unit DEPS gbufferlab gbl_base)
+gbl_test(cli/viewer_job_cli_test LABELS unit DEPS gbufferlab gbl_image)  # render --viewer-job, crossdiff
 gbl_test(cli/outputs_cli_test LABELS unit DEPS gbufferlab gbl_image)  # special files, --out '', a failed stdout
 include(tests/layering/layering.cmake)
 
