@@ -164,7 +164,7 @@ include(tests/layering/layering.cmake)
 foreach(test_cost IN ITEMS gpu_cpu_bits_test:300 layout_mutants_test:240 layout_export_gpu_test_2:200
                            cpu_codec_test:200 layout_export_gpu_test:110 encodings_fast_test:60 cli_test:50
                            compare_bands_cli_test:45 layout_export_test:45 render_test:40 ibl_gpu_test:40
-                           report_browser_test:35 gltf_viewer_test:25 crosscheck_test:20)
+                           report_browser_test:35 gltf_viewer_test:26 crosscheck_test:10)
   string(REPLACE ":" ";" test_cost ${test_cost})
   list(GET test_cost 0 test_name)
   list(GET test_cost 1 cost)

@@ -19,6 +19,7 @@
 #include "image_diff.h"
 #include "image_io.h"
 #include "measured_run.h"
+#include "pfm_io.h"
 
 namespace fs = std::filesystem;
 
@@ -143,6 +144,26 @@ TEST(DiffBounds, JpegAndRadianceHeadersAreCheckedBeforeDecoding) {
     expectBoundedRefusal(diff({"claim.jpg", "claim.jpg"}), {"claim.jpg", "65000x65000", "GBL_MEMORY_BUDGET"});
     writeFile(at("claim.hdr"), "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 60000 +X 60000\n" + std::string(64, '\x02'));
     expectBoundedRefusal(diff({"claim.hdr", "claim.hdr"}), {"claim.hdr"});
+}
+
+// The PFM a glTF Sample Viewer render writes (tools/gltf-viewer): a header claiming more than
+// the file holds, and a frame beyond the budget, are refused from the header; an RGBA EXR
+// reference against an RGB PFM compares.
+TEST(DiffBounds, PfmHeadersAreCheckedBeforeReading) {
+    writeFile(at("claim.pfm"), "PF\n60000 60000\n-1.0\n" + std::string(64, '\0'));
+    const MeasuredRun lie = diff({"claim.pfm", "claim.pfm"}, {});
+    expectBoundedRefusal(lie, {"claim.pfm", "truncated PFM", "60000x60000x3"});
+    std::printf("60000x60000 PFM claim refused: %.1f MiB, %.3f s\n", lie.peakMiB, lie.seconds);
+    gbl::writePfm(at("wide.pfm"), gbl::Image(2048, 1024, 3, 0.25f));
+    expectBoundedRefusal(diff({"wide.pfm", "wide.pfm"}, {{"GBL_MEMORY_BUDGET", "64M"}}),
+                         {"wide.pfm", "2048x1024", "GBL_MEMORY_BUDGET=64M"});
+    gbl::writeExr(at("ref_rgba.exr"), gbl::Image(64, 32, 4, 0.5f));
+    gbl::writePfm(at("viewer.pfm"), gbl::Image(64, 32, 3, 0.5f));
+    const MeasuredRun same = diff({"ref_rgba.exr", "viewer.pfm", "--json"});
+    ASSERT_EQ(same.result.exitCode, 0) << same.result.err;
+    const auto j = nlohmann::json::parse(same.result.out);
+    EXPECT_EQ(j["kind"], "hdr");
+    EXPECT_EQ(j["max_abs"], 0.0);
 }
 
 // One NaN in the test image: refused, naming the file, the pixel, the channel and the count

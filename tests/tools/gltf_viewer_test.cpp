@@ -15,11 +15,12 @@
 //     force: this fails if the viewer renders sheen without the table (its 1.1.0 loader never
 //     uploads it: E = 0, 18 % brighter) or with a wrong one; tolerance 0.5 % (an 8-bit entry
 //     rounded the other way moves E by 1/255; measured: 2.8e-5 at worst over 484 pixels);
+//   - a point light and a spot light with a range match KHR_lights_punctual's falloffs;
 //   - the served table itself (sheen_lut.mjs) against that brute-force integral;
 //   - background pixels are 0 and masked out; bad job files give one line and exit 2, a frame
 //     that does not come within GLTF_VIEWER_TIMEOUT_S one line and exit 4, and no output.
 // Skipped when Chromium, Node or the pinned npm package is absent (scripts/setup.sh --tests
-// installs them). 17 s on the 2-core machine (ctest -R gltf_viewer_test, load 8).
+// installs them). 26 s on the 2-core machine at load 10 (build/gltf_viewer_test, 5 renders).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -251,6 +252,85 @@ TEST(GltfViewer, LambertQuadMatchesTheSpecificationsBrdf) {
     ASSERT_EQ(twice.exitCode, 0) << twice.stderrText;
     const Frame g = readFrame(dir.path);
     for (size_t i = 0; i < f.rgb.pixels.size(); ++i) ASSERT_EQ(g.rgb.pixels[i], 2.0f * f.rgb.pixels[i]) << i;
+}
+
+// KHR_lights_punctual README: a point or spot light's illuminance at distance d is
+// intensity / d^2, windowed by max(min(1 - (d / range)^4, 1), 0) when range > 0 ("Range
+// Property"); a spot's by the squared ramp saturate(cd * scale + offset)^2 with
+// scale = 1 / max(0.001, cos(inner) - cos(outer)), offset = -cos(outer) scale ("Inner and Outer
+// Cone Angles" reference code), cd = the cosine between the spot's direction and light-to-point.
+TEST(GltfViewer, PointAndSpotLightsMatchKhrLightsPunctual) {
+    REQUIRE_VIEWER();
+    TempDir dir;
+    writeQuad(dir.path, baseMaterial());
+    struct Light {
+        std::array<double, 3> pos, dir;
+        double intensity, range, inner, outer;
+        bool spot;
+    };
+    const std::vector<Light> lights = {{{0.5, 0.3, 1.5}, {0, 0, 0}, 2.0, 0.0, 0, 0, false},
+                                       {{-0.3, -0.2, 2.0}, {0.1, 0.05, -1.0}, 4.0, 2.5, 0.15, 0.4, true}};
+    json job = quadJob();
+    job["lights"] = json::array();
+    for (const Light& l : lights) {
+        json j = {{"type", l.spot ? "spot" : "point"}, {"color", {1, 1, 1}}, {"intensity", l.intensity},
+                  {"position", l.pos}, {"range", l.range}};
+        if (l.spot) j.update({{"direction", l.dir}, {"inner_cone_angle", l.inner}, {"outer_cone_angle", l.outer}});
+        job["lights"].push_back(j);
+    }
+    const ToolRun run = render(dir.path, job);
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    const Frame f = readFrame(dir.path);
+    int checked = 0;
+    double worst = 0, worstAbs = 0, peak = 0;
+    std::vector<double> expectedAt(size_t(kW * kH), -1.0);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const auto [px, py] = hit(x, y);
+            if (std::max(std::fabs(px), std::fabs(py)) > 0.9) continue;
+            const std::array<double, 3> v = {-px, -py, kEyeZ};
+            const double vl = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            const double NdotV = v[2] / vl;
+            double expected = 0;
+            for (const Light& l : lights) {
+                const std::array<double, 3> toL = {l.pos[0] - px, l.pos[1] - py, l.pos[2]};
+                const double d = std::sqrt(toL[0] * toL[0] + toL[1] * toL[1] + toL[2] * toL[2]);
+                const std::array<double, 3> L = {toL[0] / d, toL[1] / d, toL[2] / d};
+                double e = l.intensity / (d * d);
+                if (l.range > 0) e *= std::clamp(1 - std::pow(d / l.range, 4), 0.0, 1.0);
+                if (l.spot) {
+                    const double dl = std::sqrt(l.dir[0] * l.dir[0] + l.dir[1] * l.dir[1] + l.dir[2] * l.dir[2]);
+                    const double cd = -(l.dir[0] * L[0] + l.dir[1] * L[1] + l.dir[2] * L[2]) / dl;
+                    const double scale = 1 / std::max(0.001, std::cos(l.inner) - std::cos(l.outer));
+                    e *= std::pow(std::clamp(cd * scale - std::cos(l.outer) * scale, 0.0, 1.0), 2);
+                }
+                std::array<double, 3> h = {L[0] + v[0] / vl, L[1] + v[1] / vl, L[2] + NdotV};
+                const double hl = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+                const double NdotH = h[2] / hl, VdotH = (h[0] * v[0] + h[1] * v[1] + h[2] * v[2]) / (hl * vl);
+                expected += gltfDielectricBrdf(0.5, 1.0, L[2], NdotV, NdotH, VdotH) * e * L[2];
+            }
+            expectedAt[size_t(y) * kW + x] = expected;
+            peak = std::max(peak, expected);
+            ++checked;
+        }
+    // Not float precision here: SwiftShader's normalize and pow are approximate (measured against
+    // this double-precision evaluation: the point light alone 3.3e-4 relative at worst, 1.3e-4
+    // median, always low; the spot's ramp, steep at its cone edge (1 / (cos 0.15 - cos 0.4) = 14.8
+    // per unit of cosine), turns a ~1e-4 error of the cosine into 4e-5 of the peak there). So:
+    // 1e-3 relative plus 1e-4 of the frame's peak. A wrong falloff (1/d instead of 1/d^2, no range
+    // window, a linear instead of squared ramp, a cone twice as wide) is off by far more.
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const double expected = expectedAt[size_t(y) * kW + x];
+            if (expected < 0) continue;
+            const double got = f.rgb.at(x, y, 1);
+            EXPECT_NEAR(got, expected, 1e-3 * expected + 1e-4 * peak) << "pixel " << x << "," << y;
+            worstAbs = std::max(worstAbs, std::fabs(got - expected) / peak);
+            if (expected > 0.05 * peak) worst = std::max(worst, std::fabs(got / expected - 1));
+        }
+    EXPECT_GT(checked, 500);
+    std::printf("point + spot: %d pixels; worst %.2g relative (above 5 %% of the peak), %.2g of the peak absolute\n",
+                checked, worst, worstAbs);
 }
 
 // The 8-bit table as the viewer samples it: texel centres (i + 0.5) / 32, bilinear, clamp to edge.

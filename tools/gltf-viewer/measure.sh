@@ -31,5 +31,5 @@ rc=0
 wait "$pid" || rc=$?
 end=$(date +%s.%N)
 printf 'measure.sh: %s: exit %d, wall %.2f s, peak PSS of the process tree %d MiB\n' "$1" "$rc" \
-  "$(echo "$end - $start" | bc)" $((peak / 1024))
+  "$(awk -v a="$start" -v b="$end" 'BEGIN {print b - a}')" $((peak / 1024))
 exit "$rc"
