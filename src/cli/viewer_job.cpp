@@ -42,8 +42,13 @@ std::string viewerJobJson(const ViewerJob& job, const Scene& scene) {
         }
         lights.push_back(j);
     }
+    // The environment's orientation: gbufferlab reads an equirect texel at u = 0.5 + atan2(x, -z) / 2 pi
+    // (shaders/environment_map.glsl directionToEquirectUv), the viewer at u = 0.5 + atan2(z', x') / 2 pi
+    // of d' = RotY(rotation) d (gltf-viewer.module.js:19227 panoramaToCubeMap dirToUV, :3808
+    // u_EnvRotation, :3779 rotateY): a rotation of -90 degrees makes x' = -z, z' = x, the same texel.
+    // Measured on a metal sphere (docs/crosscheck.md): 8x8 block means 0.43 apart at -90, 6.5 at +90.
     nlohmann::json ibl = nullptr;
-    if (job.ibl) ibl = {{"environment", job.environment}, {"rotation_degrees", 0.0}, {"intensity", 1.0}};
+    if (job.ibl) ibl = {{"environment", job.environment}, {"rotation_degrees", -90.0}, {"intensity", 1.0}};
     const nlohmann::json out = {{"gltf", job.gltf},
                                 {"width", job.width},
                                 {"height", job.height},
