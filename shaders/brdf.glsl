@@ -7,6 +7,12 @@
 //   [Walter07] B. Walter et al., "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007.
 //   [Schlick94] C. Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", 1994.
 //   [Seed]     ../shared/seed/000_807e17994f774a43.txt (digest: ../shared/seed/DIGEST.md).
+//   [glTF-B]   glTF 2.0 Specification, Appendix B "BRDF Implementation" (specification/2.0/
+//              Specification.adoc, sections "Specular BRDF", "Fresnel", "Metal BRDF and Dielectric BRDF").
+//   [Viewer]   the Khronos glTF Sample Viewer, npm @khronosgroup/gltf-viewer 1.1.0, whose shaders
+//              are strings in dist/gltf-viewer.module.js: brdfShader (line 3802: V_GGX, D_GGX,
+//              F_Schlick, BRDF_lambertian), punctualShader (3810: getRangeAttenuation,
+//              getSpotAttenuation), pbrShader (3800: main's punctual loop).
 //
 // Conventions:
 //   roughness is UE4's perceptual roughness in [0,1]; alpha = roughness^2 everywhere.
@@ -31,11 +37,20 @@ const int FRESNEL_KARIS = 1;              // 2^((-5.55473 c - 6.98316) c)
 const int FRESNEL_SEED = 2;               // 2^(-9.60232 c^8 - 8.58092 c)
 const int DIFFUSE_LAMBERT = 0;            // the only diffuse: Lambert
 const int FRESNEL_DEFAULT = FRESNEL_KARIS;
+// The direct lights' BRDF (render/compare --brdf; RenderSettings::brdf, GBL_BRDF_MODEL):
+const int BRDF_UE4 = 0;   // [Karis13]: Smith-Schlick with the analytic k, the Fresnel mode, Lambert added
+const int BRDF_GLTF = 1;  // [glTF-B] as the Khronos glTF Sample Viewer computes it (evaluateDirectLightGltf)
 
 const float kPi = 3.14159265358979323846;
 // evaluateDirectLight clamps roughness to at least this: at roughness 0 the GGX lobe is a delta
 // and D(NoH=1) = 0/0. 0.045 keeps alpha^2 = 4.1e-6 well above float's 1-NoH^2 rounding.
 const float kMinDirectRoughness = 0.045;
+// BRDF_GLTF clamps roughness to at least this instead: [Viewer] clamps none (perceptualRoughness
+// in [0,1]) and its D_GGX is 0/0 where NoH rounds to 1 at roughness 0; 0.001 is its floor of the
+// anisotropic lobe's alpha (brdfShader BRDF_specularGGXAnisotropy: clamp(alphaRoughness, 0.001, 1)).
+// Below roughness ~0.0156 alpha^2 - 1 rounds to -1 in float, so D is alpha^2 / (pi sin^4(theta_h))
+// on both sides and the floor moves only pixels whose NoH rounds to 1.
+const float kMinGltfRoughness = 0.001;
 
 // GGX / Trowbridge-Reitz normal distribution, alpha = roughness^2 [Karis13 eq. 3], [Walter07 eq. 33]:
 //   D(h) = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2);  integral of D(h)(n.h) over the
@@ -177,6 +192,66 @@ vec3 evaluateDirectLight(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 specula
                          float roughness, vec3 lightRadiance) {
     return evaluateDirectLightMode(N, V, L, diffuseColor, specularColor, roughness, lightRadiance,
                                    FRESNEL_DEFAULT);
+}
+
+// ---- BRDF_GLTF: the glTF 2.0 specification's BRDF [glTF-B] as [Viewer] computes it ----
+
+// [glTF-B] "Specular BRDF": the height-correlated Smith visibility of GGX, G / (4 |NoL| |NoV|) =
+// 0.5 / (NoV sqrt(a^2 + (1 - a^2) NoL^2) + NoL sqrt(a^2 + (1 - a^2) NoV^2)), alpha = roughness^2
+// ([Viewer] brdfShader V_GGX, the same sum). Cosines in [0,1]; 0 where both are 0.
+float visSmithGgxCorrelated(float NoV, float NoL, float roughness) {
+    float a = roughness * roughness;
+    float a2 = a * a;
+    float gv = NoL * sqrt(a2 + (1.0 - a2) * NoV * NoV);
+    float gl = NoV * sqrt(a2 + (1.0 - a2) * NoL * NoL);
+    float d = gv + gl;
+    return d > 0.0 ? 0.5 / d : 0.0;
+}
+
+// [glTF-B] "Fresnel", fresnel_mix: the dielectric's Fresnel f0 + (1 - f0)(1 - |VoH|)^5 with f90 = 1,
+// the weight of its specular over its diffuse ([Viewer] pbrShader: F_Schlick(f0_dielectric *
+// specularWeight, f90_dielectric, VdotH), f90_dielectric = 1 without KHR_materials_specular).
+float gltfDielectricFresnel(float dielectricF0, float VoH) {
+    return dielectricF0 + (1.0 - dielectricF0) * fresnelWeightSchlick(VoH);
+}
+
+// Radiance towards V from one punctual light from L under the glTF BRDF [glTF-B]:
+//   material = mix(dielectric_brdf, metal_brdf, metallic),
+//   dielectric_brdf = mix(diffuse_brdf(baseColor), specular_brdf, F_dielectric),
+//   metal_brdf = specular_brdf * F_Schlick(baseColor),  specular_brdf = D Vis (GGX, height-correlated),
+// written with the Surface's diffuseColor = baseColor (1 - metallic) and specularColor =
+// mix(dielectricF0, baseColor, metallic): (1 - m) F_dielectric + m F_metal = F_Schlick(specularColor)
+// (f90 = 1 in both), so material = diffuse_brdf(diffuseColor) (1 - F_dielectric) + D Vis
+// F_Schlick(specularColor) -- the same function, each term as [Viewer] pbrShader rounds it up to
+// the order of the sums. Times lightRadiance (the light's intensity at the point) and NoL.
+// N, V, L unit, V and L pointing away from the surface; roughness floored to kMinGltfRoughness.
+vec3 evaluateDirectLightGltf(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 specularColor, float dielectricF0,
+                             float roughness, vec3 lightRadiance) {
+    float NoL = clamp(dot(N, L), 0.0, 1.0);
+    if (NoL <= 0.0) return vec3(0.0);
+    vec3 Hu = V + L;
+    vec3 H = Hu * inversesqrt(max(dot(Hu, Hu), 1e-12));
+    float NoV = clamp(dot(N, V), 0.0, 1.0);
+    float NoH = clamp(dot(N, H), 0.0, 1.0);
+    float VoH = clamp(dot(V, H), 0.0, 1.0);
+    float r = max(roughness, kMinGltfRoughness);
+    float D = dGgx(NoH, r);
+    float Vis = visSmithGgxCorrelated(NoV, NoL, r);
+    vec3 F = fSchlick(specularColor, VoH);
+    float Fd = gltfDielectricFresnel(dielectricF0, VoH);
+    vec3 brdf = diffuseLambert(diffuseColor) * (1.0 - Fd) + D * Vis * F;
+    return brdf * lightRadiance * NoL;
+}
+
+// KHR_lights_punctual's range window on the inverse square (its README, "Range Property":
+// clamp(1 - (d / range)^4, 0, 1) / d^2), per BRDF: BRDF_GLTF as the README and [Viewer]
+// punctualShader getRangeAttenuation write it; BRDF_UE4 squares the window as UE4 does
+// ([Karis13] eq. 9: saturate(1 - (d/r)^4)^2 / (d^2 + 1), without the + 1).
+float lightRangeWindow(float d2, float range, int brdfModel) {
+    if (range <= 0.0) return 1.0;
+    float r = d2 / (range * range);
+    float window = clamp(1.0 - r * r, 0.0, 1.0);
+    return brdfModel == BRDF_GLTF ? window : window * window;
 }
 
 #endif  // GBL_BRDF_GLSL

@@ -74,16 +74,7 @@ float coatFresnel(float NcoV) {
     return kCoatF0 + (1.0 - kCoatF0) * fresnelWeightSchlick(NcoV);
 }
 
-// [glTF-B] height-correlated Smith visibility G / (4 NoL NoV) of GGX, alpha = roughness^2. Cosines
-// in [0,1]; 0 where both are 0.
-float visSmithGgxCorrelated(float NoV, float NoL, float roughness) {
-    float a = roughness * roughness;
-    float a2 = a * a;
-    float gv = NoL * sqrt(a2 + (1.0 - a2) * NoV * NoV);
-    float gl = NoV * sqrt(a2 + (1.0 - a2) * NoL * NoL);
-    float d = gv + gl;
-    return d > 0.0 ? 0.5 / d : 0.0;
-}
+// visSmithGgxCorrelated ([glTF-B]'s height-correlated Smith visibility) is brdf.glsl's.
 
 // The coat's BRDF without its Fresnel (which is the layering weight) [Coat], [glTF-B]: D V.
 float coatSpecular(float NcoH, float NcoV, float NcoL, float coatRoughness) {
@@ -245,6 +236,84 @@ vec3 anisotropicReflection(vec3 N, vec3 V, vec3 B, float anisotropy, float rough
     bent = normalize(mix(bent, N, a));
     vec3 R = reflect(-V, bent);
     return normalize(mix(R, bent, roughness * roughness));
+}
+
+// ---- BRDF_GLTF: the layers as the Khronos glTF Sample Viewer layers them ----
+// [Viewer] = npm @khronosgroup/gltf-viewer 1.1.0, dist/gltf-viewer.module.js: brdfShader (line 3802),
+// punctualShader (3810), pbrShader (3800: main's punctual loop). The layering order and formulas are
+// the ones above; what differs is where the viewer clamps:
+//   sheen   D_Charlie and V_Sheen floor sheenRoughness at 1e-6 (not 0.045) and V_Sheen clamps the
+//           visibility to [0, 1] with NdotV unfloored;
+//   coat    the coat's n.v is clampedDot(Nc, v) (not |Nc.v|), its roughness unfloored;
+//   aniso   alpha_b = clamp(alpha, 0.001, 1), NdotH clamped to [0.001, 1], NdotV unclamped.
+const float kMinGltfSheenRoughness = 0.000001;  // [Viewer] brdfShader V_Sheen, D_Charlie
+
+// [Sheen] D V of the sheen lobe with [Viewer]'s clamps (V_Sheen clamp(..., 0, 1)). NoL > 0.
+float sheenBrdfGltf(float NoH, float NoV, float NoL, float sheenRoughness) {
+    float r = max(sheenRoughness, kMinGltfSheenRoughness);
+    return dCharlie(NoH, r) * clamp(visCharlie(NoV, NoL, r), 0.0, 1.0);
+}
+
+// [Aniso] the anisotropic lobe under the glTF base (evaluateDirectLightGltf's diffuse and Fresnel),
+// with [Viewer] brdfShader BRDF_specularGGXAnisotropy's clamps.
+vec3 evaluateDirectLightAnisotropicGltf(vec3 N, vec3 V, vec3 L, vec3 T, vec3 B, float anisotropy, vec3 diffuseColor,
+                                        vec3 specularColor, float dielectricF0, float roughness, vec3 lightRadiance) {
+    float NoL = clamp(dot(N, L), 0.0, 1.0);
+    if (NoL <= 0.0) return vec3(0.0);
+    vec3 Hu = V + L;
+    vec3 H = Hu * inversesqrt(max(dot(Hu, Hu), 1e-12));
+    float VoH = clamp(dot(V, H), 0.0, 1.0);
+    float at = anisotropicAlphaT(roughness, anisotropy);
+    float ab = clamp(roughness * roughness, 0.001, 1.0);
+    float NoH = clamp(dot(N, H), 0.001, 1.0);
+    float D = dGgxAnisotropic(NoH, dot(T, H), dot(B, H), at, ab);
+    float Vis = visGgxAnisotropic(NoL, dot(N, V), dot(B, V), dot(T, V), dot(T, L), dot(B, L), at, ab);
+    vec3 F = fSchlick(specularColor, VoH);
+    float Fd = gltfDielectricFresnel(dielectricF0, VoH);
+    vec3 brdf = diffuseLambert(diffuseColor) * (1.0 - Fd) + D * Vis * F;
+    return brdf * lightRadiance * NoL;
+}
+
+// The coat's n.v under BRDF_GLTF: [Viewer] pbrShader clampedDot(clearcoatNormal, v).
+float coatNoVGltf(vec3 Nc, vec3 V) { return clamp(dot(Nc, V), 0.0, 1.0); }
+
+// evaluateDirectLightLayeredMode's layering over the glTF base: coat(sheen(base)) [Sheen], [Coat].
+vec3 evaluateDirectLightLayeredGltf(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 specularColor, float dielectricF0,
+                                    float roughness, Layers ly, float sheenAlbedoV, float sheenAlbedoL,
+                                    vec3 lightRadiance) {
+    vec3 color = ly.anisotropy > 0.0
+                     ? evaluateDirectLightAnisotropicGltf(N, V, L, ly.anisotropyT, ly.anisotropyB, ly.anisotropy,
+                                                          diffuseColor, specularColor, dielectricF0, roughness,
+                                                          lightRadiance)
+                     : evaluateDirectLightGltf(N, V, L, diffuseColor, specularColor, dielectricF0, roughness,
+                                               lightRadiance);
+    vec3 Hu = V + L;
+    vec3 H = Hu * inversesqrt(max(dot(Hu, Hu), 1e-12));
+    if (max3(ly.sheenColor) > 0.0) {
+        float NoL = clamp(dot(N, L), 0.0, 1.0);
+        vec3 sheen = vec3(0.0);
+        if (NoL > 0.0)
+            sheen = ly.sheenColor * (sheenBrdfGltf(clamp(dot(N, H), 0.0, 1.0), clamp(dot(N, V), 0.0, 1.0), NoL,
+                                                   ly.sheenRoughness) * NoL) * lightRadiance;
+        color = sheen + color * sheenAlbedoScaling(ly.sheenColor, sheenAlbedoV, sheenAlbedoL);
+    }
+    if (ly.coat > 0.0) {
+        vec3 Nc = ly.coatNormal;
+        float NcoL = clamp(dot(Nc, L), 0.0, 1.0);
+        float NcoV = coatNoVGltf(Nc, V);
+        float fc = ly.coat * coatFresnel(NcoV);
+        float coat = 0.0;
+        if (NcoL > 0.0)
+            coat = coatSpecular(clamp(dot(Nc, H), 0.0, 1.0), NcoV, NcoL, max(ly.coatRoughness, kMinGltfRoughness)) * NcoL;
+        color = color * (1.0 - fc) + (fc * coat) * lightRadiance;
+    }
+    return color;
+}
+
+// [Coat] emission under the coat with [Viewer]'s n.v: emission * (1 - clearcoat * fc(clampedDot)).
+vec3 coatedEmissionGltf(vec3 emission, Layers ly, vec3 V) {
+    if (ly.coat <= 0.0) return emission;
+    return emission * (1.0 - ly.coat * coatFresnel(coatNoVGltf(ly.coatNormal, V)));
 }
 
 #endif  // GBL_BRDF_LAYERS_GLSL

@@ -21,6 +21,13 @@
 #else
 #define GBL_ACTIVE_FRESNEL int(frame.shading.x)
 #endif
+// The direct lights' BRDF (brdf.glsl BRDF_UE4 / BRDF_GLTF): GBL_BRDF_MODEL where the pipeline is
+// built for one, else frame.shading.z at run time, as the Fresnel above.
+#ifdef GBL_BRDF_MODEL
+#define GBL_ACTIVE_BRDF GBL_BRDF_MODEL
+#else
+#define GBL_ACTIVE_BRDF int(frame.shading.z)
+#endif
 #include "environment_map.glsl"
 #define GBUFFER_READ 1
 #define GBL_GEOMETRY_MASK 1  // checkerboard chroma skips neighbours without geometry
@@ -94,6 +101,11 @@ Layers gblLayersOf(Surface s, vec3 N) {
 }
 #endif
 
+// BRDF_GLTF's dielectric f0: the grey F0 UE4's scalar specular stands for (material_eval.glsl:
+// s.specular = mean(dielectricF0) / 0.08; exact for the grey F0 of every material without
+// KHR_materials_specular's specularColor, which the glTF assets here do not use).
+float gblDielectricF0(Surface s) { return 0.08 * s.specular; }
+
 vec3 worldPositionFromDepth(ivec2 pixel, float depth) {
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0;
     vec4 world = frame.invViewProj * vec4(ndc, depth, 1.0);
@@ -109,14 +121,10 @@ vec3 lightRadianceAndDirection(GpuLight light, vec3 position, out vec3 L) {
     vec3 toLight = light.positionType.xyz - position;
     float d2 = max(dot(toLight, toLight), 1e-8);
     L = toLight * inversesqrt(d2);
-    // KHR_lights_punctual: inverse-square falloff, windowed to zero at `range` (UE4's window).
+    // KHR_lights_punctual: inverse-square falloff, windowed to zero at `range` (UE4's squared
+    // window, or the README's under BRDF_GLTF: brdf.glsl lightRangeWindow).
     float falloff = 1.0 / d2;
-    float range = light.directionRange.w;
-    if (range > 0.0) {
-        float r = d2 / (range * range);
-        float window = clamp(1.0 - r * r, 0.0, 1.0);
-        falloff *= window * window;
-    }
+    falloff *= lightRangeWindow(d2, light.directionRange.w, GBL_ACTIVE_BRDF);
     if (int(light.positionType.w) == GBL_LIGHT_SPOT) {
         // KHR_lights_punctual: cd = cos(angle to the axis), a = saturate(cd * scale + offset), a^2:
         // 1 inside the inner cone, 0 outside the outer, smooth between.
@@ -174,8 +182,11 @@ void main() {
         vec3 L;
         vec3 radiance = lightRadianceAndDirection(lights[i], position, L);
         float sheenL = max3(ly.sheenColor) > 0.0 ? sheenAlbedo(clamp(dot(N, L), 0.0, 1.0), ly.sheenRoughness) : 0.0;
-        color += evaluateDirectLightLayeredMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, ly, sheenV,
-                                                sheenL, radiance, GBL_ACTIVE_FRESNEL);
+        color += GBL_ACTIVE_BRDF == BRDF_GLTF
+                     ? evaluateDirectLightLayeredGltf(N, V, L, s.diffuseColor, s.specularColor, gblDielectricF0(s),
+                                                      s.roughness, ly, sheenV, sheenL, radiance)
+                     : evaluateDirectLightLayeredMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, ly,
+                                                      sheenV, sheenL, radiance, GBL_ACTIVE_FRESNEL);
     }
     iblBatchKey = uvec3(uint(pixel.x), uint(pixel.y), batch.batchIndex + uint(frame.ibl.z) * 0x10000u);
     color += evaluateImageBasedLightLayered(s, N, V, ly) * s.occlusion;
@@ -183,8 +194,11 @@ void main() {
     for (uint i = 0u; i < frame.extent.z; ++i) {
         vec3 L;
         vec3 radiance = lightRadianceAndDirection(lights[i], position, L);
-        color += evaluateDirectLightMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, radiance,
-                                         GBL_ACTIVE_FRESNEL);
+        color += GBL_ACTIVE_BRDF == BRDF_GLTF
+                     ? evaluateDirectLightGltf(N, V, L, s.diffuseColor, s.specularColor, gblDielectricF0(s),
+                                               s.roughness, radiance)
+                     : evaluateDirectLightMode(N, V, L, s.diffuseColor, s.specularColor, s.roughness, radiance,
+                                               GBL_ACTIVE_FRESNEL);
     }
     iblBatchKey = uvec3(uint(pixel.x), uint(pixel.y), batch.batchIndex + uint(frame.ibl.z) * 0x10000u);
     color += evaluateImageBasedLight(s, N, V) * s.occlusion;
@@ -192,9 +206,11 @@ void main() {
 #endif
 #if GBL_LAYERS != 0 && !defined(LIGHT_PRE_PASS)
     // Emission under the coat [Coat], the forward scene-colour emission too.
-    color += coatedEmission(s.emissive, ly, V);
+    color += GBL_ACTIVE_BRDF == BRDF_GLTF ? coatedEmissionGltf(s.emissive, ly, V) : coatedEmission(s.emissive, ly, V);
 #ifdef EMISSIVE_FORWARD
-    color += coatedEmission(texelFetch(sceneColorEmissive, pixel, 0).rgb, ly, V);
+    vec3 forwardEmission = texelFetch(sceneColorEmissive, pixel, 0).rgb;
+    color += GBL_ACTIVE_BRDF == BRDF_GLTF ? coatedEmissionGltf(forwardEmission, ly, V)
+                                          : coatedEmission(forwardEmission, ly, V);
 #endif
 #else
     color += s.emissive;

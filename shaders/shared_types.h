@@ -25,7 +25,7 @@ struct FrameConstants {
     vec4 cameraPosition;  // xyz world, w unused
     uvec4 extent;         // x width, y height, z light count, w 1 when depth is reversed Z
     vec4 environment;     // x intensity, y prefiltered mip count, z specular IBL mode (IblMode), w diffuse IBL on
-    vec4 shading;         // x Fresnel mode, y clear depth, zw unused
+    vec4 shading;         // x Fresnel mode, y clear depth, z direct-light BRDF (brdf.glsl BRDF_*), w unused
     vec4 ibl;             // x ground-truth steps per batch / split-sum-shader samples per pixel, y environment cube face,
                           // z ground-truth random seed, w unused
     vec4 irradianceSh[9]; // rgb: SH9 of the irradiance, cosine convolution folded in (src/shading/ibl_precompute.h)

@@ -67,6 +67,7 @@ if(TARGET layout_export_gpu_test)  # every shipped layout, in two halves that ct
 endif()
 gbl_test(shading/brdf_test LABELS unit DEPS gbl_shading)
 gbl_test(shading/brdf_layers_test LABELS unit DEPS gbl_shading)  # clear coat, sheen, anisotropy vs the specifications
+gbl_test(shading/brdf_gltf_test LABELS unit DEPS gbl_shading)  # --brdf gltf vs glTF 2.0 Appendix B, written from the text
 gbl_test(shading/sheen_albedo_test LABELS unit DEPS gbl_shading)  # the sheen albedo table vs brute force
 gbl_test(shading/ibl_layers_test LABELS unit DEPS gbl_shading)  # the layered ground truth vs a quadrature
 gbl_test(shading/ibl_math_test LABELS unit DEPS gbl_shading)
@@ -75,8 +76,10 @@ gbl_test(shading/brdf_lut_test LABELS unit DEPS gbl_shading gbl_base)
 gbl_test(shading/ibl_gpu_test LABELS gpu DEPS gbl_render gbl_shading gbl_test_support_vk)
 gbl_test(shading/ibl_ground_truth_test LABELS gpu DEPS gbl_render gbl_shading gbl_test_support_vk)
 gbl_test(shading/ibl_layers_gpu_test LABELS gpu DEPS gbl_shading gbl_test_support_vk)  # the layers' GLSL vs their C++ twins
+gbl_test(shading/brdf_gltf_gpu_test LABELS gpu DEPS gbl_shading gbl_test_support_vk)  # --brdf gltf GLSL vs its C++ twin
 gbl_test(render/render_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
 gbl_test(render/layers_render_test LABELS gpu DEPS gbl_render gbl_test_support_vk)  # the layers in every IBL mode, dropped by a layout, the forward mask
+gbl_test(render/srgb_texture_test LABELS gpu DEPS gbl_render gbl_test_support_vk)  # sRGB textures decoded as IEC 61966-2-1 says
 gbl_test(render/texture_mip_cache_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
 gbl_test(render/visibility_test LABELS gpu DEPS gbl_render gbl_test_support_vk)
 gbl_test(render/pipeline_reuse_test LABELS gpu DEPS gbl_render gbl_layout gbl_test_support_vk)
@@ -121,6 +124,11 @@ gbl_test(tools/gltf_viewer_test LABELS unit DEPS gbl_image nlohmann_json::nlohma
 if(TARGET gltf_viewer_test)
   target_compile_definitions(gltf_viewer_test PRIVATE GBL_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
 endif()
+# The float reference against the Sample Viewer on a scene of its own (scripts/crosscheck.sh).
+gbl_test(tools/crosscheck_test LABELS unit DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)
+if(TARGET crosscheck_test)
+  target_compile_definitions(crosscheck_test PRIVATE GBL_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
+endif()
 gbl_test(search/layout_packer_test LABELS unit DEPS gbl_search gbl_measure)
 gbl_test(search/cpu_reshade_test LABELS unit DEPS gbl_search)
 gbl_test(search/layout_search_test LABELS unit DEPS gbl_search)
@@ -146,6 +154,7 @@ gbl_test(cli/diff_bounds_cli_test LABELS unit DEPS gbufferlab gbl_measure gbl_im
 gbl_test(cli/input_bounds_cli_test LABELS unit DEPS gbufferlab gbl_render gbl_image)
 gbl_test(cli/run_names_cli_test LABELS unit DEPS gbufferlab gbl_base)
 gbl_test(cli/messages_cli_test LABELS unit DEPS gbufferlab gbl_base)
+gbl_test(cli/viewer_job_cli_test LABELS unit DEPS gbufferlab gbl_image)  # render --viewer-job, crossdiff
 gbl_test(cli/outputs_cli_test LABELS unit DEPS gbufferlab gbl_image)  # special files, --out '', a failed stdout
 include(tests/layering/layering.cmake)
 
@@ -155,7 +164,7 @@ include(tests/layering/layering.cmake)
 foreach(test_cost IN ITEMS gpu_cpu_bits_test:300 layout_mutants_test:240 layout_export_gpu_test_2:200
                            cpu_codec_test:200 layout_export_gpu_test:110 encodings_fast_test:60 cli_test:50
                            compare_bands_cli_test:45 layout_export_test:45 render_test:40 ibl_gpu_test:40
-                           report_browser_test:35 gltf_viewer_test:26)
+                           report_browser_test:35 gltf_viewer_test:26 crosscheck_test:10)
   string(REPLACE ":" ";" test_cost ${test_cost})
   list(GET test_cost 0 test_name)
   list(GET test_cost 1 cost)

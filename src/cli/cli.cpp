@@ -30,6 +30,8 @@ const std::vector<std::pair<std::string, Command>>& commands() {
         {"search", {"find layouts under a byte budget: the Pareto front of error against bytes per pixel",
                     runSearchCommand}},
         {"diff", {"compare two image files: RMSE, PSNR, max, LDR-/HDR-FLIP, an error map", runDiffCommand}},
+        {"crossdiff", {"two renderers' frames compared where both cover geometry (scripts/crosscheck.sh)",
+                       runCrossdiffCommand}},
         {"devices", {"list the Vulkan devices gbufferlab can use (--device)", runDevicesCommand}},
     };
     return list;

@@ -7,6 +7,7 @@
 #include "cli_args.h"
 #include "commands.h"
 #include "error.h"
+#include "forward_mask.h"
 #include "file_io.h"
 #include "gbuffer_wiring.h"
 #include "image_io.h"
@@ -14,6 +15,7 @@
 #include "renderer.h"
 #include "scene_inputs.h"
 #include "tone_map.h"
+#include "viewer_job.h"
 #include "vk_context.h"
 
 namespace gbl {
@@ -46,6 +48,10 @@ int runRenderCommand(const std::vector<std::string>& args) {
         {"exposure", "X", "exposure multiplier for the PNG tone map (default 1)"},
         {"ibl", "MODE", "specular IBL: ground-truth, split-sum-shader, split-sum (default), envbrdf-approx, bo2"},
         {"ibl-samples", "N", "samples per pixel of split-sum-shader (default 1024), and steps per batch of ground-truth (default 64)"},
+        {"brdf", "NAME", "the direct lights' BRDF: ue4 (default: Smith-Schlick with UE4's k, Karis' Fresnel) or gltf (the glTF 2.0 specification's, Appendix B, as the Khronos glTF Sample Viewer computes it)"},
+        {"no-ibl", "", "punctual lights only: no image-based light (the environment's radiance scaled by 0, background black)"},
+        {"viewer-job", "FILE", "also write the Khronos glTF Sample Viewer job (tools/gltf-viewer/README.md) of this render to FILE, and the coverage mask reference.mask.pgm (needs --scene)"},
+        {"texture-base-level", "", "sample every material texture at its base level only (bilinear, no mips), as a glTF sampler with minFilter LINEAR: a cross-check without filtering differences"},
         {"band-rows", "N", "render N rows of the frame at a time (less memory at large sizes; the same image, bit for bit); default: all"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
@@ -67,6 +73,12 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const IblMode iblMode = parseIblMode(parsed.get("ibl", "split-sum"));
     const int iblSamples = parseIntFlag(parsed, "ibl-samples", 1024, 1, 65536);
     const uint32_t bandRows = uint32_t(parseIntFlag(parsed, "band-rows", 0, 1, 65536));
+    const std::string brdfName = parsed.get("brdf", "ue4");
+    if (brdfName != "ue4" && brdfName != "gltf")
+        throwUserError("--brdf " + brdfName + ": unknown BRDF (known: ue4, gltf)");
+    if (parsed.has("viewer-job") && !parsed.has("scene"))
+        throwUserError("--viewer-job " + parsed.get("viewer-job") +
+                       ": the viewer renders a glTF file; give it with --scene (the built-in scene is not one)");
     if (bandRows && iblMode == IblMode::GroundTruth)
         throwUserError("--band-rows " + std::to_string(bandRows) +
                        ": the ground truth converges over the whole frame; leave --band-rows out with --ibl ground-truth");
@@ -78,14 +90,17 @@ int runRenderCommand(const std::vector<std::string>& args) {
     // allocated: in bands only the HDR image and its PNG are frame-sized.
     requireRenderMemory(width, height, bandRows >= height ? 0u : bandRows, "--size");
 
-    const SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
+    SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
                                                 GltfLoadOptions{parsed.has("allow-outside-scene")});
+    inputs.scene.textureBaseLevelOnly = parsed.has("texture-base-level");
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
     Renderer renderer(ctx, inputs.scene, inputs.environment);
     RenderSettings settings;
     settings.width = width;
     settings.height = height;
     settings.specularIbl = iblMode;
+    settings.brdf = brdfName == "gltf" ? 1 : 0;  // brdf.glsl BRDF_GLTF / BRDF_UE4
+    if (parsed.has("no-ibl")) settings.environmentIntensity = 0.0f;
     if (parsed.has("ibl-samples")) settings.groundTruthSamples = iblSamples;  // per batch (default 64)
     settings.splitSumShaderSamples = iblSamples;
     settings.readTargetWords = false;  // only the HDR image is written
@@ -110,6 +125,28 @@ int runRenderCommand(const std::vector<std::string>& args) {
     prepareOutputDirectory(outDir, parsed.has("force"), "--out");
     writeExr((outDir / "reference.exr").string(), out.hdr);
     writePng((outDir / "reference.png").string(), toneMapToSrgb8(out.hdr, exposure));
+    if (parsed.has("viewer-job")) {
+        ViewerJob job;
+        job.gltf = fs::absolute(parsed.get("scene")).lexically_normal().string();
+        job.width = width;
+        job.height = height;
+        job.camera = inputs.scene.camera;
+        job.exposure = exposure;
+        job.ibl = !parsed.has("no-ibl");
+        if (job.ibl && parsed.has("env")) job.environment = fs::absolute(parsed.get("env")).lexically_normal().string();
+        job.ibl = job.ibl && !job.environment.empty();  // the built-in sky is no file the viewer can load
+        job.output = "viewer.pfm";
+        writeFileAtomic(parsed.get("viewer-job"), viewerJobJson(job, inputs.scene));
+        // Pixels a deferred renderer draws forward (transmission, volume: forward_mask.h) or that the
+        // viewer blends (alphaMode BLEND) are not like for like: left out of the mask.
+        Scene notLikeForLike = inputs.scene;
+        for (Material& m : notLikeForLike.materials)
+            if (m.alphaBlend && m.forward.empty()) m.forward = "alphaMode BLEND";
+        RenderSettings maskSettings = settings;
+        maskSettings.bandFirstRow = maskSettings.bandRows = 0;
+        const std::vector<uint8_t> excluded = renderForwardMask(renderer, notLikeForLike, maskSettings);
+        writeCoverageMask((outDir / "reference.mask.pgm").string(), out.hdr, excluded);
+    }
     std::printf("rendered %s under %s on %s at %ux%u\n  G-buffer pass %.1f ms, lighting pass %.1f ms\n  wrote %s\n",
                 inputs.scene.source.c_str(), inputs.environment.source.c_str(), ctx.info.name.c_str(), width, height,
                 out.timings.gbufferMs, out.timings.lightingMs, outDir.string().c_str());

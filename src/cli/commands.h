@@ -12,6 +12,7 @@ int runEncodingsCommand(const std::vector<std::string>& args);
 int runLayoutsCliCommand(const std::vector<std::string>& args);
 int runIblCommand(const std::vector<std::string>& args);
 int runDiffCommand(const std::vector<std::string>& args);
+int runCrossdiffCommand(const std::vector<std::string>& args);
 int runSearchCommand(const std::vector<std::string>& args);
 
 }  // namespace gbl

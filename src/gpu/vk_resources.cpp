@@ -277,7 +277,8 @@ void downloadImageWith(const VulkanContext& ctx, const GpuImage& image, VkImageL
 }
 
 VkSampler createSampler(const VulkanContext& ctx, VkFilter filter, VkSamplerMipmapMode mipMode,
-                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV, float maxAnisotropy) {
+                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV, float maxAnisotropy,
+                        float maxLod) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = filter;
     info.minFilter = filter;
@@ -285,7 +286,7 @@ VkSampler createSampler(const VulkanContext& ctx, VkFilter filter, VkSamplerMipm
     info.addressModeU = addressU;
     info.addressModeV = addressV;
     info.addressModeW = addressV;
-    info.maxLod = VK_LOD_CLAMP_NONE;
+    info.maxLod = maxLod;
     info.anisotropyEnable = maxAnisotropy > 1.0f;
     info.maxAnisotropy = maxAnisotropy;
     VkSampler s;

@@ -89,7 +89,8 @@ uint32_t formatTexelSize(VkFormat format);
 uint32_t mipCountFor(uint32_t width, uint32_t height);
 
 VkSampler createSampler(const VulkanContext& ctx, VkFilter filter, VkSamplerMipmapMode mipMode,
-                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV, float maxAnisotropy = 1.0f);
+                        VkSamplerAddressMode addressU, VkSamplerAddressMode addressV, float maxAnisotropy = 1.0f,
+                        float maxLod = VK_LOD_CLAMP_NONE);  // 0: the base level only
 
 // One submission of `segments` in order, with a timestamp before the first and after each;
 // waits, and returns each segment's GPU time in ms (timestamp queries x timestampPeriod).

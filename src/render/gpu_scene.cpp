@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "srgb_texels.h"
 #include "texture_mip_cache.h"
 
 namespace gbl {
@@ -131,13 +132,20 @@ GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
 
     auto addTexture = [&](int w, int h, const uint8_t* rgba, bool srgb) {
         ImageDesc d;
-        d.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+        // sRGB texels decoded exactly on the host (srgb_texels.h: lavapipe's _SRGB decode is up to
+        // 2.6 % off), as half floats.
+        d.format = srgb ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R8G8B8A8_UNORM;
         d.width = uint32_t(w);
         d.height = uint32_t(h);
         d.mipLevels = mipCountFor(d.width, d.height);
         d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         GpuImage img = createImage(ctx, d);
-        uploadTextureWithMips(ctx, img, rgba);  // blits, or on a CPU device their stored result
+        if (srgb) {
+            const std::vector<uint16_t> linear = decodeSrgbTexels(rgba, size_t(w) * size_t(h));
+            uploadTextureWithMips(ctx, img, reinterpret_cast<const uint8_t*>(linear.data()));
+        } else {
+            uploadTextureWithMips(ctx, img, rgba);  // blits, or on a CPU device their stored result
+        }
         g.textures.push_back(img);
     };
     for (const Texture& t : scene.textures) addTexture(t.width, t.height, t.rgba.data(), t.srgb);
@@ -148,7 +156,8 @@ GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
     g.texturesBySlot = materialTextureSlots(materials, uint32_t(g.textures.size()));
     // Trilinear, no anisotropy: identical for every layout, and anisotropy is an optional feature.
     g.textureSampler = createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
-                                     VK_SAMPLER_ADDRESS_MODE_REPEAT);
+                                     VK_SAMPLER_ADDRESS_MODE_REPEAT, 1.0f,
+                                     scene.textureBaseLevelOnly ? 0.0f : VK_LOD_CLAMP_NONE);
 
     for (const Draw& d : scene.draws) {
         gpu::DrawConstants c{};

@@ -149,6 +149,8 @@ PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring&
     if (variant.specialised) {
         cs.defines.push_back({"GBL_IBL_MODE", std::to_string(int(variant.ibl))});
         cs.defines.push_back({"GBL_FRESNEL_MODE", std::to_string(variant.fresnelMode)});
+        // Only a non-default BRDF adds its define: a UE4 pipeline's source (and memo key) stays as it was.
+        if (variant.brdf != 0) cs.defines.push_back({"GBL_BRDF_MODEL", std::to_string(variant.brdf)});
     }
     // The shader's input and the set layouts (set 0 follows LIGHT_PRE_PASS, set 1 a visibility
     // buffer's TEXTURE_COUNT, both already in the key).

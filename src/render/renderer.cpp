@@ -208,7 +208,7 @@ void Renderer::preparePipelines(const std::vector<GBufferWiring>& wirings, const
         for (IblMode mode : lightingModes)
             tasks.push_back([&, i, readScene, mode] {
                 lightingPassPipeline(ctx_, wirings[i], readScene,
-                                     LightingVariant{mode, fresnelMode, specialiseLighting_}, pipelines_);
+                                     LightingVariant{mode, fresnelMode, settings.brdf, specialiseLighting_}, pipelines_);
             });
         if (settings.decodeSurfaces && !decodesOnCpu(wirings[i], settings))  // no pipeline a render does not use
             tasks.push_back([&, i, readScene] {

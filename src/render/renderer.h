@@ -28,6 +28,7 @@ struct RenderSettings {
     uint32_t width = 1280;
     uint32_t height = 720;
     int fresnelMode = 1;              // brdf.glsl FRESNEL_* (1 = Karis' exp2 form, UE4's)
+    int brdf = 0;                     // brdf.glsl BRDF_* of the direct lights (0 UE4's, 1 the glTF specification's)
     float environmentIntensity = 1.0f;
     // Image-based light (ibl_precompute.h): the specular approximation, and the samples per pixel
     // of the two in-shader modes (ground-truth, split-sum-shader). Diffuse IBL (SH9 irradiance)

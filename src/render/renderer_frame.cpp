@@ -96,7 +96,7 @@ gpu::FrameConstants Renderer::frameConstants(const GBufferWiring& wiring, const 
                                                                          : settings.splitSumShaderSamples;
     frame.ibl = glm::vec4(float(iblSamples), float(ibl_.sourceFaceSize), float(settings.groundTruthSeed), 0.0f);
     for (int k = 0; k < 9; ++k) frame.irradianceSh[k] = glm::vec4(ibl_.irradianceSh[k], 0.0f);
-    frame.shading = glm::vec4(float(settings.fresnelMode), wiring.reversedZ ? 0.0f : 1.0f, 0.0f, 0.0f);
+    frame.shading = glm::vec4(float(settings.fresnelMode), wiring.reversedZ ? 0.0f : 1.0f, float(settings.brdf), 0.0f);
     frame.band = glm::uvec4(band.first, band.rows, settings.frameIndex, 0u);
     return frame;
 }
@@ -107,7 +107,7 @@ Renderer::FramePipelines Renderer::framePipelines(const GBufferWiring& wiring, c
     gbufferPassPipeline(ctx_, wiring, gpuScene_, pipelines_);
     if (wiring.materialPass) gbufferPassPipeline(ctx_, materialPassWiring(wiring), gpuScene_, pipelines_);
     FramePipelines p{targetReadScene(ctx_, wiring, gpuScene_),
-                     LightingVariant{settings.specularIbl, settings.fresnelMode, specialiseLighting_},
+                     LightingVariant{settings.specularIbl, settings.fresnelMode, settings.brdf, specialiseLighting_},
                      decodesOnCpu(wiring, settings)};
     lightingPassPipeline(ctx_, wiring, p.readScene, p.variant, pipelines_);
     if (settings.decodeSurfaces && !p.cpuDecode)

@@ -128,6 +128,7 @@ PassPipeline gbufferPassPipeline(const VulkanContext& ctx, const GBufferWiring& 
 struct LightingVariant {
     IblMode ibl = IblMode::SplitSum;
     int fresnelMode = 1;  // brdf.glsl FRESNEL_* (RenderSettings::fresnelMode)
+    int brdf = 0;         // brdf.glsl BRDF_* (RenderSettings::brdf)
     bool specialised = true;
 };
 PassPipeline lightingPassPipeline(const VulkanContext& ctx, const GBufferWiring& wiring, const TargetReadScene& scene,

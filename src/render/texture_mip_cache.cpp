@@ -16,7 +16,8 @@ constexpr char kMagic[8] = {'G', 'B', 'L', 'M', 'I', 'P', 'S', '1'};
 constexpr uint32_t kFormatVersion = 1;
 
 VkDeviceSize levelBytes(const GpuImage& image, uint32_t mip) {
-    return VkDeviceSize(std::max(image.extent.width >> mip, 1u)) * std::max(image.extent.height >> mip, 1u) * 4u;
+    return VkDeviceSize(std::max(image.extent.width >> mip, 1u)) * std::max(image.extent.height >> mip, 1u) *
+           formatTexelSize(image.format);
 }
 
 // Mip 0 from `rgba` and mips 1.. from `rest` (their bytes one after another), one copy per level.

@@ -18,7 +18,8 @@
 
 namespace gbl {
 
-// Uploads `rgba` (mip 0 of `image`: 4 bytes a texel, rows top to bottom) and fills the image's
+// Uploads `rgba` (mip 0 of `image`: a texel of its format each, 4 bytes of RGBA8 or 8 of RGBA16F,
+// rows top to bottom) and fills the image's
 // other mips, from the cache or by blits (above). Leaves every mip SHADER_READ_ONLY_OPTIMAL.
 void uploadTextureWithMips(const VulkanContext& ctx, GpuImage& image, const uint8_t* rgba);
 

@@ -106,6 +106,9 @@ struct Material {
     // forward, after the G-buffer's lighting; gbufferlab masks their pixels out of every metric and
     // counts them (`forward` names the extension).
     std::string forward;
+    // alphaMode BLEND, rendered opaque here (scene_gltf_materials.cpp); the cross-check leaves its
+    // pixels out, as the Sample Viewer blends them (docs/crosscheck.md).
+    bool alphaBlend = false;
     // The layers the material has (kLayer* bits): a factor above 0 enables each.
     int layers() const;
     bool doubleSided = false;
@@ -168,6 +171,11 @@ struct Scene {
     std::vector<Light> lights;
     Camera camera;
     Bounds bounds;  // world-space bounds of all draws
+    // Sample every material texture at its base level only (bilinear, no mips): what a glTF
+    // sampler with minFilter LINEAR asks for. render --texture-base-level sets it, so that a
+    // cross-check against another renderer (docs/crosscheck.md) sees no mip or filter footprint
+    // difference; off, textures are trilinear (gpu_scene.cpp).
+    bool textureBaseLevelOnly = false;
 };
 
 // Loads a .gltf (external or embedded buffers) or .glb file. Throws UserError naming the file

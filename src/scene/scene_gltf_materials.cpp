@@ -131,6 +131,7 @@ Material convertMaterial(const GltfContext& ctx, size_t index, TextureTable& tex
     // alphaMode MASK cuts out; BLEND has no place in a G-buffer (engines draw it forward after
     // lighting), so it renders opaque here, as OPAQUE does.
     m.alphaMask = src.alphaMode == "MASK";
+    m.alphaBlend = src.alphaMode == "BLEND";
     m.alphaCutoff = finiteOr(src.alphaCutoff, 0.5f);
 
     // Colour data is sRGB-encoded per the glTF spec; everything else is linear.

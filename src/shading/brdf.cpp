@@ -125,4 +125,52 @@ glm::vec3 evaluateDirectLight(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 d
                                    FRESNEL_DEFAULT);
 }
 
+// ---- BRDF_GLTF ----
+//   [glTF-B]  glTF 2.0 Specification, Appendix B "BRDF Implementation".
+//   [Viewer]  npm @khronosgroup/gltf-viewer 1.1.0, dist/gltf-viewer.module.js: brdfShader (3802),
+//             punctualShader (3810), pbrShader (3800).
+
+// [glTF-B] "Specular BRDF": height-correlated Smith visibility ([Viewer] V_GGX).
+float visSmithGgxCorrelated(float NoV, float NoL, float roughness) {
+    float a = roughness * roughness;
+    float a2 = a * a;
+    float gv = NoL * std::sqrt(a2 + (1.0f - a2) * NoV * NoV);
+    float gl = NoV * std::sqrt(a2 + (1.0f - a2) * NoL * NoL);
+    float d = gv + gl;
+    return d > 0.0f ? 0.5f / d : 0.0f;
+}
+
+// [glTF-B] "Fresnel", fresnel_mix's fr with f90 = 1.
+float gltfDielectricFresnel(float dielectricF0, float VoH) {
+    return dielectricF0 + (1.0f - dielectricF0) * fresnelWeightSchlick(VoH);
+}
+
+// [glTF-B] "Metal BRDF and Dielectric BRDF", over diffuseColor / specularColor ([Viewer] pbrShader).
+glm::vec3 evaluateDirectLightGltf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
+                                  glm::vec3 specularColor, float dielectricF0, float roughness,
+                                  glm::vec3 lightRadiance) {
+    float NoL = saturate(glm::dot(N, L));
+    if (NoL <= 0.0f) return glm::vec3(0.0f);
+    glm::vec3 Hu = V + L;
+    glm::vec3 H = Hu * (1.0f / std::sqrt(std::max(glm::dot(Hu, Hu), 1e-12f)));
+    float NoV = saturate(glm::dot(N, V));
+    float NoH = saturate(glm::dot(N, H));
+    float VoH = saturate(glm::dot(V, H));
+    float r = std::max(roughness, kMinGltfRoughness);
+    float D = dGgx(NoH, r);
+    float Vis = visSmithGgxCorrelated(NoV, NoL, r);
+    glm::vec3 F = fSchlick(specularColor, VoH);
+    float Fd = gltfDielectricFresnel(dielectricF0, VoH);
+    glm::vec3 brdf = diffuseLambert(diffuseColor) * (1.0f - Fd) + D * Vis * F;
+    return brdf * lightRadiance * NoL;
+}
+
+// KHR_lights_punctual README "Range Property"; UE4 squares it ([Karis13] eq. 9).
+float lightRangeWindow(float d2, float range, int brdfModel) {
+    if (range <= 0.0f) return 1.0f;
+    float r = d2 / (range * range);
+    float window = saturate(1.0f - r * r);
+    return brdfModel == BRDF_GLTF ? window : window * window;
+}
+
 }  // namespace gbl::shading

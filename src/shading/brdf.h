@@ -34,12 +34,16 @@ inline constexpr int FRESNEL_KARIS = 1;
 inline constexpr int FRESNEL_SEED = 2;
 inline constexpr int DIFFUSE_LAMBERT = 0;
 inline constexpr int FRESNEL_DEFAULT = FRESNEL_KARIS;
+inline constexpr int BRDF_UE4 = 0;
+inline constexpr int BRDF_GLTF = 1;
 
 inline constexpr float kPi = 3.14159265358979323846f;
 // GLSL's clamp(x, 0, 1), as the shaders write it.
 inline float saturate(float x) { return x < 0.0f ? 0.0f : x > 1.0f ? 1.0f : x; }
 // evaluateDirectLight clamps roughness to at least this (GGX is a delta at roughness 0).
 inline constexpr float kMinDirectRoughness = 0.045f;
+// BRDF_GLTF's roughness floor (the Sample Viewer's anisotropic alpha floor; brdf.glsl says why).
+inline constexpr float kMinGltfRoughness = 0.001f;
 
 // GGX D, alpha = roughness^2: alpha^2 / (pi ((n.h)^2 (alpha^2-1) + 1)^2). 0/0 at roughness 0, NoH 1.
 float dGgx(float NoH, float roughness);
@@ -83,5 +87,21 @@ glm::vec3 evaluateDirectLightMode(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::ve
 // evaluateDirectLightMode with FRESNEL_DEFAULT.
 glm::vec3 evaluateDirectLight(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
                               glm::vec3 specularColor, float roughness, glm::vec3 lightRadiance);
+
+// ---- BRDF_GLTF: the glTF 2.0 specification's BRDF (Appendix B) as the Khronos glTF Sample
+// Viewer 1.1.0 computes it (shaders/brdf.glsl cites the viewer's lines) ----
+// Height-correlated Smith visibility, alpha = roughness^2: 0.5 / (NoV sqrt(a^2 + (1-a^2) NoL^2) +
+// NoL sqrt(a^2 + (1-a^2) NoV^2)); 0 where both cosines are 0.
+float visSmithGgxCorrelated(float NoV, float NoL, float roughness);
+// The dielectric's Schlick Fresnel with f90 = 1: f0 + (1 - f0)(1 - VoH)^5.
+float gltfDielectricFresnel(float dielectricF0, float VoH);
+// diffuse_brdf(diffuseColor) (1 - F_dielectric) + D Vis F_Schlick(specularColor), times
+// lightRadiance NoL; roughness floored to kMinGltfRoughness; zero when NoL <= 0.
+glm::vec3 evaluateDirectLightGltf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
+                                  glm::vec3 specularColor, float dielectricF0, float roughness,
+                                  glm::vec3 lightRadiance);
+// KHR_lights_punctual's range window: clamp(1 - (d/range)^4, 0, 1), squared under BRDF_UE4; 1
+// where range <= 0.
+float lightRangeWindow(float d2, float range, int brdfModel);
 
 }  // namespace gbl::shading

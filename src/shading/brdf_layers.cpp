@@ -29,16 +29,7 @@ float coatNoV(glm::vec3 Nc, glm::vec3 V) { return std::min(std::abs(glm::dot(Nc,
 // [Coat]: 0.04 + 0.96 (1 - NcoV)^5.
 float coatFresnel(float NcoV) { return kCoatF0 + (1.0f - kCoatF0) * fresnelWeightSchlick(NcoV); }
 
-// [glTF-B]: the height-correlated Smith visibility.
-float visSmithGgxCorrelated(float NoV, float NoL, float roughness) {
-    float a = roughness * roughness;
-    float a2 = a * a;
-    float gv = NoL * std::sqrt(a2 + (1.0f - a2) * NoV * NoV);
-    float gl = NoV * std::sqrt(a2 + (1.0f - a2) * NoL * NoL);
-    float d = gv + gl;
-    return d > 0.0f ? 0.5f / d : 0.0f;
-}
-
+// visSmithGgxCorrelated is brdf.h's.
 float coatSpecular(float NcoH, float NcoV, float NcoL, float coatRoughness) {
     return dGgx(NcoH, coatRoughness) * visSmithGgxCorrelated(NcoV, NcoL, coatRoughness);
 }
@@ -169,6 +160,73 @@ glm::vec3 anisotropicReflection(glm::vec3 N, glm::vec3 V, glm::vec3 B, float ani
     bent = glm::normalize(glm::mix(bent, N, a));
     glm::vec3 R = 2.0f * glm::dot(bent, V) * bent - V;  // reflect(-V, bent)
     return glm::normalize(glm::mix(R, bent, roughness * roughness));
+}
+
+// ---- BRDF_GLTF: the layers with the Sample Viewer's clamps (brdf_layers.glsl lists them) ----
+
+float sheenBrdfGltf(float NoH, float NoV, float NoL, float sheenRoughness) {
+    float r = std::max(sheenRoughness, kMinGltfSheenRoughness);
+    return dCharlie(NoH, r) * std::clamp(visCharlie(NoV, NoL, r), 0.0f, 1.0f);
+}
+
+glm::vec3 evaluateDirectLightAnisotropicGltf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 T, glm::vec3 B,
+                                             float anisotropy, glm::vec3 diffuseColor, glm::vec3 specularColor,
+                                             float dielectricF0, float roughness, glm::vec3 lightRadiance) {
+    float NoL = saturate(glm::dot(N, L));
+    if (NoL <= 0.0f) return glm::vec3(0.0f);
+    glm::vec3 H = safeHalf(V, L);
+    float VoH = saturate(glm::dot(V, H));
+    float at = anisotropicAlphaT(roughness, anisotropy);
+    float ab = std::clamp(roughness * roughness, 0.001f, 1.0f);
+    float NoH = std::clamp(glm::dot(N, H), 0.001f, 1.0f);
+    float D = dGgxAnisotropic(NoH, glm::dot(T, H), glm::dot(B, H), at, ab);
+    float Vis = visGgxAnisotropic(NoL, glm::dot(N, V), glm::dot(B, V), glm::dot(T, V), glm::dot(T, L), glm::dot(B, L),
+                                  at, ab);
+    glm::vec3 F = fSchlick(specularColor, VoH);
+    float Fd = gltfDielectricFresnel(dielectricF0, VoH);
+    glm::vec3 brdf = diffuseLambert(diffuseColor) * (1.0f - Fd) + D * Vis * F;
+    return brdf * lightRadiance * NoL;
+}
+
+float coatNoVGltf(glm::vec3 Nc, glm::vec3 V) { return saturate(glm::dot(Nc, V)); }
+
+glm::vec3 evaluateDirectLightLayeredGltf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
+                                         glm::vec3 specularColor, float dielectricF0, float roughness,
+                                         const Layers& ly, float sheenAlbedoV, float sheenAlbedoL,
+                                         glm::vec3 lightRadiance) {
+    glm::vec3 color = ly.anisotropy > 0.0f
+                          ? evaluateDirectLightAnisotropicGltf(N, V, L, ly.anisotropyT, ly.anisotropyB, ly.anisotropy,
+                                                               diffuseColor, specularColor, dielectricF0, roughness,
+                                                               lightRadiance)
+                          : evaluateDirectLightGltf(N, V, L, diffuseColor, specularColor, dielectricF0, roughness,
+                                                    lightRadiance);
+    glm::vec3 H = safeHalf(V, L);
+    if (max3(ly.sheenColor) > 0.0f) {
+        float NoL = saturate(glm::dot(N, L));
+        glm::vec3 sheen(0.0f);
+        if (NoL > 0.0f)
+            sheen = ly.sheenColor *
+                    (sheenBrdfGltf(saturate(glm::dot(N, H)), saturate(glm::dot(N, V)), NoL, ly.sheenRoughness) * NoL) *
+                    lightRadiance;
+        color = sheen + color * sheenAlbedoScaling(ly.sheenColor, sheenAlbedoV, sheenAlbedoL);
+    }
+    if (ly.coat > 0.0f) {
+        glm::vec3 Nc = ly.coatNormal;
+        float NcoL = saturate(glm::dot(Nc, L));
+        float NcoV = coatNoVGltf(Nc, V);
+        float fc = ly.coat * coatFresnel(NcoV);
+        float coat = 0.0f;
+        if (NcoL > 0.0f)
+            coat = coatSpecular(saturate(glm::dot(Nc, H)), NcoV, NcoL, std::max(ly.coatRoughness, kMinGltfRoughness)) *
+                   NcoL;
+        color = color * (1.0f - fc) + (fc * coat) * lightRadiance;
+    }
+    return color;
+}
+
+glm::vec3 coatedEmissionGltf(glm::vec3 emission, const Layers& ly, glm::vec3 V) {
+    if (ly.coat <= 0.0f) return emission;
+    return emission * (1.0f - ly.coat * coatFresnel(coatNoVGltf(ly.coatNormal, V)));
 }
 
 }  // namespace gbl::shading

@@ -21,6 +21,7 @@ inline constexpr int GBL_LAYER_ANISOTROPY = 4;
 inline constexpr float kCoatF0 = 0.04f;
 inline constexpr float kMinSheenRoughness = 0.045f;
 inline constexpr float kMinSheenNoV = 1e-4f;
+inline constexpr float kMinGltfSheenRoughness = 0.000001f;  // the Sample Viewer's (brdf_layers.glsl)
 
 struct Layers {
     float coat = 0.0f;
@@ -37,7 +38,6 @@ float max3(glm::vec3 v);
 
 float coatNoV(glm::vec3 Nc, glm::vec3 V);  // |V.Nc|, at most 1
 float coatFresnel(float NcoV);
-float visSmithGgxCorrelated(float NoV, float NoL, float roughness);
 float coatSpecular(float NcoH, float NcoV, float NcoL, float coatRoughness);
 
 float dCharlie(float NoH, float sheenRoughness);
@@ -60,5 +60,19 @@ glm::vec3 evaluateDirectLightLayeredMode(glm::vec3 N, glm::vec3 V, glm::vec3 L, 
                                          int fresnelMode);
 glm::vec3 coatedEmission(glm::vec3 emission, const Layers& ly, glm::vec3 V);
 glm::vec3 anisotropicReflection(glm::vec3 N, glm::vec3 V, glm::vec3 B, float anisotropy, float roughness);
+
+// BRDF_GLTF: the same layering over evaluateDirectLightGltf with the Sample Viewer's clamps
+// (sheen roughness >= 1e-6 and V_Sheen in [0, 1]; the coat's n.v clamped, not |.|; the anisotropic
+// lobe's alpha_b >= 0.001, NoH >= 0.001, NoV unclamped).
+float sheenBrdfGltf(float NoH, float NoV, float NoL, float sheenRoughness);
+glm::vec3 evaluateDirectLightAnisotropicGltf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 T, glm::vec3 B,
+                                             float anisotropy, glm::vec3 diffuseColor, glm::vec3 specularColor,
+                                             float dielectricF0, float roughness, glm::vec3 lightRadiance);
+float coatNoVGltf(glm::vec3 Nc, glm::vec3 V);
+glm::vec3 evaluateDirectLightLayeredGltf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
+                                         glm::vec3 specularColor, float dielectricF0, float roughness,
+                                         const Layers& ly, float sheenAlbedoV, float sheenAlbedoL,
+                                         glm::vec3 lightRadiance);
+glm::vec3 coatedEmissionGltf(glm::vec3 emission, const Layers& ly, glm::vec3 V);
 
 }  // namespace gbl::shading

@@ -323,6 +323,8 @@ TEST(Shared, GlslConstantsMatchCpp) {
         {"FRESNEL_KARIS", FRESNEL_KARIS},
         {"FRESNEL_SEED", FRESNEL_SEED},
         {"DIFFUSE_LAMBERT", DIFFUSE_LAMBERT},
+        {"BRDF_UE4", BRDF_UE4},
+        {"BRDF_GLTF", BRDF_GLTF},
     };
     for (auto& [name, value] : cpp) {
         ASSERT_TRUE(found.count(name)) << name << " missing from brdf.glsl";
@@ -333,6 +335,8 @@ TEST(Shared, GlslConstantsMatchCpp) {
     EXPECT_EQ(cpp[found["FRESNEL_DEFAULT"]], FRESNEL_DEFAULT);
     ASSERT_TRUE(found.count("kMinDirectRoughness"));
     EXPECT_EQ(std::stof(found["kMinDirectRoughness"]), kMinDirectRoughness);
+    ASSERT_TRUE(found.count("kMinGltfRoughness"));
+    EXPECT_EQ(std::stof(found["kMinGltfRoughness"]), kMinGltfRoughness);
     ASSERT_TRUE(found.count("kPi"));
     EXPECT_EQ(std::stof(found["kPi"]), kPi);
 

@@ -1,0 +1,103 @@
+// sRGB textures are decoded as IEC 61966-2-1 defines the curve: a quad textured with one 8-bit
+// sRGB code renders, in the reference's decoded surface, the base colour
+//   c / 12.92 (c <= 0.04045), ((c + 0.055) / 1.055)^2.4 (above), c = code / 255,
+// computed here from the standard's text. Tolerance 3e-4 relative: the half float the texel is
+// stored as (src/render/srgb_texels.h, rounding <= 2.4e-4). Before srgb_texels.h (R8G8B8A8_SRGB,
+// decoded by lavapipe's sampler) code 3 came out 2.6 % high and code 30 1.9 % low (docs/crosscheck.md).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "gbuffer_wiring.h"
+#include "ibl_precompute.h"
+#include "renderer.h"
+#include "scene.h"
+#include "srgb_texels.h"
+#include "vk_test_support.h"
+
+namespace gbl {
+namespace {
+
+class SrgbTextureTest : public test::VulkanTest {};
+
+EnvironmentMap constantEnvironment(float value) {
+    EnvironmentMap env;
+    env.source = "constant";
+    env.image = Image(64, 32, 3, value);
+    return env;
+}
+
+double srgbDecodeFromTheStandard(int code) {
+    const double c = code / 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+TEST_F(SrgbTextureTest, BaseColourIsTheStandardsDecode) {
+    Scene scene;
+    scene.source = "sRGB quad";
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    const glm::vec4 t(1.0f, 0.0f, 0.0f, 1.0f);
+    scene.vertices = {{{-1, 1, 0}, n, t, {0, 0}, {0, 0}},
+                      {{1, 1, 0}, n, t, {1, 0}, {0, 0}},
+                      {{1, -1, 0}, n, t, {1, 1}, {0, 0}},
+                      {{-1, -1, 0}, n, t, {0, 1}, {0, 0}}};
+    scene.indices = {0, 3, 2, 0, 2, 1};
+    Draw draw;
+    draw.indexCount = 6;
+    scene.draws.push_back(draw);
+    scene.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
+    scene.camera.target = glm::vec3(0.0f);
+    scene.lights.push_back(defaultSun());
+    Material m;
+    m.baseColorTexture = 0;
+    scene.materials = {m};
+    const EnvironmentMap white = constantEnvironment(1.0f);
+    IblSettings is;
+    is.sourceFaceSize = 32;
+    is.prefilteredFaceSize = 32;
+    const IblMaps maps = computeIblMaps(ctx(), white, is);
+    double worst = 0.0;
+    for (int code : {1, 3, 10, 11, 30, 60, 100, 128, 180, 240, 255}) {
+        Texture tex;
+        tex.name = "code " + std::to_string(code);
+        tex.width = tex.height = 4;
+        tex.srgb = true;
+        tex.rgba.assign(4 * 4 * 4, uint8_t(code));
+        scene.textures = {tex};
+        Renderer renderer(ctx(), scene, white, maps);
+        RenderSettings rs;
+        rs.width = rs.height = 16;
+        rs.decodeSurfaces = true;
+        const RenderOutput out = renderer.render(makeReferenceWiring(), rs);
+        const float* p = &out.surfaces.baseColor.pixels[size_t(8 * 16 + 8) * 3];
+        const double want = srgbDecodeFromTheStandard(code);
+        for (int c = 0; c < 3; ++c) {
+            const double rel = std::abs(double(p[c]) - want) / want;
+            worst = std::max(worst, rel);
+            EXPECT_LT(rel, 3e-4) << "code " << code << ": " << p[c] << " against " << want;
+        }
+    }
+    std::printf("  worst relative difference from IEC 61966-2-1: %.2e\n", worst);
+}
+
+// The half-float conversion is round-to-nearest: every code's half is the closest of its two
+// neighbours (exhaustive over the 256 codes and the linear alpha values).
+TEST(SrgbTexels, HalvesAreTheNearest) {
+    auto halfToDouble = [](uint16_t h) { return std::ldexp(1.0 + (h & 1023) / 1024.0, ((h >> 10) & 31) - 15); };
+    for (int code = 1; code < 256; ++code)
+        for (double x : {srgbDecodeFromTheStandard(code), code / 255.0}) {
+            const uint16_t h = halfOfPositive(x);
+            const double err = std::abs(halfToDouble(h) - x);
+            EXPECT_LE(err, std::abs(halfToDouble(uint16_t(h + 1)) - x)) << code;
+            EXPECT_LE(err, std::abs(halfToDouble(uint16_t(h - 1)) - x)) << code;
+            EXPECT_LE(err / x, 1.0 / 2048.0) << code;
+        }
+    EXPECT_EQ(halfOfPositive(0.0), 0);
+    EXPECT_EQ(halfOfPositive(1.0), 0x3C00);
+}
+
+}  // namespace
+}  // namespace gbl
