@@ -195,7 +195,7 @@ async function run(jobPath) {
   await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
   const port = server.address().port;
 
-  // Chromium is started detached: its own session and process group, which its zygotes, GPU and
+  // Chromium is started detached: a process group of its own (setsid), which its zygotes, GPU and
   // renderer processes share, and which a signal to this process does not reach. So the group is
   // ended here: after the frame, on failure or timeout, and on SIGINT/SIGTERM/SIGHUP, whose
   // handlers are installed before Chromium starts (this process then exits 128 + the signal's
