@@ -125,7 +125,7 @@ if(TARGET gltf_viewer_test)
   target_compile_definitions(gltf_viewer_test PRIVATE GBL_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
 endif()
 # The float reference against the Sample Viewer on a scene of its own (scripts/crosscheck.sh).
-gbl_test(tools/crosscheck_test LABELS unit DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)
+gbl_test(tools/crosscheck_test LABELS gpu DEPS gbufferlab gbl_image nlohmann_json::nlohmann_json)
 if(TARGET crosscheck_test)
   target_compile_definitions(crosscheck_test PRIVATE GBL_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
 endif()
@@ -154,7 +154,7 @@ gbl_test(cli/diff_bounds_cli_test LABELS unit DEPS gbufferlab gbl_measure gbl_im
 gbl_test(cli/input_bounds_cli_test LABELS unit DEPS gbufferlab gbl_render gbl_image)
 gbl_test(cli/run_names_cli_test LABELS unit DEPS gbufferlab gbl_base)
 gbl_test(cli/messages_cli_test LABELS unit DEPS gbufferlab gbl_base)
-gbl_test(cli/viewer_job_cli_test LABELS unit DEPS gbufferlab gbl_image)  # render --viewer-job, crossdiff
+gbl_test(cli/viewer_job_cli_test LABELS gpu DEPS gbufferlab gbl_image)  # render --viewer-job, crossdiff
 gbl_test(cli/outputs_cli_test LABELS unit DEPS gbufferlab gbl_image)  # special files, --out '', a failed stdout
 include(tests/layering/layering.cmake)
 
