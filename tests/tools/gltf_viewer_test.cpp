@@ -23,7 +23,7 @@
 //   - background pixels are 0 and masked out; bad job files give one line and exit 2, a frame
 //     that does not come within GLTF_VIEWER_TIMEOUT_S one line and exit 4, and no output.
 // Skipped when Chromium, Node or the pinned npm package is absent (scripts/setup.sh --tests
-// installs them). 26 s on the 2-core machine at load 10 (build/gltf_viewer_test, 5 renders).
+// installs them). 22 s on the 2-core machine at load 5 (ctest -R gltf_viewer_test, 6 renders).
 #include <gtest/gtest.h>
 
 #include <algorithm>
