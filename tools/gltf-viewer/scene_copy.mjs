@@ -2,7 +2,8 @@
 // on new root nodes of the rendered scene (the viewer has no public light API; it reads lights
 // only from nodes, gltf-viewer.module.js:4580 getVisibleLights), the scene's own lights and its
 // animations removed (only the job's lights; the rest pose). Everything else, the buffers and the
-// relative URIs included, is untouched: the copy is served from the model's own folder.
+// relative URIs included, is untouched but for one thing, textures shared between colour spaces
+// (splitColourSpaces below): the copy is served from the model's own folder.
 import fs from "node:fs";
 import path from "node:path";
 import { JobError } from "./job.mjs";
@@ -83,6 +84,60 @@ export function lightMatrix(direction, position) {
   return [...x, 0, ...y, 0, ...z, 0, ...p, 1];
 }
 
+// The textureInfos the viewer uploads as sRGB (SRGB8_ALPHA8): those it constructs or marks with
+// linear = false, gltf-viewer.module.js:15691 (emissive), :15804 (baseColor), :15524 (sheenColor),
+// :15547 (specularColor); every other one it constructs with the default linear = true (:15176).
+// These are also the colour textures of the glTF 2.0 specification and the KHR_materials_sheen and
+// _specular READMEs that gbufferlab renders.
+const SRGB_INFOS = [
+  (m) => m.pbrMetallicRoughness?.baseColorTexture,
+  (m) => m.emissiveTexture,
+  (m) => m.extensions?.KHR_materials_sheen?.sheenColorTexture,
+  (m) => m.extensions?.KHR_materials_specular?.specularColorTexture,
+];
+
+// Every textureInfo of a material (an object with an integer `index`, at any depth of the material).
+function textureInfos(material) {
+  const out = [];
+  const walk = (v) => {
+    if (v === null || typeof v !== "object") return;
+    if (Number.isInteger(v.index)) out.push(v);
+    for (const k of Object.keys(v)) walk(v[k]);
+  };
+  walk(material);
+  return out;
+}
+
+// The viewer keeps one WebGL texture per glTF texture and picks its internal format from the first
+// textureInfo that binds it (setTexture, gltf-viewer.module.js:2178-2196: RGBA where that info is
+// linear, SRGB8_ALPHA8 otherwise, then `initialized`), in the order a material lists its textures
+// (:15383-15654; sheenRoughness is pushed at :15515 before sheenColor at :15525, occlusion at :15391
+// before baseColor at :15407). A texture that is both a colour and data (SheenCloth's
+// sheenColorTexture and sheenRoughnessTexture are one texture) is therefore read entirely as linear:
+// its colour undecoded (KhronosGroup/glTF-Sample-Viewer#596 reports the same for specular colour).
+// The specification decodes each use in its own colour space (gbufferlab uploads such an image once
+// per colour space: src/scene/scene_gltf_textures.h), so the copy gives the data uses a texture of
+// their own (same source and sampler). Returns the textures split.
+export function splitColourSpaces(json) {
+  const materials = json.materials ?? [];
+  const srgb = new Set(), linear = new Set();
+  for (const m of materials) {
+    const colour = new Set(SRGB_INFOS.map((f) => f(m)).filter((i) => i !== undefined));
+    for (const info of textureInfos(m)) (colour.has(info) ? srgb : linear).add(info.index);
+  }
+  const twin = new Map();
+  for (const t of srgb) {
+    if (!linear.has(t) || !json.textures?.[t]) continue;
+    twin.set(t, json.textures.length);
+    json.textures.push({ ...json.textures[t], name: `${json.textures[t].name ?? `texture ${t}`} (linear)` });
+  }
+  for (const m of materials) {
+    const colour = new Set(SRGB_INFOS.map((f) => f(m)).filter((i) => i !== undefined));
+    for (const info of textureInfos(m)) if (!colour.has(info) && twin.has(info.index)) info.index = twin.get(info.index);
+  }
+  return [...twin.keys()];
+}
+
 export function sceneCopy(job) {
   const { json, bin } = readModel(job.gltf);
   const bad = (what, fix) => {
@@ -107,6 +162,7 @@ export function sceneCopy(job) {
     }
   }
   delete json.animations;
+  splitColourSpaces(json);
   json.extensions = json.extensions ?? {};
   json.extensions.KHR_lights_punctual = {
     lights: job.lights.map((l) => {
