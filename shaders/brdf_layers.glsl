@@ -183,43 +183,6 @@ vec3 evaluateDirectLightAnisotropicMode(vec3 N, vec3 V, vec3 L, vec3 T, vec3 B, 
 
 // ---- the layered direct light ----
 
-// Radiance towards V from one analytic light from L over every layer of `ly`: the base (UE4's, or
-// the anisotropic lobe where ly.anisotropy > 0), under the sheen (albedo-scaled, [Sheen]), under
-// the coat ([Coat]). sheenAlbedoV / sheenAlbedoL: E(NoV), E(NoL) of the sheen at its roughness
-// (the caller's table look-ups; unread without sheen). Without layers: evaluateDirectLightMode,
-// bit for bit.
-vec3 evaluateDirectLightLayeredMode(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 specularColor, float roughness,
-                                    Layers ly, float sheenAlbedoV, float sheenAlbedoL, vec3 lightRadiance,
-                                    int fresnelMode) {
-    vec3 color = ly.anisotropy > 0.0
-                     ? evaluateDirectLightAnisotropicMode(N, V, L, ly.anisotropyT, ly.anisotropyB, ly.anisotropy,
-                                                          diffuseColor, specularColor, roughness, lightRadiance,
-                                                          fresnelMode)
-                     : evaluateDirectLightMode(N, V, L, diffuseColor, specularColor, roughness, lightRadiance,
-                                               fresnelMode);
-    vec3 Hu = V + L;
-    vec3 H = Hu * inversesqrt(max(dot(Hu, Hu), 1e-12));
-    if (max3(ly.sheenColor) > 0.0) {
-        float NoL = clamp(dot(N, L), 0.0, 1.0);
-        vec3 sheen = vec3(0.0);
-        if (NoL > 0.0)
-            sheen = ly.sheenColor * (sheenBrdf(clamp(dot(N, H), 0.0, 1.0), clamp(dot(N, V), 0.0, 1.0), NoL,
-                                               ly.sheenRoughness) * NoL) * lightRadiance;
-        color = sheen + color * sheenAlbedoScaling(ly.sheenColor, sheenAlbedoV, sheenAlbedoL);
-    }
-    if (ly.coat > 0.0) {
-        vec3 Nc = ly.coatNormal;
-        float NcoL = clamp(dot(Nc, L), 0.0, 1.0);
-        float NcoV = coatNoV(Nc, V);
-        float fc = ly.coat * coatFresnel(NcoV);
-        float coat = 0.0;
-        if (NcoL > 0.0)
-            coat = coatSpecular(clamp(dot(Nc, H), 0.0, 1.0), NcoV, NcoL, max(ly.coatRoughness, kMinDirectRoughness)) * NcoL;
-        color = color * (1.0 - fc) + (fc * coat) * lightRadiance;
-    }
-    return color;
-}
-
 // [Coat] emission under the coat: emission * (1 - clearcoat * fc(NcoV)).
 vec3 coatedEmission(vec3 emission, Layers ly, vec3 V) {
     if (ly.coat <= 0.0) return emission;
@@ -277,6 +240,55 @@ vec3 evaluateDirectLightAnisotropicGltf(vec3 N, vec3 V, vec3 L, vec3 T, vec3 B, 
 // The coat's n.v under BRDF_GLTF: [Viewer] pbrShader clampedDot(clearcoatNormal, v).
 float coatNoVGltf(vec3 Nc, vec3 V) { return clamp(dot(Nc, V), 0.0, 1.0); }
 
+// The layers over a base lobe's radiance `color` ([Sheen] then [Coat]: coat(sheen(base))), as
+// evaluateDirectLightLayeredMode and evaluateDirectLightLayeredGltf share it. `gltf` picks the
+// Sample Viewer's three choices (its sheen clamps, the coat's clamped n.v, the roughness floor
+// kMinGltfRoughness); otherwise sheenBrdf, |n.v| and kMinDirectRoughness.
+vec3 layerOverBase(vec3 color, vec3 N, vec3 V, vec3 L, Layers ly, float sheenAlbedoV, float sheenAlbedoL,
+                   vec3 lightRadiance, bool gltf) {
+    vec3 Hu = V + L;
+    vec3 H = Hu * inversesqrt(max(dot(Hu, Hu), 1e-12));
+    if (max3(ly.sheenColor) > 0.0) {
+        float NoL = clamp(dot(N, L), 0.0, 1.0);
+        vec3 sheen = vec3(0.0);
+        if (NoL > 0.0) {
+            float NoH = clamp(dot(N, H), 0.0, 1.0), NoV = clamp(dot(N, V), 0.0, 1.0);
+            float lobe = gltf ? sheenBrdfGltf(NoH, NoV, NoL, ly.sheenRoughness) : sheenBrdf(NoH, NoV, NoL, ly.sheenRoughness);
+            sheen = ly.sheenColor * (lobe * NoL) * lightRadiance;
+        }
+        color = sheen + color * sheenAlbedoScaling(ly.sheenColor, sheenAlbedoV, sheenAlbedoL);
+    }
+    if (ly.coat > 0.0) {
+        vec3 Nc = ly.coatNormal;
+        float NcoL = clamp(dot(Nc, L), 0.0, 1.0);
+        float NcoV = gltf ? coatNoVGltf(Nc, V) : coatNoV(Nc, V);
+        float fc = ly.coat * coatFresnel(NcoV);
+        float coat = 0.0;
+        if (NcoL > 0.0)
+            coat = coatSpecular(clamp(dot(Nc, H), 0.0, 1.0), NcoV, NcoL,
+                                max(ly.coatRoughness, gltf ? kMinGltfRoughness : kMinDirectRoughness)) * NcoL;
+        color = color * (1.0 - fc) + (fc * coat) * lightRadiance;
+    }
+    return color;
+}
+
+// Radiance towards V from one analytic light from L over every layer of `ly`: the base (UE4's, or
+// the anisotropic lobe where ly.anisotropy > 0), under the sheen (albedo-scaled, [Sheen]), under
+// the coat ([Coat]). sheenAlbedoV / sheenAlbedoL: E(NoV), E(NoL) of the sheen at its roughness
+// (the caller's table look-ups; unread without sheen). Without layers: evaluateDirectLightMode,
+// bit for bit.
+vec3 evaluateDirectLightLayeredMode(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 specularColor, float roughness,
+                                    Layers ly, float sheenAlbedoV, float sheenAlbedoL, vec3 lightRadiance,
+                                    int fresnelMode) {
+    vec3 color = ly.anisotropy > 0.0
+                     ? evaluateDirectLightAnisotropicMode(N, V, L, ly.anisotropyT, ly.anisotropyB, ly.anisotropy,
+                                                          diffuseColor, specularColor, roughness, lightRadiance,
+                                                          fresnelMode)
+                     : evaluateDirectLightMode(N, V, L, diffuseColor, specularColor, roughness, lightRadiance,
+                                               fresnelMode);
+    return layerOverBase(color, N, V, L, ly, sheenAlbedoV, sheenAlbedoL, lightRadiance, false);
+}
+
 // evaluateDirectLightLayeredMode's layering over the glTF base: coat(sheen(base)) [Sheen], [Coat].
 vec3 evaluateDirectLightLayeredGltf(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 specularColor, float dielectricF0,
                                     float roughness, Layers ly, float sheenAlbedoV, float sheenAlbedoL,
@@ -287,27 +299,7 @@ vec3 evaluateDirectLightLayeredGltf(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, v
                                                           lightRadiance)
                      : evaluateDirectLightGltf(N, V, L, diffuseColor, specularColor, dielectricF0, roughness,
                                                lightRadiance);
-    vec3 Hu = V + L;
-    vec3 H = Hu * inversesqrt(max(dot(Hu, Hu), 1e-12));
-    if (max3(ly.sheenColor) > 0.0) {
-        float NoL = clamp(dot(N, L), 0.0, 1.0);
-        vec3 sheen = vec3(0.0);
-        if (NoL > 0.0)
-            sheen = ly.sheenColor * (sheenBrdfGltf(clamp(dot(N, H), 0.0, 1.0), clamp(dot(N, V), 0.0, 1.0), NoL,
-                                                   ly.sheenRoughness) * NoL) * lightRadiance;
-        color = sheen + color * sheenAlbedoScaling(ly.sheenColor, sheenAlbedoV, sheenAlbedoL);
-    }
-    if (ly.coat > 0.0) {
-        vec3 Nc = ly.coatNormal;
-        float NcoL = clamp(dot(Nc, L), 0.0, 1.0);
-        float NcoV = coatNoVGltf(Nc, V);
-        float fc = ly.coat * coatFresnel(NcoV);
-        float coat = 0.0;
-        if (NcoL > 0.0)
-            coat = coatSpecular(clamp(dot(Nc, H), 0.0, 1.0), NcoV, NcoL, max(ly.coatRoughness, kMinGltfRoughness)) * NcoL;
-        color = color * (1.0 - fc) + (fc * coat) * lightRadiance;
-    }
-    return color;
+    return layerOverBase(color, N, V, L, ly, sheenAlbedoV, sheenAlbedoL, lightRadiance, true);
 }
 
 // [Coat] emission under the coat with [Viewer]'s n.v: emission * (1 - clearcoat * fc(clampedDot)).

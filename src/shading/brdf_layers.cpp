@@ -113,40 +113,6 @@ glm::vec3 evaluateDirectLightAnisotropicMode(glm::vec3 N, glm::vec3 V, glm::vec3
     return brdf * lightRadiance * NoL;
 }
 
-glm::vec3 evaluateDirectLightLayeredMode(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
-                                         glm::vec3 specularColor, float roughness, const Layers& ly,
-                                         float sheenAlbedoV, float sheenAlbedoL, glm::vec3 lightRadiance,
-                                         int fresnelMode) {
-    glm::vec3 color = ly.anisotropy > 0.0f
-                          ? evaluateDirectLightAnisotropicMode(N, V, L, ly.anisotropyT, ly.anisotropyB, ly.anisotropy,
-                                                               diffuseColor, specularColor, roughness, lightRadiance,
-                                                               fresnelMode)
-                          : evaluateDirectLightMode(N, V, L, diffuseColor, specularColor, roughness, lightRadiance,
-                                                    fresnelMode);
-    glm::vec3 H = safeHalf(V, L);
-    if (max3(ly.sheenColor) > 0.0f) {
-        float NoL = saturate(glm::dot(N, L));
-        glm::vec3 sheen(0.0f);
-        if (NoL > 0.0f)
-            sheen = ly.sheenColor *
-                    (sheenBrdf(saturate(glm::dot(N, H)), saturate(glm::dot(N, V)), NoL, ly.sheenRoughness) * NoL) *
-                    lightRadiance;
-        color = sheen + color * sheenAlbedoScaling(ly.sheenColor, sheenAlbedoV, sheenAlbedoL);
-    }
-    if (ly.coat > 0.0f) {
-        glm::vec3 Nc = ly.coatNormal;
-        float NcoL = saturate(glm::dot(Nc, L));
-        float NcoV = coatNoV(Nc, V);
-        float fc = ly.coat * coatFresnel(NcoV);
-        float coat = 0.0f;
-        if (NcoL > 0.0f)
-            coat = coatSpecular(saturate(glm::dot(Nc, H)), NcoV, NcoL, std::max(ly.coatRoughness, kMinDirectRoughness)) *
-                   NcoL;
-        color = color * (1.0f - fc) + (fc * coat) * lightRadiance;
-    }
-    return color;
-}
-
 glm::vec3 coatedEmission(glm::vec3 emission, const Layers& ly, glm::vec3 V) {
     if (ly.coat <= 0.0f) return emission;
     return emission * (1.0f - ly.coat * coatFresnel(coatNoV(ly.coatNormal, V)));
@@ -190,6 +156,49 @@ glm::vec3 evaluateDirectLightAnisotropicGltf(glm::vec3 N, glm::vec3 V, glm::vec3
 
 float coatNoVGltf(glm::vec3 Nc, glm::vec3 V) { return saturate(glm::dot(Nc, V)); }
 
+// brdf_layers.glsl layerOverBase: the layers over a base lobe's radiance, [Sheen] then [Coat];
+// `gltf` picks the Sample Viewer's sheen clamps, the coat's clamped n.v and kMinGltfRoughness.
+static glm::vec3 layerOverBase(glm::vec3 color, glm::vec3 N, glm::vec3 V, glm::vec3 L, const Layers& ly, float sheenAlbedoV,
+                               float sheenAlbedoL, glm::vec3 lightRadiance, bool gltf) {
+    glm::vec3 H = safeHalf(V, L);
+    if (max3(ly.sheenColor) > 0.0f) {
+        float NoL = saturate(glm::dot(N, L));
+        glm::vec3 sheen(0.0f);
+        if (NoL > 0.0f) {
+            float NoH = saturate(glm::dot(N, H)), NoV = saturate(glm::dot(N, V));
+            float lobe = gltf ? sheenBrdfGltf(NoH, NoV, NoL, ly.sheenRoughness) : sheenBrdf(NoH, NoV, NoL, ly.sheenRoughness);
+            sheen = ly.sheenColor * (lobe * NoL) * lightRadiance;
+        }
+        color = sheen + color * sheenAlbedoScaling(ly.sheenColor, sheenAlbedoV, sheenAlbedoL);
+    }
+    if (ly.coat > 0.0f) {
+        glm::vec3 Nc = ly.coatNormal;
+        float NcoL = saturate(glm::dot(Nc, L));
+        float NcoV = gltf ? coatNoVGltf(Nc, V) : coatNoV(Nc, V);
+        float fc = ly.coat * coatFresnel(NcoV);
+        float coat = 0.0f;
+        if (NcoL > 0.0f)
+            coat = coatSpecular(saturate(glm::dot(Nc, H)), NcoV, NcoL,
+                                std::max(ly.coatRoughness, gltf ? kMinGltfRoughness : kMinDirectRoughness)) *
+                   NcoL;
+        color = color * (1.0f - fc) + (fc * coat) * lightRadiance;
+    }
+    return color;
+}
+
+glm::vec3 evaluateDirectLightLayeredMode(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
+                                         glm::vec3 specularColor, float roughness, const Layers& ly,
+                                         float sheenAlbedoV, float sheenAlbedoL, glm::vec3 lightRadiance,
+                                         int fresnelMode) {
+    glm::vec3 color = ly.anisotropy > 0.0f
+                          ? evaluateDirectLightAnisotropicMode(N, V, L, ly.anisotropyT, ly.anisotropyB, ly.anisotropy,
+                                                               diffuseColor, specularColor, roughness, lightRadiance,
+                                                               fresnelMode)
+                          : evaluateDirectLightMode(N, V, L, diffuseColor, specularColor, roughness, lightRadiance,
+                                                    fresnelMode);
+    return layerOverBase(color, N, V, L, ly, sheenAlbedoV, sheenAlbedoL, lightRadiance, false);
+}
+
 glm::vec3 evaluateDirectLightLayeredGltf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
                                          glm::vec3 specularColor, float dielectricF0, float roughness,
                                          const Layers& ly, float sheenAlbedoV, float sheenAlbedoL,
@@ -200,28 +209,7 @@ glm::vec3 evaluateDirectLightLayeredGltf(glm::vec3 N, glm::vec3 V, glm::vec3 L, 
                                                                lightRadiance)
                           : evaluateDirectLightGltf(N, V, L, diffuseColor, specularColor, dielectricF0, roughness,
                                                     lightRadiance);
-    glm::vec3 H = safeHalf(V, L);
-    if (max3(ly.sheenColor) > 0.0f) {
-        float NoL = saturate(glm::dot(N, L));
-        glm::vec3 sheen(0.0f);
-        if (NoL > 0.0f)
-            sheen = ly.sheenColor *
-                    (sheenBrdfGltf(saturate(glm::dot(N, H)), saturate(glm::dot(N, V)), NoL, ly.sheenRoughness) * NoL) *
-                    lightRadiance;
-        color = sheen + color * sheenAlbedoScaling(ly.sheenColor, sheenAlbedoV, sheenAlbedoL);
-    }
-    if (ly.coat > 0.0f) {
-        glm::vec3 Nc = ly.coatNormal;
-        float NcoL = saturate(glm::dot(Nc, L));
-        float NcoV = coatNoVGltf(Nc, V);
-        float fc = ly.coat * coatFresnel(NcoV);
-        float coat = 0.0f;
-        if (NcoL > 0.0f)
-            coat = coatSpecular(saturate(glm::dot(Nc, H)), NcoV, NcoL, std::max(ly.coatRoughness, kMinGltfRoughness)) *
-                   NcoL;
-        color = color * (1.0f - fc) + (fc * coat) * lightRadiance;
-    }
-    return color;
+    return layerOverBase(color, N, V, L, ly, sheenAlbedoV, sheenAlbedoL, lightRadiance, true);
 }
 
 glm::vec3 coatedEmissionGltf(glm::vec3 emission, const Layers& ly, glm::vec3 V) {
