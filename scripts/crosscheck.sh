@@ -4,12 +4,14 @@
 # (tools/gltf-viewer/render.mjs) with the same camera, punctual lights and exposure, then compared
 # where both drew geometry (`gbufferlab crossdiff`).
 #
-# Usage: scripts/crosscheck.sh [--brdf gltf|ue4] [--base-level] [--ibl ENV.hdr] [--size WxH] [--tolerance X] --out DIR MODEL...
+# Usage: scripts/crosscheck.sh [--brdf gltf|ue4] [--base-level | --nearest] [--ibl ENV.hdr] [--size WxH] [--tolerance X] --out DIR MODEL...
 #   MODEL       a .gltf/.glb path, or a model name under ../shared/assets/models (WaterBottle, ...)
 #   --brdf      gbufferlab's direct-light BRDF (default gltf: the specification's, like for like)
 #   --base-level  both renderers sample every texture at its base level, bilinear (the viewer a
 #               copy of the model whose samplers say minFilter LINEAR, gbufferlab
 #               --texture-base-level): no mip, anisotropy or footprint differences
+#   --nearest   the same at the nearest texel (samplers NEAREST, gbufferlab --texture-nearest): no
+#               bilinear weights either, whose last bits differ between any two renderers
 #   --ibl       also light by this equirectangular environment (default: punctual lights only)
 #   --size      frame size (default 320x180)
 #   --tolerance crossdiff's per-pixel tolerance (default 1e-3)
@@ -20,18 +22,19 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 gbl="${GBL_BIN:-$root/build/gbufferlab}"
 assets="${GBL_SHARED_ASSETS:-$root/../shared/assets}"
-brdf=gltf ibl="" size=320x180 tolerance=1e-3 out="" baselevel=0
+brdf=gltf ibl="" size=320x180 tolerance=1e-3 out="" baselevel=0 filter=9729
 models=()
 die() { echo "crosscheck.sh: $1" >&2; exit "${2:-2}"; }
 while [ $# -gt 0 ]; do
   case "$1" in
     --base-level) baselevel=1; shift ;;
+    --nearest) baselevel=1 filter=9728; shift ;;
     --brdf) [ $# -ge 2 ] || die "--brdf needs gltf or ue4"; brdf="$2"; shift 2 ;;
     --ibl) [ $# -ge 2 ] || die "--ibl needs an equirectangular .hdr"; ibl="$2"; shift 2 ;;
     --size) [ $# -ge 2 ] || die "--size needs WxH, e.g. 320x180"; size="$2"; shift 2 ;;
     --tolerance) [ $# -ge 2 ] || die "--tolerance needs a number, e.g. 1e-3"; tolerance="$2"; shift 2 ;;
     --out) [ $# -ge 2 ] || die "--out needs a directory"; out="$2"; shift 2 ;;
-    -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) die "unknown flag $1 (see --help)" ;;
     *) models+=("$1"); shift ;;
   esac
@@ -61,22 +64,23 @@ for m in "${models[@]}"; do
   if [ "$baselevel" = 1 ]; then
     # A copy beside links to the model's files, every texture on one sampler without mips.
     mkdir -p "$dir/model"
-    python3 - "$model" "$dir/model" <<'PY'
+    python3 - "$model" "$dir/model" "$filter" <<'PY'
 import json, os, sys
-src, dst = sys.argv[1], sys.argv[2]
+src, dst, filt = sys.argv[1], sys.argv[2], int(sys.argv[3])
 folder = os.path.dirname(src)
 for f in os.listdir(folder):
     if f != os.path.basename(src):
         os.symlink(os.path.join(folder, f), os.path.join(dst, f))
 g = json.load(open(src))
 if g.get("textures"):
-    g["samplers"] = [{"magFilter": 9729, "minFilter": 9729, "wrapS": 10497, "wrapT": 10497}]
+    g["samplers"] = [{"magFilter": filt, "minFilter": filt, "wrapS": 10497, "wrapT": 10497}]
     for t in g["textures"]:
         t["sampler"] = 0
 json.dump(g, open(os.path.join(dst, os.path.basename(src)), "w"))
 PY
     scene="$dir/model/$(basename "$model")"
     envflags+=(--texture-base-level --allow-outside-scene)
+    [ "$filter" = 9729 ] || envflags+=(--texture-nearest)
   fi
   t0=$(date +%s.%N)
   "$gbl" render --scene "$scene" "${envflags[@]}" --size "$size" --brdf "$brdf" --viewer-job "$dir/job.json" \
@@ -90,16 +94,16 @@ PY
   rows+=("$name $dir/metrics.json $(awk "BEGIN{print $t1 - $t0}") $(awk "BEGIN{print $t2 - $t1}")")
   echo "$name: $(python3 -c "import json,sys; m=json.load(open(sys.argv[1])); print('relative RMSE %.3e (8x8 means %.3e), max relative %.3e, %d of %d covered pixels beyond %g, HDR-FLIP mean %.5f' % (m['relative_rmse'], m['box_relative_rmse'], m['max_relative'], m['beyond_tolerance_pixels'], m['covered_pixels'], m['tolerance'], m['hdr_flip_mean']))" "$dir/metrics.json")"
 done
-python3 - "$out" "$brdf" "$size" "${ibl:-none}" "$baselevel" "${rows[@]}" <<'PY'
+python3 - "$out" "$brdf" "$size" "${ibl:-none}" "$baselevel" "$filter" "${rows[@]}" <<'PY'
 import csv, json, sys
-out, brdf, size, ibl, rows = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[6:]
+out, brdf, size, ibl, rows = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[7:]
 models = []
 for r in rows:
     name, path, tr, tv = r.split(" ")
     m = json.load(open(path))
     m.update(model=name, gbufferlab_seconds=float(tr), viewer_seconds=float(tv))
     models.append(m)
-json.dump({"brdf": brdf, "size": size, "ibl": ibl, "base_level": sys.argv[5] == "1", "models": models}, open(out + "/summary.json", "w"), indent=2)
+json.dump({"brdf": brdf, "size": size, "ibl": ibl, "base_level": sys.argv[5] == "1", "nearest": sys.argv[6] == "9728", "models": models}, open(out + "/summary.json", "w"), indent=2)
 keys = ["model", "covered_pixels", "only_reference_pixels", "only_test_pixels", "mean_reference_luminance",
         "mean_test_luminance", "relative_rmse", "box_relative_rmse", "max_relative", "max_abs", "beyond_tolerance_pixels", "tolerance", "hdr_flip_mean",
         "hdr_flip_max", "gbufferlab_seconds", "viewer_seconds"]

@@ -52,6 +52,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         {"no-ibl", "", "punctual lights only: no image-based light (the environment's radiance scaled by 0, background black)"},
         {"viewer-job", "FILE", "also write the Khronos glTF Sample Viewer job (tools/gltf-viewer/README.md) of this render to FILE, and the coverage mask reference.mask.pgm (needs --scene)"},
         {"texture-base-level", "", "sample every material texture at its base level only (bilinear, no mips), as a glTF sampler with minFilter LINEAR: a cross-check without filtering differences"},
+        {"texture-nearest", "", "sample every material texture at its base level, nearest texel (glTF's NEAREST filters): a cross-check without bilinear weights"},
         {"band-rows", "N", "render N rows of the frame at a time (less memory at large sizes; the same image, bit for bit); default: all"},
         {"validation", "", "enable Vulkan validation layers"},
         {"help", "", "show this help"},
@@ -92,7 +93,8 @@ int runRenderCommand(const std::vector<std::string>& args) {
 
     SceneInputs inputs = loadSceneInputs(parsed.get("scene"), parsed.get("env"), float(width) / float(height),
                                                 GltfLoadOptions{parsed.has("allow-outside-scene")});
-    inputs.scene.textureBaseLevelOnly = parsed.has("texture-base-level");
+    inputs.scene.textureBaseLevelOnly = parsed.has("texture-base-level") || parsed.has("texture-nearest");
+    inputs.scene.textureNearest = parsed.has("texture-nearest");
     VulkanContext ctx(DeviceOptions{parsed.get("device"), parsed.has("validation")});
     Renderer renderer(ctx, inputs.scene, inputs.environment);
     RenderSettings settings;

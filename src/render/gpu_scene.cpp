@@ -155,7 +155,9 @@ GpuScene uploadScene(const VulkanContext& ctx, const Scene& scene) {
     }
     g.texturesBySlot = materialTextureSlots(materials, uint32_t(g.textures.size()));
     // Trilinear, no anisotropy: identical for every layout, and anisotropy is an optional feature.
-    g.textureSampler = createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT,
+    const bool nearest = scene.textureBaseLevelOnly && scene.textureNearest;
+    g.textureSampler = createSampler(ctx, nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR,
+                                     VK_SAMPLER_ADDRESS_MODE_REPEAT,
                                      VK_SAMPLER_ADDRESS_MODE_REPEAT, 1.0f,
                                      scene.textureBaseLevelOnly ? 0.0f : VK_LOD_CLAMP_NONE);
 

@@ -176,6 +176,11 @@ struct Scene {
     // cross-check against another renderer (docs/crosscheck.md) sees no mip or filter footprint
     // difference; off, textures are trilinear (gpu_scene.cpp).
     bool textureBaseLevelOnly = false;
+    // With textureBaseLevelOnly: the texel nearest the sample point, no bilinear weights (glTF's
+    // magFilter/minFilter NEAREST). render --texture-nearest sets it, so that a cross-check sees
+    // the stored texel values only: two renderers' bilinear weights differ in their last bits
+    // (8-bit sub-texel precision is what D3D11 asks of a GPU), which a very sharp lobe amplifies.
+    bool textureNearest = false;
 };
 
 // Loads a .gltf (external or embedded buffers) or .glb file. Throws UserError naming the file

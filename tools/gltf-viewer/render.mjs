@@ -48,6 +48,38 @@ function say(line) {
   process.stderr.write(`render.mjs: ${line}\n`);
 }
 
+// Shader text the served module changes (each must occur exactly once in 1.1.0's bundle, or the
+// run is refused), as KHR_materials_clearcoat and KHR_materials_anisotropy define the lobes:
+// - always: the clear coat's normal from clearcoatNormalTexture made unit length again after the
+//   tangent frame turns it into world space. getClearcoatNormal (materialInfoShader, :3806) returns
+//   mat3(t, b, ng) * normalize(n) unnormalised, and the interpolated t, b, ng (MikkTSpace tangents
+//   the viewer generates, :16382) are not orthonormal, so |n| differs from 1 by about 1e-4; at
+//   ClearcoatWicker's coat roughness 0.1 (alpha^2 = 1e-4) that is enough to cut the coat's
+//   highlight 16-fold (docs/crosscheck.md, "ClearcoatWicker"). The base normal's getNormalInfo
+//   normalises; the coat's is a unit normal in the extension's BRDF.
+// - with GLTF_VIEWER_ANISOTROPY_FRAME=orthonormal: the anisotropy direction made orthogonal to
+//   the shading normal and the bitangent taken from the shading normal. getAnisotropyInfo (:3806)
+//   follows the extension's non-normative sample (T = normalize(TBN * direction), B = cross(ng, T),
+//   T not orthogonal to n once interpolated); the normative D(h) takes an orthonormal (t, b, n), as
+//   gbufferlab does. Off by default: it is the sample code's choice, not a defect; the switch
+//   measures what it moves (docs/crosscheck.md, "AnisotropyStrengthTest").
+const COAT_NORMAL_SOURCE = "n=mat3(normalInfo.t,normalInfo.b,normalInfo.ng)*normalize(n);return n;";
+const COAT_NORMAL_UNIT = "n=mat3(normalInfo.t,normalInfo.b,normalInfo.ng)*normalize(n);return normalize(n);";
+const ANISOTROPY_FRAME_SOURCE =
+  "info.anisotropicT=mat3(normalInfo.t,normalInfo.b,normalInfo.n)*normalize(vec3(direction,0.0));" +
+  "info.anisotropicB=cross(normalInfo.ng,info.anisotropicT);";
+const ANISOTROPY_FRAME_ORTHONORMAL =
+  "info.anisotropicT=mat3(normalInfo.t,normalInfo.b,normalInfo.n)*normalize(vec3(direction,0.0));" +
+  "info.anisotropicT=normalize(info.anisotropicT-normalInfo.n*dot(normalInfo.n,info.anisotropicT));" +
+  "info.anisotropicB=cross(normalInfo.n,info.anisotropicT);";
+
+function replaceOnce(module, from, to, what) {
+  const at = module.indexOf(from);
+  if (at < 0 || module.indexOf(from, at + 1) >= 0)
+    throw new ViewerError(`${DIST}/gltf-viewer.module.js does not hold 1.1.0's ${what} once; reinstall with npm ci --prefix tools/gltf-viewer`);
+  return module.slice(0, at) + to + module.slice(at + from.length);
+}
+
 function checkPackage() {
   let version;
   try {
@@ -57,11 +89,16 @@ function checkPackage() {
   }
   if (version !== PINNED)
     throw new ViewerError(`@khronosgroup/gltf-viewer is ${version}, not the pinned ${PINNED}; run npm ci --prefix tools/gltf-viewer`);
-  const module = fs.readFileSync(path.join(DIST, "gltf-viewer.module.js"), "utf8");
-  const at = module.indexOf(IBL_SAMPLER_SOURCE);
-  if (at < 0 || module.indexOf(IBL_SAMPLER_SOURCE, at + 1) >= 0)
-    throw new ViewerError(`${DIST}/gltf-viewer.module.js does not hold 1.1.0's iblSampler constructor once; reinstall with npm ci --prefix tools/gltf-viewer`);
-  return module.replace(IBL_SAMPLER_SOURCE, `        Object.assign(this, globalThis.__gltfViewerJobIblSampler);`);
+  let module = fs.readFileSync(path.join(DIST, "gltf-viewer.module.js"), "utf8");
+  module = replaceOnce(module, IBL_SAMPLER_SOURCE, `        Object.assign(this, globalThis.__gltfViewerJobIblSampler);`,
+                       "iblSampler constructor");
+  module = replaceOnce(module, COAT_NORMAL_SOURCE, COAT_NORMAL_UNIT, "getClearcoatNormal");
+  const frame = process.env.GLTF_VIEWER_ANISOTROPY_FRAME ?? "sample";
+  if (frame !== "sample" && frame !== "orthonormal")
+    throw new JobError(`GLTF_VIEWER_ANISOTROPY_FRAME=${frame}: give sample (the default) or orthonormal`);
+  if (frame === "orthonormal")
+    module = replaceOnce(module, ANISOTROPY_FRAME_SOURCE, ANISOTROPY_FRAME_ORTHONORMAL, "getAnisotropyInfo");
+  return module;
 }
 
 // A 8 x 4 black Radiance picture (flat scanlines, which the viewer's loadHDR reads, :19873): the
