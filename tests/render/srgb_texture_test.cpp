@@ -83,6 +83,61 @@ TEST_F(SrgbTextureTest, BaseColourIsTheStandardsDecode) {
     std::printf("  worst relative difference from IEC 61966-2-1: %.2e\n", worst);
 }
 
+// render --texture-nearest (docs/crosscheck.md): a magnified 2 x 2 checker of codes 0 and 255
+// reads back as exactly those two values in every pixel (glTF's NEAREST filters), where the
+// bilinear base level (--texture-base-level) blends them across each texel's half.
+TEST_F(SrgbTextureTest, NearestSamplesOnlyStoredTexels) {
+    Scene scene;
+    scene.source = "checker quad";
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    const glm::vec4 t(1.0f, 0.0f, 0.0f, 1.0f);
+    scene.vertices = {{{-1, 1, 0}, n, t, {0, 0}, {0, 0}},
+                      {{1, 1, 0}, n, t, {1, 0}, {0, 0}},
+                      {{1, -1, 0}, n, t, {1, 1}, {0, 0}},
+                      {{-1, -1, 0}, n, t, {0, 1}, {0, 0}}};
+    scene.indices = {0, 3, 2, 0, 2, 1};
+    Draw draw;
+    draw.indexCount = 6;
+    scene.draws.push_back(draw);
+    scene.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
+    scene.camera.target = glm::vec3(0.0f);
+    scene.lights.push_back(defaultSun());
+    Material m;
+    m.baseColorTexture = 0;
+    scene.materials = {m};
+    Texture tex;
+    tex.name = "checker";
+    tex.width = tex.height = 2;
+    tex.srgb = false;
+    for (int texel : {0, 1, 1, 0}) tex.rgba.insert(tex.rgba.end(), {uint8_t(255 * texel), uint8_t(255 * texel), uint8_t(255 * texel), 255});
+    scene.textures = {tex};
+    const EnvironmentMap white = constantEnvironment(1.0f);
+    IblSettings is;
+    is.sourceFaceSize = 32;
+    is.prefilteredFaceSize = 32;
+    const IblMaps maps = computeIblMaps(ctx(), white, is);
+    scene.textureBaseLevelOnly = true;
+    for (bool nearest : {true, false}) {
+        scene.textureNearest = nearest;
+        Renderer renderer(ctx(), scene, white, maps);
+        RenderSettings rs;
+        rs.width = rs.height = 32;
+        rs.decodeSurfaces = true;
+        const RenderOutput out = renderer.render(makeReferenceWiring(), rs);
+        int between = 0, pixels = 0;
+        for (int y = 8; y < 24; ++y)  // inside the quad, away from the repeat wrap at its edges
+            for (int x = 8; x < 24; ++x, ++pixels) {
+                const float v = out.surfaces.baseColor.pixels[size_t(y * 32 + x) * 3];
+                if (v > 1e-6f && v < 1.0f - 1e-6f) ++between;
+            }
+        if (nearest) {
+            EXPECT_EQ(between, 0) << "nearest sampling blended texels";
+        } else {
+            EXPECT_GT(between, pixels / 2) << "bilinear sampling should blend the magnified texels";
+        }
+    }
+}
+
 // The half-float conversion is round-to-nearest: every code's half is the closest of its two
 // neighbours (exhaustive over the 256 codes and the linear alpha values).
 TEST(SrgbTexels, HalvesAreTheNearest) {
