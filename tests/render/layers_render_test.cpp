@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "facing_quad.h"
 #include "forward_mask.h"
 #include "gbuffer_wiring.h"
 #include "ibl_precompute.h"
@@ -27,12 +28,7 @@ namespace {
 
 class LayersRenderTest : public test::VulkanTest {};
 
-EnvironmentMap constantEnvironment(float value) {
-    EnvironmentMap env;
-    env.source = "constant";
-    env.image = Image(64, 32, 3, value);
-    return env;
-}
+using test::constantEnvironment;
 
 // The sphere grid; of its spheres, every fourth from the second gets a coat, from the third a
 // sheen, from the fourth anisotropy (the first and the ground none).
@@ -298,15 +294,7 @@ TEST_F(LayersRenderTest, ForwardMaskCoversTheTransmissiveDraws) {
 // triangles: the implicit derivatives of a transformed uv read a 1 x 1 mip there on lavapipe
 // (material_eval.glsl materialSlotUv), which the explicit gradients avoid.
 TEST_F(LayersRenderTest, TextureTransformMovesWhatEachPixelSamples) {
-    Scene scene;
-    scene.source = "texture transform quad";
-    const glm::vec3 n(0.0f, 0.0f, 1.0f);
-    const glm::vec4 t(1.0f, 0.0f, 0.0f, 1.0f);
-    scene.vertices = {{{-1, 1, 0}, n, t, {0, 0}, {1, 0}},
-                      {{1, 1, 0}, n, t, {1, 0}, {0, 0}},
-                      {{1, -1, 0}, n, t, {1, 1}, {0, 1}},
-                      {{-1, -1, 0}, n, t, {0, 1}, {1, 1}}};
-    scene.indices = {0, 3, 2, 0, 2, 1};
+    Scene scene = test::facingQuad("texture transform quad", {glm::vec2(1, 0), glm::vec2(0, 0), glm::vec2(0, 1), glm::vec2(1, 1)});
     Texture quadrants;
     quadrants.name = "quadrants";
     quadrants.width = quadrants.height = 64;
@@ -317,12 +305,6 @@ TEST_F(LayersRenderTest, TextureTransformMovesWhatEachPixelSamples) {
             std::memcpy(&quadrants.rgba[size_t(y * 64 + x) * 4], c[(y >= 32 ? 2 : 0) + (x >= 32 ? 1 : 0)], 4);
         }
     scene.textures.push_back(quadrants);
-    Draw draw;
-    draw.indexCount = 6;
-    scene.draws.push_back(draw);
-    scene.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
-    scene.camera.target = glm::vec3(0.0f);
-    scene.lights.push_back(defaultSun());
     const glm::vec3 red(1, 0, 0), green(0, 1, 0), blue(0, 0, 1), white(1, 1, 1);
     struct Case {
         const char* name;
@@ -338,10 +320,7 @@ TEST_F(LayersRenderTest, TextureTransformMovesWhatEachPixelSamples) {
                           {"rotation pi/2", rotation, blue, red, white, green},
                           {"texCoord 1", set1, green, red, white, blue}};
     const EnvironmentMap white1 = constantEnvironment(1.0f);
-    IblSettings is;
-    is.sourceFaceSize = 32;
-    is.prefilteredFaceSize = 32;
-    const IblMaps maps = computeIblMaps(ctx(), white1, is);
+    const IblMaps maps = test::smallIblMaps(ctx(), white1);
     for (const Case& c : cases) {
         Material m;
         m.baseColorTexture = 0;

@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "gbuffer_wiring.h"
+#include "facing_quad.h"
 #include "ibl_precompute.h"
 #include "renderer.h"
 #include "scene.h"
@@ -23,42 +24,15 @@ namespace {
 
 class SrgbTextureTest : public test::VulkanTest {};
 
-EnvironmentMap constantEnvironment(float value) {
-    EnvironmentMap env;
-    env.source = "constant";
-    env.image = Image(64, 32, 3, value);
-    return env;
-}
-
 double srgbDecodeFromTheStandard(int code) {
     const double c = code / 255.0;
     return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
 TEST_F(SrgbTextureTest, BaseColourIsTheStandardsDecode) {
-    Scene scene;
-    scene.source = "sRGB quad";
-    const glm::vec3 n(0.0f, 0.0f, 1.0f);
-    const glm::vec4 t(1.0f, 0.0f, 0.0f, 1.0f);
-    scene.vertices = {{{-1, 1, 0}, n, t, {0, 0}, {0, 0}},
-                      {{1, 1, 0}, n, t, {1, 0}, {0, 0}},
-                      {{1, -1, 0}, n, t, {1, 1}, {0, 0}},
-                      {{-1, -1, 0}, n, t, {0, 1}, {0, 0}}};
-    scene.indices = {0, 3, 2, 0, 2, 1};
-    Draw draw;
-    draw.indexCount = 6;
-    scene.draws.push_back(draw);
-    scene.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
-    scene.camera.target = glm::vec3(0.0f);
-    scene.lights.push_back(defaultSun());
-    Material m;
-    m.baseColorTexture = 0;
-    scene.materials = {m};
-    const EnvironmentMap white = constantEnvironment(1.0f);
-    IblSettings is;
-    is.sourceFaceSize = 32;
-    is.prefilteredFaceSize = 32;
-    const IblMaps maps = computeIblMaps(ctx(), white, is);
+    Scene scene = test::facingQuad("sRGB quad");
+    const EnvironmentMap white = test::constantEnvironment(1.0f);
+    const IblMaps maps = test::smallIblMaps(ctx(), white);
     double worst = 0.0;
     for (int code : {1, 3, 10, 11, 30, 60, 100, 128, 180, 240, 255}) {
         Texture tex;
@@ -87,35 +61,15 @@ TEST_F(SrgbTextureTest, BaseColourIsTheStandardsDecode) {
 // reads back as exactly those two values in every pixel (glTF's NEAREST filters), where the
 // bilinear base level (--texture-base-level) blends them across each texel's half.
 TEST_F(SrgbTextureTest, NearestSamplesOnlyStoredTexels) {
-    Scene scene;
-    scene.source = "checker quad";
-    const glm::vec3 n(0.0f, 0.0f, 1.0f);
-    const glm::vec4 t(1.0f, 0.0f, 0.0f, 1.0f);
-    scene.vertices = {{{-1, 1, 0}, n, t, {0, 0}, {0, 0}},
-                      {{1, 1, 0}, n, t, {1, 0}, {0, 0}},
-                      {{1, -1, 0}, n, t, {1, 1}, {0, 0}},
-                      {{-1, -1, 0}, n, t, {0, 1}, {0, 0}}};
-    scene.indices = {0, 3, 2, 0, 2, 1};
-    Draw draw;
-    draw.indexCount = 6;
-    scene.draws.push_back(draw);
-    scene.camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
-    scene.camera.target = glm::vec3(0.0f);
-    scene.lights.push_back(defaultSun());
-    Material m;
-    m.baseColorTexture = 0;
-    scene.materials = {m};
+    Scene scene = test::facingQuad("checker quad");
     Texture tex;
     tex.name = "checker";
     tex.width = tex.height = 2;
     tex.srgb = false;
     for (int texel : {0, 1, 1, 0}) tex.rgba.insert(tex.rgba.end(), {uint8_t(255 * texel), uint8_t(255 * texel), uint8_t(255 * texel), 255});
     scene.textures = {tex};
-    const EnvironmentMap white = constantEnvironment(1.0f);
-    IblSettings is;
-    is.sourceFaceSize = 32;
-    is.prefilteredFaceSize = 32;
-    const IblMaps maps = computeIblMaps(ctx(), white, is);
+    const EnvironmentMap white = test::constantEnvironment(1.0f);
+    const IblMaps maps = test::smallIblMaps(ctx(), white);
     scene.textureBaseLevelOnly = true;
     for (bool nearest : {true, false}) {
         scene.textureNearest = nearest;
