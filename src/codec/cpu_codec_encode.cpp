@@ -441,9 +441,21 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
             return;
         case Codec::Float111110HdrpAoTag: {
             // The unquantised occlusion of the pixel, as HDRP writes surfaceData.ambientOcclusion.
-            const float* ao = b.s[f.reads];
+            const float* ao = b.s[f.carried];
             for (int j = 0; j < n; ++j) {
                 const uvec3 c = encodeFloat111110HdrpAoTag(vec3(x[j], yv[j], z[j]), ao[j]);
+                c0[j] = c.x;
+                c1[j] = c.y;
+                c2[j] = c.z;
+            }
+            return;
+        }
+        case Codec::AnisotropyTangentAngleHdrp: {
+            // The unquantised normal and anisotropy, as HDRP reads surfaceData.normalWS and .anisotropy.
+            const float *nx = b.s[f.reads], *ny = b.s[f.reads + 1], *nz = b.s[f.reads + 2];
+            const float* a = b.s[f.carried];
+            for (int j = 0; j < n; ++j) {
+                const uvec3 c = encodeAnisotropyHdrp(vec3(x[j], yv[j], z[j]), a[j], vec3(nx[j], ny[j], nz[j]));
                 c0[j] = c.x;
                 c1[j] = c.y;
                 c2[j] = c.z;
