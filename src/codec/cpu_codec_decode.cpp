@@ -390,7 +390,17 @@ GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, c
         } else if (f.ids) {
             // Conditional (layouts/README.md, "Shading models"): decoded where the stored id is one of
             // its models', else the attribute keeps what it held (0, a field of another model, or
-            // later its fallback), as the generated readGBuffer's `if`.
+            // later its fallback), as the generated readGBuffer's `if`. A block with no such pixel
+            // (a scene without the field's layer) keeps everything: nothing to decode; one whose
+            // every pixel is of its models decodes straight, as an unconditional field.
+            int count = 0;
+            for (int j = 0; j < n; ++j) count += int((f.ids >> b.sel[j]) & 1u);
+            if (count == 0) continue;
+            if (count == n) {
+                for (size_t k = 0; k < f.codes.size(); ++k) extractCode<Words>(f.codes[k], n, words, b.code[k]);
+                decodeValues(f, n, b, outputsFor(b, f.source, f.components));
+                continue;
+            }
             for (int c = 0; c < f.components; ++c) std::copy(b.s[f.source + c], b.s[f.source + c] + n, b.keep[c]);
             if (f.carried >= 0) std::copy(b.s[f.carried], b.s[f.carried] + n, b.keep[3]);
             for (size_t k = 0; k < f.codes.size(); ++k) extractCode<Words>(f.codes[k], n, words, b.code[k]);
@@ -494,7 +504,10 @@ GBL_SIMD_CLONES void applyFallbacks(const CodecPlan& plan, int n, DecodeBlock& b
         const uint32_t storedIds = fb.storedIds;
         const uint32_t* __restrict sel = b.sel;
         auto each = [&](auto fn) {
-            if (storedIds) {  // stored under some models: the fallback where the pixel's model does not store it
+            int stored = 0;  // pixels whose model stores the attribute: all (skip), none (every pixel), some
+            for (int j = 0; storedIds && j < n; ++j) stored += int((storedIds >> sel[j]) & 1u);
+            if (storedIds && stored == n) return;
+            if (stored > 0) {  // stored under some models: the fallback where the pixel's model does not store it
                 for (int j = 0; j < n; ++j) {
                     if ((storedIds >> sel[j]) & 1u) continue;
                     const vec3 v = fn(j);

@@ -221,6 +221,14 @@ GBL_CLONE_INLINE void modelCodes(const FieldPlan& f, int n, EncodeBlock& b) {
     }
 }
 
+// Whether some pixel of the block is of one of `models`: a conditional field's codes are 0 on
+// every other pixel, so a block without one (a scene without the field's layer) skips the field.
+GBL_CLONE_INLINE bool anyOfModels(uint32_t models, const uint32_t* __restrict model, int n) {
+    uint32_t any = 0;
+    for (int j = 0; j < n; ++j) any |= (models >> model[j]) & 1u;
+    return any != 0;
+}
+
 // Every pixel starts from the target's constant words, then the fields are ORed in; the block's
 // words are then interleaved into the image (Words per pixel).
 template <int Words>
@@ -229,6 +237,7 @@ GBL_CLONE_INLINE void encodeTarget(const TargetPlan& t, int n, int x0, int y, En
     for (int k = 0; k < Words; ++k) std::fill(b.words[k], b.words[k] + kBlock, t.constantWords[k]);
     for (const FieldPlan& f : t.encodeFields) {
         ahead.step();
+        if (f.models && !f.selector && !anyOfModels(f.models, b.model, n)) continue;
         if (!f.selector) {
             gatherInputs(f, n, b);
             encodeCodes(f, n, x0, y, b);
