@@ -542,3 +542,80 @@ vec3 decodeNormalOctahedralDeltaUe(uvec2 code, vec3 top, uint bits) {
 }
 
 #endif  // GBL_ENGINE_ENCODINGS_GLSL
+
+// anisotropy_angle_hdrp: HDRP Lit's anisotropic feature in GBuffer2.rgb (HDRP 13.0.0
+// c667268a, Runtime/Material/Lit/Lit.hlsl:575-634 encode, :880-905 decode; core 13.0.0 6363fa25
+// ShaderLibrary/CommonLighting.hlsl:442-459 GetLocalFrame, Common.hlsl:738 Remap01, :697-702, 722-725
+// FastSign, Packing.hlsl:437-470 PackFloatInt). The tangent t is stored as its angle to the x axis
+// of GetLocalFrame(normal), folded into the first quadrant, and the signed anisotropy absorbs the
+// fold: AnisoGGX(a, b, g) == AnisoGGX(b, a, g + pi/2) (Lit.hlsl:585-596), so in the 2nd and 4th
+// quadrants the stored anisotropy is 255 - round(a * 127.5 + 127.5), i.e. negated. Codes:
+//   x  GBuffer2.g: Remap01(min(|sin|, |cos|), sqrt(2) 256/255, 0.5/255), written UNORM (quantizeUnorm)
+//   y  GBuffer2.r: round(a * 127.5 + 127.5), HLSL round = ties to even (roundEven), 255 - it in Q2/Q4
+//   z  GBuffer2.b bit 5: storeSin = (|sin| < |cos|) != quad2or4 (PackFloatInt8bit(metallic, storeSin,
+//      8): the metallic is the layout's own 5-bit field in b[0:4])
+// The encoder reads the unquantised normal (HDRP: surfaceData.normalWS), the decoder the decoded
+// one (bsdfData.normalWS, Lit.hlsl:820). Constants are evaluated in float (HLSL folds its
+// literals at compile time; that precision was not established: a tie could move by one code).
+// Dot products are written out, unfused ((x + y) + z). The decode hands gbufferlab's attributes
+// back canonically: strength |a| >= 0, and where a < 0 the direction is HDRP's bitangent
+// cross(n, t) (Lit.hlsl:902: frame[1]), the axis the lobe is stretched along; the sign of the axis
+// is immaterial to the anisotropic GGX and to the direction metric (an angle between lines).
+// tests/encoding/layer_packings_test.cpp holds it to HDRP's arithmetic.
+// GetLocalFrame's rows x, y (z is n): sz = FastSign(z) with -0 as +1, a = 1 / (sz + z).
+void hdrpLocalFrame(vec3 n, out vec3 fx, out vec3 fy) {
+    float sz = n.z >= 0.0 ? 1.0 : -1.0;
+    precise float a = 1.0 / (sz + n.z);
+    precise float ya = n.y * a;
+    precise float b = n.x * ya;
+    precise float c = n.x * sz;
+    precise vec3 x = vec3(c * n.x * a - 1.0, sz * b, c);
+    precise vec3 y = vec3(b, n.y * ya - sz, n.y);
+    fx = x;
+    fy = y;
+}
+
+// Constants as float evaluates them step by step (written out: a GLSL compiler may fold its own
+// expressions more precisely), the C++ twin's constexpr values:
+const float kHdrpAngleScale = 1.41975951;     // float(sqrt(2)) * 256 / 255, Remap01's rcpLength
+const float kHdrpAngleStart = 0.00196078443;  // 0.5 / 255, startTimesRcpLength
+const float kHdrpAngleBias = 0.00138106791;   // 0.5 / 256 * float(rsqrt(2)) (Lit.hlsl:894)
+const float kHdrpAngleStep = 0.70434463;      // 255 / 256 * float(rsqrt(2))
+
+uvec3 encodeAnisotropyHdrp(vec3 t, float anisotropy, vec3 n) {
+    vec3 fx, fy;
+    hdrpLocalFrame(n, fx, fy);
+    precise float sinFrame = t.x * fy.x + t.y * fy.y + t.z * fy.z;
+    precise float cosFrame = t.x * fx.x + t.y * fx.y + t.z * fx.z;
+    precise float product = sinFrame * cosFrame;
+    bool quad2or4 = product < 0.0;
+    precise float u = roundEven(clamp(anisotropy, -1.0, 1.0) * 127.5 + 127.5);
+    uint strength = quad2or4 ? 255u - uint(u) : uint(u);
+    bool storeSin = (abs(sinFrame) < abs(cosFrame)) != quad2or4;
+    float sinOrCos = min(abs(sinFrame), abs(cosFrame));
+    precise float remapped = clamp(sinOrCos * kHdrpAngleScale - kHdrpAngleStart, 0.0, 1.0);
+    return uvec3(quantizeUnorm(remapped, 8u), strength, storeSin ? 1u : 0u);
+}
+
+// The stored anisotropy, r * 2 - 1 (Lit.hlsl:887), as gbufferlab's strength: its magnitude.
+float decodeAnisotropyHdrpStrength(uvec3 code) {
+    precise float a = dequantizeUnorm(code.y & 255u, 8u) * 2.0 - 1.0;
+    return abs(a);
+}
+
+// The tangent rebuilt against the decoded normal's frame (Lit.hlsl:881-902), then the axis the
+// lobe stretches along: the tangent where the stored anisotropy is >= 0 (code >= 128), else the
+// bitangent cross(n, t).
+vec3 decodeAnisotropyHdrp(uvec3 code, vec3 n) {
+    vec3 fx, fy;
+    hdrpLocalFrame(n, fx, fy);
+    precise float sinOrCos = kHdrpAngleBias + kHdrpAngleStep * dequantizeUnorm(code.x & 255u, 8u);
+    precise float cosOrSin = sqrt(1.0 - sinOrCos * sinOrCos);
+    bool storeSin = (code.z & 1u) != 0u;
+    float s = storeSin ? sinOrCos : cosOrSin;
+    float c = storeSin ? cosOrSin : sinOrCos;
+    precise vec3 t = vec3(s * fy.x + c * fx.x, s * fy.y + c * fx.y, s * fy.z + c * fx.z);
+    if ((code.y & 255u) >= 128u) return t;
+    precise vec3 b = vec3(n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x);
+    return b;
+}

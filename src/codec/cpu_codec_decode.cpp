@@ -36,7 +36,7 @@ struct DecodeBlock {
     alignas(32) float cover[3][kBlock + 2];  // gblCovered of the same pixels
     alignas(32) float pixels[kSurfaceFloats * kBlock];  // the block's Surfaces, interleaved
     alignas(32) uint32_t sel[kBlock];     // the stored shading-model id (a layout with a selector)
-    alignas(32) float keep[3][kBlock];    // a conditional field's attribute before it
+    alignas(32) float keep[4][kBlock];    // a conditional field's attribute before it (3: what it carries)
 };
 
 // The image border mirror of the former per-pixel codec (x = -1 reads x = 1).
@@ -235,7 +235,7 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
         }
         case Codec::Float111110HdrpAoTag: {
             // Emissive, and the occlusion the tag holds (1 where it holds emissive), as HDRP decodes.
-            float* __restrict ao = b.s[f.reads];
+            float* __restrict ao = b.s[f.carried];
             for (int j = 0; j < n; ++j) {
                 const uvec3 c(c0[j], c1[j], c2[j]);
                 const vec3 e = decodeFloat111110HdrpAoTag(c);
@@ -243,6 +243,21 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
                 x[j] = e.x;
                 y[j] = e.y;
                 z[j] = e.z;
+            }
+            return;
+        }
+        case Codec::AnisotropyTangentAngleHdrp: {
+            // Against the decoded normal (validation puts its field before this one), and the
+            // strength it carries, as HDRP's DecodeFromGBuffer (engine_encodings.h).
+            const float *nx = b.s[f.reads], *ny = b.s[f.reads + 1], *nz = b.s[f.reads + 2];
+            float* __restrict strength = b.s[f.carried];
+            for (int j = 0; j < n; ++j) {
+                const uvec3 c(c0[j], c1[j], c2[j]);
+                const vec3 t = decodeAnisotropyHdrp(c, vec3(nx[j], ny[j], nz[j]));
+                strength[j] = decodeAnisotropyHdrpStrength(c);
+                x[j] = t.x;
+                y[j] = t.y;
+                z[j] = t.z;
             }
             return;
         }
@@ -375,8 +390,19 @@ GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, c
         } else if (f.ids) {
             // Conditional (layouts/README.md, "Shading models"): decoded where the stored id is one of
             // its models', else the attribute keeps what it held (0, a field of another model, or
-            // later its fallback), as the generated readGBuffer's `if`.
+            // later its fallback), as the generated readGBuffer's `if`. A block with no such pixel
+            // (a scene without the field's layer) keeps everything: nothing to decode; one whose
+            // every pixel is of its models decodes straight, as an unconditional field.
+            int count = 0;
+            for (int j = 0; j < n; ++j) count += int((f.ids >> b.sel[j]) & 1u);
+            if (count == 0) continue;
+            if (count == n) {
+                for (size_t k = 0; k < f.codes.size(); ++k) extractCode<Words>(f.codes[k], n, words, b.code[k]);
+                decodeValues(f, n, b, outputsFor(b, f.source, f.components));
+                continue;
+            }
             for (int c = 0; c < f.components; ++c) std::copy(b.s[f.source + c], b.s[f.source + c] + n, b.keep[c]);
+            if (f.carried >= 0) std::copy(b.s[f.carried], b.s[f.carried] + n, b.keep[3]);
             for (size_t k = 0; k < f.codes.size(); ++k) extractCode<Words>(f.codes[k], n, words, b.code[k]);
             decodeValues(f, n, b, outputsFor(b, f.source, f.components));
             const uint32_t ids = f.ids;
@@ -384,6 +410,11 @@ GBL_CLONE_INLINE void decodeTarget(const TargetPlan& t, const uint32_t* image, c
             for (int c = 0; c < f.components; ++c) {
                 float* __restrict row = b.s[f.source + c];
                 const float* __restrict kept = b.keep[c];
+                for (int j = 0; j < n; ++j) row[j] = ((ids >> sel[j]) & 1u) ? row[j] : kept[j];
+            }
+            if (f.carried >= 0) {
+                float* __restrict row = b.s[f.carried];
+                const float* __restrict kept = b.keep[3];
                 for (int j = 0; j < n; ++j) row[j] = ((ids >> sel[j]) & 1u) ? row[j] : kept[j];
             }
         } else {
@@ -473,7 +504,10 @@ GBL_SIMD_CLONES void applyFallbacks(const CodecPlan& plan, int n, DecodeBlock& b
         const uint32_t storedIds = fb.storedIds;
         const uint32_t* __restrict sel = b.sel;
         auto each = [&](auto fn) {
-            if (storedIds) {  // stored under some models: the fallback where the pixel's model does not store it
+            int stored = 0;  // pixels whose model stores the attribute: all (skip), none (every pixel), some
+            for (int j = 0; storedIds && j < n; ++j) stored += int((storedIds >> sel[j]) & 1u);
+            if (storedIds && stored == n) return;
+            if (stored > 0) {  // stored under some models: the fallback where the pixel's model does not store it
                 for (int j = 0; j < n; ++j) {
                     if ((storedIds >> sel[j]) & 1u) continue;
                     const vec3 v = fn(j);

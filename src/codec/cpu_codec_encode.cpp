@@ -221,6 +221,14 @@ GBL_CLONE_INLINE void modelCodes(const FieldPlan& f, int n, EncodeBlock& b) {
     }
 }
 
+// Whether some pixel of the block is of one of `models`: a conditional field's codes are 0 on
+// every other pixel, so a block without one (a scene without the field's layer) skips the field.
+GBL_CLONE_INLINE bool anyOfModels(uint32_t models, const uint32_t* __restrict model, int n) {
+    uint32_t any = 0;
+    for (int j = 0; j < n; ++j) any |= (models >> model[j]) & 1u;
+    return any != 0;
+}
+
 // Every pixel starts from the target's constant words, then the fields are ORed in; the block's
 // words are then interleaved into the image (Words per pixel).
 template <int Words>
@@ -229,6 +237,7 @@ GBL_CLONE_INLINE void encodeTarget(const TargetPlan& t, int n, int x0, int y, En
     for (int k = 0; k < Words; ++k) std::fill(b.words[k], b.words[k] + kBlock, t.constantWords[k]);
     for (const FieldPlan& f : t.encodeFields) {
         ahead.step();
+        if (f.models && !f.selector && !anyOfModels(f.models, b.model, n)) continue;
         if (!f.selector) {
             gatherInputs(f, n, b);
             encodeCodes(f, n, x0, y, b);
@@ -441,9 +450,21 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
             return;
         case Codec::Float111110HdrpAoTag: {
             // The unquantised occlusion of the pixel, as HDRP writes surfaceData.ambientOcclusion.
-            const float* ao = b.s[f.reads];
+            const float* ao = b.s[f.carried];
             for (int j = 0; j < n; ++j) {
                 const uvec3 c = encodeFloat111110HdrpAoTag(vec3(x[j], yv[j], z[j]), ao[j]);
+                c0[j] = c.x;
+                c1[j] = c.y;
+                c2[j] = c.z;
+            }
+            return;
+        }
+        case Codec::AnisotropyTangentAngleHdrp: {
+            // The unquantised normal and anisotropy, as HDRP reads surfaceData.normalWS and .anisotropy.
+            const float *nx = b.s[f.reads], *ny = b.s[f.reads + 1], *nz = b.s[f.reads + 2];
+            const float* a = b.s[f.carried];
+            for (int j = 0; j < n; ++j) {
+                const uvec3 c = encodeAnisotropyHdrp(vec3(x[j], yv[j], z[j]), a[j], vec3(nx[j], ny[j], nz[j]));
                 c0[j] = c.x;
                 c1[j] = c.y;
                 c2[j] = c.z;

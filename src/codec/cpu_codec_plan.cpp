@@ -60,6 +60,7 @@ Codec resolveCodec(const std::string& e) {
         {"normal_xy_float16", Codec::NormalXyFloat16},
         {"emissive_albedo_ratio", Codec::EmissiveAlbedoRatio},
         {"normal_octahedral_dithered", Codec::NormalOctahedralDithered},
+        {"anisotropy_angle_hdrp", Codec::AnisotropyTangentAngleHdrp},
     };
     for (const auto& [name, codec] : names)
         if (e == name) return codec;
@@ -79,6 +80,7 @@ size_t codeCount(Codec c) {
         case Codec::Gamma22:
         case Codec::Srgb8FastHdrp:
         case Codec::Float111110HdrpAoTag:
+        case Codec::AnisotropyTangentAngleHdrp:
         case Codec::Float111110: return 3;
         case Codec::Rgb9e5: return 4;
         case Codec::Luma:
@@ -137,9 +139,8 @@ FieldPlan planField(const Target& t, const Field& f, int words) {
     }
     if (const EncodingInfo* e = findEncoding(f.encoding); e && !e->carries.empty()) {
         const AttributeInfo* r = findAttribute(e->carries);
-        fp.reads = r ? surfaceOffset(r->id) : -1;
-        fp.carries = true;
-        if (fp.reads < 0 || fp.source < 0)
+        fp.carried = r ? surfaceOffset(r->id) : -1;
+        if (fp.carried < 0 || fp.source < 0)
             throw std::logic_error("cpu codec: field " + std::string(attributeName(f.attribute)) + " (" + f.encoding +
                                    ") also stores " + e->carries + ", not a Surface member, or is an extra");
     }
@@ -279,7 +280,7 @@ CodecPlan compilePlan(const Layout& layout) {
         for (const FieldPlan& f : t.decodeFields) {
             if (f.ids) continue;  // conditional: elsewhere the attribute keeps 0 (or its fallback's value)
             mark(f.source, f.components);
-            if (f.carries) mark(f.reads, 1);
+            if (f.carried >= 0) mark(f.carried, 1);  // occlusion, anisotropy_strength: one float
         }
     for (const MaterialSlotPlan& s : plan.materialSlots) mark(s.dest, s.components);
     for (const FallbackPlan& f : plan.fallbacks)
@@ -299,6 +300,7 @@ CodecPlan compilePlan(const Layout& layout) {
             if (f.source >= 0 && !f.selector) {
                 read(f.source, f.inputs);
                 if (f.reads >= 0) read(f.reads, 3);
+                if (f.carried >= 0) read(f.carried, 1);
             }
     for (const int src : plan.materialSource)
         if (src >= 0) read(src, 1);

@@ -66,7 +66,8 @@ enum class Codec : uint8_t {
     NormalOctahedralDithered,  // reads the pixel coordinate (gradient noise)
     NormalOctahedralHdrp,
     Srgb8FastHdrp,
-    Float111110HdrpAoTag,      // also stores occlusion (FieldPlan::reads: read by encode, set by decode)
+    Float111110HdrpAoTag,      // also stores occlusion (FieldPlan::carried: read by encode, set by decode)
+    AnisotropyTangentAngleHdrp,  // reads the normal (FieldPlan::reads), stores anisotropy_strength (carried)
 };
 
 // Per component of the attribute (one code each) or the whole vec3 (Color and Normal kinds).
@@ -92,7 +93,8 @@ struct FieldPlan {
     int components = 0;   // the attribute's Surface components (what decode writes); 0 for extras
     int inputs = 0;       // floats read per pixel: one per code for scalars, 3 for vec3 encodings
     int reads = -1;       // first float of the other attribute the encoding reads (base colour), -1: none
-    bool carries = false; // the encoding also stores the attribute at `reads`: decode sets it (HDRP's AO tag)
+    int carried = -1;     // first float of the attribute the encoding also stores (HDRP's AO tag:
+                          // occlusion), read by encode, set by decode; -1: none
     float constant[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // the inputs of an extra (its declared value)
     std::vector<CodePlan> codes;
     // A dither that moves with time (Field::ditherPerFrame) and the frame it encodes

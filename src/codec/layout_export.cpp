@@ -264,9 +264,11 @@ private:
                 const bool isUint = !sm && attributeInfo(f.attribute).type == ValueType::Integer;
                 const std::string e = decodeFieldExpr(f, codes);
                 o_ << lhs << (isUint ? "uint(" + e + ")" : e) << ";\n";
-                // What the encoding also stores (HDRP's AO tag: occlusion), as the renderer's decode sets it.
+                // What the encoding also stores (HDRP's AO tag: occlusion; HDRP's anisotropy: the
+                // strength, under the field's models only), as the renderer's decode sets it.
                 if (const std::string carried = decodeCarriedStatement(f, codes); !carried.empty())
-                    o_ << "    " << carried << "\n";
+                    o_ << (f.conditional() ? "    if (" + maskTest(l_.selectorIds(f.models), "gblSel") + ") " : "    ")
+                       << carried << "\n";
             }
         }
         for (const Fallback* fb : orderedFallbacks(l_))

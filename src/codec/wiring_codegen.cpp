@@ -329,8 +329,10 @@ void emitFieldRead(std::ostringstream& o, const Layout& layout, const Target& tg
     if (f.conditional()) {
         std::vector<std::string> codes;
         for (const CodePlace& cp : f.codes) codes.push_back(extractCode(tg, cp, "w" + ts));
-        o << "    if (" << maskTest(layout.selectorIds(f.models), "gblSel") << ") s." << m << " = "
-          << decodeFieldExpr(f, codes) << ";  // under " << shadingModelNames(f.models) << "\n";
+        const std::string carried = decodeCarriedStatement(f, codes);
+        o << "    if (" << maskTest(layout.selectorIds(f.models), "gblSel") << ") " << (carried.empty() ? "" : "{ ")
+          << "s." << m << " = " << decodeFieldExpr(f, codes) << ";" << (carried.empty() ? "" : " " + carried + " }")
+          << "  // under " << shadingModelNames(f.models) << "\n";
         return;
     }
     const std::string lhs = std::string("    s.") + m + " = ";

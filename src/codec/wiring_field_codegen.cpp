@@ -191,6 +191,10 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
         o << ind << "uvec3 " << id << " = encodeFloat111110HdrpAoTag(" << v << ", " << carriesExpr(encodingOf(f))
           << ");\n";
         for (int i = 0; i < 3; ++i) codes.push_back(id + "." + kComp[i]);
+    } else if (e == "anisotropy_angle_hdrp") {
+        o << ind << "uvec3 " << id << " = encodeAnisotropyHdrp(" << v << ", " << carriesExpr(encodingOf(f)) << ", "
+          << readsExpr(encodingOf(f)) << ");\n";
+        for (int i = 0; i < 3; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "rgb9e5") {
         o << ind << "uvec4 " << id << " = encodeRgb9e5(" << v << ");\n";
         for (int i = 0; i < 4; ++i) codes.push_back(id + "." + kComp[i]);
@@ -269,6 +273,8 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
         return "vec3(decodeFloat11(" + c[0] + "), decodeFloat11(" + c[1] + "), decodeFloat10(" + c[2] + "))";
     if (e == "float11_11_10_hdrp_ao_tag")
         return "decodeFloat111110HdrpAoTag(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "))";
+    if (e == "anisotropy_angle_hdrp")
+        return "decodeAnisotropyHdrp(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "), " + readsExpr(encodingOf(f)) + ")";
     if (e == "rgb9e5") return "decodeRgb9e5(uvec4(" + c[0] + ", " + c[1] + ", " + c[2] + ", " + c[3] + "))";
     if (e == "emissive_albedo_ratio")
         return "decodeEmissiveAlbedoRatio(" + c[0] + ", " + b + ", " + readsExpr(encodingOf(f)) + ")";
@@ -296,6 +302,8 @@ std::string decodeCarriedStatement(const Field& f, const std::vector<std::string
     if (!e || e->carries.empty()) return "";
     if (f.encoding == "float11_11_10_hdrp_ao_tag")
         return carriesExpr(*e) + " = decodeHdrpAoTagOcclusion(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "));";
+    if (f.encoding == "anisotropy_angle_hdrp")
+        return carriesExpr(*e) + " = decodeAnisotropyHdrpStrength(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "));";
     throw std::logic_error("wiring: no decoder for what " + f.encoding + " also stores");
 }
 

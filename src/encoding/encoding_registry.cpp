@@ -168,6 +168,19 @@ void addLayerAndEngineEncodings(std::vector<EncodingInfo>& v) {
     v.push_back({"normal_xy_float16", K::Normal, 2, 16, 16, 16, 0, false, "unit vector, view space",
                  "x, y as IEEE half floats; z = +sqrt(1 - x^2 - y^2) (facing the camera), no sign bit",
                  "Valient, 'Deferred Rendering in Killzone 2', Develop Conference 2007 (RT1: FP16 normal X, Y)"});
+    EncodingInfo hdrpAniso{"anisotropy_angle_hdrp", K::Normal, 2, 8, 8, 8, 1, false,
+                           "unit tangent, with anisotropy_strength and the normal",
+                           "HDRP's anisotropic GBuffer2: the tangent's angle to GetLocalFrame(normal)'s x axis "
+                           "folded into the first quadrant (min(|sin|, |cos|) remapped to 8-bit cells) + a storeSin "
+                           "bit, and the anisotropy round(a * 127.5 + 127.5), 255 - it in the 2nd and 4th quadrants; "
+                           "decoded against the decoded normal's frame as strength |a| along the tangent, or along "
+                           "the bitangent where the stored anisotropy is negative",
+                           "Unity HDRP Lit.hlsl EncodeIntoGBuffer / DecodeFromGBuffer, GBUFFER_LIT_ANISOTROPIC "
+                           "(HDRP 13.0.0 c667268a Runtime/Material/Lit/Lit.hlsl:575-634, 880-905); core "
+                           "CommonLighting.hlsl GetLocalFrame (6363fa25 :442-459)"};
+    hdrpAniso.reads = "normal";
+    hdrpAniso.carries = "anisotropy_strength";
+    v.push_back(hdrpAniso);
 }
 
 // zeux/niagara (src/shaders/mesh.frag.glsl, final.comp.glsl @95f289b7): niagara_encodings.h.

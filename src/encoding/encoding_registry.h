@@ -28,12 +28,15 @@ struct EncodingInfo {
     std::string source;       // paper / talk / spec it follows
     // Another attribute of the same pixel the encoding reads (layout-language name, "" for none):
     // emissive_albedo_ratio stores emissive relative to base_color's luminance and decodes it from
-    // the decoded base_color, so the layout must store base_color in a field before it.
+    // the decoded base_color, so the layout must store base_color in a field before it;
+    // anisotropy_angle_hdrp stores the tangent's angle in the frame of the normal.
     std::string reads = {};
     bool dithered = false;    // the encoder adds noise that is a function of the pixel coordinate
     // Another attribute the encoding also stores (layout-language name, "" for none): the encoder
     // reads its unquantised value, the decoder sets it, and the layout counts it as stored by this
-    // field. float11_11_10_hdrp_ao_tag stores occlusion in HDRP's AO tag where emissive is 0.
+    // field. float11_11_10_hdrp_ao_tag stores occlusion in HDRP's AO tag where emissive is 0;
+    // anisotropy_angle_hdrp the signed anisotropy (anisotropy_strength) with the angle.
+    // An encoding may both read one attribute and carry another.
     std::string carries = {};
 };
 

@@ -264,4 +264,58 @@ inline vec3 decodeNormalOctahedralDeltaUe(uvec2 code, vec3 top, uint bits) {
     return octDecodeUe(vec2(ox, oy));
 }
 
+// anisotropy_angle_hdrp: HDRP Lit's anisotropic feature in GBuffer2.rgb, codes (angle
+// GBuffer2.g, signed anisotropy GBuffer2.r, storeSin GBuffer2.b bit 5); the decode hands back the
+// strength |a| and the axis the lobe stretches along (the bitangent where a < 0). The GLSL twin
+// carries the sources (Lit.hlsl:575-634, 880-905 @c667268a; CommonLighting.hlsl:442-459).
+inline void hdrpLocalFrame(vec3 n, vec3& fx, vec3& fy) {
+    float sz = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = 1.0f / (sz + n.z);
+    float ya = n.y * a;
+    float b = n.x * ya;
+    float c = n.x * sz;
+    fx = vec3(c * n.x * a - 1.0f, sz * b, c);
+    fy = vec3(b, n.y * ya - sz, n.y);
+}
+
+// Evaluated in float step by step; the GLSL twin writes the same values as literals
+// (the GPU = CPU bit tests, tests/codec/gpu_cpu_bits_test.cpp, would see them part).
+inline constexpr float kHdrpAngleScale = 1.41421354f * 256.0f / 255.0f;
+inline constexpr float kHdrpAngleStart = 0.5f / 255.0f;
+inline constexpr float kHdrpAngleBias = 0.5f / 256.0f * 0.707106769f;
+inline constexpr float kHdrpAngleStep = 255.0f / 256.0f * 0.707106769f;
+
+inline uvec3 encodeAnisotropyHdrp(vec3 t, float anisotropy, vec3 n) {
+    vec3 fx, fy;
+    hdrpLocalFrame(n, fx, fy);
+    float sinFrame = t.x * fy.x + t.y * fy.y + t.z * fy.z;
+    float cosFrame = t.x * fx.x + t.y * fx.y + t.z * fx.z;
+    float product = sinFrame * cosFrame;
+    bool quad2or4 = product < 0.0f;
+    float u = roundEvenF(clamp(anisotropy, -1.0f, 1.0f) * 127.5f + 127.5f);
+    uint strength = quad2or4 ? 255u - uint(u) : uint(u);
+    bool storeSin = (abs(sinFrame) < abs(cosFrame)) != quad2or4;
+    float sinOrCos = min(abs(sinFrame), abs(cosFrame));
+    float remapped = clamp(sinOrCos * kHdrpAngleScale - kHdrpAngleStart, 0.0f, 1.0f);
+    return uvec3(quantizeUnorm(remapped, 8u), strength, storeSin ? 1u : 0u);
+}
+
+inline float decodeAnisotropyHdrpStrength(uvec3 code) {
+    float a = dequantizeUnorm(code.y & 255u, 8u) * 2.0f - 1.0f;
+    return abs(a);
+}
+
+inline vec3 decodeAnisotropyHdrp(uvec3 code, vec3 n) {
+    vec3 fx, fy;
+    hdrpLocalFrame(n, fx, fy);
+    float sinOrCos = kHdrpAngleBias + kHdrpAngleStep * dequantizeUnorm(code.x & 255u, 8u);
+    float cosOrSin = sqrt(1.0f - sinOrCos * sinOrCos);
+    bool storeSin = (code.z & 1u) != 0u;
+    float s = storeSin ? sinOrCos : cosOrSin;
+    float c = storeSin ? cosOrSin : sinOrCos;
+    vec3 t = vec3(s * fy.x + c * fx.x, s * fy.y + c * fx.y, s * fy.z + c * fx.z);
+    if ((code.y & 255u) >= 128u) return t;
+    return vec3(n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x);
+}
+
 }  // namespace gbl::enc

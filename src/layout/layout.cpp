@@ -198,8 +198,12 @@ uint32_t Layout::selectorModels() const {
 uint32_t Layout::conditionalModels(Attribute a) const {
     uint32_t models = 0;
     for (const Target& t : targets)
-        for (const Field& f : t.fields)
+        for (const Field& f : t.fields) {
             if (f.attribute == a) models |= f.models;
+            // what a conditional field's encoding also stores is held under the same models
+            else if (const EncodingInfo* e = findEncoding(f.encoding); e && !e->carries.empty() && e->carries == attributeName(a))
+                models |= f.models;
+        }
     return models;
 }
 
@@ -268,6 +272,8 @@ std::vector<std::string> wholeValueCodeNames(const std::string& encoding) {
     if (encoding == "gamma22" || encoding == "float11_11_10") return {"r", "g", "b"};
     // Emissive's codes, or where emissive is 0 HDRP's AO tag: (2048, occlusion, 1024).
     if (encoding == "float11_11_10_hdrp_ao_tag") return {"r|2048", "g|AO", "b|1024"};
+    // HDRP's anisotropic GBuffer2: the tangent's angle, the signed anisotropy, the storeSin flag.
+    if (encoding == "anisotropy_angle_hdrp") return {"angle", "aniso", "sin"};
     if (encoding.rfind("normal_", 0) == 0) return {"u", "v"};
     if (encoding == "srgb8") return {"r", "g", "b"};
     if (encoding == "ycbcr" || encoding == "ycbcr_sqrt") return {"Y", "Cb", "Cr"};

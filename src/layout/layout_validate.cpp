@@ -181,13 +181,19 @@ void Validator::checkSelector() {
             if (f.attribute == Attribute::Position || f.attribute == Attribute::Depth)
                 error(f.modelPlace, "field " + a + " is geometry, which the lighting rebuilds every pixel from: it "
                                         "is stored on every pixel (remove 'model')");
+            // A conditional field may read an attribute of its own pixel that every pixel stores
+            // (checked below) and carry a material layer, which decodes as "no layer" on the pixels
+            // of other models as the field's own attribute does (HDRP's anisotropic feature:
+            // anisotropy_angle_hdrp reads the normal and carries anisotropy_strength); not
+            // the neighbours, which may be of another model, nor a non-layer attribute, which would
+            // be stored under some models without a fallback of its own.
             const EncodingInfo* enc = findEncoding(f.encoding);
-            if (enc && (enc->needsNeighbours || !enc->reads.empty() || !enc->carries.empty()))
+            const AttributeInfo* carried = enc && !enc->carries.empty() ? findAttribute(enc->carries) : nullptr;
+            if (enc && (enc->needsNeighbours || (carried && !isLayerAttribute(carried->id))))
                 error(f.encodingPlace,
                       "encoding " + squote(enc->name) + " of the conditional field " + a + " reads " +
                           (enc->needsNeighbours ? std::string("the neighbouring pixels, which may be of another model")
-                                                : squote(!enc->reads.empty() ? enc->reads : enc->carries) +
-                                                      " with it") +
+                                                : squote(enc->carries) + " with it") +
                           ": a conditional field takes an encoding of its own value only (store it unconditionally, "
                           "or choose another encoding)");
         }

@@ -24,6 +24,9 @@ std::string Validator::unsuitable(const EncodingInfo& enc, const AttributeInfo& 
     switch (enc.kind) {
         case AttributeKind::Normal:
             if (!isDirectionAttribute(attr.id)) return e + " encodes unit normals, not " + a;
+            // anisotropy_angle_hdrp: the tangent, with the strength it carries
+            if (enc.carries == "anisotropy_strength" && attr.id != Attribute::AnisotropyDirection)
+                return e + " stores anisotropy_direction (with anisotropy_strength), not " + a;
             return "";
         case AttributeKind::Color:
             if (attr.components != 3 || isDirectionAttribute(attr.id) || attr.id == Attribute::Position)

@@ -8,6 +8,10 @@
 // carries, as UE's material has one shading model (ShadingCommon.ush's SHADINGMODELID_*: a
 // clear-coat material writes CLEAR_COAT and its CustomData holds the coat, whatever else it has)
 // and HDRP's GBuffer2 holds one feature's data (Lit.hlsl's materialFeatureId).
+// Only the models the selector names compete: HDRP's names default and anisotropic, not clear_coat,
+// because its coat mask is a flag beside any feature (Lit.hlsl:663-667 @c667268a), so a coated
+// anisotropic pixel is anisotropic and keeps the coat its unconditional field stores (held by
+// tests/encoding/layer_packings_test.cpp, HdrpAnisotropicFeatureEqualsEncodeIntoGBuffer).
 #include <string>
 
 #include "layout.h"

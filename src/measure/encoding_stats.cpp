@@ -134,6 +134,15 @@ glm::vec3 roundTripNormal(std::string_view name, int bits, glm::vec3 n, glm::ive
         return enc::decodeNormalOctahedralUnorm(enc::encodeNormalOctahedralDithered(n, b, pixel), b);
     // No sign bit: over the whole sphere, the half facing away (z < 0) comes back mirrored.
     if (info.name == "normal_xy_float16") return enc::decodeNormalXyFloat16(enc::encodeNormalXyFloat16(n));
+    // HDRP's anisotropy: the tangent n stored against a normal perpendicular to it (read back
+    // exactly, as a decoded normal would be), strength 1; the decode is an axis, so its sign is
+    // taken from n (the direction metric measures the angle between lines).
+    if (info.name == "anisotropy_angle_hdrp") {
+        const glm::vec3 axis = std::fabs(n.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+        const glm::vec3 normal = glm::normalize(glm::cross(n, axis));
+        const glm::vec3 d = enc::decodeAnisotropyHdrp(enc::encodeAnisotropyHdrp(n, 1.0f, normal), normal);
+        return glm::dot(d, n) < 0.0f ? -d : d;
+    }
     throwUserError("encoding '" + info.name + "' has no normal round trip");
 }
 

@@ -152,6 +152,9 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
     } else if (e == "float11_11_10_hdrp_ao_tag") {  // HDRP: the AO tag where emissive is exactly 0
         const uvec3 u = encodeFloat111110HdrpAoTag(v, s.occlusion);
         c = {u.x, u.y, u.z};
+    } else if (e == "anisotropy_angle_hdrp") {  // HDRP: against the unquantised normal, with the strength
+        const uvec3 u = encodeAnisotropyHdrp(v, s.anisotropyStrength, s.normal);
+        c = {u.x, u.y, u.z};
     } else if (e == "rgb9e5") {
         const uvec4 u = encodeRgb9e5(v);
         c = {u.x, u.y, u.z, u.w};
@@ -210,6 +213,7 @@ vec3 decodeField(const Field& f, const std::vector<uint>& c, const Surface& s) {
     if (e == "float11_11_10") return vec3(decodeFloat11(c[0]), decodeFloat11(c[1]), decodeFloat10(c[2]));
     if (e == "float11_11_10_hdrp_ao_tag") return decodeFloat111110HdrpAoTag(uvec3(c[0], c[1], c[2]));
     if (e == "rgb9e5") return decodeRgb9e5(uvec4(c[0], c[1], c[2], c[3]));
+    if (e == "anisotropy_angle_hdrp") return decodeAnisotropyHdrp(uvec3(c[0], c[1], c[2]), s.normal);
     if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp" ||
         e == "normal_octahedral_dithered")
         return decodeNormalOctahedralUnorm(uvec2(c[0], c[1]), b);
@@ -420,6 +424,8 @@ std::vector<Surface> decodeGBuffer(const Layout& layout, const CpuGBuffer& g) {
                     setMember(s, f.attribute, decodeField(f, codes, s));
                     if (f.encoding == "float11_11_10_hdrp_ao_tag")  // what the AO tag also stores
                         s.occlusion = decodeHdrpAoTagOcclusion(uvec3(codes[0], codes[1], codes[2]));
+                    if (f.encoding == "anisotropy_angle_hdrp")  // HDRP's anisotropy: the strength
+                        s.anisotropyStrength = decodeAnisotropyHdrpStrength(uvec3(codes[0], codes[1], codes[2]));
                 }
             }
             for (const MaterialSlot& slot : slots) {

@@ -291,7 +291,8 @@ TEST_F(GpuCpuBits, EveryLayoutPacksTheSameWordsAndDecodesAlike) {
     for (const Layout& layout : layouts) {
         SCOPED_TRACE(layout.name);
         std::vector<Surface> surfaces = randomSurfaces(seed++);
-        // A selector's rows (ue5, ue5-anisotropy): every model of the rule on its own pixels.
+        // A selector's rows (ue5, ue5-anisotropy; hdrp-lit, hdrp-lit-apv: HDRP's standard and anisotropic
+        // features, the tangent stored against the normal's frame): every model of the rule on its own pixels.
         if (layout.selector()) test::assignLayerPatterns(surfaces);
         checkWordsAndDecodes(ctx(), layout, surfaces);
     }

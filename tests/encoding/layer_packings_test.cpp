@@ -4,7 +4,8 @@
 // values (ties of every quantiser, out-of-range values); then the engine's read of those words
 // against the codec's decode. The rows and their pins:
 //   bevy-deferred-clearcoat  bevyengine/bevy v0.19.0 c6f634ca (pull request 23359, fca2279c)
-//   hdrp-lit                 HDRP 13.0.0 c667268a, core 13.0.0 6363fa25
+//   hdrp-lit, hdrp-lit-apv   HDRP 13.0.0 c667268a, core 13.0.0 6363fa25 (the coat mask; the
+//                            anisotropic feature under the selector)
 //   ue5-clearcoat, ue5-cloth UE 5.3.2, Mephisto1024/Toon_Engine 1a10ef19
 //   ue5, ue5-anisotropy      the same, the shading model per pixel (the selector)
 // and UE's clear-coat bottom normal (r.ClearCoatNormal = 1, off by default: no row stores it),
@@ -208,6 +209,210 @@ TEST(LayerPackings, HdrpCoatMaskEqualsPackFloatInt8bit) {
         EXPECT_NEAR(back[size_t(k)].coat, f, 1e-6) << k;  // HDRP's division, not code / 31
         EXPECT_EQ(back[size_t(k)].coatRoughness, 0.1f) << k;  // CLEAR_COAT_ROUGHNESS 0.01, perceptual
     }
+}
+
+// ==================================================================================================
+// HDRP 13, the anisotropic feature (GBUFFER_LIT_ANISOTROPIC = 4, MaterialGBufferMacros.hlsl:34 at
+// c667268a), as EncodeIntoGBuffer writes it (Lit.hlsl:541-543, 575-634, 663-667) and
+// DecodeFromGBuffer reads it (:770-905), written here from that text:
+//   frame     = GetLocalFrame(normalWS) (core CommonLighting.hlsl:442-459 at 6363fa25): sz = FastSign(z)
+//               (-0 as +1), a = 1 / (sz + z), x = (c x a - 1, sz b, c), y = (b, y ya - sz, y)
+//   sinFrame  = dot(tangentWS, frame[1]), cosFrame = dot(tangentWS, frame[0]); quad2or4 = sin cos < 0
+//   GBuffer2.r = (quad2or4 ? 255 - u : u) / 255, u = round(anisotropy * 127.5 + 127.5) (HLSL round:
+//               ties to even)
+//   GBuffer2.g = Remap01(min(|sin|, |cos|), sqrt(2) 256/255, 0.5/255) = saturate(x * s - 0.5/255)
+//   GBuffer2.b = PackFloatInt8bit(metallic, storeSin, 8), storeSin = (|sin| < |cos|) != quad2or4
+//   GBuffer2.a = PackFloatInt8bit(coatMask, 4, 8); GBuffer0.rgb = baseColor (sRGB target)
+// read back: anisotropy = r * 2 - 1; sinOrCos = 0.5/256 rsqrt(2) + 255/256 rsqrt(2) g; the tangent
+// sinFrame frame[1] + cosFrame frame[0] of the decoded normal's frame, the bitangent cross(n, t)
+// (FillMaterialAnisotropy's T and B); metallic by UnpackFloatInt8bit, diffuse = base (1 - metallic),
+// fresnel0 = lerp(0.04, base, metallic) (CommonMaterial.hlsl:267-275). HDRP's lobe with a signed
+// anisotropy along (T, B) is gbufferlab's with strength |a| along T, or along B where a < 0
+// (AnisoGGX(a, b, g) == AnisoGGX(b, a, g + pi/2), Lit.hlsl:585-596): the shading check below.
+// ==================================================================================================
+
+struct HdrpFrame {
+    glm::vec3 x, y;
+};
+
+HdrpFrame hdrpGetLocalFrame(glm::vec3 n) {
+    const float sz = std::copysign(1.0f, n.z) < 0.0f && n.z != 0.0f ? -1.0f : 1.0f;  // FastSign: -0 as +1
+    const float a = 1.0f / (sz + n.z);
+    const float ya = n.y * a, b = n.x * ya, c = n.x * sz;
+    return {glm::vec3(c * n.x * a - 1.0f, sz * b, c), glm::vec3(b, n.y * ya - sz, n.y)};
+}
+
+float dot3(glm::vec3 a, glm::vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }  // unfused, in order
+
+struct HdrpGBuffer2 {
+    HardwareCode r, g, b, a;
+};
+
+HdrpGBuffer2 hdrpAnisotropicGBuffer2(glm::vec3 normal, glm::vec3 tangent, float anisotropy, float metallic, float coat) {
+    const HdrpFrame f = hdrpGetLocalFrame(normal);
+    const float sinFrame = dot3(tangent, f.y), cosFrame = dot3(tangent, f.x);
+    const bool quad2or4 = sinFrame * cosFrame < 0.0f;
+    float u = std::nearbyint(anisotropy * 127.5f + 127.5f);
+    u = quad2or4 ? 255.0f - u : u;
+    const bool storeSin = (std::fabs(sinFrame) < std::fabs(cosFrame)) != quad2or4;
+    const float sinOrCos = std::min(std::fabs(sinFrame), std::fabs(cosFrame));
+    const float rcpLength = std::sqrt(2.0f) * 256.0f / 255.0f, start = 0.5f / 255.0f;
+    const float remapped = clamp01(sinOrCos * rcpLength - start);
+    const float t1 = (256.0f / 8.0f - 1.0f) / 255.0f, t2 = (256.0f / 8.0f) / 255.0f;
+    return {hardwareUnorm(u * (1.0f / 255.0f), 8), hardwareUnorm(remapped, 8),
+            hardwareUnorm(t1 * clamp01(metallic) + t2 * (storeSin ? 1.0f : 0.0f), 8),
+            hardwareUnorm(t1 * clamp01(coat) + t2 * 4.0f, 8)};
+}
+
+// KHR_materials_anisotropy's GGX D (at = mix(alpha, 1, strength^2), ab = alpha) for the half vector h
+// in the frame (t, b, n): 1 / (pi at ab ((t.h / at)^2 + (b.h / ab)^2 + (n.h)^2)^2).
+double anisotropicD(glm::dvec3 h, glm::dvec3 n, glm::dvec3 t, glm::dvec3 b, double strength, double alpha) {
+    const double at = alpha + (1.0 - alpha) * strength * strength, ab = alpha;
+    const double x = glm::dot(t, h) / at, y = glm::dot(b, h) / ab, z = glm::dot(n, h);
+    const double d = x * x + y * y + z * z;
+    return 1.0 / (3.141592653589793 * at * ab * d * d);
+}
+
+double srgbEncode(double x) {
+    x = std::min(std::max(x, 0.0), 1.0);
+    return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+}
+
+// The i-th anisotropic input: normals from the shared edges and random ones (a tenth near the
+// equator, where GetLocalFrame's sign flips, a tenth within 1e-3 of +-z), tangents orthogonal to
+// them at every quadrant boundary of the frame (k 45 degrees and the floats beside) or at random,
+// anisotropy on the ties of u (j / 127.5) or uniform, metallic on PackFloatInt's ties, a coat on half.
+Surface hdrpAnisotropicInput(Rng& rng, const std::vector<glm::vec3>& edges, size_t i) {
+    Surface s;
+    glm::vec3 n = normalInput(edges, rng, i / 2);
+    if (i % 10 == 3) n = glm::normalize(glm::vec3(float(rng.u01() - 0.5) * 2e-3f, float(rng.u01() - 0.5) * 2e-3f, rng.u01() < 0.5 ? -1.0f : 1.0f));
+    if (!(std::fabs(n.x) + std::fabs(n.y) + std::fabs(n.z) > 0.5f) || !(std::fabs(n.x) < 2.0f && std::fabs(n.y) < 2.0f && std::fabs(n.z) < 2.0f))
+        n = glm::vec3(0.0f, 0.0f, 1.0f);  // the edge list's zero, huge and denormal vectors: a normal is unit here
+    s.normal = n;
+    const HdrpFrame f = hdrpGetLocalFrame(n);
+    double angle = rng.u01() * 6.283185307179586;
+    if (i % 4 == 1) {  // on a quadrant boundary (or the diagonal), or the float beside it
+        angle = double((i / 4) % 8) * 0.7853981633974483;
+        if (i % 3 == 1) angle = std::nextafter(angle, 10.0);
+        if (i % 3 == 2) angle = std::nextafter(angle, -10.0);
+    }
+    s.anisotropyDirection = float(std::cos(angle)) * f.x + float(std::sin(angle)) * f.y;
+    const size_t j = (i / 3) % 160;
+    s.anisotropyStrength = j < 128 ? float(double(j + 1) / 127.5) : float(rng.u01());
+    if (s.anisotropyStrength > 1.0f) s.anisotropyStrength = 1.0f;
+    s.metallic = scalarInput(rng, (i * 7u) % 4093u, 31, 1.0f);
+    s.baseColor = glm::vec3(float(rng.u01()), float(rng.u01()), float(rng.u01()));
+    s.roughness = float(rng.u01());
+    s.coat = i % 2 ? float(rng.u01()) : 0.0f;
+    if (i % 16 == 0) s.anisotropyStrength = 0.0f;  // a standard pixel among them
+    return s;
+}
+
+void checkHdrpAnisotropicRow(const std::string& name) {
+    SCOPED_TRACE(name);
+    const Layout layout = gbl::loadLayout(name);
+    const size_t t0 = targetIndex(layout, "GBuffer0"), t2 = targetIndex(layout, "GBuffer2");
+    const std::vector<glm::vec3> edges = edgeNormals();
+    Rng rng(4004);
+    std::vector<Surface> keep(kImage), decoded;
+    const CpuCodec codec(layout);
+    Tally words, base, reads, lobe;
+    size_t anisotropic = 0, standard = 0, coated = 0, flipped = 0, signFlips = 0;
+    double worstAngle = 0.0, worstLobe = 0.0;
+    runCodecAllTargets(layout, kInputs / 4, [&](size_t i) { return keep[i % kImage] = hdrpAnisotropicInput(rng, edges, i); },
+                       [&](size_t i, const CpuGBuffer& g, size_t j) {
+        const Surface& s = keep[j];
+        if (j == 0) decoded = codec.decode(g);
+        const uint32_t w2 = g.targetWords[t2][j], w0 = g.targetWords[t0][j];
+        const std::string at = "input " + std::to_string(i) + " n " + vec(s.normal) + " t " + vec(s.anisotropyDirection) +
+                               " a " + std::to_string(s.anisotropyStrength) + " m " + std::to_string(s.metallic);
+        const Surface& o = decoded[j];
+        if (!(s.anisotropyStrength > 0.0f)) {  // the standard feature: id 0 in the high 3 bits
+            ++standard;
+            if ((w2 >> 29u) != 0u) words.fail(at + ": standard pixel with feature " + std::to_string(w2 >> 29u));
+            return;
+        }
+        ++anisotropic;
+        coated += s.coat > 0.0f;
+        const HdrpGBuffer2 h = hdrpAnisotropicGBuffer2(s.normal, s.anisotropyDirection, s.anisotropyStrength, s.metallic, s.coat);
+        ++words.compared;
+        if (h.g.nearTie || h.b.nearTie || h.a.nearTie) ++words.nearTies;
+        if (!accepts(h.r, w2 & 0xFFu) || !accepts(h.g, (w2 >> 8u) & 0xFFu) || !accepts(h.b, (w2 >> 16u) & 0xFFu) ||
+            !accepts(h.a, w2 >> 24u))
+            words.fail(at + ": GBuffer2 " + hex(w2) + ", HDRP r " + std::to_string(h.r.nearest) + " g " +
+                       std::to_string(h.g.nearest) + " b " + std::to_string(h.b.nearest) + " a " + std::to_string(h.a.nearest));
+        signFlips += (w2 & 0xFFu) < 128u;
+        // GBuffer0: the base colour itself (an sRGB target: the hardware's encode, half a step).
+        ++base.compared;
+        for (int c = 0; c < 3; ++c) {
+            const HardwareCode e = hardwareUnorm(float(srgbEncode(double(s.baseColor[c]))), 8);
+            const uint32_t code = (w0 >> (8u * uint32_t(c))) & 0xFFu;
+            if (code + 1u < e.nearest || code > e.other + 1u) base.fail(at + ": GBuffer0 " + hex(w0) + " is not the base colour");
+        }
+        // HDRP's read of the words against the codec's decode.
+        const float r = float(w2 & 0xFFu) / 255.0f, gv = float((w2 >> 8u) & 0xFFu) / 255.0f, bv = float((w2 >> 16u) & 0xFFu) / 255.0f;
+        const float anisotropy = r * 2.0f - 1.0f;
+        const float t1 = (256.0f / 8.0f - 1.0f) / 255.0f, tt2 = (256.0f / 8.0f) / 255.0f;
+        const uint32_t flag = uint32_t(int(bv / tt2 + 1.0f / 255.0f));
+        const float metallic = clamp01((-tt2 * float(flag) + bv) / t1);
+        const float sinOrCos = (0.5f / 256.0f * (1.0f / std::sqrt(2.0f))) + (255.0f / 256.0f * (1.0f / std::sqrt(2.0f))) * gv;
+        const float cosOrSin = std::sqrt(1.0f - sinOrCos * sinOrCos);
+        const float sinF = flag != 0u ? sinOrCos : cosOrSin, cosF = flag != 0u ? cosOrSin : sinOrCos;
+        const HdrpFrame f = hdrpGetLocalFrame(o.normal);
+        const glm::vec3 T = sinF * f.y + cosF * f.x, B = glm::cross(o.normal, T);
+        const glm::vec3 along = anisotropy >= 0.0f ? T : B;
+        ++reads.compared;
+        const bool ok = std::fabs(o.anisotropyStrength - std::fabs(anisotropy)) <= 1e-6f &&
+                        std::fabs(std::fabs(glm::dot(o.anisotropyDirection, along)) - 1.0f) <= 1e-5f &&
+                        std::fabs(o.metallic - metallic) <= 1e-6f && o.shadingModel == 4.0f &&
+                        glm::all(glm::lessThanEqual(glm::abs(o.diffuseColor - o.baseColor * (1.0f - o.metallic)), glm::vec3(1e-6f))) &&
+                        glm::all(glm::lessThanEqual(glm::abs(o.specularColor - (0.04f + (o.baseColor - 0.04f) * o.metallic)), glm::vec3(1e-6f))) &&
+                        (s.coat > 0.0f ? o.coat > 0.0f || s.coat < 1.0f / 62.0f : o.coat == 0.0f);
+        if (!ok)
+            reads.fail(at + ": decoded strength " + std::to_string(o.anisotropyStrength) + " direction " + vec(o.anisotropyDirection) +
+                       ", HDRP " + std::to_string(anisotropy) + " along " + vec(along) + ", metallic " + std::to_string(o.metallic) +
+                       " / " + std::to_string(metallic));
+        // The shading: HDRP's lobe (signed anisotropy along T, B) is gbufferlab's (|a| along the
+        // decoded direction), and close to the input's lobe away from the equator.
+        const glm::dvec3 n(o.normal), dd(o.anisotropyDirection), db = glm::cross(n, dd);
+        const double alpha = 0.3 * 0.3;
+        for (int k = 0; k < 4; ++k) {
+            const glm::dvec3 hh = glm::normalize(n + glm::dvec3(randomDirection(rng)) * 0.6);
+            const double hdrp = anisotropy >= 0.0f ? anisotropicD(hh, n, glm::dvec3(T), glm::dvec3(B), anisotropy, alpha)
+                                                   : anisotropicD(hh, n, glm::dvec3(B), glm::dvec3(T), -anisotropy, alpha);
+            const double ours = anisotropicD(hh, n, dd, db, o.anisotropyStrength, alpha);
+            const double rel = std::fabs(hdrp - ours) / std::max(hdrp, 1e-12);
+            worstLobe = std::max(worstLobe, rel);
+            ++lobe.compared;
+            if (rel > 1e-4) lobe.fail(at + ": HDRP's lobe " + std::to_string(hdrp) + ", the decoded one " + std::to_string(ours));
+        }
+        // The direction's loss, as the metric measures it (the angle between lines): within the
+        // angle's cell and the normal's step, except within 0.01 of the equator (the frame's flip).
+        if (std::fabs(s.normal.z) > 0.01f && std::fabs(glm::length(s.normal) - 1.0f) < 1e-3f) {
+            const double c = std::fabs(glm::dot(glm::dvec3(o.anisotropyDirection), glm::dvec3(s.anisotropyDirection)));
+            const double deg = std::acos(std::min(1.0, c)) * 57.29577951308232;
+            worstAngle = std::max(worstAngle, deg);
+            flipped += deg > 45.0;
+        }
+    });
+    std::printf("[ %-15s] %zu anisotropic pixels (%zu coated, %zu with the anisotropy negated), %zu standard; %zu near a "
+                "tie; worst direction error %.3f deg (|n.z| > 0.01), worst lobe difference %.2e\n",
+                name.c_str(), anisotropic, coated, signFlips, standard, words.nearTies, worstAngle, worstLobe);
+    EXPECT_EQ(words.mismatches, 0u);
+    EXPECT_EQ(base.mismatches, 0u);
+    EXPECT_EQ(reads.mismatches, 0u);
+    EXPECT_EQ(lobe.mismatches, 0u);
+    EXPECT_EQ(flipped, 0u);          // no axis relabelled by 90 degrees
+    EXPECT_LT(worstAngle, 0.5);       // half a degree: the 8-bit angle and the 12:12 normal
+    EXPECT_GT(signFlips, anisotropic / 4);  // the 2nd and 4th quadrants are reached ...
+    EXPECT_LT(signFlips, anisotropic * 3 / 4);
+    EXPECT_GT(coated, anisotropic / 3);  // ... and coated anisotropic pixels keep their coat
+    EXPECT_GT(standard, 1000u);
+}
+
+TEST(LayerPackings, HdrpAnisotropicFeatureEqualsEncodeIntoGBuffer) {
+    checkHdrpAnisotropicRow("hdrp-lit");
+    checkHdrpAnisotropicRow("hdrp-lit-apv");
 }
 
 // ==================================================================================================

@@ -176,7 +176,29 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
     EXPECT_EQ(n->codes[0].pieces.size(), 2u);
     EXPECT_EQ(n->codes[1].pieces.at(1).first, 4);
     EXPECT_EQ(bitsOf(hdrp, Attribute::Emissive), 32);  // B10G11R11
-    EXPECT_EQ(bitsOf(hdrp, Attribute::MaterialFeature), 3);
+    // HDRP 13's material feature id is the selector (GBuffer2.a bits 5..7; MaterialGBufferMacros.hlsl
+    // :29, 34: standard 0, anisotropic 4) and switches GBuffer0.rgb and GBuffer2.rgb (Lit.hlsl:541-543,
+    // 575-661): the diffuse colour and fresnel0 on standard pixels, the base colour, the tangent's
+    // angle (8), the signed anisotropy (8), storeSin (1) and a 5-bit metallic on anisotropic ones.
+    for (const char* name : {"hdrp-lit", "hdrp-lit-apv"}) {
+        SCOPED_TRACE(name);
+        using M = ShadingModel;
+        const Layout h = load(name);
+        ASSERT_TRUE(h.selector());
+        EXPECT_EQ(selectorTable(h), "default 0, anisotropic 4");
+        EXPECT_EQ(h.selector()->codes.at(0).text, "a[5:7]");
+        EXPECT_EQ(bitsOf(h, Attribute::MaterialFeature), 0);
+        EXPECT_EQ(bitsUnder(h, Attribute::DiffuseColor, M::Default), 24);
+        EXPECT_EQ(bitsUnder(h, Attribute::SpecularColor, M::Default), 24);
+        EXPECT_EQ(bitsUnder(h, Attribute::BaseColor, M::Default), 0);
+        EXPECT_EQ(bitsUnder(h, Attribute::DiffuseColor, M::Anisotropic), 0);
+        EXPECT_EQ(bitsUnder(h, Attribute::BaseColor, M::Anisotropic), 24);
+        EXPECT_EQ(bitsUnder(h, Attribute::AnisotropyDirection, M::Anisotropic), 17);
+        EXPECT_EQ(bitsUnder(h, Attribute::Metallic, M::Anisotropic), 5);
+        EXPECT_EQ(bitsUnder(h, Attribute::Coat, M::Anisotropic), 5);  // the coat is a flag beside either feature
+        EXPECT_EQ(bitsUnder(h, Attribute::Coat, M::Default), 5);
+        EXPECT_EQ(pixelBitsUnder(h, M::Anisotropic), pixelBitsUnder(h, M::Default) - 2);  // GBuffer2.b[6:7] spare there
+    }
     EXPECT_EQ(bitsOf(hdrp, Attribute::Coat), 5);  // PackFloatInt8bit(coatMask, featureId, 8): the coat's 5 bits
     EXPECT_EQ(bitsOf(hdrp, Attribute::CoatRoughness), 0);  // a constant in HDRP ...
     ASSERT_TRUE(hdrp.findFallback(Attribute::CoatRoughness));

@@ -436,6 +436,44 @@ TEST(LayoutProvenance, UeConditionalFieldsCiteTheirModelsBranch) {
     EXPECT_EQ(checked, 8);  // custom_data, coat, coat_roughness, sheen_color in each
 }
 
+// Each conditional field of HDRP's rows cites EncodeIntoGBuffer's branch of its own feature
+// (Lit.hlsl @c667268a: anisotropic :575-634, standard :645-661), and the selector cites the feature
+// ids (MaterialGBufferMacros.hlsl:29 GBUFFER_LIT_STANDARD, :34 GBUFFER_LIT_ANISOTROPIC).
+TEST(LayoutProvenance, HdrpConditionalFieldsCiteTheirFeaturesBranch) {
+    const std::map<ShadingModel, std::pair<long, long>> branch = {{ShadingModel::Default, {645, 661}},
+                                                                  {ShadingModel::Anisotropic, {575, 634}}};
+    int checked = 0;
+    for (const char* name : {"hdrp-lit", "hdrp-lit-apv"}) {
+        SCOPED_TRACE(name);
+        const Layout l = test::shippedLayout(name);
+        ASSERT_TRUE(l.selector());
+        std::string ids;
+        for (const CitationRef& r : l.selector()->provenance.refs)
+            if (r.key == "gbm13") ids += r.locator + ";";
+        EXPECT_NE(ids.find("29"), std::string::npos) << ids;
+        EXPECT_NE(ids.find("34"), std::string::npos) << ids;
+        for (const Target& t : l.targets)
+            for (const Field& f : t.fields) {
+                if (!f.conditional()) continue;
+                SCOPED_TRACE(attributeName(f.attribute));
+                ASSERT_EQ(std::popcount(f.models), 1);
+                const auto [first, last] = branch.at(ShadingModel(std::countr_zero(f.models)));
+                bool cites = false;
+                for (const CitationRef& r : f.provenance.refs) {
+                    if (r.key != "lit13") continue;
+                    std::stringstream parts(r.locator);  // "541-543, 575-634, 818": each range's start
+                    for (std::string part; std::getline(parts, part, ',');) {
+                        const long from = std::stol(part);
+                        cites = cites || (from >= first && from <= last);
+                    }
+                }
+                EXPECT_TRUE(cites) << "no lit13 citation inside " << first << "-" << last;
+                ++checked;
+            }
+    }
+    EXPECT_EQ(checked, 10);  // diffuse_color, base_color, specular_color, anisotropy_direction, metallic in each
+}
+
 // `layouts show` prints each entry's provenance beside it, differences under it, the citations.
 TEST(LayoutProvenance, ShowPrintsProvenance) {
     const std::string show = describeLayout(test::shippedLayout("ue5"));

@@ -222,3 +222,50 @@ field = [
     const auto diags = checkLayout(text, kFile);
     EXPECT_TRUE(diags.empty()) << joined(diags);
 }
+
+// HDRP's anisotropic feature (layouts/hdrp-lit.toml): a conditional field whose encoding reads an
+// attribute every pixel stores (anisotropy_angle_hdrp reads the normal, stored before it) and
+// carries a material layer (anisotropy_strength), which is then held under the field's models
+// and decodes as "no layer" elsewhere.
+namespace {
+std::string hdrpText() {
+    std::ifstream in(test::shippedLayoutDir() / "hdrp-lit.toml");
+    std::stringstream s;
+    s << in.rdbuf();
+    EXPECT_FALSE(s.str().empty());
+    return s.str();
+}
+const char* kHdrpAniso = R"({ attribute = "anisotropy_direction", encoding = "anisotropy_angle_hdrp")";
+}  // namespace
+
+TEST(ShadingModelLayout, AConditionalFieldMayReadTheNormalAndCarryALayer) {
+    const std::string text = hdrpText();
+    const auto diags = checkLayout(text, kFile);
+    ASSERT_TRUE(diags.empty()) << joined(diags);
+    const Layout l = parseLayout(text, kFile);
+    EXPECT_TRUE(l.storesConditionally(Attribute::AnisotropyStrength));
+    EXPECT_EQ(l.conditionalModels(Attribute::AnisotropyStrength), bit(ShadingModel::Anisotropic));
+    EXPECT_EQ(l.conditionalModels(Attribute::AnisotropyDirection), bit(ShadingModel::Anisotropic));
+    EXPECT_EQ(l.conditionalModels(Attribute::Metallic), bit(ShadingModel::Anisotropic));
+    EXPECT_TRUE(l.storesAlways(Attribute::Coat));  // the coat mask: a flag beside either feature
+}
+
+TEST(ShadingModelLayout, TheHdrpAnisotropyEncodingStoresTheTangentOnly) {
+    const std::string text = edit(hdrpText(), kHdrpAniso, R"({ attribute = "coat_normal", encoding = "anisotropy_angle_hdrp")");
+    expectError(text, placeOf(text, "\"anisotropy_angle_hdrp\""),
+                {"'anisotropy_angle_hdrp' stores anisotropy_direction (with anisotropy_strength), not 'coat_normal'"});
+}
+
+TEST(ShadingModelLayout, TheHdrpAnisotropyEncodingReadsANormalStoredOnEveryPixel) {
+    std::string text = edit(hdrpText(), R"(encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"],)",
+                            R"(encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"], model = "default",)");
+    expectError(text, placeOf(text, "\"anisotropy_angle_hdrp\""),
+                {"reads 'normal', which the layout stores under some models only"});
+}
+
+TEST(ShadingModelLayout, AConditionalFieldCarriesNoNonLayerAttribute) {
+    const std::string text = edit(hdrpText(), R"(encoding = "float11_11_10_hdrp_ao_tag", at = ["r", "g", "b"],)",
+                                  R"(encoding = "float11_11_10_hdrp_ao_tag", at = ["r", "g", "b"], model = "default",)");
+    expectError(text, placeOf(text, "\"float11_11_10_hdrp_ao_tag\""),
+                {"encoding 'float11_11_10_hdrp_ao_tag' of the conditional field 'emissive' reads 'occlusion' with it"});
+}

@@ -152,7 +152,8 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
 // with the shading model per pixel (ue5, ue5-anisotropy: the selector) and ue5-cloth: the coated
 // spheres' pixels ClearCoat, the sheen ones' Cloth, the anisotropic ones' (ue5-anisotropy) Default
 // Lit with anisotropy, each decoding its own layer; a Cloth pixel's sheen roughness is its decoded
-// roughness (sheen_roughness = "from_roughness", UE's cloth lobe), on both paths.
+// roughness (sheen_roughness = "from_roughness", UE's cloth lobe), on both paths; and hdrp-lit, whose
+// anisotropic spheres are of HDRP's anisotropic feature (the coat a flag beside it, no sheen).
 TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
     Scene scene = makeSphereGridScene();
     test::addLayersToSphereGrid(scene);
@@ -161,7 +162,7 @@ TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
     const RenderSettings pass = test::decodedFrame(160, 90);
     RenderSettings cpu = pass;
     cpu.decodeOnCpu = true;
-    for (const char* name : {"reference", "ue4", "ue5", "ue5-anisotropy", "ue5-cloth"}) {
+    for (const char* name : {"reference", "ue4", "ue5", "ue5-anisotropy", "ue5-cloth", "hdrp-lit"}) {
         SCOPED_TRACE(name);
         const std::string n = name;
         const GBufferWiring wiring = generateWiring(loadLayout(name));
@@ -193,9 +194,9 @@ TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
             // the coated spheres are in view; ue4 and ue5-cloth drop the coat (it decodes 0)
             if (n == "ue4" || n == "ue5-cloth") EXPECT_EQ(coated, 0u);
             else EXPECT_GT(coated, 100u);
-            if (n == "ue4") EXPECT_EQ(sheen, 0u);
+            if (n == "ue4" || n == "hdrp-lit") EXPECT_EQ(sheen, 0u);  // HDRP's Lit has no sheen
             else EXPECT_GT(sheen, 100u);  // the sheen spheres: Cloth pixels in UE's rows
-            if (n == "reference" || n == "ue5-anisotropy") EXPECT_GT(anisotropic, 100u);
+            if (n == "reference" || n == "ue5-anisotropy" || n == "hdrp-lit") EXPECT_GT(anisotropic, 100u);
             else EXPECT_EQ(anisotropic, 0u);
             // UE's cloth lobe takes the base roughness: the decoded sheen roughness is the decoded roughness
             if (n.rfind("ue5", 0) == 0) EXPECT_EQ(sheenRoughnessOff, 0u);
