@@ -285,6 +285,9 @@ inline constexpr float kHdrpAngleStart = 0.5f / 255.0f;
 inline constexpr float kHdrpAngleBias = 0.5f / 256.0f * 0.707106769f;
 inline constexpr float kHdrpAngleStep = 255.0f / 256.0f * 0.707106769f;
 
+// t must lie across n, as HDRP makes it (LitData.hlsl:293 Orthonormalize(tangentWS, normalWS)) and
+// as gbufferlab's surfaces hold it (material_eval.glsl: Gram-Schmidt against the shading normal):
+// the stored min(|sin|, |cos|) is decoded as a unit vector's.
 inline uvec3 encodeAnisotropyHdrp(vec3 t, float anisotropy, vec3 n) {
     vec3 fx, fy;
     hdrpLocalFrame(n, fx, fy);

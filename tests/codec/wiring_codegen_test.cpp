@@ -170,6 +170,13 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
         SCOPED_TRACE(l.name);
         std::vector<Surface> in = makeSurfaces(W, H, 7u);
         if (l.selector()) test::assignLayerPatterns(in);  // every model of the rule, on its own pixels
+        // As the renderer writes them (material_eval.glsl: Gram-Schmidt against the shading
+        // normal), anisotropy directions lie across the normal; HDRP's encoder assumes it too
+        // (LitData.hlsl:293 Orthonormalize before Lit.hlsl:583-584).
+        for (Surface& s : in) {
+            const glm::vec3 across = s.anisotropyDirection - s.normal * glm::dot(s.normal, s.anisotropyDirection);
+            if (glm::length(across) > 1e-3f) s.anisotropyDirection = glm::normalize(across);
+        }
         std::vector<ShadingModel> model(in.size());
         for (size_t i = 0; i < in.size(); ++i) model[i] = test::statedModel(l, in[i]);
         const CpuGBuffer g = encodeGBuffer(l, in, W, H);
@@ -246,6 +253,18 @@ TEST(WiringCodegen, CpuRoundTripWithinDocumentedBounds) {
                             bound = 2.5;
                         }
                         else bound = 180.0;  // stereographic: not a full-sphere mapping
+                    } else if (e == "anisotropy_angle_hdrp") {
+                        // HDRP's tangent angle in GetLocalFrame(normal): the input direction (across
+                        // its normal, above) against the decoded one, as axes (the decode turns a
+                        // negated strength into the bitangent). Below one code of strength the sign, and so the
+                        // axis, may flip with no effect on the lobe: not held. The bound: the
+                        // angle's 8-bit cell (half of it: 0.11 degrees at 45) plus the frame's
+                        // turn with the decoded normal (normal_octahedral_hdrp's 12-bit error);
+                        // 0.127 degrees at worst on these surfaces (2026-12-08).
+                        if (a.anisotropyStrength < 1.0f / 127.5f || glm::length(x) < 0.5f) continue;
+                        const double c = std::min(1.0, std::abs(double(glm::dot(glm::normalize(x), glm::normalize(y)))));
+                        err = std::acos(c) * 57.29577951308232;
+                        bound = 0.2;
                     } else if (e == "snorm" && f.attribute == Attribute::Normal) {
                         // Per component snorm (URP's SNORM normal): a step of 1/(2^(b-1)-1) in n, as
                         // normal_xyz's 2/(2^b-1): normal_xyz's 8-bit bound, scaled.
