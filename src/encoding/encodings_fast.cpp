@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "engine_encodings.h"
 #include "simd_clones.h"
 
 // GCC only: clang 14 (the fuzz build's compiler) rejects __builtin_cpu_supports("f16c"); it takes
@@ -244,6 +245,12 @@ GBL_SCALAR_LOADS void gatherBytes(int n, const uint32_t* index, const uint32_t* 
 const Srgb8EncodeTable& srgb8EncodeTable() {
     static std::vector<uint32_t> entries;
     static const Srgb8EncodeTable table = thresholdTable(kSrgbEncodeThresholds, entries);
+    return table;
+}
+
+const Srgb8EncodeTable& srgbFastHdrpEncodeTable() {
+    static std::vector<uint32_t> entries;
+    static const Srgb8EncodeTable table = thresholdTable(kSrgbFastHdrpEncodeThresholds, entries);
     return table;
 }
 

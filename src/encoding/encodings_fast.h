@@ -42,6 +42,11 @@ const Srgb8EncodeTable& srgb8EncodeTable();
 // The same form for encodeGamma22's thresholds (kGamma22EncodeThresholds): encodeSrgb8Fast(x,
 // gamma22EncodeTable()) == encodeGamma22(x) for every float (a table per threshold array).
 const Srgb8EncodeTable& gamma22EncodeTable();
+// And for HDRP's fast sRGB (kSrgbFastHdrpEncodeThresholds, engine_encodings.h), which codes |x|:
+// encodeSrgb8Fast(|x|, srgbFastHdrpEncodeTable()) == encodeSrgb8FastHdrp(x) for every float. Its
+// thresholds follow the same 1.055 x^(1/2.4) - 0.055 power segment as sRGB's upper part, so they
+// are as far apart (the build throws otherwise).
+const Srgb8EncodeTable& srgbFastHdrpEncodeTable();
 
 // out[j] = table[index[j]] (gatherWords) and out[j] = the byte index[j] of `table` read as
 // bytes in little-endian word order, i.e. (table[i / 4] >> 8 (i % 4)) & 0xff (gatherBytes), for

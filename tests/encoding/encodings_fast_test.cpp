@@ -14,6 +14,7 @@
 
 #include "encodings.h"
 #include "encodings_fast.h"
+#include "engine_encodings.h"
 
 namespace gbl {
 namespace {
@@ -215,6 +216,32 @@ TEST(Srgb8EncodeFast, SameCodesAsTheReference) {
                           << "): fast " << enc::encodeSrgb8Fast(x, table) << ", reference " << enc::encodeSrgb8(x);
     std::printf("[ srgb8    ] %zu values, %zu differ\n", xs.size(), bad);
     EXPECT_EQ(bad, 0u);
+}
+
+// HDRP's fast sRGB (hdrp-lit's fresnel0) by the same table form, of |x|: the sweep as for gamma 2.2,
+// each threshold's neighbours, and negatives (HDRP codes the magnitude: PositivePow).
+TEST(Srgb8FastHdrpEncodeFast, SameCodesAsTheReference) {
+    std::vector<float> xs = floatSweep();
+    for (float t : enc::kSrgbFastHdrpEncodeThresholds) addNeighbours(xs, t, 4);
+    const enc::Srgb8EncodeTable& table = enc::srgbFastHdrpEncodeTable();
+    for (uint32_t b = table.firstBucket; b <= table.lastBucket + 1; ++b)
+        addNeighbours(xs, enc::uintBitsToFloat(b << enc::Srgb8EncodeTable::kShift), 2);
+    size_t bad = 0, count = xs.size();
+    auto check = [&](float x) {
+        const uint fast = enc::encodeSrgb8Fast(std::fabs(x), table), ref = enc::encodeSrgb8FastHdrp(x);
+        if (fast != ref && bad++ < 5)
+            ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
+                          << "): fast " << fast << ", reference " << ref;
+    };
+    for (float x : xs) check(x), check(-x);
+    count *= 2;
+    const uint32_t from = (table.firstBucket - 1) << enc::Srgb8EncodeTable::kShift;
+    const uint32_t to = (table.lastBucket + 2) << enc::Srgb8EncodeTable::kShift;
+    for (uint32_t bits = from; bits < to; bits += 5, ++count) check(enc::uintBitsToFloat(bits));
+    std::printf("[ srgb hdrp] %zu values, %zu differ\n", count, bad);
+    EXPECT_EQ(bad, 0u);
+    // Not the sRGB table: the fast curve has no linear toe, so low values code differently.
+    EXPECT_NE(enc::encodeSrgb8Fast(0.001f, table), enc::encodeSrgb8(0.001f));
 }
 
 // Gamma 2.2 (Bevy's and niagara's base colour) by the sRGB table form over its own thresholds:
