@@ -370,7 +370,7 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
                 case Codec::UnormSigned:
                     map1(n, in, out, [bk](float x) { return quantizeUnormSigned(x, bk); });
                     break;
-                case Codec::UnormSqrt: map1(n, in, out, [](float x) { return encodeUnormSqrt(x); }); break;
+                case Codec::UnormSqrt: srgb8Row(n, in, out, unormSqrtEncodeTable()); break;  // by the table form
                 case Codec::Reflectance:
                 case Codec::ReflectanceBevyWebgl2:  // the bias is the read's alone
                     map1(n, in, out, [bk](float x) { return quantizeUnorm(reflectanceFromSpecular(x), bk); });

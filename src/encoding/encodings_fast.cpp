@@ -254,6 +254,12 @@ const Srgb8EncodeTable& srgbFastHdrpEncodeTable() {
     return table;
 }
 
+const Srgb8EncodeTable& unormSqrtEncodeTable() {
+    static std::vector<uint32_t> entries;
+    static const Srgb8EncodeTable table = thresholdTable(kUnormSqrtEncodeThresholds, entries);
+    return table;
+}
+
 const Srgb8EncodeTable& gamma22EncodeTable() {
     static std::vector<uint32_t> entries;
     static const Srgb8EncodeTable table = thresholdTable(kGamma22EncodeThresholds, entries);

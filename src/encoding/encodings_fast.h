@@ -47,6 +47,10 @@ const Srgb8EncodeTable& gamma22EncodeTable();
 // thresholds follow the same 1.055 x^(1/2.4) - 0.055 power segment as sRGB's upper part, so they
 // are as far apart (the build throws otherwise).
 const Srgb8EncodeTable& srgbFastHdrpEncodeTable();
+// And for unorm_sqrt (kUnormSqrtEncodeThresholds, ((i + 0.5) / 255)^2, engine_encodings.h):
+// encodeSrgb8Fast(x, unormSqrtEncodeTable()) == encodeUnormSqrt(x) for every float. Its top two
+// thresholds are 0.79 % apart, a bucket at most 0.78 % wide: one threshold a bucket still holds.
+const Srgb8EncodeTable& unormSqrtEncodeTable();
 
 // out[j] = table[index[j]] (gatherWords) and out[j] = the byte index[j] of `table` read as
 // bytes in little-endian word order, i.e. (table[i / 4] >> 8 (i % 4)) & 0xff (gatherBytes), for

@@ -244,6 +244,31 @@ TEST(Srgb8FastHdrpEncodeFast, SameCodesAsTheReference) {
     EXPECT_NE(enc::encodeSrgb8Fast(0.001f, table), enc::encodeSrgb8(0.001f));
 }
 
+// unorm_sqrt (UE's Cloth fuzz colour) by the same table form: the sweep, each threshold's
+// neighbours and every bucket edge, as for gamma 2.2; the tightest case (top thresholds 0.79 %
+// apart in buckets up to 0.78 % wide).
+TEST(UnormSqrtEncodeFast, SameCodesAsTheReference) {
+    std::vector<float> xs = floatSweep();
+    for (float t : enc::kUnormSqrtEncodeThresholds) addNeighbours(xs, t, 4);
+    const enc::Srgb8EncodeTable& table = enc::unormSqrtEncodeTable();
+    for (uint32_t b = table.firstBucket; b <= table.lastBucket + 1; ++b)
+        addNeighbours(xs, enc::uintBitsToFloat(b << enc::Srgb8EncodeTable::kShift), 2);
+    size_t bad = 0, count = xs.size();
+    auto check = [&](float x) {
+        const uint fast = enc::encodeSrgb8Fast(x, table), ref = enc::encodeUnormSqrt(x);
+        if (fast != ref && bad++ < 5)
+            ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
+                          << "): fast " << fast << ", reference " << ref;
+    };
+    for (float x : xs) check(x), check(-x);
+    count *= 2;
+    const uint32_t from = (table.firstBucket - 1) << enc::Srgb8EncodeTable::kShift;
+    const uint32_t to = (table.lastBucket + 2) << enc::Srgb8EncodeTable::kShift;
+    for (uint32_t bits = from; bits < to; bits += 5, ++count) check(enc::uintBitsToFloat(bits));
+    std::printf("[ unorm sqrt] %zu values, %zu differ\n", count, bad);
+    EXPECT_EQ(bad, 0u);
+}
+
 // Gamma 2.2 (Bevy's and niagara's base colour) by the sRGB table form over its own thresholds:
 // every 5th float of the range the table spans (about 30M: every bucket, every threshold's
 // surroundings), each threshold and bucket edge with its neighbours, and the whole-range sweep.
