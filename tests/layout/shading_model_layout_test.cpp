@@ -321,10 +321,12 @@ TEST(ShadingModelLayout, AConditionalFieldReadsWhatEachOfItsModelsStores) {
 }
 
 TEST(ShadingModelLayout, AConditionalFieldReadsWhatItsModelsStoreBeforeIt) {
-    // GBufferA holds a constant on ClearCoat pixels, and the coat normal moves to GBufferE, after
-    // GBufferD's delta.
+    // GBufferA holds the coat normal under cloth only, and under clear_coat it moves to GBufferE,
+    // after GBufferD's delta: stored under the delta's model, but not before it.
     std::string text = edit(ueCoatNormalText(), kCoatTop,
-                            R"({ attribute = "custom_data", encoding = "unorm", at = ["r", "g", "b"], value = 0.0, model = "clear_coat",)");
+                            R"({ attribute = "coat_normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = "cloth",)");
+    text = edit(text, kBaseTop,
+                R"({ attribute = "normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = "default",)");
     text = edit(text, R"({ attribute = "precomputed_shadow", encoding = "unorm", at = ["r", "g", "b", "a"], value = 1.0,)",
                 R"({ attribute = "precomputed_shadow", encoding = "unorm", at = "r", value = 1.0, from = "lmc:230-290", status = "verified" },
   { attribute = "coat_normal", encoding = "normal_xyz", bits = 8, at = ["g", "b", "a"], model = "clear_coat",)");
