@@ -262,6 +262,10 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
         EXPECT_EQ(bytesPerPixel(ccn), bytesPerPixel(ue5));
         EXPECT_TRUE(ccn.storesConditionally(Attribute::Normal));
         EXPECT_TRUE(storesOnEveryModel(ccn, Attribute::Normal));
+        std::ostringstream out, err;
+        ASSERT_EQ(showLayoutCommand("ue5-clearcoat-normal", out, err), 0) << err.str();
+        EXPECT_NE(out.str().find("normal                  30  (per model, at most: default, clear_coat, cloth)"),
+                  std::string::npos) << out.str();
         EXPECT_FALSE(storesOnEveryModel(ccn, Attribute::CoatNormal));
         bool delta = false;
         for (const Target& t : ccn.targets)
