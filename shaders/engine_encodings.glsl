@@ -506,10 +506,11 @@ float decodeUnormSqrt(uint code) {
 // oct = code / (2^bits - 1) * 4 - 512/255 + oct(top) and unfolded (ClearCoatCommon.ush:5-14).
 // UE's octahedron (OctahedralCommon.ush:18-34): n.xy / |n|_1, folded where n.z <= 0 with
 // select(n.xy >= 0, 1, -1); the unfold subtracts t = max(-z, 0) towards zero, then normalises.
+// A zero vector folds from (0, 0) (engine_encodings.h's twin says why).
 vec2 octEncodeUe(vec3 n) {
     precise float l1 = abs(n.x) + abs(n.y) + abs(n.z);
-    precise float x = n.x / l1;
-    precise float y = n.y / l1;
+    precise float x = l1 > 0.0 ? n.x / l1 : 0.0;
+    precise float y = l1 > 0.0 ? n.y / l1 : 0.0;
     if (n.z <= 0.0) {
         precise float fx = (1.0 - abs(y)) * (x >= 0.0 ? 1.0 : -1.0);
         precise float fy = (1.0 - abs(x)) * (y >= 0.0 ? 1.0 : -1.0);

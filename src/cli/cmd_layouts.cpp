@@ -9,6 +9,7 @@
 #include "encoding_registry.h"
 #include "layout_atlas.h"
 #include "layout_catalog.h"
+#include "layout_coverage.h"
 #include "layout_export.h"
 #include "file_io.h"
 #include "shader_compiler.h"
@@ -224,8 +225,14 @@ std::string describeLayout(const Layout& layout) {
     }
     o << "\nbits per attribute:\n";
     for (const AttributeBits& ab : bitsPerAttribute(layout))
+        // Stored per model under every model the selector names (ue5-clearcoat-normal's normal):
+        // on every pixel, the widest field's bits.
         o << "  " << pad(attributeName(ab.attribute), 24) << ab.bits
-          << (ab.models ? "  (under " + shadingModelNames(ab.models) + " only)" : std::string()) << "\n";
+          << (!ab.models ? std::string()
+              : storesOnEveryModel(layout, ab.attribute)
+                  ? "  (per model, at most: " + shadingModelNames(ab.models) + ")"
+                  : "  (under " + shadingModelNames(ab.models) + " only)")
+          << "\n";
     // What an encoding stores besides its attribute (HDRP's AO tag: occlusion in the g code).
     for (const Target& t : layout.targets)
         for (const Field& f : t.fields)

@@ -261,6 +261,19 @@ GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, con
             }
             return;
         }
+        case Codec::NormalOctahedralDeltaUe: {
+            // Against the decoded coat normal, as GetClearCoatBottomNormal reads the decoded
+            // GBuffer.WorldNormal (ClearCoatCommon.ush:9); validation puts a field of the same
+            // models storing it before this one.
+            const float *tx = b.s[f.reads], *ty = b.s[f.reads + 1], *tz = b.s[f.reads + 2];
+            for (int j = 0; j < n; ++j) {
+                const vec3 v = decodeNormalOctahedralDeltaUe(uvec2(c0[j], c1[j]), vec3(tx[j], ty[j], tz[j]), bits);
+                x[j] = v.x;
+                y[j] = v.y;
+                z[j] = v.z;
+            }
+            return;
+        }
         case Codec::EmissiveAlbedoRatio: {
             // From the decoded base colour: validation puts its field before this one.
             const float *ar = b.s[f.reads], *ag = b.s[f.reads + 1], *ab = b.s[f.reads + 2];

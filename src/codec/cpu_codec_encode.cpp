@@ -478,6 +478,18 @@ GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y
             }
             return;
         }
+        case Codec::NormalOctahedralDeltaUe: {
+            // Against the unquantised coat normal, as UE's oct2 reads GBuffer.WorldNormal before
+            // it is encoded (ShadingModelsMaterial.ush:98); on pixels of other models the codes
+            // are dropped (modelCodes).
+            const float *tx = b.s[f.reads], *ty = b.s[f.reads + 1], *tz = b.s[f.reads + 2];
+            for (int j = 0; j < n; ++j) {
+                const uvec2 c = encodeNormalOctahedralDeltaUe(vec3(x[j], yv[j], z[j]), vec3(tx[j], ty[j], tz[j]), bits);
+                c0[j] = c.x;
+                c1[j] = c.y;
+            }
+            return;
+        }
         case Codec::EmissiveAlbedoRatio: {
             // The unquantised base colour of the pixel, as niagara's mesh.frag.glsl divides by albedo.
             const float *ar = b.s[f.reads], *ag = b.s[f.reads + 1], *ab = b.s[f.reads + 2];

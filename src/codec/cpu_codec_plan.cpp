@@ -61,6 +61,7 @@ Codec resolveCodec(const std::string& e) {
         {"emissive_albedo_ratio", Codec::EmissiveAlbedoRatio},
         {"normal_octahedral_dithered", Codec::NormalOctahedralDithered},
         {"anisotropy_angle_hdrp", Codec::AnisotropyTangentAngleHdrp},
+        {"normal_octahedral_delta_ue", Codec::NormalOctahedralDeltaUe},
     };
     for (const auto& [name, codec] : names)
         if (e == name) return codec;
@@ -95,6 +96,7 @@ size_t codeCount(Codec c) {
         case Codec::NormalOctahedralUnity:
         case Codec::NormalOctahedralHdrp:
         case Codec::NormalXyFloat16:
+        case Codec::NormalOctahedralDeltaUe:
         case Codec::NormalOctahedralDithered: return 2;
         default: return 0;
     }

@@ -68,6 +68,7 @@ enum class Codec : uint8_t {
     Srgb8FastHdrp,
     Float111110HdrpAoTag,      // also stores occlusion (FieldPlan::carried: read by encode, set by decode)
     AnisotropyTangentAngleHdrp,  // reads the normal (FieldPlan::reads), stores anisotropy_strength (carried)
+    NormalOctahedralDeltaUe,     // reads the coat normal (FieldPlan::reads): UE's bottom normal
 };
 
 // Per component of the attribute (one code each) or the whole vec3 (Color and Normal kinds).

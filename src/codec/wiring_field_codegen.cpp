@@ -195,6 +195,11 @@ std::vector<std::string> emitEncodeField(std::ostream& o, const std::string& ind
         o << ind << "uvec3 " << id << " = encodeAnisotropyHdrp(" << v << ", " << carriesExpr(encodingOf(f)) << ", "
           << readsExpr(encodingOf(f)) << ");\n";
         for (int i = 0; i < 3; ++i) codes.push_back(id + "." + kComp[i]);
+    } else if (e == "normal_octahedral_delta_ue") {
+        // against the unquantised coat normal (UE's GBuffer.WorldNormal before it is written)
+        o << ind << "uvec2 " << id << " = encodeNormalOctahedralDeltaUe(" << v << ", " << readsExpr(encodingOf(f))
+          << ", " << b << ");\n";
+        for (int i = 0; i < 2; ++i) codes.push_back(id + "." + kComp[i]);
     } else if (e == "rgb9e5") {
         o << ind << "uvec4 " << id << " = encodeRgb9e5(" << v << ");\n";
         for (int i = 0; i < 4; ++i) codes.push_back(id + "." + kComp[i]);
@@ -275,6 +280,8 @@ std::string decodeFieldExpr(const Field& f, const std::vector<std::string>& c) {
         return "decodeFloat111110HdrpAoTag(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "))";
     if (e == "anisotropy_angle_hdrp")
         return "decodeAnisotropyHdrp(uvec3(" + c[0] + ", " + c[1] + ", " + c[2] + "), " + readsExpr(encodingOf(f)) + ")";
+    if (e == "normal_octahedral_delta_ue")  // against the decoded coat normal
+        return "decodeNormalOctahedralDeltaUe(uvec2(" + c[0] + ", " + c[1] + "), " + readsExpr(encodingOf(f)) + ", " + b + ")";
     if (e == "rgb9e5") return "decodeRgb9e5(uvec4(" + c[0] + ", " + c[1] + ", " + c[2] + ", " + c[3] + "))";
     if (e == "emissive_albedo_ratio")
         return "decodeEmissiveAlbedoRatio(" + c[0] + ", " + b + ", " + readsExpr(encodingOf(f)) + ")";

@@ -181,6 +181,20 @@ void addLayerAndEngineEncodings(std::vector<EncodingInfo>& v) {
     hdrpAniso.reads = "normal";
     hdrpAniso.carries = "anisotropy_strength";
     v.push_back(hdrpAniso);
+    // UE's bottom normal is stored relative to the coat's (the pixel's GBufferA normal on a
+    // ClearCoat pixel): it reads coat_normal, which a conditional field may read where a field of
+    // its models stores it before it (layout_validate.cpp).
+    EncodingInfo ueDelta{"normal_octahedral_delta_ue", K::Normal, 2, 8, 8, 8, 0, false,
+                         "unit vector near coat_normal (the base normal under a clear coat)",
+                         "UE's clear-coat bottom normal: (oct(normal) - oct(coat_normal)) * 0.25 + 128/255 as two "
+                         "unorm codes with UE's octahedron (folded where z <= 0), decoded code * 4 - 512/255 + "
+                         "oct(decoded coat_normal), unfolded and normalised; saturates where the two octahedral "
+                         "points lie more than about 2 apart",
+                         "Unreal Engine 5.3.2 ShadingModelsMaterial.ush:96-116 (CLEAR_COAT_BOTTOM_NORMAL, "
+                         "r.ClearCoatNormal = 1), ClearCoatCommon.ush:5-14 GetClearCoatBottomNormal, "
+                         "OctahedralCommon.ush:18-34 (mirror Mephisto1024/Toon_Engine@1a10ef19)"};
+    ueDelta.reads = "coat_normal";
+    v.push_back(ueDelta);
 }
 
 // zeux/niagara (src/shaders/mesh.frag.glsl, final.comp.glsl @95f289b7): niagara_encodings.h.

@@ -227,11 +227,13 @@ inline float decodeUnormSqrt(uint code) {
 // UE's clear-coat bottom normal (CLEAR_COAT_BOTTOM_NORMAL): the octahedral point of the bottom
 // normal minus that of the pixel's (top) normal, * 0.25 + 128/255, as two unorm codes; decoded
 // code / (2^bits - 1) * 4 - 512/255 + oct(top), unfolded and normalised. UE's octahedron
-// (UnitVectorToOctahedron: the fold where z <= 0, select(n >= 0, 1, -1)).
+// (UnitVectorToOctahedron: the fold where z <= 0, select(n >= 0, 1, -1)). A zero vector (a
+// coat_normal no pixel of the ClearCoat model holds, read on the pixels of other models whose
+// codes are dropped) is the point (0, 0) before the fold, as octEncode's: UE divides 0 by 0 there.
 inline vec2 octEncodeUe(vec3 n) {
     float l1 = abs(n.x) + abs(n.y) + abs(n.z);
-    float x = n.x / l1;
-    float y = n.y / l1;
+    float x = l1 > 0.0f ? n.x / l1 : 0.0f;
+    float y = l1 > 0.0f ? n.y / l1 : 0.0f;
     if (n.z <= 0.0f) {
         float fx = (1.0f - abs(y)) * (x >= 0.0f ? 1.0f : -1.0f);
         float fy = (1.0f - abs(x)) * (y >= 0.0f ? 1.0f : -1.0f);

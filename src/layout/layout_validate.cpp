@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 
+#include "layout_coverage.h"
 #include "layout_validator.h"
 
 namespace gbl {
@@ -62,15 +63,23 @@ void Validator::checkStencil() {
 // base_color) decodes from that attribute's decoded value: it must be stored in a field that
 // comes before this one (an earlier target, or earlier in the same target), as readGBuffer
 // and the CPU codec decode fields in layout order.
+// A conditional field reads an attribute stored under its models (checkSelector): the fields
+// before it must store it under all of them.
 void Validator::checkReads() {
-    std::map<Attribute, const Field*> before;
+    std::map<Attribute, uint32_t> before;  // the models stored before (~0u: unconditionally)
     for (const Target& t : layout_.targets)
         for (const Field& f : t.fields) {
             const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
             if (enc && !enc->reads.empty()) {
                 const AttributeInfo* r = findAttribute(enc->reads);
                 const std::string a = squote(attributeName(f.attribute)), e = squote(enc->name);
-                if (r && !before.count(r->id)) {
+                const uint32_t needed = f.conditional() ? f.models : ~0u;
+                // stored under too few models anywhere: checkSelector says so
+                const bool covered = r && layout_.storesConditionally(r->id) ? f.conditional() &&
+                                                                                   storesUnder(layout_, r->id, f.models)
+                                                                             : true;
+                const auto it = r ? before.find(r->id) : before.end();
+                if (r && covered && (it == before.end() || (it->second & needed) != needed)) {
                     const bool later = layout_.stores(r->id);
                     error(f.encodingPlace,
                           "encoding " + e + " of " + a + " reads " + squote(enc->reads) + ", which " +
@@ -79,7 +88,7 @@ void Validator::checkReads() {
                               " (an earlier target, or earlier in this one), or choose another encoding for " + a);
                 }
             }
-            before.emplace(f.attribute, &f);
+            before[f.attribute] |= f.conditional() ? f.models : ~0u;
         }
 }
 
@@ -197,17 +206,27 @@ void Validator::checkSelector() {
                           ": a conditional field takes an encoding of its own value only (store it unconditionally, "
                           "or choose another encoding)");
         }
-    // An encoding that reads another attribute reads it on every pixel: not one stored per model.
+    // An encoding that reads another attribute reads it on every pixel the field is stored on: an
+    // unconditional field an attribute stored on every pixel, a conditional one an attribute stored
+    // on every pixel of the field's models (UE's bottom normal under ClearCoat reads the coat normal
+    // GBufferA holds under ClearCoat); checkReads puts that field before it.
     for (const Target& t : layout_.targets)
         for (const Field& f : t.fields) {
             const EncodingInfo* enc = f.incomplete ? nullptr : findEncoding(f.encoding);
             if (!enc || enc->reads.empty()) continue;
             const AttributeInfo* r = findAttribute(enc->reads);
-            if (r && layout_.storesConditionally(r->id))
-                error(f.encodingPlace, "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) +
-                                           " reads " + squote(enc->reads) +
-                                           ", which the layout stores under some models only: store " +
-                                           enc->reads + " on every pixel, or choose another encoding");
+            if (!r || !layout_.storesConditionally(r->id)) continue;
+            if (f.conditional() && storesUnder(layout_, r->id, f.models)) continue;
+            const uint32_t missing = f.conditional() ? f.models & ~layout_.conditionalModels(r->id) : 0u;
+            error(f.encodingPlace,
+                  "encoding " + squote(enc->name) + " of " + squote(attributeName(f.attribute)) + " reads " +
+                      squote(enc->reads) + ", which the layout stores under " +
+                      shadingModelNames(layout_.conditionalModels(r->id)) + " only" +
+                      (f.conditional() ? " (not under " + shadingModelNames(missing) + ", where " +
+                                             squote(attributeName(f.attribute)) + " is held): store " + enc->reads +
+                                             " under every model of this field"
+                                       : ": store " + enc->reads + " on every pixel") +
+                      ", or choose another encoding");
         }
 }
 
@@ -221,11 +240,13 @@ void Validator::checkRequired() {
             error({1, 1}, "the layout stores no " + squote(attributeName(a)) +
                               ": every layout must store normal and roughness (the lighting pass reads them "
                               "from the G-buffer)");
-        else if (!layout_.storesAlways(a))
+        else if (!storesOnEveryModel(layout_, a))
             error(layout_.findField(a)->modelPlace,
                   squote(attributeName(a)) + " is stored under " +
                       shadingModelNames(layout_.conditionalModels(a)) +
-                      " only: normal and roughness are stored on every pixel (remove 'model')");
+                      " only: normal and roughness are stored on every pixel (remove 'model', or store it "
+                      "under the selector's other models too: " +
+                      shadingModelNames(layout_.selectorModels() & ~layout_.conditionalModels(a)) + ")");
 }
 
 // What each derived fallback reads.

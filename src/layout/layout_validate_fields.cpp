@@ -27,6 +27,9 @@ std::string Validator::unsuitable(const EncodingInfo& enc, const AttributeInfo& 
             // anisotropy_angle_hdrp: the tangent, with the strength it carries
             if (enc.carries == "anisotropy_strength" && attr.id != Attribute::AnisotropyDirection)
                 return e + " stores anisotropy_direction (with anisotropy_strength), not " + a;
+            // normal_octahedral_delta_ue: UE's bottom (base) normal, relative to the coat's
+            if (enc.reads == "coat_normal" && attr.id != Attribute::Normal)
+                return e + " stores normal (relative to coat_normal), not " + a;
             return "";
         case AttributeKind::Color:
             if (attr.components != 3 || isDirectionAttribute(attr.id) || attr.id == Attribute::Position)

@@ -155,6 +155,9 @@ std::vector<uint> encodeField(const Field& f, const Surface& s, ivec2 pixel) {
     } else if (e == "anisotropy_angle_hdrp") {  // HDRP: against the unquantised normal, with the strength
         const uvec3 u = encodeAnisotropyHdrp(v, s.anisotropyStrength, s.normal);
         c = {u.x, u.y, u.z};
+    } else if (e == "normal_octahedral_delta_ue") {  // UE: against the unquantised coat normal
+        const uvec2 u = encodeNormalOctahedralDeltaUe(v, s.coatNormal, b);
+        c = {u.x, u.y};
     } else if (e == "rgb9e5") {
         const uvec4 u = encodeRgb9e5(v);
         c = {u.x, u.y, u.z, u.w};
@@ -214,6 +217,7 @@ vec3 decodeField(const Field& f, const std::vector<uint>& c, const Surface& s) {
     if (e == "float11_11_10_hdrp_ao_tag") return decodeFloat111110HdrpAoTag(uvec3(c[0], c[1], c[2]));
     if (e == "rgb9e5") return decodeRgb9e5(uvec4(c[0], c[1], c[2], c[3]));
     if (e == "anisotropy_angle_hdrp") return decodeAnisotropyHdrp(uvec3(c[0], c[1], c[2]), s.normal);
+    if (e == "normal_octahedral_delta_ue") return decodeNormalOctahedralDeltaUe(uvec2(c[0], c[1]), s.coatNormal, b);
     if (e == "normal_octahedral_bevy" || e == "normal_octahedral_unity" || e == "normal_octahedral_hdrp" ||
         e == "normal_octahedral_dithered")
         return decodeNormalOctahedralUnorm(uvec2(c[0], c[1]), b);

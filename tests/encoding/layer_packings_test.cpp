@@ -8,8 +8,8 @@
 //                            anisotropic feature under the selector)
 //   ue5-clearcoat, ue5-cloth UE 5.3.2, Mephisto1024/Toon_Engine 1a10ef19
 //   ue5, ue5-anisotropy      the same, the shading model per pixel (the selector)
-// and UE's clear-coat bottom normal (r.ClearCoatNormal = 1, off by default: no row stores it),
-// against engine_encodings.h's encoder and decoder directly.
+// and UE's clear-coat bottom normal (r.ClearCoatNormal = 1, off by default), against
+// engine_encodings.h's encoder and decoder directly and in its row, ue5-clearcoat-normal.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -764,9 +764,8 @@ TEST(LayerPackings, Ue5SelectorRowsWriteCustomDataAsSetGBufferForShadingModel) {
 // UE 5.3.2's clear-coat bottom normal (CLEAR_COAT_BOTTOM_NORMAL, r.ClearCoatNormal = 1): CustomData.a
 // and .z = (oct(bottom) - oct(top)) * 0.25 + 128/255 (ShadingModelsMaterial.ush:96-116), read back
 // OctahedronToUnitVector((a, z) * 4 - 512/255 + oct(top)) (ClearCoatCommon.ush:5-14), with
-// UnitVectorToOctahedron / OctahedronToUnitVector (OctahedralCommon.ush:18-34). No row stores it
-// yet (it needs GBufferA to hold the coat normal and the selector): its encoder and decoder are
-// held to UE's arithmetic here.
+// UnitVectorToOctahedron / OctahedronToUnitVector (OctahedralCommon.ush:18-34): the encoder and
+// decoder held to UE's arithmetic here, the row ue5-clearcoat-normal below.
 // ==================================================================================================
 
 glm::vec2 ueUnitVectorToOctahedron(glm::vec3 n) {
@@ -824,6 +823,131 @@ TEST(LayerPackings, Ue5ClearCoatBottomNormalDeltaEqualsShadingModelsMaterial) {
     EXPECT_LT(worst, 2.0);  // 8 bits over a delta range of 4: a step of 4/255 in the octahedron
     // The same normal above and below: the delta is 128/255 itself, code 128 each, and reads back.
     EXPECT_EQ(gbl::enc::encodeNormalOctahedralDeltaUe(glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), 8u), glm::uvec2(128u, 128u));
+}
+
+// ==================================================================================================
+// ue5-clearcoat-normal (r.ClearCoatNormal = 1): on a ClearCoat pixel GBufferA = EncodeNormal of
+// GBuffer.WorldNormal, the material's Normal input (ShadingModelsMaterial.ush:26), which is the
+// coat's normal, n * 0.5 + 0.5 into A2B10G10R10_UNORM (R bits 0..9, G 10..19, B 20..29); CustomData
+// .x, .y the coat as ue5's, .a = oct3.x, .z = oct3.y, oct3 = (oct(bottom) - oct(WorldNormal)) *
+// 0.25 + 128/255 (:96-116) with the unquantised WorldNormal; GBufferD B8G8R8A8 puts .z in bits 0..7
+// and .a in 24..31. Read back (DeferredLightingCommon.ush:320-325, ClearCoatCommon.ush:5-14):
+// WorldNormal = normalize(code / 1023 * 2 - 1) (DeferredShadingCommon.ush:942-946), the base
+// normal OctahedronToUnitVector((a, z) * 4 - 512/255 + UnitVectorToOctahedron(WorldNormal)).
+// Every other pixel: GBufferA the (base) normal, GBufferD as ue5 (checkUe5SelectorRow).
+// ==================================================================================================
+
+struct CoatNormalPair {
+    glm::vec3 top, bottom;
+    int kind;  // 0: the bottom near the top (a normal-mapped base), 1: anywhere, 2: the same normal
+};
+
+// The i-th (coat normal, base normal): edge normals as the top first, then random ones.
+CoatNormalPair coatNormalPair(Rng& rng, const std::vector<glm::vec3>& edges, size_t i) {
+    CoatNormalPair p;
+    p.top = i < edges.size() ? edges[i] : randomDirection(rng);
+    if (!(glm::length(p.top) > 0.5f && glm::length(p.top) < 2.0f)) p.top = glm::vec3(0, 0, 1);  // edges' tiny and huge
+    p.top = glm::normalize(p.top);
+    p.kind = i % 7 == 3 ? 2 : i % 5 == 0 ? 1 : 0;
+    const glm::vec3 jitter(float(rng.u01()) - 0.5f, float(rng.u01()) - 0.5f, float(rng.u01()) - 0.5f);
+    p.bottom = p.kind == 2 ? p.top : p.kind == 1 ? randomDirection(rng) : glm::normalize(p.top + 0.3f * jitter);
+    if (!(glm::length(p.bottom) > 0.5f)) p.bottom = p.top;
+    return p;
+}
+
+// atan2(|a x b|, a.b) in double: acos of a float dot product reads 0.02 deg where two unit
+// vectors differ in their last bits.
+double degreesBetween(glm::vec3 a, glm::vec3 b) {
+    const glm::dvec3 x(a), y(b);
+    return std::atan2(glm::length(glm::cross(x, y)), glm::dot(x, y)) * 57.29577951308232;
+}
+
+TEST(LayerPackings, Ue5ClearCoatNormalRowWritesTheCoatNormalAndTheBottomDelta) {
+    const Layout layout = gbl::loadLayout("ue5-clearcoat-normal");
+    const size_t a = targetIndex(layout, "GBufferA"), d = targetIndex(layout, "GBufferD");
+    const std::vector<glm::vec3> edges = edgeNormals();
+    Rng rng(4096), pairs(1357);
+    std::vector<Surface> keep(kImage), decoded;
+    std::vector<int> kinds(kImage);
+    const CpuCodec codec(layout);
+    Tally top, delta, reads, base;
+    size_t coated = 0, same = 0, foldFlips = 0;
+    double worstNear = 0.0, worstSame = 0.0;
+    runCodecAllTargets(layout, kInputs / 2, [&](size_t i) {
+        Surface s = layeredInput(rng, edges, i);
+        const CoatNormalPair p = coatNormalPair(pairs, edges, i / 2);
+        s.normal = p.bottom;
+        if (i & 1u) s.coatNormal = p.top;  // a coat has its normal (material_eval.glsl), whatever its amount
+        kinds[i % kImage] = p.kind;
+        return keep[i % kImage] = s;
+    }, [&](size_t i, const CpuGBuffer& g, size_t j) {
+        const Surface& s = keep[j];
+        if (j == 0) decoded = codec.decode(g);
+        const bool clearCoat = ueMaterialModel(s, false).id == 4;
+        const glm::vec3 world = clearCoat ? s.coatNormal : s.normal;  // GBuffer.WorldNormal
+        const uint32_t wa = g.targetWords[a][j], wd = g.targetWords[d][j];
+        const std::string at = "input " + std::to_string(i) + (clearCoat ? " (ClearCoat)" : "");
+        ++top.compared;
+        for (int k = 0; k < 3; ++k) {
+            const HardwareCode c = hardwareUnorm(world[k] * 0.5f + 0.5f, 10);
+            if (c.nearTie) ++top.nearTies;
+            if (!accepts(c, (wa >> (10 * k)) & 1023u)) top.fail(at + ": GBufferA " + hex(wa) + " for " + vec(world));
+        }
+        const glm::vec3 ueWorld = glm::normalize(
+            glm::vec3(float(wa & 1023u), float((wa >> 10) & 1023u), float((wa >> 20) & 1023u)) / 1023.0f * 2.0f - 1.0f);
+        const Surface& o = decoded[j];
+        if (!clearCoat) {  // ue5's pixel: GBufferD as checkUe5SelectorRow holds it; no coat normal
+            ++reads.compared;
+            if (!(glm::length(o.normal - ueWorld) < 1e-6f) || o.coatNormal != glm::vec3(0.0f))
+                reads.fail(at + ": decoded normal " + vec(o.normal) + ", coat normal " + vec(o.coatNormal));
+            return;
+        }
+        ++coated;
+        const glm::vec2 o1 = ueUnitVectorToOctahedron(s.normal), o2 = ueUnitVectorToOctahedron(s.coatNormal);
+        const HardwareCode cx = hardwareUnorm((o1.x - o2.x) * 0.25f + 128.0f / 255.0f, 8);
+        const HardwareCode cz = hardwareUnorm((o1.y - o2.y) * 0.25f + 128.0f / 255.0f, 8);
+        const HardwareCode coat = hardwareUnorm(clamp01(s.coat), 8), rough = hardwareUnorm(clamp01(s.coatRoughness), 8);
+        ++delta.compared;
+        if (cx.nearTie || cz.nearTie) ++delta.nearTies;
+        const uint32_t ca = wd >> 24u, cb = wd & 0xFFu;
+        if (!accepts(cx, ca) || !accepts(cz, cb) || !accepts(coat, (wd >> 16u) & 0xFFu) || !accepts(rough, (wd >> 8u) & 0xFFu))
+            delta.fail(at + ": GBufferD " + hex(wd) + " for base " + vec(s.normal) + " under " + vec(s.coatNormal) +
+                       ", UE (" + std::to_string(cx.nearest) + ", " + std::to_string(cz.nearest) + ")");
+        // UE's reads of the stored words against the codec's decode.
+        const glm::vec2 stored(float(ca) / 255.0f, float(cb) / 255.0f);
+        const glm::vec3 ueBase = ueOctahedronToUnitVector(stored * 4.0f - 512.0f / 255.0f + ueUnitVectorToOctahedron(ueWorld));
+        ++reads.compared;
+        if (!(glm::length(o.coatNormal - ueWorld) < 1e-6f) || !(glm::length(o.normal - ueBase) < 1e-5f))
+            reads.fail(at + ": decoded coat normal " + vec(o.coatNormal) + " (UE " + vec(ueWorld) + "), base " +
+                       vec(o.normal) + " (UE " + vec(ueBase) + ")");
+        // The round trip: near the top within the delta's steps; the same normal as the top's.
+        ++base.compared;
+        const int kind = kinds[j];
+        // The delta is taken against the unquantised top and read against the decoded one: where the
+        // top lies on a fold line of the lower half (x or y = 0, z < 0) within GBufferA's step, its
+        // 10-bit code may fold it to the other side, and the base comes back far off, in UE as here.
+        const bool onFold = s.coatNormal.z < 0.0f && std::min(std::fabs(s.coatNormal.x), std::fabs(s.coatNormal.y)) < 2e-3f;
+        const double err = degreesBetween(o.normal, s.normal);
+        if (kind == 0 && !onFold) worstNear = std::max(worstNear, err);
+        if (kind == 0 && onFold && err >= 2.0) ++foldFlips;
+        if (kind == 2) {
+            ++same;
+            worstSame = std::max(worstSame, degreesBetween(o.normal, o.coatNormal));
+            if (ca != 128u || cb != 128u) base.fail(at + ": the same normal stores (" + std::to_string(ca) + ", " +
+                                                    std::to_string(cb) + "), not (128, 128)");
+        }
+    });
+    std::printf("[ ue5 ccn  ] %zu pixels, %zu ClearCoat (%zu near a delta tie, %zu base = coat); worst near-top base "
+                "error %.3f deg off the fold lines (%zu flipped on them), base = coat read back within %.2e deg\n",
+                top.compared, coated, delta.nearTies, same, worstNear, foldFlips, worstSame);
+    EXPECT_EQ(top.mismatches, 0u);
+    EXPECT_EQ(delta.mismatches, 0u);
+    EXPECT_EQ(reads.mismatches, 0u);
+    EXPECT_EQ(base.mismatches, 0u);
+    EXPECT_GT(coated, kInputs / 8);  // about 3/8 of the inputs are coated (a coat amount > 0)
+    EXPECT_GT(same, 1000u);
+    EXPECT_LT(worstNear, 2.0);   // 8 bits over a delta range of 4, after the top's 10-bit quantisation
+    EXPECT_LT(worstSame, 0.01);  // code (128, 128): oct(decoded top) itself, unfolded again
 }
 
 }  // namespace

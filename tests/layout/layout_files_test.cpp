@@ -10,6 +10,7 @@
 #include "cmd_layouts.h"
 #include "layout.h"
 #include "layout_atlas.h"
+#include "layout_coverage.h"
 #include "layout_catalog.h"
 
 using namespace gbl;
@@ -128,6 +129,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
         {"bevy-deferred-clearcoat", 16 + 1 + 4},  // Bevy 0.19: the same targets, the clear coat in b's spare byte
         {"ue5-clearcoat", 4 + 4 * 4 + 5},      // ue5's targets; CustomData holds the coat
         {"ue5-cloth", 4 + 4 * 4 + 5},          // ue5's targets; CustomData holds the fuzz colour
+        {"ue5-clearcoat-normal", 4 + 4 * 4 + 5},  // ue5's targets; CustomData.a, .z the bottom normal
         {"granite", 4 + 4 + 4 + 2 + 4},        // B10G11R11 + RGBA8 + A2B10G10R10 + RG8 + D24S8
         {"granite-2025", 4 + 4 + 4 + 2 + 4},   // the same targets + D32_SFLOAT (no stencil)
         // Valient, Develop 2007: four RGBA8 + D24S8 = 20 bytes; the talk's "36 MB" is this at
@@ -142,7 +144,7 @@ TEST(LayoutFiles, AtlasBytesPerPixel) {
     for (const auto& [name, bytes] : expected) EXPECT_EQ(bytesPerPixel(load(name)), bytes) << name;
     EXPECT_NEAR(bytesPerPixel(load("killzone2")) * 1280.0 * 720.0 * 2.0 / 1e6, 36.0, 1.0);
     EXPECT_GE(listLayoutNames(layoutsDir()).size(), 25u);  // issue 28: at least 24 layouts + the reference
-    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 33u);  // 32 and the reference: layouts/README.md's atlas
+    EXPECT_EQ(listLayoutNames(layoutsDir()).size(), 34u);  // 33 and the reference: layouts/README.md's atlas
 }
 
 // Where the atlas layouts put their bits (each engine's source, as the layout files cite it).
@@ -244,6 +246,39 @@ TEST(LayoutFiles, AtlasBitsPerAttribute) {
         EXPECT_EQ(shared, 4 * 32);  // GBufferA, B, C and E: every bit stored on every pixel
         EXPECT_EQ(bitsOf(ue5, Attribute::Coat), 8);
         EXPECT_EQ(bitsOf(ue5, Attribute::SheenColor), 24);
+        // r.ClearCoatNormal = 1 (ue5-clearcoat-normal): on a ClearCoat pixel GBufferA's 30 bits hold
+        // the coat's normal and CustomData.a, .z the bottom normal's delta (ShadingModelsMaterial.ush
+        // :96-116), 16 bits more than ue5's ClearCoat pixel; the other models' pixels as ue5's.
+        const Layout ccn = load("ue5-clearcoat-normal");
+        EXPECT_EQ(selectorTable(ccn), selectorTable(ue5));
+        for (M m : {M::Default, M::Cloth}) {
+            EXPECT_EQ(bitsUnder(ccn, Attribute::Normal, m), 30);
+            EXPECT_EQ(bitsUnder(ccn, Attribute::CoatNormal, m), 0);
+            EXPECT_EQ(pixelBitsUnder(ccn, m), pixelBitsUnder(ue5, m));
+        }
+        EXPECT_EQ(bitsUnder(ccn, Attribute::CoatNormal, M::ClearCoat), 30);
+        EXPECT_EQ(bitsUnder(ccn, Attribute::Normal, M::ClearCoat), 16);
+        EXPECT_EQ(pixelBitsUnder(ccn, M::ClearCoat), pixelBitsUnder(ue5, M::ClearCoat) + 16);
+        EXPECT_EQ(bytesPerPixel(ccn), bytesPerPixel(ue5));
+        EXPECT_TRUE(ccn.storesConditionally(Attribute::Normal));
+        EXPECT_TRUE(storesOnEveryModel(ccn, Attribute::Normal));
+        std::ostringstream out, err;
+        ASSERT_EQ(showLayoutCommand("ue5-clearcoat-normal", out, err), 0) << err.str();
+        EXPECT_NE(out.str().find("normal                  30  (per model, at most: default, clear_coat, cloth)"),
+                  std::string::npos) << out.str();
+        EXPECT_FALSE(storesOnEveryModel(ccn, Attribute::CoatNormal));
+        bool delta = false;
+        for (const Target& t : ccn.targets)
+            for (const Field& f : t.fields)
+                if (f.attribute == Attribute::Normal && f.models == (1u << unsigned(M::ClearCoat))) {
+                    delta = true;
+                    EXPECT_EQ(t.name, "GBufferD");
+                    EXPECT_EQ(f.encoding, "normal_octahedral_delta_ue");
+                    ASSERT_EQ(f.codes.size(), 2u);
+                    EXPECT_EQ(f.codes[0].text, "a");  // CustomData.a = oct3.x
+                    EXPECT_EQ(f.codes[1].text, "b");  // CustomData.z = oct3.y
+                }
+        EXPECT_TRUE(delta);
     }
     // UE5's ClearCoat shading model: CustomData.x, .y.
     const Layout ue5Coat = load("ue5-clearcoat");

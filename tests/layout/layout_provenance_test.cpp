@@ -397,6 +397,14 @@ TEST(LayoutProvenance, Ue5SelectorRowCountsByHand) {
     EXPECT_EQ(c.text(), "verified 33/34, assumed 1, differs 5");
 }
 
+// ue5-clearcoat-normal, hand-counted from its file: ue5's 34 entries, two fields more (GBufferA's
+// coat_normal under clear_coat beside the normal under default and cloth; GBufferD's bottom-normal
+// delta under clear_coat) and one clear value more (coat_normal) = 37; the same 5 differences.
+TEST(LayoutProvenance, Ue5ClearCoatNormalCountsByHand) {
+    const ProvenanceCounts c = provenanceCounts(test::shippedLayout("ue5-clearcoat-normal"));
+    EXPECT_EQ(c.text(), "verified 36/37, assumed 1, differs 5");
+}
+
 // Each conditional CustomData field of UE's rows cites SetGBufferForShadingModel's branch of its own
 // model (ShadingModelsMaterial.ush @1a10ef19: no branch for Default Lit, :12-40; ClearCoat :85-117;
 // Cloth :133-140), and each selector cites UE's shading model ids (ShadingCommon.ush:20-34).
@@ -404,7 +412,7 @@ TEST(LayoutProvenance, UeConditionalFieldsCiteTheirModelsBranch) {
     const std::map<ShadingModel, std::pair<long, long>> branch = {
         {ShadingModel::Default, {12, 40}}, {ShadingModel::ClearCoat, {85, 117}}, {ShadingModel::Cloth, {133, 140}}};
     int checked = 0;
-    for (const char* name : {"ue5", "ue5-anisotropy"}) {
+    for (const char* name : {"ue5", "ue5-anisotropy", "ue5-clearcoat-normal"}) {
         SCOPED_TRACE(name);
         const Layout l = test::shippedLayout(name);
         ASSERT_TRUE(l.selector());
@@ -433,7 +441,8 @@ TEST(LayoutProvenance, UeConditionalFieldsCiteTheirModelsBranch) {
             }
         }
     }
-    EXPECT_EQ(checked, 8);  // custom_data, coat, coat_roughness, sheen_color in each
+    // custom_data, coat, coat_roughness, sheen_color in each; ue5-clearcoat-normal's bottom normal
+    EXPECT_EQ(checked, 13);
 }
 
 // Each conditional field of HDRP's rows cites EncodeIntoGBuffer's branch of its own feature

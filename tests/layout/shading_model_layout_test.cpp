@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "layout_coverage.h"
 #include "layout_files.h"
 #include "layout_test_support.h"
 
@@ -260,7 +261,8 @@ TEST(ShadingModelLayout, TheHdrpAnisotropyEncodingReadsANormalStoredOnEveryPixel
     std::string text = edit(hdrpText(), R"(encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"],)",
                             R"(encoding = "normal_octahedral_hdrp", at = ["r + b[0:3]", "g + b[4:7]"], model = "default",)");
     expectError(text, placeOf(text, "\"anisotropy_angle_hdrp\""),
-                {"reads 'normal', which the layout stores under some models only"});
+                {"reads 'normal', which the layout stores under default only (not under anisotropic, where "
+                 "'anisotropy_direction' is held)"});
 }
 
 TEST(ShadingModelLayout, AConditionalFieldCarriesNoNonLayerAttribute) {
@@ -268,4 +270,73 @@ TEST(ShadingModelLayout, AConditionalFieldCarriesNoNonLayerAttribute) {
                                   R"(encoding = "float11_11_10_hdrp_ao_tag", at = ["r", "g", "b"], model = "default",)");
     expectError(text, placeOf(text, "\"float11_11_10_hdrp_ao_tag\""),
                 {"encoding 'float11_11_10_hdrp_ao_tag' of the conditional field 'emissive' reads 'occlusion' with it"});
+}
+
+// UE's ClearCoat with r.ClearCoatNormal = 1 (layouts/ue5-clearcoat-normal.toml): the normal is stored
+// per model, in GBufferA under default and cloth and as a delta in CustomData under clear_coat, whose
+// encoding reads the coat normal GBufferA holds under clear_coat, before it.
+namespace {
+std::string ueCoatNormalText() {
+    std::ifstream in(test::shippedLayoutDir() / "ue5-clearcoat-normal.toml");
+    std::stringstream s;
+    s << in.rdbuf();
+    EXPECT_FALSE(s.str().empty());
+    return s.str();
+}
+const char* kCoatTop = R"({ attribute = "coat_normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = "clear_coat",)";
+const char* kBaseTop = R"({ attribute = "normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = ["default", "cloth"],)";
+const char* kBottom = R"({ attribute = "normal", encoding = "normal_octahedral_delta_ue")";
+}  // namespace
+
+TEST(ShadingModelLayout, AConditionalFieldMayReadWhatItsModelsStoreBeforeIt) {
+    const std::string text = ueCoatNormalText();
+    const auto diags = checkLayout(text, kFile);
+    ASSERT_TRUE(diags.empty()) << joined(diags);
+    const Layout l = parseLayout(text, kFile);
+    using M = ShadingModel;
+    EXPECT_TRUE(l.storesConditionally(Attribute::Normal));
+    EXPECT_EQ(l.conditionalModels(Attribute::Normal), bit(M::Default) | bit(M::ClearCoat) | bit(M::Cloth));
+    EXPECT_TRUE(storesOnEveryModel(l, Attribute::Normal));
+    EXPECT_EQ(l.conditionalModels(Attribute::CoatNormal), bit(M::ClearCoat));
+    EXPECT_TRUE(storesUnder(l, Attribute::CoatNormal, bit(M::ClearCoat)));
+    EXPECT_FALSE(storesUnder(l, Attribute::CoatNormal, bit(M::ClearCoat) | bit(M::Cloth)));
+    EXPECT_FALSE(storesOnEveryModel(l, Attribute::CoatNormal));
+}
+
+TEST(ShadingModelLayout, TheNormalIsStoredUnderEveryModelOfTheSelector) {
+    const std::string text = edit(ueCoatNormalText(), kBaseTop,
+                                  R"({ attribute = "normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = "default",)");
+    expectError(text, placeOf(text, R"("default", from = "gbi:418-421)"),
+                {"'normal' is stored under default, clear_coat only", "under the selector's other models too: cloth"});
+}
+
+TEST(ShadingModelLayout, AConditionalFieldReadsWhatEachOfItsModelsStores) {
+    // the coat normal under cloth, the bottom's delta under clear_coat: no coat normal to read there
+    std::string text = edit(ueCoatNormalText(), kCoatTop,
+                            R"({ attribute = "coat_normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = "cloth",)");
+    text = edit(text, kBaseTop,
+                R"({ attribute = "normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = ["default", "clear_coat"],)");
+    expectError(text, placeOf(text, "\"normal_octahedral_delta_ue\""),
+                {"reads 'coat_normal', which the layout stores under cloth only (not under clear_coat, where 'normal' is held)"});
+}
+
+TEST(ShadingModelLayout, AConditionalFieldReadsWhatItsModelsStoreBeforeIt) {
+    // GBufferA holds the coat normal under cloth only, and under clear_coat it moves to GBufferE,
+    // after GBufferD's delta: stored under the delta's model, but not before it.
+    std::string text = edit(ueCoatNormalText(), kCoatTop,
+                            R"({ attribute = "coat_normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = "cloth",)");
+    text = edit(text, kBaseTop,
+                R"({ attribute = "normal", encoding = "normal_xyz", bits = 10, at = ["r", "g", "b"], model = "default",)");
+    text = edit(text, R"({ attribute = "precomputed_shadow", encoding = "unorm", at = ["r", "g", "b", "a"], value = 1.0,)",
+                R"({ attribute = "precomputed_shadow", encoding = "unorm", at = "r", value = 1.0, from = "lmc:230-290", status = "verified" },
+  { attribute = "coat_normal", encoding = "normal_xyz", bits = 8, at = ["g", "b", "a"], model = "clear_coat",)");
+    expectError(text, placeOf(text, "\"normal_octahedral_delta_ue\""),
+                {"encoding 'normal_octahedral_delta_ue' of 'normal' reads 'coat_normal', which is stored after it"});
+}
+
+TEST(ShadingModelLayout, TheUeDeltaEncodingStoresTheNormalOnly) {
+    const std::string text =
+        edit(ueCoatNormalText(), kBottom, R"({ attribute = "coat_normal", encoding = "normal_octahedral_delta_ue")");
+    expectError(text, placeOf(text, "\"normal_octahedral_delta_ue\""),
+                {"'normal_octahedral_delta_ue' stores normal (relative to coat_normal), not 'coat_normal'"});
 }

@@ -153,7 +153,8 @@ TEST_F(CpuDecodeTest, CpuCodecDecodesRenderedLayoutsAsTheDecodePass) {
 // spheres' pixels ClearCoat, the sheen ones' Cloth, the anisotropic ones' (ue5-anisotropy) Default
 // Lit with anisotropy, each decoding its own layer; a Cloth pixel's sheen roughness is its decoded
 // roughness (sheen_roughness = "from_roughness", UE's cloth lobe), on both paths; and hdrp-lit, whose
-// anisotropic spheres are of HDRP's anisotropic feature (the coat a flag beside it, no sheen).
+// anisotropic spheres are of HDRP's anisotropic feature (the coat a flag beside it, no sheen); and
+// ue5-clearcoat-normal, whose ClearCoat pixels hold the coat's normal and the base normal's delta.
 TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
     Scene scene = makeSphereGridScene();
     test::addLayersToSphereGrid(scene);
@@ -162,7 +163,7 @@ TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
     const RenderSettings pass = test::decodedFrame(160, 90);
     RenderSettings cpu = pass;
     cpu.decodeOnCpu = true;
-    for (const char* name : {"reference", "ue4", "ue5", "ue5-anisotropy", "ue5-cloth", "hdrp-lit"}) {
+    for (const char* name : {"reference", "ue4", "ue5", "ue5-anisotropy", "ue5-cloth", "hdrp-lit", "ue5-clearcoat-normal"}) {
         SCOPED_TRACE(name);
         const std::string n = name;
         const GBufferWiring wiring = generateWiring(loadLayout(name));
@@ -181,10 +182,12 @@ TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
             EXPECT_EQ(a->pixels, b->pixels) << what;
         for (const RenderOutput* out : {&device, &host}) {
             const SurfaceImages& s = out->surfaces;
-            size_t coated = 0, sheen = 0, anisotropic = 0, sheenRoughnessOff = 0;
+            size_t coated = 0, sheen = 0, anisotropic = 0, sheenRoughnessOff = 0, coatNormals = 0;
             for (size_t i = 0; i < s.coverage.size(); ++i) {
                 if (!s.coverage[i]) continue;
                 coated += s.coat.pixels[i] > 0.0f;
+                const float* cn = &s.coatNormal.pixels[i * 3];
+                coatNormals += s.coat.pixels[i] > 0.0f && (cn[0] != 0.0f || cn[1] != 0.0f || cn[2] != 0.0f);
                 anisotropic += s.anisotropyStrength.pixels[i] > 0.0f;
                 const bool hasSheen = s.sheenColor.pixels[i * 3] + s.sheenColor.pixels[i * 3 + 1] + s.sheenColor.pixels[i * 3 + 2] > 0.0f;
                 sheen += hasSheen;
@@ -201,6 +204,10 @@ TEST_F(CpuDecodeTest, LayerImagesDecodeAlikeOnBothPaths) {
             // UE's cloth lobe takes the base roughness: the decoded sheen roughness is the decoded roughness
             if (n.rfind("ue5", 0) == 0) EXPECT_EQ(sheenRoughnessOff, 0u);
             if (n == "reference") EXPECT_GT(sheenRoughnessOff, 0u);  // the glTF sheen roughness, 0.5, stored apart
+            // r.ClearCoatNormal = 1: every ClearCoat pixel decodes the coat's normal from GBufferA
+            // (and its base normal from CustomData); ue5 stores none (0: the base normal serves)
+            if (n == "ue5-clearcoat-normal" || n == "reference") EXPECT_EQ(coatNormals, coated);
+            if (n == "ue5") EXPECT_EQ(coatNormals, 0u);
         }
     }
 }
