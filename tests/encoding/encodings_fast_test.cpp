@@ -218,79 +218,51 @@ TEST(Srgb8EncodeFast, SameCodesAsTheReference) {
     EXPECT_EQ(bad, 0u);
 }
 
-// HDRP's fast sRGB (hdrp-lit's fresnel0) by the same table form, of |x|: the sweep as for gamma 2.2,
-// each threshold's neighbours, and negatives (HDRP codes the magnitude: PositivePow).
-TEST(Srgb8FastHdrpEncodeFast, SameCodesAsTheReference) {
+// The sRGB table form (encodings_fast.h) over another curve's 255 thresholds against the
+// reference's binary search `ref`: the sweep, each threshold's neighbours, every bucket edge, every
+// 5th float of the range the table spans (about 30M), and each value's negative; with `magnitude`
+// the table reads |x| (HDRP's fast sRGB codes the magnitude).
+void expectTableForm(const float (&thresholds)[255], const enc::Srgb8EncodeTable& table, uint (*ref)(float),
+                       bool magnitude, const char* name) {
     std::vector<float> xs = floatSweep();
-    for (float t : enc::kSrgbFastHdrpEncodeThresholds) addNeighbours(xs, t, 4);
-    const enc::Srgb8EncodeTable& table = enc::srgbFastHdrpEncodeTable();
+    for (float t : thresholds) addNeighbours(xs, t, 4);
     for (uint32_t b = table.firstBucket; b <= table.lastBucket + 1; ++b)
         addNeighbours(xs, enc::uintBitsToFloat(b << enc::Srgb8EncodeTable::kShift), 2);
-    size_t bad = 0, count = xs.size();
+    size_t bad = 0, count = 0;
     auto check = [&](float x) {
-        const uint fast = enc::encodeSrgb8Fast(std::fabs(x), table), ref = enc::encodeSrgb8FastHdrp(x);
-        if (fast != ref && bad++ < 5)
-            ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
-                          << "): fast " << fast << ", reference " << ref;
+        ++count;
+        const uint fast = enc::encodeSrgb8Fast(magnitude ? std::fabs(x) : x, table), want = ref(x);
+        if (fast != want && bad++ < 5)
+            ADD_FAILURE() << name << ": x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
+                          << "): fast " << fast << ", reference " << want;
     };
     for (float x : xs) check(x), check(-x);
-    count *= 2;
     const uint32_t from = (table.firstBucket - 1) << enc::Srgb8EncodeTable::kShift;
     const uint32_t to = (table.lastBucket + 2) << enc::Srgb8EncodeTable::kShift;
-    for (uint32_t bits = from; bits < to; bits += 5, ++count) check(enc::uintBitsToFloat(bits));
-    std::printf("[ srgb hdrp] %zu values, %zu differ\n", count, bad);
-    EXPECT_EQ(bad, 0u);
+    for (uint32_t bits = from; bits < to; bits += 5) check(enc::uintBitsToFloat(bits));
+    std::printf("[ %-9s] %zu values, %zu differ\n", name, count, bad);
+    EXPECT_EQ(bad, 0u) << name;
+}
+
+// HDRP's fast sRGB (hdrp-lit's fresnel0), of |x| (HDRP codes the magnitude: PositivePow).
+TEST(Srgb8FastHdrpEncodeFast, SameCodesAsTheReference) {
+    const enc::Srgb8EncodeTable& table = enc::srgbFastHdrpEncodeTable();
+    expectTableForm(enc::kSrgbFastHdrpEncodeThresholds, table, enc::encodeSrgb8FastHdrp, true, "srgb hdrp");
     // Not the sRGB table: the fast curve has no linear toe, so low values code differently.
     EXPECT_NE(enc::encodeSrgb8Fast(0.001f, table), enc::encodeSrgb8(0.001f));
 }
 
-// unorm_sqrt (UE's Cloth fuzz colour) by the same table form: the sweep, each threshold's
-// neighbours and every bucket edge, as for gamma 2.2; the tightest case (top thresholds 0.79 %
-// apart in buckets up to 0.78 % wide).
+// unorm_sqrt (UE's Cloth fuzz colour): the tightest case, its top thresholds 0.79 % apart in
+// buckets up to 0.78 % wide.
 TEST(UnormSqrtEncodeFast, SameCodesAsTheReference) {
-    std::vector<float> xs = floatSweep();
-    for (float t : enc::kUnormSqrtEncodeThresholds) addNeighbours(xs, t, 4);
-    const enc::Srgb8EncodeTable& table = enc::unormSqrtEncodeTable();
-    for (uint32_t b = table.firstBucket; b <= table.lastBucket + 1; ++b)
-        addNeighbours(xs, enc::uintBitsToFloat(b << enc::Srgb8EncodeTable::kShift), 2);
-    size_t bad = 0, count = xs.size();
-    auto check = [&](float x) {
-        const uint fast = enc::encodeSrgb8Fast(x, table), ref = enc::encodeUnormSqrt(x);
-        if (fast != ref && bad++ < 5)
-            ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
-                          << "): fast " << fast << ", reference " << ref;
-    };
-    for (float x : xs) check(x), check(-x);
-    count *= 2;
-    const uint32_t from = (table.firstBucket - 1) << enc::Srgb8EncodeTable::kShift;
-    const uint32_t to = (table.lastBucket + 2) << enc::Srgb8EncodeTable::kShift;
-    for (uint32_t bits = from; bits < to; bits += 5, ++count) check(enc::uintBitsToFloat(bits));
-    std::printf("[ unorm sqrt] %zu values, %zu differ\n", count, bad);
-    EXPECT_EQ(bad, 0u);
+    expectTableForm(enc::kUnormSqrtEncodeThresholds, enc::unormSqrtEncodeTable(), enc::encodeUnormSqrt, false,
+                    "unorm sqrt");
 }
 
-// Gamma 2.2 (Bevy's and niagara's base colour) by the sRGB table form over its own thresholds:
-// every 5th float of the range the table spans (about 30M: every bucket, every threshold's
-// surroundings), each threshold and bucket edge with its neighbours, and the whole-range sweep.
+// Gamma 2.2 (Bevy's and niagara's base colour).
 TEST(Gamma22EncodeFast, SameCodesAsTheReference) {
-    std::vector<float> xs = floatSweep();
-    for (float t : enc::kGamma22EncodeThresholds) addNeighbours(xs, t, 4);
     const enc::Srgb8EncodeTable& table = enc::gamma22EncodeTable();
-    for (uint32_t b = table.firstBucket; b <= table.lastBucket + 1; ++b)
-        addNeighbours(xs, enc::uintBitsToFloat(b << enc::Srgb8EncodeTable::kShift), 2);
-    size_t bad = 0, count = xs.size();
-    auto check = [&](float x) {
-        const uint fast = enc::encodeSrgb8Fast(x, table), ref = enc::encodeGamma22(x);
-        if (fast != ref && bad++ < 5)
-            ADD_FAILURE() << "x = " << x << " (bits 0x" << std::hex << enc::floatBitsToUint(x) << std::dec
-                          << "): fast " << fast << ", reference " << ref;
-    };
-    for (float x : xs) check(x);
-    const uint32_t from = (table.firstBucket - 1) << enc::Srgb8EncodeTable::kShift;
-    const uint32_t to = (table.lastBucket + 2) << enc::Srgb8EncodeTable::kShift;
-    for (uint32_t bits = from; bits < to; bits += 5, ++count) check(enc::uintBitsToFloat(bits));
-    std::printf("[ gamma22  ] %zu values, %zu differ\n", count, bad);
-    EXPECT_EQ(bad, 0u);
+    expectTableForm(enc::kGamma22EncodeThresholds, table, enc::encodeGamma22, false, "gamma22");
     // The table is not the sRGB one: the curves differ (0.2: sRGB code 124, gamma 2.2 code 123).
     EXPECT_EQ(enc::encodeSrgb8Fast(0.2f, table), 123u);
     EXPECT_EQ(enc::encodeSrgb8(0.2f), 124u);
