@@ -116,49 +116,54 @@ GBL_CLONE_INLINE Outputs outputsFor(DecodeBlock& b, int dest, int components) {
     return o;
 }
 
+// A scalar encoding's decode, per component (components beyond the codes are 0).
+GBL_SIMD_CLONES void decodeScalarValues(const FieldPlan& f, int n, DecodeBlock& b, const Outputs& o) {
+    for (size_t k = 0; k < 3; ++k) {
+        float* out = o.c[k];
+        if (k >= f.codes.size()) {
+            std::fill(out, out + n, 0.0f);
+            continue;
+        }
+        const uint bk = f.codes[k].bits;
+        const uint32_t* c = b.code[k];
+        switch (f.codec) {
+            case Codec::Unorm: map1(n, c, out, [bk](uint x) { return dequantizeUnorm(x, bk); }); break;
+            case Codec::Snorm: map1(n, c, out, [bk](uint x) { return dequantizeSnorm(x, bk); }); break;
+            case Codec::Float16: map1(n, c, out, [](uint x) { return decodeFloat16(x); }); break;
+            case Codec::Float11: map1(n, c, out, [](uint x) { return decodeFloat11(x); }); break;
+            case Codec::Float10: map1(n, c, out, [](uint x) { return decodeFloat10(x); }); break;
+            case Codec::Float32: map1(n, c, out, [](uint x) { return decodeFloat32(x); }); break;
+            case Codec::Depth24: map1(n, c, out, [](uint x) { return dequantizeDepth24(x); }); break;
+            case Codec::Gloss:
+                map1(n, c, out, [bk](uint x) { return roughnessFromGloss(dequantizeUnorm(x, bk)); });
+                break;
+            case Codec::SmoothnessCry:
+                map1(n, c, out, [bk](uint x) { return roughnessFromSmoothnessCry(dequantizeUnorm(x, bk)); });
+                break;
+            case Codec::CryGlossPower: map1(n, c, out, [](uint x) { return decodeCryGlossPower(x); }); break;
+            case Codec::Kz2LogPower: map1(n, c, out, [](uint x) { return decodeKz2LogPower(x); }); break;
+            case Codec::Reflectance:
+                map1(n, c, out, [bk](uint x) { return specularFromReflectance(dequantizeUnorm(x, bk)); });
+                break;
+            case Codec::UnormRoundEven: map1(n, c, out, [bk](uint x) { return dequantizeUnorm(x, bk); }); break;
+            case Codec::CoatRoughnessBevy:
+                map1(n, c, out, [bk](uint x) { return decodeCoatRoughnessBevy(x, bk); });
+                break;
+            case Codec::UnormSigned: map1(n, c, out, [bk](uint x) { return dequantizeUnormSigned(x, bk); }); break;
+            case Codec::UnormSqrt: map1(n, c, out, [](uint x) { return decodeUnormSqrt(x); }); break;
+            case Codec::ReflectanceBevyWebgl2:
+                map1(n, c, out, [bk](uint x) { return specularFromReflectanceBevyWebgl2(dequantizeUnorm(x, bk)); });
+                break;
+            default: break;  // Id: CpuCodec::decode throws before (plan.decodeError)
+        }
+    }
+}
+
 // Decoded attribute of a non-checkerboard field, from b.code into `o` (mirror of decodeFieldExpr):
-// scalars per component (components beyond the codes are 0), vec3 encodings with code 0's bits.
+// scalars per component (decodeScalarValues), vec3 encodings with code 0's bits.
 GBL_SIMD_CLONES void decodeValues(const FieldPlan& f, int n, DecodeBlock& b, const Outputs& o) {
     if (isScalar(f.codec)) {
-        for (size_t k = 0; k < 3; ++k) {
-            float* out = o.c[k];
-            if (k >= f.codes.size()) {
-                std::fill(out, out + n, 0.0f);
-                continue;
-            }
-            const uint bk = f.codes[k].bits;
-            const uint32_t* c = b.code[k];
-            switch (f.codec) {
-                case Codec::Unorm: map1(n, c, out, [bk](uint x) { return dequantizeUnorm(x, bk); }); break;
-                case Codec::Snorm: map1(n, c, out, [bk](uint x) { return dequantizeSnorm(x, bk); }); break;
-                case Codec::Float16: map1(n, c, out, [](uint x) { return decodeFloat16(x); }); break;
-                case Codec::Float11: map1(n, c, out, [](uint x) { return decodeFloat11(x); }); break;
-                case Codec::Float10: map1(n, c, out, [](uint x) { return decodeFloat10(x); }); break;
-                case Codec::Float32: map1(n, c, out, [](uint x) { return decodeFloat32(x); }); break;
-                case Codec::Depth24: map1(n, c, out, [](uint x) { return dequantizeDepth24(x); }); break;
-                case Codec::Gloss:
-                    map1(n, c, out, [bk](uint x) { return roughnessFromGloss(dequantizeUnorm(x, bk)); });
-                    break;
-                case Codec::SmoothnessCry:
-                    map1(n, c, out, [bk](uint x) { return roughnessFromSmoothnessCry(dequantizeUnorm(x, bk)); });
-                    break;
-                case Codec::CryGlossPower: map1(n, c, out, [](uint x) { return decodeCryGlossPower(x); }); break;
-                case Codec::Kz2LogPower: map1(n, c, out, [](uint x) { return decodeKz2LogPower(x); }); break;
-                case Codec::Reflectance:
-                    map1(n, c, out, [bk](uint x) { return specularFromReflectance(dequantizeUnorm(x, bk)); });
-                    break;
-                case Codec::UnormRoundEven: map1(n, c, out, [bk](uint x) { return dequantizeUnorm(x, bk); }); break;
-                case Codec::CoatRoughnessBevy:
-                    map1(n, c, out, [bk](uint x) { return decodeCoatRoughnessBevy(x, bk); });
-                    break;
-                case Codec::UnormSigned: map1(n, c, out, [bk](uint x) { return dequantizeUnormSigned(x, bk); }); break;
-                case Codec::UnormSqrt: map1(n, c, out, [](uint x) { return decodeUnormSqrt(x); }); break;
-                case Codec::ReflectanceBevyWebgl2:
-                    map1(n, c, out, [bk](uint x) { return specularFromReflectanceBevyWebgl2(dequantizeUnorm(x, bk)); });
-                    break;
-                default: break;  // Id: CpuCodec::decode throws before (plan.decodeError)
-            }
-        }
+        decodeScalarValues(f, n, b, o);
         return;
     }
     const uint bits = f.codes[0].bits;

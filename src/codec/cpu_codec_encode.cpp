@@ -334,50 +334,57 @@ GBL_SIMD_CLONES_AVX512 void encodeMaterial(const CodecPlan& plan, int n, size_t 
     }
 }
 
+
+// A scalar encoding's codes, per component with each code's bits.
+GBL_SIMD_CLONES_AVX512 void encodeScalarCodes(const FieldPlan& f, int n, EncodeBlock& b) {
+    for (size_t k = 0; k < f.codes.size(); ++k) {
+        const uint bk = f.codes[k].bits;
+        const float* in = b.src[k];
+        uint32_t* out = b.code[k];
+        switch (f.codec) {
+            case Codec::Unorm: map1(n, in, out, [bk](float x) { return quantizeUnorm(x, bk); }); break;
+            case Codec::Snorm: map1(n, in, out, [bk](float x) { return quantizeSnorm(x, bk); }); break;
+            case Codec::Float16: encodeFloat16Row(n, in, out); break;  // F16C where the CPU has it
+            case Codec::Float11: map1(n, in, out, [](float x) { return encodeFloat11Fast(x); }); break;
+            case Codec::Float10: map1(n, in, out, [](float x) { return encodeFloat10Fast(x); }); break;
+            case Codec::Float32: map1(n, in, out, [](float x) { return encodeFloat32(x); }); break;
+            case Codec::Depth24: map1(n, in, out, [](float x) { return quantizeDepth24(x); }); break;
+            case Codec::Gloss:
+                map1(n, in, out, [bk](float x) { return quantizeUnorm(glossFromRoughness(x), bk); });
+                break;
+            case Codec::SmoothnessCry:
+                map1(n, in, out, [bk](float x) { return quantizeUnorm(smoothnessFromRoughnessCry(x), bk); });
+                break;
+            case Codec::CryGlossPower: map1(n, in, out, [](float x) { return encodeCryGlossPower(x); }); break;
+            case Codec::Kz2LogPower: map1(n, in, out, [](float x) { return encodeKz2LogPower(x); }); break;
+            case Codec::UnormRoundEven:
+                map1(n, in, out, [bk](float x) { return quantizeUnormRoundEven(x, bk); });
+                break;
+            case Codec::CoatRoughnessBevy:
+                map1(n, in, out, [bk](float x) { return encodeCoatRoughnessBevy(x, bk); });
+                break;
+            case Codec::UnormSigned:
+                map1(n, in, out, [bk](float x) { return quantizeUnormSigned(x, bk); });
+                break;
+            case Codec::UnormSqrt: srgb8Row(n, in, out, unormSqrtEncodeTable()); break;  // by the table form
+            case Codec::Reflectance:
+            case Codec::ReflectanceBevyWebgl2:  // the bias is the read's alone
+                map1(n, in, out, [bk](float x) { return quantizeUnorm(reflectanceFromSpecular(x), bk); });
+                break;
+            default: break;  // Id: folded into the target's constant words by compilePlan
+        }
+    }
+}
+
 }  // namespace
 
 // Mirror of encodeField in the former per-pixel codec (and of emitEncodeField in wiring_codegen):
-// scalars per component with each code's bits, vec3 encodings with the first code's bits.
+// scalars per component with each code's bits (encodeScalarCodes), vec3 encodings with the first
+// code's bits.
 GBL_SIMD_CLONES_AVX512 void encodeCodes(const FieldPlan& f, int n, int x0, int y, EncodeBlock& b) {
     const uint bits = f.codes[0].bits;
     if (isScalar(f.codec)) {
-        for (size_t k = 0; k < f.codes.size(); ++k) {
-            const uint bk = f.codes[k].bits;
-            const float* in = b.src[k];
-            uint32_t* out = b.code[k];
-            switch (f.codec) {
-                case Codec::Unorm: map1(n, in, out, [bk](float x) { return quantizeUnorm(x, bk); }); break;
-                case Codec::Snorm: map1(n, in, out, [bk](float x) { return quantizeSnorm(x, bk); }); break;
-                case Codec::Float16: encodeFloat16Row(n, in, out); break;  // F16C where the CPU has it
-                case Codec::Float11: map1(n, in, out, [](float x) { return encodeFloat11Fast(x); }); break;
-                case Codec::Float10: map1(n, in, out, [](float x) { return encodeFloat10Fast(x); }); break;
-                case Codec::Float32: map1(n, in, out, [](float x) { return encodeFloat32(x); }); break;
-                case Codec::Depth24: map1(n, in, out, [](float x) { return quantizeDepth24(x); }); break;
-                case Codec::Gloss:
-                    map1(n, in, out, [bk](float x) { return quantizeUnorm(glossFromRoughness(x), bk); });
-                    break;
-                case Codec::SmoothnessCry:
-                    map1(n, in, out, [bk](float x) { return quantizeUnorm(smoothnessFromRoughnessCry(x), bk); });
-                    break;
-                case Codec::CryGlossPower: map1(n, in, out, [](float x) { return encodeCryGlossPower(x); }); break;
-                case Codec::Kz2LogPower: map1(n, in, out, [](float x) { return encodeKz2LogPower(x); }); break;
-                case Codec::UnormRoundEven:
-                    map1(n, in, out, [bk](float x) { return quantizeUnormRoundEven(x, bk); });
-                    break;
-                case Codec::CoatRoughnessBevy:
-                    map1(n, in, out, [bk](float x) { return encodeCoatRoughnessBevy(x, bk); });
-                    break;
-                case Codec::UnormSigned:
-                    map1(n, in, out, [bk](float x) { return quantizeUnormSigned(x, bk); });
-                    break;
-                case Codec::UnormSqrt: srgb8Row(n, in, out, unormSqrtEncodeTable()); break;  // by the table form
-                case Codec::Reflectance:
-                case Codec::ReflectanceBevyWebgl2:  // the bias is the read's alone
-                    map1(n, in, out, [bk](float x) { return quantizeUnorm(reflectanceFromSpecular(x), bk); });
-                    break;
-                default: break;  // Id: folded into the target's constant words by compilePlan
-            }
-        }
+        encodeScalarCodes(f, n, b);
         return;
     }
     const float *x = b.src[0], *yv = b.src[1], *z = b.src[2];
