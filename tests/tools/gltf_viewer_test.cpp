@@ -156,6 +156,18 @@ std::array<double, 2> hit(int x, int yTopDown) {
     return {nx * kEyeZ, ny * kEyeZ};
 }
 
+// The angles at the quad's point (px, py, 0) under the eye, with N = L = +Z: V from the point to the
+// eye, H between V and L.
+struct HeadOn {
+    double NdotV, NdotH, VdotH;
+};
+HeadOn headOn(double px, double py) {
+    const double vx = -px, vy = -py, vz = kEyeZ, vl = std::sqrt(vx * vx + vy * vy + vz * vz);
+    const double NdotV = vz / vl;
+    const double hx = vx / vl, hy = vy / vl, hz = NdotV + 1.0, hl = std::sqrt(hx * hx + hy * hy + hz * hz);
+    return {NdotV, hz / hl, (hx * vx / vl + hy * vy / vl + hz * NdotV) / hl};
+}
+
 struct Frame {
     Image rgb;
     std::vector<unsigned char> mask;  // rows top to bottom
@@ -245,11 +257,7 @@ TEST(GltfViewer, LambertQuadMatchesTheSpecificationsBrdf) {
             }
             if (std::max(std::fabs(px), std::fabs(py)) > 0.8) continue;
             EXPECT_EQ(m, 255) << x << "," << y;
-            // N = L = +Z; V from the surface point to the eye.
-            const double vx = -px, vy = -py, vz = kEyeZ, vl = std::sqrt(vx * vx + vy * vy + vz * vz);
-            const double NdotV = vz / vl;
-            const double hx = vx / vl, hy = vy / vl, hz = NdotV + 1.0, hl = std::sqrt(hx * hx + hy * hy + hz * hz);
-            const double NdotH = hz / hl, VdotH = (hx * vx / vl + hy * vy / vl + hz * NdotV) / hl;
+            const auto [NdotV, NdotH, VdotH] = headOn(px, py);
             const double expected = gltfDielectricBrdf(0.5, 1.0, 1.0, NdotV, NdotH, VdotH) * kLux * 1.0;
             for (int c = 0; c < 3; ++c) {
                 const double rel = std::fabs(f.rgb.at(x, y, c) / expected - 1.0);
@@ -382,11 +390,8 @@ TEST(GltfViewer, SheenQuadUsesTheSheenAlbedoTable) {
         for (int x = 0; x < kW; ++x) {
             const auto [px, py] = hit(x, y);
             if (std::max(std::fabs(px), std::fabs(py)) > 0.8) continue;
-            const double vx = -px, vy = -py, vz = kEyeZ, vl = std::sqrt(vx * vx + vy * vy + vz * vz);
-            const double NdotV = vz / vl;
+            const auto [NdotV, NdotH, VdotH] = headOn(px, py);
             if (NdotV < 0.9) continue;
-            const double hx = vx / vl, hy = vy / vl, hz = NdotV + 1.0, hl = std::sqrt(hx * hx + hy * hy + hz * hz);
-            const double NdotH = hz / hl, VdotH = (hx * vx / vl + hy * vy / vl + hz * NdotV) / hl;
             const double base = gltfDielectricBrdf(0.5, 1.0, 1.0, NdotV, NdotH, VdotH);
             const double scaling = std::min(1 - table.at(NdotV, 1.0), 1 - table.at(1.0, 1.0));
             const double expected = (sheenBrdf(1.0, 1.0, NdotV, NdotH) + base * scaling) * kLux;
@@ -440,11 +445,8 @@ TEST(GltfViewer, TextureSharedByColourAndDataIsDecodedPerUse) {
         for (int x = 0; x < kW; ++x) {
             const auto [px, py] = hit(x, y);
             if (std::max(std::fabs(px), std::fabs(py)) > 0.8) continue;
-            const double vx = -px, vy = -py, vz = kEyeZ, vl = std::sqrt(vx * vx + vy * vy + vz * vz);
-            const double NdotV = vz / vl;
+            const auto [NdotV, NdotH, VdotH] = headOn(px, py);
             if (NdotV < 0.9) continue;
-            const double hx = vx / vl, hy = vy / vl, hz = NdotV + 1.0, hl = std::sqrt(hx * hx + hy * hy + hz * hz);
-            const double NdotH = hz / hl, VdotH = (hx * vx / vl + hy * vy / vl + hz * NdotV) / hl;
             const double want = expected(decoded, NdotV, NdotH, VdotH);
             const double rel = std::fabs(f.rgb.at(x, y, 0) / want - 1.0);
             worst = std::max(worst, rel);
